@@ -1,0 +1,51 @@
+"""The project's exception hierarchy: one root, typed subclasses.
+
+Every error raised on bad input by ``iik``, ``verification`` or ``hardware``
+derives from :class:`IIKError`. Subclasses also inherit the matching built-in
+(``ValueError``, ``TimeoutError``) so generic handlers keep working.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "IIKError",
+    "InvalidInputError",
+    "UnreachablePoseError",
+    "ScenarioError",
+]
+
+
+class IIKError(Exception):
+    """Root of every error this project raises on purpose."""
+
+
+class InvalidInputError(IIKError, ValueError):
+    """An argument has the wrong type, shape, or a non-finite or inconsistent value.
+
+    Attributes:
+        argument: Name of the offending argument.
+        reason: Human-readable reason.
+    """
+
+    def __init__(self, argument: str, reason: str):
+        self.argument = argument
+        self.reason = reason
+        super().__init__(f"{argument}: {reason}")
+
+
+class UnreachablePoseError(IIKError, ValueError):
+    """A requested pose or point cannot be reached by the arm."""
+
+
+class ScenarioError(IIKError, ValueError):
+    """A scenario file is malformed or describes an impossible task.
+
+    Attributes:
+        field: Dotted name of the offending field, e.g. ``"goal.position"``.
+        reason: Human-readable reason.
+    """
+
+    def __init__(self, field: str, reason: str):
+        self.field = field
+        self.reason = reason
+        super().__init__(f"{field}: {reason}")

@@ -1,0 +1,22 @@
+"""verification: machine checks of the thesis against Pinocchio and Coal.
+
+Checks live in :mod:`verification.checks` and register themselves; ``iik
+verify`` runs them all and writes ``reports/verification.md``.
+"""
+
+from .registry import Context, Erratum, Row, Verdict, load_checks, register, registered_checks
+from .report import CheckResult, run_checks, summary, write_report
+
+__all__ = [
+    "Context",
+    "Erratum",
+    "Row",
+    "Verdict",
+    "register",
+    "registered_checks",
+    "load_checks",
+    "CheckResult",
+    "run_checks",
+    "summary",
+    "write_report",
+]
