@@ -8,6 +8,10 @@ from .arm import THESIS_ARM, Arm
 from .dh import DHRow, DHTable, dh_chain
 from .errors import IIKError, InvalidInputError, ScenarioError, UnreachablePoseError
 from .kinematics import fk, fk_chain, jacobian, joint_frames, position_jacobian
+from .ik import (IKResult, PathResult, effort_index, follow_path, pose_from_zxz, select, solve,
+                 solve_many, zxz_from_matrix)
+from .dexterity import Dexterity, DexterityError, dexterity
+from .workspace import ClosestReachable, closest_reachable, in_workspace
 
 __all__ = [
     "Arm",
@@ -20,8 +24,23 @@ __all__ = [
     "jacobian",
     "joint_frames",
     "position_jacobian",
+    "IKResult",
+    "PathResult",
+    "solve",
+    "solve_many",
+    "select",
+    "effort_index",
+    "follow_path",
+    "pose_from_zxz",
+    "zxz_from_matrix",
     "IIKError",
     "InvalidInputError",
     "ScenarioError",
     "UnreachablePoseError",
+    "dexterity",
+    "Dexterity",
+    "DexterityError",
+    "in_workspace",
+    "closest_reachable",
+    "ClosestReachable",
 ]

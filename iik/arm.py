@@ -37,6 +37,9 @@ __all__ = [
     "CYLINDRICAL_MODULE_SPEED",
     "CONSERVATIVE_VELOCITY",
     "ASSUMED_ACCELERATION",
+    "SQUARE_MODULE_TORQUE",
+    "CYLINDRICAL_MODULE_TORQUE",
+    "CONSERVATIVE_EFFORT",
 ]
 
 _DEG = np.pi / 180.0
@@ -50,6 +53,13 @@ CYLINDRICAL_MODULE_SPEED = 1.2
 CONSERVATIVE_VELOCITY = (CYLINDRICAL_MODULE_SPEED,) * 6
 #: Assumed per-joint acceleration limits [rad/s^2] (not given in the thesis).
 ASSUMED_ACCELERATION = (2.0,) * 6
+#: Section 3.2: torque of the square PowerCube modules [N m].
+SQUARE_MODULE_TORQUE = 372.0
+#: Section 3.2: torque of the cylindrical PowerCube modules [N m].
+CYLINDRICAL_MODULE_TORQUE = 239.0
+#: Default per-joint effort limits [N m]: the weaker module kind everywhere,
+#: matching :data:`CONSERVATIVE_VELOCITY` (the text does not say which joint is which).
+CONSERVATIVE_EFFORT = (CYLINDRICAL_MODULE_TORQUE,) * 6
 
 #: Table I, in degrees (display units; converted to rad below).
 _TABLE_I_DEG = ((-160.0, 160.0), (-120.0, 95.0), (-160.0, 160.0),
@@ -67,6 +77,7 @@ class Arm:
         acceleration: Joint acceleration limits [rad/s^2].
         name: Display name.
         assumptions: Human-readable notes on which numbers are assumed.
+        effort: Joint torque limits [N m] (Sec 3.2; written into the URDF).
     """
 
     l1: float
@@ -80,6 +91,7 @@ class Arm:
     acceleration: tuple[float, ...] = ASSUMED_ACCELERATION
     name: str = "arm"
     assumptions: tuple[str, ...] = field(default=())
+    effort: tuple[float, ...] = CONSERVATIVE_EFFORT
 
     def __post_init__(self) -> None:
         for k in ("l1", "l2", "l3", "l4", "l5"):
@@ -89,7 +101,7 @@ class Arm:
         for k in ("l3", "l4", "l5"):
             if getattr(self, k) <= 0:
                 raise InvalidInputError(k, "must be positive")
-        for k in ("acceleration",):
+        for k in ("acceleration", "effort"):
             vals = getattr(self, k)
             if len(vals) != 6 or any(not np.isfinite(v) or v <= 0 for v in vals):
                 raise InvalidInputError(k, "needs six positive finite values")
@@ -148,5 +160,7 @@ THESIS_ARM = Arm(
         "Joint speed limits default to 1.2 rad/s on every joint (the slower module "
         "kind of Sec 3.2); the text does not say which joint is which kind.",
         "Acceleration limits of 2.0 rad/s^2 are assumed (not in the thesis).",
+        "Joint torque limits default to 239 N m on every joint (the weaker module "
+        "kind of Sec 3.2), for the same reason as the speeds.",
     ),
 )

@@ -69,7 +69,7 @@ class DHTable:
         for i, row in enumerate(self.rows):
             if not all(np.isfinite((row.alpha, row.a, row.d, row.offset))):
                 raise InvalidInputError(f"rows[{i}]", "contains NaN or inf")
-        for i, (lo, hi) in enumerate(zip(self.lower, self.upper)):
+        for i, (lo, hi) in enumerate(zip(self.lower, self.upper, strict=True)):
             if not lo < hi:
                 raise InvalidInputError(f"lower[{i}]", f"lower limit {lo} is not below upper {hi}")
         if any(v <= 0 for v in self.velocity):

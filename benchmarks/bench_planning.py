@@ -1,0 +1,72 @@
+"""Benchmark: one thesis scenario end to end (plan, IK, whole-arm Coal check).
+
+Scenario ``j`` (Fig 42j). Three variants measured in the same run:
+
+* ``full``     -- plan_scenario without timing: thesis path, IK branches, certified
+                  continuous whole-arm check (the target is <= 200 ms median);
+* ``discrete`` -- the same with the whole-arm check at the step-points only (baseline
+                  without the continuous check between steps);
+* ``thesis``   -- the thesis planner alone (step-points + IK, no collision check).
+
+Run: ``/work/venv/bin/python benchmarks/bench_planning.py [--runs N]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+
+from iik.planning import build_path, track_branches
+from iik.resources import scenarios_dir
+from verification.collision import SceneCollision
+from verification.pipeline import PlanOptions, plan_scenario
+from verification.scenarios import load_scenario, platform_box
+
+
+def _median(fn, runs: int) -> float:
+    fn()  # warm-up (imports, caches)
+    ts = []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        fn()
+        ts.append(time.perf_counter() - t0)
+    return statistics.median(ts)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=15)
+    ap.add_argument("--scenario", default="j")
+    args = ap.parse_args()
+    path = scenarios_dir() / f"{args.scenario}.toml"
+    sc = load_scenario(path)
+    plat = platform_box()
+
+    def full():
+        r = plan_scenario(sc, options=PlanOptions(timing=False))
+        assert r.success, r.reason
+
+    def discrete():
+        cp = build_path(sc, platform=plat, floor_z=-0.45)
+        br, _ = track_branches(cp, adapt_orientation=False)
+        chk = SceneCollision(sc.obstacles)
+        for b in br:
+            if b.complete and min(chk.clearance(q)[0] for q in b.q) >= sc.safety_zone:
+                return
+
+    def thesis():
+        cp = build_path(sc, platform=plat, floor_z=-0.45)
+        track_branches(cp, adapt_orientation=False)
+
+    t_full, t_disc, t_thesis = (_median(f, args.runs) for f in (full, discrete, thesis))
+    print(f"scenario {args.scenario}: median over {args.runs} runs")
+    print(f"  full (plan + IK + certified continuous whole-arm check): {t_full * 1e3:8.1f} ms  (target <= 200 ms)")
+    print(f"  baseline: step-points-only check                      : {t_disc * 1e3:8.1f} ms  "
+          f"(full / baseline = {t_full / t_disc:.2f})")
+    print(f"  baseline: thesis planner + IK, no collision check      : {t_thesis * 1e3:8.1f} ms  "
+          f"(full / thesis = {t_full / t_thesis:.2f})")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,527 @@
+"""PowerCube driver on any :class:`can.BusABC`: one module, or an arm of modules.
+
+Methods take and return SI units (rad, rad/s, rad/s^2, A, s). They cover every
+function of the thesis's Appendix A, Table V (``PCube_*``) under Pythonic names:
+
+==========================  =====================================================
+Table V                     here
+==========================  =====================================================
+PCube_openDevice/close      :meth:`PowerCubeArm.open` / :meth:`PowerCubeArm.close`
+                            (and :meth:`PowerCubeArm.from_interface` to open a bus)
+PCube_getPos/getVel/getCur  ``get_pos`` / ``get_vel`` / ``get_cur``
+PCube_setMaxCur             ``set_max_cur`` (A; Table V prints "rad/s", a typo)
+PCube_homeModule/homeAll    ``home`` / ``home_all``
+PCube_moveRamp/Step/Vel/Cur ``move_ramp`` / ``move_step`` / ``move_vel`` / ``move_cur``
+==========================  =====================================================
+
+plus ``halt``, ``reset``, ``state``, :func:`scan` (VERSION read on ids 1..31),
+``start_move`` (broadcast STARTMOVE) and the watchdog (CONFIG bit + a periodic
+broadcast 0x07 every 40 ms, sent by python-can's ``send_periodic``).
+
+Every request waits for its echoing ACK (:func:`hardware.protocol.is_echo`)
+until a timeout; every other frame read meanwhile is discarded (unsolicited
+state frames are remembered as faults). HALT latches until RESET: after
+:meth:`halt` the driver refuses motion commands locally until :meth:`reset`.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from collections.abc import Iterable, Sequence
+
+import can
+import numpy as np
+
+from iik.arm import THESIS_ARM, Arm
+
+from . import protocol as P
+from .errors import BusError, CANTimeoutError, ModuleHalted, ProtocolError, SafetyError
+
+__all__ = ["PowerCubeModule", "PowerCubeArm", "Link", "scan", "DEFAULT_TIMEOUT", "WATCHDOG_PERIOD"]
+
+#: Default time to wait for an ACK [s].
+DEFAULT_TIMEOUT = 0.1
+#: Watchdog refresh period of the C drivers [s].
+WATCHDOG_PERIOD = 0.040
+
+
+class Link:
+    """One host's request/reply channel on a bus, shared by the modules on it.
+
+    Serialises requests (a lock), applies the echo rule and remembers unsolicited
+    state frames in :attr:`faults` (module id -> :class:`~hardware.protocol.State`).
+    """
+
+    def __init__(self, bus: can.BusABC, timeout: float = DEFAULT_TIMEOUT):
+        if not isinstance(bus, can.BusABC):
+            raise SafetyError("bus", f"expected a can.BusABC, got {type(bus).__name__}")
+        _check_positive(timeout, "timeout")
+        self.bus = bus
+        self.timeout = float(timeout)
+        self.faults: dict[int, P.State] = {}
+        self.discarded = 0
+        self._lock = threading.RLock()
+
+    def send(self, msg: P.Message) -> None:
+        """Encode and send one frame; python-can errors become :class:`BusError`."""
+        frame = P.encode(msg)
+        try:
+            self.bus.send(frame, timeout=self.timeout)
+        except can.CanError as exc:
+            raise BusError(f"CAN send failed: {exc}") from exc
+
+    def _recv(self, timeout: float):
+        try:
+            return self.bus.recv(timeout=max(timeout, 0.0))
+        except can.CanError as exc:
+            raise BusError(f"CAN receive failed: {exc}") from exc
+
+    def _observe(self, frame: can.Message) -> None:
+        self.discarded += 1
+        if P.ID_STATE < frame.arbitration_id < P.ID_STATE + 32 and not frame.is_extended_id:
+            try:
+                msg = P.decode(frame)
+            except ProtocolError:
+                return
+            if isinstance(msg, P.StateFrame):
+                self.faults[msg.module] = msg.state
+
+    def drain(self) -> None:
+        """Read and discard whatever is queued (late ACKs of earlier requests)."""
+        while (frame := self._recv(0.0)) is not None:
+            self._observe(frame)
+
+    def request(self, req: P.Request, timeout: float | None = None) -> P.Reply:
+        """Send ``req`` and return its decoded echoing reply.
+
+        Raises:
+            CANTimeoutError: no echo within ``timeout`` (default :attr:`timeout`).
+            ProtocolError: the echo is malformed.
+            BusError: the interface failed.
+        """
+        wait = self.timeout if timeout is None else float(timeout)
+        with self._lock:
+            self.drain()
+            self.send(req)
+            deadline = time.monotonic() + wait
+            while True:
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    raise CANTimeoutError(req.module, P.describe(req), wait)
+                frame = self._recv(remaining)
+                if frame is None:
+                    continue
+                if P.is_echo(req, frame):
+                    return P.decode(frame)
+                self._observe(frame)
+
+
+def _check_positive(value, name: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+            or value <= 0:
+        raise SafetyError(name, f"must be a positive finite number, got {value!r}")
+    return float(value)
+
+
+def _finite(value, name: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)) \
+            or not math.isfinite(float(value)):
+        raise SafetyError(name, f"must be a finite number, got {value!r}")
+    return float(value)
+
+
+class PowerCubeModule:
+    """One PowerCube module (id 1..31) on a CAN bus.
+
+    Args:
+        bus: Any python-can bus (``virtual``, ``socketcan``, ``pcan``, ``kvaser``...).
+        module_id: 1..31.
+        timeout: Time to wait for each ACK [s].
+        limits: Optional ``(lower, upper)`` [rad]; position targets outside are
+            refused with :class:`SafetyError` before anything is sent.
+        link: Share a :class:`Link` with other modules on the same bus (the arm does).
+
+    Attributes:
+        halted: True after :meth:`halt` (or a state read showing HALTED) until :meth:`reset`.
+    """
+
+    def __init__(self, bus: can.BusABC, module_id: int, *, timeout: float = DEFAULT_TIMEOUT,
+                 limits: tuple[float, float] | None = None, link: Link | None = None):
+        if isinstance(module_id, bool) or not isinstance(module_id, (int, np.integer)) \
+                or int(module_id) not in P.MODULE_IDS:
+            raise SafetyError("module_id", f"must be an int in 1..31, got {module_id!r}")
+        self.id = int(module_id)
+        self.link = link if link is not None else Link(bus, timeout)
+        self.limits = None
+        if limits is not None:
+            lo, hi = (_finite(v, "limits") for v in limits)
+            if not lo < hi:
+                raise SafetyError("limits", f"need lower < upper, got {limits!r}")
+            self.limits = (lo, hi)
+        self.halted = False
+        self.last_short: P.ShortState | None = None
+
+    def __repr__(self) -> str:
+        return f"PowerCubeModule(id={self.id}, halted={self.halted})"
+
+    # -- parameters
+    def get_param(self, param: P.Param):
+        """Read a parameter (GETPARAM); returns its decoded value."""
+        reply = self.link.request(P.GetParam(self.id, P.Param(param)))
+        return reply.value
+
+    def set_param(self, param: P.Param, value) -> None:
+        """Write a parameter (SETPARAM) and wait for its ACK."""
+        self.link.request(P.SetParam(self.id, P.Param(param), value))
+
+    def get_pos(self) -> float:
+        """Actual position [rad] (``PCube_getPos``)."""
+        return self.get_param(P.Param.ACT_FPOS)
+
+    def get_vel(self) -> float:
+        """Actual velocity [rad/s] (``PCube_getVel``)."""
+        return self.get_param(P.Param.ACT_FVEL)
+
+    def get_cur(self) -> float:
+        """Actual current [A] (``PCube_getCur``)."""
+        return self.get_param(P.Param.ACT_FCUR)
+
+    def get_pos_state_dio(self) -> tuple[float, P.ShortState, int]:
+        """Position [rad], short state and digital I/O in one reply (FPOSSTATEDIO)."""
+        pos, short, dio = self.get_param(P.Param.FPOSSTATEDIO)
+        self.last_short = short
+        return pos, short, dio
+
+    def state(self) -> P.State:
+        """The module's state bits (parameter 0x27). Observes the halt latch."""
+        s = P.State(self.get_param(P.Param.STATE))
+        if s & P.State.HALTED:
+            self.halted = True
+        return s
+
+    def version(self) -> int:
+        return self.get_param(P.Param.VERSION)
+
+    def serial(self) -> int:
+        return self.get_param(P.Param.SERIALNO)
+
+    def set_max_cur(self, current: float) -> None:
+        """Maximum current [A] (``PCube_setMaxCur``; Table V says rad/s, a typo)."""
+        self.set_param(P.Param.FMAXCUR, _check_positive(current, "current"))
+
+    def set_max_vel(self, velocity: float) -> None:
+        self.set_param(P.Param.FMAXVEL, _check_positive(velocity, "velocity"))
+
+    def set_max_acc(self, acceleration: float) -> None:
+        self.set_param(P.Param.FMAXACC, _check_positive(acceleration, "acceleration"))
+
+    def set_soft_limits(self, lower: float, upper: float) -> None:
+        lo, hi = _finite(lower, "lower"), _finite(upper, "upper")
+        if not lo < hi:
+            raise SafetyError("limits", f"need lower < upper, got ({lo}, {hi})")
+        self.set_param(P.Param.FMINPOS, lo)
+        self.set_param(P.Param.FMAXPOS, hi)
+
+    def soft_limits(self) -> tuple[float, float]:
+        return self.get_param(P.Param.FMINPOS), self.get_param(P.Param.FMAXPOS)
+
+    # -- plain commands
+    def _command(self, cmd: P.Cmd) -> None:
+        self.link.request(P.Command(self.id, cmd))
+
+    def home(self) -> None:
+        """Start homing (``PCube_homeModule``); see :meth:`wait_homed`."""
+        self._refuse_if_halted()
+        self._command(P.Cmd.HOME)
+
+    def halt(self) -> None:
+        """Stop now. Latches: no motion is accepted until :meth:`reset`."""
+        self.halted = True
+        self._command(P.Cmd.HALT)
+
+    def reset(self) -> None:
+        """Clear an error or a halt."""
+        self._command(P.Cmd.RESET)
+        self.halted = False
+        self.link.faults.pop(self.id, None)
+
+    def wait_homed(self, timeout: float = 30.0, poll: float = 0.02) -> P.State:
+        """Poll STATE until HOME_OK (raises :class:`CANTimeoutError` after ``timeout`` s)."""
+        deadline = time.monotonic() + timeout
+        while True:
+            s = self.state()
+            if s & P.State.HOME_OK and not s & P.State.MOTION:
+                return s
+            if time.monotonic() > deadline:
+                raise CANTimeoutError(self.id, "HOME (HOME_OK never set)", timeout)
+            time.sleep(poll)
+
+    # -- motion
+    def _refuse_if_halted(self) -> None:
+        if self.halted:
+            raise ModuleHalted(self.id)
+
+    def _check_target(self, pos, name: str = "pos") -> float:
+        p = _finite(pos, name)
+        if self.limits is not None and not self.limits[0] <= p <= self.limits[1]:
+            raise SafetyError(f"module {self.id} {name}",
+                              f"{p:.6f} rad outside [{self.limits[0]:.6f}, {self.limits[1]:.6f}]")
+        return p
+
+    def _move(self, mode: P.Mode, value: float, time_ms: int | None, extended: bool):
+        self._refuse_if_halted()
+        if extended:
+            mode = mode.as_extended()
+        ack = self.link.request(P.SetMove(self.id, mode, value, time_ms))
+        if extended:
+            self.last_short = ack.short
+            return ack.position, ack.short, ack.dio
+        return None
+
+    def move_ramp(self, pos: float, vel: float, acc: float, *, extended: bool = False):
+        """Ramp (trapezoidal) motion to ``pos`` [rad] with ``vel`` [rad/s], ``acc`` [rad/s^2]
+        (``PCube_moveRamp``: SETPARAM FRAMPVEL, FRAMPACC, then SETMOVE FRAMP).
+
+        With ``extended`` the reply's (position, short state, dio) is returned.
+        """
+        self._refuse_if_halted()
+        p = self._check_target(pos)
+        self.set_param(P.Param.FRAMPVEL, _check_positive(vel, "vel"))
+        self.set_param(P.Param.FRAMPACC, _check_positive(acc, "acc"))
+        return self._move(P.Mode.FRAMP, p, None, extended)
+
+    def move_step(self, pos: float, time_s: float, *, extended: bool = False):
+        """Constant-velocity motion to ``pos`` [rad] in ``time_s`` [s] (``PCube_moveStep``;
+        the time goes on the wire in whole ms, 1..65535)."""
+        p = self._check_target(pos)
+        ms = step_ms(time_s)
+        return self._move(P.Mode.FSTEP, p, ms, extended)
+
+    def move_vel(self, vel: float, *, extended: bool = False):
+        """Constant-velocity motion at ``vel`` [rad/s] (``PCube_moveVel``)."""
+        return self._move(P.Mode.FVEL, _finite(vel, "vel"), None, extended)
+
+    def move_cur(self, current: float, *, extended: bool = False):
+        """Constant-current motion at ``current`` [A] (``PCube_moveCur``)."""
+        return self._move(P.Mode.FCUR, _finite(current, "current"), None, extended)
+
+    # -- watchdog
+    def set_watchdog(self, enabled: bool) -> None:
+        """Set or clear the CONFIG watchdog bit (read-modify-write)."""
+        cfg = int(self.get_param(P.Param.CONFIG))
+        cfg = cfg | P.CONFIG_WATCHDOG if enabled else cfg & ~P.CONFIG_WATCHDOG
+        self.set_param(P.Param.CONFIG, cfg)
+
+
+def step_ms(time_s: float) -> int:
+    """``time_s`` [s] as the u16 millisecond count of an FSTEP (1..65535)."""
+    t = _check_positive(time_s, "time_s")
+    ms = int(round(t * 1000.0))
+    if not 1 <= ms <= 0xFFFF:
+        raise SafetyError("time_s", f"{t} s is not 1..65535 ms")
+    return ms
+
+
+def scan(bus: can.BusABC, ids: Iterable[int] = P.MODULE_IDS, *, timeout: float = 0.02,
+         link: Link | None = None) -> dict[int, int]:
+    """Find modules: read VERSION on each id; returns ``{id: version}`` of those that answer."""
+    link = link if link is not None else Link(bus, timeout)
+    found = {}
+    for i in ids:
+        try:
+            found[int(i)] = link.request(P.GetParam(int(i), P.Param.VERSION), timeout).value
+        except CANTimeoutError:
+            continue
+    return found
+
+
+class PowerCubeArm:
+    """Several PowerCube modules on one bus, addressed together (joint order = ``module_ids``).
+
+    Args:
+        bus: Any python-can bus.
+        module_ids: Module ids in joint order, e.g. ``(1, 2, 3, 4, 5, 6)``.
+        arm: Joint limits for the local target check (Table I for the thesis arm);
+            used when there are six modules. ``None`` disables the local check.
+        timeout: Time to wait for each ACK [s].
+        owns_bus: Shut the bus down in :meth:`close` (set by :meth:`from_interface`).
+
+    Vector methods take and return arrays in joint order (rad, rad/s, A, s).
+    """
+
+    def __init__(self, bus: can.BusABC, module_ids: Sequence[int], *, arm: Arm | None = THESIS_ARM,
+                 timeout: float = DEFAULT_TIMEOUT, owns_bus: bool = False):
+        ids = [int(i) for i in module_ids]
+        if not ids or len(set(ids)) != len(ids):
+            raise SafetyError("module_ids", f"need distinct ids, got {module_ids!r}")
+        self.bus = bus
+        self.link = Link(bus, timeout)
+        lims = [None] * len(ids)
+        if arm is not None and len(ids) == 6:
+            lims = list(zip(arm.lower, arm.upper, strict=True))
+        self.modules = [PowerCubeModule(bus, i, limits=lim, link=self.link)
+                        for i, lim in zip(ids, lims, strict=True)]
+        self.module_ids = tuple(ids)
+        self.arm = arm
+        self._owns_bus = owns_bus
+        self._watchdog = None
+
+    @classmethod
+    def from_interface(cls, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), *, interface: str,
+                       channel: str, bitrate: int | None = None, **kwargs) -> PowerCubeArm:
+        """Open a python-can bus (``PCube_openDevice``) and an arm on it; :meth:`close` shuts it."""
+        bus_kw = {k: kwargs.pop(k) for k in list(kwargs) if k not in ("arm", "timeout")}
+        if bitrate is not None:
+            bus_kw["bitrate"] = int(bitrate)
+        try:
+            bus = can.Bus(interface=interface, channel=channel, **bus_kw)
+        except (can.CanError, OSError, ValueError, ImportError) as exc:
+            raise BusError(f"cannot open {interface}:{channel}: {exc}") from exc
+        return cls(bus, module_ids, owns_bus=True, **kwargs)
+
+    def __repr__(self) -> str:
+        return f"PowerCubeArm(module_ids={self.module_ids})"
+
+    def __len__(self) -> int:
+        return len(self.modules)
+
+    def __enter__(self) -> PowerCubeArm:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def open(self) -> list[P.State]:
+        """Check every module answers (VERSION) and return their states."""
+        for m in self.modules:
+            m.version()
+        return self.states()
+
+    def close(self) -> None:
+        """Disable the watchdog and, if this arm opened the bus, shut the bus down."""
+        self.stop_watchdog(disable=True)
+        if self._owns_bus:
+            self.bus.shutdown()
+            self._owns_bus = False
+
+    # -- reading
+    def get_pos(self) -> np.ndarray:
+        return np.array([m.get_pos() for m in self.modules])
+
+    def get_vel(self) -> np.ndarray:
+        return np.array([m.get_vel() for m in self.modules])
+
+    def get_cur(self) -> np.ndarray:
+        return np.array([m.get_cur() for m in self.modules])
+
+    def states(self) -> list[P.State]:
+        return [m.state() for m in self.modules]
+
+    def scan(self, ids: Iterable[int] = P.MODULE_IDS, timeout: float = 0.02) -> dict[int, int]:
+        return scan(self.bus, ids, timeout=timeout, link=self.link)
+
+    @property
+    def halted(self) -> bool:
+        """True if any module is known to be halted (latched)."""
+        return any(m.halted for m in self.modules)
+
+    # -- settings
+    def _per_joint(self, values, name: str) -> list[float]:
+        arr = np.broadcast_to(np.asarray(values, dtype=float), (len(self.modules),)) \
+            if np.ndim(values) == 0 else np.asarray(values, dtype=float)
+        if arr.shape != (len(self.modules),):
+            raise SafetyError(name, f"expected {len(self.modules)} values, got shape {arr.shape}")
+        if not np.all(np.isfinite(arr)):
+            raise SafetyError(name, "contains NaN or inf")
+        return [float(v) for v in arr]
+
+    def set_max_cur(self, current) -> None:
+        for m, c in zip(self.modules, self._per_joint(current, "current"), strict=True):
+            m.set_max_cur(c)
+
+    # -- commands
+    def home(self) -> None:
+        """Home every module, one command each (see :meth:`home_all` for the broadcast)."""
+        for m in self.modules:
+            m.home()
+
+    def home_all(self) -> None:
+        """Broadcast HOME (``PCube_homeAll``); no reply. See :meth:`wait_homed`."""
+        if self.halted:
+            raise ModuleHalted(next(m.id for m in self.modules if m.halted))
+        self.link.send(P.Broadcast(P.Cmd.HOME))
+
+    def wait_homed(self, timeout: float = 30.0) -> list[P.State]:
+        return [m.wait_homed(timeout) for m in self.modules]
+
+    def halt(self) -> None:
+        """Broadcast HALT (one frame reaches every module at once) and latch it locally."""
+        for m in self.modules:
+            m.halted = True
+        self.link.send(P.Broadcast(P.Cmd.HALT))
+
+    def reset(self) -> None:
+        """RESET every module (acknowledged one by one); clears the latch."""
+        for m in self.modules:
+            m.reset()
+
+    def start_move(self) -> None:
+        """Broadcast STARTMOVE: buffered motions of all modules start together."""
+        self.link.send(P.Broadcast(P.Cmd.STARTMOVE))
+
+    def move_ramp(self, q, vel, acc) -> None:
+        qs, vs, as_ = (self._per_joint(q, "q"), self._per_joint(vel, "vel"), self._per_joint(acc, "acc"))
+        for i, m in enumerate(self.modules):
+            m._check_target(qs[i], f"q[{i}]")
+        for m, p, v, a in zip(self.modules, qs, vs, as_, strict=True):
+            m.move_ramp(p, v, a)
+
+    def move_step(self, q, time_s: float, *, extended: bool = False):
+        """FSTEP every joint to ``q`` [rad] in ``time_s`` [s]. All targets are checked first.
+
+        With ``extended`` returns the (n,) actual positions and the short states."""
+        qs = self._per_joint(q, "q")
+        for i, m in enumerate(self.modules):
+            m._check_target(qs[i], f"q[{i}]")
+        out = [m.move_step(p, time_s, extended=extended) for m, p in zip(self.modules, qs, strict=True)]
+        if extended:
+            return np.array([o[0] for o in out]), [o[1] for o in out]
+        return None
+
+    def move_vel(self, vel) -> None:
+        for m, v in zip(self.modules, self._per_joint(vel, "vel"), strict=True):
+            m.move_vel(v)
+
+    def move_cur(self, current) -> None:
+        for m, c in zip(self.modules, self._per_joint(current, "current"), strict=True):
+            m.move_cur(c)
+
+    # -- watchdog
+    def start_watchdog(self, period: float = WATCHDOG_PERIOD) -> None:
+        """Enable the watchdog: set the CONFIG bit on every module, then broadcast
+        WATCHDOG (0x07) every ``period`` s. If the refresh stops, the modules stop."""
+        _check_positive(period, "period")
+        if self._watchdog is not None:
+            return
+        frame = P.encode(P.Broadcast(P.Cmd.WATCHDOG))
+        self.link.send(P.Broadcast(P.Cmd.WATCHDOG))
+        self._watchdog = self.bus.send_periodic(frame, period)
+        for m in self.modules:
+            m.set_watchdog(True)
+
+    def stop_watchdog(self, *, disable: bool = True) -> None:
+        """Stop the periodic refresh. With ``disable`` the CONFIG bit is cleared first
+        (best effort); without, the modules' watchdog trips and they stop."""
+        if self._watchdog is None:
+            return
+        if disable:
+            for m in self.modules:
+                try:
+                    m.set_watchdog(False)
+                except (CANTimeoutError, BusError, ProtocolError):
+                    pass
+        if self._watchdog is not None:
+            self._watchdog.stop()
+            self._watchdog = None

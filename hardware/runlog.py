@@ -1,0 +1,136 @@
+"""Run logs: one JSON object per line, flushed line by line, fsync'd at a fault.
+
+Record types (field ``"type"``):
+
+* ``header``: ``module_ids``, planned ``times`` [s], ``q`` [rad] (n,6), ``poses`` (n,4,4) [m],
+  ``early`` (fraction of a step after which the next is sent), ``started`` (ISO time).
+* ``command``: ``t`` [s since start], ``k`` (target index), ``q`` [rad], ``time_s``,
+  ``q_meas`` (actual positions from the extended FSTEP ACKs [rad]) and ``short`` (short states).
+* ``sample``: ``t``, ``k`` (last commanded target), measured ``q`` [rad], ``dq`` [rad/s],
+  ``cur`` [A], ``state`` (u32 state bits per module).
+* ``fault``: ``t``, ``error`` (exception type), ``message``, ``halted`` (HALT broadcast sent).
+* ``end``: ``t``, ``status`` (``"ok"`` or ``"fault"``). A log without it is incomplete.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from iik.errors import IIKError
+
+__all__ = ["RunLog", "Run", "read_run_log", "RunLogError"]
+
+
+class RunLogError(IIKError, ValueError):
+    """A run log is missing, malformed or incomplete."""
+
+
+class RunLog:
+    """Append-only JSON-lines writer; every record is flushed to the OS at once."""
+
+    def __init__(self, path: str | os.PathLike):
+        self.path = Path(path)
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self._f = open(self.path, "w", encoding="utf-8")  # noqa: SIM115 - closed in close()
+
+    def write(self, record: dict) -> None:
+        self._f.write(json.dumps(record, separators=(",", ":"), allow_nan=False) + "\n")
+        self._f.flush()
+
+    def sync(self) -> None:
+        """Flush and fsync (at a fault, so nothing is lost if the process dies next)."""
+        self._f.flush()
+        os.fsync(self._f.fileno())
+
+    def close(self) -> None:
+        if not self._f.closed:
+            self.sync()
+            self._f.close()
+
+    def __enter__(self) -> RunLog:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+@dataclass(frozen=True)
+class Run:
+    """A parsed run log. Arrays are SI; ``samples_*`` are in time order."""
+
+    header: dict
+    times: np.ndarray  # (n,) planned times [s]
+    q_planned: np.ndarray  # (n,6)
+    poses: np.ndarray  # (n,4,4)
+    command_t: np.ndarray  # (c,)
+    command_k: np.ndarray  # (c,)
+    command_q_meas: np.ndarray  # (c,6) actual positions when each command arrived (NaN if absent)
+    samples_t: np.ndarray  # (m,)
+    samples_k: np.ndarray  # (m,)
+    samples_q: np.ndarray  # (m,6)
+    samples_dq: np.ndarray  # (m,6)
+    samples_cur: np.ndarray  # (m,6)
+    samples_state: np.ndarray  # (m,6) int
+    fault: dict | None
+    status: str | None  # None: the log has no end record
+    records: list = field(repr=False, default_factory=list)
+
+    @property
+    def complete(self) -> bool:
+        return self.status is not None
+
+
+def read_run_log(path: str | os.PathLike) -> Run:
+    """Parse a run log; :class:`RunLogError` if it is unreadable or malformed."""
+    p = Path(path)
+    try:
+        lines = p.read_text(encoding="utf-8").splitlines()
+    except OSError as exc:
+        raise RunLogError(f"{p}: cannot read ({exc})") from None
+    records = []
+    for i, line in enumerate(lines, 1):
+        try:
+            rec = json.loads(line)
+        except json.JSONDecodeError as exc:
+            raise RunLogError(f"{p}:{i}: not JSON ({exc})") from None
+        if not isinstance(rec, dict) or "type" not in rec:
+            raise RunLogError(f"{p}:{i}: record without a type")
+        records.append(rec)
+    if not records or records[0]["type"] != "header":
+        raise RunLogError(f"{p}: first record must be the header")
+    h = records[0]
+    try:
+        times = np.asarray(h["times"], dtype=float)
+        q = np.asarray(h["q"], dtype=float).reshape(-1, 6)
+        poses = np.asarray(h["poses"], dtype=float).reshape(-1, 4, 4)
+        cmds = [r for r in records if r["type"] == "command"]
+        smp = [r for r in records if r["type"] == "sample"]
+        n_mod = len(h["module_ids"])
+
+        def arr(key, dtype=float):
+            return np.asarray([r[key] for r in smp], dtype=dtype).reshape(-1, n_mod)
+
+        run = Run(
+            header=h, times=times, q_planned=q, poses=poses,
+            command_t=np.asarray([r["t"] for r in cmds], dtype=float),
+            command_k=np.asarray([r["k"] for r in cmds], dtype=int),
+            command_q_meas=np.asarray([r.get("q_meas") or [np.nan] * n_mod for r in cmds],
+                                      dtype=float).reshape(-1, n_mod),
+            samples_t=np.asarray([r["t"] for r in smp], dtype=float),
+            samples_k=np.asarray([r["k"] for r in smp], dtype=int),
+            samples_q=arr("q"), samples_dq=arr("dq"), samples_cur=arr("cur"),
+            samples_state=arr("state", np.int64),
+            fault=next((r for r in records if r["type"] == "fault"), None),
+            status=next((r["status"] for r in records if r["type"] == "end"), None),
+            records=records,
+        )
+    except (KeyError, TypeError, ValueError) as exc:
+        raise RunLogError(f"{p}: malformed record ({exc})") from None
+    if len(times) != len(q) or len(q) != len(poses):
+        raise RunLogError(f"{p}: header times/q/poses lengths differ")
+    return run

@@ -1,0 +1,7 @@
+"""``python -m iik.cli ...`` runs the ``iik`` command."""
+
+import sys
+
+from . import main
+
+sys.exit(main())

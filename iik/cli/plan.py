@@ -1,0 +1,39 @@
+"""``iik plan``: plan a pick-and-place scenario and write the trajectory, per-step data and figures."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+NAME = "plan"
+HELP = "plan a scenario (TOML): thesis planner + whole-arm Coal check + fallbacks + TOPP-RA timing"
+
+
+def add_arguments(p) -> None:
+    p.add_argument("scenario", type=Path, help="scenario file, e.g. scenarios/j.toml")
+    p.add_argument("--out", type=Path, default=None, help="output folder (default: plan_<name>)")
+    p.add_argument("--no-fallbacks", action="store_true",
+                   help="thesis planner only (no other branches, redesigns or RRT-Connect)")
+    p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
+    p.add_argument("--dt", type=float, default=0.01, help="trajectory sample period [s] (default 0.01)")
+    p.add_argument("--seed", type=int, default=1, help="seed of the RRT-Connect fallback")
+
+
+def run(args) -> int:
+    from verification.pipeline import PlanOptions, plan_scenario
+    from verification.plan_output import write_outputs
+
+    opts = PlanOptions(fallbacks=not args.no_fallbacks, rrt=not args.no_fallbacks, dt=args.dt, seed=args.seed)
+
+    def progress(msg: str) -> None:
+        print(f"  ... {msg}", file=sys.stderr, flush=True)
+
+    print(f"planning {args.scenario}", file=sys.stderr)
+    res = plan_scenario(args.scenario, options=opts, progress=progress)
+    out = args.out or Path(f"plan_{res.scenario.name}")
+    files = write_outputs(res, out, figures=not args.no_figures)
+    print(res.summary())
+    for a in res.attempts:
+        print(f"  - {a}")
+    print("wrote: " + ", ".join(str(f) for f in files))
+    return 0 if res.success else 1

@@ -1,0 +1,69 @@
+"""``iik sim-arm``: serve simulated PowerCube modules on a CAN bus, in their own process.
+
+Example (two terminals, no hardware)::
+
+    iik sim-arm --interface udp_multicast --channel 239.74.163.2
+    iik run --demo --interface udp_multicast --channel 239.74.163.2
+
+Prints one ``sim-arm ready`` line when serving; stops on Ctrl-C / SIGTERM or after
+``--duration`` seconds.
+"""
+
+from __future__ import annotations
+
+import signal
+import sys
+import threading
+
+NAME = "sim-arm"
+HELP = "serve simulated PowerCube modules on a python-can bus (real time, own process)"
+
+
+def add_arguments(p) -> None:
+    p.add_argument("--interface", default="udp_multicast",
+                   help="python-can interface (default: udp_multicast)")
+    p.add_argument("--channel", default="239.74.163.2", help="bus channel (default: 239.74.163.2)")
+    p.add_argument("--port", type=int, default=None, help="UDP port (udp_multicast only)")
+    p.add_argument("--bitrate", type=int, default=None, help="bit rate [bit/s] where the interface needs it")
+    p.add_argument("--modules", type=int, nargs="+", default=[1, 2, 3, 4, 5, 6], metavar="ID",
+                   help="module ids in joint order (default: 1..6)")
+    p.add_argument("--lag", type=float, default=0.02, help="tracking lag of the measurement [s]")
+    p.add_argument("--initial", type=float, nargs="+", default=None, metavar="RAD",
+                   help="initial joint positions [rad] (default: zeros)")
+    p.add_argument("--not-homed", action="store_true", help="start with HOME_OK clear")
+    p.add_argument("--duration", type=float, default=None, help="stop after this many seconds")
+
+
+def run(args) -> int:
+    import can
+
+    from hardware.errors import BusError
+    from hardware.sim import SimulatedArm
+
+    kw = {}
+    if args.port is not None:
+        kw["port"] = args.port
+    if args.bitrate is not None:
+        kw["bitrate"] = args.bitrate
+    try:
+        bus = can.Bus(interface=args.interface, channel=args.channel, **kw)
+    except (can.CanError, OSError, ValueError, ImportError) as exc:
+        raise BusError(f"cannot open {args.interface}:{args.channel}: {exc}") from exc
+    stop = threading.Event()
+
+    def on_signal(signum, frame):
+        stop.set()
+
+    signal.signal(signal.SIGTERM, on_signal)
+    sim = SimulatedArm(bus, args.modules, lag=args.lag, initial=args.initial,
+                       homed=not args.not_homed, owns_bus=True)
+    try:
+        print(f"sim-arm ready: modules {list(sim.module_ids)} on {args.interface}:{args.channel}",
+              flush=True)
+        stop.wait(args.duration)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        sim.close()
+        print("sim-arm stopped", file=sys.stderr, flush=True)
+    return 0

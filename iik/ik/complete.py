@@ -1,0 +1,485 @@
+"""The complete inverse kinematics: every solution, by elimination to one polynomial.
+
+The thesis (Sec 3.3) reduces the problem to two equations in (theta1, theta2):
+the coplanarity condition Eq 8 and the length error Eq 11. For a fixed theta1,
+Eq 8 is linear in (c2, s2)::
+
+    P(theta1) c2 + Q(theta1) s2 = 0   =>   (c2, s2) = sigma (Q, -P) / N,  N = sqrt(P^2 + Q^2)
+
+and Eq 11 reads ``E = a + b c2 + c s2``. Substituting and multiplying the two
+signs sigma = +-1 together eliminates theta2::
+
+    F(theta1) = a^2 (P^2 + Q^2) - (b Q - c P)^2 = 0,
+
+where ``a, b, P, Q`` are first-degree trigonometric polynomials in theta1 and
+``c`` is constant, so ``F`` is a trigonometric polynomial of degree 4. With a
+pose-dependent reference angle ``theta_r`` and ``t = tan((theta1 - theta_r)/2)``
+it becomes a real polynomial of degree 8 in ``t``. Its real roots are all
+eigenvalues of the companion matrix (batched LAPACK), so no root can be
+missed the way the thesis's bisection on a grid can (two roots in one cell,
+tangent roots). ``theta_r`` is chosen per pose so that ``theta1 = theta_r + pi``
+(``t = infinity``, where the degree drops) is far from every root.
+
+Each real root is refined by Newton's method on the *unsquared* equation
+``f_sigma = a N + sigma (b Q - c P)``; spurious roots (introduced by squaring
+or by accepting nearly-real eigenvalues of near-double roots) are removed by
+the final forward-kinematics check. theta2 follows from Eq 8; theta3, theta4
+and theta5 from the wrist point and the tool axis expressed in frame 2
+(the corrected Eq 14-28); theta6 from the remaining rotation about z6
+(Eq 31-33). Every candidate is finished by Newton steps on the full 6x6
+Jacobian and kept only if its forward-kinematics residual is within the
+tolerances.
+
+Frames and units: base frame 0 of Table II, metres and radians. The wrist
+point is ``D = p + l5 z6`` (frame 6 sits at ``d6 = -l5`` along z6, Table II).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..arm import Arm
+from ..kinematics import fk, jacobian
+
+__all__ = ["solve_arrays", "FREE_NONE", "FREE_Q1_Q6", "FREE_Q3_Q6", "MAX_SOLUTIONS",
+           "POSITION_TOL", "ROTATION_TOL", "rotation_angle", "pose_residuals",
+           "eliminant_coefficients"]
+
+#: Upper bound on the number of distinct solutions (8 roots x 2 wrist branches).
+MAX_SOLUTIONS = 16
+#: Accept a solution only if |p_fk - p| <= POSITION_TOL [m] ...
+POSITION_TOL = 1e-10
+#: ... and the rotation angle between R_fk and R is <= ROTATION_TOL [rad].
+ROTATION_TOL = 1e-10
+
+#: Free-joint flags (bit set) for continua of solutions.
+FREE_NONE = 0
+#: theta1 and theta6 axes collinear (wrist point on the joint-1 axis, z6 vertical).
+FREE_Q1_Q6 = 1
+#: theta3 and theta6 axes collinear (theta4 = theta5 = 0 or pi: wrist stretched along the upper arm).
+FREE_Q3_Q6 = 2
+
+_TWO_PI = 2.0 * np.pi
+_N_REF = 12  # candidate reference angles for the t-substitution
+
+
+def _wrap(x):
+    """Wrap angles to (-pi, pi]."""
+    return np.pi - np.mod(np.pi - x, _TWO_PI)
+
+
+def rotation_angle(R1: np.ndarray, R2: np.ndarray) -> np.ndarray:
+    """Angle [rad] of ``R1^T R2``, accurate near 0: ``2 asin(|R1 - R2|_F / sqrt(8))``."""
+    d = np.sqrt(np.sum((R1 - R2) ** 2, axis=(-2, -1)))
+    return 2.0 * np.arcsin(np.minimum(d / np.sqrt(8.0), 1.0))
+
+
+def pose_residuals(q: np.ndarray, T: np.ndarray, arm: Arm) -> tuple[np.ndarray, np.ndarray]:
+    """Position [m] and rotation [rad] residuals of ``fk(q)`` against ``T`` (batched)."""
+    Tq = fk(q, arm)
+    return (np.linalg.norm(Tq[..., :3, 3] - T[..., :3, 3], axis=-1),
+            rotation_angle(Tq[..., :3, :3], T[..., :3, :3]))
+
+
+# --------------------------------------------------------------------------- #
+# First-degree trigonometric polynomials x0 + xc cos(th) + xs sin(th), as (..., 3)
+# --------------------------------------------------------------------------- #
+
+def _trig1(x, c, s):
+    return x[..., 0] + x[..., 1] * c + x[..., 2] * s
+
+
+def _dtrig1(x, c, s):
+    return -x[..., 1] * s + x[..., 2] * c
+
+
+def eliminant_coefficients(R: np.ndarray, p: np.ndarray, arm: Arm) -> dict:
+    """Coefficients of the first-degree trig polynomials of the elimination.
+
+    Args:
+        R: Rotations (n, 3, 3); p: positions (n, 3) [m], base frame 0.
+
+    Returns:
+        dict with arrays (n, 3) ``a, b, P, Q`` (``[const, cos, sin]`` in theta1),
+        ``c`` (n,) and the shifted wrist point ``D`` (n, 3) (Eq 9a-c corrected:
+        ``D = p + l5 z6 - l1 e_z``).
+    """
+    l1, l2, l3, l4, l5 = arm.lengths
+    z = R[:, :, 2]
+    D = p + l5 * z  # Eq 9a-c (corrected sign, see verification/checks/ik.py)
+    D = D - np.array([0.0, 0.0, l1])  # Sec 3.3.1: origin moved up by l1
+    xD, yD, zD = D[:, 0], D[:, 1], D[:, 2]
+    r13, r23, r33 = z[:, 0], z[:, 1], z[:, 2]
+    n = len(p)
+    zero = np.zeros(n)
+    # Eq 8: P c2 + Q s2 = 0 with P = (r23 zD - r33 yD) c1 + (r33 xD - r13 zD) s1,
+    #       Q = (r23 xD - r13 yD) + r13 l2 s1 - r23 l2 c1
+    P = np.stack([zero, r23 * zD - r33 * yD, r33 * xD - r13 * zD], axis=1)
+    Q = np.stack([r23 * xD - r13 * yD, -r23 * l2, r13 * l2], axis=1)
+    # Eq 11: E = a + b c2 + c s2
+    K = xD**2 + yD**2 + zD**2 + l2**2 + l3**2 - l4**2
+    a = np.stack([K, -2 * l2 * xD, -2 * l2 * yD], axis=1)
+    b = np.stack([np.full(n, 2 * l3 * l2), -2 * l3 * xD, -2 * l3 * yD], axis=1)
+    c = 2 * l3 * zD
+    return {"a": a, "b": b, "c": c, "P": P, "Q": Q, "D": D}
+
+
+def _F_at(co, th):
+    """F(theta1) = a^2 (P^2+Q^2) - (bQ - cP)^2 at angles th (n, m)."""
+    C, S = np.cos(th), np.sin(th)
+    a = _trig1(co["a"][:, None], C, S)
+    b = _trig1(co["b"][:, None], C, S)
+    P = _trig1(co["P"][:, None], C, S)
+    Q = _trig1(co["Q"][:, None], C, S)
+    g = b * Q - co["c"][:, None] * P
+    return a * a * (P * P + Q * Q) - g * g
+
+
+def _quad_in_t(x, cr, sr):
+    """Numerator of x0 + xc cos(th) + xs sin(th), th = th_r + phi, t = tan(phi/2).
+
+    Returns ascending coefficients (n, 3) of ``(1 + t^2) * x``.
+    """
+    x0 = x[:, 0]
+    xc = x[:, 1] * cr + x[:, 2] * sr
+    xs = -x[:, 1] * sr + x[:, 2] * cr
+    return np.stack([x0 + xc, 2 * xs, x0 - xc], axis=1)
+
+
+def _pmul(a, b):
+    """Batched product of ascending-coefficient polynomials (n, da) x (n, db)."""
+    n, da = a.shape
+    out = np.zeros((n, da + b.shape[1] - 1))
+    for i in range(da):
+        out[:, i:i + b.shape[1]] += a[:, i:i + 1] * b
+    return out
+
+
+def _theta1_candidates(co, imag_tol: float = 1e-3):
+    """All theta1 candidates (n, 8) [rad] (NaN where none) from the degree-8 polynomial."""
+    n = co["a"].shape[0]
+    # Pick theta_r so that theta_r + pi (t = inf) is far from the roots:
+    # the leading coefficient of the t-polynomial is F(theta_r + pi).
+    grid = np.arange(_N_REF) * (_TWO_PI / _N_REF)
+    Fg = np.abs(_F_at(co, np.broadcast_to(grid + np.pi, (n, _N_REF))))
+    th_r = grid[np.argmax(Fg, axis=1)]
+    cr, sr = np.cos(th_r), np.sin(th_r)
+    A = _quad_in_t(co["a"], cr, sr)
+    B = _quad_in_t(co["b"], cr, sr)
+    P = _quad_in_t(co["P"], cr, sr)
+    Q = _quad_in_t(co["Q"], cr, sr)
+    one_t2 = np.array([[1.0, 0.0, 1.0]])
+    G = _pmul(B, Q) - co["c"][:, None] * _pmul(np.broadcast_to(one_t2, P.shape), P)
+    A2 = _pmul(A, A)
+    F = _pmul(A2, _pmul(P, P) + _pmul(Q, Q)) - _pmul(G, G)  # (n, 9) ascending
+    lead = F[:, 8]
+    scale = np.max(np.abs(F), axis=1)
+    degenerate = scale <= 1e-300
+    ok = (np.abs(lead) > 1e-14 * scale) & ~degenerate
+    cand = np.full((n, 8), np.nan)
+    imag = np.full((n, 8), np.nan)
+    if np.any(ok):
+        Fk = F[ok]
+        comp = np.zeros((Fk.shape[0], 8, 8))
+        comp[:, 0, :] = -Fk[:, 7::-1] / Fk[:, 8:9]
+        comp[:, np.arange(1, 8), np.arange(7)] = 1.0
+        t = np.linalg.eigvals(comp)  # Companion-matrix eigenvalues: all 8 roots
+        near_real = np.abs(t.imag) <= imag_tol * (1.0 + np.abs(t))
+        th = th_r[ok, None] + 2.0 * np.arctan(t.real)
+        cand[ok] = np.where(near_real, th, np.nan)
+        imag[ok] = np.abs(t.imag) / (1.0 + np.abs(t))
+    return cand, imag, th_r, ~ok & ~degenerate, degenerate
+
+
+def _f_derivs(co, own, th, sigma):
+    """f_sigma = a N + sigma (b Q - c P) and its first two derivatives (flat arrays)."""
+    C, S = np.cos(th), np.sin(th)
+    vals = {}
+    for k in ("a", "b", "P", "Q"):
+        x = co[k][own]
+        v = _trig1(x, C, S)
+        d1 = _dtrig1(x, C, S)
+        d2 = x[..., 0] - v  # second derivative of a first-degree trig polynomial
+        vals[k] = (v, d1, d2)
+    (a, a1, a2), (b, b1, b2), (P, P1, P2), (Q, Q1, Q2) = (vals[k] for k in ("a", "b", "P", "Q"))
+    c = co["c"][own]
+    N = np.hypot(P, Q)
+    Ns = np.where(N > 0, N, 1.0)
+    u = P * P1 + Q * Q1
+    N1 = u / Ns
+    N2 = (P1 * P1 + P * P2 + Q1 * Q1 + Q * Q2) / Ns - u * u / Ns**3
+    g = b * Q - c * P
+    g1 = b1 * Q + b * Q1 - c * P1
+    g2 = b2 * Q + 2 * b1 * Q1 + b * Q2 - c * P2
+    f = a * N + sigma * g
+    f1 = a1 * N + a * N1 + sigma * g1
+    f2 = a2 * N + 2 * a1 * N1 + a * N2 + sigma * g2
+    return f, f1, f2
+
+
+def _newton(co, own, th, sigma, order: int, iters: int = 8):
+    """Newton on f_sigma (order 0) or on its derivative (order 1, the extremum)."""
+    for _ in range(iters):
+        d = _f_derivs(co, own, th, sigma)
+        num, den = d[order], d[order + 1]
+        step = np.where(den != 0, num / np.where(den != 0, den, 1.0), 0.0)
+        th = th - np.clip(step, -0.05, 0.05)
+    return th
+
+
+def _theta1_list(co, cand, imag, cluster_tol: float = 1e-3):
+    """Flat theta1 candidates: (owner, theta1, sigma, priority).
+
+    Every near-real eigenvalue gives a Newton-refined root of the unsquared
+    f_sigma (sigma chosen where |f_sigma| is smaller). Suspicious roots (complex
+    pairs, clusters within ``cluster_tol``) also get, for both signs, the
+    extremum of f_sigma (the exact location of a double root, priority 0) and
+    the two roots of the local quadratic model around it (priority 2).
+    """
+    valid = ~np.isnan(cand)
+    own0, col = np.nonzero(valid)
+    th0 = cand[own0, col]
+    fp = _f_derivs(co, own0, th0, 1.0)[0]
+    fm = _f_derivs(co, own0, th0, -1.0)[0]
+    s0 = np.where(np.abs(fp) <= np.abs(fm), 1.0, -1.0)
+    thA = _newton(co, own0, th0, s0, 0)
+    d = np.abs(cand[:, :, None] - cand[:, None, :])
+    d = np.minimum(d, _TWO_PI - d)
+    d[:, np.arange(8), np.arange(8)] = np.inf
+    crowded = np.nanmin(np.where(np.isnan(d), np.inf, d), axis=2) <= cluster_tol
+    susp = (imag[own0, col] > 1e-12) | crowded[own0, col]
+    owns, ths, sigs, prios = [own0], [thA], [s0], [np.ones(len(own0))]
+    if np.any(susp):
+        o, t = own0[susp], th0[susp]
+        for sg in (1.0, -1.0):
+            sv = np.full(len(o), sg)
+            tA = _newton(co, o, t, sv, 0)
+            tB = _newton(co, o, t, sv, 1)
+            f, _f1, f2 = _f_derivs(co, o, tB, sv)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                delta = np.sqrt(-2.0 * f / f2)
+            pair = np.isfinite(delta) & (delta <= cluster_tol)
+            owns += [o, o, o[pair], o[pair]]
+            ths += [tA, tB, tB[pair] + delta[pair], tB[pair] - delta[pair]]
+            sigs += [sv, sv, sv[pair], sv[pair]]
+            prios += [np.ones(len(o)), np.zeros(len(o)), np.full(pair.sum(), 2.0),
+                      np.full(pair.sum(), 2.0)]
+    return (np.concatenate(owns), _wrap(np.concatenate(ths)), np.concatenate(sigs),
+            np.concatenate(prios))
+
+
+def _theta2_options(co, own, th1):
+    """theta2 candidates for theta1 (flat): from Eq 8 (two signs) and from Eq 11 alone.
+
+    Returns (m, 4) for flat (own, th1): [Eq 8 sigma=+1, Eq 8 sigma=-1, E=0 root 1, E=0 root 2].
+    The Eq 11-only roots matter where P = Q = 0 (Eq 8 vanishes identically);
+    elsewhere they are spurious and removed by the FK check.
+    """
+    C, S = np.cos(th1), np.sin(th1)
+    P = _trig1(co["P"][own], C, S)
+    Q = _trig1(co["Q"][own], C, S)
+    a = _trig1(co["a"][own], C, S)
+    b = _trig1(co["b"][own], C, S)
+    c = co["c"][own]
+    t2a = np.arctan2(-P, Q)  # Eq 9 corrected: tan(theta2) = -P / Q
+    t2b = np.arctan2(P, -Q)
+    # Eq 11 alone: a + b c2 + c s2 = 0  ->  theta2 = atan2(c, b) +- acos(-a / |(b, c)|)
+    r = np.sqrt(b * b + c * c)
+    phi = np.arctan2(c, b)
+    ratio = np.clip(-a / np.where(r > 0, r, 1.0), -1.0, 1.0)
+    acs = np.arccos(ratio)
+    return np.stack([t2a, t2b, phi + acs, phi - acs], axis=-1)
+
+
+def _wrist(R, D, th1, th2, arm: Arm, free_tol: float):
+    """theta3..theta5 for (theta1, theta2) (shape (n, m)); two branches -> (n, m, 2, 3)."""
+    l1, l2, l3, l4, l5 = arm.lengths
+    c1, s1, c2, s2 = np.cos(th1), np.sin(th1), np.cos(th2), np.sin(th2)
+    # Rows of 2_0 R (Eq 18, rotation part): frame-2 axes in base coordinates.
+    r1 = np.stack([c1 * s2, s1 * s2, c2], axis=-1)
+    r2 = np.stack([c1 * c2, s1 * c2, -s2], axis=-1)
+    r3 = np.stack([-s1, c1, np.zeros_like(c1)], axis=-1)
+    w = D[:, None, :] - np.stack([l2 * c1, l2 * s1, np.zeros_like(c1)], axis=-1)  # D - B
+    z = R[:, None, :, 2]
+    dx, dy, dz = (np.sum(r * w, axis=-1) for r in (r1, r2, r3))  # D in frame 2
+    zx, zy, zz = (np.sum(r * z, axis=-1) for r in (r1, r2, r3))  # z6 in frame 2
+    # Eq 18 last column: D_2 = (l4 c3 s4, l3 + l4 c4, -l4 s3 s4); Eq 25/26: z6_2 = (-c3 s45, -c45, s3 s45)
+    hp = np.stack([-dz, dx], axis=-1) / l4  # = s4 (s3, c3)
+    ho = np.stack([zz, -zx], axis=-1)  # = s45 (s3, c3)
+    npos = np.linalg.norm(hp, axis=-1)
+    nori = np.linalg.norm(ho, axis=-1)
+    h = np.where((npos >= nori)[..., None], hp, ho)
+    free = np.maximum(npos, nori) <= free_tol
+    h = np.where(free[..., None], np.array([0.0, 1.0]), h)  # representative theta3 = 0
+    th3a = np.arctan2(h[..., 0], h[..., 1])
+    th3 = np.stack([th3a, _wrap(th3a + np.pi)], axis=-1)  # the two wrist branches
+    c3, s3 = np.cos(th3), np.sin(th3)
+    s4 = (c3 * dx[..., None] - s3 * dz[..., None]) / l4
+    c4 = np.broadcast_to(((dy - l3) / l4)[..., None], s4.shape)
+    th4 = np.arctan2(s4, c4)  # Eq 16
+    s45 = -c3 * zx[..., None] + s3 * zz[..., None]  # Eq 25 and its (3,3) companion
+    c45 = np.broadcast_to(-zy[..., None], s45.shape)  # Eq 26
+    th5 = _wrap(np.arctan2(s45, c45) - th4)  # Eq 28
+    return np.stack([th3, th4, th5], axis=-1), free
+
+
+def _pose_error(q, T, arm: Arm):
+    Tq = fk(q, arm)
+    ep = T[:, :3, 3] - Tq[:, :3, 3]
+    Re = T[:, :3, :3] @ np.swapaxes(Tq[:, :3, :3], 1, 2)
+    er = 0.5 * np.stack([Re[:, 2, 1] - Re[:, 1, 2], Re[:, 0, 2] - Re[:, 2, 0],
+                         Re[:, 1, 0] - Re[:, 0, 1]], axis=1)
+    return np.concatenate([ep, er], axis=1)
+
+
+def _newton_polish(q, T, arm: Arm, iters: int = 8, step_tol: float = 1e-15):
+    """Newton steps on the full 6x6 Jacobian towards poses T (q (m, 6), T (m, 4, 4)).
+
+    At least one step for every row; rows stop once their step is below ``step_tol``.
+    Singular Jacobians are handled by the pseudo-inverse.
+    """
+    q = q.copy()
+    active = np.arange(len(q))
+    for _ in range(iters):
+        if len(active) == 0:
+            break
+        qa = q[active]
+        e = _pose_error(qa, T[active], arm)
+        J = jacobian(qa, arm)
+        try:
+            dq = np.linalg.solve(J, e[..., None])[..., 0]
+            if not np.all(np.isfinite(dq)) or np.max(np.abs(dq)) > 1.0:
+                raise np.linalg.LinAlgError
+        except np.linalg.LinAlgError:
+            dq = np.einsum("nij,nj->ni", np.linalg.pinv(J, rcond=1e-13), e)
+        q[active] = qa + dq
+        active = active[np.max(np.abs(dq), axis=1) > step_tol]
+    return q
+
+
+def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
+                 tol_r: float = ROTATION_TOL):
+    """All IK solutions of a batch of poses, as padded arrays (the vectorised core).
+
+    Args:
+        T: Validated poses (n, 4, 4) [m], base frame 0.
+        arm: Arm parameters.
+
+    Returns:
+        ``(q, valid, free, pres, rres)``: ``q`` (n, 16, 6) [rad], wrapped to
+        (-pi, pi] and sorted (valid rows first, lexicographic); ``valid`` (n, 16)
+        bool; ``free`` (n, 16) int flags (:data:`FREE_Q1_Q6`, :data:`FREE_Q3_Q6`);
+        ``pres`` (n, 16) [m] and ``rres`` (n, 16) [rad] FK residuals.
+    """
+    n = T.shape[0]
+    R, p = T[:, :3, :3], T[:, :3, 3]
+    co = eliminant_coefficients(R, p, arm)
+    cand, imag, _thr, _lowdeg, degenerate = _theta1_candidates(co)
+    own, t1, sig, prio = _theta1_list(co, cand, imag)
+    fr1 = np.zeros(len(own), dtype=bool)
+    if np.any(degenerate):
+        # F identically zero: theta1 is free (continuum); representatives 0 and pi.
+        dg = np.flatnonzero(degenerate)
+        own = np.concatenate([own, dg, dg])
+        t1 = np.concatenate([t1, np.zeros(len(dg)), np.full(len(dg), np.pi)])
+        sig = np.concatenate([sig, np.ones(2 * len(dg))])
+        prio = np.concatenate([prio, np.ones(2 * len(dg))])
+        fr1 = np.concatenate([fr1, np.ones(2 * len(dg), dtype=bool)])
+    opts = _theta2_options(co, own, t1)  # (m, 4)
+    t2 = np.where(sig > 0, opts[:, 0], opts[:, 1])
+    # Where Eq 8 vanishes identically (P = Q = 0) theta2 comes from Eq 11 alone.
+    C, S = np.cos(t1), np.sin(t1)
+    N = np.hypot(_trig1(co["P"][own], C, S), _trig1(co["Q"][own], C, S))
+    scale = np.linalg.norm(co["D"], axis=1)[own] + arm.l2 + arm.l3
+    weak = (N <= 1e-6 * scale) | fr1
+    own = np.concatenate([own, own[weak], own[weak]])
+    t1 = np.concatenate([t1, t1[weak], t1[weak]])
+    t2 = np.concatenate([t2, opts[weak, 2], opts[weak, 3]])
+    prio = np.concatenate([prio, prio[weak], prio[weak]])
+    fr1 = np.concatenate([fr1, fr1[weak], fr1[weak]])
+    wr, free3 = _wrist(R[own], co["D"][own], t1[:, None], t2[:, None], arm, 1e-9)
+    k = len(t1)
+    q = np.empty((k, 2, 6))
+    q[..., 0] = t1[:, None]
+    q[..., 1] = _wrap(t2)[:, None]
+    q[..., 2:5] = wr[:, 0]
+    q[..., 5] = 0.0
+    flf = np.repeat(fr1 * FREE_Q1_Q6 + free3[:, 0] * FREE_Q3_Q6, 2)
+    # On a theta3/theta6 continuum both wrist branches are the same continuum: keep one.
+    keep_branch = np.ones((k, 2), dtype=bool)
+    keep_branch[:, 1] = ~free3[:, 0]
+    qf = q.reshape(-1, 6)[keep_branch.reshape(-1)]
+    flf = flf[keep_branch.reshape(-1)]
+    owner = np.repeat(own, 2)[keep_branch.reshape(-1)]
+    prio = np.repeat(prio, 2)[keep_branch.reshape(-1)]
+    Tq = fk(qf, arm)
+    Tt = T[owner]
+    near = np.linalg.norm(Tq[:, :3, 3] - Tt[:, :3, 3], axis=1) <= 1e-3
+    # theta6: R_fk(theta6 = 0)^T R = Rz(theta6) (Eq 31-33 equivalently)
+    M = np.einsum("nji,njk->nik", Tq[:, :3, :3], Tt[:, :3, :3])
+    qf[:, 5] = np.arctan2(M[:, 1, 0], M[:, 0, 0])
+    qf, flf, owner, Tt, prio = qf[near], flf[near], owner[near], Tt[near], prio[near]
+    pres, rres = pose_residuals(qf, Tt, arm)
+    polish = (pres <= 1e-3) & (rres <= 1e-2)
+    if np.any(polish):
+        qf[polish] = _newton_polish(qf[polish], Tt[polish], arm)
+        pres[polish], rres[polish] = pose_residuals(qf[polish], Tt[polish], arm)
+    qf = _wrap(qf)
+    keep = (pres <= tol_p) & (rres <= tol_r)
+    qf, flf, owner, pres, rres, prio = (x[keep] for x in (qf, flf, owner, pres, rres, prio))
+    return _dedupe(n, qf, flf, owner, pres, rres, prio=prio)
+
+
+def _f_sigma(co, th, sigma):
+    """The unsquared eliminant f_sigma = a N + sigma (b Q - c P) at th (n, m)."""
+    C, S = np.cos(th), np.sin(th)
+    a, b, P, Q = (_trig1(co[k][:, None], C, S) for k in ("a", "b", "P", "Q"))
+    return a * np.hypot(P, Q) + sigma * (b * Q - co["c"][:, None] * P)
+
+
+def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None):
+    """Distinct solutions per pose, sorted lexicographically; padded to MAX_SOLUTIONS.
+
+    Two solutions are the same if every wrapped joint difference is <= ``tol`` rad;
+    of a group of duplicates the one with the lowest ``prio`` (then the first in
+    lexicographic order) is kept.
+    """
+    if prio is None:
+        prio = np.zeros(len(qf))
+    out_q = np.zeros((n, MAX_SOLUTIONS, 6))
+    out_v = np.zeros((n, MAX_SOLUTIONS), dtype=bool)
+    out_f = np.zeros((n, MAX_SOLUTIONS), dtype=int)
+    out_p = np.full((n, MAX_SOLUTIONS), np.nan)
+    out_r = np.full((n, MAX_SOLUTIONS), np.nan)
+    if len(qf) == 0:
+        return out_q, out_v, out_f, out_p, out_r
+    key = np.round(qf, 9)  # canonical rounding for a deterministic order
+    order = np.lexsort((key[:, 5], key[:, 4], key[:, 3], key[:, 2], key[:, 1], key[:, 0], owner))
+    qf, flf, owner, pres, rres, prio = (x[order] for x in (qf, flf, owner, pres, rres, prio))
+    starts = np.searchsorted(owner, np.arange(n))
+    rank = np.arange(len(owner)) - starts[owner]
+    K = int(rank.max()) + 1
+    Qp = np.full((n, K), np.nan)
+    Qp[owner, rank] = qf[:, 0]
+    present = np.zeros((n, K), dtype=bool)
+    present[owner, rank] = True
+    # Duplicates share theta1; test the full vector only for those pairs.
+    d1 = np.abs(Qp[:, :, None] - Qp[:, None, :])
+    earlier = np.tril(np.ones((K, K), dtype=bool), -1)  # [j, i]: i < j
+    pi_, pj_, pk_ = np.nonzero((np.minimum(d1, _TWO_PI - d1) <= tol) & earlier)
+    dup = np.zeros((n, K), dtype=bool)
+    if len(pi_):
+        a = qf[starts[pi_] + pj_]
+        b = qf[starts[pi_] + pk_]
+        d = np.abs(a - b)
+        same = np.max(np.minimum(d, _TWO_PI - d), axis=1) <= tol
+        later = prio[starts[pi_] + pj_] >= prio[starts[pi_] + pk_]
+        loser = np.where(later, pj_, pk_)
+        dup[pi_[same], loser[same]] = True
+    keep = present & ~dup
+    slot = np.cumsum(keep, axis=1) - 1
+    sel = keep[owner, rank] & (slot[owner, rank] < MAX_SOLUTIONS)
+    o, s = owner[sel], slot[owner, rank][sel]
+    out_q[o, s], out_v[o, s], out_f[o, s] = qf[sel], True, flf[sel]
+    out_p[o, s], out_r[o, s] = pres[sel], rres[sel]
+    return out_q, out_v, out_f, out_p, out_r

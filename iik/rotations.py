@@ -1,0 +1,120 @@
+"""End-effector orientation from the Euler angles of Eq 42 (Sec 3.5.1), and back.
+
+Sec 3.5.1 says the orientation uses "the Z-X-Z representation convention described
+in [2]" (Craig) and prints Eq 42. Checked against ``scipy.spatial.transform.Rotation``
+(``iik verify``, section "Kinematics"), the printed matrix is **Craig's Z-Y-Z** Euler
+matrix ``R = Rz(alpha) Ry(beta) Rz(gamma)`` (intrinsic, scipy ``"ZYZ"``) with one wrong
+entry: printed ``r21 = c_a c_b c_g - c_a s_g``, correct ``r21 = s_a c_b c_g + c_a s_g``.
+Every other entry fits Z-Y-Z, not Z-X-Z (in Z-Y-Z, alpha is the azimuth and beta the
+polar angle of ``z6 = [r13, r23, r33] = [c_a s_b, s_a s_b, c_b]``; Sec 3.5 measures its
+own alpha, beta differently, see :mod:`iik.dexterity`). The functions here therefore
+implement the corrected Eq 42, i.e. intrinsic Z-Y-Z. The names ``zxz_matrix`` /
+``zxz_from_matrix`` keep the thesis's label (and the project's contract); they are
+aliases of :func:`euler_matrix` / :func:`euler_from_matrix`.
+
+Angles in rad. Inputs broadcast; scalars give one (3, 3) matrix, arrays of shape (n,)
+give (n, 3, 3).
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ._validate import as_float_array, as_points
+from .errors import InvalidInputError
+
+__all__ = [
+    "EULER_SEQUENCE",
+    "euler_matrix",
+    "euler_from_matrix",
+    "zxz_matrix",
+    "zxz_from_matrix",
+    "pose_matrix",
+]
+
+#: scipy sequence of the corrected Eq 42: intrinsic rotations about z, then the new y, then the new z.
+EULER_SEQUENCE = "ZYZ"
+
+
+def euler_matrix(alpha, beta, gamma) -> np.ndarray:
+    """Rotation matrix of the corrected Eq 42: ``Rz(alpha) Ry(beta) Rz(gamma)``.
+
+    Args:
+        alpha, beta, gamma: Euler angles [rad]; scalars or broadcastable 1-D arrays.
+
+    Returns:
+        (3, 3) for scalar input, else (n, 3, 3). Columns are the end-effector axes in
+        the base frame; column 3 (the approach axis z6) is
+        ``[cos a sin b, sin a sin b, cos b]`` (Eq 42, r13 r23 r33).
+    """
+    a = as_float_array(alpha, "alpha")
+    b = as_float_array(beta, "beta")
+    g = as_float_array(gamma, "gamma")
+    for name, v in (("alpha", a), ("beta", b), ("gamma", g)):
+        if v.ndim > 1:
+            raise InvalidInputError(name, f"expected a scalar or a 1-D array, got shape {v.shape}")
+    try:
+        a, b, g = np.broadcast_arrays(a, b, g)
+    except ValueError:
+        raise InvalidInputError(
+            "alpha/beta/gamma", f"shapes {a.shape}, {b.shape}, {g.shape} do not broadcast"
+        ) from None
+    scalar = a.ndim == 0
+    angles = np.stack([np.atleast_1d(a), np.atleast_1d(b), np.atleast_1d(g)], axis=-1)
+    R = Rotation.from_euler(EULER_SEQUENCE, angles).as_matrix()  # Eq 42 (corrected r21)
+    return R[0] if scalar else R
+
+
+def _as_rotations(R, name: str, tol: float) -> tuple[np.ndarray, bool]:
+    arr = as_float_array(R, name)
+    if arr.shape == (3, 3):
+        arr, batched = arr[None], False
+    elif arr.ndim == 3 and arr.shape[1:] == (3, 3):
+        batched = True
+    else:
+        raise InvalidInputError(name, f"expected shape (3, 3) or (n, 3, 3), got {arr.shape}")
+    err = np.abs(np.einsum("nji,njk->nik", arr, arr) - np.eye(3)).max(axis=(1, 2)) if len(arr) else []
+    if np.any(np.asarray(err) > tol):
+        raise InvalidInputError(name, f"is not orthonormal (max |R^T R - I| = {np.max(err):.3g})")
+    if len(arr) and np.any(np.linalg.det(arr) < 0):
+        raise InvalidInputError(name, "has det -1 (a reflection, not a rotation)")
+    return arr, batched
+
+
+def euler_from_matrix(R, *, orthonormal_tol: float = 1e-6) -> np.ndarray:
+    """Euler angles ``(alpha, beta, gamma)`` [rad] of the corrected Eq 42 for rotation(s) ``R``.
+
+    Returns (3,) or (n, 3) with ``beta`` in [0, pi] and ``alpha``, ``gamma`` in [-pi, pi].
+    At ``beta`` = 0 or pi only ``alpha +- gamma`` is defined; then ``gamma`` = 0.
+
+    Raises:
+        InvalidInputError: wrong shape, NaN/inf, not orthonormal, or a reflection.
+    """
+    arr, batched = _as_rotations(R, "R", orthonormal_tol)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # gimbal lock: documented above
+        angles = Rotation.from_matrix(arr).as_euler(EULER_SEQUENCE)
+    return angles if batched else angles[0]
+
+
+def pose_matrix(p, alpha, beta, gamma) -> np.ndarray:
+    """Homogeneous pose(s) [m] from position ``p`` (3,) or (n, 3) and the Eq 42 angles [rad]."""
+    pb, batched = as_points(p, "p")
+    R = euler_matrix(alpha, beta, gamma)
+    Rb = R[None] if R.ndim == 2 else R
+    if len(Rb) != len(pb) and 1 not in (len(Rb), len(pb)):
+        raise InvalidInputError("p", f"{len(pb)} points for {len(Rb)} orientations")
+    n = max(len(Rb), len(pb))
+    T = np.zeros((n, 4, 4))
+    T[:, :3, :3] = Rb
+    T[:, :3, 3] = pb
+    T[:, 3, 3] = 1.0
+    return T if (batched or R.ndim == 3) else T[0]
+
+
+#: The thesis calls Eq 42 "Z-X-Z"; it is Z-Y-Z (see the module docstring). Contract names:
+zxz_matrix = euler_matrix
+zxz_from_matrix = euler_from_matrix

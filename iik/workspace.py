@@ -1,0 +1,220 @@
+"""Position workspace of the arm: the Cartesian test of Sec 3.4.4 and the
+closest reachable point suggested to the user (App. G).
+
+Positions are in metres in base frame 0 (see :mod:`iik.kinematics`). The
+workspace is the set of tool-point positions ``fk(q)[:3, 3]`` over all joint
+vectors ``q`` inside the limits of Table I (position only: every orientation
+allowed; joint 6 does not move the tool point, Eq 34).
+
+:func:`in_workspace` implements regions 1-3 of Sec 3.4.4 (Eq 36-41) with two
+corrections found by ``iik verify`` (``verification/checks/workspace.py``):
+
+* Eq 40 prints ``x4 = (l2 - l3 c2) cos 160``; joint 4 sits at
+  ``(l2 + l3 c2) (cos th1, sin th1)`` (Table II), so the sign is wrong.
+* Eq 39 aims link 3 at the point's elevation seen from the base axis
+  (``atan2(pz - l1, sqrt(px^2 + py^2))``); the nearest joint-4 position is the
+  one aimed from joint 2, ``atan2(pz - l1, u - l2)`` with ``u`` the horizontal
+  coordinate of the point along the joint-1 limit direction, clipped to the
+  joint-2 limits. With this choice the test never rejects a reachable point in
+  regions 2/3 (measured; the report gives the remaining false-inside rate).
+
+Region 1 (Eq 37-38) is used as printed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import as_points
+from .arm import THESIS_ARM, Arm
+from .errors import InvalidInputError
+from .kinematics import position_jacobian
+
+__all__ = ["in_workspace", "closest_reachable", "ClosestReachable", "position_lm", "tool_positions"]
+
+
+def tool_positions(q5: np.ndarray, arm: Arm = THESIS_ARM) -> np.ndarray:
+    """Tool-point positions [m], (n, 3), for joint angles ``q5`` (n, 5) [rad] of joints 1-5.
+
+    Eq 34 (the position column of Eq 4; joint 6 does not move the tool point).
+    Equal to ``fk(q)[:, :3, 3]`` (tested), without building the rotation.
+    """
+    c1, c2, c3, c4 = (np.cos(q5[:, i]) for i in range(4))
+    s1, s2, s3, s4 = (np.sin(q5[:, i]) for i in range(4))
+    c45, s45 = np.cos(q5[:, 3] + q5[:, 4]), np.sin(q5[:, 3] + q5[:, 4])
+    l1, l2, l3, l4, l5 = arm.lengths
+    W = l5 * s45 + l4 * s4  # recurring terms of Eq 4 / Eq 34
+    V = l5 * c45 + l4 * c4
+    out = np.empty((q5.shape[0], 3))
+    out[:, 0] = l2 * c1 + l3 * c1 * c2 + W * (s1 * s3 + c1 * s2 * c3) + V * c1 * c2  # Eq 34a
+    out[:, 1] = l2 * s1 + l3 * s1 * c2 - W * (c1 * s3 - s1 * s2 * c3) + V * s1 * c2  # Eq 34b
+    out[:, 2] = W * c2 * c3 - V * s2 - l3 * s2 + l1  # Eq 34c
+    return out
+
+
+def _regions(p: np.ndarray, arm: Arm):
+    phi = np.arctan2(p[:, 1], p[:, 0])  # Eq 36
+    r2 = phi >= arm.upper[0]  # region 2: phi >= theta1 upper limit (160 deg)
+    r3 = phi <= arm.lower[0]  # region 3: phi <= theta1 lower limit (-160 deg)
+    return phi, r2, r3
+
+
+def _joint4_distance(p: np.ndarray, th1: float, arm: Arm) -> np.ndarray:
+    """rho_23 of Eq 41 with joint 1 at ``th1``, corrected Eq 39-40 (see module doc)."""
+    l1, l2, l3 = arm.l1, arm.l2, arm.l3
+    u = p[:, 0] * np.cos(th1) + p[:, 1] * np.sin(th1)
+    th2 = np.clip(-np.arctan2(p[:, 2] - l1, u - l2), arm.lower[1], arm.upper[1])  # Eq 39 (corrected)
+    c2, s2 = np.cos(th2), np.sin(th2)
+    x4 = (l2 + l3 * c2) * np.cos(th1)  # Eq 40 (corrected sign)
+    y4 = (l2 + l3 * c2) * np.sin(th1)  # Eq 40 (corrected sign)
+    z4 = l1 - l3 * s2  # Eq 40
+    return np.sqrt((p[:, 0] - x4) ** 2 + (p[:, 1] - y4) ** 2 + (p[:, 2] - z4) ** 2)  # Eq 41
+
+
+def in_workspace(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-9) -> np.ndarray | bool:
+    """Is each point inside the workspace, by the (corrected) test of Sec 3.4.4?
+
+    Args:
+        p: Point(s) [m] in base frame 0, shape (3,) or (n, 3).
+        arm: Arm parameters.
+        tol: Points up to ``tol`` [m] beyond a boundary count as inside (round-off
+            on the boundary itself).
+
+    Returns:
+        ``bool`` for one point, or a boolean array (n,).
+
+    Raises:
+        InvalidInputError: NaN/inf or a wrong shape.
+    """
+    pb, batched = as_points(p, "p")
+    l1, l2, l3, l4, l5 = arm.lengths
+    phi, r2, r3 = _regions(pb, arm)
+    # Region 1 (Eq 37-38): joint 2 at l2 (cos phi, sin phi, l1), reach l3 + l4 + l5.
+    rho1 = np.sqrt((pb[:, 0] - l2 * np.cos(phi)) ** 2 + (pb[:, 1] - l2 * np.sin(phi)) ** 2
+                   + (pb[:, 2] - l1) ** 2)  # Eq 38
+    inside = rho1 <= l3 + l4 + l5 + tol  # Eq 38
+    for region, th1 in ((r2, arm.upper[0]), (r3, arm.lower[0])):
+        if np.any(region):
+            rho23 = _joint4_distance(pb[region], th1, arm)
+            inside[region] = rho23 <= l4 + l5 + tol  # Eq 41
+    return inside if batched else bool(inside[0])
+
+
+def position_lm(p: np.ndarray, q0: np.ndarray, arm: Arm = THESIS_ARM, iters: int = 60,
+                tol: float = 1e-10) -> tuple[np.ndarray, np.ndarray]:
+    """Batched bounded Levenberg-Marquardt on ``|fk(q)[:3,3] - p|`` over joints 1-5.
+
+    A position-only numerical IK used as ground truth and by
+    :func:`closest_reachable`. Steps are projected onto the joint limits.
+
+    Args:
+        p: Targets [m], (n, 3).
+        q0: Start configurations [rad], (n, 5), inside the limits.
+        arm: Arm parameters.
+        iters: Iterations.
+        tol: Stop when every residual is below this [m].
+
+    Returns:
+        ``(q (n, 5) [rad], residual (n,) [m])``.
+    """
+    lo, hi = arm.q_min[:5], arm.q_max[:5]
+    q = np.clip(np.array(q0, dtype=float), lo, hi)
+    r = tool_positions(q, arm) - p
+    c = np.einsum("ni,ni->n", r, r)
+    lam = np.full(len(p), 1e-3)
+    eye = np.eye(5)
+    q6 = np.zeros((len(p), 6))
+    for _ in range(iters):
+        act = c > tol * tol
+        if not np.any(act):
+            break
+        ia = np.nonzero(act)[0]
+        q6[ia, :5] = q[ia]
+        J = position_jacobian(q6[ia], arm)
+        A = np.einsum("nij,nik->njk", J, J) + lam[ia, None, None] * eye
+        g = np.einsum("nij,ni->nj", J, r[ia])
+        qn = np.clip(q[ia] - np.linalg.solve(A, g[..., None])[..., 0], lo, hi)
+        rn = tool_positions(qn, arm) - p[ia]
+        cn = np.einsum("ni,ni->n", rn, rn)
+        acc = cn < c[ia]
+        ib = ia[acc]
+        q[ib], r[ib], c[ib] = qn[acc], rn[acc], cn[acc]
+        lam[ia] = np.clip(np.where(acc, lam[ia] * 0.3, lam[ia] * 10.0), 1e-9, 1e8)
+    return q, np.sqrt(c)
+
+
+@dataclass(frozen=True)
+class ClosestReachable:
+    """Result of :func:`closest_reachable`.
+
+    Attributes:
+        point: Closest reachable tool position(s) [m], (3,) or (n, 3).
+        q: A joint vector reaching it [rad], (6,) or (n, 6) (joint 6 = 0).
+        distance: ``|point - p|`` [m] (0 for a reachable ``p``, up to ``tol``).
+        moved: True where ``p`` was relocated (it was not reachable).
+    """
+
+    point: np.ndarray
+    q: np.ndarray
+    distance: np.ndarray | float
+    moved: np.ndarray | bool
+
+
+def _seeds(pb: np.ndarray, arm: Arm) -> np.ndarray:
+    """(n, k, 5) start configurations: the Sec 3.4.4 projection plus a fixed grid."""
+    n = len(pb)
+    phi = np.arctan2(pb[:, 1], pb[:, 0])
+    th1 = np.clip(phi, arm.lower[0], arm.upper[0])
+    u = pb[:, 0] * np.cos(th1) + pb[:, 1] * np.sin(th1)
+    th2 = np.clip(-np.arctan2(pb[:, 2] - arm.l1, u - arm.l2), arm.lower[1], arm.upper[1])
+    first = np.zeros((n, 1, 5))
+    first[:, 0, 0], first[:, 0, 1] = th1, th2  # straight arm aimed at p (f(1), s(1))
+    g2 = np.deg2rad([-90.0, 0.0, 60.0])
+    g3 = np.deg2rad([-90.0, 0.0, 90.0])
+    g4 = np.deg2rad([-60.0, 0.0, 60.0])
+    grid = np.array([(a, b, c, 0.0) for a in g2 for b in g3 for c in g4])  # (27, 4)
+    rest = np.empty((n, len(grid), 5))
+    rest[:, :, 0] = th1[:, None]
+    rest[:, :, 1:] = grid[None]
+    return np.concatenate([first, rest], axis=1)
+
+
+def closest_reachable(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-7) -> ClosestReachable:
+    """The reachable tool position nearest to ``p`` (App. G's relocation suggestion).
+
+    Minimises ``|fk(q)[:3,3] - p|`` over joints 1-5 inside Table I by bounded
+    Levenberg-Marquardt from 28 deterministic starts (the straight arm aimed
+    at ``p`` as in Sec 3.4.4, plus a grid), so the returned point is reachable
+    by construction (``q`` is returned). A point that is already reachable is
+    returned unchanged.
+
+    Args:
+        p: Point(s) [m], (3,) or (n, 3), base frame 0.
+        arm: Arm parameters.
+        tol: Residual [m] under which ``p`` counts as reachable.
+
+    Raises:
+        InvalidInputError: NaN/inf, wrong shape, or a non-positive ``tol``.
+    """
+    pb, batched = as_points(p, "p")
+    if not (np.isfinite(tol) and tol > 0):
+        raise InvalidInputError("tol", "must be a positive finite number of metres")
+    seeds = _seeds(pb, arm)
+    n, k, _ = seeds.shape
+    q, res = position_lm(np.repeat(pb, k, axis=0), seeds.reshape(n * k, 5), arm, iters=80,
+                         tol=tol * 0.1)
+    q, res = q.reshape(n, k, 5), res.reshape(n, k)
+    best = np.argmin(res, axis=1)
+    qbest = np.zeros((n, 6))
+    qbest[:, :5] = q[np.arange(n), best]
+    point = tool_positions(qbest[:, :5], arm)
+    dist = np.linalg.norm(point - pb, axis=1)
+    moved = dist > tol
+    point = np.where(moved[:, None], point, pb)
+    dist = np.where(moved, dist, 0.0)
+    if not batched:
+        return ClosestReachable(point[0], qbest[0], float(dist[0]), bool(moved[0]))
+    return ClosestReachable(point, qbest, dist, moved)
+

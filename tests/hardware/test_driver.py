@@ -1,0 +1,298 @@
+"""Driver against the simulated arm on ``virtual``: every Table V function, the echo
+rule, the halt latch, scan, STARTMOVE and the watchdog."""
+
+import math
+import threading
+import time
+
+import can
+import numpy as np
+import pytest
+
+import iik
+from hardware import PowerCubeArm, PowerCubeModule, SimulatedArm, scan
+from hardware import protocol as P
+from hardware.errors import CANTimeoutError, ModuleHalted, SafetyError
+
+
+def wait_until(pred, timeout=2.0):
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if pred():
+            return True
+        time.sleep(0.005)
+    return False
+
+
+def test_open_close_and_reads(arm, sim):
+    states = arm.open()  # PCube_openDevice: every module answers
+    assert all(s & P.State.HOME_OK for s in states)
+    np.testing.assert_allclose(arm.get_pos(), 0.0)
+    np.testing.assert_allclose(arm.get_vel(), 0.0)
+    cur = arm.get_cur()
+    assert cur.shape == (6,) and np.all(np.isfinite(cur))
+    arm.close()
+
+
+def test_from_interface_owns_and_closes_bus(new_channel):
+    ch = new_channel()
+    with SimulatedArm.virtual(ch, (1, 2)):
+        with PowerCubeArm.from_interface((1, 2), interface="virtual", channel=ch, timeout=0.05) as a:
+            assert len(a.open()) == 2
+        with pytest.raises(Exception):  # noqa: B017 - python-can raises on a closed bus
+            a.bus.send(can.Message(arbitration_id=1, data=[0]))
+
+
+def test_set_max_cur_is_written(arm, sim):
+    arm.set_max_cur(2.5)
+    for m in arm.modules:
+        assert m.get_param(P.Param.FMAXCUR) == pytest.approx(2.5)
+    with pytest.raises(SafetyError):
+        arm.set_max_cur(math.nan)
+
+
+def test_home_and_home_all(new_channel):
+    ch = new_channel()
+    with SimulatedArm.virtual(ch, (1, 2), homed=False, initial=[0.2, -0.1]) as sim, \
+            can.Bus(interface="virtual", channel=ch) as bus:
+        a = PowerCubeArm(bus, (1, 2), timeout=0.05)
+        assert not any(s & P.State.HOME_OK for s in a.states())
+        a.modules[0].home()
+        a.modules[0].wait_homed(timeout=3.0)
+        assert abs(a.modules[0].get_pos()) < 1e-6
+        a.home_all()  # broadcast, no reply
+        a.wait_homed(timeout=3.0)
+        np.testing.assert_allclose(a.get_pos(), 0.0, atol=1e-6)
+        assert all(s & P.State.HOME_OK for s in sim.states())
+
+
+def test_move_ramp_respects_velocity_and_reaches_target(arm, sim):
+    target = np.array([0.3, -0.2, 0.1, 0.25, -0.3, 0.2])
+    arm.move_ramp(target, 0.5, 1.0)
+    peak = np.zeros(6)
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < 1.5:
+        peak = np.maximum(peak, np.abs(arm.get_vel()))
+        time.sleep(0.01)
+    np.testing.assert_allclose(arm.get_pos(), target, atol=1e-6)
+    assert np.all(peak <= 0.5 + 1e-6)
+    assert peak[0] > 0.4  # the long joints do reach the ramp speed
+    assert all(s & P.State.RAMP_END for s in arm.states())
+
+
+def test_move_step_takes_its_time(arm, sim):
+    arm.move_step(np.full(6, 0.1), 0.3)
+    time.sleep(0.15)
+    mid = arm.get_pos()
+    assert np.all((mid > 0.02) & (mid < 0.08))  # about half way (plus the 10 ms lag)
+    np.testing.assert_allclose(arm.get_vel(), 0.1 / 0.3, rtol=1e-3)
+    time.sleep(0.25)
+    np.testing.assert_allclose(arm.get_pos(), 0.1, atol=1e-6)
+
+
+def test_move_step_extended_reply(arm, sim):
+    pos, short = arm.move_step(np.full(6, 0.05), 0.1, extended=True)
+    assert pos.shape == (6,) and all(isinstance(s, P.ShortState) for s in short)
+    assert not any(s & P.ShortState.NOT_OK for s in short)
+
+
+def test_speed_limit_of_sec_3_2_slows_a_too_fast_step(new_channel):
+    ch = new_channel()
+    with SimulatedArm.virtual(ch, (1,), lag=0.0) as sim, can.Bus(interface="virtual", channel=ch) as bus:
+        m = PowerCubeModule(bus, 1, timeout=0.05)  # no local limits: the module's own limit acts
+        vmax = iik.THESIS_ARM.velocity[0]
+        m.move_step(0.6, 0.1)  # asks for 6 rad/s
+        time.sleep(0.2)
+        assert m.get_vel() == pytest.approx(vmax)
+        assert 0.1 < m.get_pos() < 0.6
+        assert sim.module(1).motion.end - sim.module(1).motion.t0 == pytest.approx(0.6 / vmax)
+
+
+def test_move_vel_and_move_cur(arm, sim):
+    arm.move_vel(np.full(6, 0.3))
+    time.sleep(0.4)
+    np.testing.assert_allclose(arm.get_vel(), 0.3, atol=1e-6)
+    arm.move_vel(np.zeros(6))
+    time.sleep(0.3)
+    np.testing.assert_allclose(arm.get_vel(), 0.0, atol=1e-9)
+    arm.move_cur(np.full(6, 1.0))
+    time.sleep(0.4)
+    v = arm.get_vel()
+    assert np.all(v > 0.05)
+    arm.move_vel(np.zeros(6))
+
+
+def test_halt_latches_until_reset(arm, sim):
+    arm.move_vel(np.full(6, 0.2))
+    time.sleep(0.1)
+    arm.modules[0].halt()
+    time.sleep(0.03)
+    assert arm.modules[0].state() & P.State.HALTED
+    assert arm.modules[0].get_vel() == 0.0
+    with pytest.raises(ModuleHalted):
+        arm.modules[0].move_step(0.0, 0.1)  # refused locally, nothing sent
+    # bypass the driver: the module itself ignores motion while halted
+    arm.link.request(P.SetMove(1, P.Mode.FVEL, 0.3))
+    time.sleep(0.05)
+    assert arm.modules[0].get_vel() == 0.0
+    arm.halt()  # broadcast reaches the others
+    time.sleep(0.03)
+    assert all(s & P.State.HALTED for s in sim.states())
+    assert arm.halted
+    arm.reset()
+    assert not arm.halted and not any(s & P.State.HALTED for s in arm.states())
+    arm.modules[0].move_vel(0.1)
+    time.sleep(0.2)
+    assert arm.modules[0].get_vel() == pytest.approx(0.1)
+    arm.move_vel(np.zeros(6))
+
+
+def test_halt_latch_observed_from_state(arm, sim):
+    arm.link.send(P.Broadcast(P.Cmd.HALT))  # halted behind the driver's back
+    time.sleep(0.03)
+    arm.states()
+    with pytest.raises(ModuleHalted):
+        arm.move_step(np.zeros(6), 0.1)
+
+
+class _Rogue:
+    """Another node that answers every request with non-matching frames first."""
+
+    def __init__(self, channel, delay_real=False):
+        self.bus = can.Bus(interface="virtual", channel=channel)
+        self.stop = threading.Event()
+        self.thread = threading.Thread(target=self.run, daemon=True)
+        self.thread.start()
+
+    def run(self):
+        while not self.stop.is_set():
+            f = self.bus.recv(0.01)
+            if f is None or f.arbitration_id == 0x100 or not (0x0C0 <= f.arbitration_id < 0x100):
+                continue
+            mid = f.arbitration_id & 0x1F
+            for junk in (P.ParamReply(mid, P.Param.ACT_FVEL, 99.0),        # wrong parameter
+                         P.ParamReply(mid % 31 + 1, P.Param.ACT_FPOS, 99.0),  # wrong module
+                         P.CommandAck(mid, P.Cmd.HOME),                     # wrong command
+                         P.MoveAck(mid, P.Mode.FRAMP)):                     # wrong mode
+                self.bus.send(P.encode(junk))
+            self.bus.send(can.Message(arbitration_id=0x0A0 + mid, data=[0x0A], is_extended_id=False))
+
+    def close(self):
+        self.stop.set()
+        self.thread.join()
+        self.bus.shutdown()
+
+
+def test_echo_rule_discards_non_matching_replies(new_channel):
+    ch = new_channel()
+    rogue = _Rogue(ch)
+    try:
+        with SimulatedArm.virtual(ch, (1,), initial=[0.3]), can.Bus(interface="virtual", channel=ch) as bus:
+            m = PowerCubeModule(bus, 1, timeout=0.1)
+            for _ in range(5):
+                assert m.get_pos() == pytest.approx(0.3, abs=1e-6)  # never the rogue's 99
+            m.move_step(0.31, 0.05)
+            assert m.link.discarded >= 5
+    finally:
+        rogue.close()
+
+
+def test_only_non_matching_replies_time_out(new_channel):
+    ch = new_channel()
+    rogue = _Rogue(ch)
+    try:
+        with can.Bus(interface="virtual", channel=ch) as bus:  # no simulated module at all
+            m = PowerCubeModule(bus, 1, timeout=0.05)
+            t0 = time.monotonic()
+            with pytest.raises(CANTimeoutError) as ei:
+                m.get_pos()
+            assert time.monotonic() - t0 >= 0.05
+            assert ei.value.module_id == 1 and isinstance(ei.value, TimeoutError)
+    finally:
+        rogue.close()
+
+
+def test_late_ack_is_discarded_by_the_next_request(arm, sim):
+    sim.inject(1, "late_ack", delay=0.08)
+    with pytest.raises(CANTimeoutError):
+        arm.modules[0].get_pos()
+    time.sleep(0.1)  # the late reply is now queued on the host
+    assert arm.modules[0].get_vel() == 0.0  # the stale ACT_FPOS reply is not taken for it
+
+
+def test_scan_finds_exactly_the_modules(new_channel):
+    ch = new_channel()
+    with SimulatedArm.virtual(ch, (2, 5, 9)), can.Bus(interface="virtual", channel=ch) as bus:
+        found = scan(bus, timeout=0.01)
+    assert sorted(found) == [2, 5, 9]
+    assert set(found.values()) == {0x5151}
+
+
+def test_start_move_starts_a_buffered_step(arm, sim):
+    m = arm.modules[0]
+    m.move_step(0.2, 1.0)
+    time.sleep(0.05)
+    m.move_step(-0.1, 0.5)  # arrives while in progress: buffered
+    assert m.state() & P.State.FULLBUFFER
+    time.sleep(0.05)
+    assert m.get_vel() > 0  # still on the first step
+    arm.start_move()
+    time.sleep(0.05)
+    assert m.get_vel() < 0 and not m.state() & P.State.FULLBUFFER
+
+
+def test_buffered_step_starts_when_the_current_one_ends(arm, sim):
+    m = arm.modules[0]
+    m.move_step(0.05, 0.1)
+    m.move_step(0.0, 0.1)
+    time.sleep(0.3)
+    assert abs(m.get_pos()) < 1e-6
+    kinds = [x.kind for x in sim.module(1).history]
+    assert kinds[-2:] == ["step", "step"]
+
+
+def test_soft_limits_default_to_table_i_and_refuse_targets(new_channel):
+    ch = new_channel()
+    with SimulatedArm.virtual(ch, (1, 2, 3, 4, 5, 6)), can.Bus(interface="virtual", channel=ch) as bus:
+        m = PowerCubeModule(bus, 2, timeout=0.05)  # joint 2, no local check
+        lo, hi = m.soft_limits()
+        assert lo == pytest.approx(iik.THESIS_ARM.lower[1]) and hi == pytest.approx(iik.THESIS_ARM.upper[1])
+        m.move_step(hi + 0.1, 0.5)
+        time.sleep(0.02)
+        s = m.state()
+        assert s & P.State.ERROR and s & P.State.BEYOND_SOFT
+        assert m.link.faults.get(2, 0) & P.State.BEYOND_SOFT  # announced by a state frame
+        m.reset()
+        assert not m.state() & P.State.ERROR
+        guarded = PowerCubeModule(bus, 2, timeout=0.05, limits=(lo, hi))
+        with pytest.raises(SafetyError):
+            guarded.move_step(hi + 0.1, 0.5)
+
+
+def test_watchdog(arm, sim):
+    arm.start_watchdog(period=0.02)
+    assert all(m.get_param(P.Param.CONFIG) & P.CONFIG_WATCHDOG for m in arm.modules)
+    time.sleep(0.4)  # refreshed: no trip
+    assert not any(s & P.State.ERROR for s in arm.states())
+    arm.stop_watchdog(disable=False)  # refresh stops, bit stays: the modules must stop
+    assert wait_until(lambda: all(s & P.State.COMM_ERROR for s in sim.states()), 1.0)
+    arm.reset()
+    arm.start_watchdog(period=0.02)
+    arm.stop_watchdog(disable=True)  # clean stop: bit cleared first
+    time.sleep(0.4)
+    assert not any(s & P.State.ERROR for s in arm.states())
+
+
+def test_bad_arguments_are_typed_errors(arm, sim):
+    with pytest.raises(SafetyError):
+        PowerCubeModule(arm.bus, 0)
+    with pytest.raises(SafetyError):
+        arm.move_step(np.zeros(5), 0.1)
+    with pytest.raises(SafetyError):
+        arm.move_step(np.zeros(6), 0.0)
+    with pytest.raises(SafetyError):
+        arm.move_step(np.zeros(6), 70.0)
+    with pytest.raises(SafetyError):
+        arm.move_step(np.full(6, 4.0), 1.0)  # outside Table I
+    with pytest.raises(SafetyError):
+        arm.move_vel(np.full(6, math.inf))

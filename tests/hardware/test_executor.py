@@ -1,0 +1,289 @@
+"""Validation and execution: the early update, faults (halt + complete log), and a
+property test that no out-of-limit target ever reaches the bus."""
+
+import math
+import threading
+import time
+
+import can
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import iik
+from hardware import PowerCubeArm, SimulatedArm, execute, read_run_log, validate
+from hardware import protocol as P
+from hardware.errors import BusError, CANTimeoutError, ModuleFault, SafetyError
+from hardware.executor import ExecutionOptions, ValidatedTrajectory, ValidationOptions, time_steps
+
+ARM = iik.THESIS_ARM
+QA = np.array([0.1, -0.3, 0.4, 0.5, -0.2, 0.7])
+QB = np.array([0.3, -0.1, 0.2, 0.6, 0.1, 0.5])
+
+
+def line(n=6, qa=QA, qb=QB, speed=0.5):
+    q = qa + (qb - qa) * np.linspace(0, 1, n)[:, None]
+    return time_steps(q, speed_fraction=speed, min_step=0.05), q, iik.fk(q)
+
+
+FAST = ExecutionOptions(settle=0.05, sample_period=0.005)
+
+
+# ----------------------------------------------------------------------------- validation
+def test_validate_accepts_a_planned_line():
+    t, q, T = line()
+    tr = validate(t, q, T)
+    assert isinstance(tr, ValidatedTrajectory) and len(tr) == 6
+    assert tr.times[0] == 0 and np.all(tr.step_ms >= 50)
+    with pytest.raises(ValueError):
+        tr.q[0, 0] = 1.0  # read-only
+    with pytest.raises(AttributeError):
+        tr.q = q
+
+
+def test_validated_trajectory_cannot_be_built_directly():
+    t, q, T = line()
+    with pytest.raises(SafetyError):
+        ValidatedTrajectory(_token=object(), times=t, q=q, poses=T, step_ms=t, arm=ARM, options=None)
+
+
+@pytest.mark.parametrize("mutate,where", [
+    (lambda t, q, T: q.__setitem__((2, 1), math.nan), "q[2, 1]"),
+    (lambda t, q, T: q.__setitem__((3, 3), ARM.upper[3] - 0.001), "q[3, 3]"),  # in Table I, not margin
+    (lambda t, q, T: q.__setitem__((4, 0), ARM.upper[0] + 0.1), "q[4, 0]"),
+    (lambda t, q, T: T.__setitem__((2, 0, 3), T[2, 0, 3] + 0.001), "q[2]"),  # FK != planned pose
+    (lambda t, q, T: t.__setitem__(slice(3, None), t[3:] - t[3] + t[2] + 0.005), "times[3]"),
+])
+def test_validate_rejects(mutate, where):
+    t, q, T = line()
+    t, q, T = t.copy(), q.copy(), T.copy()
+    if where.startswith("q[") and "," in where:
+        k = int(where[2])
+        mutate(t, q, T)
+        T[k] = iik.fk(np.nan_to_num(q[k])) if np.all(np.isfinite(q[k])) else T[k]
+    else:
+        mutate(t, q, T)
+    with pytest.raises(SafetyError) as ei:
+        validate(t, q, T)
+    assert ei.value.argument.startswith(where)
+
+
+def test_validate_rejects_too_fast():
+    t, q, T = line()
+    t = t * 0.05  # 20x faster than half speed
+    t[1:] = np.maximum(t[1:], np.arange(1, len(t)) * 0.011)
+    with pytest.raises(SafetyError, match="rad/s"):
+        validate(t, q, T)
+
+
+def test_execute_refuses_anything_else():
+    t, q, T = line()
+    with pytest.raises(SafetyError):
+        execute(None, (t, q, T), "/dev/null")
+
+
+# ----------------------------------------------------------------------------- execution
+@pytest.fixture
+def rig(new_channel, tmp_path):
+    ch = new_channel()
+    sim = SimulatedArm.virtual(ch, lag=0.01, initial=QA)
+    bus = can.Bus(interface="virtual", channel=ch)
+    arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=0.03)
+    yield sim, arm, tmp_path / "run.jsonl"
+    sim.close()
+    bus.shutdown()
+
+
+def test_execute_streams_with_the_early_update(rig):
+    sim, arm, log = rig
+    t, q, T = line()
+    tr = validate(t, q, T)
+    res = execute(arm, tr, log, options=FAST)
+    run = read_run_log(log)
+    assert run.status == "ok" and run.fault is None
+    assert res.commands == len(tr) - 1 and list(run.command_k) == list(range(1, len(tr)))
+    # Sec 4.3: each command follows the previous after 95 % of its time
+    gaps = np.diff(run.command_t)
+    planned = 0.95 * tr.step_ms[:-1] / 1000.0
+    assert np.all(gaps >= planned - 0.002)  # never before 95 % of the previous step
+    assert np.median(gaps - planned) < 0.005  # and normally right then
+    np.testing.assert_allclose(sim.positions(), q[-1], atol=1e-6)
+    # every FSTEP on the bus carried a validated target and its time
+    steps = [m for _, m in sim.received() if isinstance(m, P.SetMove)]
+    assert all(m.mode is P.Mode.FSTEP_EXT for m in steps) and len(steps) == 6 * (len(tr) - 1)
+    starts = [m for _, m in sim.received() if isinstance(m, P.Broadcast) and m.cmd is P.Cmd.STARTMOVE]
+    assert len(starts) == 6 * (len(tr) - 1)  # every module saw every STARTMOVE
+
+
+def test_execute_approaches_the_start_first(new_channel, tmp_path):
+    ch = new_channel()
+    with SimulatedArm.virtual(ch, lag=0.01) as sim, can.Bus(interface="virtual", channel=ch) as bus:
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=0.03)
+        t, q, T = line(4, qa=np.full(6, 0.05), qb=np.full(6, 0.1))
+        tr = validate(t, q, T)
+        with pytest.raises(SafetyError):
+            execute(arm, tr, tmp_path / "a.jsonl", options=ExecutionOptions(approach=False))
+        execute(arm, tr, tmp_path / "b.jsonl", options=ExecutionOptions(settle=0.05, approach_speed=0.5))
+        np.testing.assert_allclose(sim.positions(), q[-1], atol=1e-6)
+        run = read_run_log(tmp_path / "b.jsonl")
+        assert run.command_k[0] == 0 and run.status == "ok"
+
+
+def assert_halted_and_logged(sim, log, error, skip=()):
+    time.sleep(0.03)
+    for mid, s in zip(sim.module_ids, sim.states(), strict=True):
+        if mid not in skip:
+            assert s & P.State.HALTED, f"module {mid} not halted: {s!r}"
+    run = read_run_log(log)  # parses: every line complete
+    assert run.status == "fault" and run.complete
+    assert run.fault["error"] == error and run.fault["halted"] is True
+    assert run.records[-1]["type"] == "end"
+    return run
+
+
+@pytest.mark.parametrize("kind,kw,error", [
+    ("drop_ack", {}, "CANTimeoutError"),
+    ("late_ack", {"delay": 0.1}, "CANTimeoutError"),
+    ("error", {"bits": P.State.POW_FET_TEMP}, "ModuleFault"),
+])
+def test_fault_halts_all_and_logs(rig, kind, kw, error):
+    sim, arm, log = rig
+    tr = validate(*line(8))
+    sim.inject(3, kind, after_moves=3, **kw)
+    exc_type = CANTimeoutError if error == "CANTimeoutError" else ModuleFault
+    with pytest.raises(exc_type):
+        execute(arm, tr, log, options=FAST)
+    run = assert_halted_and_logged(sim, log, error)
+    assert 2 <= len(run.command_k) <= 4  # stopped at the faulty command
+    if kind == "error":
+        assert sim.states()[2] & P.State.POW_FET_TEMP
+
+
+def test_vanished_module_others_halted_and_it_stops_by_itself(rig):
+    sim, arm, log = rig
+    tr = validate(*line(8))
+    sim.inject(4, "vanish", after_moves=3)
+    with pytest.raises(CANTimeoutError):
+        execute(arm, tr, log, options=FAST)
+    assert_halted_and_logged(sim, log, "CANTimeoutError", skip=(4,))
+    time.sleep(max(tr.step_ms) / 1000.0 + 0.05)  # a short FSTEP horizon: it finishes and stops
+    assert not sim.moving()[3]
+
+
+def test_keyboard_interrupt_halts_and_logs(rig):
+    sim, arm, log = rig
+    tr = validate(*line(8))
+
+    def progress(k, n):
+        if k == 3:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        execute(arm, tr, log, options=FAST, progress=progress)
+    assert_halted_and_logged(sim, log, "KeyboardInterrupt")
+
+
+def test_can_error_halts_and_logs(rig):
+    sim, arm, log = rig
+    tr = validate(*line(8))
+    real_send = arm.bus.send
+    calls = {"n": 0}
+
+    def flaky_send(msg, timeout=None):
+        calls["n"] += 1
+        if calls["n"] == 60:
+            raise can.CanOperationError("simulated controller error")
+        return real_send(msg, timeout)
+
+    arm.bus.send = flaky_send
+    with pytest.raises(BusError):
+        execute(arm, tr, log, options=FAST)
+    assert_halted_and_logged(sim, log, "BusError")
+
+
+def test_run_log_survives_without_end_record(rig):
+    sim, arm, log = rig
+    tr = validate(*line(4))
+    execute(arm, tr, log, options=FAST)
+    lines = log.read_text().splitlines()
+    log.write_text("\n".join(lines[:-1]) + "\n")  # as if the process died
+    run = read_run_log(log)
+    assert not run.complete and len(run.samples_t) > 0
+
+
+# ----------------------------------------------------------------------------- property
+def _spy(bus, sent):
+    real = bus.send
+
+    def send(msg, timeout=None):
+        sent.append(msg)
+        return real(msg, timeout)
+
+    bus.send = send
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(data=st.data())
+def test_no_out_of_limit_target_is_ever_sent(new_channel, tmp_path, data):
+    n = data.draw(st.integers(2, 4))
+    lo, hi = ARM.q_min - 0.3, ARM.q_max + 0.3  # deliberately reaching past Table I
+    q = np.array([[data.draw(st.floats(float(a), float(b))) for a, b in zip(lo, hi, strict=True)]
+                  for _ in range(n)])
+    if data.draw(st.booleans()):
+        q[1:] = q[0] + np.clip(q[1:] - q[0], -0.02, 0.02)  # often small, feasible motions
+    q = np.clip(q, lo, hi)
+    dt = data.draw(st.floats(0.01, 0.06))
+    t = np.arange(n) * dt
+    T = iik.fk(q)
+    if data.draw(st.booleans()):
+        T[-1, 2, 3] += data.draw(st.floats(-1e-3, 1e-3))  # sometimes a pose that q does not reach
+    opts = ValidationOptions()
+    try:
+        tr = validate(t, q, T, options=opts)
+    except SafetyError:
+        return  # refused before any bus existed
+    ch = new_channel()
+    sent = []
+    with SimulatedArm.virtual(ch, lag=0.0, initial=q[0]), can.Bus(interface="virtual", channel=ch) as bus:
+        _spy(bus, sent)
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=0.05)
+        execute(arm, tr, tmp_path / f"{ch}.jsonl", options=ExecutionOptions(settle=0.0, sample_period=0.01))
+    moves = [P.decode(f) for f in sent if (f.arbitration_id & ~0x1F) == P.ID_SET]
+    moves = [m for m in moves if isinstance(m, P.SetMove)]
+    assert moves, "a valid trajectory sends steps"
+    for m in moves:
+        j = m.module - 1
+        assert ARM.lower[j] + opts.margin - 1e-6 <= m.value <= ARM.upper[j] - opts.margin + 1e-6
+        assert m.time_ms >= 10
+    # and the speeds implied on the wire respect Sec 3.2
+    for j in range(6):
+        tj = [m for m in moves if m.module == j + 1]
+        prev = q[0, j]
+        for m in tj:
+            assert abs(m.value - prev) / (m.time_ms / 1000.0) <= ARM.velocity[j] + 1e-4
+            prev = m.value
+
+
+def test_threads_are_cleaned_up():
+    assert not [t for t in threading.enumerate() if t.name == "SimulatedArm"]
+
+
+def test_orientation_free_steps_check_position_only():
+    t, q, T = line()
+    T = T.copy()
+    c, s = math.cos(0.2), math.sin(0.2)
+    T[2, :3, :3] = T[2, :3, :3] @ np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])  # planner changed alpha here
+    with pytest.raises(SafetyError, match="FK does not match"):
+        validate(t, q, T)
+    free = np.zeros(len(t), bool)
+    free[2] = True
+    validate(t, q, T, orientation_free=free)
+    T[2, 0, 3] += 0.001  # the position is still checked
+    with pytest.raises(SafetyError, match="FK does not match"):
+        validate(t, q, T, orientation_free=free)
+
+
+def test_bus_open_failure_is_typed():
+    with pytest.raises(BusError):
+        PowerCubeArm.from_interface(interface="no-such-interface", channel="x")

@@ -1,0 +1,128 @@
+"""The simulated module as a pure state machine on an explicit clock (deterministic)."""
+
+import math
+
+import pytest
+
+import iik
+from hardware import protocol as P
+from hardware.errors import SafetyError
+from hardware.sim import SimModule, SimulatedArm
+
+
+def module(**kw):
+    kw.setdefault("lag", 0.0)
+    return SimModule(1, lower=-1.0, upper=1.0, vmax=1.2, amax=2.0, **kw)
+
+
+def test_fstep_is_linear_and_takes_its_time():
+    m = module()
+    (ack,) = m.handle(P.SetMove(1, P.Mode.FSTEP, 0.3, 500), 0.0)
+    assert ack == P.MoveAck(1, P.Mode.FSTEP)
+    assert m.setpoint(0.25) == pytest.approx((0.15, 0.6, 0.0))
+    assert m.state(0.25) & P.State.INPROGRESS and m.state(0.25) & P.State.MOTION
+    assert m.setpoint(0.5)[0] == pytest.approx(0.3)
+    s = m.state(0.6)
+    assert not s & P.State.INPROGRESS and s & P.State.RAMP_END
+
+
+def test_ramp_profile_limits_and_duration():
+    m = module()
+    m.handle(P.SetParam(1, P.Param.FRAMPVEL, 0.5), 0.0)
+    m.handle(P.SetParam(1, P.Param.FRAMPACC, 1.0), 0.0)
+    m.handle(P.SetMove(1, P.Mode.FRAMP, 0.8), 0.0)
+    ts = [i * 0.01 for i in range(300)]
+    v = [m.setpoint(t)[1] for t in ts]
+    a = [m.setpoint(t)[2] for t in ts]
+    assert max(v) == pytest.approx(0.5, abs=1e-6) and max(abs(x) for x in a) <= 1.0 + 1e-6
+    # jerk-limited trapezoid (jerk 50 rad/s^3): T = d/v + v/a + a/j = 1.6 + 0.5 + 0.02 s
+    assert m.motion.end == pytest.approx(0.8 / 0.5 + 0.5 / 1.0 + 1.0 / 50.0, abs=1e-6)
+    assert m.setpoint(2.2)[0] == pytest.approx(0.8)
+
+
+def test_tracking_lag_is_a_pure_delay():
+    m = module(lag=0.05)
+    m.handle(P.SetMove(1, P.Mode.FSTEP, 0.2, 200), 0.0)
+    assert m.measured(0.15)[0] == pytest.approx(m.setpoint(0.10)[0])
+    assert m.measured(0.03)[0] == 0.0
+
+
+def test_buffer_and_startmove():
+    m = module()
+    m.handle(P.SetMove(1, P.Mode.FSTEP, 0.2, 400), 0.0)
+    m.handle(P.SetMove(1, P.Mode.FSTEP, 0.0, 200), 0.1)
+    assert m.state(0.1) & P.State.FULLBUFFER
+    m.handle(P.Broadcast(P.Cmd.STARTMOVE), 0.2)
+    p0 = m.setpoint(0.2)[0]
+    assert p0 == pytest.approx(0.1) and m.setpoint(0.3)[0] == pytest.approx(0.05)
+    assert not m.state(0.25) & P.State.FULLBUFFER
+
+
+def test_soft_limit_and_error_state_frame():
+    m = module()
+    out = m.handle(P.SetMove(1, P.Mode.FSTEP, 1.5, 100), 0.0)
+    assert out[0] == P.MoveAck(1, P.Mode.FSTEP)
+    assert isinstance(out[1], P.StateFrame) and out[1].state & P.State.BEYOND_SOFT
+    assert m.setpoint(0.5)[0] == 0.0
+
+
+def test_velocity_mode_stops_at_soft_limit():
+    m = module()
+    m.handle(P.SetMove(1, P.Mode.FVEL, 1.0), 0.0)
+    out = []
+    t = 0.0
+    while t < 3.0 and not out:
+        t += 0.01
+        out = m.advance(t)
+    assert out and out[0].state & P.State.BEYOND_SOFT
+    assert m.setpoint(t + 1.0)[0] <= 1.0
+
+
+def test_halt_latch_in_the_module():
+    m = module()
+    m.handle(P.Command(1, P.Cmd.HALT), 0.0)
+    assert m.handle(P.SetMove(1, P.Mode.FSTEP, 0.2, 100), 0.1) == [P.MoveAck(1, P.Mode.FSTEP)]
+    assert m.setpoint(0.5)[0] == 0.0 and m.state(0.5) & P.State.HALTED
+    m.handle(P.Command(1, P.Cmd.RESET), 0.6)
+    m.handle(P.SetMove(1, P.Mode.FSTEP, 0.2, 100), 0.6)
+    assert m.setpoint(0.8)[0] == pytest.approx(0.2)
+
+
+def test_watchdog_trips_on_silence():
+    m = module(watchdog_timeout=0.1)
+    m.handle(P.SetParam(1, P.Param.CONFIG, P.CONFIG_WATCHDOG), 0.0)
+    m.handle(P.Broadcast(P.Cmd.WATCHDOG), 0.0)
+    assert m.advance(0.05) == []
+    out = m.advance(0.2)
+    assert out and out[0].state & P.State.COMM_ERROR and m.state(0.2) & P.State.ERROR
+
+
+def test_defaults_come_from_the_arm():
+    sim = SimulatedArm(bus=None, module_ids=(1, 2, 3, 4, 5, 6), start=False)  # type: ignore[arg-type]
+    arm = iik.THESIS_ARM
+    for j, i in enumerate(sim.module_ids):
+        m = sim.module(i)
+        assert m.params[P.Param.FMINPOS] == arm.lower[j] and m.params[P.Param.FMAXPOS] == arm.upper[j]
+        assert m.vmax == arm.velocity[j]
+
+
+def test_bad_fault_kind():
+    with pytest.raises(SafetyError):
+        module().inject("explode")
+
+
+def test_extended_reply_reports_position_and_short_state():
+    m = module(initial=0.25, homed=False)
+    (ack,) = m.handle(P.SetMove(1, P.Mode.FVEL_EXT, 0.0), 0.0)
+    assert ack.position == pytest.approx(0.25) and ack.short & P.ShortState.NOT_OK
+    assert not math.isnan(ack.position)
+
+
+def test_stops_between_steps_are_recorded():
+    m = module()
+    m.handle(P.SetMove(1, P.Mode.FSTEP, 0.1, 100), 0.0)
+    m.handle(P.SetMove(1, P.Mode.FSTEP, 0.2, 100), 0.095)  # early (95 %): buffered, no stop
+    m.advance(0.2)
+    assert m.stops == []
+    m.handle(P.SetMove(1, P.Mode.FSTEP, 0.3, 100), 0.21)  # late: rests 10 ms at 0.2 rad
+    assert m.stops == [(pytest.approx(0.2), pytest.approx(0.01))]

@@ -1,0 +1,109 @@
+"""Tests of iik.workspace: the corrected Sec 3.4.4 test and the closest reachable point."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import iik
+from iik.errors import IIKError, InvalidInputError
+from iik.workspace import position_lm, tool_positions
+
+ARM = iik.THESIS_ARM
+L = ARM.l3 + ARM.l4 + ARM.l5
+
+joints = st.tuples(*[st.floats(float(lo), float(hi)) for lo, hi in zip(ARM.q_min, ARM.q_max, strict=True)])
+
+
+def test_public_api():
+    for name in ("in_workspace", "closest_reachable", "ClosestReachable"):
+        assert name in iik.__all__ and hasattr(iik, name)
+
+
+def test_tool_positions_equal_fk():
+    q = np.random.default_rng(0).uniform(ARM.q_min, ARM.q_max, size=(500, 6))
+    assert np.abs(tool_positions(q[:, :5]) - iik.fk(q)[:, :3, 3]).max() < 1e-14
+
+
+def test_shapes_and_scalar():
+    assert iik.in_workspace([0.5, 0.0, 0.3]) is True
+    assert iik.in_workspace([2.0, 0.0, 0.3]) is False
+    out = iik.in_workspace(np.zeros((4, 3)))
+    assert out.shape == (4,) and out.dtype == bool
+
+
+@pytest.mark.parametrize("bad", [[np.nan, 0, 0], [0, 0], np.zeros((2, 2)), "abc", [[0, 0, np.inf]]])
+def test_bad_points(bad):
+    with pytest.raises(InvalidInputError) as e:
+        iik.in_workspace(bad)
+    assert e.value.argument == "p"
+    with pytest.raises(IIKError):
+        iik.closest_reachable(bad)
+
+
+def test_no_reachable_point_rejected_batch():
+    """Measured property of the corrected test: every reachable point is inside (no false outside)."""
+    q = np.random.default_rng(1).uniform(ARM.q_min, ARM.q_max, size=(100_000, 6))
+    assert iik.in_workspace(tool_positions(q[:, :5])).all()
+
+
+@settings(max_examples=200, deadline=None)
+@given(joints)
+def test_reachable_points_inside(q):
+    assert iik.in_workspace(iik.fk(np.array(q))[:3, 3])
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.floats(-2.7, 2.7), st.floats(-1.0, 1.0), st.floats(0.001, 0.5))
+def test_region1_outside_sphere_is_outside(phi, el, extra):
+    """Region 1 (Eq 38): beyond l3 + l4 + l5 from joint 2 nothing is reachable."""
+    j2 = np.array([ARM.l2 * np.cos(phi), ARM.l2 * np.sin(phi), ARM.l1])
+    u = np.array([np.cos(el) * np.cos(phi), np.cos(el) * np.sin(phi), np.sin(el)])
+    p = j2 + (L + extra) * u
+    assert not iik.in_workspace(p)
+    r = iik.closest_reachable(p)
+    assert r.moved
+    assert r.distance == pytest.approx(extra, abs=1e-6)
+
+
+def test_closest_reachable_is_reachable():
+    rng = np.random.default_rng(2)
+    P = rng.uniform([-1.2, -1.2, -0.8], [1.2, 1.2, 1.4], size=(40, 3))
+    r = iik.closest_reachable(P)
+    assert r.point.shape == (40, 3) and r.q.shape == (40, 6)
+    assert np.all(ARM.within_limits(r.q))
+    assert np.abs(iik.fk(r.q)[:, :3, 3] - r.point).max() < 1e-9
+    assert np.allclose(np.linalg.norm(r.point - P, axis=1), r.distance)
+    # relocated points are reachable, so the corrected test (no false outside) accepts them
+    assert iik.in_workspace(r.point).all()
+    assert np.all(r.distance[~r.moved] == 0)
+
+
+def test_closest_reachable_unchanged_for_reachable():
+    q = np.random.default_rng(3).uniform(ARM.q_min, ARM.q_max, size=(30, 6))
+    P = iik.fk(q)[:, :3, 3]
+    r = iik.closest_reachable(P)
+    assert not r.moved.any()
+    assert np.array_equal(r.point, P)
+
+
+def test_closest_reachable_known_point():
+    r = iik.closest_reachable([1.0, 0.0, ARM.l1])  # straight ahead, 0.099 m too far
+    assert r.point == pytest.approx([ARM.l2 + L, 0.0, ARM.l1], abs=1e-7)
+    assert r.distance == pytest.approx(1.0 - ARM.l2 - L, abs=1e-7)
+
+
+def test_bad_tol():
+    with pytest.raises(InvalidInputError):
+        iik.closest_reachable([0.5, 0, 0.3], tol=0.0)
+
+
+def test_position_lm_converges():
+    rng = np.random.default_rng(4)
+    q = rng.uniform(ARM.q_min, ARM.q_max, size=(50, 6))[:, :5]
+    P = tool_positions(q)
+    q0 = np.clip(q + rng.normal(0, 0.05, q.shape), ARM.q_min[:5], ARM.q_max[:5])
+    _, res = position_lm(P, q0)
+    assert res.max() < 1e-8

@@ -1,0 +1,172 @@
+"""Normal-acceleration boundary test of Abdel-Malek [10] as written in Appendix E (Eq 57-68).
+
+Everything is computed with Pinocchio on the shipped URDF: ``G(q)`` is the
+tool-frame position (Eq 34), ``G_q`` the linear rows of the frame Jacobian in
+``LOCAL_WORLD_ALIGNED`` (columns of joints 1-5), and second derivatives are
+central differences of those Jacobians (step 1e-6 rad). Units are SI (m, rad);
+the thesis prints mm, so :meth:`NormalAcceleration.in_mm` rescales
+(H*, Q*, eigenvalues, sigma, K-bar scale with length; B with 1/length).
+
+Steps (per point ``q0`` on a singular set with free joints ``u``):
+
+* Eq 58: ``q_i = (qU + qL)/2 + (qU - qL)/2 sin(lambda_i)``, so
+  ``q_s = diag((qU - qL)/2 cos(lambda))`` and ``[q_i]_ss = -(qU - qL)/2 sin(lambda_i)``.
+* Eq 59: ``N0`` spans the left null space of ``G_q q_s`` (3x5, rank 2 on a
+  singular set). Its sign is arbitrary; it is chosen to match a reference
+  direction when one is given.
+* Eq 61: ``H* = q_s^T [N0.G]_qq q_s + sum_i (N0.G_qi) [q_i]_ss``.
+* Eq 63: ``B = [E f_u]^-1 E`` with ``f_u`` the 3x2 Jacobian of the surface
+  w.r.t. its free joints and ``E`` the first pair of independent rows.
+* Eq 65: ``Q* = H* - q_s^T G_q^T B^T [N0.f]_uu B G_q q_s``.
+* Eq 66-67: ``sigma_i = N0.G_qi dq_i``, ``dq_i = +1`` at a lower limit, -1 at an upper.
+* Eq 68: ``K_i = G_qi^T B^T [N0.G]_uu B G_qi - [N0.G]_qiqi``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pinocchio as pin
+
+import iik
+
+__all__ = ["NormalAcceleration", "normal_acceleration", "position_and_jacobian"]
+
+_H = 1e-6
+
+
+def _model():
+    from .models import thesis_model
+
+    tm = thesis_model()
+    return tm.model, tm.tool_frame_id
+
+
+def position_and_jacobian(q5: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Pinocchio: tool position G [m] (3,) and G_q [m/rad] (3, 5) at joints 1-5 ``q5``."""
+    model, fid = _model()
+    data = model.createData()
+    q = np.zeros(model.nq)
+    q[:5] = q5
+    pin.forwardKinematics(model, data, q)
+    pin.updateFramePlacements(model, data)
+    J = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL_WORLD_ALIGNED)
+    return data.oMf[fid].translation.copy(), J[:3, :5].copy()
+
+
+def _hessian(q5: np.ndarray) -> np.ndarray:
+    """Second derivatives d2G/dq_i dq_j [m/rad^2], shape (3, 5, 5), by central differences."""
+    Hs = np.empty((3, 5, 5))
+    for i in range(5):
+        e = np.zeros(5)
+        e[i] = _H
+        Jp = position_and_jacobian(q5 + e)[1]
+        Jm = position_and_jacobian(q5 - e)[1]
+        Hs[:, i, :] = (Jp - Jm) / (2 * _H)
+    return 0.5 * (Hs + Hs.transpose(0, 2, 1))
+
+
+@dataclass(frozen=True)
+class NormalAcceleration:
+    """Appendix E quantities at one point (SI units: m, rad)."""
+
+    q0: np.ndarray  # (5,) rad
+    lam0: np.ndarray  # (5,) Eq 58 parameters
+    point: np.ndarray  # (3,) m
+    free: tuple[int, int]  # 1-based free joints u
+    N0: np.ndarray  # (3,)
+    H: np.ndarray  # (5, 5) m
+    E_rows: tuple[int, int]
+    B: np.ndarray  # (2, 3) 1/m (rad per m)
+    Q: np.ndarray  # (5, 5) m
+    eig: np.ndarray  # (5,) m, ascending
+    at_limit: tuple[tuple[int, str], ...]  # (joint, "lower"/"upper")
+    sigma: dict = field(default_factory=dict)  # joint -> sigma [m]
+    kbar: dict = field(default_factory=dict)  # joint -> K-bar [m]
+    null_sv: float = 0.0  # smallest singular value of G_q q_s [m]
+
+    def in_mm(self) -> dict:
+        """The thesis's display units (mm)."""
+        return {
+            "N0": self.N0,
+            "H": self.H * 1e3,
+            "B": self.B * 1e-3,
+            "Q": self.Q * 1e3,
+            "eig": self.eig * 1e3,
+            "sigma": {k: v * 1e3 for k, v in self.sigma.items()},
+            "kbar": {k: v * 1e3 for k, v in self.kbar.items()},
+        }
+
+    @property
+    def verdict(self) -> str:
+        """Abdel-Malek's reading: which side of N0 the motion may go.
+
+        ``"+N0"`` / ``"-N0"``: one side only (a boundary); ``"both"``: not a boundary.
+        Eigenvalues within 1e-9 m of zero are ignored; with joints at limits the
+        signs of sigma join the signs of the non-zero eigenvalues.
+        """
+        ev = self.eig[np.abs(self.eig) > 1e-9]
+        signs = set(np.sign(ev).astype(int).tolist())
+        signs |= {int(np.sign(s)) for s in self.sigma.values() if abs(s) > 1e-12}
+        if signs == {1}:
+            return "+N0"
+        if signs == {-1}:
+            return "-N0"
+        return "both"
+
+
+def normal_acceleration(q0, free: tuple[int, int], arm: iik.Arm = iik.THESIS_ARM,
+                        normal_hint=None, limit_tol: float = 1e-9,
+                        prefer_rows: tuple[int, int] | None = None) -> NormalAcceleration:
+    """Evaluate Eq 57-68 at joints ``q0`` (5,) [rad] on a set with free joints ``free`` (1-based).
+
+    ``normal_hint`` picks the sign of N0; ``prefer_rows`` (0-based row pair)
+    is tried first for E in Eq 63 (any independent pair gives the same Q*,
+    because the columns of ``G_q q_s`` lie in the span of ``f_u``).
+    """
+    q0 = np.asarray(q0, dtype=float)[:5]
+    lo, hi = arm.q_min[:5], arm.q_max[:5]
+    mid, half = (hi + lo) / 2, (hi - lo) / 2
+    lam = np.arcsin(np.clip((q0 - mid) / half, -1.0, 1.0))  # Eq 58 inverted
+    qs = half * np.cos(lam)  # dq/dlambda (diagonal of q_s)
+    qss = -half * np.sin(lam)  # d2q_i/dlambda_i^2
+    G, Gq = position_and_jacobian(q0)
+    Gqs = Gq * qs[None, :]
+    U, S, _ = np.linalg.svd(Gqs)
+    N0 = U[:, 2]  # Eq 59: left null vector
+    if normal_hint is not None and np.dot(N0, normal_hint) < 0:
+        N0 = -N0
+    Hq = _hessian(q0)  # (3, 5, 5)
+    NG_qq = np.einsum("k,kij->ij", N0, Hq)  # [N0.G]_qq
+    NG_q = N0 @ Gq  # d(N0.G)/dq_i
+    H = qs[:, None] * NG_qq * qs[None, :] + np.diag(NG_q * qss)  # Eq 61
+    u = [j - 1 for j in free]
+    f_u = Gq[:, u]  # 3x2 surface Jacobian w.r.t. the free joints
+    E_rows = None
+    order = ((0, 1), (0, 2), (1, 2))
+    if prefer_rows is not None:
+        order = (tuple(prefer_rows),) + order
+    for rows in order:  # Eq 63: first independent pair of rows
+        if abs(np.linalg.det(f_u[list(rows)])) > 1e-9 * max(1.0, np.abs(f_u).max() ** 2):
+            E_rows = rows
+            break
+    if E_rows is None:
+        raise iik.InvalidInputError("q0", "the surface Jacobian f_u has rank < 2 at this point")
+    E = np.zeros((2, 3))
+    E[0, E_rows[0]] = E[1, E_rows[1]] = 1.0
+    B = np.linalg.solve(E @ f_u, E)  # Eq 63
+    Nf_uu = NG_qq[np.ix_(u, u)]  # [N0.f]_uu
+    M = B @ Gqs  # (2, 5)
+    Q = H - M.T @ Nf_uu @ M  # Eq 65
+    eig = np.sort(np.linalg.eigvalsh(0.5 * (Q + Q.T)))
+    at_limit, sigma, kbar = [], {}, {}
+    for i in range(5):
+        for bound, val, dq in (("lower", lo[i], 1.0), ("upper", hi[i], -1.0)):  # Eq 67
+            if abs(q0[i] - val) <= limit_tol:
+                at_limit.append((i + 1, bound))
+                sigma[i + 1] = float(NG_q[i] * dq)  # Eq 66
+                g = Gq[:, i]
+                kbar[i + 1] = float(g @ B.T @ Nf_uu @ B @ g - NG_qq[i, i])  # Eq 68
+    return NormalAcceleration(q0, lam, G, tuple(free), N0, H, E_rows, B, Q, eig, tuple(at_limit),
+                              sigma, kbar, float(S[2]))

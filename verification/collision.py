@@ -1,0 +1,225 @@
+"""Whole-arm collision checking with Coal: the URDF's collision shapes against the scene.
+
+The arm's collision shapes come from ``urdf/thesis_arm.urdf`` through
+:func:`verification.models.thesis_model`; the environment is the scenario's
+boxes (obstacles and supports), the mobile platform and the floor of
+:data:`iik.scene.THESIS_SCENE` (half-space). Distances are exact Coal
+(GJK/EPA) distances between the shapes; a negative value is a penetration.
+
+Motion between two configurations is checked *continuously* by certified
+bisection: a point of the arm moves at most ``B = sum_j R_j |dq_j|`` along the
+joint-space straight line, where ``R_j`` bounds the distance of every
+downstream collision shape from joint ``j``'s axis (triangle inequality over
+the URDF joint offsets plus each shape's bounding radius). So the clearance on
+the segment is at least ``(d0 + d1 - B) / 2``; segments whose bound is below
+the required clearance are bisected until the bound holds or ``B`` is below
+``resolution`` (then the sampled minimum minus ``B / 2`` is reported).
+
+Excluded pairs: ``base_link`` against the platform (it is bolted onto it).
+Self-collisions between non-adjacent links are checked separately
+(:meth:`SceneCollision.self_distance`) with no safety zone. On a segment that
+violates ``required`` the bisection stops at the first sample below it, so the
+reported motion value is then an upper bound of the true minimum (it proves
+the violation, not its depth).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Sequence
+
+import coal
+import numpy as np
+import pinocchio as pin
+
+from iik._validate import as_joints
+from iik.planning.obstacles import Box
+from iik.scene import THESIS_SCENE, Scene
+
+from .models import collision_link, thesis_model
+
+__all__ = ["SceneCollision", "PathClearance"]
+
+
+@dataclass(frozen=True)
+class PathClearance:
+    """Whole-arm clearance along a joint path.
+
+    Attributes:
+        step: (n,) minimum arm-to-environment distance at each configuration [m].
+        step_link: (n,) name of the link attaining it.
+        step_object: (n,) name of the environment object attaining it.
+        motion: (n-1,) certified lower bound of the clearance on each motion between steps [m].
+        self_min: Smallest self-distance (non-adjacent links) over the steps [m].
+        checks: Number of configurations evaluated (steps + bisection samples).
+    """
+
+    step: np.ndarray
+    step_link: np.ndarray
+    step_object: np.ndarray
+    motion: np.ndarray
+    self_min: float
+    checks: int
+
+    @property
+    def minimum(self) -> float:
+        """Smallest clearance over the steps and the motions between them [m]."""
+        return float(min(self.step.min(), self.motion.min() if len(self.motion) else np.inf))
+
+
+class SceneCollision:
+    """Coal distance queries between the thesis arm and a scene.
+
+    Args:
+        boxes: Scenario boxes (:class:`iik.planning.obstacles.Box`), base frame.
+        scene: Platform and floor (default :data:`iik.scene.THESIS_SCENE`).
+        platform, floor: Include them.
+    """
+
+    def __init__(self, boxes: Sequence[Box] = (), *, scene: Scene = THESIS_SCENE,
+                 platform: bool = True, floor: bool = True):
+        tm = thesis_model()
+        self.model = tm.model
+        self.data = self.model.createData()
+        src = tm.collision_model
+        gm = pin.GeometryModel()
+        for obj in src.geometryObjects:
+            gm.addGeometryObject(obj.copy() if hasattr(obj, "copy") else obj)
+        self.n_arm = len(src.geometryObjects)
+        self.arm_link = np.array([collision_link(self.model, o) for o in src.geometryObjects])
+        env: list[tuple[str, object, np.ndarray]] = []
+        for b in boxes:
+            env.append((b.name, coal.Box(*b.size), np.asarray(b.center, float)))
+        if platform:
+            p = scene.platform
+            env.append(("platform", coal.Box(*p.size), np.asarray(p.center, float)))
+        if floor:
+            env.append(("floor", coal.Halfspace(np.array([0.0, 0.0, 1.0]), float(scene.floor.z)),
+                        np.zeros(3)))
+        self.env_names = np.array([e[0] for e in env])
+        for name, shape, c in env:
+            obj = pin.GeometryObject(f"env:{name}", 0, 0, pin.SE3(np.eye(3), c), shape)
+            gm.addGeometryObject(obj)
+        self.pairs: list[tuple[int, int]] = []
+        for i in range(self.n_arm):
+            for k, (name, _s, _c) in enumerate(env):
+                if name == "platform" and self.arm_link[i] == "base_link":
+                    continue  # bolted onto the platform
+                j = self.n_arm + k
+                gm.addCollisionPair(pin.CollisionPair(i, j))
+                self.pairs.append((i, k))
+        self.n_env_pairs = len(self.pairs)
+        self.geom_model = gm
+        self.geom_data = pin.GeometryData(gm)
+        self.self_model = src  # non-adjacent link pairs, registered by thesis_model()
+        self.self_data = pin.GeometryData(src)
+        self._pair_arm = np.array([p[0] for p in self.pairs], int)
+        self._pair_env = np.array([p[1] for p in self.pairs], int)
+        self.radius_bound = self._radius_bounds(tm)
+
+    def _radius_bounds(self, tm) -> np.ndarray:
+        """R_j: bound on the distance of any downstream shape point from joint j [m]."""
+        model = self.model
+        nj = model.njoints - 1
+        R = np.zeros(nj)
+        for obj in tm.collision_model.geometryObjects:
+            g = obj.geometry
+            g.computeLocalAABB()
+            r_obj = float(np.linalg.norm(obj.placement.translation)) + float(g.aabb_radius)
+            k = obj.parentJoint
+            for j in range(1, k + 1):
+                chain = sum(float(np.linalg.norm(model.jointPlacements[m].translation))
+                            for m in range(j + 1, k + 1))
+                R[j - 1] = max(R[j - 1], chain + r_obj)
+        return R
+
+    def _update(self, q: np.ndarray) -> int:
+        pin.forwardKinematics(self.model, self.data, q)
+        pin.updateGeometryPlacements(self.model, self.data, self.geom_model, self.geom_data)
+        return int(pin.computeDistances(self.geom_model, self.geom_data))
+
+    def _min(self, q: np.ndarray) -> tuple[float, int]:
+        k = self._update(q)
+        return float(self.geom_data.distanceResults[k].min_distance), k
+
+    def distances(self, q) -> np.ndarray:
+        """Distances [m] of every (arm shape, environment object) pair at one ``q`` [rad]."""
+        qb, _ = as_joints(q, "q")
+        self._update(qb[0])
+        return np.array([self.geom_data.distanceResults[i].min_distance
+                         for i in range(self.n_env_pairs)])
+
+    def clearance(self, q) -> tuple[float, str, str]:
+        """``(distance [m], link, object)`` of the closest arm-environment pair at ``q``."""
+        d = self.distances(q)
+        i = int(np.argmin(d))
+        return float(d[i]), str(self.arm_link[self._pair_arm[i]]), str(self.env_names[self._pair_env[i]])
+
+    def link_clearances(self, q) -> dict[str, float]:
+        """Minimum distance [m] of each link to the environment at ``q``."""
+        d = self.distances(q)
+        out: dict[str, float] = {}
+        for v, a in zip(d, self._pair_arm):
+            ln = str(self.arm_link[a])
+            out[ln] = min(out.get(ln, np.inf), float(v))
+        return out
+
+    def self_distance(self, q) -> float:
+        """Smallest distance [m] between shapes of non-adjacent links at ``q`` [rad]."""
+        qb, _ = as_joints(q, "q")
+        return self._self(qb[0])
+
+    def _self(self, q: np.ndarray) -> float:
+        if len(self.self_model.collisionPairs) == 0:
+            return np.inf
+        pin.forwardKinematics(self.model, self.data, q)
+        pin.updateGeometryPlacements(self.model, self.data, self.self_model, self.self_data)
+        k = int(pin.computeDistances(self.self_model, self.self_data))
+        return float(self.self_data.distanceResults[k].min_distance)
+
+    def motion_bound(self, q0, q1) -> float:
+        """Largest displacement [m] of any arm point on the straight joint motion q0 -> q1."""
+        return float(self.radius_bound @ np.abs(np.asarray(q1, float) - np.asarray(q0, float)))
+
+    def path_clearance(self, qs, required: float = 0.0, *, resolution: float = 0.002,
+                       check_self: bool = True) -> PathClearance:
+        """Clearance at every configuration and a certified bound on every motion between them.
+
+        Args:
+            qs: (n, 6) joint path [rad].
+            required: Clearance the motions must keep [m] (bisection stops once certified).
+            resolution: Stop bisecting when the motion bound is below this [m].
+            check_self: Also compute the self-distance at the steps.
+        """
+        Q, _ = as_joints(qs, "qs")
+        n = len(Q)
+        step = np.empty(n)
+        link = np.empty(n, dtype=object)
+        obj = np.empty(n, dtype=object)
+        self_min = np.inf
+        for i, q in enumerate(Q):
+            step[i], k = self._min(q)
+            link[i], obj[i] = self.arm_link[self._pair_arm[k]], self.env_names[self._pair_env[k]]
+            if check_self:
+                self_min = min(self_min, self._self(q))
+        checks = n
+        motion = np.empty(max(n - 1, 0))
+        for i in range(n - 1):
+            lb, c = self._segment(Q[i], Q[i + 1], step[i], step[i + 1], required, resolution, 0)
+            motion[i] = lb
+            checks += c
+        return PathClearance(step=step, step_link=link.astype(str), step_object=obj.astype(str),
+                             motion=motion, self_min=float(self_min), checks=checks)
+
+    def _segment(self, q0, q1, d0, d1, required, resolution, depth) -> tuple[float, int]:
+        B = self.motion_bound(q0, q1)
+        lb = min(d0, d1) if B <= abs(d0 - d1) else (d0 + d1 - B) / 2
+        if lb >= required or B <= resolution or depth > 20:
+            return lb, 0
+        qm = 0.5 * (q0 + q1)
+        dm, _ = self._min(qm)
+        if dm < required:  # a violation is established (a sampled distance); stop refining
+            return dm, 1
+        a, ca = self._segment(q0, qm, d0, dm, required, resolution, depth + 1)
+        b, cb = self._segment(qm, q1, dm, d1, required, resolution, depth + 1)
+        return min(a, b), ca + cb + 1

@@ -1,0 +1,73 @@
+"""The sampling-based fallback: OMPL RRT-Connect in joint space on Coal clearance checks.
+
+Used when the thesis planner's paths collide on every IK branch and after
+moving the via-points (Sec 3.6: "the entire path is redesigned"). A state is
+valid when the whole arm keeps ``required`` clearance from the scene
+(:class:`verification.collision.SceneCollision`) and no two non-adjacent links
+touch. The motion between states is checked by OMPL's discrete validity
+resolution; the final path is re-checked by the certified continuous check of
+:meth:`SceneCollision.path_clearance` by the caller.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from iik import THESIS_ARM, Arm
+
+from .collision import SceneCollision
+
+__all__ = ["rrt_connect"]
+
+
+def rrt_connect(q_start, q_goal, checker: SceneCollision, *, required: float, arm: Arm = THESIS_ARM,
+                time_limit: float = 3.0, seed: int = 1, max_joint_step: float = 0.05) -> np.ndarray | None:
+    """Plan a joint path from ``q_start`` to ``q_goal`` [rad] keeping ``required`` clearance [m].
+
+    Returns:
+        (n, 6) joint path [rad] with consecutive configurations at most
+        ``max_joint_step`` apart per joint, or ``None`` if OMPL found no solution
+        within ``time_limit`` seconds.
+    """
+    from ompl import base as ob
+    from ompl import geometric as og
+    from ompl import util as ou
+
+    ou.setLogLevel(ou.LOG_ERROR)
+    ou.RNG.setSeed(int(seed))
+    space = ob.RealVectorStateSpace(6)
+    bounds = ob.RealVectorBounds(6)
+    for i in range(6):
+        bounds.setLow(i, float(arm.q_min[i]))
+        bounds.setHigh(i, float(arm.q_max[i]))
+    space.setBounds(bounds)
+
+    def valid(state) -> bool:
+        q = np.array([state[i] for i in range(6)])
+        d, _k = checker._min(q)
+        return d >= required and checker._self(q) > 0.0
+
+    si = ob.SpaceInformation(space)
+    si.setStateValidityChecker(valid)
+    # resolution as a fraction of the space's extent: ~0.01 rad per check
+    si.setStateValidityCheckingResolution(0.01 / space.getMaximumExtent())
+    si.setup()
+    ss = og.SimpleSetup(si)
+    start, goal = space.allocState(), space.allocState()
+    for i in range(6):
+        start[i] = float(q_start[i])
+        goal[i] = float(q_goal[i])
+    ss.setStartAndGoalStates(start, goal)
+    ss.setPlanner(og.RRTConnect(si))
+    solved = ss.solve(time_limit)
+    if not solved or not ss.haveExactSolutionPath():
+        return None
+    ss.simplifySolution(1.0)
+    path = ss.getSolutionPath()
+    states = [np.array([path.getState(k)[i] for i in range(6)]) for k in range(path.getStateCount())]
+    out = [states[0]]
+    for a, b in zip(states[:-1], states[1:]):
+        n = max(1, int(np.ceil(np.abs(b - a).max() / max_joint_step)))
+        for j in range(1, n + 1):
+            out.append(a + (b - a) * j / n)
+    return np.array(out)
