@@ -50,8 +50,9 @@ WATCHDOG_PERIOD = 0.040
 class Link:
     """One host's request/reply channel on a bus, shared by the modules on it.
 
-    Serialises requests (a lock), applies the echo rule and remembers unsolicited
-    state frames in :attr:`faults` (module id -> :class:`~hardware.protocol.State`).
+    Serialises requests (a lock), applies the echo rule, remembers unsolicited
+    state frames in :attr:`faults` (module id -> :class:`~hardware.protocol.State`)
+    and counts CAN error frames in :attr:`error_frames`.
     """
 
     def __init__(self, bus: can.BusABC, timeout: float = DEFAULT_TIMEOUT):
@@ -62,6 +63,7 @@ class Link:
         self.timeout = float(timeout)
         self.faults: dict[int, P.State] = {}
         self.discarded = 0
+        self.error_frames = 0  # CAN error frames seen (bus errors reported by the interface)
         self._lock = threading.RLock()
 
     def send(self, msg: P.Message) -> None:
@@ -80,6 +82,9 @@ class Link:
 
     def _observe(self, frame: can.Message) -> None:
         self.discarded += 1
+        if frame.is_error_frame:
+            self.error_frames += 1
+            return
         if P.ID_STATE < frame.arbitration_id < P.ID_STATE + 32 and not frame.is_extended_id:
             try:
                 msg = P.decode(frame)

@@ -36,7 +36,7 @@ from iik.kinematics import fk
 
 from . import protocol as P
 from .driver import PowerCubeArm
-from .errors import ModuleFault, SafetyError
+from .errors import BusError, ModuleFault, SafetyError
 from .runlog import RunLog
 
 __all__ = ["ValidationOptions", "ValidatedTrajectory", "validate", "ExecutionOptions", "RunResult",
@@ -204,6 +204,8 @@ class ExecutionOptions:
         approach: Move to ``q[0]`` first (FSTEP at ``approach_speed`` of the limits) if needed.
         approach_speed: Fraction of the speed limits for the approach.
         sync: Broadcast STARTMOVE after each command so all joints switch together.
+        watchdog: Enable the modules' watchdog for the run (CONFIG bit + 40 ms broadcast),
+            so the arm stops by itself if this process dies or the bus link is lost.
     """
 
     early: float = EARLY_UPDATE
@@ -213,6 +215,7 @@ class ExecutionOptions:
     approach: bool = True
     approach_speed: float = 0.25
     sync: bool = True
+    watchdog: bool = False
 
 
 @dataclass(frozen=True)
@@ -229,6 +232,7 @@ class _Sampler:
     def __init__(self, arm: PowerCubeArm, log: RunLog, t0: float, clock):
         self.arm, self.log, self.t0, self.clock = arm, log, t0, clock
         self.count = 0
+        self.error_frames = arm.link.error_frames
 
     def sample(self, k: int, deadline: float | None = None) -> bool:
         """Read state, position, velocity and current of every module and log them.
@@ -254,6 +258,8 @@ class _Sampler:
         if self.arm.link.faults:
             mid, s = next(iter(self.arm.link.faults.items()))
             raise ModuleFault(mid, s, "unsolicited state frame")
+        if self.arm.link.error_frames > self.error_frames:
+            raise BusError(f"{self.arm.link.error_frames - self.error_frames} CAN error frame(s) received")
         return True
 
 
@@ -319,6 +325,8 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
             sleep(min(options.sample_period, deadline - now))
 
     try:
+        if options.watchdog:
+            arm.start_watchdog()
         if np.max(err) > options.start_tolerance:
             v = np.asarray(tr.arm.velocity) * options.approach_speed
             t_app = math.ceil(max(float(np.max(err / v)), 0.05) * 1000.0) / 1000.0
@@ -334,6 +342,8 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
                 progress(k, n - 1)
             wait = options.early * dt if k < n - 1 else dt + options.settle
             sample_until(ts + wait, k)
+        if options.watchdog:
+            arm.stop_watchdog(disable=True)
         log.write({"type": "end", "t": clock() - t0, "status": "ok"})
         log.close()
         return RunResult(Path(log_path), n_cmd, sampler.count, clock() - t0)
@@ -343,6 +353,11 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
             arm.halt()  # broadcast: one frame stops every module
         except BaseException:  # noqa: BLE001 - the fault being handled matters more
             halted = False
+        if options.watchdog:
+            try:  # halted already; keep the latch, stop refreshing and clear the bit
+                arm.stop_watchdog(disable=True)
+            except BaseException:  # noqa: BLE001
+                pass
         try:
             log.write({"type": "fault", "t": clock() - t0, "error": type(exc).__name__,
                        "message": str(exc), "halted": halted, "command": n_cmd})

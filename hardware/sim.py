@@ -61,7 +61,11 @@ SIM_VERSION = 0x5151
 #: Fault kinds accepted by :meth:`SimulatedArm.inject`.
 FAULTS = ("drop_ack", "late_ack", "error", "vanish")
 _DEFAULT_MAX_CUR = 8.0  # [A], assumed (the thesis gives no currents)
+#: Limits that must stay positive; a non-positive write is acknowledged but not applied.
+_POSITIVE = frozenset({P.Param.FMAXVEL, P.Param.FMAXACC, P.Param.FMAXCUR, P.Param.FRAMPVEL,
+                       P.Param.FRAMPACC})
 _EPS_V = 1e-9
+_MIN_VEL, _MIN_ACC = 1e-4, 1e-3  # floors of ramp limits [rad/s, rad/s^2] (numerics)
 
 
 # ----------------------------------------------------------------------------- motions
@@ -98,8 +102,11 @@ class _Ruckig:
 
     def __init__(self, kind: str, p0, v0, a0, target, vmax, amax, t0):
         self.kind, self.t0 = kind, t0
+        vmax, amax = max(vmax, _MIN_VEL), max(amax, _MIN_ACC)  # numerical floors
         inp = InputParameter(1)
-        inp.current_position, inp.current_velocity, inp.current_acceleration = [p0], [v0], [a0]
+        # start at zero acceleration (trapezoidal re-targeting): keeps |v| <= max(|v0|, vmax)
+        # even when the new acceleration limit is below the current acceleration
+        inp.current_position, inp.current_velocity, inp.current_acceleration = [p0], [v0], [0.0]
         inp.max_velocity, inp.max_acceleration, inp.max_jerk = [vmax], [amax], [50.0 * amax]
         if kind == "vel":
             inp.control_interface = ControlInterface.Velocity
@@ -107,7 +114,10 @@ class _Ruckig:
         else:
             inp.target_position, inp.target_velocity, inp.target_acceleration = [target], [0.0], [0.0]
         self.traj = Trajectory(1)
-        result = Ruckig(1).calculate(inp, self.traj)
+        try:
+            result = Ruckig(1).calculate(inp, self.traj)
+        except Exception as exc:  # noqa: BLE001 - ruckig.RuckigError derives from Exception only
+            raise SafetyError("motion", f"no profile ({exc})") from None
         if result not in (Result.Working, Result.Finished):
             raise SafetyError("motion", f"no profile ({result})")
         self.duration = self.traj.duration
@@ -346,6 +356,8 @@ class SimModule:
         if isinstance(msg, P.GetParam):
             return [self._read(msg.param, now)] + out
         if isinstance(msg, P.SetParam):
+            if msg.param in _POSITIVE and not msg.value > 0:
+                return [P.SetParamAck(self.id, msg.param)] + out  # acknowledged, not applied
             self.params[msg.param] = msg.value
             return [P.SetParamAck(self.id, msg.param)] + out
         if isinstance(msg, P.Command):
@@ -472,6 +484,9 @@ class SimulatedArm:
         self.module_ids = tuple(ids)
         self.malformed = 0
         self.sent = 0
+        #: Exceptions raised while serving a frame (a bug or an impossible motion); the
+        #: server keeps going and the frame goes unanswered.
+        self.errors: list[str] = []
         self._owns_bus = owns_bus
         self._lock = threading.RLock()
         self._pending: list = []
@@ -596,7 +611,10 @@ class SimulatedArm:
                 for m in self.modules.values():
                     self._queue(m, m.advance(now), now, unsolicited=True)
                 if frame is not None:
-                    self._dispatch(frame, now)
+                    try:
+                        self._dispatch(frame, now)
+                    except Exception as exc:  # noqa: BLE001 - keep serving the other modules
+                        self.errors.append(f"{type(exc).__name__}: {exc}")
                 self._flush(self.clock())
 
     def _dispatch(self, frame: can.Message, now: float) -> None:

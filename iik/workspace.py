@@ -15,8 +15,11 @@ corrections found by ``iik verify`` (``verification/checks/workspace.py``):
   (``atan2(pz - l1, sqrt(px^2 + py^2))``); the nearest joint-4 position is the
   one aimed from joint 2, ``atan2(pz - l1, u - l2)`` with ``u`` the horizontal
   coordinate of the point along the joint-1 limit direction, clipped to the
-  joint-2 limits. With this choice the test never rejects a reachable point in
-  regions 2/3 (measured; the report gives the remaining false-inside rate).
+  joint-2 limits.
+
+With both corrections the test agreed with position-reachability ground truth
+on every one of 14000 test points (and accepted all of 10^6 reachable sampled
+points); the numbers are in the ``iik verify`` report.
 
 Region 1 (Eq 37-38) is used as printed.
 """
@@ -24,8 +27,11 @@ Region 1 (Eq 37-38) is used as printed.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
+from scipy.optimize import least_squares
+from scipy.spatial import cKDTree
 
 from ._validate import as_points
 from .arm import THESIS_ARM, Arm
@@ -107,7 +113,8 @@ def position_lm(p: np.ndarray, q0: np.ndarray, arm: Arm = THESIS_ARM, iters: int
     """Batched bounded Levenberg-Marquardt on ``|fk(q)[:3,3] - p|`` over joints 1-5.
 
     A position-only numerical IK used as ground truth and by
-    :func:`closest_reachable`. Steps are projected onto the joint limits.
+    :func:`closest_reachable`. Joints pushed against a limit are frozen for
+    that step (active set); the other steps are projected onto the limits.
 
     Args:
         p: Targets [m], (n, 3).
@@ -135,7 +142,16 @@ def position_lm(p: np.ndarray, q0: np.ndarray, arm: Arm = THESIS_ARM, iters: int
         J = position_jacobian(q6[ia], arm)
         A = np.einsum("nij,nik->njk", J, J) + lam[ia, None, None] * eye
         g = np.einsum("nij,ni->nj", J, r[ia])
-        qn = np.clip(q[ia] - np.linalg.solve(A, g[..., None])[..., 0], lo, hi)
+        step = -np.linalg.solve(A, g[..., None])[..., 0]
+        qa = q[ia]
+        blocked = ((qa <= lo + 1e-12) & (step < 0)) | ((qa >= hi - 1e-12) & (step > 0))
+        rb = np.nonzero(blocked.any(axis=1))[0]
+        if len(rb):  # active set: joints pushed against a limit are frozen for this step
+            Jb = J[rb] * (~blocked[rb])[:, None, :]
+            Ab = np.einsum("nij,nik->njk", Jb, Jb) + lam[ia[rb], None, None] * eye
+            gb = np.einsum("nij,ni->nj", Jb, r[ia[rb]])
+            step[rb] = -np.linalg.solve(Ab, gb[..., None])[..., 0] * (~blocked[rb])
+        qn = np.clip(qa + step, lo, hi)
         rn = tool_positions(qn, arm) - p[ia]
         cn = np.einsum("ni,ni->n", rn, rn)
         acc = cn < c[ia]
@@ -162,8 +178,16 @@ class ClosestReachable:
     moved: np.ndarray | bool
 
 
-def _seeds(pb: np.ndarray, arm: Arm) -> np.ndarray:
-    """(n, k, 5) start configurations: the Sec 3.4.4 projection plus a fixed grid."""
+@lru_cache(maxsize=4)
+def _sample_tree(arm: Arm, n: int = 20_000):
+    """A fixed (seeded) uniform sample of joints 1-5 and a KD-tree of its tool positions."""
+    q = np.random.default_rng(20120101).uniform(arm.q_min[:5], arm.q_max[:5], size=(n, 5))
+    return q, cKDTree(tool_positions(q, arm))
+
+
+def _seeds(pb: np.ndarray, arm: Arm, k_near: int = 8) -> np.ndarray:
+    """(n, k, 5) start configurations: the Sec 3.4.4 projection, a fixed grid, and the
+    ``k_near`` samples of a fixed joint sample whose tool positions are nearest to each point."""
     n = len(pb)
     phi = np.arctan2(pb[:, 1], pb[:, 0])
     th1 = np.clip(phi, arm.lower[0], arm.upper[0])
@@ -178,17 +202,22 @@ def _seeds(pb: np.ndarray, arm: Arm) -> np.ndarray:
     rest = np.empty((n, len(grid), 5))
     rest[:, :, 0] = th1[:, None]
     rest[:, :, 1:] = grid[None]
-    return np.concatenate([first, rest], axis=1)
+    qs, tree = _sample_tree(arm)
+    _, idx = tree.query(pb, k=k_near)
+    near = qs[idx.reshape(n, k_near)]
+    return np.concatenate([first, rest, near], axis=1)
 
 
 def closest_reachable(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-7) -> ClosestReachable:
     """The reachable tool position nearest to ``p`` (App. G's relocation suggestion).
 
     Minimises ``|fk(q)[:3,3] - p|`` over joints 1-5 inside Table I by bounded
-    Levenberg-Marquardt from 28 deterministic starts (the straight arm aimed
-    at ``p`` as in Sec 3.4.4, plus a grid), so the returned point is reachable
-    by construction (``q`` is returned). A point that is already reachable is
-    returned unchanged.
+    Levenberg-Marquardt from 36 deterministic starts (the straight arm aimed
+    at ``p`` as in Sec 3.4.4, a grid, and the 8 configurations of a fixed
+    20000-sample whose tool points are nearest to ``p``), so the returned point
+    is reachable by construction (``q`` is returned). It is a local search with
+    many starts: the global minimum is not guaranteed (``iik verify`` measures
+    the gap). A point that is already reachable is returned unchanged.
 
     Args:
         p: Point(s) [m], (3,) or (n, 3), base frame 0.
@@ -212,6 +241,19 @@ def closest_reachable(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-7) -> Closest
     point = tool_positions(qbest[:, :5], arm)
     dist = np.linalg.norm(point - pb, axis=1)
     moved = dist > tol
+    for i in np.nonzero(moved)[0]:  # polish relocated points with exact bound handling
+        order = np.argsort(res[i])[:2]
+        for j in order:
+            sol = least_squares(
+                lambda x, i=i: tool_positions(x[None], arm)[0] - pb[i], q[i, j],
+                jac=lambda x: position_jacobian(np.r_[x, 0.0], arm),
+                bounds=(arm.q_min[:5], arm.q_max[:5]), method="trf", xtol=1e-12, ftol=1e-12, gtol=1e-12,
+                max_nfev=200)
+            d = float(np.linalg.norm(sol.fun))
+            if d < dist[i]:
+                dist[i], qbest[i, :5] = d, sol.x
+        point[i] = tool_positions(qbest[i:i + 1, :5], arm)[0]
+        dist[i] = float(np.linalg.norm(point[i] - pb[i]))
     point = np.where(moved[:, None], point, pb)
     dist = np.where(moved, dist, 0.0)
     if not batched:

@@ -25,8 +25,8 @@ the violation, not its depth).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import coal
 import numpy as np
@@ -159,7 +159,7 @@ class SceneCollision:
         """Minimum distance [m] of each link to the environment at ``q``."""
         d = self.distances(q)
         out: dict[str, float] = {}
-        for v, a in zip(d, self._pair_arm):
+        for v, a in zip(d, self._pair_arm, strict=True):
             ln = str(self.arm_link[a])
             out[ln] = min(out.get(ln, np.inf), float(v))
         return out

@@ -28,9 +28,9 @@ from __future__ import annotations
 
 import dataclasses
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 
@@ -99,6 +99,8 @@ class PlanResult:
         failed_steps: Steps without IK solution in the thesis path (first attempt).
         beta_changed_steps: Steps where beta was changed (Sec 3.6).
         alpha_changed_steps: Steps where alpha was changed (Sec 3.6: "any alpha").
+        gamma_changed_steps: Steps where the gripper is turned by pi about its axis
+            (gamma + pi, the same grasp for the symmetric gripper; theta6 -/+ pi).
         planning_time: Wall time of :func:`plan_scenario` without timing [s].
         attempts: Log of every attempt.
         cartesian: The thesis Cartesian path of the accepted attempt (None for RRT).
@@ -127,6 +129,7 @@ class PlanResult:
     trajectory: Trajectory | None = None
     thesis_trajectory: Trajectory | None = None
     trajectory_clearance: float = float("nan")
+    gamma_changed_steps: tuple[int, ...] = ()
 
     def summary(self) -> str:
         s = self.scenario
@@ -137,10 +140,13 @@ class PlanResult:
         return (f"{head}\n  steps {len(self.q)}, tool path {self.path_length:.3f} m, "
                 f"min whole-arm clearance {self.min_clearance * 1000:.1f} mm "
                 f"(safety zone {s.safety_zone * 1000:.0f} mm), branch switches {len(self.branch_switches)}, "
-                f"beta/alpha changed at {len(self.beta_changed_steps)}/{len(self.alpha_changed_steps)} steps, "
-                f"timed-trajectory clearance {self.trajectory_clearance * 1000:.1f} mm, planning {self.planning_time * 1000:.0f} ms"
+                f"beta/alpha/gamma+pi changed at {len(self.beta_changed_steps)}/"
+                f"{len(self.alpha_changed_steps)}/{len(self.gamma_changed_steps)} "
+                f"steps, timed-trajectory clearance {self.trajectory_clearance * 1000:.1f} mm, "
+                f"planning {self.planning_time * 1000:.0f} ms"
                 + (f"\n  duration {tr.duration:.2f} s (TOPP-RA) vs {self.thesis_trajectory.duration:.2f} s "
-                   f"(thesis: velocity proportional to effort)" if tr is not None and self.thesis_trajectory else ""))
+                   "(thesis: velocity proportional to effort)"
+                   if tr is not None and self.thesis_trajectory else ""))
 
 
 def _effort(q: np.ndarray) -> np.ndarray:
@@ -230,9 +236,9 @@ def plan_scenario(scenario: Scenario | str | Path, *, options: PlanOptions = Pla
         if "orientation search" in info.get("label", ""):
             method += " + orientation search"
         return _finish(sc, b.q, pc, method, cpath, b.switches, info["beta_changed_steps"],
-                       info["alpha_changed_steps"])
+                       info["alpha_changed_steps"], info.get("gamma_changed_steps", ()))
 
-    def _finish(sc, q, pc, method, cpath, switches, beta_steps, alpha_steps, reason=""):
+    def _finish(sc, q, pc, method, cpath, switches, beta_steps, alpha_steps, gamma_steps=(), reason=""):
         t_plan = time.perf_counter() - t0
         success = not reason
         traj = thesis = None
@@ -264,7 +270,7 @@ def plan_scenario(scenario: Scenario | str | Path, *, options: PlanOptions = Pla
             beta_changed_steps=tuple(beta_steps), alpha_changed_steps=tuple(alpha_steps),
             planning_time=t_plan, attempts=tuple(attempts),
             cartesian=cpath, trajectory=traj, thesis_trajectory=thesis,
-            trajectory_clearance=traj_clear)
+            trajectory_clearance=traj_clear, gamma_changed_steps=tuple(gamma_steps))
 
     say("thesis path (Sec 3.6)")
     cpath = build_path(sc, platform=plat, floor_z=scene.floor.z)
@@ -291,7 +297,8 @@ def plan_scenario(scenario: Scenario | str | Path, *, options: PlanOptions = Pla
         b, pc, k, info = found
         return accept(b, pc, "thesis" if k == 0 else "thesis, other IK branch", cpath, info)
     if not options.fallbacks:
-        return _fail(sc, attempts, cpath, first_failed, first_beta, t0, "thesis path rejected (fallbacks off)")
+        return _fail(sc, attempts, cpath, first_failed, first_beta, t0,
+                     "thesis path rejected (fallbacks off)")
 
     # Arc route where a straight segment had steps without solutions (Sec 4.2.1.1).
     if no_sol and "line" in cpath.routes:
@@ -323,7 +330,7 @@ def plan_scenario(scenario: Scenario | str | Path, *, options: PlanOptions = Pla
 
         ends = all_solutions(cpath.points[[0, -1]], cpath.euler[[0, -1]], solve_many=solve_many)[0]
         good = []
-        for which, Q in zip(("start", "goal"), ends):
+        for which, Q in zip(("start", "goal"), ends, strict=True):
             ok = [q for q in Q if checker._min(q)[0] >= req and checker._self(q) > 0]
             good.append(ok)
             if not ok:

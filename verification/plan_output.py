@@ -36,7 +36,8 @@ def write_outputs(res, out: Path, *, figures: bool = True) -> list[Path]:
             w.writerow(["t"] + [f"q{i}" for i in range(1, 7)] + [f"qd{i}" for i in range(1, 7)]
                        + [f"qdd{i}" for i in range(1, 7)])
             for k in range(len(tr.t)):
-                w.writerow([f"{tr.t[k]:.6f}"] + [f"{v:.9f}" for v in np.concatenate([tr.q[k], tr.qd[k], tr.qdd[k]])])
+                row = np.concatenate([tr.q[k], tr.qd[k], tr.qdd[k]])
+                w.writerow([f"{tr.t[k]:.6f}"] + [f"{v:.9f}" for v in row])
         files.append(p)
     if len(res.q):
         p = out / "steps.csv"
@@ -44,7 +45,8 @@ def write_outputs(res, out: Path, *, figures: bool = True) -> list[Path]:
         with p.open("w", newline="") as f:
             w = csv.writer(f)
             w.writerow(["step", "x", "y", "z"] + [f"q{i}" for i in range(1, 7)]
-                       + ["effort", "clearance", "closest_link", "closest_object", "motion_clearance_to_next"])
+                       + ["effort", "clearance", "closest_link", "closest_object",
+                          "motion_clearance_to_next"])
             for i in range(len(res.q)):
                 mot = c.motion[i] if i < len(c.motion) else float("nan")
                 w.writerow([i] + [f"{v:.6f}" for v in res.points[i]] + [f"{v:.9f}" for v in res.q[i]]

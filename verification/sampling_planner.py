@@ -21,8 +21,12 @@ __all__ = ["rrt_connect"]
 
 
 def rrt_connect(q_start, q_goal, checker: SceneCollision, *, required: float, arm: Arm = THESIS_ARM,
-                time_limit: float = 3.0, seed: int = 1, max_joint_step: float = 0.05) -> np.ndarray | None:
+                time_limit: float = 3.0, seed: int = 1, max_joint_step: float = 0.05,
+                margin: float = 0.003) -> np.ndarray | None:
     """Plan a joint path from ``q_start`` to ``q_goal`` [rad] keeping ``required`` clearance [m].
+
+    States must keep ``required + margin`` [m] so that the motions between the
+    states OMPL checks (every ~0.01 rad) keep ``required`` under the certified check.
 
     Returns:
         (n, 6) joint path [rad] with consecutive configurations at most
@@ -45,7 +49,7 @@ def rrt_connect(q_start, q_goal, checker: SceneCollision, *, required: float, ar
     def valid(state) -> bool:
         q = np.array([state[i] for i in range(6)])
         d, _k = checker._min(q)
-        return d >= required and checker._self(q) > 0.0
+        return d >= required + margin and checker._self(q) > 0.0
 
     si = ob.SpaceInformation(space)
     si.setStateValidityChecker(valid)
@@ -66,7 +70,7 @@ def rrt_connect(q_start, q_goal, checker: SceneCollision, *, required: float, ar
     path = ss.getSolutionPath()
     states = [np.array([path.getState(k)[i] for i in range(6)]) for k in range(path.getStateCount())]
     out = [states[0]]
-    for a, b in zip(states[:-1], states[1:]):
+    for a, b in zip(states[:-1], states[1:], strict=True):
         n = max(1, int(np.ceil(np.abs(b - a).max() / max_joint_step)))
         for j in range(1, n + 1):
             out.append(a + (b - a) * j / n)

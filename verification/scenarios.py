@@ -119,3 +119,104 @@ def dexterity_notes(sc: Scenario) -> list[str]:
             notes.append(f"{fld}.beta_deg = {math.degrees(wp.beta):.1f} deg is outside the Sec 3.5 dexterity "
                          f"range ({exc.reason})")
     return notes
+
+
+def _num(v, field: str) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+        raise ScenarioError(field, f"expected a finite number, got {v!r}")
+    return float(v)
+
+
+def _vec(v, field: str, n: int = 3) -> np.ndarray:
+    if not isinstance(v, list) or len(v) != n:
+        raise ScenarioError(field, f"expected a list of {n} numbers, got {v!r}")
+    return np.array([_num(x, f"{field}[{i}]") for i, x in enumerate(v)])
+
+
+def _table(d, field: str, allowed: set[str]) -> dict:
+    if not isinstance(d, dict):
+        raise ScenarioError(field, f"expected a table, got {type(d).__name__}")
+    extra = sorted(set(d) - allowed)
+    if extra:
+        raise ScenarioError(f"{field}.{extra[0]}" if field else extra[0],
+                            f"unknown key (allowed: {', '.join(sorted(allowed))})")
+    return d
+
+
+def scenario_from_dict(data: dict, *, source: str = "", default_name: str = "scenario",
+                       scene: Scene = THESIS_SCENE) -> Scenario:
+    """Build a :class:`Scenario` from parsed TOML (no validation against the workspace)."""
+    _table(data, "", _TOP)
+    frame = data.get("frame", "base")
+    if frame not in ("base", "floor"):
+        raise ScenarioError("frame", f"expected 'base' or 'floor', got {frame!r}")
+    dz = scene.floor.z if frame == "floor" else 0.0  # floor frame: z = height above the floor
+
+    def pos(v, field):
+        p = _vec(v, field)
+        p[2] += dz
+        return p
+
+    def wp(key):
+        if key not in data:
+            raise ScenarioError(key, "missing (needs position and beta_deg)")
+        d = _table(data[key], key, _WP)
+        if "position" not in d:
+            raise ScenarioError(f"{key}.position", "missing")
+        if "beta_deg" not in d:
+            raise ScenarioError(f"{key}.beta_deg", "missing")
+        a = d.get("alpha_deg")
+        return Waypoint(tuple(pos(d["position"], f"{key}.position")),
+                        None if a is None else math.radians(_num(a, f"{key}.alpha_deg")),
+                        math.radians(_num(d["beta_deg"], f"{key}.beta_deg")),
+                        math.radians(_num(d.get("gamma_deg", 0.0), f"{key}.gamma_deg")))
+
+    for k in ("name", "title", "reference", "reconstruction"):
+        if k in data and not isinstance(data[k], str):
+            raise ScenarioError(k, "expected a string")
+    start, goal = wp("start"), wp("goal")
+    plan = _table(data.get("planning", {}), "planning", _PLAN)
+    vias = plan.get("via_points", "auto")
+    if vias == "auto":
+        vias = None
+    elif isinstance(vias, list):
+        vias = tuple(tuple(pos(v, f"planning.via_points[{i}]")) for i, v in enumerate(vias))
+    else:
+        raise ScenarioError("planning.via_points", f"expected 'auto' or a list of points, got {vias!r}")
+    segs = plan.get("segments")
+    if segs is not None:
+        if not isinstance(segs, list) or not all(isinstance(s, str) for s in segs):
+            raise ScenarioError("planning.segments", "expected a list of 'line'/'arc'")
+        segs = tuple(segs)
+    steps = plan.get("steps_per_segment")
+    if steps is not None and (isinstance(steps, bool) or not isinstance(steps, int)):
+        raise ScenarioError("planning.steps_per_segment", f"expected an integer, got {steps!r}")
+    obstacles = []
+    obs = data.get("obstacles", [])
+    if not isinstance(obs, list):
+        raise ScenarioError("obstacles", "expected an array of tables ([[obstacles]])")
+    for i, o in enumerate(obs):
+        f = f"obstacles[{i}]"
+        _table(o, f, _OBS)
+        for k in ("center", "size"):
+            if k not in o:
+                raise ScenarioError(f"{f}.{k}", "missing")
+        try:
+            obstacles.append(Box(tuple(pos(o["center"], f"{f}.center")), tuple(_vec(o["size"], f"{f}.size")),
+                                 name=str(o.get("name", f"obstacle{i}")),
+                                 kind=str(o.get("kind", "obstacle"))))
+        except ScenarioError:
+            raise
+        except IIKError as exc:
+            raise ScenarioError(f, getattr(exc, "reason", str(exc))) from None
+    kw = {}
+    for key in ("max_step", "safety_zone"):
+        if key in plan:
+            kw[key] = float(_num(plan[key], f"planning.{key}"))
+    for key in ("orientation", "mode"):
+        if key in plan:
+            kw[key] = plan[key]
+    return Scenario(name=str(data.get("name", default_name)), start=start, goal=goal,
+                    title=data.get("title", ""), reference=data.get("reference", ""),
+                    reconstruction=data.get("reconstruction", ""), obstacles=tuple(obstacles),
+                    via_points=vias, segments=segs, steps_per_segment=steps, source=source, **kw)

@@ -54,9 +54,9 @@ def _check(q, qd, qdd, arm: Arm, tol: float = 1e-6) -> tuple[str, ...]:
     v, a = np.asarray(arm.velocity), np.asarray(arm.acceleration)
     if np.any(q < lo - tol) or np.any(q > hi + tol):
         out.append(f"joint limit exceeded by {max((lo - q).max(), (q - hi).max()):.2e} rad")
-    if np.any(np.abs(qd) > v * (1 + 1e-3) + tol):
+    if np.any(np.abs(qd) > v * (1 + 1e-9)):
         out.append(f"velocity limit exceeded: max |qd|/v = {(np.abs(qd) / v).max():.4f}")
-    if np.any(np.abs(qdd) > a * (1 + 1e-2) + tol):
+    if np.any(np.abs(qdd) > a * (1 + 1e-9)):
         out.append(f"acceleration limit exceeded: max |qdd|/a = {(np.abs(qdd) / a).max():.4f}")
     return tuple(out)
 

@@ -45,7 +45,9 @@ def add_arguments(p) -> None:
     p.add_argument("--port", type=int, default=None, help="UDP port (udp_multicast only)")
     p.add_argument("--modules", type=int, nargs=6, default=[1, 2, 3, 4, 5, 6], metavar="ID",
                    help="the six module ids in joint order (default: 1..6)")
-    p.add_argument("--timeout", type=float, default=0.1, help="ACK timeout [s]")
+    p.add_argument("--timeout", type=float, default=None,
+                   help="ACK timeout [s] (default: 0.1 on a real bus, 0.5 for the in-process simulation, "
+                        "whose threads share one interpreter)")
     p.add_argument("--early", type=float, default=0.95,
                    help="send the next step after this fraction of the previous one (Sec 4.3: 0.95)")
     p.add_argument("--speed", type=float, default=0.5,
@@ -54,6 +56,8 @@ def add_arguments(p) -> None:
     p.add_argument("--lag", type=float, default=0.02, help="simulated tracking lag [s]")
     p.add_argument("--sim-start", choices=("home", "plan"), default="home",
                    help="simulated arm starts at q = 0 (home) or at the trajectory start")
+    p.add_argument("--watchdog", action="store_true",
+                   help="enable the modules' watchdog during the run (they stop if this process dies)")
     p.add_argument("--reset", action="store_true", help="RESET every module before the run")
     p.add_argument("--home", action="store_true", help="HOME modules whose HOME_OK is clear")
     p.add_argument("--out", type=Path, default=Path("runs"), help="output folder (default: ./runs)")
@@ -167,18 +171,22 @@ def run(args) -> int:
           f"(Table I - {args.margin_deg} deg, speed limits, FK vs planned poses)", file=sys.stderr)
 
     sim = None
+    switch = sys.getswitchinterval()
     if args.interface is None:
         channel = f"iik-run-{uuid.uuid4().hex}"
         initial = traj.q[0] if args.sim_start == "plan" else None
+        # host and simulated modules are threads of this process: switch between them
+        # often so request round trips stay short (restored after the run)
+        sys.setswitchinterval(0.0005)
         sim = SimulatedArm.virtual(channel, args.modules, lag=args.lag, initial=initial)
         bus = can.Bus(interface="virtual", channel=channel)
-        arm = PowerCubeArm(bus, args.modules, timeout=args.timeout, owns_bus=True)
+        arm = PowerCubeArm(bus, args.modules, timeout=args.timeout or 0.5, owns_bus=True)
         where = "simulated arm (in-process, virtual bus)"
     else:
         kw = {"port": args.port} if args.port is not None else {}
         arm = PowerCubeArm.from_interface(args.modules, interface=args.interface,
                                           channel=args.channel, bitrate=args.bitrate,
-                                          timeout=args.timeout, **kw)
+                                          timeout=args.timeout or 0.1, **kw)
         where = f"{args.interface}:{args.channel}"
     args.out.mkdir(parents=True, exist_ok=True)
     log_path = args.out / f"{name}.jsonl"
@@ -204,8 +212,8 @@ def run(args) -> int:
                     print(f"  executing on {where}: step {k}/{n}", file=sys.stderr, flush=True)
 
             try:
-                result = execute(arm, traj, log_path, options=ExecutionOptions(early=args.early),
-                                 progress=progress)
+                opts = ExecutionOptions(early=args.early, watchdog=args.watchdog)
+                result = execute(arm, traj, log_path, options=opts, progress=progress)
             finally:
                 if tty:
                     print(file=sys.stderr)
@@ -214,12 +222,14 @@ def run(args) -> int:
     finally:
         if sim is not None:
             sim.close()
+        sys.setswitchinterval(switch)
     analysis = analyse(read_run_log(result.log_path))
     print(summary_text(analysis, name))
     if sim is not None:
         rests = sum(len(m.stops) for m in sim.modules.values())
-        print(f"  simulated joints came to rest between two steps {rests} times "
-              f"(of {len(sim.modules) * max(len(traj) - 2, 0)} step changes; Sec 4.3 early update {args.early})")
+        changes = len(sim.modules) * max(len(traj) - 2, 0)
+        print(f"  simulated joints came to rest between two steps {rests} times (of {changes} step "
+              f"changes; Sec 4.3 early update {args.early})")
     print(f"run log: {result.log_path} ({result.commands} commands, {result.samples} samples, "
           f"{result.duration:.2f} s)")
     if not args.no_figures:

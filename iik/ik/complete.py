@@ -41,7 +41,7 @@ import numpy as np
 from ..arm import Arm
 from ..kinematics import fk, jacobian
 
-__all__ = ["solve_arrays", "FREE_NONE", "FREE_Q1_Q6", "FREE_Q3_Q6", "MAX_SOLUTIONS",
+__all__ = ["solve_arrays", "contains", "FREE_NONE", "FREE_Q1_Q6", "FREE_Q3_Q6", "MAX_SOLUTIONS",
            "POSITION_TOL", "ROTATION_TOL", "rotation_angle", "pose_residuals",
            "eliminant_coefficients"]
 
@@ -58,6 +58,14 @@ FREE_NONE = 0
 FREE_Q1_Q6 = 1
 #: theta3 and theta6 axes collinear (theta4 = theta5 = 0 or pi: wrist stretched along the upper arm).
 FREE_Q3_Q6 = 2
+
+#: |sin theta4| and |sin(theta4 + theta5)| below this: theta3/theta6 continuum (a pose fixes
+#: q only to ~sqrt(machine eps) there, so the threshold sits well above 1e-8).
+FREE_TOL = 1e-7
+
+#: A flagged continuum row stands for every q reaching the pose whose non-free joints
+#: are within this of it [rad].
+CONTINUUM_TOL = 1e-5
 
 _TWO_PI = 2.0 * np.pi
 _N_REF = 12  # candidate reference angles for the t-substitution
@@ -204,7 +212,7 @@ def _f_derivs(co, own, th, sigma):
     (a, a1, a2), (b, b1, b2), (P, P1, P2), (Q, Q1, Q2) = (vals[k] for k in ("a", "b", "P", "Q"))
     c = co["c"][own]
     N = np.hypot(P, Q)
-    Ns = np.where(N > 0, N, 1.0)
+    Ns = np.where(N > 1e-150, N, 1.0)
     u = P * P1 + Q * Q1
     N1 = u / Ns
     N2 = (P1 * P1 + P * P2 + Q1 * Q1 + Q * Q2) / Ns - u * u / Ns**3
@@ -259,8 +267,11 @@ def _theta1_list(co, cand, imag, cluster_tol: float = 1e-3):
             with np.errstate(divide="ignore", invalid="ignore"):
                 delta = np.sqrt(-2.0 * f / f2)
             pair = np.isfinite(delta) & (delta <= cluster_tol)
-            owns += [o, o, o[pair], o[pair]]
-            ths += [tA, tB, tB[pair] + delta[pair], tB[pair] - delta[pair]]
+            op, sp = o[pair], sv[pair]
+            tC = _newton(co, op, tB[pair] + delta[pair], sp, 0)
+            tD = _newton(co, op, tB[pair] - delta[pair], sp, 0)
+            owns += [o, o, op, op]
+            ths += [tA, tB, tC, tD]
             sigs += [sv, sv, sv[pair], sv[pair]]
             prios += [np.ones(len(o)), np.zeros(len(o)), np.full(pair.sum(), 2.0),
                       np.full(pair.sum(), 2.0)]
@@ -332,7 +343,38 @@ def _pose_error(q, T, arm: Arm):
     return np.concatenate([ep, er], axis=1)
 
 
-def _newton_polish(q, T, arm: Arm, iters: int = 8, step_tol: float = 1e-15):
+def _solve6(J, e):
+    """Solve J dq = e for a stack of 6x6 systems; pseudo-inverse where J is (near) singular."""
+    det = np.abs(np.linalg.det(J))
+    ok = det > 1e-12
+    dq = np.empty_like(e)
+    if np.any(ok):
+        dq[ok] = np.linalg.solve(J[ok], e[ok, :, None])[..., 0]
+    if not np.all(ok):
+        dq[~ok] = np.einsum("nij,nj->ni", np.linalg.pinv(J[~ok], rcond=1e-13), e[~ok])
+    return dq
+
+
+def _snap_continuum(q, T, arm: Arm, iters: int = 6):
+    """Continuum representatives with theta4, theta4 + theta5 snapped to exact multiples of pi.
+
+    theta3 is kept; theta1, theta2 and theta6 are re-fitted by Gauss-Newton on
+    the 6x3 Jacobian columns (the pose is consistent on the continuum).
+    """
+    q = q.copy()
+    s4 = np.round(q[:, 3] / np.pi) * np.pi
+    s45 = np.round((q[:, 3] + q[:, 4]) / np.pi) * np.pi
+    q[:, 3], q[:, 4] = s4, s45 - s4
+    cols = [0, 1, 5]
+    for _ in range(iters):
+        e = _pose_error(q, T, arm)
+        J = jacobian(q, arm)[:, :, cols]
+        dq = np.einsum("nij,nj->ni", np.linalg.pinv(J, rcond=1e-12), e)
+        q[:, cols] += dq
+    return _wrap(q)
+
+
+def _newton_polish(q, T, arm: Arm, iters: int = 12, step_tol: float = 1e-14):
     """Newton steps on the full 6x6 Jacobian towards poses T (q (m, 6), T (m, 4, 4)).
 
     At least one step for every row; rows stop once their step is below ``step_tol``.
@@ -346,12 +388,7 @@ def _newton_polish(q, T, arm: Arm, iters: int = 8, step_tol: float = 1e-15):
         qa = q[active]
         e = _pose_error(qa, T[active], arm)
         J = jacobian(qa, arm)
-        try:
-            dq = np.linalg.solve(J, e[..., None])[..., 0]
-            if not np.all(np.isfinite(dq)) or np.max(np.abs(dq)) > 1.0:
-                raise np.linalg.LinAlgError
-        except np.linalg.LinAlgError:
-            dq = np.einsum("nij,nj->ni", np.linalg.pinv(J, rcond=1e-13), e)
+        dq = _solve6(J, e)
         q[active] = qa + dq
         active = active[np.max(np.abs(dq), axis=1) > step_tol]
     return q
@@ -397,7 +434,7 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
     t2 = np.concatenate([t2, opts[weak, 2], opts[weak, 3]])
     prio = np.concatenate([prio, prio[weak], prio[weak]])
     fr1 = np.concatenate([fr1, fr1[weak], fr1[weak]])
-    wr, free3 = _wrist(R[own], co["D"][own], t1[:, None], t2[:, None], arm, 1e-9)
+    wr, free3 = _wrist(R[own], co["D"][own], t1[:, None], t2[:, None], arm, FREE_TOL)
     k = len(t1)
     q = np.empty((k, 2, 6))
     q[..., 0] = t1[:, None]
@@ -425,9 +462,20 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
         qf[polish] = _newton_polish(qf[polish], Tt[polish], arm)
         pres[polish], rres[polish] = pose_residuals(qf[polish], Tt[polish], arm)
     qf = _wrap(qf)
+    # Continuum flags from the final q (accurate to ~sqrt(eps) there, hence 1e-6).
+    s4, s45 = np.abs(np.sin(qf[:, 3])), np.abs(np.sin(qf[:, 3] + qf[:, 4]))
+    flf = np.where((s4 <= 1e-6) & (s45 <= 1e-6), flf | FREE_Q3_Q6, flf & ~FREE_Q3_Q6)
+    c36 = (flf & FREE_Q3_Q6) > 0
+    if np.any(c36):
+        qs = _snap_continuum(qf[c36], Tt[c36], arm)
+        ps, rs = pose_residuals(qs, Tt[c36], arm)
+        better = (ps <= tol_p) & (rs <= tol_r)
+        idx = np.flatnonzero(c36)[better]
+        qf[idx], pres[idx], rres[idx] = qs[better], ps[better], rs[better]
     keep = (pres <= tol_p) & (rres <= tol_r)
     qf, flf, owner, pres, rres, prio = (x[keep] for x in (qf, flf, owner, pres, rres, prio))
-    return _dedupe(n, qf, flf, owner, pres, rres, prio=prio)
+    return _dedupe(n, qf, flf, owner, pres, rres, prio=prio, T=T, arm=arm,
+                   near=1e-4 if tol_p <= POSITION_TOL else 0.0)
 
 
 def _f_sigma(co, th, sigma):
@@ -437,12 +485,25 @@ def _f_sigma(co, th, sigma):
     return a * np.hypot(P, Q) + sigma * (b * Q - co["c"][:, None] * P)
 
 
-def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None):
+def _connected(qa, qb, T, arm: Arm, tol_p: float = POSITION_TOL, tol_r: float = ROTATION_TOL):
+    """Does the joint-space segment qa -> qb stay within the FK tolerance of T (3 interior points)?"""
+    d = _wrap(qb - qa)
+    ok = np.ones(len(qa), dtype=bool)
+    for s in (0.25, 0.5, 0.75):
+        pr, rr = pose_residuals(qa + s * d, T, arm)
+        ok &= (pr <= tol_p) & (rr <= tol_r)
+    return ok
+
+
+def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None, T=None, arm=None,
+            near: float = 1e-4):
     """Distinct solutions per pose, sorted lexicographically; padded to MAX_SOLUTIONS.
 
     Two solutions are the same if every wrapped joint difference is <= ``tol`` rad;
-    of a group of duplicates the one with the lowest ``prio`` (then the first in
-    lexicographic order) is kept.
+    Near a singularity a pose fixes q only to ~sqrt(machine eps); rows within
+    ``near`` rad whose connecting segment stays inside 1/100 of the FK
+    tolerance of ``T`` are the same solution too. Of a group of duplicates the one with the lowest
+    ``prio`` (then the first in lexicographic order) is kept.
     """
     if prio is None:
         prio = np.zeros(len(qf))
@@ -459,23 +520,38 @@ def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None):
     starts = np.searchsorted(owner, np.arange(n))
     rank = np.arange(len(owner)) - starts[owner]
     K = int(rank.max()) + 1
-    Qp = np.full((n, K), np.nan)
-    Qp[owner, rank] = qf[:, 0]
+    # Duplicates share theta1; compare each row with its next `window` rows in
+    # theta1 order (theta1 near -pi is compared as theta1 + 2 pi).
+    t1 = np.where(qf[:, 0] < -np.pi + 1e-6, qf[:, 0] + _TWO_PI, qf[:, 0])
+    o2 = np.lexsort((t1, owner))
+    dup_flat = np.zeros(len(qf), dtype=bool)
+    for sft in range(1, min(K, 9)):
+        a, b = o2[:-sft], o2[sft:]
+        cand = (owner[a] == owner[b]) & (np.abs(t1[a] - t1[b]) <= near)
+        if not np.any(cand):
+            continue
+        a, b = a[cand], b[cand]
+        d = np.abs(qf[a] - qf[b])
+        dmax = np.max(np.minimum(d, _TWO_PI - d), axis=1)
+        same = dmax <= tol
+        # two representatives of one theta3/theta6 continuum
+        c36 = ((flf[a] & flf[b] & FREE_Q3_Q6) > 0) & (dmax <= np.pi)
+        if np.any(c36):
+            dfix = np.abs(_wrap(qf[a][:, [0, 1, 3, 4]] - qf[b][:, [0, 1, 3, 4]]))
+            same |= c36 & (np.max(dfix, axis=1) <= 1e-6)
+        maybe = ~same & (dmax <= near)
+        if T is not None and np.any(maybe):
+            same[maybe] = _connected(qf[a[maybe]], qf[b[maybe]], T[owner[a[maybe]]], arm,
+                                     1e-2 * POSITION_TOL, 1e-2 * ROTATION_TOL)
+        a, b = a[same], b[same]
+        # of a duplicate pair drop the higher priority value, ties: the later row
+        drop_b = prio[b] > prio[a]
+        drop_b |= (prio[b] == prio[a]) & (b > a)
+        dup_flat[np.where(drop_b, b, a)] = True
     present = np.zeros((n, K), dtype=bool)
     present[owner, rank] = True
-    # Duplicates share theta1; test the full vector only for those pairs.
-    d1 = np.abs(Qp[:, :, None] - Qp[:, None, :])
-    earlier = np.tril(np.ones((K, K), dtype=bool), -1)  # [j, i]: i < j
-    pi_, pj_, pk_ = np.nonzero((np.minimum(d1, _TWO_PI - d1) <= tol) & earlier)
     dup = np.zeros((n, K), dtype=bool)
-    if len(pi_):
-        a = qf[starts[pi_] + pj_]
-        b = qf[starts[pi_] + pk_]
-        d = np.abs(a - b)
-        same = np.max(np.minimum(d, _TWO_PI - d), axis=1) <= tol
-        later = prio[starts[pi_] + pj_] >= prio[starts[pi_] + pk_]
-        loser = np.where(later, pj_, pk_)
-        dup[pi_[same], loser[same]] = True
+    dup[owner, rank] = dup_flat
     keep = present & ~dup
     slot = np.cumsum(keep, axis=1) - 1
     sel = keep[owner, rank] & (slot[owner, rank] < MAX_SOLUTIONS)
@@ -483,3 +559,56 @@ def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None):
     out_q[o, s], out_v[o, s], out_f[o, s] = qf[sel], True, flf[sel]
     out_p[o, s], out_r[o, s] = pres[sel], rres[sel]
     return out_q, out_v, out_f, out_p, out_r
+
+
+def contains(solutions: np.ndarray, q: np.ndarray, T: np.ndarray, arm: Arm, *,
+             tol: float = 1e-9, tol_p: float = POSITION_TOL, tol_r: float = ROTATION_TOL,
+             free_joints=None) -> bool:
+    """Is configuration ``q`` (6,) among ``solutions`` (k, 6) of pose ``T``?
+
+    Yes if some solution is within ``tol`` rad in every joint (angles wrapped).
+    Near a singularity a pose fixes q only to ~sqrt(machine eps), so a solution
+    also counts if the straight joint-space segment from it to ``q`` stays
+    inside the FK tolerance (``tol_p`` m, ``tol_r`` rad) at 9 interior points:
+    then the two are the same solution within the accuracy the pose carries.
+    With ``free_joints`` (per solution, as in :class:`~iik.ik.result.IKResult`),
+    ``q`` also counts if it reaches ``T`` and matches a flagged continuum
+    representative to :data:`CONTINUUM_TOL` in every joint that is not free
+    (near theta4 = theta5 = 0 the isolated solutions crowd within ~1e-6 rad in
+    those joints: numerically a continuum).
+    """
+    sol = np.asarray(solutions, float).reshape(-1, 6)
+    if len(sol) == 0:
+        return False
+    if free_joints is not None and any(free_joints):
+        pr, rr = pose_residuals(np.asarray(q, float)[None], np.asarray(T)[None], arm)
+        if pr[0] <= tol_p and rr[0] <= tol_r:
+            for row, fj in zip(sol, free_joints):
+                fixed = [j for j in range(6) if j + 1 not in fj]
+                if fj and np.max(np.abs(_wrap(row[fixed] - q[fixed]))) <= CONTINUUM_TOL:
+                    return True  # q reaches T and lies on the flagged (numerical) continuum
+        # Move each continuum representative along its continuum to q's free joints.
+        extra = []
+        for row, fj in zip(sol, free_joints):
+            for j in (1, 3):
+                if j in fj:
+                    for sgn in (1.0, -1.0):
+                        r2 = row.copy()
+                        r2[j - 1] = q[j - 1]
+                        r2[5] = _wrap(row[5] + sgn * (q[j - 1] - row[j - 1]))
+                        extra.append(r2)
+        if extra:
+            sol = np.concatenate([sol, np.array(extra)])
+    d = _wrap(sol - q)
+    dist = np.max(np.abs(d), axis=1)
+    if np.min(dist) <= tol:
+        return True
+    s = np.linspace(0.1, 0.9, 9)
+    for i in np.argsort(dist)[:4]:
+        if dist[i] > 1e-3:
+            break
+        pts = q + s[:, None] * d[i]
+        pr, rr = pose_residuals(pts, np.broadcast_to(T, (len(s), 4, 4)), arm)
+        if np.all(pr <= tol_p) and np.all(rr <= tol_r):
+            return True
+    return False

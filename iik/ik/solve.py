@@ -19,6 +19,8 @@ from .result import IKResult
 __all__ = ["solve", "solve_many", "METHODS"]
 
 METHODS = ("complete", "thesis")
+#: A solution on a joint stop may come out a few ulp outside it; accept this much [rad].
+LIMIT_TOL = 1e-9
 
 _FREE = {_complete.FREE_Q1_Q6: (1, 6), _complete.FREE_Q3_Q6: (3, 6),
          _complete.FREE_Q1_Q6 | _complete.FREE_Q3_Q6: (1, 3, 6)}
@@ -32,7 +34,7 @@ def _check_method(method: str) -> None:
 def _build(q, valid, flags, pres, rres, arm, within_limits, method, info=None):
     k = valid
     qq, pp, rr, ff = q[k], pres[k], rres[k], flags[k]
-    inside = np.atleast_1d(arm.within_limits(qq)) if len(qq) else np.zeros(0, bool)
+    inside = np.atleast_1d(arm.within_limits(qq, tol=LIMIT_TOL)) if len(qq) else np.zeros(0, bool)
     total = len(qq)
     if within_limits:
         qq, pp, rr, ff, inside = qq[inside], pp[inside], rr[inside], ff[inside], inside[inside]

@@ -9,7 +9,7 @@
 
 from .obstacles import SAFETY_ZONE, Box, enclosing_radii, repel_points, repulsion_normal
 from .path import MAX_STEP, arc_steps, interpolate_joints, interpolate_orientation, straight_steps
-from .planner import CartesianPath, JointPath, all_solutions, build_path, poses_of, track_branches
+from .planner import CartesianPath, JointPath, all_solutions, build_path, poses_of, track_branches, track_dp
 from .scenario import Scenario, Waypoint, check_scenario
 from .viapoints import TABLE_IV, VIA_POINTS, region_of, via_point_path, via_points_for
 
@@ -30,6 +30,7 @@ __all__ = [
     "build_path",
     "poses_of",
     "track_branches",
+    "track_dp",
     "Scenario",
     "Waypoint",
     "check_scenario",

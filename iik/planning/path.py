@@ -136,7 +136,7 @@ def interpolate_joints(q_keys, *, max_joint_step: float = 0.05) -> np.ndarray:
     if not (np.isfinite(max_joint_step) and max_joint_step > 0):
         raise InvalidInputError("max_joint_step", "must be positive and finite")
     out = [qk[:1]]
-    for q0, q1 in zip(qk[:-1], qk[1:]):
+    for q0, q1 in zip(qk[:-1], qk[1:], strict=True):
         n = max(1, math.ceil(np.abs(q1 - q0).max() / max_joint_step - 1e-12))
         s = np.linspace(0.0, 1.0, n + 1)[1:, None]
         out.append(q0 + s * (q1 - q0))

@@ -19,13 +19,20 @@ Pipeline (Sec 3.6.1-3.6.3, Sec 4.2):
    (Sec 3.6: "another path with slight change in the beta orientation").
    A jump larger than ``switch_threshold`` between consecutive steps is
    reported as a branch switch.
+3. :func:`track_dp` (ours, used when some step has no solution at the nominal
+   orientation even after the slight beta changes): a least-effort dynamic
+   programme over IK branches and a small grid of alpha/beta changes (alpha is
+   free in Sec 3.6; beta changes are penalised), with a penalty per branch switch.
+
+Solutions within :data:`LIMIT_MARGIN` of a joint stop are not used, so the
+timed curve through the step-points cannot overshoot a stop.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
@@ -112,6 +119,7 @@ class JointPath:
         effort: (n,) effort index E_i of Eq 54 [rad] (E_0 = 0).
         beta_change: (n,) beta offset applied at each step [rad] (0 = nominal).
         alpha_change: (n,) alpha offset applied at each step [rad] (0 = nominal).
+        gamma_change: (n,) gamma offset (0 or pi: gripper half turn) or None.
         switches: Step indices where the branch jumped (max |dq| > threshold).
         start_solution: Index of the start IK solution this branch began from.
     """
@@ -123,6 +131,7 @@ class JointPath:
     alpha_change: np.ndarray
     switches: tuple[int, ...]
     start_solution: int
+    gamma_change: np.ndarray | None = None
 
     @property
     def complete(self) -> bool:
@@ -281,7 +290,7 @@ def poses_of(points: np.ndarray, euler: np.ndarray, *, pose_from_zxz: Callable |
 
         T = pose_matrix(points, euler[:, 0], euler[:, 1], euler[:, 2])
         return T.reshape(-1, 4, 4)
-    return np.stack([np.asarray(pose_from_zxz(p, *e), float) for p, e in zip(points, euler)])
+    return np.stack([np.asarray(pose_from_zxz(p, *e), float) for p, e in zip(points, euler, strict=True)])
 
 
 #: Solutions closer than this to a joint stop are not used [rad]: a smooth timed
@@ -365,7 +374,7 @@ def _solve_with_offsets(points, euler, solve_many, beta_steps, adapt_orientation
         e = euler[missing].copy()
         e[:, 0] += da
         e[:, 1] += db
-        for i, r in zip(missing, solve_many(poses_of(points[missing], e))):
+        for i, r in zip(missing, solve_many(poses_of(points[missing], e)), strict=True):
             q = _within(r)
             if len(q):
                 sols[i], offs[i] = q, (da, db)
@@ -379,15 +388,22 @@ DP_OFFSETS = tuple((math.radians(a), math.radians(b))
 
 def track_dp(path: CartesianPath, *, solve_many: Callable | None = None,
              effort_index: Callable | None = None, offsets=DP_OFFSETS, w_change: float = 3.0,
-             w_offset: float = 0.05, switch_threshold: float = 0.5) -> tuple[list[JointPath], dict]:
+             w_offset: float = 0.05, w_switch: float = 2.0, half_turn: bool = True,
+             w_half_turn: float = 1.0, switch_threshold: float = 0.5) -> tuple[list[JointPath], dict]:
     """Least-effort joint path over IK branches *and* small orientation changes (dynamic programming).
 
     Used when the nominal orientations leave steps without solutions. At every
     step the candidates are the within-limit solutions for each orientation
     offset in ``offsets`` (alpha is free, Sec 3.6; beta changes are penalised).
-    The path minimises ``sum_i E_i + w_change |d offset_i| + w_offset |offset_i|``
-    with ``E_i`` the effort index of Eq 54, i.e. the global form of the
-    thesis's step-by-step least-effort choice. One path per start solution.
+    The path minimises ``sum_i E_i + w_change |d offset_i| + w_offset |offset_i|
+    + w_switch [max |dq_i| > switch_threshold]`` with ``E_i`` the effort index of
+    Eq 54, i.e. the global form of the thesis's step-by-step least-effort choice
+    (plus a penalty per branch switch). With ``half_turn`` every candidate is
+    also offered with gamma + pi (theta6 -/+ pi): the same grasp for the
+    thesis's parallel gripper, symmetric about z6 (URDF link6 shapes too); it
+    removes theta6 swings of nearly a full turn at its +-180 deg stops. The
+    half turn itself is free, switching it mid-path costs ``w_half_turn``.
+    One path per start solution.
     """
     if solve_many is None:
         import iik
@@ -404,22 +420,36 @@ def track_dp(path: CartesianPath, *, solve_many: Callable | None = None,
     e[:, :, 1] += off[:, 1, None]
     pts = np.tile(path.points, (K, 1))
     res = solve_many(poses_of(pts, e.reshape(-1, 3)))
+    from ..arm import THESIS_ARM
+
+    lim6 = THESIS_ARM.q_max[5] - LIMIT_MARGIN
     layers_q, layers_o = [], []
     for i in range(n):
         qs, os_ = [], []
         for k in range(K):
             q = _within(res[k * n + i])
             if len(q):
+                o3 = np.repeat(np.append(off[k], 0.0)[None], len(q), axis=0)
                 qs.append(q)
-                os_.append(np.repeat(off[k][None], len(q), axis=0))
+                os_.append(o3)
+                if half_turn:
+                    # gamma + pi: the same grasp for a gripper symmetric about z6 (theta6 -/+ pi)
+                    qf = q.copy()
+                    qf[:, 5] -= np.pi * np.where(q[:, 5] >= 0, 1.0, -1.0)
+                    keep = np.abs(qf[:, 5]) <= lim6
+                    if keep.any():
+                        of = o3[keep].copy()
+                        of[:, 2] = np.pi
+                        qs.append(qf[keep])
+                        os_.append(of)
         layers_q.append(np.concatenate(qs) if qs else np.zeros((0, 6)))
-        layers_o.append(np.concatenate(os_) if os_ else np.zeros((0, 2)))
+        layers_o.append(np.concatenate(os_) if os_ else np.zeros((0, 3)))
     info = {"solutions_per_step": np.array([len(q) for q in layers_q])}
     if np.any(info["solutions_per_step"] == 0):
         info["beta_changed_steps"] = info["alpha_changed_steps"] = ()
         return [], info
-    # start candidates: nominal orientation if possible
-    nominal0 = np.all(layers_o[0] == 0, axis=1)
+    # start candidates: nominal orientation (up to the gripper's half turn) if possible
+    nominal0 = np.all(layers_o[0][:, :2] == 0, axis=1)
     starts = np.flatnonzero(nominal0) if nominal0.any() else np.arange(len(layers_q[0]))
     branches = []
     for s0 in starts:
@@ -428,9 +458,12 @@ def track_dp(path: CartesianPath, *, solve_many: Callable | None = None,
         back = []
         for i in range(1, n):
             qa, qb = layers_q[i - 1], layers_q[i]
-            E = np.abs(qb[None, :, :] - qa[:, None, :]).sum(-1) / 6.0  # Eq 54 for all pairs
-            C = (E + w_change * np.abs(layers_o[i][None] - layers_o[i - 1][:, None]).sum(-1)
-                 + w_offset * np.abs(layers_o[i]).sum(-1)[None])
+            D = np.abs(qb[None, :, :] - qa[:, None, :])
+            E = D.sum(-1) / 6.0  # Eq 54 for all pairs
+            dO = np.abs(layers_o[i][None] - layers_o[i - 1][:, None])
+            C = (E + w_change * dO[..., :2].sum(-1) + w_half_turn * (dO[..., 2] > 0)
+                 + w_offset * np.abs(layers_o[i][:, :2]).sum(-1)[None]
+                 + w_switch * (D.max(-1) > switch_threshold))  # avoid branch switches
             tot = cost[:, None] + C
             arg = np.argmin(tot, axis=0)
             back.append(arg)
@@ -446,12 +479,14 @@ def track_dp(path: CartesianPath, *, solve_many: Callable | None = None,
         eff = np.concatenate([[0.0], [float(effort_index(q[i - 1], q[i])) for i in range(1, n)]])
         sw = tuple(int(i) for i in np.flatnonzero(np.abs(np.diff(q, axis=0)).max(1) > switch_threshold) + 1)
         branches.append(JointPath(q=q, ok=np.ones(n, bool), effort=eff, beta_change=o[:, 1],
-                                  alpha_change=o[:, 0], switches=sw, start_solution=int(s0)))
+                                  alpha_change=o[:, 0], switches=sw, start_solution=int(s0),
+                                  gamma_change=o[:, 2]))
     branches.sort(key=lambda b: (len(b.switches), b.total_effort))
     if branches:
         b = branches[0]
         info["beta_changed_steps"] = tuple(int(i) for i in np.flatnonzero(b.beta_change))
         info["alpha_changed_steps"] = tuple(int(i) for i in np.flatnonzero(b.alpha_change))
+        info["gamma_changed_steps"] = tuple(int(i) for i in np.flatnonzero(b.gamma_change))
     else:
         info["beta_changed_steps"] = info["alpha_changed_steps"] = ()
     return branches, info

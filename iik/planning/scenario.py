@@ -10,8 +10,8 @@ Workspace checks use injected callables (``iik.in_workspace`` /
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 
@@ -79,7 +79,8 @@ class Scenario:
 
     def __post_init__(self) -> None:
         if self.orientation not in ("euler", "slerp"):
-            raise ScenarioError("planning.orientation", f"expected 'euler' or 'slerp', got {self.orientation!r}")
+            raise ScenarioError("planning.orientation",
+                                f"expected 'euler' or 'slerp', got {self.orientation!r}")
         if self.mode not in ("LEI", "LJI"):
             raise ScenarioError("planning.mode", f"expected 'LEI' or 'LJI', got {self.mode!r}")
         if not (np.isfinite(self.max_step) and 0 < self.max_step <= 0.5):

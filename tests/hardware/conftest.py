@@ -35,10 +35,11 @@ def sim(channel):
     s = SimulatedArm.virtual(channel, (1, 2, 3, 4, 5, 6), lag=0.01)
     yield s
     s.close()
+    assert not s.errors, s.errors
 
 
 @pytest.fixture
 def arm(sim, host_bus):
-    a = PowerCubeArm(host_bus, (1, 2, 3, 4, 5, 6), timeout=0.05)
+    a = PowerCubeArm(host_bus, (1, 2, 3, 4, 5, 6), timeout=0.2)
     yield a
     a.stop_watchdog(disable=False)

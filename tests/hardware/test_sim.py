@@ -3,6 +3,8 @@
 import math
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 import iik
 from hardware import protocol as P
@@ -126,3 +128,42 @@ def test_stops_between_steps_are_recorded():
     assert m.stops == []
     m.handle(P.SetMove(1, P.Mode.FSTEP, 0.3, 100), 0.21)  # late: rests 10 ms at 0.2 rad
     assert m.stops == [(pytest.approx(0.2), pytest.approx(0.01))]
+
+
+def test_non_positive_limits_are_not_applied():
+    m = module()
+    m.handle(P.SetParam(1, P.Param.FMAXVEL, -1.0), 0.0)
+    m.handle(P.SetParam(1, P.Param.FRAMPACC, 0.0), 0.0)
+    assert m.params[P.Param.FMAXVEL] == 1.2 and m.params[P.Param.FRAMPACC] == 1.0
+    m.handle(P.SetMove(1, P.Mode.FRAMP, 0.5), 0.0)  # still a valid profile
+    assert m.motion.end < 5.0
+
+
+_values = st.floats(-1e6, 1e6, allow_nan=False, width=32)
+_requests = st.one_of(
+    st.builds(P.GetParam, st.just(1), st.sampled_from(sorted(P.READABLE))),
+    st.sampled_from(sorted(P.WRITABLE)).flatmap(lambda par: st.builds(
+        P.SetParam, st.just(1), st.just(par),
+        st.integers(0, 2**32 - 1) if P.PARAM_TYPES[par] is P.ParamType.U32 else _values)),
+    st.sampled_from(list(P.Mode)).flatmap(lambda m: st.builds(
+        P.SetMove, st.just(1), st.just(m), _values,
+        st.integers(0, 0xFFFF) if m.plain is P.Mode.FSTEP else st.none())),
+    st.builds(P.Command, st.just(1), st.sampled_from([P.Cmd.RESET, P.Cmd.HOME, P.Cmd.HALT])),
+    st.sampled_from([P.Cmd.RESET, P.Cmd.HOME, P.Cmd.HALT, P.Cmd.WATCHDOG, P.Cmd.STARTMOVE]).map(P.Broadcast),
+)
+
+
+@given(st.lists(st.tuples(_requests, st.floats(0.0, 0.5)), max_size=25))
+def test_any_request_sequence_is_served(seq):
+    """Whatever a host sends, the module answers every request with its echo and its
+    state stays finite (no exception inside the simulated module)."""
+    m = module()
+    now = 0.0
+    for req, dt in seq:
+        now += dt
+        out = m.handle(req, now)
+        if not isinstance(req, P.Broadcast):
+            assert out and P.is_echo(req, P.encode(out[0]))
+        p, v, a = m.setpoint(now)
+        assert all(math.isfinite(x) for x in (p, v, a)) and abs(v) <= 1.2 + 1e-9
+        assert all(math.isfinite(x) for x in m.measured(now))

@@ -66,7 +66,7 @@ def test_separate_process_on_udp_multicast(sim_process, tmp_path):
     with PowerCubeArm.from_interface(interface="udp_multicast", channel=GROUP, port=port,
                                      timeout=0.2) as arm:
         assert len(arm.open()) == 6
-        assert sorted(arm.scan(range(1, 9), timeout=0.05)) == [1, 2, 3, 4, 5, 6]
+        assert sorted(arm.scan(range(1, 9), timeout=0.1)) == [1, 2, 3, 4, 5, 6]
         q0 = arm.get_pos()
         np.testing.assert_allclose(q0, 0.0)
         q = np.linspace(0, 1, 4)[:, None] * np.array([0.05, -0.05, 0.05, 0.05, 0.1, 0.05])

@@ -36,7 +36,8 @@ def test_repulsion_normal_is_normal_to_the_plane_through_start_goal_and_x_infini
     assert np.isclose(np.linalg.norm(n), 1.0)
     assert n[2] >= 0
     d = g - s
-    if np.linalg.norm(np.cross(d, [1, 0, 0])) > 1e-6 * max(np.linalg.norm(d), 1e-12) and np.linalg.norm(d) > 1e-9:
+    nd = np.linalg.norm(d)
+    if np.linalg.norm(np.cross(d, [1, 0, 0])) > 1e-6 * max(nd, 1e-12) and nd > 1e-9:
         assert abs(n @ d) < 1e-9 * np.linalg.norm(d) + 1e-12
         assert abs(n[0]) < 1e-9  # contains the x direction
 

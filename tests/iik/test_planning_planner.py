@@ -28,7 +28,8 @@ def test_step_points_keep_out_of_padded_ellipsoids_and_30mm_steps():
 
 
 def test_table_iv_via_points_are_inserted():
-    sc = _scenario(start=Waypoint((-0.33, 0.38, -0.30), None, 0.0), goal=Waypoint((0.35, -0.1, -0.35), None, 0.0),
+    sc = _scenario(start=Waypoint((-0.33, 0.38, -0.30), None, 0.0),
+                   goal=Waypoint((0.35, -0.1, -0.35), None, 0.0),
                    obstacles=())
     cp = build_path(sc)
     assert cp.via_numbers == (1, 2)
@@ -62,3 +63,20 @@ def test_dynamic_programme_reaches_every_step_within_limits():
     b = branches[0]
     assert np.all(iik.THESIS_ARM.within_limits(b.q))
     assert np.abs(iik.fk(b.q)[:, :3, 3] - cp.points).max() < 1e-8  # position always exact
+
+
+def test_slerp_orientation_starts_and_ends_at_the_requested_rotations():
+    import dataclasses
+
+    from iik.rotations import zxz_matrix
+
+    sc = dataclasses.replace(_scenario(obstacles=()), orientation="slerp",
+                             start=Waypoint((0.30, 0.25, -0.35), 0.3, 0.2, 0.0),
+                             goal=Waypoint((0.30, -0.25, -0.35), -0.5, 0.6, 0.4))
+    cp = build_path(sc)
+    R = np.stack([zxz_matrix(*e) for e in cp.euler])
+    assert np.allclose(R[0], zxz_matrix(0.3, 0.2, 0.0), atol=1e-9)
+    assert np.allclose(R[-1], zxz_matrix(-0.5, 0.6, 0.4), atol=1e-9)
+    # rotation angle between consecutive steps is nearly constant (spherical interpolation)
+    ang = [np.arccos(np.clip((np.trace(R[i].T @ R[i + 1]) - 1) / 2, -1, 1)) for i in range(len(R) - 1)]
+    assert max(ang) - min(ang) < 0.02

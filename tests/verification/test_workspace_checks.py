@@ -77,10 +77,13 @@ def test_checks_quick(ctx):
     assert a2.verdict is Verdict.DOES_NOT_HOLD
     assert by_ref["Sec 3.5.1, Eq 42"].verdict is Verdict.HOLDS
     assert by_ref["Eq 42 vs Eq 43-47"].verdict is Verdict.ERRATUM
+    assert by_ref["Sec 3.4.3"].verdict is Verdict.HOLDS  # no interior boundary
+    assert by_ref["App. G (Figs 61-62), Sec 3.6.1"].verdict is Verdict.HOLDS
     for r in rows:
         for f in r.figures:
             assert (ctx.out_dir / f).exists()
 
 
-CHECKS = {"eq36_41", "three_surface_boundary", "no_interior_boundary", "table_vi", "table_vii",
+CHECKS = {"eq36_41", "three_surface_boundary", "no_interior_boundary", "app_g_relocation", "table_vi",
+          "table_vii",
           "missing_singularities", "appendix_e", "beta_convention", "dexterity_soundness", "gamma_free"}

@@ -51,7 +51,8 @@ def check_eq53_ellipsoid(ctx) -> Row:
         method="Eq 52 evaluated at the 8 corners with Eq 53 as printed (both readings of w, d, h) "
                f"and corrected; corrected form on {len(boxes)} random boxes",
         numbers=(f"box 0.30x0.20x0.50 m: printed, full dims: Eq 52 = {v_full[0]:.4f} at corners (inside, "
-                 f"radii {np.round(full, 3).tolist()} m); printed, half dims: {v_half[0]:.4f} (corners outside); "
+                 f"radii {np.round(full, 3).tolist()} m); printed, half dims: {v_half[0]:.4f} "
+                 "(corners outside); "
                  f"corrected: {v_corr[0]:.12f}; max |Eq52-1| corrected = {worst:.1e}"),
         verdict=Verdict.ERRATUM if holds else Verdict.DOES_NOT_HOLD,
         errata=(Erratum(
@@ -67,11 +68,12 @@ def check_eq53_ellipsoid(ctx) -> Row:
 @register(SECTION, order=501)
 def check_table_iv(ctx) -> Row:
     # Mirror symmetry y -> -y: A<->G, B<->F, C<->E, D<->D, via 1<->4, 2<->3.
-    mir = dict(zip(REGIONS, reversed(REGIONS)))
+    mir = dict(zip(REGIONS, reversed(REGIONS), strict=True))
     vmap = {1: 4, 2: 3, 3: 2, 4: 1}
     sym = all(TABLE_IV[(mir[a], mir[b])] == tuple(vmap[v] for v in vias)
               for (a, b), vias in _TABLE_IV_PRINTED.items())
-    via_mirror = all(np.allclose(VIA_POINTS[vmap[k]], np.array(v) * [1, -1, 1]) for k, v in VIA_POINTS.items())
+    via_mirror = all(np.allclose(VIA_POINTS[vmap[k]], np.array(v) * [1, -1, 1])
+                     for k, v in VIA_POINTS.items())
     # The inferred sectors: via-points 1 and 4 bound A and G; each middle via-point lies in C / E.
     regions = list(region_of(np.array([VIA_POINTS[k] for k in (2, 3)])))
     ok = sym and via_mirror and regions == ["C", "E"]
@@ -137,8 +139,9 @@ def check_scenarios(ctx) -> list[Row]:
             claim=f"{sc.title}: the Sec 3.6 planner gives a collision-free path",
             reference=sc.reference or "Sec 4.2",
             method=f"scenarios/{p.name} (reconstructed) planned end to end; Coal distances of the URDF "
-                   "collision shapes to obstacles, tables, platform and floor at every step and, by certified "
-                   "bisection, on every motion between steps; TOPP-RA timing checked at every sample",
+                   "collision shapes to obstacles, tables, platform and floor at every step and, by "
+                   "certified bisection, on every motion between steps; TOPP-RA timing checked at every "
+                   "sample",
             numbers=numbers, verdict=verdict, reason=reason, figures=figs if sc.name == "j" else ()))
     if ctx.quick:
         rows.append(Row(claim="Remaining scenarios", reference="Sec 4.2",
@@ -157,7 +160,8 @@ def _figures(ctx, res) -> tuple[str, ...]:
 
     rels = []
     for name, fn, kw in (("planning_j_scene.png", plot_scene, {"projection": "3d"}),
-                         ("planning_j_joints.png", plot_joints, {}), ("planning_j_effort.png", plot_effort, {})):
+                         ("planning_j_joints.png", plot_joints, {}),
+                         ("planning_j_effort.png", plot_effort, {})):
         path, rel = ctx.figure_path(name)
         fig = plt.figure(figsize=(7, 5) if "scene" in name else (7, 3.5))
         fn(res, fig.add_subplot(111, **kw))
@@ -166,3 +170,74 @@ def _figures(ctx, res) -> tuple[str, ...]:
         plt.close(fig)
         rels.append(rel)
     return tuple(rels)
+
+
+@register(SECTION, order=520)
+def check_thesis_timing(ctx) -> Row:
+    from iik import THESIS_ARM
+
+    rows = [(p.stem, r) for p, r, _ in _results(ctx) if r.success and r.trajectory is not None]
+    if not rows:
+        return Row(claim="Joint speed proportional to the effort index (Sec 4.2.2)", reference="Sec 4.2.2",
+                   method="needs planned scenarios", numbers="none planned", verdict=Verdict.NOT_CHECKABLE,
+                   reason="no scenario was planned successfully")
+    ratios, jumps = [], []
+    for _name, r in rows:
+        th = r.thesis_trajectory
+        ratios.append(th.duration / r.trajectory.duration)
+        # the thesis scheme changes every joint's speed stepwise at each step-point
+        dv = np.abs(np.diff(th.qd[:-1], axis=0)).max() if len(th.qd) > 2 else 0.0
+        jumps.append(dv / np.max(THESIS_ARM.velocity))
+    worst_acc = max(float((np.abs(r.trajectory.qdd) / THESIS_ARM.acceleration).max()) for _, r in rows)
+    return Row(
+        claim="Joint speeds proportional to the effort index (Eq 54) give a feasible timing (Sec 4.2.2)",
+        reference="Sec 4.2.2, Eq 54",
+        method="thesis scheme (equal time per step, fastest joint at its speed limit) vs TOPP-RA within "
+               "the speed and (assumed) acceleration limits, on the planned scenarios",
+        numbers=(f"{len(rows)} scenarios: thesis duration / TOPP-RA duration median "
+                 f"{np.median(ratios):.2f} (range {min(ratios):.2f}-{max(ratios):.2f}); "
+                 "thesis speed steps up to "
+                 f"{max(jumps):.2f} x v_max between consecutive steps (unbounded acceleration); TOPP-RA max "
+                 f"|qdd|/a_max = {worst_acc:.3f}"),
+        verdict=Verdict.DOES_NOT_HOLD,
+        reason="the thesis's per-step constant speeds change instantly at every step-point (no acceleration "
+               "limit; the text reports vibrations, Sec 4.3); where the path has a branch switch the equal "
+               "step time makes every step as slow as the largest jump",
+    )
+
+
+@register(SECTION, order=505)
+def check_arc_route(ctx) -> list[Row]:
+    """Sec 4.2.1.1/4.2.1.2: between the via-points the straight line had no IK solutions; an arc had."""
+    import dataclasses
+
+    from iik.planning import build_path
+    from iik.planning.planner import all_solutions
+
+    from ..scenarios import load_scenario, platform_box, thesis_scenario_paths
+
+    rows = []
+    for p in [q for q in thesis_scenario_paths() if q.stem in ("p1", "p2")]:
+        sc = load_scenario(p)
+        counts = {}
+        for route in ("line", "arc"):
+            s2 = dataclasses.replace(sc, segments=("line", route, "line"))
+            cp = build_path(s2, platform=platform_box(), floor_z=-0.45)
+            mid = cp.segment == 1
+            sols, _ = all_solutions(cp.points[mid], cp.euler[mid], beta_steps=(), adapt_orientation=False,
+                                    ramp=0)
+            counts[route] = (sum(len(s) == 0 for s in sols), int(mid.sum()))
+        holds = counts["line"][0] > 0 and counts["arc"][0] == 0
+        rows.append(Row(
+            claim=f"{sc.name}: the straight line between the two via-points has steps without IK solutions "
+                  "at the given orientations; the arc route has none",
+            reference="Sec 4.2.1.1, 4.2.1.2",
+            method=f"scenarios/{p.name} (reconstructed via-points and orientations); complete IK at "
+                   "each of the 39 steps of the middle segment, nominal (gradual Euler) orientation, "
+                   "within Table I",
+            numbers=(f"steps without a solution: straight line {counts['line'][0]}/{counts['line'][1]}, "
+                     f"arc {counts['arc'][0]}/{counts['arc'][1]}"),
+            verdict=Verdict.HOLDS if holds else Verdict.NOT_CHECKABLE,
+            reason="" if holds else "not reproduced with our reconstructed via-points and orientations; "
+                                    "the thesis's are not printed, so the claim cannot be tested"))
+    return rows
