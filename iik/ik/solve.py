@@ -35,6 +35,8 @@ def _build(q, valid, flags, pres, rres, arm, within_limits, method, info=None):
     k = valid
     qq, pp, rr, ff = q[k], pres[k], rres[k], flags[k]
     inside = np.atleast_1d(arm.within_limits(qq, tol=LIMIT_TOL)) if len(qq) else np.zeros(0, bool)
+    if np.any(ff):  # a continuum representative stands for q within CONTINUUM_TOL of it
+        inside = inside | (np.atleast_1d(arm.within_limits(qq, tol=_complete.CONTINUUM_TOL)) & (ff > 0))
     total = len(qq)
     if within_limits:
         qq, pp, rr, ff, inside = qq[inside], pp[inside], rr[inside], ff[inside], inside[inside]
