@@ -2,8 +2,10 @@
 
 For each step-point k the measured joints are the actual positions the modules
 reported in their ACKs to command k+1 (extended FSTEP), i.e. where the arm was when
-the thesis's early update moved on; for the last step-point (and for logs without
-them) they are the last sample logged for that step, after settling.
+the thesis's early update moved on; with the buffered update they are interpolated
+from the samples at the end of step k on the modules' timeline; for the last
+step-point (and for logs without them) they are the last sample logged for that
+step, after settling.
 The end-effector position is FK (Eq 4) of the measured joints, as in Sec 4.3 ("it
 was calculated by inputting the obtained experimental joint angles into the forward
 kinematics expression"), compared with the planned pose's position.
@@ -95,7 +97,11 @@ def analyse(run: Run, arm: Arm = THESIS_ARM) -> RunAnalysis:
     steps, ts, qs = [], [], []
     for k in range(len(run.times)):
         hits = np.flatnonzero(run.samples_k == k)
-        if k + 1 in at_send:  # measured by the ACK of command k+1 (extended FSTEP)
+        if k in run.step_end and k < len(run.times) - 1:  # buffered: where the arm was at the step end
+            t = run.step_end[k]
+            q = np.array([np.interp(t, run.samples_tq[:, j], run.samples_q[:, j])
+                          for j in range(run.samples_q.shape[1])])
+        elif k + 1 in at_send:  # measured by the ACK of command k+1 (extended FSTEP)
             t, q = at_send[k + 1]
         elif len(hits):  # last step-point (after settling), or a run that stopped here
             t, q = float(run.samples_t[hits[-1]]), run.samples_q[hits[-1]]

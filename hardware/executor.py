@@ -203,7 +203,14 @@ class ExecutionOptions:
         start_tolerance: Max |measured - q[0]| per joint to start without an approach [rad].
         approach: Move to ``q[0]`` first (FSTEP at ``approach_speed`` of the limits) if needed.
         approach_speed: Fraction of the speed limits for the approach.
-        sync: Broadcast STARTMOVE after each command so all joints switch together.
+        sync: Broadcast STARTMOVE after each command so all joints switch together
+            (``update="thesis"``).
+        update: ``"thesis"`` (Sec 4.3): the next command is sent after ``early`` of the
+            previous step and replaces the rest of it at STARTMOVE, so up to 5 % of every
+            step is cut. ``"buffered"``: the next command is sent ``1 - early`` of the
+            current step (at least 20 ms, at most half of it) before that step ends on the
+            modules' own timeline, and waits in their step buffer (FULLBUFFER); it starts
+            exactly when the current step ends, so no step is cut and no joint stops.
         watchdog: Enable the modules' watchdog for the run (CONFIG bit + 40 ms broadcast),
             so the arm stops by itself if this process dies or the bus link is lost.
     """
@@ -215,6 +222,7 @@ class ExecutionOptions:
     approach: bool = True
     approach_speed: float = 0.25
     sync: bool = True
+    update: str = "thesis"
     watchdog: bool = False
 
 
@@ -246,11 +254,13 @@ class _Sampler:
                 if deadline is not None and self.clock() >= deadline:
                     return False
                 row.append(m.get_param(par))
+                if par is P.Param.ACT_FPOS:
+                    row.append(self.clock() - self.t0)  # when this position was read
             rows.append(row)
-        st, q, dq, cur = (list(c) for c in zip(*rows, strict=True))
+        st, q, tq, dq, cur = (list(c) for c in zip(*rows, strict=True))
         st = [int(v) for v in st]
-        self.log.write({"type": "sample", "t": self.clock() - self.t0, "k": k, "q": q, "dq": dq,
-                        "cur": cur, "state": st})
+        self.log.write({"type": "sample", "t": self.clock() - self.t0, "k": k, "q": q, "tq": tq,
+                        "dq": dq, "cur": cur, "state": st})
         self.count += 1
         for m, s in zip(self.arm.modules, st, strict=True):
             if s & (P.State.ERROR | P.State.HALTED):
@@ -283,6 +293,8 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
                           f"{trajectory.q.shape[1]} joints")
     if not 0.0 < options.early <= 1.0:
         raise SafetyError("options.early", "must be in (0, 1]")
+    if options.update not in ("thesis", "buffered"):
+        raise SafetyError("options.update", f"must be 'thesis' or 'buffered', got {options.update!r}")
     tr = trajectory
     # Refusals before anything moves: no HALT needed, no log written.
     for m, s in zip(arm.modules, arm.states(), strict=True):
@@ -296,24 +308,28 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
     log.write({"type": "header", "version": 1, "module_ids": list(arm.module_ids),
                "times": tr.times.tolist(), "q": tr.q.tolist(), "poses": tr.poses.tolist(),
                "step_ms": tr.step_ms.tolist(), "early": options.early, "sync": options.sync,
+               "update": options.update,
                "bus": str(arm.bus.channel_info), "arm": tr.arm.name,
                "started": datetime.now(timezone.utc).isoformat()})
     t0 = clock()
     sampler = _Sampler(arm, log, t0, clock)
     n_cmd = 0
 
-    def command(k: int, q, time_s: float) -> float:
+    def command(k: int, q, time_s: float, start: bool = True) -> float:
         nonlocal n_cmd
         t = clock()
         # extended FSTEP: each ACK carries the module's actual position when the command
         # arrived, i.e. the measurement at the step-point the early update leaves
         q_meas, short = arm.move_step(q, time_s, extended=True)
-        if options.sync:
+        if start:
             arm.start_move()
         log.write({"type": "command", "t": t - t0, "k": k, "q": [float(v) for v in q], "time_s": time_s,
                    "q_meas": [float(v) for v in q_meas], "short": [int(v) for v in short]})
         n_cmd += 1
         return t
+
+    def step_point(k: int, t_end: float) -> None:
+        log.write({"type": "step_end", "k": k, "t": t_end - t0})
 
     def sample_until(deadline: float, k: int) -> None:
         """Sample every ``sample_period`` until ``deadline`` without delaying the next command."""
@@ -335,13 +351,23 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
         else:
             sampler.sample(0)
         n = len(tr)
+        step_end = -math.inf  # end of the current step on the modules' timeline (buffered)
         for k in range(1, n):
             dt = tr.step_ms[k - 1] / 1000.0
-            ts = command(k, tr.q[k], dt)
+            if options.update == "thesis":  # Sec 4.3: next command after 95 % of this one
+                ts = command(k, tr.q[k], dt, start=options.sync)
+                next_at = ts + (options.early * dt if k < n - 1 else dt + options.settle)
+            else:  # buffered: queue the next step shortly before this one ends
+                ts = command(k, tr.q[k], dt, start=(k == 1))
+                # the step starts when the previous one ends, or at once if that already
+                # happened (a late command): keep the timeline so no buffered step is overwritten
+                step_end = max(step_end, ts) + dt
+                step_point(k, step_end)
+                lead = min(max((1.0 - options.early) * dt, 0.020), 0.5 * dt)
+                next_at = step_end - lead if k < n - 1 else step_end + options.settle
             if progress is not None:
                 progress(k, n - 1)
-            wait = options.early * dt if k < n - 1 else dt + options.settle
-            sample_until(ts + wait, k)
+            sample_until(next_at, k)
         if options.watchdog:
             arm.stop_watchdog(disable=True)
         log.write({"type": "end", "t": clock() - t0, "status": "ok"})

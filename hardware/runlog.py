@@ -6,8 +6,9 @@ Record types (field ``"type"``):
   ``early`` (fraction of a step after which the next is sent), ``started`` (ISO time).
 * ``command``: ``t`` [s since start], ``k`` (target index), ``q`` [rad], ``time_s``,
   ``q_meas`` (actual positions from the extended FSTEP ACKs [rad]) and ``short`` (short states).
-* ``sample``: ``t``, ``k`` (last commanded target), measured ``q`` [rad], ``dq`` [rad/s],
-  ``cur`` [A], ``state`` (u32 state bits per module).
+* ``sample``: ``t``, ``k`` (last commanded target), measured ``q`` [rad] read at times
+  ``tq`` [s], ``dq`` [rad/s], ``cur`` [A], ``state`` (u32 state bits per module).
+* ``step_end``: ``k``, ``t``: when step k ends on the modules' timeline (buffered update).
 * ``fault``: ``t``, ``error`` (exception type), ``message``, ``halted`` (HALT broadcast sent).
 * ``end``: ``t``, ``status`` (``"ok"`` or ``"fault"``). A log without it is incomplete.
 """
@@ -35,8 +36,11 @@ class RunLog:
 
     def __init__(self, path: str | os.PathLike):
         self.path = Path(path)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        self._f = open(self.path, "w", encoding="utf-8")  # noqa: SIM115 - closed in close()
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self._f = open(self.path, "w", encoding="utf-8")  # noqa: SIM115 - closed in close()
+        except OSError as exc:
+            raise RunLogError(f"{self.path}: cannot write the run log ({exc})") from None
 
     def write(self, record: dict) -> None:
         self._f.write(json.dumps(record, separators=(",", ":"), allow_nan=False) + "\n")
@@ -73,9 +77,11 @@ class Run:
     samples_t: np.ndarray  # (m,)
     samples_k: np.ndarray  # (m,)
     samples_q: np.ndarray  # (m,6)
+    samples_tq: np.ndarray  # (m,6) time each position was read [s] (= samples_t if not logged)
     samples_dq: np.ndarray  # (m,6)
     samples_cur: np.ndarray  # (m,6)
     samples_state: np.ndarray  # (m,6) int
+    step_end: dict  # k -> end time of step k on the modules' timeline [s] (buffered update)
     fault: dict | None
     status: str | None  # None: the log has no end record
     records: list = field(repr=False, default_factory=list)
@@ -124,6 +130,9 @@ def read_run_log(path: str | os.PathLike) -> Run:
             samples_t=np.asarray([r["t"] for r in smp], dtype=float),
             samples_k=np.asarray([r["k"] for r in smp], dtype=int),
             samples_q=arr("q"), samples_dq=arr("dq"), samples_cur=arr("cur"),
+            samples_tq=np.asarray([r.get("tq") or [r["t"]] * n_mod for r in smp],
+                                  dtype=float).reshape(-1, n_mod),
+            step_end={int(r["k"]): float(r["t"]) for r in records if r["type"] == "step_end"},
             samples_state=arr("state", np.int64),
             fault=next((r for r in records if r["type"] == "fault"), None),
             status=next((r["status"] for r in records if r["type"] == "end"), None),

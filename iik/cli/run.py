@@ -50,6 +50,9 @@ def add_arguments(p) -> None:
                         "whose threads share one interpreter)")
     p.add_argument("--early", type=float, default=0.95,
                    help="send the next step after this fraction of the previous one (Sec 4.3: 0.95)")
+    p.add_argument("--update", choices=("thesis", "buffered"), default="thesis",
+                   help="thesis: the next step replaces the current one at 95 %% (Sec 4.3); buffered: it "
+                        "waits in the modules' step buffer, so no step is cut")
     p.add_argument("--speed", type=float, default=0.5,
                    help="fraction of the joint speed limits used to time the steps")
     p.add_argument("--margin-deg", type=float, default=0.5, help="margin inside Table I [deg]")
@@ -212,7 +215,7 @@ def run(args) -> int:
                     print(f"  executing on {where}: step {k}/{n}", file=sys.stderr, flush=True)
 
             try:
-                opts = ExecutionOptions(early=args.early, watchdog=args.watchdog)
+                opts = ExecutionOptions(early=args.early, update=args.update, watchdog=args.watchdog)
                 result = execute(arm, traj, log_path, options=opts, progress=progress)
             finally:
                 if tty:
@@ -229,7 +232,7 @@ def run(args) -> int:
         rests = sum(len(m.stops) for m in sim.modules.values())
         changes = len(sim.modules) * max(len(traj) - 2, 0)
         print(f"  simulated joints came to rest between two steps {rests} times (of {changes} step "
-              f"changes; Sec 4.3 early update {args.early})")
+              f"changes; update {args.update}, early {args.early})")
     print(f"run log: {result.log_path} ({result.commands} commands, {result.samples} samples, "
           f"{result.duration:.2f} s)")
     if not args.no_figures:

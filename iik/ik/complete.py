@@ -63,9 +63,16 @@ FREE_Q3_Q6 = 2
 #: q only to ~sqrt(machine eps) there, so the threshold sits well above 1e-8).
 FREE_TOL = 1e-7
 
+#: Size of the pose perturbation (rounding of fk(q) and of the solver, ~1000 ulp) used to
+#: bound how precisely a pose determines q near a singularity, see :func:`contains`.
+POSE_EPS = 1e-13
+
 #: A flagged continuum row stands for every q reaching the pose whose non-free joints
 #: are within this of it [rad].
-CONTINUUM_TOL = 1e-5
+CONTINUUM_TOL = 1e-4
+#: |sin theta4| and |sin(theta4 + theta5)| of a final solution below this: flagged as a
+#: theta3/theta6 continuum (sigma_min(J) < ~1e-10 there: the pose fixes theta3 to ~1e-3 rad).
+CONTINUUM_SIN = 1e-5
 
 _TWO_PI = 2.0 * np.pi
 _N_REF = 12  # candidate reference angles for the t-substitution
@@ -215,7 +222,9 @@ def _f_derivs(co, own, th, sigma):
     Ns = np.where(N > 1e-150, N, 1.0)
     u = P * P1 + Q * Q1
     N1 = u / Ns
-    N2 = (P1 * P1 + P * P2 + Q1 * Q1 + Q * Q2) / Ns - u * u / Ns**3
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        N2 = (P1 * P1 + P * P2 + Q1 * Q1 + Q * Q2) / Ns - u * u / Ns**3
+    N2 = np.where(np.isfinite(N2), N2, 0.0)
     g = b * Q - c * P
     g1 = b1 * Q + b * Q1 - c * P1
     g2 = b2 * Q + 2 * b1 * Q1 + b * Q2 - c * P2
@@ -227,11 +236,16 @@ def _f_derivs(co, own, th, sigma):
 
 def _newton(co, own, th, sigma, order: int, iters: int = 8):
     """Newton on f_sigma (order 0) or on its derivative (order 1, the extremum)."""
+    th = th.copy()
+    act = np.arange(len(th))  # rows still moving (per row, so batches match single calls)
     for _ in range(iters):
-        d = _f_derivs(co, own, th, sigma)
+        if len(act) == 0:
+            break
+        d = _f_derivs(co, own[act], th[act], sigma[act])
         num, den = d[order], d[order + 1]
-        step = np.where(den != 0, num / np.where(den != 0, den, 1.0), 0.0)
-        th = th - np.clip(step, -0.05, 0.05)
+        step = np.clip(np.where(den != 0, num / np.where(den != 0, den, 1.0), 0.0), -0.05, 0.05)
+        th[act] -= step
+        act = act[np.abs(step) > 1e-15]
     return th
 
 
@@ -256,7 +270,7 @@ def _theta1_list(co, cand, imag, cluster_tol: float = 1e-3):
     d[:, np.arange(8), np.arange(8)] = np.inf
     crowded = np.nanmin(np.where(np.isnan(d), np.inf, d), axis=2) <= cluster_tol
     susp = (imag[own0, col] > 1e-12) | crowded[own0, col]
-    owns, ths, sigs, prios = [own0], [thA], [s0], [np.ones(len(own0))]
+    owns, ths, sigs, prios = [own0], [thA], [s0], [np.where(susp, 1.0, 1.5)]
     if np.any(susp):
         o, t = own0[susp], th0[susp]
         for sg in (1.0, -1.0):
@@ -413,6 +427,8 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
     co = eliminant_coefficients(R, p, arm)
     cand, imag, _thr, _lowdeg, degenerate = _theta1_candidates(co)
     own, t1, sig, prio = _theta1_list(co, cand, imag)
+    careful = prio != 1.5  # from a suspicious (clustered / complex) root: always polish
+    prio = np.where(careful, prio, 1.0)
     fr1 = np.zeros(len(own), dtype=bool)
     if np.any(degenerate):
         # F identically zero: theta1 is free (continuum); representatives 0 and pi.
@@ -421,6 +437,7 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
         t1 = np.concatenate([t1, np.zeros(len(dg)), np.full(len(dg), np.pi)])
         sig = np.concatenate([sig, np.ones(2 * len(dg))])
         prio = np.concatenate([prio, np.ones(2 * len(dg))])
+        careful = np.concatenate([careful, np.ones(2 * len(dg), dtype=bool)])
         fr1 = np.concatenate([fr1, np.ones(2 * len(dg), dtype=bool)])
     opts = _theta2_options(co, own, t1)  # (m, 4)
     t2 = np.where(sig > 0, opts[:, 0], opts[:, 1])
@@ -433,6 +450,7 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
     t1 = np.concatenate([t1, t1[weak], t1[weak]])
     t2 = np.concatenate([t2, opts[weak, 2], opts[weak, 3]])
     prio = np.concatenate([prio, prio[weak], prio[weak]])
+    careful = np.concatenate([careful | weak, np.ones(2 * int(weak.sum()), dtype=bool)])
     fr1 = np.concatenate([fr1, fr1[weak], fr1[weak]])
     wr, free3 = _wrist(R[own], co["D"][own], t1[:, None], t2[:, None], arm, FREE_TOL)
     k = len(t1)
@@ -449,22 +467,23 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
     flf = flf[keep_branch.reshape(-1)]
     owner = np.repeat(own, 2)[keep_branch.reshape(-1)]
     prio = np.repeat(prio, 2)[keep_branch.reshape(-1)]
+    careful = np.repeat(careful, 2)[keep_branch.reshape(-1)]
     Tq = fk(qf, arm)
     Tt = T[owner]
     near = np.linalg.norm(Tq[:, :3, 3] - Tt[:, :3, 3], axis=1) <= 1e-3
     # theta6: R_fk(theta6 = 0)^T R = Rz(theta6) (Eq 31-33 equivalently)
     M = np.einsum("nji,njk->nik", Tq[:, :3, :3], Tt[:, :3, :3])
     qf[:, 5] = np.arctan2(M[:, 1, 0], M[:, 0, 0])
-    qf, flf, owner, Tt, prio = qf[near], flf[near], owner[near], Tt[near], prio[near]
+    qf, flf, owner, Tt, prio, careful = (x[near] for x in (qf, flf, owner, Tt, prio, careful))
     pres, rres = pose_residuals(qf, Tt, arm)
-    polish = (pres <= 1e-3) & (rres <= 1e-2)
+    polish = (pres <= 1e-3) & (rres <= 1e-2) & (careful | (pres > 1e-14) | (rres > 1e-14))
     if np.any(polish):
         qf[polish] = _newton_polish(qf[polish], Tt[polish], arm)
         pres[polish], rres[polish] = pose_residuals(qf[polish], Tt[polish], arm)
     qf = _wrap(qf)
-    # Continuum flags from the final q (accurate to ~sqrt(eps) there, hence 1e-6).
+    # Continuum flags from the final q.
     s4, s45 = np.abs(np.sin(qf[:, 3])), np.abs(np.sin(qf[:, 3] + qf[:, 4]))
-    flf = np.where((s4 <= 1e-6) & (s45 <= 1e-6), flf | FREE_Q3_Q6, flf & ~FREE_Q3_Q6)
+    flf = np.where((s4 <= CONTINUUM_SIN) & (s45 <= CONTINUUM_SIN), flf | FREE_Q3_Q6, flf & ~FREE_Q3_Q6)
     c36 = (flf & FREE_Q3_Q6) > 0
     if np.any(c36):
         qs = _snap_continuum(qf[c36], Tt[c36], arm)
@@ -566,7 +585,9 @@ def contains(solutions: np.ndarray, q: np.ndarray, T: np.ndarray, arm: Arm, *,
              free_joints=None) -> bool:
     """Is configuration ``q`` (6,) among ``solutions`` (k, 6) of pose ``T``?
 
-    Yes if some solution is within ``tol`` rad in every joint (angles wrapped).
+    Yes if some solution is within ``tol`` rad in every joint (angles wrapped),
+    or within ``POSE_EPS / sigma_min(J(q))`` (how far q moves when the pose is
+    perturbed by :data:`POSE_EPS`, i.e. the accuracy the pose carries).
     Near a singularity a pose fixes q only to ~sqrt(machine eps), so a solution
     also counts if the straight joint-space segment from it to ``q`` stays
     inside the FK tolerance (``tol_p`` m, ``tol_r`` rad) at 9 interior points:
@@ -583,13 +604,13 @@ def contains(solutions: np.ndarray, q: np.ndarray, T: np.ndarray, arm: Arm, *,
     if free_joints is not None and any(free_joints):
         pr, rr = pose_residuals(np.asarray(q, float)[None], np.asarray(T)[None], arm)
         if pr[0] <= tol_p and rr[0] <= tol_r:
-            for row, fj in zip(sol, free_joints):
+            for row, fj in zip(sol, free_joints, strict=False):
                 fixed = [j for j in range(6) if j + 1 not in fj]
                 if fj and np.max(np.abs(_wrap(row[fixed] - q[fixed]))) <= CONTINUUM_TOL:
                     return True  # q reaches T and lies on the flagged (numerical) continuum
         # Move each continuum representative along its continuum to q's free joints.
         extra = []
-        for row, fj in zip(sol, free_joints):
+        for row, fj in zip(sol, free_joints, strict=False):
             for j in (1, 3):
                 if j in fj:
                     for sgn in (1.0, -1.0):
@@ -601,7 +622,9 @@ def contains(solutions: np.ndarray, q: np.ndarray, T: np.ndarray, arm: Arm, *,
             sol = np.concatenate([sol, np.array(extra)])
     d = _wrap(sol - q)
     dist = np.max(np.abs(d), axis=1)
-    if np.min(dist) <= tol:
+    # First-order sensitivity: a pose known to POSE_EPS moves q by up to POSE_EPS / sigma_min(J).
+    smin = np.linalg.svd(jacobian(np.asarray(q, float), arm), compute_uv=False)[-1]
+    if np.min(dist) <= max(tol, POSE_EPS / max(smin, 1e-300)):
         return True
     s = np.linspace(0.1, 0.9, 9)
     for i in np.argsort(dist)[:4]:

@@ -41,7 +41,7 @@ def _candidates(result_or_q, arm: Arm) -> np.ndarray:
     if q.size == 0:
         return np.zeros((0, 6))
     qb, _ = as_joints(q, "solutions")
-    inside = np.atleast_1d(arm.within_limits(qb, tol=1e-9))
+    inside = np.atleast_1d(arm.within_limits(qb, tol=1e-7))
     return qb[inside]
 
 

@@ -19,8 +19,9 @@ from .result import IKResult
 __all__ = ["solve", "solve_many", "METHODS"]
 
 METHODS = ("complete", "thesis")
-#: A solution on a joint stop may come out a few ulp outside it; accept this much [rad].
-LIMIT_TOL = 1e-9
+#: A solution on a joint stop of a near-singular pose may come out slightly outside it
+#: (the pose fixes q only to ~eps / sigma_min there); accept this much [rad].
+LIMIT_TOL = 1e-7
 
 _FREE = {_complete.FREE_Q1_Q6: (1, 6), _complete.FREE_Q3_Q6: (3, 6),
          _complete.FREE_Q1_Q6 | _complete.FREE_Q3_Q6: (1, 3, 6)}

@@ -56,3 +56,10 @@ def test_malformed_logs_raise_typed_errors(tmp_path):
     assert not run.complete
     with pytest.raises(RunLogError):
         analyse(run)
+
+
+def test_unwritable_log_path_is_typed(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    with pytest.raises(RunLogError):
+        RunLog(blocker / "sub" / "run.jsonl")

@@ -1,0 +1,93 @@
+"""Benchmark: PowerCube request round trips on python-can's virtual bus.
+
+Run: ``python benchmarks/bench_hardware.py [n]``. Prints the median time of
+
+* the baseline: a raw frame echoed by a bare python-can thread (no protocol),
+* one driver request (GETPARAM ACT_FPOS: encode, send, echo rule, decode) answered
+  by ``hardware.sim.SimulatedArm``,
+* one executor sample (state, position, velocity, current of six modules: 24 requests),
+* protocol encode+decode alone,
+
+each with its ratio to the baseline measured in the same run. The executor's
+sample budget follows from it: a 50 ms FSTEP leaves room for a few samples.
+"""
+
+from __future__ import annotations
+
+import statistics
+import sys
+import threading
+import time
+import uuid
+
+import can
+
+from hardware import PowerCubeArm, SimulatedArm
+from hardware import protocol as P
+
+
+def _median(fn, n: int, reps: int = 5) -> float:
+    times = []
+    for _ in range(reps):
+        t0 = time.perf_counter()
+        for _ in range(n):
+            fn()
+        times.append((time.perf_counter() - t0) / n)
+    return statistics.median(times)
+
+
+def _raw_echo_baseline(n: int) -> float:
+    ch = f"bench-{uuid.uuid4().hex}"
+    stop = threading.Event()
+    a, b = can.Bus(interface="virtual", channel=ch), can.Bus(interface="virtual", channel=ch)
+
+    def echo():
+        while not stop.is_set():
+            f = b.recv(0.002)
+            if f is not None:
+                b.send(can.Message(arbitration_id=0x0A1, data=f.data, is_extended_id=False))
+
+    th = threading.Thread(target=echo, daemon=True)
+    th.start()
+    frame = can.Message(arbitration_id=0x0C1, data=[0x0A, 0x3C], is_extended_id=False)
+
+    def once():
+        a.send(frame)
+        a.recv(1.0)
+
+    try:
+        return _median(once, n)
+    finally:
+        stop.set()
+        th.join()
+        a.shutdown()
+        b.shutdown()
+
+
+def main(n: int = 500) -> None:
+    base = _raw_echo_baseline(n)
+    ch = f"bench-{uuid.uuid4().hex}"
+    with SimulatedArm.virtual(ch), can.Bus(interface="virtual", channel=ch) as bus:
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0)
+        m = arm.modules[0]
+        req = _median(m.get_pos, n)
+
+        def sample():
+            for mod in arm.modules:
+                for par in (P.Param.STATE, P.Param.ACT_FPOS, P.Param.ACT_FVEL, P.Param.ACT_FCUR):
+                    mod.get_param(par)
+
+        smp = _median(sample, max(n // 24, 5))
+    msg = P.GetParam(1, P.Param.ACT_FPOS)
+    reply = P.encode(P.ParamReply(1, P.Param.ACT_FPOS, 0.5))
+    codec = _median(lambda: (P.encode(msg), P.decode(reply)), n * 10)
+    print(f"{'what':44s} {'median':>10s} {'x baseline':>10s}")
+    for name, t in (("raw echo on virtual (baseline)", base),
+                    ("driver request GETPARAM (SimulatedArm)", req),
+                    ("executor sample, 6 modules x 4 requests", smp),
+                    ("protocol encode + decode", codec)):
+        print(f"{name:44s} {t * 1e6:8.1f} us {t / base:10.2f}")
+
+
+if __name__ == "__main__":
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 500)

@@ -1,0 +1,72 @@
+"""``iik solve``: all inverse-kinematics solutions of one pose.
+
+The pose is a position [m] and the Eq 42 Euler angles (corrected, see
+:mod:`iik.rotations`) in rad, or in degrees with ``--deg``. Prints every
+solution with its FK residuals, the joint-limit flag and the Eq 54 effort index
+to ``--previous`` (which, like the angles, is read in degrees with ``--deg``).
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+NAME = "solve"
+HELP = "all IK solutions of a pose given as --xyz X Y Z --zxz ALPHA BETA GAMMA"
+
+
+def add_arguments(p) -> None:
+    p.add_argument("--xyz", nargs=3, type=float, required=True, metavar=("X", "Y", "Z"),
+                   help="tool position in the base frame [m]")
+    p.add_argument("--zxz", nargs=3, type=float, required=True, metavar=("A", "B", "G"),
+                   help="Eq 42 Euler angles alpha beta gamma [rad, or deg with --deg]")
+    p.add_argument("--deg", action="store_true", help="angles in and out in degrees")
+    p.add_argument("--previous", nargs=6, type=float, default=None, metavar="Q",
+                   help="previous joint angles (for the Eq 54 effort index)")
+    p.add_argument("--method", choices=("complete", "thesis"), default="complete")
+    p.add_argument("--all", action="store_true", help="also list solutions outside the joint limits")
+    p.add_argument("--json", action="store_true", help="machine-readable output")
+
+
+def run(args) -> int:
+    import iik
+
+    ang = np.radians(args.zxz) if args.deg else np.array(args.zxz)
+    T = iik.pose_from_zxz(np.array(args.xyz), *ang)
+    res = iik.solve(T, method=args.method, within_limits=not args.all)
+    prev = None
+    if args.previous is not None:
+        prev = np.radians(args.previous) if args.deg else np.array(args.previous)
+    efforts = iik.effort_index(prev, res.q) if (prev is not None and res.count) else None
+    best = None
+    if prev is not None and res.count and np.any(res.within_limits):
+        idx = np.flatnonzero(res.within_limits)
+        best = int(idx[np.argmin(np.atleast_1d(efforts)[idx])])
+    conv = np.degrees if args.deg else (lambda x: x)
+    if args.json:
+        out = res.to_dict(degrees=args.deg)
+        out["pose"] = {"xyz_m": list(args.xyz), "zxz": list(args.zxz),
+                       "angle_unit": "deg" if args.deg else "rad"}
+        if efforts is not None:
+            for s, e in zip(out["solutions"], np.atleast_1d(efforts), strict=True):
+                s["effort_index"] = float(conv(e))
+            out["selected"] = best
+        print(json.dumps(out, indent=2))
+        return 0
+    unit = "deg" if args.deg else "rad"
+    if res.count == 0:
+        print(f"no solution: {res.reason}")
+        return 0
+    print(f"{res.count} solution(s) ({args.method}), joint angles in {unit}:")
+    for i in range(res.count):
+        q = " ".join(f"{v:9.4f}" for v in conv(res.q[i]))
+        extra = ""
+        if efforts is not None:
+            extra = f"  E={float(conv(np.atleast_1d(efforts)[i])):.4f} {unit}"
+            extra += "  <- selected" if i == best else ""
+        free = f"  free joints {res.free_joints[i]}" if res.free_joints[i] else ""
+        lim = "in limits" if res.within_limits[i] else "OUT of limits"
+        print(f"[{i:2d}] {q}   |dp|={res.position_residual[i]:.1e} m  "
+              f"|dR|={res.rotation_residual[i]:.1e} rad  {lim}{extra}{free}")
+    return 0

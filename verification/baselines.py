@@ -1,0 +1,120 @@
+"""Numerical IK baselines on Pinocchio: Newton (pseudo-inverse Jacobian) and damped least squares.
+
+Both use the real URDF (:func:`verification.models.thesis_model`): Pinocchio's
+forward kinematics of frame ``tool`` and its frame Jacobian in
+``LOCAL_WORLD_ALIGNED`` (rows v then w, base axes). The error is
+``[p* - p, log3(R* R^T)]`` (base frame). They return one solution (the one
+the iteration converges to from the initial guess), as the thesis's
+comparator does (Sec 4.2.1).
+
+* :func:`newton_pinv` - ``dq = J^+ e``; stops when every joint step is below
+  ``tol_step`` (the thesis: 1e-6 deg) or after ``max_iter`` iterations.
+* :func:`damped_least_squares` - ``dq = J^T (J J^T + lambda^2 I)^-1 e``.
+
+Units: m, rad.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from iik._validate import as_joints, as_poses
+
+from .models import thesis_model
+
+__all__ = ["NumericIKResult", "newton_pinv", "damped_least_squares", "THESIS_NEWTON_TOL"]
+
+#: Sec 4.2.1: "a similar tolerance of convergence was used (1e-6 degrees)" [rad].
+THESIS_NEWTON_TOL = np.radians(1e-6)
+
+
+@dataclass(frozen=True)
+class NumericIKResult:
+    """One numerical IK run.
+
+    Attributes:
+        q: Final joint angles (6,) [rad].
+        converged: Step below tolerance and pose error below ``tol_pose``.
+        iterations: Iterations used.
+        position_error: |p - p*| at the end [m].
+        rotation_error: Rotation angle between R and R* at the end [rad].
+    """
+
+    q: np.ndarray
+    converged: bool
+    iterations: int
+    position_error: float
+    rotation_error: float
+
+
+class _Model:
+    def __init__(self):
+        tm = thesis_model()
+        self.model = tm.model
+        self.data = tm.model.createData()
+        self.fid = tm.tool_frame_id
+
+    def error(self, q, M_target):
+        pin.framesForwardKinematics(self.model, self.data, q)
+        M = self.data.oMf[self.fid]
+        ep = M_target.translation - M.translation
+        er = pin.log3(M_target.rotation @ M.rotation.T)
+        return np.concatenate([ep, er])
+
+    def jacobian(self, q):
+        pin.computeJointJacobians(self.model, self.data, q)
+        return pin.getFrameJacobian(self.model, self.data, self.fid, pin.LOCAL_WORLD_ALIGNED)
+
+
+_MODEL: _Model | None = None
+
+
+def _model() -> _Model:
+    global _MODEL
+    if _MODEL is None:
+        _MODEL = _Model()
+    return _MODEL
+
+
+def _run(T, q0, step, *, tol_step: float, tol_pose: float, max_iter: int) -> NumericIKResult:
+    Tb, batched = as_poses(T, "T")
+    if batched:
+        raise ValueError("one pose at a time")
+    q = as_joints(q0, "q0")[0][0].copy()
+    m = _model()
+    Mt = pin.SE3(Tb[0, :3, :3], Tb[0, :3, 3])
+    it = 0
+    converged = False
+    for it in range(1, max_iter + 1):  # noqa: B007
+        e = m.error(q, Mt)
+        dq = step(m.jacobian(q), e)
+        q = q + dq
+        if np.max(np.abs(dq)) < tol_step:
+            converged = True
+            break
+    e = m.error(q, Mt)
+    pe, re = float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:]))
+    converged = converged and pe <= tol_pose and re <= tol_pose
+    return NumericIKResult(q=q, converged=converged, iterations=it, position_error=pe,
+                           rotation_error=re)
+
+
+def newton_pinv(T, q0, *, tol_step: float = THESIS_NEWTON_TOL, tol_pose: float = 1e-6,
+                max_iter: int = 100) -> NumericIKResult:
+    """Newton's method with the pseudo-inverse Jacobian (the thesis's comparator, Sec 4.2.1)."""
+    return _run(T, q0, lambda J, e: np.linalg.pinv(J) @ e, tol_step=tol_step,
+                tol_pose=tol_pose, max_iter=max_iter)
+
+
+def damped_least_squares(T, q0, *, damping: float = 1e-3, tol_step: float = THESIS_NEWTON_TOL,
+                         tol_pose: float = 1e-6, max_iter: int = 200) -> NumericIKResult:
+    """Damped least squares (Levenberg-Marquardt style) with damping ``lambda`` [m]."""
+    lam2 = damping**2
+
+    def step(J, e):
+        return J.T @ np.linalg.solve(J @ J.T + lam2 * np.eye(6), e)
+
+    return _run(T, q0, step, tol_step=tol_step, tol_pose=tol_pose, max_iter=max_iter)
