@@ -138,7 +138,8 @@ def scenario_trajectory(name: str, speed: float = 0.5):
     free = np.zeros(len(q), dtype=bool)
     if cart is not None and len(cart.points) == len(q):
         poses = poses_of(np.asarray(cart.points), np.asarray(cart.euler))
-        free[list(res.beta_changed_steps) + list(res.alpha_changed_steps)] = True
+        free[list(res.beta_changed_steps) + list(res.alpha_changed_steps)
+             + list(res.gamma_changed_steps)] = True
     else:
         print(f"{res.scenario.name}: planned by {res.method}; no Cartesian plan, poses are FK of the "
               "joints", file=sys.stderr)

@@ -539,16 +539,16 @@ def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None, T=None,
     starts = np.searchsorted(owner, np.arange(n))
     rank = np.arange(len(owner)) - starts[owner]
     K = int(rank.max()) + 1
-    # Duplicates share theta1; compare each row with its next `window` rows in
-    # theta1 order (theta1 near -pi is compared as theta1 + 2 pi).
+    # Duplicates share theta1; compare each row with the following rows in theta1
+    # order while they are within `near` (theta1 near -pi is compared as theta1 + 2 pi).
     t1 = np.where(qf[:, 0] < -np.pi + 1e-6, qf[:, 0] + _TWO_PI, qf[:, 0])
     o2 = np.lexsort((t1, owner))
     dup_flat = np.zeros(len(qf), dtype=bool)
-    for sft in range(1, min(K, 9)):
+    for sft in range(1, K):
         a, b = o2[:-sft], o2[sft:]
-        cand = (owner[a] == owner[b]) & (np.abs(t1[a] - t1[b]) <= near)
+        cand = (owner[a] == owner[b]) & (np.abs(t1[a] - t1[b]) <= max(near, tol))
         if not np.any(cand):
-            continue
+            break  # sorted by theta1: larger shifts are farther apart
         a, b = a[cand], b[cand]
         d = np.abs(qf[a] - qf[b])
         dmax = np.max(np.minimum(d, _TWO_PI - d), axis=1)

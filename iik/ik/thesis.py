@@ -60,13 +60,13 @@ def _E_flat(co, idx, th1, s):
 
 
 def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
-                      tol_deg: float = THESIS_TOL_DEG) -> dict:
+                      tol_deg: float = THESIS_TOL_DEG, accept_tol: float = ACCEPT_TOL) -> dict:
     """Run Sec 3.3 on validated poses ``T`` (n, 4, 4) and return every intermediate.
 
     Returns:
         dict with flat arrays over all tried configurations: ``owner`` (pose index),
         ``root`` (global root index), ``q`` (m, 6) [rad], ``pres`` [m], ``rres`` [rad],
-        ``ok`` (satisfies Eq 4 within :data:`ACCEPT_TOL`), and ``n_roots`` (n,).
+        ``ok`` (satisfies Eq 4 within ``accept_tol`` m and rad), and ``n_roots`` (n,).
     """
     n = T.shape[0]
     R, p = T[:, :3, :3], T[:, :3, 3]
@@ -139,7 +139,7 @@ def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
         pres, rres = pose_residuals(q, T[owner], arm)
     else:
         pres = rres = np.zeros(0)
-    ok = (pres <= ACCEPT_TOL) & (rres <= ACCEPT_TOL)
+    ok = (pres <= accept_tol) & (rres <= accept_tol)
     return {"owner": owner, "root": root, "q": q, "pres": pres, "rres": rres, "ok": ok,
             "n_roots": n_roots, "sigma": np.tile(s, 4)}
 

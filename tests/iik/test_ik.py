@@ -281,3 +281,14 @@ def test_wrist_on_joint1_axis_with_vertical_tool():
     r = iik.solve(T, within_limits=False)
     assert contains(r.q, q, T, ARM, free_joints=r.free_joints)
     assert np.all(r.position_residual <= POSITION_TOL)
+
+
+def test_clustered_candidates_are_deduplicated_not_truncated():
+    """theta3 ~ 90 deg with theta4 ~ 90 deg: many clustered candidates; duplicates must merge
+    before the 16-solution cap (regression: the generating q was cut off)."""
+    q = np.array([2.507781185021448, 1.4742098351302193, 1.5707963268300342,
+                  1.567367861137023, -1.0916596700323127, 1.8143558774026767])
+    T = iik.fk(q)
+    r = iik.solve(T, within_limits=False)
+    assert r.count < MAX_SOLUTIONS
+    assert contains(r.q, q, T, ARM, free_joints=r.free_joints)
