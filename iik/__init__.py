@@ -5,12 +5,23 @@ Pure NumPy/SciPy; no I/O. Units are SI (m, rad, s) throughout.
 """
 
 from .arm import THESIS_ARM, Arm
+from .dexterity import Dexterity, DexterityError, dexterity
 from .dh import DHRow, DHTable, dh_chain
 from .errors import IIKError, InvalidInputError, ScenarioError, UnreachablePoseError
+from .ik import (
+    IKResult,
+    PathResult,
+    effort_index,
+    follow_path,
+    pose_from_zxz,
+    select,
+    solve,
+    solve_many,
+    zxz_from_matrix,
+)
 from .kinematics import fk, fk_chain, jacobian, joint_frames, position_jacobian
-from .ik import (IKResult, PathResult, effort_index, follow_path, pose_from_zxz, select, solve,
-                 solve_many, zxz_from_matrix)
-from .dexterity import Dexterity, DexterityError, dexterity
+from .rotations import zxz_matrix
+from .scene import THESIS_SCENE, Scene
 from .workspace import ClosestReachable, closest_reachable, in_workspace
 
 __all__ = [
@@ -33,6 +44,9 @@ __all__ = [
     "follow_path",
     "pose_from_zxz",
     "zxz_from_matrix",
+    "zxz_matrix",
+    "Scene",
+    "THESIS_SCENE",
     "IIKError",
     "InvalidInputError",
     "ScenarioError",
