@@ -119,6 +119,9 @@ def beta_convention(ctx):
     l1, l2 = ARM.l1, ARM.l2
     p0 = T0[:3, 3]
     bp = np.degrees(np.arctan((p0[2] - l1) / np.hypot(p0[0] - l2, p0[1])))
+    # Sec 3.5 puts beta' = bp and alpha' = atan2(py, px) at home; Eq 42 (fk) gives be42, al42
+    mismatch = (abs(np.degrees(be42) - bp) > 1e-6
+                or abs(np.degrees(al42) - np.degrees(np.arctan2(p0[1], p0[0]))) % 360 > 1e-6)
     return Row(
         "The beta of Sec 3.5 (Eq 43-51) is the beta of the Z-X-Z matrix of Eq 42 (r13 = c_a s_b, "
         "r23 = s_a s_b, r33 = c_b).",
@@ -129,8 +132,8 @@ def beta_convention(ctx):
         f"beta = {np.degrees(be42):.1f} deg; "
         f"Eq 43-44 give beta' = {bp:.1f} deg, delta = 0 (beta = 0), Eq 46 alpha' = 0. iik.dexterity at home: "
         f"beta range [{np.degrees(r.beta_range[0]):.1f}, {np.degrees(r.beta_range[1]):.1f}] deg (Eq 42).",
-        Verdict.ERRATUM,
-        errata=(Erratum(
+        Verdict.ERRATUM if mismatch else Verdict.HOLDS,
+        errata=() if not mismatch else (Erratum(
             "Eq 43-51 vs Eq 42",
             "beta = atan(rise/run) of link 5 (inclination from the horizontal, Eq 43, 47) and alpha' = "
             "atan2(py, px) (Eq 46), used as the Eq 42 Euler angles",
