@@ -21,8 +21,10 @@ end-effector error summary (Sec 4.3).
 
 from __future__ import annotations
 
+import contextlib
 import math
 import sys
+import time
 import uuid
 from pathlib import Path
 
@@ -122,14 +124,20 @@ def scenario_trajectory(name: str, speed: float = 0.5):
     fallback path there is no Cartesian plan and the poses are FK of the joints.
     """
     from hardware.executor import time_steps
+    from iik.errors import ScenarioError
     from iik.kinematics import fk
     from iik.planning import poses_of
     from iik.resources import scenarios_dir
     from verification.pipeline import PlanningFailed, PlanOptions, plan_scenario
 
     path = Path(name)
-    if not path.exists():
-        path = scenarios_dir() / f"{name}.toml"
+    if not path.is_file():
+        shipped = scenarios_dir() / f"{name}.toml"
+        if path.suffix or len(path.parts) > 1 or not shipped.is_file():
+            names = ", ".join(sorted(f.stem for f in scenarios_dir().glob("*.toml")))
+            raise ScenarioError("scenario", f"{name!r} is neither a scenario file nor a shipped "
+                                f"scenario ({names})")
+        path = shipped
     res = plan_scenario(path, options=PlanOptions(timing=False))
     if not res.success:
         raise PlanningFailed(res)
@@ -149,11 +157,39 @@ def scenario_trajectory(name: str, speed: float = 0.5):
     return res.scenario.name, time_steps(q, speed_fraction=speed), q, poses, free
 
 
+# ----------------------------------------------------------------------------- simulated arm
+@contextlib.contextmanager
+def simulated_arm(module_ids=(1, 2, 3, 4, 5, 6), *, lag: float = 0.02, initial=None,
+                  timeout: float = 0.5, clock=time.monotonic):
+    """Yield ``(sim, arm)``: an in-process :class:`hardware.sim.SimulatedArm` on a private
+    ``virtual`` channel and a :class:`hardware.PowerCubeArm` talking to it.
+
+    Host and simulated modules are threads of this process, so the interpreter's
+    switch interval is shortened meanwhile (request round trips stay short) and
+    restored on exit; both the arm's bus and the simulator are closed on exit.
+    ``clock`` is the simulator's time source [s] (pass the same one to ``execute``).
+    """
+    import can
+
+    from hardware import PowerCubeArm, SimulatedArm
+
+    channel = f"iik-run-{uuid.uuid4().hex}"
+    switch = sys.getswitchinterval()
+    sys.setswitchinterval(0.0005)
+    try:
+        with SimulatedArm.virtual(channel, module_ids, lag=lag, initial=initial, clock=clock) as sim, \
+                PowerCubeArm(can.Bus(interface="virtual", channel=channel), module_ids, timeout=timeout,
+                             owns_bus=True) as arm:
+            yield sim, arm
+    finally:
+        sys.setswitchinterval(switch)
+
+
 # ----------------------------------------------------------------------------- main
 def run(args) -> int:
     import can
 
-    from hardware import PowerCubeArm, SimulatedArm, analyse, execute, read_run_log, validate
+    from hardware import PowerCubeArm, analyse, execute, read_run_log, validate
     from hardware.analysis import plot_run, summary_text
     from hardware.errors import BusError
     from hardware.executor import ExecutionOptions, ValidationOptions
@@ -175,16 +211,11 @@ def run(args) -> int:
           f"(Table I - {args.margin_deg} deg, speed limits, FK vs planned poses)", file=sys.stderr)
 
     sim = None
-    switch = sys.getswitchinterval()
+    stack = contextlib.ExitStack()
     if args.interface is None:
-        channel = f"iik-run-{uuid.uuid4().hex}"
         initial = traj.q[0] if args.sim_start == "plan" else None
-        # host and simulated modules are threads of this process: switch between them
-        # often so request round trips stay short (restored after the run)
-        sys.setswitchinterval(0.0005)
-        sim = SimulatedArm.virtual(channel, args.modules, lag=args.lag, initial=initial)
-        bus = can.Bus(interface="virtual", channel=channel)
-        arm = PowerCubeArm(bus, args.modules, timeout=args.timeout or 0.5, owns_bus=True)
+        sim, arm = stack.enter_context(simulated_arm(args.modules, lag=args.lag, initial=initial,
+                                                     timeout=args.timeout or 0.5))
         where = "simulated arm (in-process, virtual bus)"
     else:
         kw = {"port": args.port} if args.port is not None else {}
@@ -224,9 +255,7 @@ def run(args) -> int:
     except can.CanError as exc:
         raise BusError(str(exc)) from exc
     finally:
-        if sim is not None:
-            sim.close()
-        sys.setswitchinterval(switch)
+        stack.close()
     analysis = analyse(read_run_log(result.log_path))
     print(summary_text(analysis, name))
     if sim is not None:
