@@ -83,6 +83,11 @@ def _wrap(x):
     return np.pi - np.mod(np.pi - x, _TWO_PI)
 
 
+def _norm(x):
+    """Euclidean norm over the last axis; the same arithmetic as ``np.linalg.norm(x, axis=-1)``."""
+    return np.sqrt(np.add.reduce(x * x, axis=-1))
+
+
 def rotation_angle(R1: np.ndarray, R2: np.ndarray) -> np.ndarray:
     """Angle [rad] of ``R1^T R2``, accurate near 0: ``2 asin(|R1 - R2|_F / sqrt(8))``."""
     d = np.sqrt(np.sum((R1 - R2) ** 2, axis=(-2, -1)))
@@ -117,7 +122,7 @@ def eliminant_coefficients(R: np.ndarray, p: np.ndarray, arm: Arm) -> dict:
     Returns:
         dict with arrays (n, 3) ``a, b, P, Q`` (``[const, cos, sin]`` in theta1),
         ``c`` (n,) and the shifted wrist point ``D`` (n, 3) (Eq 9a-c corrected:
-        ``D = p + l5 z6 - l1 e_z``).
+        ``D = p + l5 z6 - l1 e_z``); ``abPQ`` (n, 4, 3) holds a, b, P, Q (which are views of it).
     """
     l1, l2, l3, l4, l5 = arm.lengths
     z = R[:, :, 2]
@@ -126,48 +131,62 @@ def eliminant_coefficients(R: np.ndarray, p: np.ndarray, arm: Arm) -> dict:
     xD, yD, zD = D[:, 0], D[:, 1], D[:, 2]
     r13, r23, r33 = z[:, 0], z[:, 1], z[:, 2]
     n = len(p)
-    zero = np.zeros(n)
+    X = np.empty((n, 4, 3))  # a, b, P, Q as [const, cos, sin] rows
+    a, b, P, Q = X[:, 0], X[:, 1], X[:, 2], X[:, 3]
     # Eq 8: P c2 + Q s2 = 0 with P = (r23 zD - r33 yD) c1 + (r33 xD - r13 zD) s1,
     #       Q = (r23 xD - r13 yD) + r13 l2 s1 - r23 l2 c1
-    P = np.stack([zero, r23 * zD - r33 * yD, r33 * xD - r13 * zD], axis=1)
-    Q = np.stack([r23 * xD - r13 * yD, -r23 * l2, r13 * l2], axis=1)
+    P[:, 0], P[:, 1], P[:, 2] = 0.0, r23 * zD - r33 * yD, r33 * xD - r13 * zD
+    Q[:, 0], Q[:, 1], Q[:, 2] = r23 * xD - r13 * yD, -r23 * l2, r13 * l2
     # Eq 11: E = a + b c2 + c s2
     K = xD**2 + yD**2 + zD**2 + l2**2 + l3**2 - l4**2
-    a = np.stack([K, -2 * l2 * xD, -2 * l2 * yD], axis=1)
-    b = np.stack([np.full(n, 2 * l3 * l2), -2 * l3 * xD, -2 * l3 * yD], axis=1)
+    a[:, 0], a[:, 1], a[:, 2] = K, -2 * l2 * xD, -2 * l2 * yD
+    b[:, 0], b[:, 1], b[:, 2] = 2 * l3 * l2, -2 * l3 * xD, -2 * l3 * yD
     c = 2 * l3 * zD
-    return {"a": a, "b": b, "c": c, "P": P, "Q": Q, "D": D}
+    return {"a": a, "b": b, "c": c, "P": P, "Q": Q, "D": D, "abPQ": X}
+
+
+def _F_cs(co, C, S):
+    """F = a^2 (P^2+Q^2) - (bQ - cP)^2 from cos/sin of theta1 (broadcast to (n, m))."""
+    X = _abPQ(co)[:, None]  # (n, 1, 4, 3)
+    v = X[..., 0] + X[..., 1] * C[..., None] + X[..., 2] * S[..., None]
+    a, b, P, Q = v[..., 0], v[..., 1], v[..., 2], v[..., 3]
+    g = b * Q - co["c"][:, None] * P
+    return a * a * (P * P + Q * Q) - g * g
 
 
 def _F_at(co, th):
     """F(theta1) = a^2 (P^2+Q^2) - (bQ - cP)^2 at angles th (n, m)."""
-    C, S = np.cos(th), np.sin(th)
-    a = _trig1(co["a"][:, None], C, S)
-    b = _trig1(co["b"][:, None], C, S)
-    P = _trig1(co["P"][:, None], C, S)
-    Q = _trig1(co["Q"][:, None], C, S)
-    g = b * Q - co["c"][:, None] * P
-    return a * a * (P * P + Q * Q) - g * g
+    return _F_cs(co, np.cos(th), np.sin(th))
 
 
 def _quad_in_t(x, cr, sr):
     """Numerator of x0 + xc cos(th) + xs sin(th), th = th_r + phi, t = tan(phi/2).
 
-    Returns ascending coefficients (n, 3) of ``(1 + t^2) * x``.
+    ``x`` (n, ..., 3), ``cr``/``sr`` broadcastable to ``x[..., 0]``. Returns ascending
+    coefficients (n, ..., 3) of ``(1 + t^2) * x``.
     """
-    x0 = x[:, 0]
-    xc = x[:, 1] * cr + x[:, 2] * sr
-    xs = -x[:, 1] * sr + x[:, 2] * cr
-    return np.stack([x0 + xc, 2 * xs, x0 - xc], axis=1)
+    x0 = x[..., 0]
+    xc = x[..., 1] * cr + x[..., 2] * sr
+    xs = -x[..., 1] * sr + x[..., 2] * cr
+    out = np.empty(xc.shape + (3,))
+    out[..., 0], out[..., 1], out[..., 2] = x0 + xc, 2 * xs, x0 - xc
+    return out
 
 
 def _pmul(a, b):
-    """Batched product of ascending-coefficient polynomials (n, da) x (n, db)."""
-    n, da = a.shape
-    out = np.zeros((n, da + b.shape[1] - 1))
+    """Batched product of ascending-coefficient polynomials (..., da) x (..., db) (same batch shape)."""
+    da, db = a.shape[-1], b.shape[-1]
+    out = np.zeros(a.shape[:-1] + (da + db - 1,))
     for i in range(da):
-        out[:, i:i + b.shape[1]] += a[:, i:i + 1] * b
+        out[..., i:i + db] += a[..., i:i + 1] * b
     return out
+
+
+_GRID = np.arange(_N_REF) * (_TWO_PI / _N_REF)
+_GRID_C, _GRID_S = np.cos(_GRID + np.pi), np.sin(_GRID + np.pi)
+_ONE_T2 = np.array([1.0, 0.0, 1.0])
+_DIAG8 = np.arange(8)
+_SUB8 = (np.arange(1, 8), np.arange(7))  # companion-matrix subdiagonal
 
 
 def _theta1_candidates(co, imag_tol: float = 1e-3):
@@ -175,29 +194,31 @@ def _theta1_candidates(co, imag_tol: float = 1e-3):
     n = co["a"].shape[0]
     # Pick theta_r so that theta_r + pi (t = inf) is far from the roots:
     # the leading coefficient of the t-polynomial is F(theta_r + pi).
-    grid = np.arange(_N_REF) * (_TWO_PI / _N_REF)
-    Fg = np.abs(_F_at(co, np.broadcast_to(grid + np.pi, (n, _N_REF))))
-    th_r = grid[np.argmax(Fg, axis=1)]
-    cr, sr = np.cos(th_r), np.sin(th_r)
-    A = _quad_in_t(co["a"], cr, sr)
-    B = _quad_in_t(co["b"], cr, sr)
-    P = _quad_in_t(co["P"], cr, sr)
-    Q = _quad_in_t(co["Q"], cr, sr)
-    one_t2 = np.array([[1.0, 0.0, 1.0]])
-    G = _pmul(B, Q) - co["c"][:, None] * _pmul(np.broadcast_to(one_t2, P.shape), P)
-    A2 = _pmul(A, A)
-    F = _pmul(A2, _pmul(P, P) + _pmul(Q, Q)) - _pmul(G, G)  # (n, 9) ascending
+    Fg = np.abs(_F_cs(co, _GRID_C[None], _GRID_S[None]))
+    th_r = _GRID[np.argmax(Fg, axis=1)]
+    cr, sr = np.cos(th_r)[:, None], np.sin(th_r)[:, None]
+    X = _quad_in_t(_abPQ(co), cr, sr)  # (n, 4, 3): a, b, P, Q
+    # five products at once: B Q, A A, P P, Q Q, (1 + t^2) P
+    L = np.empty((n, 5, 3))
+    L[:, :4] = X[:, [1, 0, 2, 3]]
+    L[:, 4] = _ONE_T2
+    BQ, A2, PP, QQ, P1 = _pmul(L, X[:, [3, 0, 2, 3, 2]]).transpose(1, 0, 2)
+    G = BQ - co["c"][:, None] * P1
+    L2, R2 = np.empty((n, 2, 5)), np.empty((n, 2, 5))
+    L2[:, 0], L2[:, 1], R2[:, 0], R2[:, 1] = A2, G, PP + QQ, G
+    F2 = _pmul(L2, R2)
+    F = F2[:, 0] - F2[:, 1]  # (n, 9) ascending
     lead = F[:, 8]
     scale = np.max(np.abs(F), axis=1)
     degenerate = scale <= 1e-300
     ok = (np.abs(lead) > 1e-14 * scale) & ~degenerate
     cand = np.full((n, 8), np.nan)
     imag = np.full((n, 8), np.nan)
-    if np.any(ok):
+    if ok.any():
         Fk = F[ok]
         comp = np.zeros((Fk.shape[0], 8, 8))
         comp[:, 0, :] = -Fk[:, 7::-1] / Fk[:, 8:9]
-        comp[:, np.arange(1, 8), np.arange(7)] = 1.0
+        comp[:, _SUB8[0], _SUB8[1]] = 1.0
         t = np.linalg.eigvals(comp)  # Companion-matrix eigenvalues: all 8 roots
         near_real = np.abs(t.imag) <= imag_tol * (1.0 + np.abs(t))
         th = th_r[ok, None] + 2.0 * np.arctan(t.real)
@@ -206,30 +227,42 @@ def _theta1_candidates(co, imag_tol: float = 1e-3):
     return cand, imag, th_r, ~ok & ~degenerate, degenerate
 
 
-def _f_derivs(co, own, th, sigma):
-    """f_sigma = a N + sigma (b Q - c P) and its first two derivatives (flat arrays)."""
-    C, S = np.cos(th), np.sin(th)
-    vals = {}
-    for k in ("a", "b", "P", "Q"):
-        x = co[k][own]
-        v = _trig1(x, C, S)
-        d1 = _dtrig1(x, C, S)
-        d2 = x[..., 0] - v  # second derivative of a first-degree trig polynomial
-        vals[k] = (v, d1, d2)
-    (a, a1, a2), (b, b1, b2), (P, P1, P2), (Q, Q1, Q2) = (vals[k] for k in ("a", "b", "P", "Q"))
+def _abPQ(co):
+    """The four trig polynomials a, b, P, Q stacked as (n, 4, 3) (cached in ``co``)."""
+    x = co.get("abPQ")
+    if x is None:
+        x = co["abPQ"] = np.stack([co["a"], co["b"], co["P"], co["Q"]], axis=1)
+    return x
+
+
+def _f_derivs(co, own, th, sigma, second: bool = True):
+    """f_sigma = a N + sigma (b Q - c P) and its first two derivatives (flat arrays).
+
+    With ``second=False`` the second derivative is not computed (returned as None).
+    """
+    C, S = np.cos(th)[:, None], np.sin(th)[:, None]
+    x = _abPQ(co)[own]  # (m, 4, 3)
+    v = x[..., 0] + x[..., 1] * C + x[..., 2] * S
+    d1 = -x[..., 1] * S + x[..., 2] * C
+    a, b, P, Q = v.T
+    a1, b1, P1, Q1 = d1.T
     c = co["c"][own]
     N = np.hypot(P, Q)
     Ns = np.where(N > 1e-150, N, 1.0)
     u = P * P1 + Q * Q1
     N1 = u / Ns
+    g = b * Q - c * P
+    g1 = b1 * Q + b * Q1 - c * P1
+    f = a * N + sigma * g
+    f1 = a1 * N + a * N1 + sigma * g1
+    if not second:
+        return f, f1, None
+    d2 = x[..., 0] - v  # second derivative of a first-degree trig polynomial
+    a2, b2, P2, Q2 = d2.T
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
         N2 = (P1 * P1 + P * P2 + Q1 * Q1 + Q * Q2) / Ns - u * u / Ns**3
     N2 = np.where(np.isfinite(N2), N2, 0.0)
-    g = b * Q - c * P
-    g1 = b1 * Q + b * Q1 - c * P1
     g2 = b2 * Q + 2 * b1 * Q1 + b * Q2 - c * P2
-    f = a * N + sigma * g
-    f1 = a1 * N + a * N1 + sigma * g1
     f2 = a2 * N + 2 * a1 * N1 + a * N2 + sigma * g2
     return f, f1, f2
 
@@ -241,9 +274,10 @@ def _newton(co, own, th, sigma, order: int, iters: int = 8):
     for _ in range(iters):
         if len(act) == 0:
             break
-        d = _f_derivs(co, own[act], th[act], sigma[act])
+        d = _f_derivs(co, own[act], th[act], sigma[act], second=order > 0)
         num, den = d[order], d[order + 1]
-        step = np.clip(np.where(den != 0, num / np.where(den != 0, den, 1.0), 0.0), -0.05, 0.05)
+        nz = den != 0
+        step = np.clip(np.where(nz, num / np.where(nz, den, 1.0), 0.0), -0.05, 0.05)
         th[act] -= step
         act = act[np.abs(step) > 1e-15]
     return th
@@ -261,17 +295,19 @@ def _theta1_list(co, cand, imag, cluster_tol: float = 1e-3):
     valid = ~np.isnan(cand)
     own0, col = np.nonzero(valid)
     th0 = cand[own0, col]
-    fp = _f_derivs(co, own0, th0, 1.0)[0]
-    fm = _f_derivs(co, own0, th0, -1.0)[0]
-    s0 = np.where(np.abs(fp) <= np.abs(fm), 1.0, -1.0)
+    C, S = np.cos(th0)[:, None], np.sin(th0)[:, None]
+    x = _abPQ(co)[own0]
+    a, b, P, Q = (x[..., 0] + x[..., 1] * C + x[..., 2] * S).T
+    aN, g = a * np.hypot(P, Q), b * Q - co["c"][own0] * P
+    s0 = np.where(np.abs(aN + g) <= np.abs(aN - g), 1.0, -1.0)  # |f_+| <= |f_-|
     thA = _newton(co, own0, th0, s0, 0)
     d = np.abs(cand[:, :, None] - cand[:, None, :])
     d = np.minimum(d, _TWO_PI - d)
-    d[:, np.arange(8), np.arange(8)] = np.inf
-    crowded = np.nanmin(np.where(np.isnan(d), np.inf, d), axis=2) <= cluster_tol
+    d[:, _DIAG8, _DIAG8] = np.inf
+    crowded = np.where(np.isnan(d), np.inf, d).min(axis=2) <= cluster_tol
     susp = (imag[own0, col] > 1e-12) | crowded[own0, col]
     owns, ths, sigs, prios = [own0], [thA], [s0], [np.where(susp, 1.0, 1.5)]
-    if np.any(susp):
+    if susp.any():
         o, t = own0[susp], th0[susp]
         for sg in (1.0, -1.0):
             sv = np.full(len(o), sg)
@@ -289,31 +325,38 @@ def _theta1_list(co, cand, imag, cluster_tol: float = 1e-3):
             sigs += [sv, sv, sv[pair], sv[pair]]
             prios += [np.ones(len(o)), np.zeros(len(o)), np.full(pair.sum(), 2.0),
                       np.full(pair.sum(), 2.0)]
+    if len(owns) == 1:
+        return own0, _wrap(thA), s0, prios[0]
     return (np.concatenate(owns), _wrap(np.concatenate(ths)), np.concatenate(sigs),
             np.concatenate(prios))
 
 
-def _theta2_options(co, own, th1):
-    """theta2 candidates for theta1 (flat): from Eq 8 (two signs) and from Eq 11 alone.
+def _theta2_eq8(co, own, th1, sig):
+    """theta2 from Eq 8 for the sign ``sig`` of each flat (own, th1), and N = |(P, Q)|."""
+    C, S = np.cos(th1)[:, None], np.sin(th1)[:, None]
+    x = _abPQ(co)[own][:, 2:]
+    v = x[..., 0] + x[..., 1] * C + x[..., 2] * S
+    P, Q = v[:, 0], v[:, 1]
+    # Eq 9 corrected: tan(theta2) = -P / Q; sigma = -1 is the opposite direction
+    t2 = np.where(sig > 0, np.arctan2(-P, Q), np.arctan2(P, -Q))
+    return t2, np.hypot(P, Q)
 
-    Returns (m, 4) for flat (own, th1): [Eq 8 sigma=+1, Eq 8 sigma=-1, E=0 root 1, E=0 root 2].
-    The Eq 11-only roots matter where P = Q = 0 (Eq 8 vanishes identically);
-    elsewhere they are spurious and removed by the FK check.
+
+def _theta2_eq11(co, own, th1):
+    """The two theta2 roots of Eq 11 alone (m, 2), for rows where Eq 8 vanishes (P = Q = 0).
+
+    Elsewhere they are spurious and removed by the FK check.
     """
     C, S = np.cos(th1), np.sin(th1)
-    P = _trig1(co["P"][own], C, S)
-    Q = _trig1(co["Q"][own], C, S)
     a = _trig1(co["a"][own], C, S)
     b = _trig1(co["b"][own], C, S)
     c = co["c"][own]
-    t2a = np.arctan2(-P, Q)  # Eq 9 corrected: tan(theta2) = -P / Q
-    t2b = np.arctan2(P, -Q)
     # Eq 11 alone: a + b c2 + c s2 = 0  ->  theta2 = atan2(c, b) +- acos(-a / |(b, c)|)
     r = np.sqrt(b * b + c * c)
     phi = np.arctan2(c, b)
     ratio = np.clip(-a / np.where(r > 0, r, 1.0), -1.0, 1.0)
     acs = np.arccos(ratio)
-    return np.stack([t2a, t2b, phi + acs, phi - acs], axis=-1)
+    return np.stack([phi + acs, phi - acs], axis=-1)
 
 
 def _wrist(R, D, th1, th2, arm: Arm, free_tol: float):
@@ -321,23 +364,31 @@ def _wrist(R, D, th1, th2, arm: Arm, free_tol: float):
     l1, l2, l3, l4, l5 = arm.lengths
     c1, s1, c2, s2 = np.cos(th1), np.sin(th1), np.cos(th2), np.sin(th2)
     # Rows of 2_0 R (Eq 18, rotation part): frame-2 axes in base coordinates.
-    r1 = np.stack([c1 * s2, s1 * s2, c2], axis=-1)
-    r2 = np.stack([c1 * c2, s1 * c2, -s2], axis=-1)
-    r3 = np.stack([-s1, c1, np.zeros_like(c1)], axis=-1)
-    w = D[:, None, :] - np.stack([l2 * c1, l2 * s1, np.zeros_like(c1)], axis=-1)  # D - B
+    R2 = np.zeros(c1.shape + (3, 3))
+    R2[..., 0, 0], R2[..., 0, 1], R2[..., 0, 2] = c1 * s2, s1 * s2, c2
+    R2[..., 1, 0], R2[..., 1, 1], R2[..., 1, 2] = c1 * c2, s1 * c2, -s2
+    R2[..., 2, 0], R2[..., 2, 1] = -s1, c1
+    B = np.zeros(c1.shape + (3,))
+    B[..., 0], B[..., 1] = l2 * c1, l2 * s1
+    w = D[:, None, :] - B  # D - B
     z = R[:, None, :, 2]
-    dx, dy, dz = (np.sum(r * w, axis=-1) for r in (r1, r2, r3))  # D in frame 2
-    zx, zy, zz = (np.sum(r * z, axis=-1) for r in (r1, r2, r3))  # z6 in frame 2
+    d2 = np.sum(R2 * w[..., None, :], axis=-1)  # D in frame 2
+    z2 = np.sum(R2 * z[..., None, :], axis=-1)  # z6 in frame 2
+    dx, dy, dz, zx, zy, zz = d2[..., 0], d2[..., 1], d2[..., 2], z2[..., 0], z2[..., 1], z2[..., 2]
     # Eq 18 last column: D_2 = (l4 c3 s4, l3 + l4 c4, -l4 s3 s4); Eq 25/26: z6_2 = (-c3 s45, -c45, s3 s45)
-    hp = np.stack([-dz, dx], axis=-1) / l4  # = s4 (s3, c3)
-    ho = np.stack([zz, -zx], axis=-1)  # = s45 (s3, c3)
-    npos = np.linalg.norm(hp, axis=-1)
-    nori = np.linalg.norm(ho, axis=-1)
+    hp = np.empty(dx.shape + (2,))
+    hp[..., 0], hp[..., 1] = -dz, dx
+    hp /= l4  # = s4 (s3, c3)
+    ho = np.empty(dx.shape + (2,))
+    ho[..., 0], ho[..., 1] = zz, -zx  # = s45 (s3, c3)
+    npos = _norm(hp)
+    nori = _norm(ho)
     h = np.where((npos >= nori)[..., None], hp, ho)
     free = np.maximum(npos, nori) <= free_tol
     h = np.where(free[..., None], np.array([0.0, 1.0]), h)  # representative theta3 = 0
     th3a = np.arctan2(h[..., 0], h[..., 1])
-    th3 = np.stack([th3a, _wrap(th3a + np.pi)], axis=-1)  # the two wrist branches
+    th3 = np.empty(th3a.shape + (2,))
+    th3[..., 0], th3[..., 1] = th3a, _wrap(th3a + np.pi)  # the two wrist branches
     c3, s3 = np.cos(th3), np.sin(th3)
     s4 = (c3 * dx[..., None] - s3 * dz[..., None]) / l4
     c4 = np.broadcast_to(((dy - l3) / l4)[..., None], s4.shape)
@@ -345,7 +396,9 @@ def _wrist(R, D, th1, th2, arm: Arm, free_tol: float):
     s45 = -c3 * zx[..., None] + s3 * zz[..., None]  # Eq 25 and its (3,3) companion
     c45 = np.broadcast_to(-zy[..., None], s45.shape)  # Eq 26
     th5 = _wrap(np.arctan2(s45, c45) - th4)  # Eq 28
-    return np.stack([th3, th4, th5], axis=-1), free
+    out = np.empty(th3.shape + (3,))
+    out[..., 0], out[..., 1], out[..., 2] = th3, th4, th5
+    return out, free
 
 
 def _pose_error(q, T, arm: Arm):
@@ -362,9 +415,9 @@ def _solve6(J, e):
     det = np.abs(np.linalg.det(J))
     ok = det > 1e-12
     dq = np.empty_like(e)
-    if np.any(ok):
+    if ok.any():
         dq[ok] = np.linalg.solve(J[ok], e[ok, :, None])[..., 0]
-    if not np.all(ok):
+    if not ok.all():
         dq[~ok] = np.einsum("nij,nj->ni", np.linalg.pinv(J[~ok], rcond=1e-13), e[~ok])
     return dq
 
@@ -408,6 +461,22 @@ def _newton_polish(q, T, arm: Arm, iters: int = 12, step_tol: float = 1e-14):
     return q
 
 
+def _residuals_theta6(T0, th6, T):
+    """:func:`pose_residuals` of q from ``T0 = fk(q with theta6 = 0)`` without a second FK.
+
+    The tool point does not move with theta6 and ``R(q) = R0 Rz(theta6)``; written
+    as below, every entry is bit-for-bit the Eq 4 expression :func:`fk` evaluates.
+    """
+    c6, s6 = np.cos(th6)[:, None], np.sin(th6)[:, None]
+    R0 = T0[:, :3, :3]
+    R = np.empty_like(R0)
+    R[:, :, 0] = c6 * R0[:, :, 0] + s6 * R0[:, :, 1]
+    R[:, :, 1] = -s6 * R0[:, :, 0] + c6 * R0[:, :, 1]
+    R[:, :, 2] = R0[:, :, 2]
+    return (_norm(T0[:, :3, 3] - T[:, :3, 3]),
+            rotation_angle(R, T[:, :3, :3]))
+
+
 def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
                  tol_r: float = ROTATION_TOL):
     """All IK solutions of a batch of poses, as padded arrays (the vectorised core).
@@ -430,7 +499,7 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
     careful = prio != 1.5  # from a suspicious (clustered / complex) root: always polish
     prio = np.where(careful, prio, 1.0)
     fr1 = np.zeros(len(own), dtype=bool)
-    if np.any(degenerate):
+    if degenerate.any():
         # F identically zero: theta1 is free (continuum); representatives 0 and pi.
         dg = np.flatnonzero(degenerate)
         own = np.concatenate([own, dg, dg])
@@ -439,19 +508,18 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
         prio = np.concatenate([prio, np.ones(2 * len(dg))])
         careful = np.concatenate([careful, np.ones(2 * len(dg), dtype=bool)])
         fr1 = np.concatenate([fr1, np.ones(2 * len(dg), dtype=bool)])
-    opts = _theta2_options(co, own, t1)  # (m, 4)
-    t2 = np.where(sig > 0, opts[:, 0], opts[:, 1])
+    t2, N = _theta2_eq8(co, own, t1, sig)
     # Where Eq 8 vanishes identically (P = Q = 0) theta2 comes from Eq 11 alone.
-    C, S = np.cos(t1), np.sin(t1)
-    N = np.hypot(_trig1(co["P"][own], C, S), _trig1(co["Q"][own], C, S))
-    scale = np.linalg.norm(co["D"], axis=1)[own] + arm.l2 + arm.l3
+    scale = _norm(co["D"])[own] + arm.l2 + arm.l3
     weak = (N <= 1e-6 * scale) | fr1
-    own = np.concatenate([own, own[weak], own[weak]])
-    t1 = np.concatenate([t1, t1[weak], t1[weak]])
-    t2 = np.concatenate([t2, opts[weak, 2], opts[weak, 3]])
-    prio = np.concatenate([prio, prio[weak], prio[weak]])
-    careful = np.concatenate([careful | weak, np.ones(2 * int(weak.sum()), dtype=bool)])
-    fr1 = np.concatenate([fr1, fr1[weak], fr1[weak]])
+    if weak.any():
+        opts = _theta2_eq11(co, own[weak], t1[weak])
+        own = np.concatenate([own, own[weak], own[weak]])
+        t1 = np.concatenate([t1, t1[weak], t1[weak]])
+        t2 = np.concatenate([t2, opts[:, 0], opts[:, 1]])
+        prio = np.concatenate([prio, prio[weak], prio[weak]])
+        careful = np.concatenate([careful | weak, np.ones(2 * int(weak.sum()), dtype=bool)])
+        fr1 = np.concatenate([fr1, fr1[weak], fr1[weak]])
     wr, free3 = _wrist(R[own], co["D"][own], t1[:, None], t2[:, None], arm, FREE_TOL)
     k = len(t1)
     q = np.empty((k, 2, 6))
@@ -470,14 +538,14 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
     careful = np.repeat(careful, 2)[keep_branch.reshape(-1)]
     Tq = fk(qf, arm)
     Tt = T[owner]
-    near = np.linalg.norm(Tq[:, :3, 3] - Tt[:, :3, 3], axis=1) <= 1e-3
+    near = _norm(Tq[:, :3, 3] - Tt[:, :3, 3]) <= 1e-3
+    qf, flf, owner, Tt, prio, careful, Tq = (x[near] for x in (qf, flf, owner, Tt, prio, careful, Tq))
     # theta6: R_fk(theta6 = 0)^T R = Rz(theta6) (Eq 31-33 equivalently)
     M = np.einsum("nji,njk->nik", Tq[:, :3, :3], Tt[:, :3, :3])
     qf[:, 5] = np.arctan2(M[:, 1, 0], M[:, 0, 0])
-    qf, flf, owner, Tt, prio, careful = (x[near] for x in (qf, flf, owner, Tt, prio, careful))
-    pres, rres = pose_residuals(qf, Tt, arm)
+    pres, rres = _residuals_theta6(Tq, qf[:, 5], Tt)
     polish = (pres <= 1e-3) & (rres <= 1e-2) & (careful | (pres > 1e-14) | (rres > 1e-14))
-    if np.any(polish):
+    if polish.any():
         qf[polish] = _newton_polish(qf[polish], Tt[polish], arm)
         pres[polish], rres[polish] = pose_residuals(qf[polish], Tt[polish], arm)
     qf = _wrap(qf)
@@ -485,7 +553,7 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
     s4, s45 = np.abs(np.sin(qf[:, 3])), np.abs(np.sin(qf[:, 3] + qf[:, 4]))
     flf = np.where((s4 <= CONTINUUM_SIN) & (s45 <= CONTINUUM_SIN), flf | FREE_Q3_Q6, flf & ~FREE_Q3_Q6)
     c36 = (flf & FREE_Q3_Q6) > 0
-    if np.any(c36):
+    if c36.any():
         qs = _snap_continuum(qf[c36], Tt[c36], arm)
         ps, rs = pose_residuals(qs, Tt[c36], arm)
         better = (ps <= tol_p) & (rs <= tol_r)
@@ -514,6 +582,31 @@ def _connected(qa, qb, T, arm: Arm, tol_p: float = POSITION_TOL, tol_r: float = 
     return ok
 
 
+def _canonical_order(qf, owner):
+    """Order of rows by (owner, round(q, 9) lexicographically): the deterministic order.
+
+    Same permutation as ``np.lexsort`` on the seven keys (``np.round(x, 9)`` is
+    ``rint(x 1e9) / 1e9``, so the integers ``rint(x 1e9)`` order and tie alike), but
+    sorts (owner, theta1) packed in one int64 plus theta2, theta3 first and falls back
+    to all keys only if rows still tie.
+    """
+    key = np.rint(qf * 1e9).astype(np.int64)  # |q| <= pi: |key| < 2**32
+    head = owner.astype(np.int64) * (1 << 33) + (key[:, 0] + (1 << 32))
+    order = np.lexsort((key[:, 2], key[:, 1], head))
+    k = key[order]
+    h = head[order]
+    tie = (h[1:] == h[:-1]) & np.all(k[1:, 1:3] == k[:-1, 1:3], axis=1)
+    if tie.any():  # sort each run of tied rows by theta4..theta6 (stable, in place)
+        member = np.zeros(len(order), dtype=bool)
+        member[1:] |= tie
+        member[:-1] |= tie
+        gid = np.cumsum(np.concatenate([[True], ~tie]))
+        idx = np.flatnonzero(member)
+        ks = k[idx]
+        order[idx] = order[idx][np.lexsort((ks[:, 5], ks[:, 4], ks[:, 3], gid[idx]))]
+    return order
+
+
 def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None, T=None, arm=None,
             near: float = 1e-4):
     """Distinct solutions per pose, sorted lexicographically; padded to MAX_SOLUTIONS.
@@ -533,8 +626,7 @@ def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None, T=None,
     out_r = np.full((n, MAX_SOLUTIONS), np.nan)
     if len(qf) == 0:
         return out_q, out_v, out_f, out_p, out_r
-    key = np.round(qf, 9)  # canonical rounding for a deterministic order
-    order = np.lexsort((key[:, 5], key[:, 4], key[:, 3], key[:, 2], key[:, 1], key[:, 0], owner))
+    order = _canonical_order(qf, owner)
     qf, flf, owner, pres, rres, prio = (x[order] for x in (qf, flf, owner, pres, rres, prio))
     starts = np.searchsorted(owner, np.arange(n))
     rank = np.arange(len(owner)) - starts[owner]
@@ -544,22 +636,28 @@ def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None, T=None,
     t1 = np.where(qf[:, 0] < -np.pi + 1e-6, qf[:, 0] + _TWO_PI, qf[:, 0])
     o2 = np.lexsort((t1, owner))
     dup_flat = np.zeros(len(qf), dtype=bool)
+    # pos: positions i in o2 whose pair (i, i + sft) may still be a candidate. Sorted by
+    # (owner, theta1), a pair that fails at shift sft fails at every larger shift, so
+    # each row is only carried while it has a near neighbour (linear, not N x K).
+    pos = np.arange(len(o2))
     for sft in range(1, K):
-        a, b = o2[:-sft], o2[sft:]
+        pos = pos[pos + sft < len(o2)]
+        a, b = o2[pos], o2[pos + sft]
         cand = (owner[a] == owner[b]) & (np.abs(t1[a] - t1[b]) <= max(near, tol))
-        if not np.any(cand):
+        if not cand.any():
             break  # sorted by theta1: larger shifts are farther apart
+        pos = pos[cand]
         a, b = a[cand], b[cand]
         d = np.abs(qf[a] - qf[b])
         dmax = np.max(np.minimum(d, _TWO_PI - d), axis=1)
         same = dmax <= tol
         # two representatives of one theta3/theta6 continuum
         c36 = ((flf[a] & flf[b] & FREE_Q3_Q6) > 0) & (dmax <= np.pi)
-        if np.any(c36):
+        if c36.any():
             dfix = np.abs(_wrap(qf[a][:, [0, 1, 3, 4]] - qf[b][:, [0, 1, 3, 4]]))
             same |= c36 & (np.max(dfix, axis=1) <= 1e-6)
         maybe = ~same & (dmax <= near)
-        if T is not None and np.any(maybe):
+        if T is not None and maybe.any():
             same[maybe] = _connected(qf[a[maybe]], qf[b[maybe]], T[owner[a[maybe]]], arm,
                                      1e-2 * POSITION_TOL, 1e-2 * ROTATION_TOL)
         a, b = a[same], b[same]
@@ -573,8 +671,9 @@ def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None, T=None,
     dup[owner, rank] = dup_flat
     keep = present & ~dup
     slot = np.cumsum(keep, axis=1) - 1
-    sel = keep[owner, rank] & (slot[owner, rank] < MAX_SOLUTIONS)
-    o, s = owner[sel], slot[owner, rank][sel]
+    slot_r = slot[owner, rank]
+    sel = keep[owner, rank] & (slot_r < MAX_SOLUTIONS)
+    o, s = owner[sel], slot_r[sel]
     out_q[o, s], out_v[o, s], out_f[o, s] = qf[sel], True, flf[sel]
     out_p[o, s], out_r[o, s] = pres[sel], rres[sel]
     return out_q, out_v, out_f, out_p, out_r

@@ -50,6 +50,17 @@ class IKResult:
         fj = tuple(tuple(int(j) for j in f) for f in self.free_joints) or ((),) * len(self.q)
         object.__setattr__(self, "free_joints", fj)
 
+    @classmethod
+    def _trusted(cls, q, position_residual, rotation_residual, within_limits, free_joints,
+                 reason, method, info) -> IKResult:
+        """Build without copying: the caller passes read-only float/bool arrays it owns
+        ((k, 6), (k,), (k,), (k,)) and a normalised ``free_joints`` tuple (one per row)."""
+        self = object.__new__(cls)
+        self.__dict__.update(q=q, position_residual=position_residual,
+                             rotation_residual=rotation_residual, within_limits=within_limits,
+                             free_joints=free_joints, reason=reason, method=method, info=info)
+        return self
+
     def __len__(self) -> int:
         return len(self.q)
 

@@ -32,23 +32,42 @@ def _check_method(method: str) -> None:
         raise InvalidInputError("method", f"expected one of {METHODS}, got {method!r}")
 
 
-def _build(q, valid, flags, pres, rres, arm, within_limits, method, info=None):
-    k = valid
-    qq, pp, rr, ff = q[k], pres[k], rres[k], flags[k]
-    inside = np.atleast_1d(arm.within_limits(qq, tol=LIMIT_TOL)) if len(qq) else np.zeros(0, bool)
-    if np.any(ff):  # a continuum representative stands for q within CONTINUUM_TOL of it
-        inside = inside | (np.atleast_1d(arm.within_limits(qq, tol=_complete.CONTINUUM_TOL)) & (ff > 0))
-    total = len(qq)
-    if within_limits:
-        qq, pp, rr, ff, inside = qq[inside], pp[inside], rr[inside], ff[inside], inside[inside]
-    reason = ""
-    if len(qq) == 0:
-        reason = ("unreachable: no joint configuration reaches this pose"
-                  if total == 0 else
-                  f"{total} solution(s) exist but none within the joint limits (Table I)")
-    free = tuple(_FREE.get(int(f), ()) for f in ff)
-    return IKResult(q=qq, position_residual=pp, rotation_residual=rr, within_limits=inside,
-                    free_joints=free, reason=reason, method=method, info=info or {})
+def _readonly(a):
+    a.setflags(write=False)
+    return a
+
+
+def _build_all(q, valid, flags, pres, rres, arm, within_limits, method):
+    """One :class:`IKResult` per pose from the padded arrays (n, S, ...) of a solver.
+
+    Vectorised over the batch: the limit test runs once on all rows; each result
+    holds read-only views of one compacted copy.
+    """
+    lo, hi = arm.q_min, arm.q_max
+    inside = np.all((q >= lo - LIMIT_TOL) & (q <= hi + LIMIT_TOL), axis=-1)
+    # a continuum representative stands for q within CONTINUUM_TOL of it
+    tol_c = _complete.CONTINUUM_TOL
+    inside |= (flags > 0) & np.all((q >= lo - tol_c) & (q <= hi + tol_c), axis=-1)
+    inside &= valid
+    total = valid.sum(axis=1)
+    keep = inside if within_limits else valid
+    counts = keep.sum(axis=1)
+    qq = _readonly(q[keep])
+    pp, rr = _readonly(pres[keep]), _readonly(rres[keep])
+    ii, ff = _readonly(inside[keep]), flags[keep].tolist()
+    bounds = np.concatenate([[0], np.cumsum(counts)]).tolist()
+    anyflag = np.any((flags > 0) & keep, axis=1).tolist()
+    out = []
+    for i, (k, t) in enumerate(zip(counts.tolist(), total.tolist(), strict=True)):
+        a, b = bounds[i], bounds[i + 1]
+        if k == 0:
+            reason = ("unreachable: no joint configuration reaches this pose" if t == 0 else
+                      f"{t} solution(s) exist but none within the joint limits (Table I)")
+        else:
+            reason = ""
+        free = tuple(_FREE.get(f, ()) for f in ff[a:b]) if anyflag[i] else ((),) * k
+        out.append(IKResult._trusted(qq[a:b], pp[a:b], rr[a:b], ii[a:b], free, reason, method, {}))
+    return out
 
 
 def solve(T, *, method: str = "complete", within_limits: bool = True,
@@ -72,7 +91,7 @@ def solve(T, *, method: str = "complete", within_limits: bool = True,
     Tb, batched = as_poses(T, "T")
     if batched:
         raise InvalidInputError("T", f"expected one (4, 4) pose, got shape {Tb.shape}; use solve_many")
-    return solve_many(Tb, method=method, within_limits=within_limits, arm=arm)[0]
+    return _solve_batch(Tb, method, within_limits, arm)[0]
 
 
 def solve_many(Ts, *, method: str = "complete", within_limits: bool = True,
@@ -80,12 +99,14 @@ def solve_many(Ts, *, method: str = "complete", within_limits: bool = True,
     """:func:`solve` for a batch (n, 4, 4) of poses (vectorised); identical answers."""
     _check_method(method)
     Tb, _ = as_poses(Ts, "Ts")
+    return _solve_batch(Tb, method, within_limits, arm)
+
+
+def _solve_batch(Tb, method, within_limits, arm):
     if method == "thesis":
         from .thesis import solve_thesis_arrays
 
         arrays = solve_thesis_arrays(Tb, arm)
     else:
         arrays = _complete.solve_arrays(Tb, arm)
-    q, valid, flags, pres, rres = arrays
-    return [_build(q[i], valid[i], flags[i], pres[i], rres[i], arm, within_limits, method)
-            for i in range(len(Tb))]
+    return _build_all(*arrays, arm, within_limits, method)
