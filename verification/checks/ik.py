@@ -350,26 +350,8 @@ def completeness(ctx):
 
 @register(SECTION, order=26.0)
 def benchmark(ctx):
-    import sys
+    from ..ik_benchmark import run
 
-    sys_path_added = False
-    try:
-        from benchmarks.bench_ik import run  # source checkout
-    except ImportError:
-        from pathlib import Path
-
-        root = Path(__file__).resolve().parents[2]
-        sys.path.insert(0, str(root))
-        sys_path_added = True
-        try:
-            from benchmarks.bench_ik import run
-        except ImportError:
-            return Row(claim="IIK costs less than Newton per solution", reference="Sec 4.2.1, Sec 5.2",
-                       method="benchmarks/bench_ik.py", numbers="-", verdict=Verdict.NOT_CHECKABLE,
-                       reason="benchmarks/ is not shipped in the wheel; run it from a source checkout")
-    finally:
-        if sys_path_added:
-            sys.path.pop(0)
     buf = io.StringIO()
     n = ctx.n(1500, 100)
     rows = run(n=n, n_single=ctx.n(150, 20), n_newton=ctx.n(100, 10), seed=ctx.seed, out=buf)
@@ -378,7 +360,8 @@ def benchmark(ctx):
     return Row(
         claim="The IIK needs less computation per solution than pseudo-inverse Newton",
         reference="Sec 4.2.1 (Fig 33, 37, 41), Sec 5.2",
-        method=f"benchmarks/bench_ik.py, {n} poses, same run; Newton from q + N(0, 0.1 rad); "
+        method=f"verification.ik_benchmark (= benchmarks/bench_ik.py), {n} poses, same run; "
+               "Newton from q + N(0, 0.1 rad); "
                "Python/NumPy timings, single-pose calls",
         numbers=f"median us/solution: thesis IIK {t['median_per_solution_us']:.0f}, complete "
                 f"{c['median_per_solution_us']:.0f}, Newton {nw['median_per_solution_us']:.0f}; "
