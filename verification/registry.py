@@ -126,6 +126,17 @@ class Context:
         fig_dir.mkdir(parents=True, exist_ok=True)
         return fig_dir / name, f"figures/{name}"
 
+    def save_figure(self, fig, name: str, dpi: int = 90) -> str:
+        """Lay out, save as ``figures/name`` and close a matplotlib figure; return its
+        path relative to the report (for :attr:`Row.figures`)."""
+        import matplotlib.pyplot as plt
+
+        path, rel = self.figure_path(name)
+        fig.tight_layout()
+        fig.savefig(path, dpi=dpi)
+        plt.close(fig)
+        return rel
+
 
 @dataclass(frozen=True)
 class Check:

@@ -73,9 +73,7 @@ def _eig_figure(ctx, results) -> str:
         ax.set_xticks(x)
         if k == 0:
             ax.legend(fontsize=7)
-    path, rel = ctx.figure_path("appendix_e_eigenvalues.png")
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
+    rel = ctx.save_figure(fig, "appendix_e_eigenvalues.png", dpi=80)
     return rel
 
 

@@ -222,9 +222,7 @@ def _figure(ctx, sw, adm_iik, adm_pr, cases) -> str:
         ax.set_ylabel("beta [deg] (Eq 42)")
     fig.suptitle("grey: solvable (iik.solve); blue: iik.dexterity; red: Eq 43-51 printed (converted)",
                  fontsize=8)
-    path, rel = ctx.figure_path("dexterity_alpha_beta.png")
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
+    rel = ctx.save_figure(fig, "dexterity_alpha_beta.png", dpi=80)
     return rel
 
 

@@ -341,9 +341,7 @@ def _hist(ctx, name, series, xlabel, title):
     ax.set_ylabel("count")
     ax.set_title(title)
     ax.legend(fontsize=8)
-    path, rel = ctx.figure_path(name)
-    fig.tight_layout()
-    fig.savefig(path, dpi=90)
+    rel = ctx.save_figure(fig, name, dpi=90)
     return rel
 
 

@@ -227,9 +227,7 @@ def missing_singularities(ctx):
         ax.set_ylabel("smallest singular value [m]")
         ax.set_title("reduced Jacobian through singular points in no set of Tables VI/VII", fontsize=8)
         ax.legend(fontsize=6)
-        path, rel = ctx.figure_path("singularity_missing_scan.png")
-        fig.tight_layout()
-        fig.savefig(path, dpi=80)
+        rel = ctx.save_figure(fig, "singularity_missing_scan.png", dpi=80)
         figs = (rel,)
     ex = ""
     if unexpl:

@@ -158,9 +158,7 @@ def _map_figure(ctx, name: str) -> str:
                      fontsize=9)
         if k == 1:
             ax.legend(fontsize=7, loc="lower right")
-    path, rel = ctx.figure_path(name)
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
+    rel = ctx.save_figure(fig, name, dpi=80)
     return rel
 
 
@@ -291,9 +289,7 @@ def three_surface_boundary(ctx):
     ax.set_xlabel("azimuth of the boundary point [deg]")
     ax.set_ylabel("z [m]")
     ax.set_title("true exterior boundary vs the three printed surfaces (Sec 3.4.3)", fontsize=9)
-    fpath, frel = ctx.figure_path("workspace_boundary_vs_surfaces.png")
-    fig.tight_layout()
-    fig.savefig(fpath, dpi=80)
+    frel = ctx.save_figure(fig, "workspace_boundary_vs_surfaces.png", dpi=80)
     if (~front).any():
         Bb = B[~front]
         rb = np.where(np.arctan2(Bb[:, 1], Bb[:, 0]) > 0, ARM.upper[0], ARM.lower[0])
