@@ -6,6 +6,7 @@ from hypothesis import given
 from scipy.spatial.transform import Rotation
 
 from verification.checks import kinematics as K
+from verification.models import tool_jacobians, tool_poses
 from verification.registry import Context, Verdict
 from verification.strategies import joint_vectors
 
@@ -121,8 +122,8 @@ def test_table_i_self_collision_claim_refuted_geometry_independently(ctx):
 
 @given(joint_vectors())
 def test_printed_eq4_and_appendix_c_match_pinocchio_at_hypothesis_q(q):
-    T_pin = K._pin_poses(q[None])[0]
+    T_pin = tool_poses(q[None])[0]
     assert np.abs(K.eq4_printed(q)[0] - T_pin).max() <= 1e-12
-    J_pin = K._pin_jacobians(q[None])[0]
+    J_pin = tool_jacobians(q[None])[0]
     for key, val in K.appc_printed(q).items():
         assert abs(val[0] - J_pin[int(key[2]) - 1, int(key[-1]) - 1]) <= 1e-12, key

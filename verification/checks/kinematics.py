@@ -19,7 +19,7 @@ from iik.resources import urdf_path
 from iik.rotations import euler_matrix
 from iik.urdf import thesis_urdf
 
-from ..models import thesis_model
+from ..models import thesis_model, tool_jacobians, tool_poses
 from ..plotting import draw_arm, draw_collision, draw_scene, new_figure
 from ..registry import Erratum, Row, Verdict, register
 from ..strategies import BEYOND, sample_joints
@@ -221,27 +221,6 @@ def eq42_printed(alpha, beta, gamma) -> np.ndarray:
 # ----------------------------------------------------------------------------- ground truth
 
 
-def _pin_poses(qs: np.ndarray) -> np.ndarray:
-    tm = thesis_model()
-    data = tm.model.createData()
-    out = np.empty((len(qs), 4, 4))
-    for k, q in enumerate(qs):
-        pin.framesForwardKinematics(tm.model, data, q)
-        out[k] = data.oMf[tm.tool_frame_id].homogeneous
-    return out
-
-
-def _pin_jacobians(qs: np.ndarray) -> np.ndarray:
-    """Frame Jacobian of ``tool`` in LOCAL_WORLD_ALIGNED, (n, 6, 6), rows [v; w]."""
-    tm = thesis_model()
-    data = tm.model.createData()
-    out = np.empty((len(qs), 6, 6))
-    for k, q in enumerate(qs):
-        out[k] = pin.computeFrameJacobian(tm.model, data, q, tm.tool_frame_id,
-                                          pin.LOCAL_WORLD_ALIGNED)
-    return out
-
-
 def _fd_position_jacobian(qs: np.ndarray, h: float = 1e-6) -> np.ndarray:
     """Central differences of the Table II tool point, (n, 3, 6) [m/rad]."""
     table = THESIS_ARM.dh_table()
@@ -350,7 +329,7 @@ def eq4_vs_pinocchio(ctx):
     """Eq 4 (as printed) vs Pinocchio FK of the URDF vs the Table II DH product."""
     qs = _samples(ctx, "eq4", 20000, 400)
     T_pr = eq4_printed(qs)
-    T_pin = _pin_poses(qs)
+    T_pin = tool_poses(qs)
     T_dh = dh_chain(table_ii_printed(), qs)
     T_iik = fk(qs)
     dp = {k: np.linalg.norm(T[:, :3, 3] - T_pin[:, :3, 3], axis=1)
@@ -372,7 +351,7 @@ def eq4_vs_pinocchio(ctx):
                       [2.2, -1.0, 1.0, -0.5, 1.2, 0.0]])
     for q in poses:
         draw_arm(ax, q, label=_fmt_q(q[:5]).replace(" rad", ""))
-        ax.scatter(*_pin_poses(q[None])[0, :3, 3], marker="x", color="k", s=40)
+        ax.scatter(*tool_poses(q[None])[0, :3, 3], marker="x", color="k", s=40)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")
@@ -534,7 +513,7 @@ def appendix_c(ctx):
     """Each printed entry of Appendix C vs Pinocchio's frame Jacobian and finite differences."""
     qs = _samples(ctx, "appc", 3000, 200)
     pr = appc_printed(qs)
-    J_pin = _pin_jacobians(qs)
+    J_pin = tool_jacobians(qs)
     J_fd = _fd_position_jacobian(qs)
     J_iik = position_jacobian(qs)
     rows, worst = [], {}
@@ -562,7 +541,7 @@ def appendix_c(ctx):
                 errata=(Erratum(f"App. C {key}", APPC_TEXT[key], "d/dtheta of Eq 55 (iik.position_jacobian)",
                                 f"{_fmt_q(qs[k])}: printed {val[k]:.6f}, true {J_pin[k, i, j]:.6f}"),)))
     # Eq 55: the position vector the entries differentiate
-    T_pin = _pin_poses(qs)
+    T_pin = tool_poses(qs)
     d55 = np.linalg.norm(eq55_printed(qs) - T_pin[:, :3, 3], axis=1)
     rows.insert(0, Row(
         "Appendix C: the global position vector G_theta = [f1, f2, f3] (f3 independent of theta1, "

@@ -14,13 +14,12 @@ import itertools
 from collections import Counter
 
 import numpy as np
-import pinocchio as pin
 from scipy.optimize import least_squares
 
 import iik
 from iik.singularities import ALL_SETS, TABLE_VI, TABLE_VII, at_limit_mask, reduced_rank, sample_set
 
-from ..models import thesis_model
+from ..models import tool_jacobians
 from ..plotting import new_figure
 from ..registry import Row, Verdict, register
 
@@ -28,17 +27,6 @@ SECTION = "Singularities (App. D, Tables VI-VII)"
 ARM = iik.THESIS_ARM
 _D = np.pi / 180
 RTOL = 1e-9
-
-
-def pin_position_jacobians(q: np.ndarray) -> np.ndarray:
-    """Pinocchio: (n, 3, 5) linear Jacobians of the tool frame (LOCAL_WORLD_ALIGNED)."""
-    tm = thesis_model()
-    model, data = tm.model, tm.model.createData()
-    out = np.empty((len(q), 3, 5))
-    for i, qi in enumerate(q):
-        J = pin.computeFrameJacobian(model, data, qi, tm.tool_frame_id, pin.LOCAL_WORLD_ALIGNED)
-        out[i] = J[:3, :5]
-    return out
 
 
 def _set_label(s) -> str:
@@ -78,7 +66,7 @@ def table_vi(ctx):
     worst_pin = 0.0
     for s in TABLE_VI:
         q = sample_set(s, n, rng, ARM)
-        J = pin_position_jacobians(q)
+        J = tool_jacobians(q)[:, :3, :5]
         worst_pin = max(worst_pin, float(np.abs(J - iik.position_jacobian(q)).max()))
         lim, rank, smin = _evaluate(s, q, J)
         frac = float(np.mean(rank < 3))
@@ -126,7 +114,7 @@ def table_vii(ctx):
         fr = []
         for s in group:
             q = sample_set(s, n, rng, ARM)
-            J = pin_position_jacobians(q)
+            J = tool_jacobians(q)[:, :3, :5]
             _, rank, _ = _evaluate(s, q, J)
             fr.append(float(np.mean(rank < 3)))
         s0 = group[0]
