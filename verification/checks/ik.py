@@ -33,9 +33,10 @@ def _sample(ctx, salt, full=4000, quick=300):
 
 
 def _truth(q):
-    """Ground truth from the DH chain: D (origin of frame 5), B (origin of frame 2), T."""
+    """Ground truth from the DH chain: D (origin of frame 5) in the frame of Sec 3.3.1
+    (base origin moved up by l1, Eq 9c) [m], and the pose T = 0_6T."""
     F = iik.joint_frames(q)
-    return F[:, 4, :3, 3], F[:, 1, :3, 3], F[:, 5]
+    return F[:, 4, :3, 3] - np.array([0, 0, ARM.l1]), F[:, 5]
 
 
 # ----------------------------------------------------------------------------- printed forms
@@ -66,8 +67,7 @@ def _PQ(T, D, th1):
 @register(SECTION, order=20.0)
 def wrist_point(ctx):
     q = _sample(ctx, "ik-wrist")
-    D_true, _B, T = _truth(q)
-    D_true = D_true - np.array([0, 0, ARM.l1])
+    D_true, T = _truth(q)
     err = np.linalg.norm(_printed_D(T) - D_true, axis=1)
     p, z = T[:, :3, 3], T[:, :3, 2]
     corr = p + ARM.l5 * z - np.array([0, 0, ARM.l1])
@@ -92,8 +92,7 @@ def wrist_point(ctx):
 @register(SECTION, order=20.5)
 def plane_and_length_equations(ctx):
     q = _sample(ctx, "ik-eq8")
-    D, _B, T = _truth(q)
-    D = D - np.array([0, 0, ARM.l1])
+    D, T = _truth(q)
     P, Q = _PQ(T, D, q[:, 0])
     c2, s2 = np.cos(q[:, 1]), np.sin(q[:, 1])
     eq8 = P * c2 + Q * s2  # Eq 8 (collected)
@@ -119,8 +118,7 @@ def plane_and_length_equations(ctx):
 @register(SECTION, order=21.0)
 def eq9_theta2(ctx):
     q = _sample(ctx, "ik-eq9")
-    D, _B, T = _truth(q)
-    D = D - np.array([0, 0, ARM.l1])
+    D, T = _truth(q)
     P, Q = _PQ(T, D, q[:, 0])
     printed = np.stack([np.arctan2(P, Q), np.arctan2(P, -Q)], axis=1)  # Eq 9: tan = P / (+-Q)
     corrected = np.stack([np.arctan2(-P, Q), np.arctan2(P, -Q)], axis=1)
@@ -175,8 +173,7 @@ def eq12_13_extrema(ctx):
 @register(SECTION, order=22.0)
 def eq14_theta4(ctx):
     q = _sample(ctx, "ik-eq14")
-    D, _B, T = _truth(q)
-    D = D - np.array([0, 0, ARM.l1])
+    D, T = _truth(q)
     c4p = _printed_c4(D, q[:, 0])
     x, y, z = D.T
     c1, s1 = np.cos(q[:, 0]), np.sin(q[:, 0])
