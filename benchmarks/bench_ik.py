@@ -4,12 +4,12 @@
     python benchmarks/bench_ik.py --n 500              # quick
     python benchmarks/bench_ik.py --recovery 100000    # plus the near-singular recovery sweep
 
-The implementation is :mod:`verification.ik_benchmark` (shared with ``iik verify``).
+The implementation is :mod:`verification.testing.ik_benchmark` (shared with ``iik verify``).
 """
 
 import sys
 
-from verification.ik_benchmark import main
+from verification.testing.ik_benchmark import main
 
 if __name__ == "__main__":
     sys.exit(main())

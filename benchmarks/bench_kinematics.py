@@ -16,8 +16,8 @@ import numpy as np
 import pinocchio as pin
 
 import iik
-from verification.models import thesis_model
-from verification.strategies import sample_joints
+from iik.planning.robot_model import thesis_model
+from verification.testing.strategies import sample_joints
 
 
 def _median_per_q(fn, n: int, reps: int = 7) -> float:

@@ -18,10 +18,10 @@ import statistics
 import time
 
 from iik.planning import build_path, track_branches
+from iik.planning.collision import SceneCollision
+from iik.planning.pipeline import PlanOptions, plan_scenario
+from iik.planning.scenario_io import load_scenario, platform_box
 from iik.resources import scenarios_dir
-from verification.collision import SceneCollision
-from verification.pipeline import PlanOptions, plan_scenario
-from verification.scenarios import load_scenario, platform_box
 
 
 def _median(fn, runs: int) -> float:

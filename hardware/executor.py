@@ -33,6 +33,7 @@ import numpy as np
 from iik.arm import THESIS_ARM, Arm
 from iik.errors import InvalidInputError
 from iik.kinematics import fk
+from iik.rotations import rotation_angle
 
 from . import protocol as P
 from .driver import PowerCubeArm
@@ -95,12 +96,6 @@ class ValidatedTrajectory:
 
     def __repr__(self) -> str:
         return f"ValidatedTrajectory(n={len(self)}, duration={self.times[-1]:.3f} s)"
-
-
-def _rotation_angle(Ra: np.ndarray, Rb: np.ndarray) -> np.ndarray:
-    """Angle [rad] of Ra^T Rb, batched (n,3,3)."""
-    c = (np.einsum("nij,nij->n", Ra, Rb) - 1.0) / 2.0
-    return np.arccos(np.clip(c, -1.0, 1.0))
 
 
 def validate(times, q, poses, *, arm: Arm = THESIS_ARM,
@@ -166,7 +161,7 @@ def validate(times, q, poses, *, arm: Arm = THESIS_ARM,
         raise SafetyError("poses", exc.reason) from None
     Tf = fk(qa, arm)
     dp = np.linalg.norm(Tf[:, :3, 3] - Ta[:, :3, 3], axis=1)
-    dr = _rotation_angle(Tf[:, :3, :3], Ta[:, :3, :3])
+    dr = rotation_angle(Tf[:, :3, :3], Ta[:, :3, :3])
     if orientation_free is not None:
         free = np.asarray(orientation_free, dtype=bool)
         if free.shape != (n,):

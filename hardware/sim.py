@@ -37,11 +37,14 @@ Faults (:meth:`SimulatedArm.inject`): ``"drop_ack"``, ``"late_ack"``, ``"error"`
 
 from __future__ import annotations
 
+import contextlib
 import heapq
 import itertools
 import math
+import sys
 import threading
 import time
+import uuid
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -54,7 +57,7 @@ from iik.arm import THESIS_ARM, Arm
 from . import protocol as P
 from .errors import ProtocolError, SafetyError
 
-__all__ = ["SimulatedArm", "SimModule", "FAULTS", "SIM_VERSION"]
+__all__ = ["SimulatedArm", "SimModule", "FAULTS", "SIM_VERSION", "simulated_arm"]
 
 #: VERSION reported by simulated modules (an arbitrary marker, not a real firmware).
 SIM_VERSION = 0x5151
@@ -642,3 +645,30 @@ class SimulatedArm:
                 self.sent += 1
             except (can.CanError, OSError, ValueError):
                 pass
+
+
+@contextlib.contextmanager
+def simulated_arm(module_ids=(1, 2, 3, 4, 5, 6), *, lag: float = 0.02, initial=None,
+                  timeout: float = 0.5, clock=time.monotonic):
+    """Yield ``(sim, arm)``: an in-process :class:`hardware.sim.SimulatedArm` on a private
+    ``virtual`` channel and a :class:`hardware.PowerCubeArm` talking to it.
+
+    Host and simulated modules are threads of this process, so the interpreter's
+    switch interval is shortened meanwhile (request round trips stay short) and
+    restored on exit; both the arm's bus and the simulator are closed on exit.
+    ``clock`` is the simulator's time source [s] (pass the same one to ``execute``).
+    """
+    import can
+
+    from .driver import PowerCubeArm
+
+    channel = f"iik-run-{uuid.uuid4().hex}"
+    switch = sys.getswitchinterval()
+    sys.setswitchinterval(0.0005)
+    try:
+        with SimulatedArm.virtual(channel, module_ids, lag=lag, initial=initial, clock=clock) as sim, \
+                PowerCubeArm(can.Bus(interface="virtual", channel=channel), module_ids, timeout=timeout,
+                             owns_bus=True) as arm:
+            yield sim, arm
+    finally:
+        sys.setswitchinterval(switch)

@@ -10,17 +10,14 @@ from .dh import DHRow, DHTable, dh_chain
 from .errors import IIKError, InvalidInputError, ScenarioError, UnreachablePoseError
 from .ik import (
     IKResult,
-    PathResult,
-    effort_index,
     follow_path,
-    pose_from_zxz,
     select,
     solve,
     solve_many,
-    zxz_from_matrix,
 )
+from .joint_path import BRANCH_SWITCH_STEP, JointPath, branch_switches, effort_index, path_effort
 from .kinematics import fk, fk_chain, jacobian, joint_frames, position_jacobian
-from .rotations import zxz_matrix
+from .rotations import pose_from_zxz, rotation_angle, zxz_from_matrix, zxz_matrix
 from .scene import THESIS_SCENE, Scene
 from .workspace import ClosestReachable, closest_reachable, in_workspace
 
@@ -36,7 +33,10 @@ __all__ = [
     "joint_frames",
     "position_jacobian",
     "IKResult",
-    "PathResult",
+    "JointPath",
+    "path_effort",
+    "branch_switches",
+    "BRANCH_SWITCH_STEP",
     "solve",
     "solve_many",
     "select",
@@ -45,6 +45,7 @@ __all__ = [
     "pose_from_zxz",
     "zxz_from_matrix",
     "zxz_matrix",
+    "rotation_angle",
     "Scene",
     "THESIS_SCENE",
     "IIKError",

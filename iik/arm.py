@@ -40,6 +40,7 @@ __all__ = [
     "SQUARE_MODULE_TORQUE",
     "CYLINDRICAL_MODULE_TORQUE",
     "CONSERVATIVE_EFFORT",
+    "LIMIT_TOL",
 ]
 
 _DEG = np.pi / 180.0
@@ -60,6 +61,11 @@ CYLINDRICAL_MODULE_TORQUE = 239.0
 #: Default per-joint effort limits [N m]: the weaker module kind everywhere,
 #: matching :data:`CONSERVATIVE_VELOCITY` (the text does not say which joint is which).
 CONSERVATIVE_EFFORT = (CYLINDRICAL_MODULE_TORQUE,) * 6
+
+#: Numerical tolerance of every joint-limit test [rad]: a solution on a joint stop of a
+#: near-singular pose may come out this far outside it (the pose fixes q only to
+#: ~eps / sigma_min there). A margin *inside* the limits is a negative tolerance.
+LIMIT_TOL = 1e-7
 
 #: Table I, in degrees (display units; converted to rad below).
 _TABLE_I_DEG = ((-160.0, 160.0), (-120.0, 95.0), (-160.0, 160.0),
@@ -137,8 +143,13 @@ class Arm:
         return DHTable(rows=rows, convention="modified", lower=tuple(self.lower),
                        upper=tuple(self.upper), velocity=tuple(self.velocity))
 
-    def within_limits(self, q, tol: float = 0.0) -> np.ndarray:
-        """Boolean (n,) or scalar: is each ``q`` [rad] inside the limits (+ ``tol`` rad)?"""
+    def within_limits(self, q, tol: float = LIMIT_TOL) -> np.ndarray:
+        """Boolean (n,) or scalar: is each ``q`` [rad] inside the limits (Table I)?
+
+        The one joint-limit test of the project. ``tol`` [rad] widens the limits
+        (default :data:`LIMIT_TOL`, rounding at a stop); a negative ``tol`` is a
+        margin inside them (the planner's and the executor's margins).
+        """
         from ._validate import as_joints
 
         qb, batched = as_joints(q, "q")

@@ -32,7 +32,8 @@ __all__ = [
     "euler_from_matrix",
     "zxz_matrix",
     "zxz_from_matrix",
-    "pose_matrix",
+    "pose_from_zxz",
+    "rotation_angle",
 ]
 
 #: scipy sequence of the corrected Eq 42: intrinsic rotations about z, then the new y, then the new z.
@@ -100,7 +101,7 @@ def euler_from_matrix(R, *, orthonormal_tol: float = 1e-6) -> np.ndarray:
     return angles if batched else angles[0]
 
 
-def pose_matrix(p, alpha, beta, gamma) -> np.ndarray:
+def pose_from_zxz(p, alpha, beta, gamma) -> np.ndarray:
     """Homogeneous pose(s) [m] from position ``p`` (3,) or (n, 3) and the Eq 42 angles [rad]."""
     pb, batched = as_points(p, "p")
     R = euler_matrix(alpha, beta, gamma)
@@ -113,6 +114,17 @@ def pose_matrix(p, alpha, beta, gamma) -> np.ndarray:
     T[:, :3, 3] = pb
     T[:, 3, 3] = 1.0
     return T if (batched or R.ndim == 3) else T[0]
+
+
+def rotation_angle(R1, R2) -> np.ndarray:
+    """Angle [rad] of the rotation ``R1^T R2`` between rotation matrices (..., 3, 3).
+
+    Computed as ``2 asin(|R1 - R2|_F / sqrt(8))``, which is exact for rotations and,
+    unlike ``arccos((tr - 1) / 2)``, accurate near 0 (the residuals IK and the
+    executor compare against tolerances of 1e-10 rad and below).
+    """
+    d = np.sqrt(np.sum((np.asarray(R1) - np.asarray(R2)) ** 2, axis=(-2, -1)))
+    return 2.0 * np.arcsin(np.minimum(d / np.sqrt(8.0), 1.0))
 
 
 #: The thesis calls Eq 42 "Z-X-Z"; it is Z-Y-Z (see the module docstring). Contract names:

@@ -75,8 +75,8 @@ from .dh import DHTable, dh_chain
 from .errors import InvalidInputError
 
 __all__ = [
-    "Box",
-    "Cylinder",
+    "BoxShape",
+    "CylinderShape",
     "PowerCubeSizes",
     "POWERCUBE",
     "urdf_from_dh",
@@ -94,7 +94,7 @@ TOOL_FRAME = "tool"
 
 
 @dataclass(frozen=True)
-class Box:
+class BoxShape:
     """A box of edge lengths ``size`` [m], centred at ``xyz`` [m] with URDF ``rpy`` [rad] in its link."""
 
     size: tuple[float, float, float]
@@ -103,7 +103,7 @@ class Box:
 
 
 @dataclass(frozen=True)
-class Cylinder:
+class CylinderShape:
     """A cylinder (axis = its local z) of ``radius`` and ``length`` [m], centred at ``xyz``."""
 
     radius: float
@@ -112,7 +112,7 @@ class Cylinder:
     rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
-Shape = Box | Cylinder
+Shape = BoxShape | CylinderShape
 
 
 @dataclass(frozen=True)
@@ -252,12 +252,12 @@ def _checked_positive(values, n: int, name: str) -> tuple[float, ...]:
 
 
 def _shape_xml(shape: Shape, link: str, k: int) -> str:
-    if isinstance(shape, Box):
+    if isinstance(shape, BoxShape):
         size = np.asarray(shape.size, dtype=float)
         if size.shape != (3,) or not np.all(np.isfinite(size)) or np.any(size <= 0):
             raise InvalidInputError(f"links[{link!r}][{k}]", "box size must be 3 positive numbers")
         geom = f'<box size="{_vec(size, 12)}"/>'
-    elif isinstance(shape, Cylinder):
+    elif isinstance(shape, CylinderShape):
         if not (np.isfinite(shape.radius) and np.isfinite(shape.length)
                 and shape.radius > 0 and shape.length > 0):
             raise InvalidInputError(f"links[{link!r}][{k}]", "cylinder radius and length must be positive")
@@ -265,7 +265,7 @@ def _shape_xml(shape: Shape, link: str, k: int) -> str:
                 f'length="{_num(round(shape.length, 12))}"/>')
     else:
         raise InvalidInputError(f"links[{link!r}][{k}]",
-                                f"expected Box or Cylinder, got {type(shape).__name__}")
+                                f"expected BoxShape or CylinderShape, got {type(shape).__name__}")
     for attr in ("xyz", "rpy"):
         v = np.asarray(getattr(shape, attr), dtype=float)
         if v.shape != (3,) or not np.all(np.isfinite(v)):
@@ -408,16 +408,16 @@ def _place(F_link: np.ndarray, center_world, R_world=None) -> tuple[tuple, tuple
 
 
 def _box_along_x(F, x0, x1, y, z, wy, wz):
-    """Box spanning world x in [x0, x1] at (y, z), cross-section wy x wz, at the home pose."""
+    """BoxShape spanning world x in [x0, x1] at (y, z), cross-section wy x wz, at the home pose."""
     xyz, rpy = _place(F, ((x0 + x1) / 2, y, z))
-    return Box(size=(x1 - x0, wy, wz), xyz=xyz, rpy=rpy)
+    return BoxShape(size=(x1 - x0, wy, wz), xyz=xyz, rpy=rpy)
 
 
 def _tube_along_x(F, x0, x1, z, d):
-    """Cylinder along world x in [x0, x1] at height z, diameter d, at home."""
+    """CylinderShape along world x in [x0, x1] at height z, diameter d, at home."""
     R_world = np.array([[0, 0, 1.0], [0, 1.0, 0], [-1.0, 0, 0]])  # local z -> world x
     xyz, rpy = _place(F, ((x0 + x1) / 2, 0.0, z), R_world)
-    return Cylinder(radius=d / 2, length=x1 - x0, xyz=xyz, rpy=rpy)
+    return CylinderShape(radius=d / 2, length=x1 - x0, xyz=xyz, rpy=rpy)
 
 
 def thesis_geometry(arm: Arm = THESIS_ARM, sizes: PowerCubeSizes = POWERCUBE) -> dict[str, tuple[Shape, ...]]:
@@ -453,7 +453,7 @@ def thesis_geometry(arm: Arm = THESIS_ARM, sizes: PowerCubeSizes = POWERCUBE) ->
             raise InvalidInputError(
                 "arm", f"too short for the PowerCube modules ({what} has length {b - a:.3g} m)")
     geo: dict[str, tuple[Shape, ...]] = {
-        "base_link": (Box(size=(L, L, s.base_height), xyz=(0.0, 0.0, s.base_height / 2)),),
+        "base_link": (BoxShape(size=(L, L, s.base_height), xyz=(0.0, 0.0, s.base_height / 2)),),
         "link1": (
             _box_along_x(F[0], -L / 2, L / 2, 0, (s.base_height + g + h + L / 2) / 2, L,
                          h + L / 2 - s.base_height - g),

@@ -17,7 +17,6 @@ for pkg in (iik, verification, hardware):
         if not info.name.endswith("__main__"):
             importlib.import_module(info.name)
 import iik.cli.verify
-from iik.cli import _hardware_checks  # noqa: F401  (registered by `iik verify`)
 print(len(verification.registered_checks()))
 """
 

@@ -20,8 +20,8 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
-    from verification.pipeline import PlanOptions, plan_scenario
-    from verification.plan_output import write_outputs
+    from iik.planning.output import write_outputs
+    from iik.planning.pipeline import PlanOptions, plan_scenario
 
     opts = PlanOptions(fallbacks=not args.no_fallbacks, rrt=not args.no_fallbacks, dt=args.dt, seed=args.seed)
 

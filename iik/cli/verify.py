@@ -22,7 +22,6 @@ def add_arguments(p) -> None:
 def run(args) -> int:
     from verification import Context, run_checks, summary, write_report
 
-    from . import _hardware_checks  # noqa: F401 - registers the Sec 4.3 checks (CLI wires hardware)
 
     ctx = Context(out_dir=args.out, seed=args.seed, quick=args.quick)
     t0 = time.perf_counter()

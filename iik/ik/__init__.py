@@ -2,15 +2,11 @@
 
 * :func:`solve` / :func:`solve_many`: all solutions of a pose (``method="complete"``
   by polynomial elimination, or ``method="thesis"``: Sec 3.3 with errata fixed).
-* :func:`effort_index` (Eq 54), :func:`select`, :func:`follow_path`.
-* :func:`pose_from_zxz`: a pose from a position and the Eq 42 angles (corrected;
-  implemented in :mod:`iik.rotations`).
+* :func:`select` (least Eq 54 effort within Table I), :func:`follow_path`.
 """
 
-from ..rotations import pose_matrix as pose_from_zxz
-from ..rotations import zxz_from_matrix
 from .result import IKResult
-from .selection import PathResult, branch_signature, effort_index, follow_path, select, select_index
+from .selection import branch_signature, follow_path, select, select_index
 from .solve import METHODS, solve, solve_many
 
 __all__ = [
@@ -18,12 +14,8 @@ __all__ = [
     "METHODS",
     "solve",
     "solve_many",
-    "pose_from_zxz",
-    "zxz_from_matrix",
-    "effort_index",
     "select",
     "select_index",
     "follow_path",
-    "PathResult",
     "branch_signature",
 ]

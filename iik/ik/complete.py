@@ -40,9 +40,10 @@ import numpy as np
 
 from ..arm import Arm
 from ..kinematics import fk, jacobian
+from ..rotations import rotation_angle
 
 __all__ = ["solve_arrays", "contains", "FREE_NONE", "FREE_Q1_Q6", "FREE_Q3_Q6", "MAX_SOLUTIONS",
-           "POSITION_TOL", "ROTATION_TOL", "rotation_angle", "pose_residuals",
+           "POSITION_TOL", "ROTATION_TOL", "pose_residuals",
            "eliminant_coefficients"]
 
 #: Upper bound on the number of distinct solutions (8 roots x 2 wrist branches).
@@ -86,12 +87,6 @@ def _wrap(x):
 def _norm(x):
     """Euclidean norm over the last axis; the same arithmetic as ``np.linalg.norm(x, axis=-1)``."""
     return np.sqrt(np.add.reduce(x * x, axis=-1))
-
-
-def rotation_angle(R1: np.ndarray, R2: np.ndarray) -> np.ndarray:
-    """Angle [rad] of ``R1^T R2``, accurate near 0: ``2 asin(|R1 - R2|_F / sqrt(8))``."""
-    d = np.sqrt(np.sum((R1 - R2) ** 2, axis=(-2, -1)))
-    return 2.0 * np.arcsin(np.minimum(d / np.sqrt(8.0), 1.0))
 
 
 def pose_residuals(q: np.ndarray, T: np.ndarray, arm: Arm) -> tuple[np.ndarray, np.ndarray]:

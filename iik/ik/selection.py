@@ -1,36 +1,21 @@
-"""Choosing one IK solution: the effort index (Eq 54), joint limits, path following.
+"""Choosing one IK solution by the effort index (Eq 54) within the joint limits, and following a path.
 
 Sec 3.3.5 / Sec 4.2.1: among the solutions of a pose, the thesis picks the one
-closest to the previous configuration, measured by the effort index of Eq 54::
-
-    E_i = (1/6) sum_n |theta_{n,i} - theta_{n,i-1}|        [rad]
-
-The difference is *not* wrapped: every joint has stops (Table I), so going
-from +179 deg to -179 deg on joint 6 really is a 358 deg move.
+closest to the previous configuration, measured by the effort index of Eq 54
+(:func:`iik.joint_path.effort_index`).
 """
 
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 
 from .._validate import as_joints, as_poses
 from ..arm import THESIS_ARM, Arm
-from ..errors import InvalidInputError, UnreachablePoseError
+from ..errors import UnreachablePoseError
+from ..joint_path import BRANCH_SWITCH_STEP, JointPath, branch_switches, effort_index, path_effort
 from .result import IKResult
 
-__all__ = ["effort_index", "select", "select_index", "PathResult", "follow_path", "branch_signature"]
-
-
-def effort_index(q_prev, q) -> np.ndarray | float:
-    """Eq 54: mean absolute joint change [rad] from ``q_prev`` (6,) to ``q`` (6,) or (k, 6)."""
-    qp, bp = as_joints(q_prev, "q_prev")
-    if bp:
-        raise InvalidInputError("q_prev", f"expected one joint vector (6,), got shape {qp.shape}")
-    qq, batched = as_joints(q, "q")
-    E = np.sum(np.abs(qq - qp), axis=1) / 6.0  # Eq 54
-    return E if batched else float(E[0])
+__all__ = ["select", "select_index", "follow_path", "branch_signature"]
 
 
 def _candidates(result_or_q, arm: Arm) -> np.ndarray:
@@ -41,7 +26,7 @@ def _candidates(result_or_q, arm: Arm) -> np.ndarray:
     if q.size == 0:
         return np.zeros((0, 6))
     qb, _ = as_joints(q, "solutions")
-    inside = np.atleast_1d(arm.within_limits(qb, tol=1e-7))
+    inside = np.atleast_1d(arm.within_limits(qb))
     return qb[inside]
 
 
@@ -77,33 +62,8 @@ def branch_signature(q) -> np.ndarray:
     return (qb[:, 3] >= 0).astype(int) * 2 + (qb[:, 4] >= 0).astype(int)
 
 
-@dataclass(frozen=True)
-class PathResult:
-    """One configuration per pose of a path.
-
-    Attributes:
-        q: (n, 6) [rad]; rows of unreachable poses repeat the previous q and have ``ok`` False.
-        effort: (n,) Eq 54 effort from the previous step [rad] (0 at step 0).
-        ok: (n,) a solution inside the limits existed.
-        branch_switch: (n,) the chosen solution changed branch (elbow/wrist sign)
-            or moved a joint by more than ``max_step``.
-        counts: (n,) number of within-limit solutions at each pose.
-    """
-
-    q: np.ndarray
-    effort: np.ndarray
-    ok: np.ndarray
-    branch_switch: np.ndarray
-    counts: np.ndarray
-
-    @property
-    def switches(self) -> np.ndarray:
-        """Indices of steps with a branch switch."""
-        return np.flatnonzero(self.branch_switch)
-
-
 def follow_path(Ts, q0=None, *, method: str = "complete", arm: Arm = THESIS_ARM,
-                max_step: float = 0.5) -> PathResult:
+                max_step: float = BRANCH_SWITCH_STEP) -> JointPath:
     """Follow a sequence of poses (n, 4, 4), keeping one branch by least Eq 54 effort.
 
     Args:
@@ -111,7 +71,13 @@ def follow_path(Ts, q0=None, *, method: str = "complete", arm: Arm = THESIS_ARM,
         q0: Starting configuration (6,) [rad]; default: the first solution of pose 0
             with the least effort from q = 0.
         method: IK method (see :func:`iik.solve`).
-        max_step: A step with a joint change above this [rad] is flagged as a switch.
+        max_step: A step with a joint change above this [rad] is a branch switch
+            (:func:`iik.joint_path.branch_switches`); with ``q0`` given, step 0 is
+            measured from ``q0``.
+
+    Returns:
+        :class:`~iik.joint_path.JointPath`; ``counts`` holds the within-limit
+        solutions per pose, rows of unreachable poses repeat the previous q.
     """
     from .solve import solve_many
 
@@ -119,20 +85,18 @@ def follow_path(Ts, q0=None, *, method: str = "complete", arm: Arm = THESIS_ARM,
     results = solve_many(Tb, method=method, within_limits=True, arm=arm)
     n = len(results)
     q = np.zeros((n, 6))
-    E = np.zeros(n)
     ok = np.zeros(n, bool)
-    sw = np.zeros(n, bool)
-    counts = np.array([r.count for r in results])
     prev = np.zeros(6) if q0 is None else as_joints(q0, "q0")[0][0]
+    start = prev
     for i, r in enumerate(results):
-        if r.count == 0:
-            q[i] = prev
-            continue
-        j, e = select_index(r, prev, arm=arm)
-        qi = r.q[np.asarray(r.within_limits, bool)][j]
-        if i > 0 or q0 is not None:
-            E[i] = e
-            sw[i] = (branch_signature(qi)[0] != branch_signature(prev)[0]) or bool(
-                np.max(np.abs(qi - prev)) > max_step)
-        q[i], ok[i], prev = qi, True, qi
-    return PathResult(q=q, effort=E, ok=ok, branch_switch=sw, counts=counts)
+        if r.count:
+            j, _ = select_index(r, prev, arm=arm)
+            prev, ok[i] = r.q[np.asarray(r.within_limits, bool)][j], True
+        q[i] = prev
+    if q0 is None:
+        effort, switches = path_effort(q), branch_switches(q, max_step)
+    else:
+        full = np.vstack([start, q])
+        effort, switches = path_effort(full)[1:], tuple(i - 1 for i in branch_switches(full, max_step))
+    return JointPath(q=q, ok=ok, effort=effort, switches=switches,
+                     counts=np.array([r.count for r in results]))

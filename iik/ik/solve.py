@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_poses
-from ..arm import THESIS_ARM, Arm
+from ..arm import LIMIT_TOL, THESIS_ARM, Arm
 from ..errors import InvalidInputError
 from . import complete as _complete
 from .result import IKResult
@@ -19,9 +19,6 @@ from .result import IKResult
 __all__ = ["solve", "solve_many", "METHODS"]
 
 METHODS = ("complete", "thesis")
-#: A solution on a joint stop of a near-singular pose may come out slightly outside it
-#: (the pose fixes q only to ~eps / sigma_min there); accept this much [rad].
-LIMIT_TOL = 1e-7
 
 _FREE = {_complete.FREE_Q1_Q6: (1, 6), _complete.FREE_Q3_Q6: (3, 6),
          _complete.FREE_Q1_Q6 | _complete.FREE_Q3_Q6: (1, 3, 6)}

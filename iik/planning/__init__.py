@@ -7,7 +7,7 @@
 * :mod:`.planner` -- step-points + orientations, IK along the path by the effort index.
 """
 
-from .obstacles import SAFETY_ZONE, Box, enclosing_radii, repel_points, repulsion_normal
+from .obstacles import SAFETY_ZONE, Obstacle, enclosing_radii, repel_points, repulsion_normal
 from .path import MAX_STEP, arc_steps, interpolate_joints, interpolate_orientation, straight_steps
 from .planner import CartesianPath, JointPath, all_solutions, build_path, poses_of, track_branches, track_dp
 from .scenario import Scenario, Waypoint, check_scenario
@@ -16,7 +16,7 @@ from .viapoints import TABLE_IV, VIA_POINTS, region_of, via_point_path, via_poin
 __all__ = [
     "SAFETY_ZONE",
     "MAX_STEP",
-    "Box",
+    "Obstacle",
     "enclosing_radii",
     "repel_points",
     "repulsion_normal",

@@ -1,4 +1,4 @@
-"""Box obstacles, their enclosing ellipsoids (Eq 52-53) and step-point repulsion (Sec 3.6.2).
+"""Box obstacles (:class:`Obstacle`), enclosing ellipsoids (Eq 52-53), step-point repulsion (Sec 3.6.2).
 
 Frames and units: every point is in the arm's base frame 0 [m].
 
@@ -35,7 +35,7 @@ from ..errors import InvalidInputError
 
 __all__ = [
     "SAFETY_ZONE",
-    "Box",
+    "Obstacle",
     "enclosing_radii",
     "ellipsoid_value",
     "repulsion_normal",
@@ -50,7 +50,7 @@ _B = math.atan(math.cos(_A))  # Eq 53: beta, elevation of a cube's corner
 
 
 @dataclass(frozen=True)
-class Box:
+class Obstacle:
     """A rectangular-prism obstacle (Sec 3.6.2), axis-aligned in the base frame.
 
     Attributes:
@@ -102,7 +102,7 @@ class Box:
         return np.linalg.norm(d, axis=1)
 
 
-def enclosing_radii(box: Box) -> np.ndarray:
+def enclosing_radii(box: Obstacle) -> np.ndarray:
     """Radii (x_r, y_r, z_r) [m] of the ellipsoid through the box's corners (Eq 53, corrected).
 
     ``w, d, h`` are the box's *half* dimensions and ``z_r`` uses ``sin(beta)``
@@ -161,7 +161,7 @@ def repel_points(points, boxes, start, goal, *, safety_zone: float = SAFETY_ZONE
 
     Args:
         points: (n, 3) step-points [m].
-        boxes: Iterable of :class:`Box`; only ``kind == "obstacle"`` ones repel.
+        boxes: Iterable of :class:`Obstacle`; only ``kind == "obstacle"`` ones repel.
         start, goal: The path's start and goal (3,) [m] defining the push direction.
         safety_zone: Added to every radius [m] (30 mm in the thesis).
         keep_ends: Leave the first and last points in place (they are the

@@ -37,14 +37,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InvalidInputError
-from .obstacles import Box, ellipsoid_value, enclosing_radii, repel_points
+from ..joint_path import BRANCH_SWITCH_STEP, JointPath, branch_switches, path_effort
+from .obstacles import Obstacle, ellipsoid_value, enclosing_radii, repel_points
 from .path import arc_steps, densify, interpolate_orientation, straight_steps
 from .scenario import Scenario
 from .viapoints import via_point_path
 
 __all__ = [
     "CartesianPath",
-    "JointPath",
     "BETA_STEPS",
     "build_path",
     "poses_of",
@@ -109,43 +109,6 @@ class CartesianPath:
         return len(self.points)
 
 
-@dataclass(frozen=True)
-class JointPath:
-    """One IK branch followed along a :class:`CartesianPath`.
-
-    Attributes:
-        q: (n, 6) joint angles [rad]; rows of failed steps repeat the previous row.
-        ok: (n,) True where the step has a solution (possibly after a beta change).
-        effort: (n,) effort index E_i of Eq 54 [rad] (E_0 = 0).
-        beta_change: (n,) beta offset applied at each step [rad] (0 = nominal).
-        alpha_change: (n,) alpha offset applied at each step [rad] (0 = nominal).
-        gamma_change: (n,) gamma offset (0 or pi: gripper half turn) or None.
-        switches: Step indices where the branch jumped (max |dq| > threshold).
-        start_solution: Index of the start IK solution this branch began from.
-    """
-
-    q: np.ndarray
-    ok: np.ndarray
-    effort: np.ndarray
-    beta_change: np.ndarray
-    alpha_change: np.ndarray
-    switches: tuple[int, ...]
-    start_solution: int
-    gamma_change: np.ndarray | None = None
-
-    @property
-    def complete(self) -> bool:
-        return bool(np.all(self.ok))
-
-    @property
-    def failed_steps(self) -> tuple[int, ...]:
-        return tuple(int(i) for i in np.flatnonzero(~self.ok))
-
-    @property
-    def total_effort(self) -> float:
-        return float(self.effort.sum())
-
-
 def _alpha_auto(points: np.ndarray) -> np.ndarray:
     """"Any alpha" default: the tool tilts outward (wrist nearer the base than the tool).
 
@@ -156,7 +119,7 @@ def _alpha_auto(points: np.ndarray) -> np.ndarray:
     return np.arctan2(points[:, 1], points[:, 0]) + np.pi  # Eq 46, expressed for z6
 
 
-def _lift(points: np.ndarray, platform: Box | None, floor_z: float | None, s: float, keep: set[int]):
+def _lift(points: np.ndarray, platform: Obstacle | None, floor_z: float | None, s: float, keep: set[int]):
     """Platform/floor avoidance: lift step-points into the safety level above them."""
     pts = points.copy()
     lifted = np.zeros(len(pts), bool)
@@ -174,7 +137,7 @@ def _lift(points: np.ndarray, platform: Box | None, floor_z: float | None, s: fl
     return pts, lifted
 
 
-def build_path(sc: Scenario, *, platform: Box | None = None, floor_z: float | None = None,
+def build_path(sc: Scenario, *, platform: Obstacle | None = None, floor_z: float | None = None,
                via_points=None, routes: tuple[str, ...] | None = None,
                zxz_matrix: Callable | None = None, zxz_from_matrix: Callable | None = None,
                ) -> CartesianPath:
@@ -286,9 +249,9 @@ def _max_step(keys: np.ndarray, n: int) -> float:
 def poses_of(points: np.ndarray, euler: np.ndarray, *, pose_from_zxz: Callable | None = None) -> np.ndarray:
     """(n, 4, 4) tool poses from points [m] and Z-X-Z angles [rad] (corrected Eq 42)."""
     if pose_from_zxz is None:
-        from ..rotations import pose_matrix
+        from ..rotations import pose_from_zxz as pose_of
 
-        T = pose_matrix(points, euler[:, 0], euler[:, 1], euler[:, 2])
+        T = pose_of(points, euler[:, 0], euler[:, 1], euler[:, 2])
         return T.reshape(-1, 4, 4)
     return np.stack([np.asarray(pose_from_zxz(p, *e), float) for p, e in zip(points, euler, strict=True)])
 
@@ -389,7 +352,8 @@ DP_OFFSETS = tuple((math.radians(a), math.radians(b))
 def track_dp(path: CartesianPath, *, solve_many: Callable | None = None,
              effort_index: Callable | None = None, offsets=DP_OFFSETS, w_change: float = 3.0,
              w_offset: float = 0.05, w_switch: float = 2.0, half_turn: bool = True,
-             w_half_turn: float = 1.0, switch_threshold: float = 0.5) -> tuple[list[JointPath], dict]:
+             w_half_turn: float = 1.0, switch_threshold: float = BRANCH_SWITCH_STEP,
+             ) -> tuple[list[JointPath], dict]:
     """Least-effort joint path over IK branches *and* small orientation changes (dynamic programming).
 
     Used when the nominal orientations leave steps without solutions. At every
@@ -476,10 +440,9 @@ def track_dp(path: CartesianPath, *, solve_many: Callable | None = None,
         idx.reverse()
         q = np.array([layers_q[i][j] for i, j in enumerate(idx)])
         o = np.array([layers_o[i][j] for i, j in enumerate(idx)])
-        eff = np.concatenate([[0.0], [float(effort_index(q[i - 1], q[i])) for i in range(1, n)]])
-        sw = tuple(int(i) for i in np.flatnonzero(np.abs(np.diff(q, axis=0)).max(1) > switch_threshold) + 1)
-        branches.append(JointPath(q=q, ok=np.ones(n, bool), effort=eff, beta_change=o[:, 1],
-                                  alpha_change=o[:, 0], switches=sw, start_solution=int(s0),
+        branches.append(JointPath(q=q, ok=np.ones(n, bool), effort=path_effort(q),
+                                  switches=branch_switches(q, switch_threshold), beta_change=o[:, 1],
+                                  alpha_change=o[:, 0], start_solution=int(s0),
                                   gamma_change=o[:, 2]))
     branches.sort(key=lambda b: (len(b.switches), b.total_effort))
     if branches:
@@ -494,7 +457,7 @@ def track_dp(path: CartesianPath, *, solve_many: Callable | None = None,
 
 def track_branches(path: CartesianPath, *, solve_many: Callable | None = None,
                    effort_index: Callable | None = None,
-                   beta_steps: tuple[float, ...] = BETA_STEPS, switch_threshold: float = 0.5,
+                   beta_steps: tuple[float, ...] = BETA_STEPS, switch_threshold: float = BRANCH_SWITCH_STEP,
                    adapt_orientation: bool = True) -> tuple[list[JointPath], dict]:
     """Follow every IK branch along the path, choosing by the effort index (Eq 54).
 
@@ -529,7 +492,6 @@ def track_branches(path: CartesianPath, *, solve_many: Callable | None = None,
         ok = np.zeros(n, bool)
         eff = np.zeros(n)
         qs[0], ok[0] = q0, True
-        switches = []
         for i in range(1, n):
             cand = sols[i]
             if len(cand) == 0:
@@ -538,10 +500,8 @@ def track_branches(path: CartesianPath, *, solve_many: Callable | None = None,
             e = np.atleast_1d(np.asarray(effort_index(qs[i - 1], cand), float))  # Eq 54, batched
             k = int(np.argmin(e))
             qs[i], ok[i], eff[i] = cand[k], True, e[k]
-            if np.abs(cand[k] - qs[i - 1]).max() > switch_threshold:
-                switches.append(i)
-        branches.append(JointPath(q=qs, ok=ok, effort=eff, beta_change=offs[:, 1].copy(),
-                                  alpha_change=offs[:, 0].copy(), switches=tuple(switches),
+        branches.append(JointPath(q=qs, ok=ok, effort=eff, switches=branch_switches(qs, switch_threshold),
+                                  beta_change=offs[:, 1].copy(), alpha_change=offs[:, 0].copy(),
                                   start_solution=j))
     branches.sort(key=lambda b: (not b.complete, len(b.switches), b.total_effort))
     return branches, info

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ScenarioError
-from .obstacles import SAFETY_ZONE, Box
+from .obstacles import SAFETY_ZONE, Obstacle
 from .path import MAX_STEP
 
 __all__ = ["Waypoint", "Scenario", "check_scenario"]
@@ -67,7 +67,7 @@ class Scenario:
     title: str = ""
     reference: str = ""
     reconstruction: str = ""
-    obstacles: tuple[Box, ...] = ()
+    obstacles: tuple[Obstacle, ...] = ()
     via_points: tuple[tuple[float, float, float], ...] | None = None
     segments: tuple[str, ...] | None = None
     steps_per_segment: int | None = None
@@ -99,7 +99,7 @@ class Scenario:
                 raise ScenarioError(f"planning.segments[{i}]", f"expected 'line' or 'arc', got {s!r}")
 
 
-def check_scenario(sc: Scenario, *, platform: Box | None = None, floor_z: float | None = None,
+def check_scenario(sc: Scenario, *, platform: Obstacle | None = None, floor_z: float | None = None,
                    in_workspace: Callable | None = None,
                    closest_reachable: Callable | None = None) -> None:
     """Raise :class:`~iik.errors.ScenarioError` if the task is impossible as stated.

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 import iik
 from iik import InvalidInputError
-from verification.strategies import joint_batches, joint_vectors
+from verification.testing.strategies import joint_batches, joint_vectors
 
 ARM = iik.THESIS_ARM
 

@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from iik import InvalidInputError
-from iik.rotations import euler_from_matrix, euler_matrix, pose_matrix, zxz_from_matrix, zxz_matrix
+from iik.rotations import euler_from_matrix, euler_matrix, pose_from_zxz, zxz_from_matrix, zxz_matrix
 
 ang = st.floats(-math.pi, math.pi, allow_nan=False)
 polar = st.floats(1e-3, math.pi - 1e-3, allow_nan=False)
@@ -66,13 +66,13 @@ def test_batch_equals_loop(triples):
                                np.stack([euler_from_matrix(m) for m in batch]), atol=0)
 
 
-def test_pose_matrix():
-    T = pose_matrix([0.1, 0.2, 0.3], 0.1, 0.2, 0.3)
+def test_pose_from_zxz():
+    T = pose_from_zxz([0.1, 0.2, 0.3], 0.1, 0.2, 0.3)
     np.testing.assert_array_equal(T[:3, 3], [0.1, 0.2, 0.3])
     np.testing.assert_array_equal(T[:3, :3], euler_matrix(0.1, 0.2, 0.3))
-    assert pose_matrix([[0, 0, 0]] * 3, [0.1, 0.2, 0.3], 0, 0).shape == (3, 4, 4)
+    assert pose_from_zxz([[0, 0, 0]] * 3, [0.1, 0.2, 0.3], 0, 0).shape == (3, 4, 4)
     with pytest.raises(InvalidInputError):
-        pose_matrix([[0, 0, 0]] * 3, [0.1, 0.2], 0, 0)
+        pose_from_zxz([[0, 0, 0]] * 3, [0.1, 0.2], 0, 0)
 
 
 @pytest.mark.parametrize("args,arg", [

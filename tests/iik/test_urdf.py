@@ -14,18 +14,18 @@ import iik
 from iik import InvalidInputError
 from iik.cli import main
 from iik.dh import DHRow, DHTable, dh_chain
+from iik.planning.robot_model import load_model, thesis_model
 from iik.resources import urdf_path
 from iik.urdf import (
     POWERCUBE,
-    Box,
-    Cylinder,
+    BoxShape,
+    CylinderShape,
     adjacent_pairs,
     thesis_geometry,
     thesis_urdf,
     urdf_from_dh,
 )
-from verification.models import load_model, thesis_model
-from verification.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
+from verification.oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
 
 ARM = iik.THESIS_ARM
 
@@ -142,9 +142,9 @@ def _corrupt(table, **fields):
     (dict(tool=np.diag([1.0, 1.0, -1.0, 1.0])), "tool"),
     (dict(tool=np.ones((4, 4))), "tool"),
     (dict(base=np.full((4, 4), np.nan)), "base"),
-    (dict(links={"link7": (Box((0.1, 0.1, 0.1)),)}), "links"),
-    (dict(links={"link1": (Box((0.1, -0.1, 0.1)),)}), "links['link1'][0]"),
-    (dict(links={"link1": (Cylinder(0.0, 0.1),)}), "links['link1'][0]"),
+    (dict(links={"link7": (BoxShape((0.1, 0.1, 0.1)),)}), "links"),
+    (dict(links={"link1": (BoxShape((0.1, -0.1, 0.1)),)}), "links['link1'][0]"),
+    (dict(links={"link1": (CylinderShape(0.0, 0.1),)}), "links['link1'][0]"),
     (dict(links={"link1": ("sphere",)}), "links['link1'][0]"),
     (dict(name=""), "name"),
     (dict(adjacent=[("link1", "link9")]), "adjacent"),
@@ -219,7 +219,7 @@ def test_generator_rejects_rows_that_are_not_dh_rows():
 
 
 def _distance_to_shapes(p, shapes):
-    """Distance [m] from point p to the union of coal Box/Cylinder shapes at placements (4x4)."""
+    """Distance [m] from point p to the union of coal BoxShape/CylinderShape shapes at placements (4x4)."""
     import coal
 
     best = np.inf
@@ -258,7 +258,7 @@ def test_collision_shapes_cover_the_kinematic_skeleton():
 
 
 def test_panda_modified_dh_matches_example_robot_data():
-    from verification.panda import panda_fk_pair, panda_models
+    from verification.oracles.panda import panda_fk_pair, panda_models
 
     _, _, ref, _ = panda_models()
     qs = np.random.default_rng(13).uniform(ref.lowerPositionLimit[:7], ref.upperPositionLimit[:7], (200, 7))

@@ -6,9 +6,9 @@ from hypothesis import given
 from scipy.spatial.transform import Rotation
 
 from verification.checks import kinematics as K
-from verification.models import tool_jacobians, tool_poses
+from verification.oracles.pinocchio_model import tool_jacobians, tool_poses
 from verification.registry import Context, Verdict
-from verification.strategies import joint_vectors
+from verification.testing.strategies import joint_vectors
 
 
 @pytest.fixture

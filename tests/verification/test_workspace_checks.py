@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 import iik
-from verification.abdel_malek import normal_acceleration, position_and_jacobian
 from verification.checks import appendix_e, dexterity, singularities, workspace
-from verification.reachability import ReachabilityOracle
+from verification.oracles.abdel_malek import normal_acceleration, position_and_jacobian
+from verification.oracles.reachability import ReachabilityOracle
 from verification.registry import Context, Row, Verdict
 
 D = np.pi / 180

@@ -1,6 +1,6 @@
 """Appendix E: the normal-acceleration boundary test (Eq 57-68) at points A1, A2 and A6.
 
-Our numbers come from :mod:`verification.abdel_malek` (Pinocchio on the shipped
+Our numbers come from :mod:`verification.oracles.abdel_malek` (Pinocchio on the shipped
 URDF); the thesis's printed numbers are quoted below for the side-by-side
 comparison (mm, as printed). Ground truth for "is this surface a boundary here"
 is the reachability oracle at ``p +- 2 mm N0``.
@@ -17,9 +17,9 @@ import numpy as np
 
 import iik
 
-from ..abdel_malek import normal_acceleration, position_and_jacobian
+from ..oracles.abdel_malek import normal_acceleration, position_and_jacobian
+from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
-from ..reachability import oracle_for
 from ..registry import Erratum, Row, Verdict, register
 
 SECTION = "Normal-acceleration boundary test (App. E, Eq 57-69)"

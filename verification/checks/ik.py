@@ -347,7 +347,7 @@ def completeness(ctx):
 
 @register(SECTION, order=26.0)
 def benchmark(ctx):
-    from ..ik_benchmark import run
+    from ..testing.ik_benchmark import run
 
     buf = io.StringIO()
     n = ctx.n(1500, 100)
@@ -357,7 +357,7 @@ def benchmark(ctx):
     return Row(
         claim="The IIK needs less computation per solution than pseudo-inverse Newton",
         reference="Sec 4.2.1 (Fig 33, 37, 41), Sec 5.2",
-        method=f"verification.ik_benchmark (= benchmarks/bench_ik.py), {n} poses, same run; "
+        method=f"verification.testing.ik_benchmark (= benchmarks/bench_ik.py), {n} poses, same run; "
                "Newton from q + N(0, 0.1 rad); "
                "Python/NumPy timings, single-pose calls",
         numbers=f"median us/solution: thesis IIK {t['median_per_solution_us']:.0f}, complete "

@@ -19,11 +19,11 @@ from iik.resources import urdf_path
 from iik.rotations import euler_matrix
 from iik.urdf import thesis_urdf
 
-from ..models import thesis_model, tool_jacobians, tool_poses
+from ..oracles.pinocchio_model import thesis_model, tool_jacobians, tool_poses
+from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
 from ..plotting import draw_arm, draw_collision, draw_scene, new_figure
 from ..registry import Erratum, Row, Verdict, register
-from ..strategies import BEYOND, sample_joints
-from ..ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
+from ..testing.strategies import BEYOND, sample_joints
 
 SECTION = "Kinematics (Tables I-II, Eq 4, App. B, App. C, Eq 42)"
 TOL_EXACT = 1e-12  # [m] and [-]: closed forms vs Pinocchio
@@ -673,7 +673,7 @@ def ur5_generator_check(ctx):
 @register(SECTION, order=17.5)
 def panda_generator_check(ctx):
     """The URDF generator in the modified convention on a robot nobody here wrote: Franka Panda."""
-    from ..panda import panda_fk_pair, panda_models
+    from ..oracles.panda import panda_fk_pair, panda_models
 
     _, _, ref, _ = panda_models()
     lo, hi = ref.lowerPositionLimit[:7], ref.upperPositionLimit[:7]

@@ -1,7 +1,7 @@
 """Planning checks (Sec 3.6, Sec 4.2): Eq 52-53 as printed, Table IV, and the 13 scenarios.
 
 Each scenario row plans the shipped scenario end to end
-(:func:`verification.pipeline.plan_scenario`) and reports whether the thesis
+(:func:`iik.planning.pipeline.plan_scenario`) and reports whether the thesis
 planner alone kept the whole arm (Coal, URDF collision shapes) at least one
 safety zone away from the scene, and what our fallbacks achieved otherwise.
 """
@@ -13,7 +13,7 @@ import time
 
 import numpy as np
 
-from iik.planning.obstacles import Box, ellipsoid_value, enclosing_radii
+from iik.planning.obstacles import Obstacle, ellipsoid_value, enclosing_radii
 from iik.planning.viapoints import _TABLE_IV_PRINTED, REGIONS, TABLE_IV, VIA_POINTS, region_of
 
 from ..registry import Erratum, Row, Verdict, register
@@ -31,7 +31,7 @@ def eq53_printed(w: float, d: float, h: float) -> np.ndarray:
 
 @register(SECTION, order=500)
 def check_eq53_ellipsoid(ctx) -> Row:
-    box = Box((0.4, -0.1, 0.2), (0.30, 0.20, 0.50), name="test")
+    box = Obstacle((0.4, -0.1, 0.2), (0.30, 0.20, 0.50), name="test")
     c = np.asarray(box.center)
     full = eq53_printed(*box.size)  # reading 1: w, d, h = full dimensions
     half = eq53_printed(*box.half)  # reading 2: half dimensions
@@ -42,7 +42,7 @@ def check_eq53_ellipsoid(ctx) -> Row:
     boxes = rng.uniform(0.05, 1.0, size=(ctx.n(2000, 100), 3))
     worst = 0.0
     for s in boxes:
-        b = Box((0, 0, 0), tuple(s))
+        b = Obstacle((0, 0, 0), tuple(s))
         worst = max(worst, float(np.abs(ellipsoid_value(b.corners, (0, 0, 0), enclosing_radii(b)) - 1).max()))
     holds = abs(v_corr - 1).max() < 1e-12 and worst < 1e-12
     return Row(
@@ -92,8 +92,8 @@ def check_table_iv(ctx) -> Row:
 def _results(ctx):
     if "planning_results" in ctx.cache:
         return ctx.cache["planning_results"]
-    from ..pipeline import PlanOptions, plan_scenario
-    from ..scenarios import thesis_scenario_paths
+    from iik.planning.pipeline import PlanOptions, plan_scenario
+    from iik.planning.scenario_io import thesis_scenario_paths
 
     paths = thesis_scenario_paths()
     if ctx.quick:
@@ -156,7 +156,7 @@ def _figures(ctx, res) -> tuple[str, ...]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..plan_output import plot_effort, plot_joints, plot_scene
+    from iik.planning.output import plot_effort, plot_joints, plot_scene
 
     rels = []
     for name, fn, kw in (("planning_j_scene.png", plot_scene, {"projection": "3d"}),
@@ -213,8 +213,7 @@ def check_arc_route(ctx) -> list[Row]:
 
     from iik.planning import build_path
     from iik.planning.planner import all_solutions
-
-    from ..scenarios import load_scenario, platform_box, thesis_scenario_paths
+    from iik.planning.scenario_io import load_scenario, platform_box, thesis_scenario_paths
 
     rows = []
     for p in [q for q in thesis_scenario_paths() if q.stem in ("p1", "p2")]:

@@ -19,7 +19,7 @@ from scipy.optimize import least_squares
 import iik
 from iik.singularities import ALL_SETS, TABLE_VI, TABLE_VII, at_limit_mask, reduced_rank, sample_set
 
-from ..models import tool_jacobians
+from ..oracles.pinocchio_model import tool_jacobians
 from ..plotting import new_figure
 from ..registry import Row, Verdict, register
 

@@ -2,7 +2,7 @@
 boundary) and Sec 3.4.4 (the Cartesian test, Eq 36-41).
 
 Ground truth is position reachability over Table I (every orientation allowed):
-:class:`verification.reachability.ReachabilityOracle` (10^6 uniformly sampled
+:class:`verification.oracles.reachability.ReachabilityOracle` (10^6 uniformly sampled
 joint vectors through ``iik.fk`` + bounded LM position IK from the nearest
 samples). The printed Eq 36-41 are transcribed in :func:`eq36_41_printed`.
 """
@@ -15,8 +15,8 @@ from scipy.spatial import cKDTree
 import iik
 from iik.workspace import _joint4_distance, in_workspace, tool_positions
 
+from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
-from ..reachability import oracle_for
 from ..registry import Erratum, Row, Verdict, register
 
 SECTION = "Workspace (Sec 3.4.3-3.4.4, Eq 36-41)"

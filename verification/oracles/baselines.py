@@ -1,6 +1,6 @@
 """Numerical IK baselines on Pinocchio: Newton (pseudo-inverse Jacobian) and damped least squares.
 
-Both use the real URDF (:func:`verification.models.thesis_model`): Pinocchio's
+Both use the real URDF (:func:`iik.planning.robot_model.thesis_model`): Pinocchio's
 forward kinematics of frame ``tool`` and its frame Jacobian in
 ``LOCAL_WORLD_ALIGNED`` (rows v then w, base axes). The error is
 ``[p* - p, log3(R* R^T)]`` (base frame). They return one solution (the one
@@ -22,8 +22,7 @@ import numpy as np
 import pinocchio as pin
 
 from iik._validate import as_joints, as_poses
-
-from .models import thesis_model
+from iik.planning.robot_model import thesis_model
 
 __all__ = ["NumericIKResult", "newton_pinv", "damped_least_squares", "THESIS_NEWTON_TOL"]
 

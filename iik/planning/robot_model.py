@@ -16,14 +16,12 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-import numpy as np
 import pinocchio as pin
 
 from iik.resources import urdf_path
 from iik.urdf import TOOL_FRAME, adjacent_pairs
 
-__all__ = ["ThesisModel", "thesis_model", "load_model", "collision_link", "tool_frame_id", "tool_poses",
-           "tool_jacobians"]
+__all__ = ["ThesisModel", "thesis_model", "load_model", "collision_link"]
 
 
 @dataclass(frozen=True)
@@ -71,30 +69,3 @@ def load_model(path: Path | str, *, with_collision: bool = True) -> ThesisModel:
 def thesis_model() -> ThesisModel:
     """The thesis arm from ``urdf/thesis_arm.urdf`` (cached)."""
     return load_model(urdf_path())
-
-
-def tool_frame_id() -> int:
-    """Frame id of ``tool`` in :func:`thesis_model`."""
-    return thesis_model().tool_frame_id
-
-
-def tool_poses(qs: np.ndarray) -> np.ndarray:
-    """Pinocchio pose of frame ``tool`` for each q in ``qs`` (n, 6) [rad]: (n, 4, 4) [m]."""
-    tm = thesis_model()
-    data = tm.model.createData()
-    out = np.empty((len(qs), 4, 4))
-    for k, q in enumerate(qs):
-        pin.framesForwardKinematics(tm.model, data, q)
-        out[k] = data.oMf[tm.tool_frame_id].homogeneous
-    return out
-
-
-def tool_jacobians(qs: np.ndarray) -> np.ndarray:
-    """Pinocchio frame Jacobian of ``tool`` in LOCAL_WORLD_ALIGNED for each q in ``qs`` (n, 6):
-    (n, 6, 6), rows [v; w] in base-frame axes."""
-    tm = thesis_model()
-    data = tm.model.createData()
-    out = np.empty((len(qs), 6, 6))
-    for k, q in enumerate(qs):
-        out[k] = pin.computeFrameJacobian(tm.model, data, q, tm.tool_frame_id, pin.LOCAL_WORLD_ALIGNED)
-    return out

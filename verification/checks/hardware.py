@@ -6,9 +6,9 @@ report), and ``verification`` may not import ``hardware``. ``iik verify`` import
 this module before running the checks (the leading underscore keeps it out of the
 CLI's command discovery).
 
-Every run is on the in-process simulated arm (:func:`iik.cli.run.simulated_arm`)
+Every run is on the in-process simulated arm (:func:`hardware.sim.simulated_arm`)
 with the scenarios planned exactly as ``iik run`` plans them
-(:func:`iik.cli.run.scenario_trajectory`: ``verification.pipeline.plan_scenario``,
+(:func:`hardware.sources.scenario_trajectory`: ``iik.planning.pipeline.plan_scenario``,
 steps timed at half the joint speed limits). The simulator's tracking lag (a pure
 delay) and current model are assumptions, not identified on the real modules, so
 what these rows measure is the *method* (FSTEP streaming with the thesis's early
@@ -150,10 +150,9 @@ def _planned(ctx, name: str, limit: int | None):
     if key not in ctx.cache:
         from hardware import validate
         from hardware.executor import ValidationOptions
+        from hardware.sources import scenario_trajectory
+        from iik.planning.scenario_io import load_scenario
         from iik.resources import scenarios_dir
-        from verification.scenarios import load_scenario
-
-        from .run import scenario_trajectory
 
         path = scenarios_dir() / f"{name}.toml"
         with contextlib.redirect_stderr(io.StringIO()):  # keep iik verify's progress line intact
@@ -170,9 +169,8 @@ def execute_scenario(ctx, name: str, *, update: str = "thesis", early: float | N
     step-point) on the fast-forward clock, and analyse the run log. Cached per run."""
     from hardware import analyse, execute, read_run_log
     from hardware.executor import EARLY_UPDATE, ExecutionOptions
-    from verification.collision import SceneCollision
-
-    from .run import simulated_arm
+    from hardware.sim import simulated_arm
+    from iik.planning.collision import SceneCollision
 
     early = EARLY_UPDATE if early is None else float(early)
     key = ("hardware.run", name, limit, update, early)
@@ -223,9 +221,7 @@ def _note(lag: float) -> str:
 def check_table_v(ctx) -> Row:
     """Every Table V function round-trips against the simulated modules."""
     from hardware import protocol as P
-    from hardware.sim import SIM_VERSION
-
-    from .run import simulated_arm
+    from hardware.sim import SIM_VERSION, simulated_arm
 
     clock, _ = scaled_clock()
     q0 = np.full(6, 0.1)  # [rad], away from home
@@ -455,8 +451,7 @@ def check_real_arm(ctx) -> Row:
 @register(SECTION, order=_ORDER + 5)
 def check_table_v_errata(ctx) -> list[Row]:
     from hardware import protocol as P
-
-    from .run import simulated_arm
+    from hardware.sim import simulated_arm
 
     # PCube_setMaxCur writes FMAXCUR (0x4C), a current: observe the frame, then show on the simulated
     # modules that it limits the current [A] and not the speed

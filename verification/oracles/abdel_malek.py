@@ -37,7 +37,7 @@ _H = 1e-6
 
 
 def _model():
-    from .models import thesis_model
+    from iik.planning.robot_model import thesis_model
 
     tm = thesis_model()
     return tm.model, tm.tool_frame_id

@@ -3,7 +3,7 @@
 import pytest
 
 from iik.errors import ScenarioError
-from verification.scenarios import load_scenario, thesis_scenario_paths
+from iik.planning.scenario_io import load_scenario, thesis_scenario_paths
 
 GOOD = """
 name = "x"

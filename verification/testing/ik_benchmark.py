@@ -75,7 +75,7 @@ def run(n: int = 10_000, n_single: int = 1000, n_newton: int = 500, seed: int = 
             "counts": np.bincount(counts, minlength=17).tolist(),
         }
 
-    from verification.baselines import newton_pinv
+    from verification.oracles.baselines import newton_pinv
 
     times, ok, its = [], 0, []
     m = min(n_newton, n)

@@ -41,7 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from iik.errors import IIKError, ScenarioError
-from iik.planning.obstacles import Box
+from iik.planning.obstacles import Obstacle
 from iik.planning.scenario import Scenario, Waypoint, check_scenario
 from iik.resources import scenarios_dir
 from iik.scene import THESIS_SCENE, Scene
@@ -65,10 +65,10 @@ def thesis_scenario_paths() -> list[Path]:
     return sorted(scenarios_dir().glob("*.toml"), key=lambda p: (not p.stem.startswith("p"), p.stem))
 
 
-def platform_box(scene: Scene = THESIS_SCENE) -> Box:
-    """The scene's platform as a planning :class:`Box` (kind ``support``)."""
+def platform_box(scene: Scene = THESIS_SCENE) -> Obstacle:
+    """The scene's platform as a planning :class:`Obstacle` (kind ``support``)."""
     p = scene.platform
-    return Box(tuple(p.center), tuple(p.size), name="platform", kind="support")
+    return Obstacle(tuple(p.center), tuple(p.size), name="platform", kind="support")
 
 
 def load_scenario(path, *, scene: Scene = THESIS_SCENE, check_workspace: bool = True) -> Scenario:
@@ -202,9 +202,10 @@ def scenario_from_dict(data: dict, *, source: str = "", default_name: str = "sce
             if k not in o:
                 raise ScenarioError(f"{f}.{k}", "missing")
         try:
-            obstacles.append(Box(tuple(pos(o["center"], f"{f}.center")), tuple(_vec(o["size"], f"{f}.size")),
-                                 name=str(o.get("name", f"obstacle{i}")),
-                                 kind=str(o.get("kind", "obstacle"))))
+            obstacles.append(Obstacle(tuple(pos(o["center"], f"{f}.center")),
+                                      tuple(_vec(o["size"], f"{f}.size")),
+                                      name=str(o.get("name", f"obstacle{i}")),
+                                      kind=str(o.get("kind", "obstacle"))))
         except ScenarioError:
             raise
         except IIKError as exc:

@@ -3,7 +3,7 @@
 import numpy as np
 
 import iik
-from iik.planning import Box, Scenario, Waypoint, build_path, track_branches
+from iik.planning import Obstacle, Scenario, Waypoint, build_path, track_branches
 from iik.planning.obstacles import ellipsoid_value, enclosing_radii
 from iik.planning.planner import poses_of, track_dp
 
@@ -11,7 +11,7 @@ from iik.planning.planner import poses_of, track_dp
 def _scenario(**kw):
     base = dict(name="t", start=Waypoint((0.30, 0.25, -0.35), None, 0.0),
                 goal=Waypoint((0.30, -0.25, -0.35), None, 0.0),
-                obstacles=(Box((0.32, 0.0, -0.35), (0.12, 0.12, 0.2)),))
+                obstacles=(Obstacle((0.32, 0.0, -0.35), (0.12, 0.12, 0.2)),))
     base.update(kw)
     return Scenario(**base)
 

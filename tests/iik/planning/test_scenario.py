@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from iik.errors import ScenarioError
-from iik.planning import Box, Scenario, Waypoint, check_scenario
+from iik.planning import Obstacle, Scenario, Waypoint, check_scenario
 
 S, G = Waypoint((0.3, 0.25, -0.35), None, 0.0), Waypoint((0.3, -0.25, -0.35), None, 0.0)
 
@@ -24,7 +24,7 @@ def test_invalid_options_name_the_field(kw, field):
 
 
 def test_start_inside_a_box_is_rejected_with_its_name():
-    crate = Box((0.3, 0.25, -0.35), (0.1, 0.1, 0.1), name="crate")
+    crate = Obstacle((0.3, 0.25, -0.35), (0.1, 0.1, 0.1), name="crate")
     sc = Scenario(name="t", start=S, goal=G, obstacles=(crate,))
     with pytest.raises(ScenarioError, match="crate") as exc:
         check_scenario(sc)

@@ -1,15 +1,15 @@
-"""The OMPL RRT-Connect fallback on Coal checks (verification.sampling_planner)."""
+"""The OMPL RRT-Connect fallback on Coal checks (iik.planning.rrt)."""
 
 import numpy as np
 
 from iik import THESIS_ARM
-from iik.planning import Box
-from verification.collision import SceneCollision
-from verification.sampling_planner import rrt_connect
+from iik.planning import Obstacle
+from iik.planning.collision import SceneCollision
+from iik.planning.rrt import rrt_connect
 
 
 def test_rrt_connect_goes_around_a_box_with_certified_clearance():
-    chk = SceneCollision([Box((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")])
+    chk = SceneCollision([Obstacle((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")])
     q0 = np.array([0.8, 0.3, 0.0, 0.5, -1.0, 0.0])
     q1 = np.array([-0.8, 0.3, 0.0, 0.5, -1.0, 0.0])
     assert chk.path_clearance(np.array([q0, q1]), 0.03).minimum < 0.03  # the direct motion collides

@@ -7,8 +7,8 @@ import pytest
 
 from iik import THESIS_ARM
 from iik.cli import main
+from iik.planning.pipeline import PlanOptions, plan_scenario
 from iik.resources import scenarios_dir
-from verification.pipeline import PlanOptions, plan_scenario
 
 
 @pytest.fixture(scope="module")

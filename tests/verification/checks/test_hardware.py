@@ -2,8 +2,8 @@
 
 import re
 
-from iik.cli import _hardware_checks as hw
 from verification import Context, Verdict, run_checks
+from verification.checks import hardware as hw
 
 
 def test_hardware_section_quick(tmp_path):

@@ -3,7 +3,7 @@
 Used when the thesis planner's paths collide on every IK branch and after
 moving the via-points (Sec 3.6: "the entire path is redesigned"). A state is
 valid when the whole arm keeps ``required`` clearance from the scene
-(:class:`verification.collision.SceneCollision`) and no two non-adjacent links
+(:class:`iik.planning.collision.SceneCollision`) and no two non-adjacent links
 touch. The motion between states is checked by OMPL's discrete validity
 resolution; the final path is re-checked by the certified continuous check of
 :meth:`SceneCollision.path_clearance` by the caller.

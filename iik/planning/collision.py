@@ -1,7 +1,7 @@
 """Whole-arm collision checking with Coal: the URDF's collision shapes against the scene.
 
 The arm's collision shapes come from ``urdf/thesis_arm.urdf`` through
-:func:`verification.models.thesis_model`; the environment is the scenario's
+:func:`iik.planning.robot_model.thesis_model`; the environment is the scenario's
 boxes (obstacles and supports), the mobile platform and the floor of
 :data:`iik.scene.THESIS_SCENE` (half-space). Distances are exact Coal
 (GJK/EPA) distances between the shapes; a negative value is a penetration.
@@ -33,10 +33,10 @@ import numpy as np
 import pinocchio as pin
 
 from iik._validate import as_joints
-from iik.planning.obstacles import Box
+from iik.planning.obstacles import Obstacle
 from iik.scene import THESIS_SCENE, Scene
 
-from .models import collision_link, thesis_model
+from .robot_model import collision_link, thesis_model
 
 __all__ = ["SceneCollision", "PathClearance"]
 
@@ -76,7 +76,7 @@ class SceneCollision:
         platform, floor: Include them.
     """
 
-    def __init__(self, boxes: Sequence[Box] = (), *, scene: Scene = THESIS_SCENE,
+    def __init__(self, boxes: Sequence[Obstacle] = (), *, scene: Scene = THESIS_SCENE,
                  platform: bool = True, floor: bool = True):
         tm = thesis_model()
         self.model = tm.model

@@ -1,4 +1,4 @@
-"""Files and figures of a :class:`~verification.pipeline.PlanResult` (used by ``iik plan``, notebook, report).
+"""Files and figures of a :class:`~iik.planning.pipeline.PlanResult` (used by ``iik plan``, notebook, report).
 
 * ``trajectory.csv`` -- the timed joint trajectory: ``t`` [s], ``q1..q6`` [rad],
   ``qd1..qd6`` [rad/s], ``qdd1..qdd6`` [rad/s^2];

@@ -6,7 +6,7 @@ d = [0.333, 0, 0.316, 0, 0.384, 0, 0] m, alpha = [0, -pi/2, pi/2, pi/2, -pi/2, p
 and a flange 0.107 m along z of frame 7. :func:`panda_fk_pair` compares the URDF built from
 that table (limits and speeds copied from the reference model) with ``panda.urdf`` of
 ``example-robot-data`` (frame ``panda_link8``, the flange). The base and tool transforms
-solved by :func:`verification.ur5.solve_base_tool` are the identity (frozen as such).
+solved by :func:`verification.oracles.ur5.solve_base_tool` are the identity (frozen as such).
 """
 
 from __future__ import annotations

@@ -1,16 +1,16 @@
-"""Whole-arm Coal checks (verification.collision)."""
+"""Whole-arm Coal checks (iik.planning.collision)."""
 
 import numpy as np
 import pytest
 
 import iik
-from iik.planning import Box
-from verification.collision import SceneCollision
+from iik.planning import Obstacle
+from iik.planning.collision import SceneCollision
 
 
 @pytest.fixture(scope="module")
 def checker():
-    return SceneCollision([Box((0.55, 0.0, 0.0), (0.2, 0.2, 0.4), name="box")])
+    return SceneCollision([Obstacle((0.55, 0.0, 0.0), (0.2, 0.2, 0.4), name="box")])
 
 
 @pytest.mark.parametrize("required", [0.0, 0.03, 0.1])
@@ -34,7 +34,7 @@ def test_motion_clearance_is_certified_or_a_witnessed_violation(checker, require
 
 def test_penetration_is_negative_and_named(checker):
     q = np.zeros(6)  # arm stretched along +x at z = l1 through the box's top region
-    tall = SceneCollision([Box((0.6, 0.0, 0.3), (0.1, 0.1, 0.1), name="hit")])
+    tall = SceneCollision([Obstacle((0.6, 0.0, 0.3), (0.1, 0.1, 0.1), name="hit")])
     d, link, obj = tall.clearance(q)
     assert d < 0 and obj == "hit" and link.startswith("link")
     d2, _, _ = checker.clearance(q)

@@ -1,12 +1,13 @@
-"""verification.models and verification.strategies."""
+"""iik.planning.robot_model and verification.testing.strategies."""
 
 import numpy as np
 from hypothesis import given
 
 import iik
+from iik.planning.robot_model import thesis_model
 from iik.resources import urdf_path
-from verification.models import thesis_model, tool_frame_id
-from verification.strategies import BEYOND, joint_batches, joint_vectors, sample_joints
+from verification.oracles.pinocchio_model import tool_frame_id
+from verification.testing.strategies import BEYOND, joint_batches, joint_vectors, sample_joints
 
 
 def test_thesis_model_is_cached_and_unpacks():

@@ -17,10 +17,10 @@ obstacle, the entire path is redesigned and verified again"):
 5. ``rrt-connect`` -- OMPL RRT-Connect in joint space on Coal checks.
 
 A path is accepted when the certified whole-arm clearance (steps and the
-motions between them, :class:`verification.collision.SceneCollision`) is at
+motions between them, :class:`iik.planning.collision.SceneCollision`) is at
 least the scenario's safety zone and no two non-adjacent links touch. The
 accepted joint path is timed by TOPP-RA within the velocity and acceleration
-limits (:func:`verification.timing.time_parameterize`) and every sample is
+limits (:func:`iik.planning.timing.time_parameterize`) and every sample is
 checked against the joint, velocity and acceleration limits.
 """
 
@@ -34,7 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
-from iik import THESIS_ARM, Arm, fk
+from iik import THESIS_ARM, Arm, branch_switches, fk, path_effort
 from iik.errors import IIKError
 from iik.planning import Scenario, build_path, track_branches
 from iik.planning.path import interpolate_joints
@@ -42,7 +42,7 @@ from iik.planning.planner import CartesianPath, all_solutions, track_dp
 from iik.scene import THESIS_SCENE, Scene
 
 from .collision import PathClearance, SceneCollision
-from .scenarios import dexterity_notes, load_scenario, platform_box, validate_scenario
+from .scenario_io import dexterity_notes, load_scenario, platform_box, validate_scenario
 from .timing import Trajectory, thesis_timing, time_parameterize
 
 __all__ = ["PlanOptions", "PlanResult", "plan_scenario", "PlanningFailed"]
@@ -147,15 +147,6 @@ class PlanResult:
                 + (f"\n  duration {tr.duration:.2f} s (TOPP-RA) vs {self.thesis_trajectory.duration:.2f} s "
                    "(thesis: velocity proportional to effort)"
                    if tr is not None and self.thesis_trajectory else ""))
-
-
-def _effort(q: np.ndarray) -> np.ndarray:
-    import iik
-
-    e = np.zeros(len(q))
-    for i in range(1, len(q)):
-        e[i] = float(iik.effort_index(q[i - 1], q[i]))  # Eq 54
-    return e
 
 
 def _tool_length(q: np.ndarray, arm: Arm) -> float:
@@ -263,7 +254,7 @@ def plan_scenario(scenario: Scenario | str | Path, *, options: PlanOptions = Pla
             scenario=sc, success=success, method=method if q is not None else "none", reason=reason,
             q=q if q is not None else np.zeros((0, 6)),
             points=fk(q, arm)[:, :3, 3] if q is not None and len(q) else np.zeros((0, 3)),
-            effort=_effort(q) if q is not None else np.zeros(0), clearance=pc,
+            effort=path_effort(q) if q is not None else np.zeros(0), clearance=pc,
             min_clearance=pc.minimum if pc is not None else float("nan"),
             path_length=_tool_length(q, arm) if q is not None else 0.0,
             branch_switches=tuple(switches), failed_steps=first_failed,
@@ -288,9 +279,8 @@ def plan_scenario(scenario: Scenario | str | Path, *, options: PlanOptions = Pla
             attempts.append(f"LJI (Sec 2.6), key IK branch {b.start_solution}: min clearance "
                             f"{pc.minimum * 1000:.1f} mm" + (" -> accepted" if ok else ""))
             if ok:
-                sw = tuple(int(i) + 1 for i in np.flatnonzero(np.abs(np.diff(q, axis=0)).max(1) > 0.5))
                 return _finish(sc, q, pc, "thesis LJI" if k == 0 else "thesis LJI, other IK branch", kpath,
-                               sw, info["beta_changed_steps"], info["alpha_changed_steps"])
+                               branch_switches(q), info["beta_changed_steps"], info["alpha_changed_steps"])
         attempts.append("LJI: no key-point branch keeps the safety zone; falling back to LEI")
     found, no_sol = try_path(cpath, "thesis path", first=True)
     if found:
@@ -326,7 +316,7 @@ def plan_scenario(scenario: Scenario | str | Path, *, options: PlanOptions = Pla
 
     if options.rrt:
         say("RRT-Connect (OMPL) in joint space")
-        from .sampling_planner import rrt_connect
+        from .rrt import rrt_connect
 
         ends = all_solutions(cpath.points[[0, -1]], cpath.euler[[0, -1]], solve_many=solve_many)[0]
         good = []
@@ -350,8 +340,7 @@ def plan_scenario(scenario: Scenario | str | Path, *, options: PlanOptions = Pla
                 attempts.append(f"rrt-connect attempt {j}: {len(P)} states, min clearance "
                                 f"{pc.minimum * 1000:.1f} mm" + (" -> accepted" if ok else ""))
                 if ok:
-                    sw = tuple(int(i) + 1 for i in np.flatnonzero(np.abs(np.diff(P, axis=0)).max(1) > 0.5))
-                    return _finish(sc, P, pc, "rrt-connect", None, sw, (), ())
+                    return _finish(sc, P, pc, "rrt-connect", None, branch_switches(P), (), ())
     return _fail(sc, attempts, cpath, first_failed, first_beta, t0, _reason(attempts))
 
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import iik
-from verification.baselines import THESIS_NEWTON_TOL, damped_least_squares, newton_pinv
+from verification.oracles.baselines import THESIS_NEWTON_TOL, damped_least_squares, newton_pinv
 
 
 @pytest.mark.parametrize("method", [newton_pinv, damped_least_squares])
