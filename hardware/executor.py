@@ -154,7 +154,7 @@ def validate(times, q, poses, *, arm: Arm = THESIS_ARM,
         raise SafetyError(f"q[{k + 1}, {j}]", f"needs {vel[k, j]:.4f} rad/s > limit {vmax[j]:.4f} rad/s")
     # FK of every target against its planned pose (Eq 4)
     try:
-        from iik._validate import as_poses
+        from iik.validation import as_poses
 
         as_poses(Ta, "poses")
     except InvalidInputError as exc:

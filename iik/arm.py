@@ -150,7 +150,7 @@ class Arm:
         (default :data:`LIMIT_TOL`, rounding at a stop); a negative ``tol`` is a
         margin inside them (the planner's and the executor's margins).
         """
-        from ._validate import as_joints
+        from .validation import as_joints
 
         qb, batched = as_joints(q, "q")
         ok = np.all((qb >= self.q_min - tol) & (qb <= self.q_max + tol), axis=1)

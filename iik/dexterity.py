@@ -43,9 +43,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_float_array, as_points
 from .arm import THESIS_ARM, Arm
 from .errors import InvalidInputError, UnreachablePoseError
+from .validation import as_float_array, as_points
 
 __all__ = ["Dexterity", "dexterity", "DexterityError", "alpha_admissible"]
 

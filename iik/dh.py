@@ -17,8 +17,8 @@ from typing import Literal
 
 import numpy as np
 
-from ._validate import as_joints
 from .errors import InvalidInputError
+from .validation import as_joints
 
 __all__ = ["DHRow", "DHTable", "dh_chain", "dh_link_transform"]
 

@@ -23,8 +23,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._validate import as_joints
 from .errors import InvalidInputError
+from .validation import as_joints
 
 __all__ = ["BRANCH_SWITCH_STEP", "effort_index", "path_effort", "branch_switches", "JointPath"]
 

@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_joints
 from .arm import THESIS_ARM, Arm
 from .dh import dh_chain
+from .validation import as_joints
 
 __all__ = ["fk", "fk_chain", "position_jacobian", "jacobian", "joint_frames"]
 

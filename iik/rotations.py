@@ -23,8 +23,8 @@ import warnings
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ._validate import as_float_array, as_points
 from .errors import InvalidInputError
+from .validation import as_float_array, as_points
 
 __all__ = [
     "EULER_SEQUENCE",

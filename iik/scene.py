@@ -24,8 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_points
 from .errors import InvalidInputError
+from .validation import as_points
 
 __all__ = [
     "PLATFORM_HEIGHT",

@@ -232,7 +232,7 @@ def _checked_table(table) -> DHTable:
 def _checked_transform(T, name: str) -> np.ndarray:
     if T is None:
         return np.eye(4)
-    from ._validate import as_poses
+    from .validation import as_poses
 
     Ts, batched = as_poses(T, name, orthonormal_tol=1e-9)
     if batched:
@@ -241,7 +241,7 @@ def _checked_transform(T, name: str) -> np.ndarray:
 
 
 def _checked_positive(values, n: int, name: str) -> tuple[float, ...]:
-    from ._validate import as_float_array
+    from .validation import as_float_array
 
     arr = as_float_array(values, name)
     if arr.shape != (n,):
@@ -300,7 +300,7 @@ def urdf_link_frames(table: DHTable, q, *, base=None) -> np.ndarray:
     base_T = _checked_transform(base, "base")
     if table.convention == "modified":
         return base_T @ dh_chain(table, q, all_frames=True)
-    from ._validate import as_joints
+    from .validation import as_joints
 
     qb, batched = as_joints(q, "q", table.dof)
     if batched:

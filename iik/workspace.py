@@ -33,10 +33,10 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.spatial import cKDTree
 
-from ._validate import as_points
 from .arm import THESIS_ARM, Arm
 from .errors import InvalidInputError
 from .kinematics import position_jacobian
+from .validation import as_points
 
 __all__ = ["in_workspace", "closest_reachable", "ClosestReachable", "position_lm", "tool_positions"]
 

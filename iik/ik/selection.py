@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_joints, as_poses
 from ..arm import THESIS_ARM, Arm
 from ..errors import UnreachablePoseError
 from ..joint_path import BRANCH_SWITCH_STEP, JointPath, branch_switches, effort_index, path_effort
+from ..validation import as_joints, as_poses
 from .result import IKResult
 
 __all__ = ["select", "select_index", "follow_path", "branch_signature"]

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_poses
 from ..arm import LIMIT_TOL, THESIS_ARM, Arm
 from ..errors import InvalidInputError
+from ..validation import as_poses
 from . import complete as _complete
 from .result import IKResult
 

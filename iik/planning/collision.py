@@ -32,9 +32,9 @@ import coal
 import numpy as np
 import pinocchio as pin
 
-from iik._validate import as_joints
 from iik.planning.obstacles import Obstacle
 from iik.scene import THESIS_SCENE, Scene
+from iik.validation import as_joints
 
 from .robot_model import collision_link, thesis_model
 

@@ -30,8 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import as_float_array, as_points
 from ..errors import InvalidInputError
+from ..validation import as_float_array, as_points
 
 __all__ = [
     "SAFETY_ZONE",

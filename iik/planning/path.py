@@ -28,8 +28,8 @@ import math
 import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
 
-from .._validate import as_float_array, as_joints, as_points
 from ..errors import InvalidInputError
+from ..validation import as_float_array, as_joints, as_points
 
 __all__ = [
     "MAX_STEP",

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from iik import THESIS_ARM, Arm
-from iik._validate import as_joints
+from iik.validation import as_joints
 
 __all__ = ["Trajectory", "time_parameterize", "thesis_timing"]
 

@@ -27,8 +27,8 @@ import math
 
 import numpy as np
 
-from .._validate import as_points
 from ..errors import InvalidInputError
+from ..validation import as_points
 
 __all__ = [
     "VIA_POINTS",

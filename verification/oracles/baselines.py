@@ -21,8 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from iik._validate import as_joints, as_poses
 from iik.planning.robot_model import thesis_model
+from iik.validation import as_joints, as_poses
 
 __all__ = ["NumericIKResult", "newton_pinv", "damped_least_squares", "THESIS_NEWTON_TOL"]
 
