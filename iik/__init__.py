@@ -5,9 +5,9 @@ Pure NumPy/SciPy; no I/O. Units are SI (m, rad, s) throughout.
 """
 
 from .arm import THESIS_ARM, Arm
-from .dexterity import Dexterity, DexterityError, dexterity
+from .dexterity import Dexterity, dexterity
 from .dh import DHRow, DHTable, dh_chain
-from .errors import IIKError, InvalidInputError, ScenarioError, UnreachablePoseError
+from .errors import DexterityError, IIKError, InvalidInputError, ScenarioError, UnreachablePoseError
 from .ik import (
     IKResult,
     follow_path,

@@ -44,37 +44,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from .arm import THESIS_ARM, Arm
-from .errors import InvalidInputError, UnreachablePoseError
+from .errors import DexterityError, InvalidInputError, UnreachablePoseError
 from .validation import as_float_array, as_points
 
-__all__ = ["Dexterity", "dexterity", "DexterityError", "alpha_admissible"]
+__all__ = ["Dexterity", "dexterity", "alpha_admissible"]
 
 _HALF_PI = 0.5 * math.pi
-
-
-class DexterityError(InvalidInputError):
-    """A requested ``beta`` is outside the admissible range at that point.
-
-    Attributes:
-        beta_range: The admissible ``(beta_min, beta_max)`` [rad] (Eq 42 convention).
-    """
-
-    def __init__(self, beta: float, beta_range: tuple[float, float] | None):
-        self.beta_range = beta_range
-        if beta_range is None:
-            super().__init__(
-                "beta",
-                f"{beta:.6g} rad: no beta is admissible at this point in the model of Sec 3.5 "
-                "(admissible range: empty)",
-            )
-            return
-        lo, hi = beta_range
-        super().__init__(
-            "beta",
-            f"{beta:.6g} rad ({math.degrees(beta):.3f} deg) is outside the admissible range "
-            f"[{lo:.6g}, {hi:.6g}] rad ([{math.degrees(lo):.3f}, {math.degrees(hi):.3f}] deg) "
-            "at this point",
-        )
 
 
 @dataclass(frozen=True)

@@ -7,11 +7,14 @@ derives from :class:`IIKError`. Subclasses also inherit the matching built-in
 
 from __future__ import annotations
 
+import math
+
 __all__ = [
     "IIKError",
     "InvalidInputError",
     "UnreachablePoseError",
     "ScenarioError",
+    "DexterityError",
 ]
 
 
@@ -49,3 +52,28 @@ class ScenarioError(IIKError, ValueError):
         self.field = field
         self.reason = reason
         super().__init__(f"{field}: {reason}")
+
+
+class DexterityError(InvalidInputError):
+    """A requested ``beta`` is outside the admissible range at that point.
+
+    Attributes:
+        beta_range: The admissible ``(beta_min, beta_max)`` [rad] (Eq 42 convention).
+    """
+
+    def __init__(self, beta: float, beta_range: tuple[float, float] | None):
+        self.beta_range = beta_range
+        if beta_range is None:
+            super().__init__(
+                "beta",
+                f"{beta:.6g} rad: no beta is admissible at this point in the model of Sec 3.5 "
+                "(admissible range: empty)",
+            )
+            return
+        lo, hi = beta_range
+        super().__init__(
+            "beta",
+            f"{beta:.6g} rad ({math.degrees(beta):.3f} deg) is outside the admissible range "
+            f"[{lo:.6g}, {hi:.6g}] rad ([{math.degrees(lo):.3f}, {math.degrees(hi):.3f}] deg) "
+            "at this point",
+        )

@@ -10,8 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import iik
-from iik.dexterity import DexterityError, alpha_admissible
-from iik.errors import IIKError, InvalidInputError, UnreachablePoseError
+from iik.dexterity import alpha_admissible
+from iik.errors import DexterityError, IIKError, InvalidInputError, UnreachablePoseError
 
 ARM = iik.THESIS_ARM
 joints = st.tuples(*[st.floats(float(lo), float(hi)) for lo, hi in zip(ARM.q_min, ARM.q_max, strict=True)])
