@@ -14,7 +14,7 @@ import time
 import numpy as np
 
 from iik.planning.obstacles import Obstacle, ellipsoid_value, enclosing_radii
-from iik.planning.viapoints import _TABLE_IV_PRINTED, REGIONS, TABLE_IV, VIA_POINTS, region_of
+from iik.planning.viapoints import REGIONS, TABLE_IV, TABLE_IV_PRINTED, VIA_POINTS, region_of
 
 from ..registry import Erratum, Row, Verdict, register
 
@@ -71,7 +71,7 @@ def check_table_iv(ctx) -> Row:
     mir = dict(zip(REGIONS, reversed(REGIONS), strict=True))
     vmap = {1: 4, 2: 3, 3: 2, 4: 1}
     sym = all(TABLE_IV[(mir[a], mir[b])] == tuple(vmap[v] for v in vias)
-              for (a, b), vias in _TABLE_IV_PRINTED.items())
+              for (a, b), vias in TABLE_IV_PRINTED.items())
     via_mirror = all(np.allclose(VIA_POINTS[vmap[k]], np.array(v) * [1, -1, 1])
                      for k, v in VIA_POINTS.items())
     # The inferred sectors: via-points 1 and 4 bound A and G; each middle via-point lies in C / E.
