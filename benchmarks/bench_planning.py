@@ -2,7 +2,7 @@
 
 Scenario ``j`` (Fig 42j). Three variants measured in the same run:
 
-* ``full``     -- plan_scenario without timing: thesis path, IK branches, certified
+* ``full``     -- ``iik.planning.plan`` without timing: thesis path, IK branches, certified
                   continuous whole-arm check (the target is <= 200 ms median);
 * ``discrete`` -- the same with the whole-arm check at the step-points only (baseline
                   without the continuous check between steps);
@@ -17,11 +17,16 @@ import argparse
 import statistics
 import time
 
-from iik.planning import build_path, track_branches
-from iik.planning.collision import SceneCollision
-from iik.planning.pipeline import PlanOptions, plan_scenario
-from iik.planning.scenario_io import load_scenario, platform_box
-from iik.resources import scenarios_dir
+from iik.planning import (
+    PlanOptions,
+    SceneCollision,
+    build_path,
+    load_scenario,
+    plan,
+    scenario_path,
+    track_branches,
+)
+from iik.scene import THESIS_SCENE
 
 
 def _median(fn, runs: int) -> float:
@@ -39,18 +44,16 @@ def main() -> None:
     ap.add_argument("--runs", type=int, default=15)
     ap.add_argument("--scenario", default="j")
     args = ap.parse_args()
-    path = scenarios_dir() / f"{args.scenario}.toml"
-    sc = load_scenario(path)
-    plat = platform_box()
+    sc = load_scenario(scenario_path(args.scenario))
 
     def full():
-        r = plan_scenario(sc, options=PlanOptions(timing=False))
+        r = plan(sc, PlanOptions(timing=False))
         assert r.success, r.reason
 
     def discrete():
         # same pipeline steps, but clearance at the step-points only (no motion check)
-        cp = build_path(sc, platform=plat, floor_z=-0.45)
-        br, _ = track_branches(cp, adapt_orientation=False)
+        cp = build_path(sc, scene=THESIS_SCENE)
+        br = track_branches(cp, adapt_orientation=False).branches
         chk = SceneCollision(sc.obstacles)
         for b in br:
             pc = chk.path_clearance(b.q, -float("inf"))  # bound already met: no bisection samples
@@ -58,7 +61,7 @@ def main() -> None:
                 return
 
     def thesis():
-        cp = build_path(sc, platform=plat, floor_z=-0.45)
+        cp = build_path(sc, scene=THESIS_SCENE)
         track_branches(cp, adapt_orientation=False)
 
     t_full, t_disc, t_thesis = (_median(f, args.runs) for f in (full, discrete, thesis))

@@ -69,10 +69,8 @@ def scenario_trajectory(name: str, speed: float = 0.5):
     fallback path there is no Cartesian plan and the poses are FK of the joints.
     """
     from hardware.executor import time_steps
-    from iik.errors import ScenarioError
     from iik.kinematics import fk
-    from iik.planning import poses_of
-    from iik.planning.pipeline import PlanningFailed, PlanOptions, plan_scenario
+    from iik.planning import PlanningFailed, PlanOptions, ScenarioError, plan, poses_of
     from iik.resources import scenarios_dir
 
     path = Path(name)
@@ -83,7 +81,7 @@ def scenario_trajectory(name: str, speed: float = 0.5):
             raise ScenarioError("scenario", f"{name!r} is neither a scenario file nor a shipped "
                                 f"scenario ({names})")
         path = shipped
-    res = plan_scenario(path, options=PlanOptions(timing=False))
+    res = plan(path, PlanOptions(timing=False))
     if not res.success:
         raise PlanningFailed(res)
     q = np.asarray(res.q, dtype=float)

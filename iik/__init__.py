@@ -7,7 +7,7 @@ Pure NumPy/SciPy; no I/O. Units are SI (m, rad, s) throughout.
 from .arm import THESIS_ARM, Arm
 from .dexterity import Dexterity, dexterity
 from .dh import DHRow, DHTable, dh_chain
-from .errors import DexterityError, IIKError, InvalidInputError, ScenarioError, UnreachablePoseError
+from .errors import DexterityError, IIKError, InvalidInputError, UnreachablePoseError
 from .ik import (
     IKResult,
     follow_path,
@@ -50,7 +50,6 @@ __all__ = [
     "THESIS_SCENE",
     "IIKError",
     "InvalidInputError",
-    "ScenarioError",
     "UnreachablePoseError",
     "dexterity",
     "Dexterity",

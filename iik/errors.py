@@ -2,7 +2,8 @@
 
 Every error raised on bad input by ``iik``, ``verification`` or ``hardware``
 derives from :class:`IIKError`. Subclasses also inherit the matching built-in
-(``ValueError``, ``TimeoutError``) so generic handlers keep working.
+(``ValueError``, ``TimeoutError``) so generic handlers keep working. Each layer
+keeps its own errors module under this root (planning: :mod:`iik.planning.errors`).
 """
 
 from __future__ import annotations
@@ -13,7 +14,6 @@ __all__ = [
     "IIKError",
     "InvalidInputError",
     "UnreachablePoseError",
-    "ScenarioError",
     "DexterityError",
 ]
 
@@ -38,20 +38,6 @@ class InvalidInputError(IIKError, ValueError):
 
 class UnreachablePoseError(IIKError, ValueError):
     """A requested pose or point cannot be reached by the arm."""
-
-
-class ScenarioError(IIKError, ValueError):
-    """A scenario file is malformed or describes an impossible task.
-
-    Attributes:
-        field: Dotted name of the offending field, e.g. ``"goal.position"``.
-        reason: Human-readable reason.
-    """
-
-    def __init__(self, field: str, reason: str):
-        self.field = field
-        self.reason = reason
-        super().__init__(f"{field}: {reason}")
 
 
 class DexterityError(InvalidInputError):

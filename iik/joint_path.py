@@ -13,8 +13,9 @@ A *branch switch* is a step whose largest joint change exceeds
 figures show them as the sudden joint swings of Sec 4.2). Every part of the
 project that reports switches uses :func:`branch_switches`.
 
-Units: rad. This module is the one home of :func:`effort_index`,
-:func:`path_effort`, :func:`branch_switches` and :class:`JointPath`.
+Units: rad. This module is the one home of :func:`effort_index` (with its
+all-pairs and along-a-path forms :func:`effort_matrix` and :func:`path_effort`),
+:func:`branch_switches` and :class:`JointPath`.
 """
 
 from __future__ import annotations
@@ -26,10 +27,16 @@ import numpy as np
 from .errors import InvalidInputError
 from .validation import as_joints
 
-__all__ = ["BRANCH_SWITCH_STEP", "effort_index", "path_effort", "branch_switches", "JointPath"]
+__all__ = ["BRANCH_SWITCH_STEP", "effort_index", "effort_matrix", "path_effort", "branch_switches",
+           "JointPath"]
 
 #: A step whose largest joint change exceeds this is a branch switch [rad].
 BRANCH_SWITCH_STEP = 0.5
+
+
+def _eq54(dq: np.ndarray) -> np.ndarray:
+    """Eq 54 over the last axis of joint changes ``dq`` (..., 6) [rad]: ``sum |dq_n| / 6``."""
+    return np.sum(np.abs(dq), axis=-1) / 6.0  # Eq 54
 
 
 def effort_index(q_prev, q) -> np.ndarray | float:
@@ -38,15 +45,22 @@ def effort_index(q_prev, q) -> np.ndarray | float:
     if bp:
         raise InvalidInputError("q_prev", f"expected one joint vector (6,), got shape {qp.shape}")
     qq, batched = as_joints(q, "q")
-    E = np.sum(np.abs(qq - qp), axis=1) / 6.0  # Eq 54
+    E = _eq54(qq - qp)
     return E if batched else float(E[0])
+
+
+def effort_matrix(q_from, q_to) -> np.ndarray:
+    """Eq 54 for every pair: ``E[a, b]`` from ``q_from[a]`` (m, 6) to ``q_to[b]`` (k, 6) [rad], (m, k)."""
+    qa, _ = as_joints(q_from, "q_from")
+    qb, _ = as_joints(q_to, "q_to")
+    return _eq54(qb[None, :, :] - qa[:, None, :])
 
 
 def path_effort(q) -> np.ndarray:
     """Eq 54 at every step of a joint path (n, 6) [rad]: (n,) with ``E_0 = 0``."""
     qb, _ = as_joints(q, "q")
     E = np.zeros(len(qb))
-    E[1:] = np.sum(np.abs(np.diff(qb, axis=0)), axis=1) / 6.0  # Eq 54, step by step
+    E[1:] = _eq54(np.diff(qb, axis=0))
     return E
 
 

@@ -10,7 +10,7 @@ HELP = "plan a scenario (TOML): thesis planner + whole-arm Coal check + fallback
 
 
 def add_arguments(p) -> None:
-    p.add_argument("scenario", type=Path, help="scenario file, e.g. scenarios/j.toml")
+    p.add_argument("scenario", help="scenario file, e.g. scenarios/j.toml, or a shipped name, e.g. j")
     p.add_argument("--out", type=Path, default=None, help="output folder (default: plan_<name>)")
     p.add_argument("--no-fallbacks", action="store_true",
                    help="thesis planner only (no other branches, redesigns or RRT-Connect)")
@@ -20,8 +20,7 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
-    from iik.planning.output import write_outputs
-    from iik.planning.pipeline import PlanOptions, plan_scenario
+    from iik.planning import PlanOptions, plan, write_outputs
 
     opts = PlanOptions(fallbacks=not args.no_fallbacks, rrt=not args.no_fallbacks, dt=args.dt, seed=args.seed)
 
@@ -29,11 +28,11 @@ def run(args) -> int:
         print(f"  ... {msg}", file=sys.stderr, flush=True)
 
     print(f"planning {args.scenario}", file=sys.stderr)
-    res = plan_scenario(args.scenario, options=opts, progress=progress)
+    res = plan(args.scenario, opts, progress=progress)
     out = args.out or Path(f"plan_{res.scenario.name}")
     files = write_outputs(res, out, figures=not args.no_figures)
     print(res.summary())
-    for a in res.attempts:
-        print(f"  - {a}")
+    for line in res.log:
+        print(f"  - {line}")
     print("wrote: " + ", ".join(str(f) for f in files))
     return 0 if res.success else 1

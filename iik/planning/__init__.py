@@ -1,42 +1,131 @@
-"""Collision-free path planning of Sec 3.6 (pure NumPy; collision checks are injected).
+"""Collision-free pick-and-place planning (Sec 3.6, Sec 4.2): the layer a user plans with.
 
-* :mod:`.path` -- straight-line (LEI/LJI) and arc step-points, orientation interpolation.
-* :mod:`.obstacles` -- boxes, the enclosing ellipsoid (Eq 52-53, corrected), repulsion.
-* :mod:`.viapoints` -- Table III, Table IV and the inferred region layout of Fig 29.
-* :mod:`.scenario` -- the :class:`Scenario` dataclass and its geometric checks.
-* :mod:`.planner` -- step-points + orientations, IK along the path by the effort index.
+``plan("j")`` plans a shipped scenario end to end; ``plan(path)`` a TOML file;
+``plan(Scenario(...), PlanOptions(...), arm=..., scene=...)`` anything else.
+
+* :mod:`.pipeline` -- :func:`plan`, :class:`PlanOptions`, :class:`PlanResult`, :class:`Attempt`;
+* :mod:`.scenario`, :mod:`.scenario_io` -- the :class:`Scenario` and its TOML files (load, validate, write);
+* :mod:`.cartesian` -- the thesis's step-points, repulsion and orientations (Sec 3.6.1-3.6.3);
+* :mod:`.tracking` -- IK along the path by the effort index (Eq 54), orientation search;
+* :mod:`.path`, :mod:`.obstacles`, :mod:`.viapoints` -- lines/arcs, Eq 52-53 ellipsoids and
+  repulsion, Table III/IV;
+* :mod:`.collision`, :mod:`.robot_model` -- whole-arm Coal distances from the arm's URDF (Pinocchio);
+* :mod:`.rrt` -- the OMPL RRT-Connect fallback; :mod:`.timing` -- TOPP-RA timing;
+* :mod:`.output` -- CSV files and figures of a result; :mod:`.errors` -- the layer's errors.
+
+Units: m, rad, s; frames: the arm's base frame 0.
 """
 
-from .obstacles import SAFETY_ZONE, Obstacle, enclosing_radii, repel_points, repulsion_normal
-from .path import MAX_STEP, arc_steps, interpolate_joints, interpolate_orientation, straight_steps
-from .planner import CartesianPath, JointPath, all_solutions, build_path, poses_of, track_branches, track_dp
+from .cartesian import CartesianPath, build_path, poses_of
+from .collision import PathClearance, SceneCollision
+from .errors import PlanningError, PlanningFailed, SamplingError, ScenarioError, TimingError
+from .obstacles import SAFETY_ZONE, Obstacle, ellipsoid_value, enclosing_radii, repel_points, repulsion_normal
+from .output import plot_effort, plot_joints, plot_scene, write_outputs
+from .path import (
+    MAX_STEP,
+    arc_steps,
+    densify,
+    interpolate_joints,
+    interpolate_orientation,
+    path_length,
+    straight_steps,
+)
+from .pipeline import Attempt, PlanOptions, PlanResult, plan
+from .robot_model import ThesisModel, thesis_model
+from .rrt import rrt_connect
 from .scenario import Scenario, Waypoint, check_scenario
-from .viapoints import TABLE_IV, VIA_POINTS, region_of, via_point_path, via_points_for
+from .scenario_io import (
+    dexterity_notes,
+    load_scenario,
+    platform_box,
+    scenario_from_dict,
+    scenario_path,
+    scenario_to_toml,
+    thesis_scenario_paths,
+    validate_scenario,
+    write_scenario,
+)
+from .timing import Trajectory, thesis_timing, time_parameterize
+from .tracking import LIMIT_MARGIN, Tracking, all_solutions, track_branches, track_dp
+from .viapoints import (
+    REGIONS,
+    TABLE_IV,
+    TABLE_IV_PRINTED,
+    VIA_POINTS,
+    region_bounds,
+    region_of,
+    via_point_path,
+    via_points_for,
+)
 
 __all__ = [
-    "SAFETY_ZONE",
-    "MAX_STEP",
-    "Obstacle",
-    "enclosing_radii",
-    "repel_points",
-    "repulsion_normal",
-    "arc_steps",
-    "straight_steps",
-    "interpolate_joints",
-    "interpolate_orientation",
-    "CartesianPath",
-    "JointPath",
-    "all_solutions",
-    "build_path",
-    "poses_of",
-    "track_branches",
-    "track_dp",
+    # planning a scenario
+    "plan",
+    "PlanOptions",
+    "PlanResult",
+    "Attempt",
+    # scenarios and their files
     "Scenario",
     "Waypoint",
+    "Obstacle",
     "check_scenario",
-    "TABLE_IV",
+    "load_scenario",
+    "validate_scenario",
+    "scenario_from_dict",
+    "scenario_to_toml",
+    "write_scenario",
+    "scenario_path",
+    "thesis_scenario_paths",
+    "platform_box",
+    "dexterity_notes",
+    # the thesis planner (Sec 3.6)
+    "SAFETY_ZONE",
+    "MAX_STEP",
+    "CartesianPath",
+    "build_path",
+    "poses_of",
+    "straight_steps",
+    "arc_steps",
+    "densify",
+    "path_length",
+    "interpolate_joints",
+    "interpolate_orientation",
+    "enclosing_radii",
+    "ellipsoid_value",
+    "repel_points",
+    "repulsion_normal",
+    "REGIONS",
     "VIA_POINTS",
+    "TABLE_IV",
+    "TABLE_IV_PRINTED",
+    "region_bounds",
     "region_of",
     "via_point_path",
     "via_points_for",
+    # IK along the path
+    "LIMIT_MARGIN",
+    "Tracking",
+    "all_solutions",
+    "track_branches",
+    "track_dp",
+    # collision, sampling, timing
+    "ThesisModel",
+    "thesis_model",
+    "SceneCollision",
+    "PathClearance",
+    "rrt_connect",
+    "Trajectory",
+    "time_parameterize",
+    "thesis_timing",
+    # outputs
+    "write_outputs",
+    "plot_scene",
+    "plot_joints",
+    "plot_effort",
+    # errors
+    "PlanningError",
+    "ScenarioError",
+    "PlanningFailed",
+    "TimingError",
+    "SamplingError",
 ]

@@ -1,9 +1,11 @@
 """Whole-arm collision checking with Coal: the URDF's collision shapes against the scene.
 
-The arm's collision shapes come from ``urdf/thesis_arm.urdf`` through
-:func:`iik.planning.robot_model.thesis_model`; the environment is the scenario's
-boxes (obstacles and supports), the mobile platform and the floor of
-:data:`iik.scene.THESIS_SCENE` (half-space). Distances are exact Coal
+The arm's collision shapes come from the URDF of the arm through
+:func:`iik.planning.robot_model.thesis_model` (the shipped ``urdf/thesis_arm.urdf``
+for :data:`iik.THESIS_ARM`, the generated :func:`iik.urdf.thesis_urdf` for any
+other arm); the environment is the scenario's boxes (obstacles and supports),
+the mobile platform and the floor of the scene (default
+:data:`iik.scene.THESIS_SCENE`; the floor is a half-space). Distances are exact Coal
 (GJK/EPA) distances between the shapes; a negative value is a penetration.
 
 Motion between two configurations is checked *continuously* by certified
@@ -32,10 +34,11 @@ import coal
 import numpy as np
 import pinocchio as pin
 
-from iik.planning.obstacles import Obstacle
+from iik.arm import THESIS_ARM, Arm
 from iik.scene import THESIS_SCENE, Scene
 from iik.validation import as_joints
 
+from .obstacles import Obstacle
 from .robot_model import collision_link, thesis_model
 
 __all__ = ["SceneCollision", "PathClearance"]
@@ -66,19 +69,34 @@ class PathClearance:
         """Smallest clearance over the steps and the motions between them [m]."""
         return float(min(self.step.min(), self.motion.min() if len(self.motion) else np.inf))
 
+    @property
+    def closest_link(self) -> str:
+        """The link nearest to the scene at the step of smallest clearance."""
+        return str(self.step_link[int(np.argmin(self.step))])
+
+    @property
+    def closest_object(self) -> str:
+        """The scene object nearest to the arm at the step of smallest clearance."""
+        return str(self.step_object[int(np.argmin(self.step))])
+
+    def keeps(self, required: float) -> bool:
+        """The acceptance rule of a path: clearance ``>= required`` [m] everywhere, no self-contact."""
+        return self.minimum >= required and self.self_min > 0
+
 
 class SceneCollision:
-    """Coal distance queries between the thesis arm and a scene.
+    """Coal distance queries between an arm of the thesis design and a scene.
 
     Args:
-        boxes: Scenario boxes (:class:`iik.planning.obstacles.Box`), base frame.
+        boxes: Scenario boxes (:class:`iik.planning.Obstacle`), base frame.
+        arm: The arm (its URDF collision shapes, placed by its kinematics).
         scene: Platform and floor (default :data:`iik.scene.THESIS_SCENE`).
         platform, floor: Include them.
     """
 
-    def __init__(self, boxes: Sequence[Obstacle] = (), *, scene: Scene = THESIS_SCENE,
+    def __init__(self, boxes: Sequence[Obstacle] = (), *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
                  platform: bool = True, floor: bool = True):
-        tm = thesis_model()
+        tm = thesis_model(arm)
         self.model = tm.model
         self.data = self.model.createData()
         src = tm.collision_model
@@ -138,7 +156,8 @@ class SceneCollision:
         pin.updateGeometryPlacements(self.model, self.data, self.geom_model, self.geom_data)
         return int(pin.computeDistances(self.geom_model, self.geom_data))
 
-    def _min(self, q: np.ndarray) -> tuple[float, int]:
+    def _closest(self, q: np.ndarray) -> tuple[float, int]:
+        """(distance [m], pair index) of the closest arm-environment pair at a (6,) float array."""
         k = self._update(q)
         return float(self.geom_data.distanceResults[k].min_distance), k
 
@@ -150,10 +169,19 @@ class SceneCollision:
                          for i in range(self.n_env_pairs)])
 
     def clearance(self, q) -> tuple[float, str, str]:
-        """``(distance [m], link, object)`` of the closest arm-environment pair at ``q``."""
-        d = self.distances(q)
-        i = int(np.argmin(d))
-        return float(d[i]), str(self.arm_link[self._pair_arm[i]]), str(self.env_names[self._pair_env[i]])
+        """``(distance [m], link, object)`` of the closest arm-environment pair at ``q`` [rad]."""
+        qb, _ = as_joints(q, "q")
+        d, i = self._closest(qb[0])
+        return d, str(self.arm_link[self._pair_arm[i]]), str(self.env_names[self._pair_env[i]])
+
+    def keeps(self, q, required: float) -> bool:
+        """Does the whole arm at ``q`` [rad] stay ``required`` [m] from the scene, with no self-contact?
+
+        The acceptance test of a single configuration: arm-environment clearance
+        ``>= required`` and a positive distance between every pair of non-adjacent links.
+        """
+        qb, _ = as_joints(q, "q")
+        return self._closest(qb[0])[0] >= required and self._self(qb[0]) > 0.0
 
     def link_clearances(self, q) -> dict[str, float]:
         """Minimum distance [m] of each link to the environment at ``q``."""
@@ -198,7 +226,7 @@ class SceneCollision:
         obj = np.empty(n, dtype=object)
         self_min = np.inf
         for i, q in enumerate(Q):
-            step[i], k = self._min(q)
+            step[i], k = self._closest(q)
             link[i], obj[i] = self.arm_link[self._pair_arm[k]], self.env_names[self._pair_env[k]]
             if check_self:
                 self_min = min(self_min, self._self(q))
@@ -217,7 +245,7 @@ class SceneCollision:
         if lb >= required or B <= resolution or depth > 20:
             return lb, 0
         qm = 0.5 * (q0 + q1)
-        dm, _ = self._min(qm)
+        dm, _ = self._closest(qm)
         if dm < required:  # a violation is established (a sampled distance); stop refining
             return dm, 1
         a, ca = self._segment(q0, qm, d0, dm, required, resolution, depth + 1)

@@ -1,11 +1,11 @@
-"""Files and figures of a :class:`~iik.planning.pipeline.PlanResult` (used by ``iik plan``, notebook, report).
+"""Files and figures of a :class:`~iik.planning.PlanResult` (used by ``iik plan``, notebook, report).
 
 * ``trajectory.csv`` -- the timed joint trajectory: ``t`` [s], ``q1..q6`` [rad],
   ``qd1..qd6`` [rad/s], ``qdd1..qdd6`` [rad/s^2];
 * ``steps.csv`` -- per step-point: tool point [m], joints [rad], effort index
   (Eq 54) [rad], whole-arm clearance [m] with the closest link and object, and
   the certified clearance of the motion to the next step [m];
-* ``summary.txt`` -- the summary and every attempt;
+* ``summary.txt`` -- the summary, the notes and every attempt;
 * ``scene.png`` (like Fig 42), ``joints.png`` (like Fig 43), ``effort.png`` (like Fig 44).
 """
 
@@ -13,17 +13,21 @@ from __future__ import annotations
 
 import csv
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from iik import joint_frames
-from iik.planning.obstacles import enclosing_radii
-from iik.scene import THESIS_SCENE
+from iik.kinematics import joint_frames
+
+from .obstacles import enclosing_radii
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .pipeline import PlanResult
 
 __all__ = ["write_outputs", "plot_scene", "plot_joints", "plot_effort"]
 
 
-def write_outputs(res, out: Path, *, figures: bool = True) -> list[Path]:
+def write_outputs(res: PlanResult, out: Path, *, figures: bool = True) -> list[Path]:
     """Write the CSVs, the summary and (optionally) the figures into ``out``; return the paths."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -54,7 +58,7 @@ def write_outputs(res, out: Path, *, figures: bool = True) -> list[Path]:
                               f"{mot:.6f}"])
         files.append(p)
     p = out / "summary.txt"
-    p.write_text(res.summary() + "\n" + "\n".join(f"- {a}" for a in res.attempts) + "\n")
+    p.write_text(res.summary() + "\n" + "\n".join(f"- {line}" for line in res.log) + "\n")
     files.append(p)
     if figures and len(res.q):
         import matplotlib
@@ -81,12 +85,12 @@ def _box_faces(center, size):
     return [[v[i] for i in f] for f in idx]
 
 
-def plot_scene(res, ax, *, n_arms: int = 8) -> None:
+def plot_scene(res: PlanResult, ax, *, n_arms: int = 8) -> None:
     """3D scene like Fig 42: boxes, padded ellipsoids, the tool path and arm snapshots (base frame, m)."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     sc = res.scenario
-    plat = THESIS_SCENE.platform
+    plat = res.scene.platform
     ax.add_collection3d(Poly3DCollection(_box_faces(plat.center, plat.size), facecolor="tab:red", alpha=0.15,
                                          edgecolor="tab:red", linewidth=0.5))
     u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 24), np.linspace(0, np.pi, 12))
@@ -107,12 +111,12 @@ def plot_scene(res, ax, *, n_arms: int = 8) -> None:
         ax.plot(res.points[:, 0], res.points[:, 1], res.points[:, 2], "-", color="tab:blue", lw=1.5,
                 label=f"tool path ({res.method})")
         for i in np.linspace(0, len(res.q) - 1, min(n_arms, len(res.q))).astype(int):
-            F = joint_frames(res.q[i])
+            F = joint_frames(res.q[i], res.arm)
             pts = np.vstack([[0, 0, 0], F[:, :3, 3]])
             ax.plot(pts[:, 0], pts[:, 1], pts[:, 2], "-o", color="tab:blue", lw=0.8, ms=2, alpha=0.5)
         ax.scatter(*res.points[0], color="red", s=20, label="start")
         ax.scatter(*res.points[-1], color="blue", s=20, label="goal")
-    fz = THESIS_SCENE.floor.z
+    fz = res.scene.floor.z
     ax.set_xlim(-0.6, 0.9)
     ax.set_ylim(-0.75, 0.75)
     ax.set_zlim(fz, fz + 1.5)
@@ -123,7 +127,7 @@ def plot_scene(res, ax, *, n_arms: int = 8) -> None:
     ax.legend(fontsize=7, loc="upper left")
 
 
-def plot_joints(res, ax) -> None:
+def plot_joints(res: PlanResult, ax) -> None:
     """Joint angles per step-point like Fig 43 (degrees for display)."""
     for j in range(6):
         ax.plot(np.degrees(res.q[:, j]), label=f"theta{j + 1}")
@@ -134,7 +138,7 @@ def plot_joints(res, ax) -> None:
     ax.grid(alpha=0.3)
 
 
-def plot_effort(res, ax) -> None:
+def plot_effort(res: PlanResult, ax) -> None:
     """Effort index (Eq 54) per step like Fig 44, with the whole-arm clearance on a second axis."""
     ax.plot(np.degrees(res.effort), color="tab:purple", label="effort index E (Eq 54)")
     ax.set_xlabel("step")

@@ -7,9 +7,9 @@ All points are in the arm's base frame 0 [m]; angles in rad.
   Linear End-effector Increment mode (LEI, Sec 2.6) the number of steps is
   ``ceil(length / max_step)`` so that no step exceeds ``max_step`` (30 mm in
   Sec 4.2.1); a fixed count (39 per segment in Sec 4.2.1) may be given instead.
-* :func:`lji_steps` -- the sparse Linear Joint Increment mode (LJI, Sec 2.6):
-  only the segment end points are kept; joints are interpolated linearly
-  between their IK solutions (:func:`interpolate_joints`).
+* :func:`interpolate_joints` -- the sparse Linear Joint Increment mode (LJI,
+  Sec 2.6): joints interpolated linearly between the IK solutions at the
+  segment end points.
 * :func:`arc_steps` -- the arc route the thesis used between via-points where
   the straight line had no IK solutions (Sec 4.2.1.1). The text does not
   define the arc; ours interpolates linearly in cylindrical coordinates
@@ -29,13 +29,13 @@ import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
 
 from ..errors import InvalidInputError
+from ..rotations import zxz_matrix
 from ..validation import as_float_array, as_joints, as_points
 
 __all__ = [
     "MAX_STEP",
     "straight_steps",
     "arc_steps",
-    "lji_steps",
     "interpolate_joints",
     "interpolate_orientation",
     "path_length",
@@ -116,12 +116,6 @@ def _cyl(ra, rb, fa, fb, za, zb, s):
     return np.column_stack([r * np.cos(f), r * np.sin(f), z])
 
 
-def lji_steps(points) -> np.ndarray:
-    """LJI mode (Sec 2.6): keep only the given key points (start, via-points, goal)."""
-    pts, _ = as_points(points, "points")
-    return pts.copy()
-
-
 def interpolate_joints(q_keys, *, max_joint_step: float = 0.05) -> np.ndarray:
     """Linear joint increments between key configurations (LJI, Sec 2.6).
 
@@ -143,8 +137,7 @@ def interpolate_joints(q_keys, *, max_joint_step: float = 0.05) -> np.ndarray:
     return np.concatenate(out)
 
 
-def interpolate_orientation(start_zxz, goal_zxz, n: int, *, method: str = "euler",
-                            zxz_matrix=None) -> np.ndarray:
+def interpolate_orientation(start_zxz, goal_zxz, n: int, *, method: str = "euler") -> np.ndarray:
     """Orientations for ``n`` points from the start to the goal orientation.
 
     Args:
@@ -153,8 +146,6 @@ def interpolate_orientation(start_zxz, goal_zxz, n: int, *, method: str = "euler
         method: ``"euler"`` -- the thesis's gradual change: each Euler angle
             changes linearly (Sec 4.2.1); ``"slerp"`` -- spherical linear
             interpolation of the rotations (shortest rotation, constant rate).
-        zxz_matrix: Callable ``(alpha, beta, gamma) -> (3, 3)``; required for
-            ``"slerp"`` (pass ``iik.rotations.zxz_matrix``).
 
     Returns:
         ``"euler"``: (n, 3) Euler angles [rad]. ``"slerp"``: (n, 3, 3) rotation matrices.
@@ -169,8 +160,6 @@ def interpolate_orientation(start_zxz, goal_zxz, n: int, *, method: str = "euler
     if method == "euler":
         return e0 + s * (e1 - e0)
     if method == "slerp":
-        if zxz_matrix is None:
-            raise InvalidInputError("zxz_matrix", "required for method='slerp'")
         R = Rotation.from_matrix(np.stack([zxz_matrix(*e0), zxz_matrix(*e1)]))
         return Slerp([0.0, 1.0], R)(s[:, 0]).as_matrix()
     raise InvalidInputError("method", f"expected 'euler' or 'slerp', got {method!r}")

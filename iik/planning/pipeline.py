@@ -1,32 +1,44 @@
 """Plan a scenario end to end: thesis planner, whole-arm Coal check, fallbacks, timing.
 
-:func:`plan_scenario` is the one entry point used by ``iik plan``, ``iik run``
-(hardware), the verify report and the benchmark. Order of attempts (Sec 3.6:
-"If any joint of the manipulator was found to be in a collision path with an
-obstacle, the entire path is redesigned and verified again"):
+:func:`plan` is the one entry point (``iik plan``, ``iik run``, the verify report,
+the notebook and the benchmark use it). The attempts are an ordered sequence
+of steps (Sec 3.6: "If any joint of the manipulator was found to be in a
+collision path with an obstacle, the entire path is redesigned and verified
+again"); each returns the first candidate path that passes the acceptance
+rule, or None:
 
-1. ``thesis`` -- the thesis planner (:mod:`iik.planning`) with the branch of
-   least effort (Eq 54) that covers every step;
-2. ``thesis, other IK branch`` -- the other IK branches of the same path;
-3. ``thesis, arc route`` -- segments with steps without IK solutions are
+0. ``thesis LJI`` -- only for ``mode = "LJI"`` (Sec 2.6): IK at the key points,
+   joints interpolated linearly; otherwise the LEI steps below;
+1. ``thesis`` -- the thesis planner with the branch of least effort (Eq 54)
+   that covers every step; ``thesis, other IK branch`` -- the other branches of
+   the same path (``+ orientation search`` when no branch covers every step at
+   the nominal orientation and :func:`~iik.planning.track_dp` found one);
+2. ``thesis, arc route`` -- segments with steps without IK solutions are
    replaced by the arc route of Sec 4.2.1.1;
-4. ``thesis, redesigned: ...`` -- the obstacles' ellipsoids padded by a further
+3. ``thesis, redesigned: ...`` -- the obstacles' ellipsoids padded by a further
    50 / 100 mm (the thesis pads only the tool point, not the gripper or the
    links), then via-points raised / moved radially (or one via-point added above
    the midpoint when there was none);
-5. ``rrt-connect`` -- OMPL RRT-Connect in joint space on Coal checks.
+4. ``rrt-connect`` -- OMPL RRT-Connect in joint space on Coal checks.
 
-A path is accepted when the certified whole-arm clearance (steps and the
-motions between them, :class:`iik.planning.collision.SceneCollision`) is at
-least the scenario's safety zone and no two non-adjacent links touch. The
-accepted joint path is timed by TOPP-RA within the velocity and acceleration
-limits (:func:`iik.planning.timing.time_parameterize`) and every sample is
-checked against the joint, velocity and acceleration limits.
+Steps 2-4 run only with ``PlanOptions.fallbacks`` (step 4 also needs ``rrt``).
+The acceptance rule (:meth:`PathClearance.keeps`): the certified whole-arm
+clearance (steps and the motions between them,
+:class:`~iik.planning.SceneCollision`) is at least the scenario's safety zone
+and no two non-adjacent links touch. The accepted joint path is timed by
+TOPP-RA within the arm's velocity and acceleration limits
+(:func:`~iik.planning.time_parameterize`); every sample is checked against the
+joint, velocity and acceleration limits, and the timed curve is checked for
+clearance again. Every candidate checked is logged as an :class:`Attempt`.
+
+The arm (``arm=``) is used throughout: IK and joint limits, workspace checks,
+the collision model (its generated URDF) and the timing limits.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -34,40 +46,39 @@ from pathlib import Path
 
 import numpy as np
 
-from iik import THESIS_ARM, Arm, branch_switches, fk, path_effort
-from iik.errors import IIKError
-from iik.planning import Scenario, build_path, track_branches
-from iik.planning.path import interpolate_joints
-from iik.planning.planner import CartesianPath, all_solutions, track_dp
+from iik.arm import THESIS_ARM, Arm
+from iik.errors import InvalidInputError
+from iik.joint_path import JointPath, branch_switches, path_effort
+from iik.kinematics import fk
 from iik.scene import THESIS_SCENE, Scene
 
+from .cartesian import CartesianPath, build_path
 from .collision import PathClearance, SceneCollision
-from .scenario_io import dexterity_notes, load_scenario, platform_box, validate_scenario
+from .path import interpolate_joints, path_length
+from .rrt import rrt_connect
+from .scenario import Scenario
+from .scenario_io import dexterity_notes, load_scenario, scenario_path, validate_scenario
 from .timing import Trajectory, thesis_timing, time_parameterize
+from .tracking import Tracking, all_solutions, track_branches, track_dp
 
-__all__ = ["PlanOptions", "PlanResult", "plan_scenario", "PlanningFailed"]
-
-
-class PlanningFailed(IIKError, RuntimeError):
-    """No method produced a path that keeps the safety zone (see ``result.reason``)."""
-
-    def __init__(self, result: PlanResult):
-        self.result = result
-        super().__init__(f"scenario {result.scenario.name!r}: {result.reason}")
+__all__ = ["PlanOptions", "Attempt", "PlanResult", "plan"]
 
 
 @dataclass(frozen=True)
 class PlanOptions:
-    """Knobs of :func:`plan_scenario`.
+    """Options of :func:`plan`.
 
     Attributes:
         fallbacks: Allow branches/arcs/moved via-points/RRT-Connect after the thesis path.
-        rrt: Allow the OMPL fallback.
+        rrt: Allow the OMPL fallback (with ``fallbacks``).
         rrt_time: OMPL time limit per attempt [s].
         resolution: Continuous-check resolution [m] (see ``SceneCollision.path_clearance``).
         dt: Trajectory sample period [s].
-        seed: OMPL seed.
+        seed: OMPL seed (1 .. 2**31).
         timing: Time-parameterise the accepted path.
+
+    Raises:
+        InvalidInputError: An option has the wrong type or an impossible value (named).
     """
 
     fallbacks: bool = True
@@ -78,6 +89,48 @@ class PlanOptions:
     seed: int = 1
     timing: bool = True
 
+    def __post_init__(self) -> None:
+        for name in ("fallbacks", "rrt", "timing"):
+            if not isinstance(getattr(self, name), bool):
+                raise InvalidInputError(name, f"expected True or False, got {getattr(self, name)!r}")
+        for name in ("rrt_time", "resolution", "dt"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v > 0):
+                raise InvalidInputError(name, f"expected a positive finite number, got {v!r}")
+        if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)) or not (
+                1 <= self.seed <= 2**31):
+            raise InvalidInputError("seed", f"expected an integer in 1..2**31, got {self.seed!r}")
+
+
+@dataclass(frozen=True)
+class Attempt:
+    """One entry of the attempt log: a candidate path checked, or a step that produced none.
+
+    Attributes:
+        label: What was tried, e.g. ``"thesis path, IK branch 2 (0 switches)"``.
+        accepted: The path kept the safety zone and became the plan.
+        clearance: Certified whole-arm clearance of the path [m] (steps and motions);
+            NaN when no path was checked.
+        self_clearance: Smallest distance between non-adjacent links at the steps [m] (NaN: none).
+        closest_link, closest_object: The pair at the step of smallest clearance.
+        reason: Why no path was checked, or a note on the step ("" for a checked path).
+    """
+
+    label: str
+    accepted: bool = False
+    clearance: float = float("nan")
+    self_clearance: float = float("nan")
+    closest_link: str = ""
+    closest_object: str = ""
+    reason: str = ""
+
+    def __str__(self) -> str:
+        if math.isnan(self.clearance):
+            return f"{self.label}: {self.reason}"
+        return (f"{self.label}: min clearance {self.clearance * 1000:.1f} mm ({self.closest_link} to "
+                f"{self.closest_object}), self {self.self_clearance * 1000:.1f} mm"
+                + (" -> accepted" if self.accepted else ""))
+
 
 @dataclass(frozen=True)
 class PlanResult:
@@ -87,7 +140,7 @@ class PlanResult:
         scenario: The input.
         success: True iff a path keeps the safety zone everywhere and its timing
             respects every limit.
-        method: Which attempt produced the path (see module docstring), or "none".
+        method: Which step produced the path (module docstring), or ``"none"``.
         reason: Why it failed (empty on success).
         q: (n, 6) joint path [rad] at the step-points.
         points: (n, 3) tool points [m] (forward kinematics of ``q``).
@@ -96,17 +149,20 @@ class PlanResult:
         min_clearance: Smallest certified clearance [m].
         path_length: Tool path length [m] (FK of the joint path, fine sampling).
         branch_switches: Step indices where the IK branch jumped.
-        failed_steps: Steps without IK solution in the thesis path (first attempt).
-        beta_changed_steps: Steps where beta was changed (Sec 3.6).
-        alpha_changed_steps: Steps where alpha was changed (Sec 3.6: "any alpha").
-        gamma_changed_steps: Steps where the gripper is turned by pi about its axis
-            (gamma + pi, the same grasp for the symmetric gripper; theta6 -/+ pi).
-        planning_time: Wall time of :func:`plan_scenario` without timing [s].
-        attempts: Log of every attempt.
+        failed_steps: Steps of the thesis path without IK solution at the nominal orientation.
+        beta_changed_steps: Steps of ``cartesian`` where beta was changed (Sec 3.6).
+        alpha_changed_steps: Steps of ``cartesian`` where alpha was changed (Sec 3.6: "any alpha").
+        gamma_changed_steps: Steps of ``cartesian`` where the gripper is turned by pi about its
+            axis (gamma + pi, the same grasp for the symmetric gripper; theta6 -/+ pi).
+        planning_time: Wall time of :func:`plan` without timing [s].
+        attempts: Every candidate checked, in order (:class:`Attempt`).
+        notes: Advisory notes on the scenario (start/goal outside the Sec 3.5 dexterity range).
         cartesian: The thesis Cartesian path of the accepted attempt (None for RRT).
         trajectory: TOPP-RA timing of ``q`` (None if not timed / failed).
         thesis_trajectory: The thesis's timing (velocity proportional to effort).
         trajectory_clearance: Certified whole-arm clearance of the timed trajectory [m].
+        arm: The arm planned for.
+        scene: The scene planned in.
     """
 
     scenario: Scenario
@@ -123,15 +179,24 @@ class PlanResult:
     failed_steps: tuple[int, ...]
     beta_changed_steps: tuple[int, ...]
     alpha_changed_steps: tuple[int, ...]
+    gamma_changed_steps: tuple[int, ...]
     planning_time: float
-    attempts: tuple[str, ...] = ()
-    cartesian: CartesianPath | None = None
-    trajectory: Trajectory | None = None
-    thesis_trajectory: Trajectory | None = None
-    trajectory_clearance: float = float("nan")
-    gamma_changed_steps: tuple[int, ...] = ()
+    attempts: tuple[Attempt, ...]
+    notes: tuple[str, ...]
+    cartesian: CartesianPath | None
+    trajectory: Trajectory | None
+    thesis_trajectory: Trajectory | None
+    trajectory_clearance: float
+    arm: Arm
+    scene: Scene
+
+    @property
+    def log(self) -> tuple[str, ...]:
+        """The notes and every attempt, one display line each."""
+        return self.notes + tuple(str(a) for a in self.attempts)
 
     def summary(self) -> str:
+        """A few display lines: outcome, clearances, changes, durations (mm and s)."""
         s = self.scenario
         head = f"{s.name}: {'OK' if self.success else 'FAILED'} via {self.method}"
         if not self.success:
@@ -149,233 +214,310 @@ class PlanResult:
                    if tr is not None and self.thesis_trajectory else ""))
 
 
+def plan(scenario: Scenario | str | Path, options: PlanOptions = PlanOptions(), *, arm: Arm = THESIS_ARM,
+         scene: Scene = THESIS_SCENE, progress: Callable[[str], None] | None = None) -> PlanResult:
+    """Plan, check and time one scenario for ``arm`` in ``scene``.
+
+    Args:
+        scenario: A :class:`Scenario`, a TOML file, or the name of a shipped scenario (``"j"``).
+        options: :class:`PlanOptions`.
+        arm: The arm (IK, joint limits, workspace, collision shapes, timing limits).
+        scene: Platform and floor.
+        progress: Called with a short message before each stage.
+
+    Raises:
+        ScenarioError: The file is malformed, or start/goal are impossible
+            (inside an obstacle, the platform, below the floor, outside the workspace).
+        TimingError, SamplingError: TOPP-RA or OMPL failed.
+
+    Returns:
+        :class:`PlanResult`; ``success`` False with ``reason`` when no step keeps
+        the safety zone (the failure is a result, not an exception; use
+        ``raise PlanningFailed(result)`` to turn it into one).
+    """
+    t0 = time.perf_counter()
+    p = _problem(scenario, options, arm, scene, progress or _quiet)
+    log: list[Attempt] = []
+    for step in _steps(options):
+        found = step(p, log)
+        if found is not None:
+            return _result(p, found, log, time.perf_counter() - t0)
+    reason = ("thesis path rejected (fallbacks off)" if not options.fallbacks else
+              "no method kept the safety zone; last attempts: " + " | ".join(str(a) for a in log[-2:]))
+    return _failed(p, log, time.perf_counter() - t0, reason)
+
+
+def _quiet(msg: str) -> None:
+    """The default ``progress``: say nothing."""
+
+
+@dataclass(frozen=True)
+class _Problem:
+    """The inputs every step reads: the scenario, options, arm, scene, collision model, thesis path."""
+
+    scenario: Scenario
+    options: PlanOptions
+    arm: Arm
+    scene: Scene
+    checker: SceneCollision
+    thesis: CartesianPath
+    tracking: Tracking  # IK along the thesis path at the nominal orientation (Sec 3.6)
+    notes: tuple[str, ...]
+    say: Callable[[str], None]
+
+    @property
+    def required(self) -> float:
+        """The clearance every accepted path keeps [m]: the scenario's safety zone."""
+        return self.scenario.safety_zone
+
+
+@dataclass(frozen=True)
+class _Candidate:
+    """An accepted path: the step's method name, joints, clearance, and (thesis) Cartesian path + branch."""
+
+    method: str
+    q: np.ndarray
+    clearance: PathClearance
+    cartesian: CartesianPath | None = None
+    branch: JointPath | None = None
+
+
+def _scenario(scenario, arm: Arm, scene: Scene) -> Scenario:
+    if isinstance(scenario, Scenario):
+        validate_scenario(scenario, arm=arm, scene=scene)
+        return scenario
+    if isinstance(scenario, (str, Path)):
+        return load_scenario(scenario_path(scenario), arm=arm, scene=scene)
+    raise InvalidInputError("scenario", "expected a Scenario, a scenario file or a shipped scenario name, "
+                                        f"got {type(scenario).__name__}")
+
+
+def _problem(scenario, options, arm, scene, say) -> _Problem:
+    for name, value, kind in (("options", options, PlanOptions), ("arm", arm, Arm), ("scene", scene, Scene)):
+        if not isinstance(value, kind):
+            raise InvalidInputError(name, f"expected {kind.__name__}, got {type(value).__name__}")
+    sc = _scenario(scenario, arm, scene)
+    say("thesis path (Sec 3.6)")
+    thesis = build_path(sc, scene=scene)
+    return _Problem(scenario=sc, options=options, arm=arm, scene=scene,
+                    checker=SceneCollision(sc.obstacles, arm=arm, scene=scene), thesis=thesis,
+                    tracking=track_branches(thesis, arm=arm, adapt_orientation=False),
+                    notes=tuple(dexterity_notes(sc, arm)), say=say)
+
+
+# ---------------------------------------------------------------------------- the acceptance rule
+
+
+def _check(p: _Problem, q: np.ndarray, label: str, log: list[Attempt]) -> PathClearance | None:
+    """Certified whole-arm clearance of ``q``, logged; the clearance if the path is accepted, else None."""
+    pc = p.checker.path_clearance(q, p.required, resolution=p.options.resolution)
+    ok = pc.keeps(p.required)
+    log.append(Attempt(label, ok, pc.minimum, pc.self_min, pc.closest_link, pc.closest_object))
+    return pc if ok else None
+
+
+def _follow(p: _Problem, cpath: CartesianPath, label: str, log: list[Attempt], method: str,
+            other_branch: str | None = None, tracking: Tracking | None = None) -> _Candidate | None:
+    """The first IK branch along ``cpath`` (least effort first) that keeps the safety zone.
+
+    When no branch covers every step at the nominal orientation (and fallbacks
+    are on) the orientation search (:func:`track_dp`) supplies the branches.
+    """
+    nominal = tracking or track_branches(cpath, arm=p.arm, adapt_orientation=False)
+    tr = nominal
+    no_sol = nominal.failed_steps
+    if not tr.complete and p.options.fallbacks:
+        tr = track_dp(cpath, arm=p.arm)
+        label += " + orientation search"
+        if tr.complete:
+            log.append(Attempt(label, reason=f"{len(no_sol)} steps had no solution at the nominal "
+                                             "orientation"))
+    if not tr.complete:
+        log.append(Attempt(label, reason=f"no IK branch covers every step ({len(no_sol)} steps without "
+                                         f"solution at the nominal orientation, e.g. {list(no_sol[:5])})"))
+        return None
+    for k, b in enumerate(tr.complete):
+        pc = _check(p, b.q, f"{label}, IK branch {b.start_solution} ({len(b.switches)} switches)", log)
+        if pc is not None:
+            name = method if k == 0 or other_branch is None else other_branch
+            return _Candidate(name + (" + orientation search" if tr.orientation_search else ""), b.q, pc,
+                              cpath, b)
+        if not p.options.fallbacks:
+            break
+    return None
+
+
+# ---------------------------------------------------------------------------- the steps, in order
+
+
+def _lji(p: _Problem, log: list[Attempt]) -> _Candidate | None:
+    """Sec 2.6 LJI: IK only at start, via-points and goal; joints interpolated linearly."""
+    if p.scenario.mode != "LJI":
+        return None
+    kpath = p.thesis.key_path()
+    for k, b in enumerate(track_branches(kpath, arm=p.arm).complete):
+        q = interpolate_joints(b.q, max_joint_step=0.05)
+        if (pc := _check(p, q, f"LJI (Sec 2.6), key IK branch {b.start_solution}", log)) is not None:
+            return _Candidate("thesis LJI" if k == 0 else "thesis LJI, other IK branch", q, pc, kpath, b)
+    log.append(Attempt("LJI", reason="no key-point branch keeps the safety zone; falling back to LEI"))
+    return None
+
+
+def _thesis(p: _Problem, log: list[Attempt]) -> _Candidate | None:
+    """The thesis path (Sec 3.6) on the branch of least effort, then its other IK branches."""
+    return _follow(p, p.thesis, "thesis path", log, "thesis", "thesis, other IK branch", p.tracking)
+
+
+def _arc_route(p: _Problem, log: list[Attempt]) -> _Candidate | None:
+    """Arcs instead of the straight segments that had steps without IK solutions (Sec 4.2.1.1)."""
+    cpath, no_sol = p.thesis, p.tracking.failed_steps
+    if not no_sol or "line" not in cpath.routes:
+        return None
+    bad = {int(cpath.segment[i]) for i in no_sol}
+    routes = tuple("arc" if (k in bad and r == "line") else r for k, r in enumerate(cpath.routes))
+    if routes == cpath.routes:
+        return None
+    p.say("arc route (Sec 4.2.1.1)")
+    arcs = build_path(p.scenario, scene=p.scene, via_points=cpath.via_points, routes=routes)
+    return _follow(p, arcs, f"arc route {routes}", log, "thesis, arc route")
+
+
+@dataclass(frozen=True)
+class _Redesign:
+    """One redesigned path: wider padding of the obstacles and/or other via-points and routes."""
+
+    label: str
+    via_points: np.ndarray | None
+    routes: tuple[str, ...]
+    padding: float = 0.0  # added to the safety zone of the ellipsoids [m]
+
+
+def _redesigns(p: _Problem, log: list[Attempt]) -> _Candidate | None:
+    """Wider padding around the obstacles (the thesis pads only the tool point), then moved via-points."""
+    p.say("redesigned path (wider padding, moved via-points)")
+    for r in _variants(p.scenario, p.thesis):
+        sc = p.scenario if r.padding == 0 else dataclasses.replace(
+            p.scenario, safety_zone=p.scenario.safety_zone + r.padding)
+        cpath = build_path(sc, scene=p.scene, via_points=r.via_points, routes=r.routes)
+        if (found := _follow(p, cpath, r.label, log, "thesis, redesigned: " + r.label)) is not None:
+            return found
+    return None
+
+
+def _variants(sc: Scenario, cpath: CartesianPath):
+    """Redesigns: wider padding; moved via-points (raised, radially); an added via-point."""
+    v = cpath.via_points
+    if any(b.kind == "obstacle" for b in sc.obstacles):
+        for pad in (0.05, 0.10):
+            yield _Redesign(f"padding +{pad * 1000:.0f} mm", v if len(v) else None, cpath.routes, pad)
+    if len(v):
+        for dz in (0.10, 0.20):
+            yield _Redesign(f"via-points raised {dz:.2f} m", v + [0.0, 0.0, dz], cpath.routes)
+        for f in (1.15, 0.85):
+            yield _Redesign(f"via-points moved radially x{f:.2f}", v * [f, f, 1.0], cpath.routes)
+    else:
+        mid = 0.5 * (np.asarray(sc.start.position) + np.asarray(sc.goal.position))
+        for dz in (0.15, 0.30):
+            w = (mid + [0, 0, dz])[None]
+            yield _Redesign(f"via-point added {dz:.2f} m above the midpoint", w, ("line", "line"))
+            yield _Redesign(f"via-point added {dz:.2f} m above the midpoint (arcs)", w, ("arc", "arc"))
+
+
+def _rrt_connect(p: _Problem, log: list[Attempt]) -> _Candidate | None:
+    """OMPL RRT-Connect in joint space between the start/goal IK solutions that keep the zone."""
+    p.say("RRT-Connect (OMPL) in joint space")
+    req = p.required
+    ends = all_solutions(p.thesis.points[[0, -1]], p.thesis.euler[[0, -1]], arm=p.arm)[0]
+    good = []
+    for which, Q in zip(("start", "goal"), ends, strict=True):
+        good.append([q for q in Q if p.checker.keeps(q, req)])
+        if not good[-1]:
+            log.append(Attempt("rrt-connect", reason=f"no {which} IK solution keeps {req * 1000:.0f} mm "
+                                                     f"clearance ({len(Q)} solutions)"))
+    if not (good[0] and good[1]):
+        return None
+    pairs = sorted(((a, b) for a in good[0] for b in good[1]),
+                   key=lambda ab: float(np.abs(ab[0] - ab[1]).sum()))  # nearest pairs first
+    for j, (qa, qb) in enumerate(pairs[:3]):
+        P = rrt_connect(qa, qb, p.checker, required=req, arm=p.arm, time_limit=p.options.rrt_time,
+                        seed=p.options.seed + j)
+        if P is None:
+            log.append(Attempt(f"rrt-connect attempt {j}", reason=f"no path in {p.options.rrt_time:.1f} s"))
+        elif (pc := _check(p, P, f"rrt-connect attempt {j} ({len(P)} states)", log)) is not None:
+            return _Candidate("rrt-connect", P, pc)
+    return None
+
+
+def _steps(options: PlanOptions) -> tuple[Callable[[_Problem, list[Attempt]], _Candidate | None], ...]:
+    """The steps :func:`plan` runs, in order (module docstring)."""
+    if not options.fallbacks:
+        return (_lji, _thesis)
+    return (_lji, _thesis, _arc_route, _redesigns) + ((_rrt_connect,) if options.rrt else ())
+
+
+# ---------------------------------------------------------------------------- the result
+
+
+@dataclass(frozen=True)
+class _Timed:
+    trajectory: Trajectory | None = None
+    thesis: Trajectory | None = None
+    clearance: float = float("nan")
+    reason: str = ""
+
+
+def _time(p: _Problem, q: np.ndarray) -> _Timed:
+    """TOPP-RA timing within the arm's limits, its limit check, and the timed curve's clearance."""
+    p.say("timing (TOPP-RA)")
+    traj = time_parameterize(q, p.arm, dt=p.options.dt)
+    thesis = thesis_timing(q, p.arm)
+    if traj.violations:
+        return _Timed(traj, thesis, reason="timing violates limits: " + "; ".join(traj.violations))
+    # The timed curve is a spline through the checked waypoints: check it too.
+    p.say("checking the timed trajectory")
+    c = p.checker.path_clearance(traj.q, p.required, resolution=p.options.resolution,
+                                 check_self=False).minimum
+    reason = "" if c >= p.required else (
+        f"timed trajectory comes within {c * 1000:.1f} mm of the scene (< {p.required * 1000:.0f} mm) "
+        "between waypoints")
+    return _Timed(traj, thesis, c, reason)
+
+
 def _tool_length(q: np.ndarray, arm: Arm) -> float:
+    """Length [m] of the tool's path along the joint path ``q``, sampled at <= 0.01 rad joint steps."""
     if len(q) < 2:
         return 0.0
     n = max(2, int(np.ceil(np.abs(np.diff(q, axis=0)).max(axis=1).sum() / 0.01)) + 1)
     s = np.linspace(0, len(q) - 1, min(n, 20 * len(q)))
     i = np.minimum(np.floor(s).astype(int), len(q) - 2)
     t = (s - i)[:, None]
-    Q = q[i] * (1 - t) + q[i + 1] * t
-    p = fk(Q, arm)[:, :3, 3]
-    return float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum())
+    return path_length(fk(q[i] * (1 - t) + q[i + 1] * t, arm)[:, :3, 3])
 
 
-def plan_scenario(scenario: Scenario | str | Path, *, options: PlanOptions = PlanOptions(),
-                  arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
-                  solve_many: Callable | None = None,
-                  progress: Callable[[str], None] | None = None) -> PlanResult:
-    """Plan, check and time one scenario (a :class:`Scenario` or a TOML path).
-
-    Raises:
-        ScenarioError: The file is malformed, or start/goal are impossible
-            (inside an obstacle, the platform, below the floor, outside the workspace).
-
-    Returns:
-        :class:`PlanResult`; ``success`` False with ``reason`` when no method keeps
-        the safety zone (no exception: the failure is a result). Use
-        ``raise PlanningFailed(result)`` to turn it into an error.
-    """
-    t0 = time.perf_counter()
-    say = progress or (lambda msg: None)
-    if isinstance(scenario, (str, Path)):
-        sc = load_scenario(scenario, scene=scene)
-    else:
-        sc = scenario
-        validate_scenario(sc, scene=scene)
-    plat = platform_box(scene)
-    checker = SceneCollision(sc.obstacles, scene=scene)
-    req = sc.safety_zone
-    attempts: list[str] = list(dexterity_notes(sc))
-    first_failed: tuple[int, ...] = ()
-    first_beta: tuple[int, ...] = ()
-
-    def try_path(cpath: CartesianPath, label: str, first: bool = False):
-        nonlocal first_failed, first_beta
-        branches, info = track_branches(cpath, solve_many=solve_many, adapt_orientation=False)
-        no_sol = tuple(int(i) for i in np.flatnonzero(info["solutions_per_step"] == 0))
-        if first:
-            first_failed, first_beta = no_sol, info["beta_changed_steps"]
-        complete = [b for b in branches if b.complete]
-        if not complete and options.fallbacks:
-            # Orientation search (alpha free, beta changed): least-effort dynamic programme.
-            branches, info = track_dp(cpath, solve_many=solve_many)
-            label += " + orientation search"
-            if branches:
-                attempts.append(f"{label}: {len(no_sol)} steps had no solution at the nominal orientation")
-            complete = branches
-        if not complete:
-            attempts.append(f"{label}: no IK branch covers every step "
-                            f"({len(no_sol)} steps without solution at the nominal orientation, "
-                            f"e.g. {list(no_sol[:5])})")
-            return None, no_sol
-        for k, b in enumerate(complete):
-            pc = checker.path_clearance(b.q, req, resolution=options.resolution)
-            ok = pc.minimum >= req and pc.self_min > 0
-            attempts.append(f"{label}, IK branch {b.start_solution} ({len(b.switches)} switches): "
-                            f"min clearance {pc.minimum * 1000:.1f} mm ({pc.step_link[np.argmin(pc.step)]} "
-                            f"to {pc.step_object[np.argmin(pc.step)]}), self {pc.self_min * 1000:.1f} mm"
-                            + (" -> accepted" if ok else ""))
-            if ok:
-                info["label"] = label
-                return (b, pc, k, info), no_sol
-            if not options.fallbacks:
-                break
-        return None, no_sol
-
-    def accept(b, pc, method, cpath, info):
-        if "orientation search" in info.get("label", ""):
-            method += " + orientation search"
-        return _finish(sc, b.q, pc, method, cpath, b.switches, info["beta_changed_steps"],
-                       info["alpha_changed_steps"], info.get("gamma_changed_steps", ()))
-
-    def _finish(sc, q, pc, method, cpath, switches, beta_steps, alpha_steps, gamma_steps=(), reason=""):
-        t_plan = time.perf_counter() - t0
-        success = not reason
-        traj = thesis = None
-        traj_clear = float("nan")
-        if options.timing and success:
-            say("timing (TOPP-RA)")
-            traj = time_parameterize(q, arm, dt=options.dt)
-            thesis = thesis_timing(q, arm)
-            if traj.violations:
-                success, reason = False, "timing violates limits: " + "; ".join(traj.violations)
-            else:
-                # The timed curve is a spline through the checked waypoints: check it too.
-                say("checking the timed trajectory")
-                tc = checker.path_clearance(traj.q, sc.safety_zone, resolution=options.resolution,
-                                            check_self=False)
-                traj_clear = tc.minimum
-                if traj_clear < sc.safety_zone:
-                    success = False
-                    reason = (f"timed trajectory comes within {traj_clear * 1000:.1f} mm of the scene "
-                              f"(< {sc.safety_zone * 1000:.0f} mm) between waypoints")
-        return PlanResult(
-            scenario=sc, success=success, method=method if q is not None else "none", reason=reason,
-            q=q if q is not None else np.zeros((0, 6)),
-            points=fk(q, arm)[:, :3, 3] if q is not None and len(q) else np.zeros((0, 3)),
-            effort=path_effort(q) if q is not None else np.zeros(0), clearance=pc,
-            min_clearance=pc.minimum if pc is not None else float("nan"),
-            path_length=_tool_length(q, arm) if q is not None else 0.0,
-            branch_switches=tuple(switches), failed_steps=first_failed,
-            beta_changed_steps=tuple(beta_steps), alpha_changed_steps=tuple(alpha_steps),
-            planning_time=t_plan, attempts=tuple(attempts),
-            cartesian=cpath, trajectory=traj, thesis_trajectory=thesis,
-            trajectory_clearance=traj_clear, gamma_changed_steps=tuple(gamma_steps))
-
-    say("thesis path (Sec 3.6)")
-    cpath = build_path(sc, platform=plat, floor_z=scene.floor.z)
-    if sc.mode == "LJI":
-        # Sec 2.6: IK only at start, via-points and goal; joints interpolated linearly.
-        keys = np.asarray(cpath.key_index)
-        kpath = dataclasses.replace(cpath, points=cpath.points[keys], euler=cpath.euler[keys],
-                                    segment=np.arange(len(keys)), key_index=tuple(range(len(keys))),
-                                    repelled=cpath.repelled[keys], lifted=cpath.lifted[keys])
-        branches, info = track_branches(kpath, solve_many=solve_many)
-        for k, b in enumerate(b for b in branches if b.complete):
-            q = interpolate_joints(b.q, max_joint_step=0.05)
-            pc = checker.path_clearance(q, req, resolution=options.resolution)
-            ok = pc.minimum >= req and pc.self_min > 0
-            attempts.append(f"LJI (Sec 2.6), key IK branch {b.start_solution}: min clearance "
-                            f"{pc.minimum * 1000:.1f} mm" + (" -> accepted" if ok else ""))
-            if ok:
-                return _finish(sc, q, pc, "thesis LJI" if k == 0 else "thesis LJI, other IK branch", kpath,
-                               branch_switches(q), info["beta_changed_steps"], info["alpha_changed_steps"])
-        attempts.append("LJI: no key-point branch keeps the safety zone; falling back to LEI")
-    found, no_sol = try_path(cpath, "thesis path", first=True)
-    if found:
-        b, pc, k, info = found
-        return accept(b, pc, "thesis" if k == 0 else "thesis, other IK branch", cpath, info)
-    if not options.fallbacks:
-        return _fail(sc, attempts, cpath, first_failed, first_beta, t0,
-                     "thesis path rejected (fallbacks off)")
-
-    # Arc route where a straight segment had steps without solutions (Sec 4.2.1.1).
-    if no_sol and "line" in cpath.routes:
-        bad = {int(cpath.segment[i]) for i in no_sol}
-        routes = tuple("arc" if (k in bad and r == "line") else r for k, r in enumerate(cpath.routes))
-        if routes != cpath.routes:
-            say("arc route (Sec 4.2.1.1)")
-            c2 = build_path(sc, platform=plat, floor_z=scene.floor.z, via_points=cpath.via_points,
-                            routes=routes)
-            found, _ = try_path(c2, f"arc route {routes}")
-            if found:
-                b, pc, k, info = found
-                return accept(b, pc, "thesis, arc route", c2, info)
-
-    # Redesign: a wider padding around the obstacles (the thesis pads only the tool
-    # point), then moved via-points.
-    say("redesigned path (wider padding, moved via-points)")
-    for vias, routes, pad, label in _variants(sc, cpath):
-        sc2 = sc if pad == 0 else dataclasses.replace(sc, safety_zone=sc.safety_zone + pad)
-        c2 = build_path(sc2, platform=plat, floor_z=scene.floor.z, via_points=vias, routes=routes)
-        found, _ = try_path(c2, label)
-        if found:
-            b, pc, k, info = found
-            return accept(b, pc, "thesis, redesigned: " + label, c2, info)
-
-    if options.rrt:
-        say("RRT-Connect (OMPL) in joint space")
-        from .rrt import rrt_connect
-
-        ends = all_solutions(cpath.points[[0, -1]], cpath.euler[[0, -1]], solve_many=solve_many)[0]
-        good = []
-        for which, Q in zip(("start", "goal"), ends, strict=True):
-            ok = [q for q in Q if checker._min(q)[0] >= req and checker._self(q) > 0]
-            good.append(ok)
-            if not ok:
-                attempts.append(f"rrt-connect: no {which} IK solution keeps {req * 1000:.0f} mm clearance "
-                                f"({len(Q)} solutions)")
-        if good[0] and good[1]:
-            pairs = sorted(((a, b) for a in good[0] for b in good[1]),
-                           key=lambda ab: float(np.abs(ab[0] - ab[1]).sum()))[:3]
-            for j, (qa, qb) in enumerate(pairs):
-                P = rrt_connect(qa, qb, checker, required=req, arm=arm, time_limit=options.rrt_time,
-                                seed=options.seed + j)
-                if P is None:
-                    attempts.append(f"rrt-connect attempt {j}: no path in {options.rrt_time:.1f} s")
-                    continue
-                pc = checker.path_clearance(P, req, resolution=options.resolution)
-                ok = pc.minimum >= req and pc.self_min > 0
-                attempts.append(f"rrt-connect attempt {j}: {len(P)} states, min clearance "
-                                f"{pc.minimum * 1000:.1f} mm" + (" -> accepted" if ok else ""))
-                if ok:
-                    return _finish(sc, P, pc, "rrt-connect", None, branch_switches(P), (), ())
-    return _fail(sc, attempts, cpath, first_failed, first_beta, t0, _reason(attempts))
+def _result(p: _Problem, c: _Candidate, log: list[Attempt], planning_time: float) -> PlanResult:
+    """The one result builder of an accepted path (timed when ``options.timing``)."""
+    timed = _time(p, c.q) if p.options.timing else _Timed()
+    b = c.branch
+    return PlanResult(
+        scenario=p.scenario, success=not timed.reason, method=c.method, reason=timed.reason, q=c.q,
+        points=fk(c.q, p.arm)[:, :3, 3], effort=path_effort(c.q), clearance=c.clearance,
+        min_clearance=c.clearance.minimum, path_length=_tool_length(c.q, p.arm),
+        branch_switches=branch_switches(c.q), failed_steps=p.tracking.failed_steps,
+        beta_changed_steps=b.changed_steps("beta") if b else (),
+        alpha_changed_steps=b.changed_steps("alpha") if b else (),
+        gamma_changed_steps=b.changed_steps("gamma") if b else (),
+        planning_time=planning_time, attempts=tuple(log), notes=p.notes, cartesian=c.cartesian,
+        trajectory=timed.trajectory, thesis_trajectory=timed.thesis, trajectory_clearance=timed.clearance,
+        arm=p.arm, scene=p.scene)
 
 
-def _reason(attempts: list[str]) -> str:
-    return "no method kept the safety zone; last attempts: " + " | ".join(attempts[-2:])
-
-
-def _fail(sc, attempts, cpath, failed, beta, t0, reason) -> PlanResult:
-    return PlanResult(scenario=sc, success=False, method="none", reason=reason, q=np.zeros((0, 6)),
-                      points=np.zeros((0, 3)), effort=np.zeros(0), clearance=None,
-                      min_clearance=float("nan"), path_length=0.0, branch_switches=(),
-                      failed_steps=failed, beta_changed_steps=beta, alpha_changed_steps=(),
-                      planning_time=time.perf_counter() - t0, attempts=tuple(attempts), cartesian=cpath)
-
-
-def _variants(sc: Scenario, cpath: CartesianPath):
-    """Redesigns: wider padding; moved via-points (raised, radially); an added via-point."""
-    v = cpath.via_points
-    has_obstacles = any(b.kind == "obstacle" for b in sc.obstacles)
-    if has_obstacles:
-        for pad in (0.05, 0.10):
-            yield (v if len(v) else None), cpath.routes, pad, f"padding +{pad * 1000:.0f} mm"
-    if len(v):
-        for dz in (0.10, 0.20):
-            w = v.copy()
-            w[:, 2] += dz
-            yield w, cpath.routes, 0.0, f"via-points raised {dz:.2f} m"
-        for f in (1.15, 0.85):
-            w = v.copy()
-            w[:, :2] *= f
-            yield w, cpath.routes, 0.0, f"via-points moved radially x{f:.2f}"
-    else:
-        p0, p1 = np.asarray(sc.start.position), np.asarray(sc.goal.position)
-        mid = 0.5 * (p0 + p1)
-        for dz in (0.15, 0.30):
-            w = (mid + [0, 0, dz])[None]
-            yield w, ("line", "line"), 0.0, f"via-point added {dz:.2f} m above the midpoint"
-            yield w, ("arc", "arc"), 0.0, f"via-point added {dz:.2f} m above the midpoint (arcs)"
+def _failed(p: _Problem, log: list[Attempt], planning_time: float, reason: str) -> PlanResult:
+    """The result when no step kept the safety zone."""
+    return PlanResult(
+        scenario=p.scenario, success=False, method="none", reason=reason, q=np.zeros((0, 6)),
+        points=np.zeros((0, 3)), effort=np.zeros(0), clearance=None, min_clearance=float("nan"),
+        path_length=0.0, branch_switches=(), failed_steps=p.tracking.failed_steps,
+        beta_changed_steps=p.tracking.beta_changed_steps, alpha_changed_steps=p.tracking.alpha_changed_steps,
+        gamma_changed_steps=(), planning_time=planning_time, attempts=tuple(log), notes=p.notes,
+        cartesian=p.thesis, trajectory=None, thesis_trajectory=None, trajectory_clearance=float("nan"),
+        arm=p.arm, scene=p.scene)

@@ -13,9 +13,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from iik import THESIS_ARM, Arm
+from iik.arm import THESIS_ARM, Arm
+from iik.errors import IIKError
+from iik.validation import as_joints
 
 from .collision import SceneCollision
+from .errors import SamplingError
 
 __all__ = ["rrt_connect"]
 
@@ -32,7 +35,30 @@ def rrt_connect(q_start, q_goal, checker: SceneCollision, *, required: float, ar
         (n, 6) joint path [rad] with consecutive configurations at most
         ``max_joint_step`` apart per joint, or ``None`` if OMPL found no solution
         within ``time_limit`` seconds.
+
+    Raises:
+        SamplingError: OMPL raised (its exception is the cause).
     """
+    qa, qb = as_joints(q_start, "q_start")[0][0], as_joints(q_goal, "q_goal")[0][0]
+    try:
+        states = _solve(qa, qb, checker, required + margin, arm, time_limit, seed)
+    except IIKError:
+        raise
+    except (RuntimeError, ValueError, TypeError) as exc:  # OMPL's bindings raise plain exceptions
+        raise SamplingError(f"OMPL RRT-Connect failed: {exc}") from exc
+    if states is None:
+        return None
+    out = [states[0]]
+    for a, b in zip(states[:-1], states[1:], strict=True):
+        n = max(1, int(np.ceil(np.abs(b - a).max() / max_joint_step)))
+        for j in range(1, n + 1):
+            out.append(a + (b - a) * j / n)
+    return np.array(out)
+
+
+def _solve(q_start, q_goal, checker: SceneCollision, clearance: float, arm: Arm, time_limit: float,
+           seed: int) -> list[np.ndarray] | None:
+    """OMPL RRT-Connect states (simplified) from ``q_start`` to ``q_goal``, or None."""
     from ompl import base as ob
     from ompl import geometric as og
     from ompl import util as ou
@@ -47,9 +73,7 @@ def rrt_connect(q_start, q_goal, checker: SceneCollision, *, required: float, ar
     space.setBounds(bounds)
 
     def valid(state) -> bool:
-        q = np.array([state[i] for i in range(6)])
-        d, _k = checker._min(q)
-        return d >= required + margin and checker._self(q) > 0.0
+        return checker.keeps(np.array([state[i] for i in range(6)]), clearance)
 
     si = ob.SpaceInformation(space)
     si.setStateValidityChecker(valid)
@@ -68,10 +92,4 @@ def rrt_connect(q_start, q_goal, checker: SceneCollision, *, required: float, ar
         return None
     ss.simplifySolution(1.0)
     path = ss.getSolutionPath()
-    states = [np.array([path.getState(k)[i] for i in range(6)]) for k in range(path.getStateCount())]
-    out = [states[0]]
-    for a, b in zip(states[:-1], states[1:], strict=True):
-        n = max(1, int(np.ceil(np.abs(b - a).max() / max_joint_step)))
-        for j in range(1, n + 1):
-            out.append(a + (b - a) * j / n)
-    return np.array(out)
+    return [np.array([path.getState(k)[i] for i in range(6)]) for k in range(path.getStateCount())]

@@ -1,11 +1,11 @@
-"""A pick-and-place scenario as a frozen dataclass (parsed from TOML outside ``iik``).
+"""A pick-and-place scenario as a frozen dataclass, and its geometric checks.
 
 Units: positions [m] in the arm's base frame 0; angles [rad] (Z-X-Z Euler
-angles of Eq 42). Loaders (``verification/scenarios.py``) convert file units
-and frames and then call :func:`check_scenario` for the geometric checks that
-need no IK: start/goal outside every box, the platform and the floor.
-Workspace checks use injected callables (``iik.in_workspace`` /
-``iik.closest_reachable`` of the workspace helper).
+angles of Eq 42). The file loader (:mod:`iik.planning.scenario_io`) converts
+file units and frames and then calls :func:`check_scenario` for the geometric
+checks: start/goal outside every box, the platform and the floor, and inside
+the workspace (``in_workspace`` / ``closest_reachable`` callables, bound to the
+arm by the loader).
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import ScenarioError
+from .errors import ScenarioError
 from .obstacles import SAFETY_ZONE, Obstacle
 from .path import MAX_STEP
 
@@ -102,7 +102,7 @@ class Scenario:
 def check_scenario(sc: Scenario, *, platform: Obstacle | None = None, floor_z: float | None = None,
                    in_workspace: Callable | None = None,
                    closest_reachable: Callable | None = None) -> None:
-    """Raise :class:`~iik.errors.ScenarioError` if the task is impossible as stated.
+    """Raise :class:`~iik.planning.ScenarioError` if the task is impossible as stated.
 
     Checks (Sec 3.6.1: "the initial and final points were verified to be inside
     the manipulator workspace ... also checked to be outside the mobile robot

@@ -1,4 +1,4 @@
-"""Load pick-and-place scenarios from TOML files into :class:`iik.planning.Scenario`.
+"""Scenario files (TOML): load and validate into :class:`iik.planning.Scenario`, and write back.
 
 File format (all keys documented in ``scenarios/README.md``)::
 
@@ -9,8 +9,8 @@ File format (all keys documented in ``scenarios/README.md``)::
     frame = "floor"        # "floor": z is the height above the floor; "base": arm base frame 0
     [start]
     position = [0.45, 0.30, 0.86]   # m
-    beta_deg = 0.0                  # Z-X-Z (corrected Eq 42) angles in degrees;
-    alpha_deg = 0.0                 # omit alpha_deg for "any alpha" (Sec 3.6)
+    beta_deg = 0.0                  # Z-X-Z (corrected Eq 42) angles in degrees (or beta = ... in rad);
+    alpha_deg = 0.0                 # omit alpha for "any alpha" (Sec 3.6)
     gamma_deg = 0.0
     [goal]
     ...
@@ -20,6 +20,7 @@ File format (all keys documented in ``scenarios/README.md``)::
     steps_per_segment = 39
     max_step = 0.03
     orientation = "euler"           # or "slerp"
+    mode = "LEI"                    # or "LJI"
     safety_zone = 0.03
     [[obstacles]]
     name = "box"
@@ -27,10 +28,15 @@ File format (all keys documented in ``scenarios/README.md``)::
     size = [0.2, 0.3, 0.3]          # full width (x), depth (y), height (z) [m]
     kind = "obstacle"               # or "support" (a table the object stands on)
 
-Every problem is a :class:`iik.errors.ScenarioError` naming the field: TOML
+Every problem is a :class:`iik.planning.ScenarioError` naming the field: TOML
 syntax errors (with line/column), missing or mistyped keys, unknown keys,
 and impossible tasks (start/goal in an obstacle, the platform, below the
-floor, or outside the workspace -- with the closest reachable point).
+floor, or outside the workspace of the arm -- with the closest reachable point).
+
+:func:`scenario_to_toml` / :func:`write_scenario` write the base frame and
+every field, so ``load_scenario(write_scenario(sc, path)) == sc`` exactly:
+angles are written in degrees where a decimal degree value reads back to the
+same radians, else in radians (``beta = ...``).
 """
 
 from __future__ import annotations
@@ -40,22 +46,26 @@ from pathlib import Path
 
 import numpy as np
 
-from iik.errors import IIKError, ScenarioError
-from iik.planning.obstacles import Obstacle
-from iik.planning.scenario import Scenario, Waypoint, check_scenario
+from iik.arm import THESIS_ARM, Arm
+from iik.errors import InvalidInputError
 from iik.resources import scenarios_dir
 from iik.scene import THESIS_SCENE, Scene
+
+from .errors import ScenarioError
+from .obstacles import Obstacle
+from .scenario import Scenario, Waypoint, check_scenario
 
 try:  # Python >= 3.11
     import tomllib
 except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-__all__ = ["load_scenario", "scenario_from_dict", "thesis_scenario_paths", "platform_box",
-           "validate_scenario", "dexterity_notes"]
+__all__ = ["load_scenario", "scenario_from_dict", "scenario_to_toml", "write_scenario", "scenario_path",
+           "thesis_scenario_paths", "platform_box", "validate_scenario", "dexterity_notes"]
 
 _TOP = {"name", "title", "reference", "reconstruction", "frame", "start", "goal", "planning", "obstacles"}
-_WP = {"position", "alpha_deg", "beta_deg", "gamma_deg"}
+_ANGLES = ("alpha", "beta", "gamma")
+_WP = {"position", *_ANGLES, *(f"{a}_deg" for a in _ANGLES)}
 _PLAN = {"via_points", "segments", "steps_per_segment", "max_step", "orientation", "safety_zone", "mode"}
 _OBS = {"name", "center", "size", "kind"}
 
@@ -65,14 +75,33 @@ def thesis_scenario_paths() -> list[Path]:
     return sorted(scenarios_dir().glob("*.toml"), key=lambda p: (not p.stem.startswith("p"), p.stem))
 
 
+def scenario_path(scenario: str | Path) -> Path:
+    """The file of ``scenario``: a file name (with a suffix or a folder) or a shipped scenario's name.
+
+    Raises:
+        ScenarioError: (field ``scenario``) a bare name that is neither a file nor a shipped
+            scenario; the message lists the shipped names.
+    """
+    path = Path(scenario)
+    if path.is_file() or path.suffix or len(path.parts) > 1:
+        return path  # a file name: load_scenario says if it is missing
+    shipped = scenarios_dir() / f"{path.name}.toml"
+    if shipped.is_file():
+        return shipped
+    names = ", ".join(p.stem for p in thesis_scenario_paths())
+    raise ScenarioError("scenario", f"{str(scenario)!r} is neither a scenario file nor a shipped scenario "
+                                    f"({names})")
+
+
 def platform_box(scene: Scene = THESIS_SCENE) -> Obstacle:
     """The scene's platform as a planning :class:`Obstacle` (kind ``support``)."""
     p = scene.platform
     return Obstacle(tuple(p.center), tuple(p.size), name="platform", kind="support")
 
 
-def load_scenario(path, *, scene: Scene = THESIS_SCENE, check_workspace: bool = True) -> Scenario:
-    """Read and validate one scenario file (see the module docstring)."""
+def load_scenario(path, *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
+                  check_workspace: bool = True) -> Scenario:
+    """Read and validate one scenario file (see the module docstring) for ``arm`` in ``scene``."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
@@ -85,34 +114,35 @@ def load_scenario(path, *, scene: Scene = THESIS_SCENE, check_workspace: bool = 
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError("file", f"{path.name} is not valid TOML: {exc}") from None
     sc = scenario_from_dict(data, source=str(path), default_name=path.stem, scene=scene)
-    validate_scenario(sc, scene=scene, check_workspace=check_workspace)
+    validate_scenario(sc, arm=arm, scene=scene, check_workspace=check_workspace)
     return sc
 
 
-def validate_scenario(sc: Scenario, *, scene: Scene = THESIS_SCENE, check_workspace: bool = True) -> None:
-    """Geometric and workspace checks of Sec 3.6.1 (raises :class:`ScenarioError`)."""
+def validate_scenario(sc: Scenario, *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
+                      check_workspace: bool = True) -> None:
+    """Geometric and workspace (of ``arm``) checks of Sec 3.6.1 (raises :class:`ScenarioError`)."""
     kw = {}
     if check_workspace:
-        from iik import closest_reachable, in_workspace
+        from iik.workspace import closest_reachable, in_workspace
 
-        kw = {"in_workspace": in_workspace, "closest_reachable": lambda p: closest_reachable(p).point}
+        kw = {"in_workspace": lambda p: in_workspace(p, arm),
+              "closest_reachable": lambda p: closest_reachable(p, arm).point}
     check_scenario(sc, platform=platform_box(scene), floor_z=scene.floor.z, **kw)
 
 
-def dexterity_notes(sc: Scenario) -> list[str]:
+def dexterity_notes(sc: Scenario, arm: Arm = THESIS_ARM) -> list[str]:
     """Sec 3.6 asks for beta within the dexterity range (Sec 3.5); say where start/goal are not.
 
     Advisory only: the Sec 3.5 model ignores the joint limits of joints 3-6 and is
     stricter than the complete IK in places (a beta it rejects can have IK solutions),
     so the planner decides by IK, not by this range.
     """
-    from iik import dexterity
-    from iik.errors import InvalidInputError
+    from iik.dexterity import dexterity
 
     notes = []
     for fld, wp in (("start", sc.start), ("goal", sc.goal)):
         try:
-            dexterity(np.asarray(wp.position, float), beta=wp.beta)
+            dexterity(np.asarray(wp.position, float), beta=wp.beta, arm=arm)
         except InvalidInputError as exc:
             if getattr(exc, "argument", "") != "beta":
                 raise
@@ -133,6 +163,15 @@ def _vec(v, field: str, n: int = 3) -> np.ndarray:
     return np.array([_num(x, f"{field}[{i}]") for i, x in enumerate(v)])
 
 
+def _angle(d: dict, table: str, name: str) -> float | None:
+    """Angle ``name`` [rad] of a waypoint table, given in degrees (``<name>_deg``) or rad; None if absent."""
+    if name in d and f"{name}_deg" in d:
+        raise ScenarioError(f"{table}.{name}", f"given twice (as {name} [rad] and {name}_deg)")
+    if f"{name}_deg" in d:
+        return math.radians(_num(d[f"{name}_deg"], f"{table}.{name}_deg"))
+    return _num(d[name], f"{table}.{name}") if name in d else None
+
+
 def _table(d, field: str, allowed: set[str]) -> dict:
     if not isinstance(d, dict):
         raise ScenarioError(field, f"expected a table, got {type(d).__name__}")
@@ -151,73 +190,160 @@ def scenario_from_dict(data: dict, *, source: str = "", default_name: str = "sce
     if frame not in ("base", "floor"):
         raise ScenarioError("frame", f"expected 'base' or 'floor', got {frame!r}")
     dz = scene.floor.z if frame == "floor" else 0.0  # floor frame: z = height above the floor
-
-    def pos(v, field):
-        p = _vec(v, field)
-        p[2] += dz
-        return p
-
-    def wp(key):
-        if key not in data:
-            raise ScenarioError(key, "missing (needs position and beta_deg)")
-        d = _table(data[key], key, _WP)
-        if "position" not in d:
-            raise ScenarioError(f"{key}.position", "missing")
-        if "beta_deg" not in d:
-            raise ScenarioError(f"{key}.beta_deg", "missing")
-        a = d.get("alpha_deg")
-        return Waypoint(tuple(pos(d["position"], f"{key}.position")),
-                        None if a is None else math.radians(_num(a, f"{key}.alpha_deg")),
-                        math.radians(_num(d["beta_deg"], f"{key}.beta_deg")),
-                        math.radians(_num(d.get("gamma_deg", 0.0), f"{key}.gamma_deg")))
-
     for k in ("name", "title", "reference", "reconstruction"):
         if k in data and not isinstance(data[k], str):
             raise ScenarioError(k, "expected a string")
-    start, goal = wp("start"), wp("goal")
+    start, goal = _waypoint(data, "start", dz), _waypoint(data, "goal", dz)
     plan = _table(data.get("planning", {}), "planning", _PLAN)
+    return Scenario(name=str(data.get("name", default_name)), start=start, goal=goal,
+                    title=data.get("title", ""), reference=data.get("reference", ""),
+                    reconstruction=data.get("reconstruction", ""), obstacles=_obstacles(data, dz),
+                    source=source, **_planning(plan, dz))
+
+
+def _position(v, field: str, dz: float) -> tuple[float, float, float]:
+    """A point [m] of the file, in the base frame (``dz``: the file frame's z offset)."""
+    p = _vec(v, field)
+    p[2] += dz
+    return tuple(p)
+
+
+def _waypoint(data: dict, key: str, dz: float) -> Waypoint:
+    if key not in data:
+        raise ScenarioError(key, "missing (needs position and beta_deg)")
+    d = _table(data[key], key, _WP)
+    if "position" not in d:
+        raise ScenarioError(f"{key}.position", "missing")
+    if "beta_deg" not in d and "beta" not in d:
+        raise ScenarioError(f"{key}.beta_deg", "missing")
+    alpha, beta, gamma = (_angle(d, key, a) for a in _ANGLES)
+    return Waypoint(_position(d["position"], f"{key}.position", dz), alpha, beta,
+                    0.0 if gamma is None else gamma)
+
+
+def _planning(plan: dict, dz: float) -> dict:
+    """The ``[planning]`` table as :class:`Scenario` keyword arguments."""
+    kw = {}
     vias = plan.get("via_points", "auto")
-    if vias == "auto":
-        vias = None
-    elif isinstance(vias, list):
-        vias = tuple(tuple(pos(v, f"planning.via_points[{i}]")) for i, v in enumerate(vias))
-    else:
+    if isinstance(vias, list):
+        kw["via_points"] = tuple(_position(v, f"planning.via_points[{i}]", dz) for i, v in enumerate(vias))
+    elif vias != "auto":
         raise ScenarioError("planning.via_points", f"expected 'auto' or a list of points, got {vias!r}")
     segs = plan.get("segments")
     if segs is not None:
         if not isinstance(segs, list) or not all(isinstance(s, str) for s in segs):
             raise ScenarioError("planning.segments", "expected a list of 'line'/'arc'")
-        segs = tuple(segs)
+        kw["segments"] = tuple(segs)
     steps = plan.get("steps_per_segment")
-    if steps is not None and (isinstance(steps, bool) or not isinstance(steps, int)):
-        raise ScenarioError("planning.steps_per_segment", f"expected an integer, got {steps!r}")
-    obstacles = []
-    obs = data.get("obstacles", [])
-    if not isinstance(obs, list):
-        raise ScenarioError("obstacles", "expected an array of tables ([[obstacles]])")
-    for i, o in enumerate(obs):
-        f = f"obstacles[{i}]"
-        _table(o, f, _OBS)
-        for k in ("center", "size"):
-            if k not in o:
-                raise ScenarioError(f"{f}.{k}", "missing")
-        try:
-            obstacles.append(Obstacle(tuple(pos(o["center"], f"{f}.center")),
-                                      tuple(_vec(o["size"], f"{f}.size")),
-                                      name=str(o.get("name", f"obstacle{i}")),
-                                      kind=str(o.get("kind", "obstacle"))))
-        except ScenarioError:
-            raise
-        except IIKError as exc:
-            raise ScenarioError(f, getattr(exc, "reason", str(exc))) from None
-    kw = {}
+    if steps is not None:
+        if isinstance(steps, bool) or not isinstance(steps, int):
+            raise ScenarioError("planning.steps_per_segment", f"expected an integer, got {steps!r}")
+        kw["steps_per_segment"] = steps
     for key in ("max_step", "safety_zone"):
         if key in plan:
             kw[key] = float(_num(plan[key], f"planning.{key}"))
     for key in ("orientation", "mode"):
         if key in plan:
             kw[key] = plan[key]
-    return Scenario(name=str(data.get("name", default_name)), start=start, goal=goal,
-                    title=data.get("title", ""), reference=data.get("reference", ""),
-                    reconstruction=data.get("reconstruction", ""), obstacles=tuple(obstacles),
-                    via_points=vias, segments=segs, steps_per_segment=steps, source=source, **kw)
+    return kw
+
+
+def _obstacles(data: dict, dz: float) -> tuple[Obstacle, ...]:
+    obs = data.get("obstacles", [])
+    if not isinstance(obs, list):
+        raise ScenarioError("obstacles", "expected an array of tables ([[obstacles]])")
+    out = []
+    for i, o in enumerate(obs):
+        f = f"obstacles[{i}]"
+        _table(o, f, _OBS)
+        for k in ("center", "size"):
+            if k not in o:
+                raise ScenarioError(f"{f}.{k}", "missing")
+        center, size = _position(o["center"], f"{f}.center", dz), tuple(_vec(o["size"], f"{f}.size"))
+        try:
+            out.append(Obstacle(center, size, name=str(o.get("name", f"obstacle{i}")),
+                                kind=str(o.get("kind", "obstacle"))))
+        except InvalidInputError as exc:  # the box's own checks (positive size, kind)
+            raise ScenarioError(f, exc.reason) from None
+    return tuple(out)
+
+
+def _str(v: str, field: str) -> str:
+    """A TOML basic string: quotes, backslashes and control characters escaped."""
+    try:
+        v.encode("utf-8")
+    except UnicodeEncodeError:
+        raise ScenarioError(field, f"{v!r} is not valid Unicode text") from None
+    esc = {'"': '\\"', "\\": "\\\\"}
+    return '"' + "".join(esc.get(ch) or (f"\\u{ord(ch):04X}" if ord(ch) < 0x20 or ord(ch) == 0x7F else ch)
+                         for ch in v) + '"'
+
+
+def _float(v, field: str) -> str:
+    x = float(v)
+    if not math.isfinite(x):
+        raise ScenarioError(field, f"cannot write the non-finite value {x!r}")
+    return repr(x)
+
+
+def _point(v, field: str) -> str:
+    return "[" + ", ".join(_float(x, f"{field}[{i}]") for i, x in enumerate(v)) + "]"
+
+
+def _angle_line(name: str, x: float, field: str) -> str:
+    """``name_deg = d`` with the shortest d that reads back to ``x`` [rad]; else ``name = x`` [rad]."""
+    _float(x, field)
+    d = math.degrees(x)
+    near = [d]
+    lo = hi = d
+    for _ in range(8):
+        lo, hi = math.nextafter(lo, -math.inf), math.nextafter(hi, math.inf)
+        near += [lo, hi]
+    exact = [c for c in near if math.radians(c) == x]
+    if exact:
+        return f"{name}_deg = {min((repr(c) for c in exact), key=len)}"
+    return f"{name} = {repr(float(x))}"
+
+
+def scenario_to_toml(sc: Scenario) -> str:
+    """TOML text of ``sc`` in the base frame (loads back to an equal :class:`Scenario`).
+
+    Raises:
+        ScenarioError: A number is not finite (the field is named).
+    """
+    lines = [f"# Scenario {sc.name} (written by iik.planning.write_scenario). Units: m, degrees / rad.",
+             f"name = {_str(sc.name, 'name')}", f"title = {_str(sc.title, 'title')}",
+             f"reference = {_str(sc.reference, 'reference')}",
+             f"reconstruction = {_str(sc.reconstruction, 'reconstruction')}", 'frame = "base"']
+    for key, wp in (("start", sc.start), ("goal", sc.goal)):
+        lines += ["", f"[{key}]", f"position = {_point(wp.position, f'{key}.position')}"]
+        lines += [_angle_line(a, getattr(wp, a), f"{key}.{a}") for a in _ANGLES if getattr(wp, a) is not None]
+    lines += ["", "[planning]"]
+    if sc.via_points is not None:
+        vias = ", ".join(_point(v, f"planning.via_points[{i}]") for i, v in enumerate(sc.via_points))
+        lines.append(f"via_points = [{vias}]")
+    if sc.segments is not None:
+        lines.append(f"segments = [{', '.join(_str(s, 'planning.segments') for s in sc.segments)}]")
+    if sc.steps_per_segment is not None:
+        lines.append(f"steps_per_segment = {int(sc.steps_per_segment)}")
+    lines += [f"max_step = {_float(sc.max_step, 'planning.max_step')}",
+              f"orientation = {_str(sc.orientation, 'planning.orientation')}",
+              f"mode = {_str(sc.mode, 'planning.mode')}",
+              f"safety_zone = {_float(sc.safety_zone, 'planning.safety_zone')}"]
+    for i, b in enumerate(sc.obstacles):
+        lines += ["", "[[obstacles]]", f"name = {_str(b.name, f'obstacles[{i}].name')}",
+                  f"center = {_point(b.center, f'obstacles[{i}].center')}",
+                  f"size = {_point(b.size, f'obstacles[{i}].size')}",
+                  f"kind = {_str(b.kind, f'obstacles[{i}].kind')}"]
+    return "\n".join(lines) + "\n"
+
+
+def write_scenario(sc: Scenario, path) -> Path:
+    """Write ``sc`` to ``path`` as TOML (:func:`scenario_to_toml`); return the path."""
+    path = Path(path)
+    text = scenario_to_toml(sc)
+    try:
+        path.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise ScenarioError("file", f"cannot write {path}: {exc}") from None
+    return path

@@ -22,8 +22,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from iik import THESIS_ARM, Arm
+from iik.arm import THESIS_ARM, Arm
 from iik.validation import as_joints
+
+from .errors import TimingError
+from .path import interpolate_joints
 
 __all__ = ["Trajectory", "time_parameterize", "thesis_timing"]
 
@@ -108,72 +111,77 @@ class _PchipPath:
 
 def time_parameterize(qs, arm: Arm = THESIS_ARM, *, dt: float = 0.01,
                       gridpoints: int | None = None, margin: float = 0.95) -> Trajectory:
-    """Time-optimal timing of the joint path ``qs`` (n, 6) [rad] by TOPP-RA.
+    """Time-optimal timing of the joint path ``qs`` (n, 6) [rad] by TOPP-RA within ``arm``'s limits.
 
     Starts and ends at rest. A path with a single distinct configuration gives
-    a zero-length trajectory.
-    """
-    import toppra as ta
-    import toppra.algorithm as algo
-    import toppra.constraint as constraint
+    a zero-length trajectory. Curves tried in turn until every sample respects
+    the limits (else the first one is returned with its :attr:`~Trajectory.violations`):
+    1) a cubic spline through the waypoints (C2, smooth accelerations); 2) the same
+    through the polyline densified to 0.02 rad (hugs the polyline; slower at
+    corners); 3) a shape-preserving PCHIP curve through the waypoints on a fine grid.
 
+    Raises:
+        TimingError: TOPP-RA failed or found no parameterisation (its exception is the cause).
+    """
     Q, _ = as_joints(qs, "qs")
     Q = _dedupe(Q)
     if len(Q) < 2:
         z = np.zeros((1, 6))
         return Trajectory(np.zeros(1), Q[:1].copy(), z, z, 0.0, "static")
-    # 1) cubic spline through the waypoints (C2, smooth accelerations);
-    # 2) if that overshoots a limit (large jumps between waypoints), the same through
-    #    the polyline densified to 0.02 rad (hugs the polyline; slower at corners);
-    # 3) a shape-preserving PCHIP curve through the waypoints on a fine grid.
-    first = None
-    from iik.planning.path import interpolate_joints
-
+    timed = []
     for kind in ("spline", "dense spline", "pchip"):
-        W = interpolate_joints(Q, max_joint_step=0.02) if kind == "dense spline" else Q
-        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(W, axis=0), axis=1))])
-        s = s / s[-1]
-        if kind != "pchip":
-            path = ta.SplineInterpolator(s, W, bc_type="clamped")
-            grid = np.linspace(0, 1, gridpoints or int(min(2000, max(200, 8 * len(W)))))
-        else:
-            path = _PchipPath(s, W)
-            grid = np.unique(np.concatenate([np.linspace(a, b, 9, endpoint=False)
-                                             for a, b in zip(s[:-1], s[1:], strict=True)] + [[1.0]]))
-        res = _toppra(ta, algo, constraint, path, grid, arm, margin, dt)
-        if first is None:
-            first = res + (kind,)
-        if not res[-1]:
+        timed.append(_toppra(_curve(Q, kind, gridpoints), kind, arm, margin, dt))
+        if not timed[-1].violations:
             break
-    else:
-        res = first[:-1]
-        kind = first[-1]
-    t, q, qd, qdd, T, m, bad = res
-    q[0], q[-1] = Q[0], Q[-1]
-    return Trajectory(t, q, qd, qdd, T, f"toppra {kind} (limits x{m:.2f})", bad)
+    tr = timed[-1] if not timed[-1].violations else timed[0]
+    tr.q[0], tr.q[-1] = Q[0], Q[-1]
+    return tr
 
 
-def _toppra(ta, algo, constraint, path, grid, arm, margin, dt):
-    # TOPP-RA enforces the limits at grid points only; plan inside them and tighten
-    # until every sample of the result respects the true limits.
+def _curve(Q: np.ndarray, kind: str, gridpoints: int | None):
+    """(geometric path, TOPP-RA grid) of one of the curves of :func:`time_parameterize`."""
+    import toppra as ta
+
+    W = interpolate_joints(Q, max_joint_step=0.02) if kind == "dense spline" else Q
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(W, axis=0), axis=1))])
+    s = s / s[-1]
+    if kind == "pchip":
+        grid = np.unique(np.concatenate([np.linspace(a, b, 9, endpoint=False)
+                                         for a, b in zip(s[:-1], s[1:], strict=True)] + [[1.0]]))
+        return _PchipPath(s, W), grid
+    grid = np.linspace(0, 1, gridpoints or int(min(2000, max(200, 8 * len(W)))))
+    return ta.SplineInterpolator(s, W, bc_type="clamped"), grid
+
+
+def _toppra(curve, kind: str, arm: Arm, margin: float, dt: float) -> Trajectory:
+    """TOPP-RA on ``curve``; limits scaled by ``margin`` and tightened until every sample is inside.
+
+    TOPP-RA enforces the limits at grid points only, so plan inside them and
+    tighten until every sample of the result respects the true limits.
+    """
+    import toppra.algorithm as algo
+    import toppra.constraint as constraint
+
+    path, grid = curve
     for m in (margin, 0.85 * margin, 0.7 * margin, 0.5 * margin):
         v = m * np.asarray(arm.velocity, float)
         a = m * np.asarray(arm.acceleration, float)
-        pc_vel = constraint.JointVelocityConstraint(np.column_stack([-v, v]))
-        pc_acc = constraint.JointAccelerationConstraint(np.column_stack([-a, a]))
-        instance = algo.TOPPRA([pc_vel, pc_acc], path, gridpoints=grid,
-                               parametrizer="ParametrizeConstAccel")
-        traj = instance.compute_trajectory(0.0, 0.0)
+        try:
+            instance = algo.TOPPRA([constraint.JointVelocityConstraint(np.column_stack([-v, v])),
+                                    constraint.JointAccelerationConstraint(np.column_stack([-a, a]))],
+                                   path, gridpoints=grid, parametrizer="ParametrizeConstAccel")
+            traj = instance.compute_trajectory(0.0, 0.0)
+        except Exception as exc:  # toppra raises plain ValueError/AssertionError/...: wrap at the boundary
+            raise TimingError(f"TOPP-RA failed on the {kind} joint path: {exc}") from exc
         if traj is None:
-            raise RuntimeError("TOPP-RA found no feasible parameterisation")
+            raise TimingError(f"TOPP-RA found no feasible parameterisation of the {kind} joint path")
         T = float(traj.duration)
         t = np.linspace(0.0, T, max(2, int(np.ceil(T / dt)) + 1))
         q, qd, qdd = traj(t), traj(t, 1), traj(t, 2)
         bad = _check(q, qd, qdd, arm)
         if not bad:
             break
-    return t, q, qd, qdd, T, m, bad
-
+    return Trajectory(t, q, qd, qdd, T, f"toppra {kind} (limits x{m:.2f})", bad)
 
 
 def thesis_timing(qs, arm: Arm = THESIS_ARM) -> Trajectory:

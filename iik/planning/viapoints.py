@@ -33,6 +33,7 @@ from ..validation import as_points
 __all__ = [
     "VIA_POINTS",
     "TABLE_IV",
+    "TABLE_IV_PRINTED",
     "REGIONS",
     "region_bounds",
     "region_of",
@@ -48,8 +49,9 @@ VIA_POINTS: dict[int, tuple[float, float, float]] = {
     4: (-0.400, -0.500, 0.200),
 }
 
-#: Table IV: via-points needed to cross from one region to another (symmetric, note under Table IV).
-_TABLE_IV_PRINTED = {
+#: Table IV as printed (upper triangle): via-points needed to cross from one region to another;
+#: the note under Table IV makes it symmetric (:data:`TABLE_IV`).
+TABLE_IV_PRINTED = {
     ("A", "B"): (1,), ("A", "C"): (1,), ("A", "D"): (1, 2), ("A", "E"): (1, 2),
     ("A", "F"): (1, 2, 3), ("A", "G"): (1, 2, 3, 4),
     ("B", "C"): (), ("B", "D"): (2,), ("B", "E"): (2,), ("B", "F"): (2, 3), ("B", "G"): (2, 3, 4),
@@ -64,7 +66,7 @@ REGIONS = ("A", "B", "C", "D", "E", "F", "G")
 
 def _table_iv() -> dict[tuple[str, str], tuple[int, ...]]:
     t = {}
-    for (a, b), v in _TABLE_IV_PRINTED.items():
+    for (a, b), v in TABLE_IV_PRINTED.items():
         t[(a, b)] = v
         t[(b, a)] = tuple(reversed(v))  # note under Table IV: same via-points, reverse order
     for r in REGIONS:

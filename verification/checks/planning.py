@@ -1,7 +1,7 @@
 """Planning checks (Sec 3.6, Sec 4.2): Eq 52-53 as printed, Table IV, and the 13 scenarios.
 
 Each scenario row plans the shipped scenario end to end
-(:func:`iik.planning.pipeline.plan_scenario`) and reports whether the thesis
+(:func:`iik.planning.plan`) and reports whether the thesis
 planner alone kept the whole arm (Coal, URDF collision shapes) at least one
 safety zone away from the scene, and what our fallbacks achieved otherwise.
 """
@@ -13,8 +13,17 @@ import time
 
 import numpy as np
 
-from iik.planning.obstacles import Obstacle, ellipsoid_value, enclosing_radii
-from iik.planning.viapoints import _TABLE_IV_PRINTED, REGIONS, TABLE_IV, VIA_POINTS, region_of
+from iik.planning import (
+    REGIONS,
+    TABLE_IV,
+    TABLE_IV_PRINTED,
+    VIA_POINTS,
+    Obstacle,
+    ellipsoid_value,
+    enclosing_radii,
+    region_of,
+)
+from iik.scene import THESIS_SCENE
 
 from ..registry import Erratum, Row, Verdict, register
 
@@ -71,7 +80,7 @@ def check_table_iv(ctx) -> Row:
     mir = dict(zip(REGIONS, reversed(REGIONS), strict=True))
     vmap = {1: 4, 2: 3, 3: 2, 4: 1}
     sym = all(TABLE_IV[(mir[a], mir[b])] == tuple(vmap[v] for v in vias)
-              for (a, b), vias in _TABLE_IV_PRINTED.items())
+              for (a, b), vias in TABLE_IV_PRINTED.items())
     via_mirror = all(np.allclose(VIA_POINTS[vmap[k]], np.array(v) * [1, -1, 1])
                      for k, v in VIA_POINTS.items())
     # The inferred sectors: via-points 1 and 4 bound A and G; each middle via-point lies in C / E.
@@ -92,8 +101,7 @@ def check_table_iv(ctx) -> Row:
 def _results(ctx):
     if "planning_results" in ctx.cache:
         return ctx.cache["planning_results"]
-    from iik.planning.pipeline import PlanOptions, plan_scenario
-    from iik.planning.scenario_io import thesis_scenario_paths
+    from iik.planning import PlanOptions, plan, thesis_scenario_paths
 
     paths = thesis_scenario_paths()
     if ctx.quick:
@@ -101,7 +109,7 @@ def _results(ctx):
     out = []
     for p in paths:
         t0 = time.perf_counter()
-        res = plan_scenario(p, options=PlanOptions(rrt_time=1.0, seed=ctx.seed % 1000 + 1))
+        res = plan(p, PlanOptions(rrt_time=1.0, seed=ctx.seed % 1000 + 1))
         out.append((p, res, time.perf_counter() - t0))
     ctx.cache["planning_results"] = out
     return out
@@ -156,7 +164,7 @@ def _figures(ctx, res) -> tuple[str, ...]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from iik.planning.output import plot_effort, plot_joints, plot_scene
+    from iik.planning import plot_effort, plot_joints, plot_scene
 
     rels = []
     for name, fn, kw in (("planning_j_scene.png", plot_scene, {"projection": "3d"}),
@@ -211,9 +219,7 @@ def check_arc_route(ctx) -> list[Row]:
     """Sec 4.2.1.1/4.2.1.2: between the via-points the straight line had no IK solutions; an arc had."""
     import dataclasses
 
-    from iik.planning import build_path
-    from iik.planning.planner import all_solutions
-    from iik.planning.scenario_io import load_scenario, platform_box, thesis_scenario_paths
+    from iik.planning import all_solutions, build_path, load_scenario, thesis_scenario_paths
 
     rows = []
     for p in [q for q in thesis_scenario_paths() if q.stem in ("p1", "p2")]:
@@ -221,7 +227,7 @@ def check_arc_route(ctx) -> list[Row]:
         counts = {}
         for route in ("line", "arc"):
             s2 = dataclasses.replace(sc, segments=("line", route, "line"))
-            cp = build_path(s2, platform=platform_box(), floor_z=-0.45)
+            cp = build_path(s2, scene=THESIS_SCENE)
             mid = cp.segment == 1
             sols, _ = all_solutions(cp.points[mid], cp.euler[mid], beta_steps=(), adapt_orientation=False,
                                     ramp=0)

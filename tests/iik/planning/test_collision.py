@@ -52,3 +52,36 @@ def test_base_is_not_reported_against_the_platform():
     sc = SceneCollision([], floor=False)
     assert "base_link" not in {sc.arm_link[i] for i, k in sc.pairs if sc.env_names[k] == "platform"}
     assert sc.clearance(np.zeros(6))[0] > 0.1
+
+
+def test_keeps_is_the_clearance_and_self_contact_rule(checker):
+    rng = np.random.default_rng(5)
+    lo, hi = iik.THESIS_ARM.q_min, iik.THESIS_ARM.q_max
+    seen = set()
+    for q in rng.uniform(lo, hi, size=(40, 6)):
+        d = checker.clearance(q)[0]
+        expected = d >= 0.03 and checker.self_distance(q) > 0
+        assert checker.keeps(q, 0.03) == expected
+        seen.add(expected)
+    assert seen == {True, False}  # both outcomes occur
+
+
+def test_path_clearance_acceptance_and_closest_pair(checker):
+    q0 = np.zeros(6)
+    pc = checker.path_clearance(np.array([q0, q0 + 0.1]), 0.0)
+    i = int(np.argmin(pc.step))
+    assert (pc.closest_link, pc.closest_object) == (pc.step_link[i], pc.step_object[i])
+    assert pc.keeps(pc.minimum) and not pc.keeps(pc.minimum + 1e-6)
+
+
+def test_another_arm_gets_its_own_collision_model():
+    import dataclasses
+
+    a = iik.THESIS_ARM
+    longer = dataclasses.replace(a, l3=a.l3 * 1.2, l4=a.l4 * 1.2)
+    q = np.zeros(6)  # stretched along +x: the longer arm's gripper is further out
+    box = [Obstacle((1.3, 0.0, 0.3), (0.1, 0.4, 0.4), name="far")]
+    d_thesis = SceneCollision(box, floor=False, platform=False).clearance(q)[0]
+    d_longer = SceneCollision(box, arm=longer, floor=False, platform=False).clearance(q)[0]
+    reach = (longer.l3 + longer.l4) - (a.l3 + a.l4)
+    assert d_thesis - d_longer == pytest.approx(reach, abs=1e-6)

@@ -1,27 +1,53 @@
-"""End to end: ``iik plan`` on a file outside the repository, limits at every sample."""
+"""End to end: ``iik.planning.plan`` and ``iik plan`` (iik.planning.pipeline)."""
 
 import csv
+import dataclasses
 
+import coal
 import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 
-from iik import THESIS_ARM
+from iik import THESIS_ARM, fk, joint_frames
 from iik.cli import main
-from iik.planning.pipeline import PlanOptions, plan_scenario
+from iik.errors import InvalidInputError
+from iik.planning import Attempt, PlanOptions, PlanResult, load_scenario, plan
 from iik.resources import scenarios_dir
+from iik.urdf import BoxShape, thesis_geometry
 
 
 @pytest.fixture(scope="module")
 def repo_result():
-    return plan_scenario(scenarios_dir() / "j.toml")
+    return plan("j")
 
 
 def test_repo_scenario_j_plans_with_safety_zone(repo_result):
     r = repo_result
-    assert r.success, r.reason
+    assert isinstance(r, PlanResult) and r.success, r.reason
     assert r.min_clearance >= r.scenario.safety_zone
     assert r.trajectory_clearance >= r.scenario.safety_zone
     assert r.clearance.self_min > 0
+    assert r.arm is THESIS_ARM
+
+
+def test_the_attempt_log_is_typed_and_names_the_accepted_path(repo_result):
+    r = repo_result
+    assert r.attempts and all(isinstance(a, Attempt) for a in r.attempts)
+    accepted = [a for a in r.attempts if a.accepted]
+    assert len(accepted) == 1 and accepted[0] is r.attempts[-1]
+    assert accepted[0].clearance == r.min_clearance
+    assert accepted[0].self_clearance == r.clearance.self_min
+    assert str(accepted[0]).endswith("-> accepted")
+    for a in r.attempts[:-1]:  # every rejected candidate broke the rule
+        assert np.isnan(a.clearance) or a.clearance < r.scenario.safety_zone or a.self_clearance <= 0
+    assert r.log == r.notes + tuple(str(a) for a in r.attempts)
+
+
+def test_a_name_a_file_and_a_scenario_plan_the_same(repo_result):
+    sc = load_scenario(scenarios_dir() / "j.toml")
+    for given in (scenarios_dir() / "j.toml", sc):
+        r = plan(given, PlanOptions(timing=False))
+        assert r.method == repo_result.method and np.array_equal(r.q, repo_result.q)
 
 
 def test_external_file_plans_the_same_through_iik_plan(tmp_path, repo_result):
@@ -41,7 +67,7 @@ def test_external_file_plans_the_same_through_iik_plan(tmp_path, repo_result):
 
 def test_trajectory_respects_joint_velocity_and_acceleration_limits(tmp_path):
     out = tmp_path / "o"
-    assert main(["plan", str(scenarios_dir() / "j.toml"), "--out", str(out), "--no-figures"]) == 0
+    assert main(["plan", "j", "--out", str(out), "--no-figures"]) == 0  # a shipped scenario by name
     data = np.loadtxt(out / "trajectory.csv", delimiter=",", skiprows=1)
     t, q, qd, qdd = data[:, 0], data[:, 1:7], data[:, 7:13], data[:, 13:19]
     assert np.all(np.diff(t) > 0)
@@ -61,18 +87,129 @@ def test_impossible_scenario_exits_with_typed_error(tmp_path, capsys):
     assert "ScenarioError: goal.position" in capsys.readouterr().err
 
 
+def test_unknown_name_exits_with_the_shipped_names(tmp_path, capsys):
+    assert main(["plan", "zz", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "ScenarioError: scenario: 'zz'" in err and "p1, p2, p3, a" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("kw,argument", [
+    ({"rrt_time": 0.0}, "rrt_time"), ({"dt": float("nan")}, "dt"), ({"resolution": -1.0}, "resolution"),
+    ({"seed": 0}, "seed"), ({"seed": 1.5}, "seed"), ({"fallbacks": "no"}, "fallbacks"),
+])
+def test_hostile_options_name_the_option(kw, argument):
+    with pytest.raises(InvalidInputError) as exc:
+        PlanOptions(**kw)
+    assert exc.value.argument == argument
+
+
+def test_wrong_argument_types_are_named():
+    with pytest.raises(InvalidInputError, match="scenario"):
+        plan(42)
+    with pytest.raises(InvalidInputError, match="options"):
+        plan("j", {"timing": False})
+
+
 def test_thesis_only_mode_reports_honestly():
-    r = plan_scenario(scenarios_dir() / "a.toml", options=PlanOptions(fallbacks=False, timing=False))
+    r = plan("a", PlanOptions(fallbacks=False, timing=False))
     # the thesis planner alone keeps the tool point off the padded ellipsoid but not the gripper
-    assert not r.success and "thesis path rejected" in r.reason
+    assert not r.success and "thesis path rejected" in r.reason and r.method == "none"
+    assert not any(a.accepted for a in r.attempts)
 
 
 def test_lji_mode_interpolates_joints_between_key_points(tmp_path):
     p = tmp_path / "lji.toml"
     text = (scenarios_dir() / "j.toml").read_text()
     p.write_text(text.replace('frame = "floor"', 'frame = "floor"\n[planning]\nmode = "LJI"'))
-    r = plan_scenario(p, options=PlanOptions(timing=False))
+    r = plan(p, PlanOptions(timing=False))
     assert r.success, r.reason
     if r.method.startswith("thesis LJI"):
         assert np.abs(np.diff(r.q, axis=0)).max() <= 0.05 + 1e-12
         assert len(r.cartesian.points) == 2  # start and goal only (no via-points in j)
+
+
+# ------------------------------------------------------------------ another arm, end to end
+
+
+def _scaled(arm, f):
+    return dataclasses.replace(arm, l1=arm.l1 * f, l2=arm.l2 * f, l3=arm.l3 * f, l4=arm.l4 * f, l5=arm.l5 * f,
+                               name=f"thesis arm x{f}")
+
+
+class _CoalArm:
+    """The arm's collision shapes (iik.urdf.thesis_geometry) placed by the arm's own FK, in plain Coal.
+
+    Independent of SceneCollision and Pinocchio: link i's frame is DH frame i (modified DH,
+    iik.kinematics.joint_frames), each shape sits at its URDF xyz/rpy in that frame.
+    """
+
+    def __init__(self, arm, scenario, scene):
+        self.arm = arm
+        self.shapes = []
+        for link, shapes in thesis_geometry(arm).items():
+            k = 0 if link == "base_link" else int(link[4:])
+            for s in shapes:
+                g = coal.Box(*s.size) if isinstance(s, BoxShape) else coal.Cylinder(s.radius, s.length)
+                T = np.eye(4)
+                T[:3, :3] = Rotation.from_euler("xyz", s.rpy).as_matrix()  # URDF rpy: Rz(y) Ry(p) Rx(r)
+                T[:3, 3] = s.xyz
+                self.shapes.append((link, k, g, T))
+        self.env = [(b.name, coal.Box(*b.size), coal.Transform3s(np.eye(3), np.asarray(b.center, float)))
+                    for b in scenario.obstacles]
+        self.env.append(("platform", coal.Box(*scene.platform.size),
+                         coal.Transform3s(np.eye(3), np.asarray(scene.platform.center, float))))
+        floor = coal.Halfspace(np.array([0.0, 0.0, 1.0]), scene.floor.z)  # solid below z = floor.z
+        self.env.append(("floor", floor, coal.Transform3s()))
+
+    def clearance(self, q) -> float:
+        F = joint_frames(q, self.arm)
+        best = np.inf
+        for link, k, g, T in self.shapes:
+            W = T if k == 0 else F[k - 1] @ T
+            tf = coal.Transform3s(W[:3, :3], W[:3, 3])
+            for name, e, etf in self.env:
+                if name == "platform" and link == "base_link":
+                    continue  # bolted onto the platform
+                best = min(best, coal.distance(g, tf, e, etf, coal.DistanceRequest(), coal.DistanceResult()))
+        return best
+
+
+@pytest.fixture(scope="module")
+def scaled_plan():
+    arm = _scaled(THESIS_ARM, 1.15)
+    return arm, plan("j", arm=arm)
+
+
+def test_a_scaled_arm_plans_with_its_own_ik_limits_and_timing(scaled_plan):
+    arm, r = scaled_plan
+    assert r.success, r.reason
+    assert r.arm is arm
+    P = r.cartesian.points
+    assert np.abs(fk(r.q, arm)[:, :3, 3] - P).max() < 1e-8  # IK of the scaled arm
+    assert np.abs(fk(r.q, THESIS_ARM)[:, :3, 3] - P).max() > 0.05  # (not the thesis arm's)
+    assert np.allclose(r.points, fk(r.q, arm)[:, :3, 3])
+    assert np.all(arm.within_limits(r.q))
+    tr = r.trajectory
+    assert np.all(np.abs(tr.qd) <= np.asarray(arm.velocity) * (1 + 1e-9))
+    assert np.all(np.abs(tr.qdd) <= np.asarray(arm.acceleration) * (1 + 1e-9))
+
+
+def test_a_scaled_arm_keeps_the_zone_by_an_independent_coal_model(scaled_plan):
+    arm, r = scaled_plan
+    ind = _CoalArm(arm, r.scenario, r.scene)
+    steps = np.array([ind.clearance(q) for q in r.q])
+    # the planner's Coal model is that arm's: the same distances at every step
+    assert np.abs(steps - r.clearance.step).max() < 1e-6
+    # ... which a model of the thesis arm would not give at the same joints
+    thesis = _CoalArm(THESIS_ARM, r.scenario, r.scene)
+    assert np.abs(np.array([thesis.clearance(q) for q in r.q]) - steps).max() > 0.005
+    # the motions between the steps, sampled every 0.01 rad: never below the certified minimum
+    dense = np.concatenate([a + np.linspace(0, 1, max(2, int(np.ceil(np.abs(b - a).max() / 0.01)) + 1),
+                                            endpoint=False)[:, None] * (b - a)
+                            for a, b in zip(r.q[:-1], r.q[1:], strict=True)] + [r.q[-1:]])
+    sampled = np.array([ind.clearance(q) for q in dense])
+    assert sampled.min() >= r.min_clearance - 1e-9
+    assert sampled.min() >= r.scenario.safety_zone
+    # and the timed trajectory the arm would execute
+    timed = np.array([ind.clearance(q) for q in r.trajectory.q[::5]])
+    assert timed.min() >= r.scenario.safety_zone

@@ -12,11 +12,28 @@ from verification.testing.strategies import BEYOND, joint_batches, joint_vectors
 
 def test_thesis_model_is_cached_and_unpacks():
     tm = thesis_model()
-    assert thesis_model() is tm
+    assert thesis_model() is tm and thesis_model(iik.THESIS_ARM) is tm
     model, collision = tm
     assert model.nq == 6 and len(collision.geometryObjects) > 7
     assert tm.path == urdf_path()
     assert model.frames[tool_frame_id()].name == "tool"
+
+
+def test_another_arm_is_built_from_its_generated_urdf():
+    import dataclasses
+
+    import pinocchio as pin
+
+    a = iik.THESIS_ARM
+    arm = dataclasses.replace(a, l2=a.l2 * 1.3, l5=a.l5 * 0.9, lower=(-1.0,) + a.lower[1:])
+    tm = thesis_model(arm)
+    assert tm.path is None and thesis_model(arm) is tm
+    assert tm.model.lowerPositionLimit[0] == -1.0
+    assert len(tm.collision_model.collisionPairs) == len(thesis_model().collision_model.collisionPairs)
+    data = tm.model.createData()
+    for q in np.random.default_rng(2).uniform(a.q_min, a.q_max, size=(5, 6)):
+        pin.framesForwardKinematics(tm.model, data, q)
+        assert np.allclose(data.oMf[tm.tool_frame_id].homogeneous, iik.fk(q, arm), atol=1e-12)
 
 
 @given(joint_vectors())

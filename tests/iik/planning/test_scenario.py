@@ -3,8 +3,7 @@
 import numpy as np
 import pytest
 
-from iik.errors import ScenarioError
-from iik.planning import Obstacle, Scenario, Waypoint, check_scenario
+from iik.planning import Obstacle, Scenario, ScenarioError, Waypoint, check_scenario
 
 S, G = Waypoint((0.3, 0.25, -0.35), None, 0.0), Waypoint((0.3, -0.25, -0.35), None, 0.0)
 

@@ -1,9 +1,25 @@
-"""Scenario files: parsing, reconstruction notes and ScenarioError(field, reason)."""
+"""Scenario files: parsing, ScenarioError(field, reason), writing back (iik.planning.scenario_io)."""
 
+import dataclasses
+import math
+
+import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
-from iik.errors import ScenarioError
-from iik.planning.scenario_io import load_scenario, thesis_scenario_paths
+from iik.planning import (
+    Obstacle,
+    Scenario,
+    ScenarioError,
+    Waypoint,
+    load_scenario,
+    scenario_path,
+    scenario_to_toml,
+    thesis_scenario_paths,
+    write_scenario,
+)
+from iik.resources import scenarios_dir
 
 GOOD = """
 name = "x"
@@ -48,6 +64,7 @@ def test_floor_frame_is_converted_with_the_scene(tmp_path):
     (GOOD.replace("[start]\nposition = [0.30, 0.25, 0.10]\nbeta_deg = 0.0\n", ""), "start", "missing"),
     (GOOD.replace("beta_deg = 0.0", "beta_deg = 'flat'", 1), "start.beta_deg", "number"),
     (GOOD.replace("frame", "frme"), "frme", "unknown key"),
+    (GOOD.replace("beta_deg = 0.0", "beta_deg = 0.0\nbeta = 0.0", 1), "start.beta", "given twice"),
     (GOOD.replace("[0.30, 0.25, 0.10]", "[0.30, 0.25]"), "start.position", "3 numbers"),
     (GOOD.replace("[0.30, 0.25, 0.10]", "[0.32, 0.0, 0.10]"), "start.position", "inside obstacle"),
     (GOOD.replace("[0.30, -0.25, 0.10]", "[-0.3, 0.0, 0.30]"), "goal.position", "inside the mobile platform"),
@@ -71,3 +88,68 @@ def test_unreachable_goal_reports_the_closest_reachable_point(tmp_path):
 def test_missing_file_is_a_scenario_error(tmp_path):
     with pytest.raises(ScenarioError, match="does not exist"):
         load_scenario(tmp_path / "nope.toml")
+
+
+def test_shipped_names_and_files_resolve(tmp_path):
+    assert scenario_path("j") == scenarios_dir() / "j.toml"
+    own = _write(tmp_path, GOOD)
+    assert scenario_path(own) == own and scenario_path(str(own)) == own
+    assert scenario_path(tmp_path / "nope.toml") == tmp_path / "nope.toml"  # a path: load says it is missing
+    with pytest.raises(ScenarioError) as exc:
+        scenario_path("zz")
+    assert exc.value.field == "scenario" and "p1, p2, p3, a, b" in exc.value.reason
+
+
+@pytest.mark.parametrize("name", ["p1", "a", "d", "j"])
+def test_shipped_scenarios_round_trip_through_a_written_file(tmp_path, name):
+    sc = load_scenario(scenarios_dir() / f"{name}.toml")
+    back = load_scenario(write_scenario(sc, tmp_path / "x.toml"))
+    assert back == sc  # exact: every float and string (the frame is written as "base")
+    assert "_deg = " in (tmp_path / "x.toml").read_text()  # degrees stay degrees where they read back
+
+
+def test_angles_in_rad_are_read_and_written_when_degrees_cannot_round_trip(tmp_path):
+    x = 1.24539  # no float d has math.radians(d) == x (checked over +-200 ulps of degrees(x) below)
+    d = lo = hi = math.degrees(x)
+    near = [d]
+    for _ in range(200):
+        lo, hi = math.nextafter(lo, -math.inf), math.nextafter(hi, math.inf)
+        near += [lo, hi]
+    assert all(math.radians(c) != x for c in near)
+    sc = Scenario(name="r", start=Waypoint((0.3, 0.25, -0.35), x, math.radians(30.0), -0.2),
+                  goal=Waypoint((0.3, -0.25, -0.35), None, 0.2))
+    text = scenario_to_toml(sc)
+    assert "alpha = 1.24539\n" in text and "beta_deg = 30.0\n" in text
+    assert load_scenario(write_scenario(sc, tmp_path / "r.toml"), check_workspace=False) == sc
+
+
+coords = st.floats(-0.3, 0.3, allow_nan=False)
+angles = st.floats(-math.pi, math.pi, allow_nan=False)
+
+
+@given(start=st.tuples(coords, coords), angles=st.tuples(angles, angles, angles), alpha_free=st.booleans(),
+       steps=st.one_of(st.none(), st.integers(1, 60)), zone=st.floats(0.0, 0.1),
+       title=st.text(max_size=20))
+def test_any_scenario_round_trips_exactly(tmp_path_factory, start, angles, alpha_free, steps, zone, title):
+    a, b, g = angles
+    sc = Scenario(name="h", title=title,
+                  start=Waypoint((0.45 + start[0], start[1], 0.1), None if alpha_free else a, b, g),
+                  goal=Waypoint((0.35, -0.3, 0.05), a, b, 0.0), steps_per_segment=steps, safety_zone=zone,
+                  via_points=((0.5, 0.0, 0.4),), segments=("line", "arc"), orientation="slerp", mode="LJI",
+                  obstacles=(Obstacle((1.0, 0.0, 0.1), (0.1, 0.2, 0.3), name='b"ox', kind="support"),))
+    path = write_scenario(sc, tmp_path_factory.mktemp("rt") / "s.toml")
+    assert load_scenario(path, check_workspace=False) == sc
+
+
+def test_writing_a_non_finite_value_names_the_field():
+    sc = Scenario(name="n", start=Waypoint((0.3, 0.25, np.nan), None, 0.0),
+                  goal=Waypoint((0.3, -0.25, 0.1), None, 0.0))
+    with pytest.raises(ScenarioError) as exc:
+        scenario_to_toml(sc)
+    assert exc.value.field == "start.position[2]"
+
+
+def test_written_text_is_the_documented_format():
+    sc = dataclasses.replace(load_scenario(scenarios_dir() / "j.toml"), name="j2")
+    text = scenario_to_toml(sc)
+    assert 'frame = "base"' in text and 'name = "j2"' in text and "[[obstacles]]" in text

@@ -1,11 +1,12 @@
-"""The thesis planner: step-points, repulsion, IK along the path (iik.planning.planner)."""
+"""The thesis's Cartesian path: step-points, repulsion, lifting, orientations (iik.planning.cartesian)."""
+
+import dataclasses
 
 import numpy as np
 
-import iik
-from iik.planning import Obstacle, Scenario, Waypoint, build_path, track_branches
-from iik.planning.obstacles import ellipsoid_value, enclosing_radii
-from iik.planning.planner import poses_of, track_dp
+from iik.planning import Obstacle, Scenario, Waypoint, build_path, ellipsoid_value, enclosing_radii, poses_of
+from iik.rotations import pose_from_zxz, zxz_matrix
+from iik.scene import THESIS_SCENE
 
 
 def _scenario(**kw):
@@ -35,41 +36,30 @@ def test_table_iv_via_points_are_inserted():
     assert cp.via_numbers == (1, 2)
     for k in cp.key_index[1:-1]:
         assert np.min(np.linalg.norm(cp.via_points - cp.points[k], axis=1)) < 1e-12
+    keys = cp.key_path()
+    assert keys.n == 4 and np.array_equal(keys.points, cp.points[list(cp.key_index)])
+    assert keys.key_index == (0, 1, 2, 3)
 
 
-def test_branches_follow_the_poses_and_report_eq54_effort():
+def test_points_are_lifted_a_safety_zone_above_the_scene_floor():
+    floor = THESIS_SCENE.floor.z
+    low = _scenario(start=Waypoint((0.45, 0.25, floor + 0.01), None, 0.0),
+                    goal=Waypoint((0.45, -0.25, floor + 0.01), None, 0.0), obstacles=())
+    free = build_path(low)
+    lifted = build_path(low, scene=THESIS_SCENE)
+    inner = lifted.points[1:-1]
+    assert not free.lifted.any() and lifted.lifted[1:-1].all()
+    assert np.allclose(inner[:, 2], floor + low.safety_zone)  # the floor of the scene, not a constant
+
+
+def test_poses_follow_the_corrected_eq42():
     cp = build_path(_scenario(obstacles=()))
-    branches, info = track_branches(cp, adapt_orientation=False)
-    assert branches and branches[0].complete
-    b = branches[0]
-    T = iik.fk(b.q)
-    P = poses_of(cp.points, cp.euler)
-    assert np.abs(T[:, :3, 3] - P[:, :3, 3]).max() < 1e-8
-    assert np.abs(T[:, :3, :3] - P[:, :3, :3]).max() < 1e-6
-    eff = np.abs(np.diff(b.q, axis=0)).sum(1) / 6  # Eq 54
-    assert np.allclose(b.effort[1:], eff)
-    assert np.all(iik.THESIS_ARM.within_limits(b.q))
-    # the least-effort branch is listed first among complete ones without switches
-    same = [x for x in branches if x.complete and len(x.switches) == len(b.switches)]
-    assert b.total_effort <= min(x.total_effort for x in same) + 1e-12
-
-
-def test_dynamic_programme_reaches_every_step_within_limits():
-    sc = _scenario(start=Waypoint((0.30, -0.27, 0.45), None, np.radians(45)),
-                   goal=Waypoint((0.30, 0.27, 0.45), None, np.radians(45)), obstacles=())
-    cp = build_path(sc)
-    branches, info = track_dp(cp)
-    assert branches
-    b = branches[0]
-    assert np.all(iik.THESIS_ARM.within_limits(b.q))
-    assert np.abs(iik.fk(b.q)[:, :3, 3] - cp.points).max() < 1e-8  # position always exact
+    T = poses_of(cp.points, cp.euler)
+    for i in (0, cp.n // 2, cp.n - 1):
+        assert np.allclose(T[i], pose_from_zxz(cp.points[i], *cp.euler[i]))
 
 
 def test_slerp_orientation_starts_and_ends_at_the_requested_rotations():
-    import dataclasses
-
-    from iik.rotations import zxz_matrix
-
     sc = dataclasses.replace(_scenario(obstacles=()), orientation="slerp",
                              start=Waypoint((0.30, 0.25, -0.35), 0.3, 0.2, 0.0),
                              goal=Waypoint((0.30, -0.25, -0.35), -0.5, 0.6, 0.4))

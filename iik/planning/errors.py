@@ -1,0 +1,61 @@
+"""Errors of the planning layer, under the project's one root :class:`iik.errors.IIKError`.
+
+* :class:`PlanningError` -- root of every error :mod:`iik.planning` raises on purpose;
+* :class:`ScenarioError` -- a scenario (file or object) is malformed or impossible;
+* :class:`PlanningFailed` -- no attempt kept the safety zone (carries the result);
+* :class:`TimingError` -- TOPP-RA found no time parameterisation (wraps its failure);
+* :class:`SamplingError` -- OMPL failed while sampling (wraps its exception).
+
+Subclasses also inherit the matching built-in (``ValueError`` for bad input, via
+:class:`iik.errors.InvalidInputError`; ``RuntimeError`` for a failed computation)
+so generic handlers keep working.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from ..errors import IIKError, InvalidInputError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .pipeline import PlanResult
+
+__all__ = ["PlanningError", "ScenarioError", "PlanningFailed", "TimingError", "SamplingError"]
+
+
+class PlanningError(IIKError):
+    """Root of the planning layer's errors."""
+
+
+class ScenarioError(PlanningError, InvalidInputError):
+    """A scenario file is malformed or describes an impossible task (bad input naming its field).
+
+    Attributes:
+        field: Dotted name of the offending field as written in the file, e.g. ``"goal.position"``
+            (also :attr:`argument`).
+        reason: Human-readable reason.
+    """
+
+    @property
+    def field(self) -> str:
+        return self.argument
+
+
+class PlanningFailed(PlanningError, RuntimeError):
+    """No attempt produced a path that keeps the safety zone.
+
+    Attributes:
+        result: The failed :class:`~iik.planning.PlanResult` (its ``attempts`` say why).
+    """
+
+    def __init__(self, result: PlanResult):
+        self.result = result
+        super().__init__(f"scenario {result.scenario.name!r}: {result.reason}")
+
+
+class TimingError(PlanningError, RuntimeError):
+    """TOPP-RA could not time a joint path (the library's own failure is the ``__cause__``)."""
+
+
+class SamplingError(PlanningError, RuntimeError):
+    """OMPL raised while planning (the library's exception is the ``__cause__``)."""
