@@ -20,7 +20,7 @@ from iik.scene import THESIS_SCENE, Scene
 from ..obstacles import Obstacle, enclosing_radii
 from . import style
 
-__all__ = ["draw_environment", "configure_server", "aim_camera", "legend_html"]
+__all__ = ["draw_environment", "configure_server", "aim_camera", "camera_pose", "legend_html"]
 
 
 def configure_server(server: viser.ViserServer, title: str) -> None:
@@ -31,13 +31,20 @@ def configure_server(server: viser.ViserServer, title: str) -> None:
     aim_camera(server, style.CAMERA_LOOK_AT)
 
 
-def aim_camera(server: viser.ViserServer, look_at, distance: float = style.CAMERA_DISTANCE) -> None:
-    """Initial camera: at ``distance`` [m] from ``look_at`` [m], at the style's azimuth and elevation."""
+def camera_pose(look_at, distance: float = style.CAMERA_DISTANCE) -> tuple[np.ndarray, np.ndarray]:
+    """``(eye, target)`` [m]: ``distance`` from ``look_at`` at the style's azimuth and elevation."""
     az, el = np.radians(style.CAMERA_AZIMUTH_DEG), np.radians(style.CAMERA_ELEVATION_DEG)
     target = np.asarray(look_at, float)
-    eye = target + distance * np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+    direction = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+    return target + distance * direction, target
+
+
+def aim_camera(server: viser.ViserServer, look_at, distance: float = style.CAMERA_DISTANCE):
+    """Set the initial camera (see :func:`camera_pose`); returns ``(eye, target, vertical fov [deg])``."""
+    eye, target = camera_pose(look_at, distance)
     server.initial_camera.look_at = tuple(target)
     server.initial_camera.position = tuple(eye)
+    return eye, target, float(np.degrees(server.initial_camera.fov))
 
 
 def legend_html() -> str:
@@ -73,7 +80,8 @@ def draw_environment(server: viser.ViserServer, obstacles: Sequence[Obstacle] = 
         c = np.asarray(box.center) + off
         colour = style.OBSTACLE if box.kind == "obstacle" else style.SUPPORT
         node = f"{root}/boxes/{k}_{box.name}"
-        s.add_box(node, color=colour, dimensions=tuple(box.size), position=tuple(c))
+        s.add_box(node, color=colour, dimensions=tuple(box.size), position=tuple(c),
+                  opacity=None if box.kind == "obstacle" else style.SUPPORT_OPACITY)
         s.add_label(f"{node}/label", f"{box.name} ({box.kind})", position=(0.0, 0.0, box.size[2] / 2 + 0.02),
                     font_screen_scale=0.8, anchor="bottom-center")
         if box.kind == "obstacle" and ellipsoids:

@@ -33,6 +33,7 @@ class PlanScene:
         self.plan = plan
         self.scene = scene
         self.title = f"iik view: scenario {plan.name}"
+        self.camera = None  # (eye, target, vertical fov [deg]) once built
         self.clearance: FrameClearance = frame_clearance(plan.obstacles, plan.q, scene=scene) if len(plan.q) \
             else FrameClearance(np.zeros(0), (), (), np.zeros((0, 3)), np.zeros((0, 3)))
 
@@ -74,7 +75,7 @@ class PlanScene:
                     anchor="bottom-center")
         pts = np.vstack([p.step_points.reshape(-1, 3), np.zeros((1, 3)),
                          np.array([b.center for b in p.obstacles]).reshape(-1, 3)])
-        aim_camera(server, 0.5 * (pts.min(axis=0) + pts.max(axis=0)))
+        self.camera = aim_camera(server, 0.5 * (pts.min(axis=0) + pts.max(axis=0)))
         arm = ArmBody(server, "/plan/arm", colour=style.ARM)
         if not len(p.q):
             arm.show(np.zeros(6))

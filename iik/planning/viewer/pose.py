@@ -23,7 +23,7 @@ from iik.validation import as_joints, as_poses
 
 from . import style
 from .bodies import ArmBody, joints_outside_limits, link_of_joint
-from .environment import draw_environment, legend_html
+from .environment import aim_camera, draw_environment, legend_html
 from .session import Animation
 
 __all__ = ["PoseView", "MAX_SOLUTIONS"]
@@ -141,6 +141,7 @@ class PoseView:
 
     def build(self, server: viser.ViserServer) -> Animation | None:
         draw_environment(server)
+        self.camera = aim_camera(server, (0.25, 0.0, 0.25), distance=1.3)
         bodies: list[ArmBody] = []
         summary = server.gui.add_markdown(self.summary())
         opts = self.options() or ("none",)
@@ -168,7 +169,8 @@ class PoseView:
                 name = "given q" if (self.given is not None and k == 0) else \
                     f"#{k - (self.given is not None)}"
                 labels[k].text = name
-                labels[k].position = tuple(iik.joint_frames(q, self.arm)[2][:3, 3] + [0.0, 0.0, 0.05])
+                elbow = iik.joint_frames(q, self.arm)[2][:3, 3]
+                labels[k].position = tuple(elbow + [0.0, 0.0, 0.05 + 0.035 * k])  # stacked: no overlap
                 labels[k].visible = True
             for k in range(len(qs), len(bodies)):
                 bodies[k].visible = False

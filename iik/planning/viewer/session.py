@@ -158,7 +158,8 @@ def _add_player(server: viser.ViserServer, anim: Animation) -> object:
     """Time slider (with marks), play/pause and a status line in the live panel."""
     gui = server.gui
     t0, t1 = float(anim.times[0]), float(anim.times[-1])
-    step = float(np.min(np.diff(anim.times))) if len(anim.times) > 1 else 1.0
+    step = max(round(float(np.min(np.diff(anim.times))), 3), 1e-3) if len(anim.times) > 1 else 1.0
+    t1 = round(t1, 3)
     marks = tuple((round(t, 3), lab) for t, lab in anim.marks) or None
     slider = gui.add_slider("time [s]", min=t0, max=max(t1, t0 + step), step=step, initial_value=t0,
                             marks=marks)

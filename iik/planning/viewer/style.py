@@ -4,7 +4,8 @@ from __future__ import annotations
 
 __all__ = [
     "Colour", "rgb01", "ARM", "SOLUTION", "SELECTED", "MEASURED", "OUT_OF_LIMITS", "NEAREST",
-    "UNSAFE", "OBSTACLE", "SUPPORT", "PLATFORM", "FLOOR", "ELLIPSOID", "TOOL_PATH", "STEP_POINT",
+    "UNSAFE", "OBSTACLE", "SUPPORT", "SUPPORT_OPACITY", "PLATFORM", "FLOOR", "ELLIPSOID", "TOOL_PATH",
+    "STEP_POINT",
     "VIA_POINT", "SWITCH", "CAMERA_LOOK_AT", "CAMERA_AZIMUTH_DEG", "CAMERA_ELEVATION_DEG",
     "CAMERA_DISTANCE", "LEGEND",
 ]
@@ -25,7 +26,8 @@ OUT_OF_LIMITS: Colour = (220, 30, 30)  # a link whose joint is outside Table I (
 NEAREST: Colour = (250, 170, 0)  # link nearest the scene (amber)
 UNSAFE: Colour = (230, 0, 120)  # nearest link inside the safety zone (magenta)
 OBSTACLE: Colour = (210, 45, 40)  # scenario obstacles (red)
-SUPPORT: Colour = (150, 110, 70)  # tables and shelves (brown)
+SUPPORT: Colour = (150, 110, 70)  # tables and shelves (brown, translucent: the arm shows through)
+SUPPORT_OPACITY = 0.55
 PLATFORM: Colour = (110, 110, 115)  # mobile platform (grey)
 FLOOR: Colour = (200, 200, 200)
 ELLIPSOID: Colour = (240, 150, 30)  # Eq 52-53 enclosing ellipsoids (orange wireframe)
@@ -36,9 +38,9 @@ SWITCH: Colour = (240, 120, 0)  # IK branch switch markers
 
 #: Default camera (base frame): looking at CAMERA_LOOK_AT [m] from the front, slightly right, above.
 CAMERA_LOOK_AT = (0.3, 0.0, 0.15)
-CAMERA_AZIMUTH_DEG = -25.0
-CAMERA_ELEVATION_DEG = 38.0
-CAMERA_DISTANCE = 1.7
+CAMERA_AZIMUTH_DEG = -20.0
+CAMERA_ELEVATION_DEG = 50.0
+CAMERA_DISTANCE = 1.9
 
 LEGEND = (
     ("arm (URDF collision shapes)", ARM),
