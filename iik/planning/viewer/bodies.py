@@ -81,6 +81,10 @@ class ArmBody:
         """Names of the links that have collision shapes."""
         return tuple(self._shapes)
 
+    def shapes(self, link: str) -> tuple:
+        """The viser handles of ``link``'s collision shapes."""
+        return tuple(self._shapes[link])
+
     def show(self, q) -> None:
         """Place the arm at ``q`` (6,) [rad]."""
         qb, _ = as_joints(q, "q")

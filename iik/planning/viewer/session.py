@@ -37,7 +37,8 @@ import viser
 from .environment import configure_server
 from .errors import ExportError, PortInUseError, ViewerError
 
-__all__ = ["Animation", "View", "ViewOptions", "LiveView", "ExportResult", "serve", "export", "present"]
+__all__ = ["Animation", "View", "ViewOptions", "LiveView", "ExportResult", "open_server", "serve", "export",
+           "present"]
 
 EXPORT_FILE = "index.html"
 
@@ -141,7 +142,12 @@ def _check_port(host: str, port: int) -> None:
             raise PortInUseError(host, port, detail) from None
 
 
-def _open_server(host: str, port: int) -> viser.ViserServer:
+def open_server(host: str, port: int) -> viser.ViserServer:
+    """A quiet :class:`viser.ViserServer` on exactly ``host:port`` (0: any free port).
+
+    Raises:
+        PortInUseError: the port is taken (viser itself would silently move to the next one).
+    """
     if not 0 <= port <= 65535:
         raise PortInUseError(host, port, "not a TCP port")
     _check_port(host, port)
@@ -204,7 +210,7 @@ def _add_player(server: viser.ViserServer, anim: Animation) -> object:
 
 def serve(view: View, *, host: str = "127.0.0.1", port: int = 8080) -> LiveView:
     """Start the live viewer for ``view`` and return at once (the server runs in threads)."""
-    server = _open_server(host, port)
+    server = open_server(host, port)
     try:
         configure_server(server, view.title)
         anim = view.build(server)
@@ -268,7 +274,7 @@ def export(view: View, directory: Path | str, *, force: bool = False, fps: float
         tmp = Path(tempfile.mkdtemp(prefix=".iik-view-", dir=directory.parent))
     except OSError as exc:
         raise ExportError(directory, f"cannot write here ({exc.strerror or exc})") from None
-    server = _open_server("127.0.0.1", 0)
+    server = open_server("127.0.0.1", 0)
     try:
         configure_server(server, view.title)
         anim = view.build(server)
