@@ -22,6 +22,7 @@ import errno
 import io
 import os
 import shutil
+import signal
 import socket
 import tempfile
 import threading
@@ -104,19 +105,25 @@ class LiveView:
     animation: Animation | None
     time_slider: object | None = None
     _stop: threading.Event = field(default_factory=threading.Event)
+    _closed: threading.Lock = field(default_factory=threading.Lock)
 
     def serve_forever(self) -> None:
+        """Block until Ctrl-C (SIGINT) or :meth:`stop`, then stop the server."""
+        previous = None
+        if threading.current_thread() is threading.main_thread():
+            previous = signal.signal(signal.SIGINT, lambda *_: self._stop.set())
         try:
             while not self._stop.wait(0.5):
                 pass
-        except KeyboardInterrupt:
-            pass
         finally:
+            if previous is not None:
+                signal.signal(signal.SIGINT, previous)
             self.stop()
 
     def stop(self) -> None:
-        if not self._stop.is_set():
-            self._stop.set()
+        """Stop serving (idempotent)."""
+        self._stop.set()
+        if self._closed.acquire(blocking=False):
             with contextlib.redirect_stdout(io.StringIO()):
                 self.server.stop()
 
