@@ -22,7 +22,18 @@ from .motion import Motion, MotionView, Track
 from .plan import PlanScene
 from .plan_data import FrameClearance, PlanView, frame_clearance, plan_for_view, plan_scene, resolve_scenario
 from .pose import PoseView
-from .session import Animation, ExportResult, LiveView, View, ViewOptions, export, present, serve
+from .session import (
+    Animation,
+    ExportResult,
+    LiveView,
+    View,
+    ViewOptions,
+    export,
+    inline,
+    present,
+    record,
+    serve,
+)
 
 __all__ = [
     "ViewRequest",
@@ -43,6 +54,8 @@ __all__ = [
     "ExportResult",
     "serve",
     "export",
+    "record",
+    "inline",
     "present",
     "PlanView",
     "FrameClearance",

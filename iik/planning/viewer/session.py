@@ -38,8 +38,8 @@ import viser
 from .environment import configure_server
 from .errors import ExportError, PortInUseError, ViewerError
 
-__all__ = ["Animation", "View", "ViewOptions", "LiveView", "ExportResult", "open_server", "serve", "export",
-           "present"]
+__all__ = ["Animation", "View", "ViewOptions", "LiveView", "ExportResult", "open_server", "serve", "record",
+           "export", "inline", "present"]
 
 EXPORT_FILE = "index.html"
 
@@ -265,22 +265,10 @@ def _install(tmp: Path, directory: Path) -> None:
         os.replace(tmp, directory)
 
 
-def export(view: View, directory: Path | str, *, force: bool = False, fps: float = 25.0) -> ExportResult:
-    """Write ``directory/index.html``: the view and its animation, playable from disk offline.
-
-    Raises:
-        ExportError: ``directory`` is not empty (without ``force``), is a file, or cannot be written.
-    """
-    t_start = time.perf_counter()
-    directory = Path(directory)
+def record(view: View, *, fps: float = 25.0) -> tuple[str, int]:
+    """Build ``view`` on a private loopback server and record it: ``(self-contained HTML page, frames)``."""
     if not np.isfinite(fps) or fps <= 0:
-        raise ExportError(directory, f"fps must be positive, got {fps}")
-    _prepare(directory, force)
-    try:
-        directory.parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix=".iik-view-", dir=directory.parent))
-    except OSError as exc:
-        raise ExportError(directory, f"cannot write here ({exc.strerror or exc})") from None
+        raise ViewerError(f"fps must be positive, got {fps}")
     server = open_server("127.0.0.1", 0)
     try:
         configure_server(server, view.title)
@@ -294,20 +282,47 @@ def export(view: View, directory: Path | str, *, force: bool = False, fps: float
                 recorder.insert_sleep(float(anim.times[b] - anim.times[a]))
                 anim.show(b)
             recorder.insert_sleep(1.0)  # hold the last frame before the loop restarts
-        page = recorder.as_html()
-        (tmp / EXPORT_FILE).write_text(page, encoding="utf-8")
-        _install(tmp, directory)
-    except OSError as exc:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise ExportError(directory, f"cannot write the export ({exc.strerror or exc})") from None
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
+        return recorder.as_html(), len(frames)
     finally:
         with contextlib.redirect_stdout(io.StringIO()):
             server.stop()
+
+
+def export(view: View, directory: Path | str, *, force: bool = False, fps: float = 25.0) -> ExportResult:
+    """Write ``directory/index.html``: the view and its animation, playable from disk offline.
+
+    Raises:
+        ExportError: ``directory`` is not empty (without ``force``), is a file, or cannot be written.
+    """
+    t_start = time.perf_counter()
+    directory = Path(directory)
+    _prepare(directory, force)
+    page, frames = record(view, fps=fps)
+    try:
+        directory.parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix=".iik-view-", dir=directory.parent))
+    except OSError as exc:
+        raise ExportError(directory, f"cannot write here ({exc.strerror or exc})") from None
+    try:
+        (tmp / EXPORT_FILE).write_text(page, encoding="utf-8")
+        _install(tmp, directory)
+    except OSError as exc:
+        raise ExportError(directory, f"cannot write the export ({exc.strerror or exc})") from None
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
     size = sum(f.stat().st_size for f in directory.rglob("*") if f.is_file())
-    return ExportResult(path=directory, size=size, frames=len(frames), seconds=time.perf_counter() - t_start)
+    return ExportResult(path=directory, size=size, frames=frames, seconds=time.perf_counter() - t_start)
+
+
+def inline(view: View, *, height: int = 420, fps: float = 25.0):
+    """The recorded view as an ``IPython.display.HTML`` iframe for a notebook (no server stays up)."""
+    import html
+
+    from IPython.display import HTML
+
+    page, _ = record(view, fps=fps)
+    return HTML(f'<iframe srcdoc="{html.escape(page, quote=True)}" width="100%" height="{int(height)}" '
+                'style="border:1px solid #ddd"></iframe>')
 
 
 def present(view: View, options: ViewOptions = ViewOptions()) -> LiveView | ExportResult:
