@@ -301,6 +301,9 @@ def export(view: View, directory: Path | str, *, force: bool = False, fps: float
     try:
         directory.parent.mkdir(parents=True, exist_ok=True)
         tmp = Path(tempfile.mkdtemp(prefix=".iik-view-", dir=directory.parent))
+        mask = os.umask(0)
+        os.umask(mask)
+        tmp.chmod(0o777 & ~mask)  # mkdtemp makes it private; the export is an ordinary folder
     except OSError as exc:
         raise ExportError(directory, f"cannot write here ({exc.strerror or exc})") from None
     try:

@@ -1,5 +1,6 @@
 """Serving and exporting: localhost by default, a clear error for a taken port, no half-written export."""
 
+import os
 import socket
 
 import numpy as np
@@ -44,6 +45,9 @@ def test_export_writes_one_page_with_the_recording(pose_view, tmp_path):
     assert "__VISER_EMBED_DATA__" in page
     assert res.size == (tmp_path / "out" / "index.html").stat().st_size and res.frames == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]  # no temporary folder left behind
+    mask = os.umask(0)
+    os.umask(mask)
+    assert (tmp_path / "out").stat().st_mode & 0o777 == 0o777 & ~mask
 
 
 def test_export_refuses_a_non_empty_folder_and_changes_nothing(pose_view, tmp_path):
