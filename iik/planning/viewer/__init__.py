@@ -1,0 +1,67 @@
+"""The 3D web viewer (issue 13): poses, all IK solutions, interactive IK, plans and run logs.
+
+Built on Pinocchio's visualizer interface (:class:`pinocchio.visualize.ViserVisualizer`
+on the ``viser`` web viewer). The arm's body is the URDF's collision shapes; the
+scene is the planner's own description (platform, floor, scenario boxes). A view
+is served live on localhost (:func:`serve`) or exported as a page that opens from
+disk with no server and no network (:func:`export`).
+
+* :mod:`.session` -- serve / export any view; time slider and play/pause.
+* :mod:`.bodies` -- one arm on the scene (:class:`ArmBody`).
+* :mod:`.environment` -- platform, floor, boxes, ellipsoids (Eq 52-53).
+* :mod:`.pose` -- a pose: every IK solution, pick one; interactive IK with a gizmo.
+* :mod:`.plan_data` -- the one adapter from the planner's result (:func:`plan_scene`).
+* :mod:`.plan` -- a plan played back with clearance and branch switches.
+* :mod:`.motion` -- several arms following recorded joint tracks (run logs).
+* :mod:`.app` -- :func:`view`: one call from a request (pose, scenario, interactive) to a view.
+"""
+
+from .app import Shown, ViewRequest, show, view
+from .errors import ExportError, PortInUseError, ViewerError
+from .motion import Motion, MotionView, Track
+from .plan import PlanScene
+from .plan_data import FrameClearance, PlanView, frame_clearance, plan_for_view, plan_scene, resolve_scenario
+from .pose import PoseView
+from .session import (
+    Animation,
+    ExportResult,
+    LiveView,
+    View,
+    ViewOptions,
+    export,
+    inline,
+    present,
+    record,
+    serve,
+)
+
+__all__ = [
+    "ViewRequest",
+    "Shown",
+    "view",
+    "show",
+    "PoseView",
+    "Motion",
+    "MotionView",
+    "Track",
+    "ViewerError",
+    "PortInUseError",
+    "ExportError",
+    "Animation",
+    "View",
+    "ViewOptions",
+    "LiveView",
+    "ExportResult",
+    "serve",
+    "export",
+    "record",
+    "inline",
+    "present",
+    "PlanView",
+    "FrameClearance",
+    "plan_scene",
+    "plan_for_view",
+    "frame_clearance",
+    "resolve_scenario",
+    "PlanScene",
+]

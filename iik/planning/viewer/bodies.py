@@ -1,0 +1,121 @@
+"""The arm's body in the viewer: the URDF's collision shapes, drawn by Pinocchio's ViserVisualizer.
+
+Every arm on screen (the planned arm, each IK solution, the commanded and the
+measured arm of a run) is one :class:`ArmBody`: a
+:class:`pinocchio.visualize.ViserVisualizer` on the shared :class:`viser.ViserServer`,
+loaded from ``urdf/thesis_arm.urdf`` (:func:`iik.planning.robot_model.thesis_model`)
+with the collision shapes as the visible body. Frame: the arm's base frame 0 [m];
+``offset`` shifts the whole arm (to put two arms side by side).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import pinocchio as pin
+import viser
+from pinocchio.visualize import ViserVisualizer
+
+from iik import THESIS_ARM, Arm
+from iik.validation import as_joints
+
+from ..robot_model import ThesisModel, collision_link, thesis_model
+from .style import Colour, rgb01
+
+__all__ = ["ArmBody", "joints_outside_limits", "link_of_joint"]
+
+
+def link_of_joint(j: int) -> str:
+    """Name of the URDF link moved by joint ``j`` (0-based): ``link{j+1}``."""
+    return f"link{j + 1}"
+
+
+def joints_outside_limits(q, arm: Arm = THESIS_ARM) -> tuple[int, ...]:
+    """0-based indices of the joints of ``q`` (6,) [rad] outside the arm's limits (Table I).
+
+    Uses the project's one limit test (:meth:`iik.Arm.within_limits`) joint by
+    joint: row ``j`` of the batch is the mid-range pose with joint ``j`` set to ``q[j]``.
+    """
+    qb, batched = as_joints(q, "q")
+    if batched:
+        raise ValueError("joints_outside_limits takes one joint vector (6,)")
+    rows = np.tile(0.5 * (arm.q_min + arm.q_max), (6, 1))
+    rows[np.arange(6), np.arange(6)] = qb[0]
+    return tuple(int(j) for j in np.flatnonzero(~arm.within_limits(rows)))
+
+
+class ArmBody:
+    """One arm on a viser scene, at a configuration, in a colour.
+
+    Args:
+        server: The viser server (or its ``scene`` owner) to draw on.
+        name: Scene-tree root of this arm, e.g. ``"/plan/arm"``.
+        colour: RGB 0-255.
+        opacity: 0 (invisible) .. 1 (opaque).
+        offset: Translation [m] of the arm's base in the scene (base frame 0 otherwise).
+        model: The Pinocchio model (default: the shipped thesis URDF).
+    """
+
+    def __init__(self, server: viser.ViserServer, name: str, *, colour: Colour, opacity: float = 1.0,
+                 offset=(0.0, 0.0, 0.0), model: ThesisModel | None = None):
+        tm = model or thesis_model()
+        self.name = name.rstrip("/")
+        self.colour = colour
+        self.opacity = float(opacity)
+        self._root = server.scene.add_frame(self.name, show_axes=False, position=tuple(offset))
+        self._viz = ViserVisualizer(tm.model, tm.collision_model, pin.GeometryModel())
+        self._viz.initViewer(viewer=server)
+        self._viz.loadViewerModel(rootNodeName=self.name, collision_color=[*rgb01(colour), self.opacity])
+        self._viz.displayVisuals(False)
+        self._viz.displayCollisions(True)
+        prefix = f"{self.name}/collision/"
+        self._shapes: dict[str, list] = {}
+        for g in tm.collision_model.geometryObjects:
+            self._shapes.setdefault(collision_link(tm.model, g), []).append(self._viz.frames[prefix + g.name])
+        self._paint: dict[str, tuple[Colour, float]] = {}
+        self.q = np.zeros(tm.model.nq)
+
+    @property
+    def links(self) -> tuple[str, ...]:
+        """Names of the links that have collision shapes."""
+        return tuple(self._shapes)
+
+    def shapes(self, link: str) -> tuple:
+        """The viser handles of ``link``'s collision shapes."""
+        return tuple(self._shapes[link])
+
+    def show(self, q) -> None:
+        """Place the arm at ``q`` (6,) [rad]."""
+        qb, _ = as_joints(q, "q")
+        self.q = qb[0].copy()
+        self._viz.display(self.q)
+
+    def link_position(self, link: str) -> np.ndarray:
+        """Scene position [m] of the first shape of ``link`` at the last shown ``q``."""
+        return np.asarray(self._shapes[link][0].position, float) + np.asarray(self._root.position, float)
+
+    @property
+    def visible(self) -> bool:
+        return bool(self._root.visible)
+
+    @visible.setter
+    def visible(self, value: bool) -> None:
+        self._root.visible = bool(value)
+        self._viz.collisionRootFrame.visible = bool(value)
+        if value:
+            self._viz.display(self.q)
+
+    def paint(self, links: Mapping[str, Colour] | None = None, *, opacity: float | None = None) -> None:
+        """Colour the given links (others back to the arm's colour); only changed shapes are sent."""
+        links = links or {}
+        if opacity is not None:
+            self.opacity = float(opacity)
+        for link, shapes in self._shapes.items():
+            want = (links.get(link, self.colour), self.opacity)
+            if self._paint.get(link) == want:
+                continue
+            self._paint[link] = want
+            for h in shapes:
+                h.color = tuple(int(c) for c in want[0])
+                h.opacity = want[1]

@@ -1,0 +1,99 @@
+"""Several arms following recorded joint tracks side by side (e.g. commanded and measured in a run log).
+
+A :class:`Motion` is a neutral description (no hardware types): frame times and,
+per arm, its joint track, colour and base offset, plus one note per frame. The
+``hardware`` layer builds one from a run log (:mod:`hardware.view`); this layer
+draws it. Frame: each arm's base frame 0, shifted by its ``offset`` [m].
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import viser
+
+from iik.errors import InvalidInputError
+from iik.scene import THESIS_SCENE, Scene
+
+from .bodies import ArmBody
+from .environment import aim_camera, draw_environment, legend_html
+from .session import Animation
+from .style import Colour
+
+__all__ = ["Track", "Motion", "MotionView"]
+
+
+@dataclass(frozen=True)
+class Track:
+    """One arm's joint track: ``q`` (k, 6) [rad] at the frame times, in ``colour``, at ``offset`` [m]."""
+
+    name: str
+    q: np.ndarray
+    colour: Colour
+    offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        q = np.asarray(self.q, float)
+        if q.ndim != 2 or q.shape[1] != 6 or not np.all(np.isfinite(q)):
+            raise InvalidInputError(f"track {self.name}",
+                                    f"q must be a finite (k, 6) array, got shape {q.shape}")
+        object.__setattr__(self, "q", q)
+
+
+@dataclass(frozen=True)
+class Motion:
+    """Frame times ``t`` (k,) [s], the arms' tracks, and an optional note per frame (shown with the time)."""
+
+    title: str
+    t: np.ndarray
+    tracks: tuple[Track, ...]
+    notes: tuple[str, ...] = ()
+    headline: str = ""
+
+    def __post_init__(self) -> None:
+        t = np.asarray(self.t, float)
+        if t.ndim != 1 or len(t) == 0 or np.any(np.diff(t) < 0) or not np.all(np.isfinite(t)):
+            raise InvalidInputError("t", "must be a non-empty, finite, non-decreasing (k,) array [s]")
+        if any(len(tr.q) != len(t) for tr in self.tracks):
+            raise InvalidInputError("tracks", "every track needs one configuration per frame time")
+        if self.notes and len(self.notes) != len(t):
+            raise InvalidInputError("notes", "must be empty or one per frame")
+        object.__setattr__(self, "t", t)
+
+
+class MotionView:
+    """A :class:`Motion` as a view: every arm on its own platform, a label per arm, a note per frame."""
+
+    def __init__(self, motion: Motion, *, scene: Scene = THESIS_SCENE):
+        self.motion = motion
+        self.scene = scene
+        self.title = motion.title
+
+    def status(self, i: int) -> str:
+        m = self.motion
+        return f"**t = {m.t[i]:.2f} s**" + (f" &nbsp; {m.notes[i]}" if m.notes else "")
+
+    def build(self, server: viser.ViserServer) -> Animation | None:
+        m = self.motion
+        if m.headline:
+            server.gui.add_markdown(m.headline)
+        server.gui.add_html(legend_html())
+        arms = []
+        for k, tr in enumerate(m.tracks):
+            draw_environment(server, scene=self.scene, offset=tr.offset, root=f"/scene{k}")
+            arms.append(ArmBody(server, f"/motion/{k}", colour=tr.colour, offset=tr.offset))
+            server.scene.add_label(f"/motion/{k}/name", tr.name, position=(0.0, 0.0, 1.0),
+                                   anchor="bottom-center")
+        offsets = np.array([tr.offset for tr in m.tracks]).reshape(-1, 3)
+        centre = 0.5 * (offsets.min(axis=0) + offsets.max(axis=0)) + np.array([0.3, 0.0, 0.15])
+        aim_camera(server, centre, distance=1.7 + float(np.ptp(offsets[:, 1])) if len(offsets) else 1.7)
+        note = server.scene.add_label("/motion/note", "", position=tuple(centre + [0.0, 0.0, 0.95]),
+                                      anchor="bottom-center")
+
+        def show(i: int) -> None:
+            for arm, tr in zip(arms, m.tracks, strict=True):
+                arm.show(tr.q[i])
+            note.text = f"t = {m.t[i]:.2f} s" + (f"; {m.notes[i]}" if m.notes else "")
+
+        return Animation(times=m.t, show=show, status=self.status)

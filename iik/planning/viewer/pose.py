@@ -1,0 +1,208 @@
+"""Pose mode: every IK solution of a tool pose as translucent arms, one picked; interactive IK.
+
+Given a pose ``T`` (4x4, base frame 0, m) -- or a configuration ``q`` [rad],
+whose pose is ``fk(q)`` -- the view solves the complete IK (:func:`iik.solve`,
+solutions outside the limits included and marked), draws every solution as a
+translucent arm and the picked one opaque, and lists in the panel each
+solution's joint values against Table I, its FK residuals and its Eq 54 effort
+index from ``previous`` (the given ``q``, else the home pose ``q = 0``). Links
+moved by a joint outside Table I are red. With ``interactive=True`` a gizmo at
+the tool frame moves the pose and every solution follows live.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import viser
+
+import iik
+from iik import THESIS_ARM, Arm
+from iik.validation import as_joints, as_poses
+
+from . import style
+from .bodies import ArmBody, joints_outside_limits, link_of_joint
+from .environment import aim_camera, draw_environment, legend_html
+from .session import Animation
+
+__all__ = ["PoseView", "MAX_SOLUTIONS"]
+
+#: Largest number of IK solutions of a 6R pose (the complete solver's bound).
+MAX_SOLUTIONS = 16
+
+
+def _quat_wxyz(R: np.ndarray) -> np.ndarray:
+    from scipy.spatial.transform import Rotation
+
+    x, y, z, w = Rotation.from_matrix(R).as_quat()
+    return np.array([w, x, y, z])
+
+
+def _matrix(wxyz, position) -> np.ndarray:
+    from scipy.spatial.transform import Rotation
+
+    w, x, y, z = wxyz
+    T = np.eye(4)
+    T[:3, :3] = Rotation.from_quat([x, y, z, w]).as_matrix()
+    T[:3, 3] = position
+    return T
+
+
+class PoseView:
+    """All IK solutions of one pose (or of ``fk(q)``), as a viewer view.
+
+    Args:
+        T: Tool pose (4, 4) [m]; or
+        q: A configuration (6,) [rad] shown as given (even outside the limits: then red, with a warning).
+        previous: Reference configuration of the effort index (default: ``q``, else zeros).
+        interactive: Add a draggable gizmo for the tool pose (live viewer only).
+        arm: Arm parameters (limits, FK).
+    """
+
+    def __init__(self, T=None, *, q=None, previous=None, interactive: bool = False, arm: Arm = THESIS_ARM):
+        if (T is None) == (q is None):
+            raise iik.InvalidInputError("pose", "give exactly one of T (a pose) or q (a configuration)")
+        self.arm = arm
+        self.given = None if q is None else as_joints(q, "q")[0][0]
+        if self.given is not None:
+            T = iik.fk(self.given, arm)
+        self.T = as_poses(T, "T")[0][0]
+        if previous is not None:
+            self.previous, self.reference = as_joints(previous, "previous")[0][0], "the reference q"
+        elif self.given is not None:
+            self.previous, self.reference = self.given, "the given q"
+        else:
+            self.previous, self.reference = np.zeros(6), "the home pose q = 0"
+        self.interactive = interactive
+        self.live_only = interactive
+        self.title = "iik view: interactive IK" if interactive else "iik view: pose"
+        self.warnings: tuple[str, ...] = ()
+        if self.given is not None:
+            bad = joints_outside_limits(self.given, arm)
+            self.warnings = tuple(
+                f"q[{j}] = {self.given[j]:.4f} rad ({np.degrees(self.given[j]):.1f} deg) is outside Table I "
+                f"[{arm.q_min[j]:.4f}, {arm.q_max[j]:.4f}] rad; shown in red" for j in bad)
+        self.result = iik.solve(self.T, within_limits=False, arm=arm)
+        self.selected = self._default_selection()
+        self.solve_time = 0.0
+
+    def _default_selection(self) -> int:
+        """The given q; else the least-effort solution within the limits (as :func:`iik.select`); else 0."""
+        r = self.result
+        if self.given is not None or not np.any(r.within_limits):
+            return 0
+        idx = np.flatnonzero(r.within_limits)
+        return int(idx[np.argmin(np.atleast_1d(iik.effort_index(self.previous, r.q[idx])))])
+
+    def configurations(self) -> np.ndarray:
+        """(m, 6): the given ``q`` (if any) first, then every IK solution [rad]."""
+        sols = np.asarray(self.result.q).reshape(-1, 6)
+        return sols if self.given is None else np.vstack([self.given[None], sols])
+
+    def describe(self, i: int) -> str:
+        """Markdown: joint values vs Table I, limit flags, residuals and effort of configuration ``i``."""
+        qs, arm = self.configurations(), self.arm
+        q = qs[i]
+        bad = set(joints_outside_limits(q, arm))
+        rows = "\n".join(
+            f"| {j + 1} | {np.degrees(q[j]):8.2f} | {np.degrees(arm.q_min[j]):7.1f} .. "
+            f"{np.degrees(arm.q_max[j]):6.1f} | {'**OUT**' if j in bad else 'ok'} |" for j in range(6))
+        E = iik.effort_index(self.previous, q)
+        T = iik.fk(q, arm)
+        dp = np.linalg.norm(T[:3, 3] - self.T[:3, 3])
+        dR = iik.rotation_angle(T[:3, :3], self.T[:3, :3])
+        return (f"| joint | q [deg] | Table I [deg] | limits |\n|---|---|---|---|\n{rows}\n\n"
+                f"Effort index (Eq 54) from {self.reference}: **{E:.4f} rad** ({np.degrees(E):.2f} deg); "
+                f"FK residuals {dp:.1e} m, {dR:.1e} rad")
+
+    def options(self) -> tuple[str, ...]:
+        names = []
+        if self.given is not None:
+            names.append("given q" + ("" if not self.warnings else " (OUTSIDE LIMITS)"))
+        for k in range(self.result.count):
+            lim = "in limits" if self.result.within_limits[k] else "outside limits"
+            E = iik.effort_index(self.previous, self.result.q[k])
+            names.append(f"solution {k}: {lim}, E = {E:.3f} rad")
+        return tuple(names)
+
+    def summary(self) -> str:
+        p = self.T[:3, 3] * 1000
+        a = np.degrees(iik.zxz_from_matrix(self.T[:3, :3]))
+        r = self.result
+        head = (f"Tool at ({p[0]:.1f}, {p[1]:.1f}, {p[2]:.1f}) mm, Eq 42 angles "
+                f"({a[0]:.1f}, {a[1]:.1f}, {a[2]:.1f}) deg: **{r.count} IK solution(s)**, "
+                f"{int(np.sum(r.within_limits))} within Table I")
+        if r.count == 0:
+            head += f" ({r.reason})"
+        if self.solve_time:
+            head += f"; solved in {self.solve_time * 1e6:.0f} us"
+        return head + "".join(f"\n\n**Warning:** {w}" for w in self.warnings)
+
+    def build(self, server: viser.ViserServer) -> Animation | None:
+        draw_environment(server)
+        self.camera = aim_camera(server, (0.25, 0.0, 0.25), distance=1.3)
+        bodies: list[ArmBody] = []
+        summary = server.gui.add_markdown(self.summary())
+        opts = self.options() or ("none",)
+        pick = server.gui.add_dropdown("configuration", options=opts, initial_value=opts[self.selected])
+        table = server.gui.add_markdown("")
+        server.gui.add_html(legend_html())
+        labels: list = []
+
+        def body(k: int) -> ArmBody:
+            while len(bodies) <= k:
+                n = len(bodies)
+                bodies.append(ArmBody(server, f"/pose/arm{n}", colour=style.SOLUTION, opacity=0.25))
+                labels.append(server.scene.add_label(f"/pose/label{n}", f"#{n}", font_screen_scale=0.8))
+            return bodies[k]
+
+        def redraw() -> None:
+            qs = self.configurations()
+            for k, q in enumerate(qs):
+                b = body(k)
+                b.colour = style.SELECTED if k == self.selected else style.SOLUTION
+                red = {link_of_joint(j): style.OUT_OF_LIMITS for j in joints_outside_limits(q, self.arm)}
+                b.show(q)
+                b.paint(red, opacity=1.0 if k == self.selected else 0.25)
+                b.visible = True
+                name = "given q" if (self.given is not None and k == 0) else \
+                    f"#{k - (self.given is not None)}"
+                labels[k].text = name
+                elbow = iik.joint_frames(q, self.arm)[2][:3, 3]
+                labels[k].position = tuple(elbow + [0.0, 0.0, 0.05 + 0.035 * k])  # stacked: no overlap
+                labels[k].visible = True
+            for k in range(len(qs), len(bodies)):
+                bodies[k].visible = False
+                labels[k].visible = False
+            summary.content = self.summary()
+            table.content = self.describe(self.selected) if len(qs) else ""
+
+        @pick.on_update
+        def _(_event) -> None:
+            opts = self.options()
+            if pick.value in opts:
+                self.selected = opts.index(pick.value)
+                redraw()
+
+        if self.interactive:
+            gizmo = server.scene.add_transform_controls("/pose/target", scale=0.15,
+                                                        wxyz=_quat_wxyz(self.T[:3, :3]),
+                                                        position=tuple(self.T[:3, 3]))
+
+            @gizmo.on_update
+            def _(_event) -> None:
+                self.T = _matrix(gizmo.wxyz, gizmo.position)
+                t0 = time.perf_counter()
+                self.result = iik.solve(self.T, within_limits=False, arm=self.arm)
+                self.solve_time = time.perf_counter() - t0
+                self.given = None
+                self.warnings = ()
+                self.selected = self._default_selection()
+                opts = self.options() or ("none",)
+                pick.options = opts
+                pick.value = opts[self.selected]
+                redraw()
+
+        redraw()
+        return None

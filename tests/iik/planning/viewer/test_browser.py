@@ -1,0 +1,159 @@
+"""The viewer in a real headless Chromium: an exported plan opened from disk, and the live server.
+
+Set ``IIK_SCREENSHOTS=DIR`` to keep the screenshots.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import iik
+from iik.planning.viewer import PlanScene, PoseView, export, plan_for_view, serve
+
+from .conftest import canvas_rect, hue_mask, project, screenshot, wait_for_scene
+
+BLUE = (205.0, 240.0)  # the arm (style.ARM, hue 222 deg), shaded
+RED = (348.0, 10.0)  # obstacles (style.OBSTACLE, hue 2 deg)
+
+
+def _keep(img: np.ndarray, name: str) -> None:
+    folder = os.environ.get("IIK_SCREENSHOTS")
+    if folder:
+        import matplotlib.image as mpimg
+
+        Path(folder).mkdir(parents=True, exist_ok=True)
+        mpimg.imsave(Path(folder) / name, np.clip(img, 0, 1))
+
+
+def _box(uv: np.ndarray, pad: float) -> tuple[float, float, float, float]:
+    return uv[:, 0].min() - pad, uv[:, 1].min() - pad, uv[:, 0].max() + pad, uv[:, 1].max() + pad
+
+
+def _inside(mask: np.ndarray, box) -> float:
+    """Fraction of the mask's pixels inside the box (x0, y0, x1, y1)."""
+    ys, xs = np.nonzero(mask)
+    if len(xs) == 0:
+        return 0.0
+    x0, y0, x1, y1 = box
+    return float(np.mean((xs >= x0) & (xs <= x1) & (ys >= y0) & (ys <= y1)))
+
+
+def _in_canvas(mask: np.ndarray, rect) -> np.ndarray:
+    """The mask without the page around the 3D canvas (panel, playback bar)."""
+    left, top, w, h = (int(round(v)) for v in rect)
+    out = np.zeros_like(mask)
+    out[top:top + h, left:left + w] = mask[top:top + h, left:left + w]
+    return out
+
+
+def _arm_points(q: np.ndarray) -> np.ndarray:
+    """Joint-frame origins and the tool point of every configuration [m]."""
+    return iik.joint_frames(np.asarray(q).reshape(-1, 6))[:, :, :3, 3].reshape(-1, 3)
+
+
+@pytest.fixture(scope="module")
+def plan_j():
+    return plan_for_view("j")
+
+
+def test_exported_plan_opens_from_disk_and_draws_arm_and_obstacle(browser, plan_j, tmp_path):
+    view = PlanScene(plan_j)
+    res = export(view, tmp_path / "j")
+    browser.get((res.path / "index.html").resolve().as_uri())
+    img = wait_for_scene(browser)
+    _keep(img, "exported_j_from_disk.png")
+    rect = canvas_rect(browser)
+    eye, target, fov = view.camera
+
+    assert img.std() > 0.05, "blank page"
+    # Nothing but the file itself and inline data/blob resources was loaded: no server, no network.
+    urls = browser.execute_script("return performance.getEntriesByType('resource').map(e => e.name)")
+    assert all(u.split(":", 1)[0] in ("file", "data", "blob") for u in urls), urls
+
+    red = _in_canvas(hue_mask(img, *RED), rect)
+    cabinet = next(b for b in plan_j.obstacles if b.name == "cabinet")
+    assert red.sum() > 300, "no obstacle colour on screen"
+    assert _inside(red, _box(project(cabinet.corners, eye, target, fov_deg=fov, rect=rect), 15)) > 0.9
+
+    blue = _in_canvas(hue_mask(img, *BLUE), rect)
+    arm_box = _box(project(_arm_points(plan_j.q), eye, target, fov_deg=fov, rect=rect), 40)
+    assert blue.sum() > 300, "no arm colour on screen"
+    assert _inside(blue, arm_box) > 0.9
+    # The two colours are drawn in different places (not one blended blob).
+    assert _inside(red, arm_box) < 1.0 or _inside(blue, _box(project(cabinet.corners, eye, target,
+                                                                        fov_deg=fov, rect=rect), 0)) < 0.5
+
+
+def test_exported_pose_shows_every_solution(browser, tmp_path):
+    T = iik.pose_from_zxz([0.4, 0.3, 0.2], np.pi, np.radians(120), 0.0)
+    view = PoseView(T)
+    assert view.result.count >= 2
+    res = export(view, tmp_path / "pose")
+    browser.get((res.path / "index.html").resolve().as_uri())
+    img = wait_for_scene(browser)
+    _keep(img, "pose_all_solutions.png")
+    blue = _in_canvas(hue_mask(img, *BLUE, min_sat=0.25), canvas_rect(browser))
+    assert blue.sum() > 300
+
+
+def _thumb(browser):
+    from selenium.webdriver.common.by import By
+
+    sliders = browser.find_elements(By.CSS_SELECTOR, "[role=slider]")
+    assert len(sliders) == 1, "expected one time slider in the panel"
+    return sliders[0]
+
+
+def _wait(pred, timeout: float = 10.0) -> bool:
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        if pred():
+            return True
+        time.sleep(0.1)
+    return False
+
+
+def test_live_time_slider_moves_the_arm(browser, plan_j):
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.keys import Keys
+
+    view = PlanScene(plan_j)
+    live = serve(view, host="127.0.0.1", port=0)
+    try:
+        assert live.url.startswith("http://127.0.0.1:")
+        browser.get(live.url)
+        before = wait_for_scene(browser)
+        rect = canvas_rect(browser)
+        eye, target, fov = view.camera
+        slider = live.time_slider
+        t_end = slider.max
+
+        thumb = _thumb(browser)
+        thumb.click()
+        thumb.send_keys(Keys.END)
+        assert _wait(lambda: abs(slider.value - t_end) < 1e-9), "the server never saw the slider move"
+        time.sleep(1.5)
+        after = screenshot(browser)
+
+        region = _box(project(_arm_points(plan_j.q[[0, -1]]), eye, target, fov_deg=fov, rect=rect), 30)
+        x0, y0, x1, y1 = (int(max(v, 0)) for v in region)
+        changed = np.abs(after - before)[y0:y1, x0:x1].max(axis=2) > 0.15
+        assert changed.mean() > 0.01, "the arm did not move on screen"
+        blue0, blue1 = (hue_mask(im, *BLUE)[y0:y1, x0:x1] for im in (before, after))  # not the panel's button
+        c0, c1 = (np.argwhere(m).mean(axis=0) for m in (blue0, blue1))
+        assert np.hypot(*(c1 - c0)) > 10, "the arm's pixels did not move"
+
+        # Drag the thumb back to mid-track: the scene shows the motion half-way, with its clearance label.
+        track = thumb.find_element("xpath", "..")
+        drag = ActionChains(browser).click_and_hold(thumb).move_by_offset(-track.size["width"] // 2, 0)
+        drag.release().perform()
+        assert _wait(lambda: 0.2 * t_end < slider.value < 0.8 * t_end), slider.value
+        time.sleep(1.5)
+        _keep(screenshot(browser), "live_j_mid_motion.png")
+    finally:
+        live.stop()

@@ -1,0 +1,70 @@
+"""The adapter from the planner's result and the per-frame clearance."""
+
+import numpy as np
+import pytest
+
+import iik
+from iik.errors import ScenarioError
+from iik.planning.pipeline import plan_scenario
+from iik.planning.viewer import frame_clearance, plan_scene, resolve_scenario
+
+
+@pytest.fixture(scope="module")
+def result_j():
+    return plan_scenario(resolve_scenario("j"))
+
+
+def test_plan_scene_reads_the_timed_trajectory_and_the_path(result_j):
+    view = plan_scene(result_j)
+    assert view.name == "j" and view.success
+    assert np.array_equal(view.t, result_j.trajectory.t) and np.array_equal(view.q, result_j.trajectory.q)
+    assert np.all(np.diff(view.t) > 0)
+    # The step-points are the planned tool points; the joint path reaches them (Eq 4 FK).
+    assert np.allclose(iik.fk(view.step_q)[:, :3, 3], view.step_points, atol=1e-6)
+    # The trajectory starts and ends at the path's ends.
+    assert np.allclose(view.q[0], view.step_q[0], atol=1e-6)
+    assert np.allclose(view.q[-1], view.step_q[-1], atol=1e-6)
+    assert {b.name for b in view.obstacles} == {b.name for b in result_j.scenario.obstacles}
+    assert "j: OK" in view.headline and "mm" in view.headline
+
+
+def test_switch_times_point_at_the_switching_steps():
+    """A synthetic result with a branch switch: its time is the frame at that step's configuration."""
+    from types import SimpleNamespace
+
+    q = np.zeros((5, 6))
+    q[3:, 0] = 1.0  # a jump of 1 rad > BRANCH_SWITCH_STEP between steps 2 and 3
+    t = np.linspace(0, 2, 41)
+    tq = np.interp(t, [0, 0.5, 1.0, 1.5, 2.0], q[:, 0])
+    traj = SimpleNamespace(t=t, q=np.column_stack([tq] + [np.zeros_like(t)] * 5), duration=2.0)
+    res = SimpleNamespace(scenario=SimpleNamespace(name="s", obstacles=(), safety_zone=0.03), q=q,
+                          trajectory=traj, cartesian=None, branch_switches=iik.branch_switches(q),
+                          success=True, reason="", method="test", min_clearance=0.1)
+    view = plan_scene(res)
+    assert view.switch_steps == (3,)
+    assert view.switch_times == (1.5,)
+    assert view.via_points.shape == (0, 3)
+
+
+def test_frame_clearance_nearest_points_are_consistent(result_j):
+    """Coal's nearest points lie on the obstacle and are ``distance`` apart (checked by Obstacle.distance)."""
+    view = plan_scene(result_j)
+    q = view.q[:: max(1, len(view.q) // 25)]
+    c = frame_clearance(view.obstacles, q)
+    assert c.distance.shape == (len(q),) and len(c.link) == len(q)
+    boxes = {b.name: b for b in view.obstacles}
+    for k in range(len(q)):
+        gap = np.linalg.norm(c.on_link[k] - c.on_obstacle[k])
+        if c.distance[k] > 1e-6:
+            assert gap == pytest.approx(c.distance[k], abs=1e-6)
+        if c.obstacle[k] in boxes:
+            box = boxes[c.obstacle[k]]
+            assert box.distance(c.on_obstacle[k])[0] == pytest.approx(0.0, abs=1e-6)
+            assert box.distance(c.on_link[k])[0] == pytest.approx(max(c.distance[k], 0.0), abs=1e-6)
+    # No frame of the accepted plan enters the safety zone.
+    assert c.distance.min() >= view.safety_zone - 1e-9
+
+
+def test_unknown_scenario_names_the_argument():
+    with pytest.raises(ScenarioError, match="neither a scenario file nor a shipped"):
+        resolve_scenario("no_such_scenario")

@@ -1,0 +1,47 @@
+"""Pose mode: every IK solution, the limit marks and the default choice."""
+
+import numpy as np
+import pytest
+
+import iik
+from iik.errors import InvalidInputError
+from iik.planning.viewer import PoseView
+from iik.planning.viewer.bodies import joints_outside_limits
+
+
+def test_every_configuration_reaches_the_pose():
+    T = iik.pose_from_zxz([0.4, 0.3, 0.2], np.pi, np.radians(120), 0.0)
+    view = PoseView(T)
+    qs = view.configurations()
+    assert len(qs) == iik.solve(T, within_limits=False).count >= 2
+    assert np.allclose(iik.fk(qs), T, atol=1e-8)
+    assert len(view.options()) == len(qs)
+    # The default choice is iik.select's: least effort (Eq 54) from q = 0 within Table I.
+    assert np.allclose(qs[view.selected], iik.select(view.result, previous_q=np.zeros(6)))
+
+
+@pytest.mark.parametrize("j", range(6))
+def test_limit_marks_agree_with_the_one_limit_test(j):
+    arm = iik.THESIS_ARM
+    q = 0.5 * (arm.q_min + arm.q_max)
+    q[j] = arm.q_max[j] + 0.1
+    assert joints_outside_limits(q) == (j,)
+    assert not arm.within_limits(q)
+    q[j] = arm.q_max[j]
+    assert joints_outside_limits(q) == () and arm.within_limits(q)
+
+
+def test_q_outside_the_limits_is_shown_with_a_warning():
+    view = PoseView(q=[0.1, -0.3, 0.4, 3.0, -0.2, 0.7])
+    assert len(view.warnings) == 1 and "q[3]" in view.warnings[0] and "outside Table I" in view.warnings[0]
+    assert np.array_equal(view.configurations()[0], [0.1, -0.3, 0.4, 3.0, -0.2, 0.7])
+    assert "**OUT**" in view.describe(0) and "OUTSIDE LIMITS" in view.options()[0]
+
+
+def test_bad_pose_arguments_are_typed_errors():
+    with pytest.raises(InvalidInputError):
+        PoseView(q=[0.0, np.nan, 0, 0, 0, 0])
+    with pytest.raises(InvalidInputError):
+        PoseView(np.eye(4), q=np.zeros(6))
+    with pytest.raises(InvalidInputError):
+        PoseView(np.ones((4, 4)))
