@@ -39,7 +39,8 @@ class Layer:
 
 
 CORE_LIBS = ("numpy", "scipy", "numba")
-PLANNING_LIBS = CORE_LIBS + ("pinocchio", "coal", "ompl", "toppra", "matplotlib", "mpl_toolkits", "viser",
+PLANNING_LIBS = CORE_LIBS + ("pinocchio", "coal", "ompl", "toppra", "matplotlib", "mpl_toolkits", "viser", "trimesh",
+                             "IPython",  # notebook display of the viewer (lazy, inside a notebook only)
                              "tomli", "tomli_w")
 HARDWARE_LIBS = PLANNING_LIBS + ("can", "ruckig", "msgpack")
 LAYERS = (

@@ -20,7 +20,7 @@ from .app import Shown, ViewRequest, show, view
 from .errors import ExportError, PortInUseError, ViewerError
 from .motion import Motion, MotionView, Track
 from .plan import PlanScene
-from .plan_data import FrameClearance, PlanView, frame_clearance, plan_for_view, plan_scene, resolve_scenario
+from .plan_data import FrameClearance, PlanView, frame_clearance, plan_for_view, plan_scene
 from .pose import PoseView
 from .session import (
     Animation,
@@ -62,6 +62,5 @@ __all__ = [
     "plan_scene",
     "plan_for_view",
     "frame_clearance",
-    "resolve_scenario",
     "PlanScene",
 ]

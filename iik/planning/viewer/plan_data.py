@@ -14,14 +14,12 @@ from pathlib import Path
 import numpy as np
 
 from iik import fk
-from iik.errors import ScenarioError
-from iik.resources import scenarios_dir
 from iik.scene import THESIS_SCENE, Scene
 
 from ..collision import SceneCollision
 from ..obstacles import Obstacle
 
-__all__ = ["PlanView", "FrameClearance", "plan_scene", "plan_for_view", "frame_clearance", "resolve_scenario"]
+__all__ = ["PlanView", "FrameClearance", "plan_scene", "plan_for_view", "frame_clearance"]
 
 #: Seconds per step when a plan has no timed trajectory (the joint path is shown step by step).
 UNTIMED_STEP = 0.2
@@ -78,19 +76,6 @@ class FrameClearance:
     on_obstacle: np.ndarray
 
 
-def resolve_scenario(name: str | Path) -> Path:
-    """A scenario file, or the file of a shipped scenario named like ``j`` (:class:`ScenarioError` else)."""
-    path = Path(name)
-    if path.is_file():
-        return path
-    shipped = scenarios_dir() / f"{name}.toml"
-    if path.suffix or len(path.parts) > 1 or not shipped.is_file():
-        names = ", ".join(sorted(f.stem for f in scenarios_dir().glob("*.toml")))
-        raise ScenarioError("scenario", f"{str(name)!r} is neither a scenario file nor a shipped "
-                            f"scenario ({names})")
-    return shipped
-
-
 def plan_scene(result) -> PlanView:
     """Adapter: the planner's result -> :class:`PlanView` (the one place that reads it)."""
     sc = result.scenario
@@ -125,9 +110,9 @@ def plan_for_view(scenario: str | Path, *, scene: Scene = THESIS_SCENE) -> PlanV
     Raises:
         ScenarioError: The scenario does not exist or fails validation.
     """
-    from ..pipeline import plan_scenario
+    from ..pipeline import plan
 
-    return plan_scene(plan_scenario(resolve_scenario(scenario), scene=scene))
+    return plan_scene(plan(scenario, scene=scene))
 
 
 def frame_clearance(obstacles, q, *, scene: Scene = THESIS_SCENE) -> FrameClearance:

@@ -4,14 +4,14 @@ import numpy as np
 import pytest
 
 import iik
-from iik.errors import ScenarioError
-from iik.planning.pipeline import plan_scenario
-from iik.planning.viewer import frame_clearance, plan_scene, resolve_scenario
+from iik.planning import plan, scenario_path
+from iik.planning.errors import ScenarioError
+from iik.planning.viewer import frame_clearance, plan_scene
 
 
 @pytest.fixture(scope="module")
 def result_j():
-    return plan_scenario(resolve_scenario("j"))
+    return plan("j")
 
 
 def test_plan_scene_reads_the_timed_trajectory_and_the_path(result_j):
@@ -67,4 +67,4 @@ def test_frame_clearance_nearest_points_are_consistent(result_j):
 
 def test_unknown_scenario_names_the_argument():
     with pytest.raises(ScenarioError, match="neither a scenario file nor a shipped"):
-        resolve_scenario("no_such_scenario")
+        scenario_path("no_such_scenario")
