@@ -39,9 +39,9 @@ class Layer:
 
 
 CORE_LIBS = ("numpy", "scipy", "numba")
-PLANNING_LIBS = CORE_LIBS + ("pinocchio", "coal", "ompl", "toppra", "matplotlib", "mpl_toolkits", "viser", "trimesh",
-                             "IPython",  # notebook display of the viewer (lazy, inside a notebook only)
-                             "tomli", "tomli_w")
+PLANNING_LIBS = CORE_LIBS + ("pinocchio", "coal", "ompl", "toppra", "matplotlib", "mpl_toolkits", "viser",
+                             "trimesh", "tomli", "tomli_w",
+                             "IPython")  # the viewer's notebook display (imported lazily, in a notebook)
 HARDWARE_LIBS = PLANNING_LIBS + ("can", "ruckig", "msgpack")
 LAYERS = (
     Layer("core", "iik", ("iik.planning", "iik.cli"), ("iik",), CORE_LIBS),
