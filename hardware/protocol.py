@@ -360,7 +360,7 @@ def _frame(arbitration_id: int, data: bytes) -> can.Message:
 def encode(msg: Message) -> can.Message:
     """The CAN frame of a message (request or reply). Raises :class:`ProtocolError`."""
     if isinstance(msg, Broadcast):
-        cmd = Cmd(msg.cmd) if msg.cmd in Cmd._value2member_map_ else None
+        cmd = Cmd(msg.cmd) if msg.cmd in _BROADCAST else None
         if cmd not in _BROADCAST:
             raise ProtocolError(f"command {msg.cmd!r} cannot be broadcast")
         if cmd is Cmd.BAUDRATE:
