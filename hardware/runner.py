@@ -106,8 +106,10 @@ class RunRequest:
             _number(self.timeout, "timeout", 0.0)
         _number(self.early, "early", 0.0, 1.0)
         _number(self.speed, "speed", 0.0, 1.0)
-        if not (isinstance(self.margin, (int, float)) and 0.0 <= self.margin < math.pi / 2):
-            raise InvalidInputError("margin", f"must be in [0, 90) deg, got {math.degrees(self.margin):g} deg")
+        number = isinstance(self.margin, (int, float)) and not isinstance(self.margin, bool)
+        if not (number and 0.0 <= self.margin < math.pi / 2):
+            shown = f"{math.degrees(self.margin):g} deg" if number else repr(self.margin)
+            raise InvalidInputError("margin", f"must be in [0, 90) deg, got {shown}")
         _number(self.lag, "lag", 0.0, open_lo=False)
         for name, allowed in (("update", UPDATES), ("sim_start", SIM_STARTS)):
             value = getattr(self, name)
@@ -223,7 +225,10 @@ def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
     traj = targets.validate(ValidationOptions(margin=request.margin))
     say(f"{targets.name}: {len(traj)} step-points, {traj.times[-1]:.2f} s planned, validated "
         f"(Table I - {math.degrees(request.margin):g} deg, speed limits, FK vs planned poses)")
-    request.out.mkdir(parents=True, exist_ok=True)
+    try:
+        request.out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InvalidInputError("out", f"cannot create the folder {request.out}: {exc.strerror}") from None
     log_path = request.out / f"{targets.name}.jsonl"
     options = ExecutionOptions(early=request.early, update=request.update, watchdog=request.watchdog)
     initial = traj.q[0] if request.sim_start == "plan" else None

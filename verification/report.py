@@ -85,6 +85,7 @@ def verify(out_dir: Path, *, quick: bool = False, seed: int = 20120101, select: 
     every module of :mod:`verification.checks` registers its checks on loading.
     """
     t0 = time.perf_counter()
+    Path(out_dir).mkdir(parents=True, exist_ok=True)  # fail before the checks run, not after
     results = run_checks(Context(out_dir=Path(out_dir), seed=seed, quick=quick), select=select,
                          progress=progress)
     path = write_report(results, Path(out_dir) / "verification.md")

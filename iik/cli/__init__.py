@@ -5,7 +5,7 @@ Each subcommand is a module in this package defining ``NAME``, ``HELP``,
 function and prints. Modules are discovered automatically; heavy packages
 (pinocchio, coal, python-can, verification, hardware) are imported lazily inside ``run``.
 
-Every expected failure (an :class:`iik.errors.IIKError`, a bad argument) ends the
+Every expected failure (an ``IIKError``, a bad argument, an unwritable file) ends the
 command with one line on stderr and exit code 2, never a traceback.
 """
 
@@ -22,7 +22,7 @@ __all__ = ["main", "build_parser"]
 
 
 class UsageError(Exception):
-    """A command line that does not parse (raised instead of argparse's exit)."""
+    """A command line that does not parse (instead of argparse's exit)."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -67,8 +67,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _as_typed(exc: IIKError, parser: _Parser) -> str:
-    """``Type: message``, naming the option as the user typed it (``--early``) where the
-    error's ``argument`` is the library's name for it (``early``; ``margin`` for ``--margin-deg``)."""
+    """``Type: message``, naming the option as typed (``--margin-deg`` for ``margin``)."""
     name, reason = getattr(exc, "argument", None), getattr(exc, "reason", None)
     for dest, shown in parser.spelling.items() if name and reason else ():
         if dest == name or dest.startswith(f"{name}_"):
@@ -88,6 +87,9 @@ def main(argv: list[str] | None = None) -> int:
         return int(args._run(args) or 0)
     except IIKError as exc:
         print(f"iik {args.command}: error: {_as_typed(exc, args._parser)}", file=sys.stderr)
+        return 2
+    except OSError as exc:  # an output file or folder that cannot be written
+        print(f"iik {args.command}: error: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print(f"iik {args.command}: interrupted", file=sys.stderr)
