@@ -323,6 +323,15 @@ Message = Request | Reply
 
 
 # ----------------------------------------------------------------------------- encoding
+#: Parameter messages: (identifier base, command, parameters allowed, carries a value).
+_PARAM_FRAMES = {
+    GetParam: (ID_GET, Cmd.GETPARAM, READABLE, False),
+    ParamReply: (ID_ACK, Cmd.GETPARAM, READABLE, True),
+    SetParam: (ID_SET, Cmd.SETPARAM, WRITABLE, True),
+    SetParamAck: (ID_ACK, Cmd.SETPARAM, WRITABLE, False),
+}
+
+
 def _check_module(module) -> int:
     if isinstance(module, bool) or not isinstance(module, int) or module not in MODULE_IDS:
         raise ProtocolError(f"module id must be an int in 1..31, got {module!r}")
@@ -371,18 +380,11 @@ def encode(msg: Message) -> can.Message:
             raise ProtocolError(f"broadcast {cmd.name} takes no argument")
         return _frame(ID_ALL, bytes([cmd]))
     module = _check_module(msg.module)
-    if isinstance(msg, (GetParam, ParamReply)):
-        par = _param(msg.param, READABLE, "GETPARAM")
-        if isinstance(msg, GetParam):
-            return _frame(ID_GET + module, bytes([Cmd.GETPARAM, par]))
-        value = _pack(PARAM_TYPES[par], msg.value, par.name)
-        return _frame(ID_ACK + module, bytes([Cmd.GETPARAM, par]) + value)
-    if isinstance(msg, (SetParam, SetParamAck)):
-        par = _param(msg.param, WRITABLE, "SETPARAM")
-        if isinstance(msg, SetParamAck):
-            return _frame(ID_ACK + module, bytes([Cmd.SETPARAM, par]))
-        value = _pack(PARAM_TYPES[par], msg.value, par.name)
-        return _frame(ID_SET + module, bytes([Cmd.SETPARAM, par]) + value)
+    if type(msg) in _PARAM_FRAMES:
+        base, cmd, allowed, carries_value = _PARAM_FRAMES[type(msg)]
+        par = _param(msg.param, allowed, cmd.name)
+        value = _pack(PARAM_TYPES[par], msg.value, par.name) if carries_value else b""
+        return _frame(base + module, bytes([cmd, par]) + value)
     if isinstance(msg, SetMove):
         mode = _mode(msg.mode)
         payload = _pack(ParamType.F32, msg.value, f"{mode.name} value")
