@@ -323,12 +323,12 @@ Message = Request | Reply
 
 
 # ----------------------------------------------------------------------------- encoding
-#: Parameter messages: (identifier base, command, parameters allowed, carries a value).
+#: Parameter messages: (identifier base, command, parameters allowed, carries a value, name).
 _PARAM_FRAMES = {
-    GetParam: (ID_GET, Cmd.GETPARAM, READABLE, False),
-    ParamReply: (ID_ACK, Cmd.GETPARAM, READABLE, True),
-    SetParam: (ID_SET, Cmd.SETPARAM, WRITABLE, True),
-    SetParamAck: (ID_ACK, Cmd.SETPARAM, WRITABLE, False),
+    GetParam: (ID_GET, Cmd.GETPARAM, READABLE, False, "GETPARAM"),
+    ParamReply: (ID_ACK, Cmd.GETPARAM, READABLE, True, "GETPARAM"),
+    SetParam: (ID_SET, Cmd.SETPARAM, WRITABLE, True, "SETPARAM"),
+    SetParamAck: (ID_ACK, Cmd.SETPARAM, WRITABLE, False, "SETPARAM"),
 }
 
 
@@ -381,8 +381,8 @@ def encode(msg: Message) -> can.Message:
         return _frame(ID_ALL, bytes([cmd]))
     module = _check_module(msg.module)
     if type(msg) in _PARAM_FRAMES:
-        base, cmd, allowed, carries_value = _PARAM_FRAMES[type(msg)]
-        par = _param(msg.param, allowed, cmd.name)
+        base, cmd, allowed, carries_value, where = _PARAM_FRAMES[type(msg)]
+        par = _param(msg.param, allowed, where)
         value = _pack(PARAM_TYPES[par], msg.value, par.name) if carries_value else b""
         return _frame(base + module, bytes([cmd, par]) + value)
     if isinstance(msg, SetMove):
@@ -424,6 +424,8 @@ def _mode(code, where: str = "SETMOVE") -> Mode:
 
 
 def _param(code, allowed, where: str) -> Param:
+    if type(code) is Param and code in allowed:  # the common case, without an Enum lookup
+        return code
     try:
         par = Param(code)
     except (ValueError, TypeError):
