@@ -11,7 +11,8 @@ was calculated by inputting the obtained experimental joint angles into the forw
 kinematics expression"), compared with the planned pose's position.
 
 Sec 4.3.1 chose a 10 mm safety zone from the predefined paths; Sec 4.3.2 suggests
-30 mm in motion. :attr:`RunAnalysis.max_ee_error` is compared with both.
+30 mm in motion (the planner's zone, :data:`iik.planning.obstacles.SAFETY_ZONE`).
+:attr:`RunAnalysis.max_ee_error` is compared with both.
 """
 
 from __future__ import annotations
@@ -23,16 +24,16 @@ import numpy as np
 
 from iik.arm import THESIS_ARM, Arm
 from iik.kinematics import fk
+from iik.planning.obstacles import SAFETY_ZONE
 
-from .runlog import Run, RunLogError
+from .errors import RunLogError
+from .runlog import Run
 
-__all__ = ["RunAnalysis", "analyse", "plot_run", "summary_text", "SAFETY_ZONE_PREDEFINED",
-           "SAFETY_ZONE_PLANNED"]
+__all__ = ["RunAnalysis", "analyse", "plot_run", "summary_text", "SAFETY_ZONE_PREDEFINED"]
 
-#: Sec 4.3.1: minimum safety zone chosen from the predefined paths [m].
+#: Sec 4.3.1: minimum safety zone chosen from the predefined paths [m]. (The 30 mm zone
+#: suggested for motion in Sec 4.3.2 is the planner's :data:`iik.planning.obstacles.SAFETY_ZONE`.)
 SAFETY_ZONE_PREDEFINED = 0.010
-#: Sec 4.3.2: minimum safety zone suggested for motion [m].
-SAFETY_ZONE_PLANNED = 0.030
 
 
 @dataclass(frozen=True)
@@ -83,7 +84,7 @@ class RunAnalysis:
     def mean_joint_error(self) -> np.ndarray:
         return np.mean(np.abs(self.joint_error), axis=0)
 
-    def within(self, zone: float = SAFETY_ZONE_PLANNED) -> bool:
+    def within(self, zone: float = SAFETY_ZONE) -> bool:
         """Does the largest end-effector error stay inside a safety zone of ``zone`` m?"""
         return self.max_ee_error <= zone
 
@@ -128,7 +129,7 @@ def summary_text(a: RunAnalysis, name: str = "run") -> str:
         f"start {a.start_ee_error * 1e3:.2f} mm, end {a.final_ee_error * 1e3:.2f} mm",
         "  max |joint error| [deg]: " + " ".join(f"{np.degrees(v):.3f}" for v in a.max_joint_error),
         f"  within the 10 mm zone of Sec 4.3.1: {a.within(SAFETY_ZONE_PREDEFINED)}; "
-        f"within the 30 mm zone of Sec 4.3.2: {a.within(SAFETY_ZONE_PLANNED)}",
+        f"within the 30 mm zone of Sec 4.3.2: {a.within(SAFETY_ZONE)}",
     ]
     return "\n".join(lines)
 
@@ -142,42 +143,36 @@ def plot_run(a: RunAnalysis, out_dir, stem: str = "run") -> list[Path]:
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    paths = []
-    fig, ax = plt.subplots(figsize=(7, 3.5))
-    for j in range(a.joint_error.shape[1]):
-        ax.plot(a.steps, np.degrees(a.joint_error[:, j]), label=f"joint {j + 1}")
-    ax.set(xlabel="step-point", ylabel="measured - planned [deg]",
-           title="Joint error (analogue of Figs 46, 48, 50, 52)")
-    ax.legend(ncol=3, fontsize=7)
-    ax.grid(alpha=0.3)
-    paths.append(out / f"{stem}_joint_error.png")
-    fig.tight_layout()
-    fig.savefig(paths[-1], dpi=110)
-    plt.close(fig)
 
-    fig, ax = plt.subplots(figsize=(7, 3.5))
-    ax.plot(a.steps, a.ee_error * 1e3, "k.-", label="|FK(measured) - planned|")
-    ax.axhline(SAFETY_ZONE_PREDEFINED * 1e3, color="tab:orange", ls="--", label="10 mm (Sec 4.3.1)")
-    ax.axhline(SAFETY_ZONE_PLANNED * 1e3, color="tab:red", ls="--", label="30 mm (Sec 4.3.2)")
-    ax.set(xlabel="step-point", ylabel="end-effector error [mm]",
-           title=f"End-effector error (analogue of Figs 47, 53): max {a.max_ee_error * 1e3:.1f} mm, "
-                 f"mean {a.mean_ee_error * 1e3:.1f} mm")
-    ax.legend(fontsize=7)
-    ax.grid(alpha=0.3)
-    paths.append(out / f"{stem}_ee_error.png")
-    fig.tight_layout()
-    fig.savefig(paths[-1], dpi=110)
-    plt.close(fig)
+    def figure(name: str, draw, xlabel: str, ylabel: str, title: str, **legend) -> Path:
+        fig, ax = plt.subplots(figsize=(7, 3.5))
+        draw(ax)
+        ax.set(xlabel=xlabel, ylabel=ylabel, title=title)
+        ax.legend(**legend)
+        ax.grid(alpha=0.3)
+        path = out / f"{stem}_{name}.png"
+        fig.tight_layout()
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        return path
 
-    fig, ax = plt.subplots(figsize=(7, 3.5))
-    for j in range(a.samples_dq.shape[1]):
-        ax.plot(a.samples_t, a.samples_dq[:, j], label=f"joint {j + 1}")
-    ax.set(xlabel="time [s]", ylabel="measured velocity [rad/s]",
-           title="Joint velocities (analogue of Fig 56, PCube_getVel)")
-    ax.legend(ncol=3, fontsize=7)
-    ax.grid(alpha=0.3)
-    paths.append(out / f"{stem}_velocity.png")
-    fig.tight_layout()
-    fig.savefig(paths[-1], dpi=110)
-    plt.close(fig)
-    return paths
+    def joints(ax, x, y) -> None:
+        for j in range(y.shape[1]):
+            ax.plot(x, y[:, j], label=f"joint {j + 1}")
+
+    def ee(ax) -> None:
+        ax.plot(a.steps, a.ee_error * 1e3, "k.-", label="|FK(measured) - planned|")
+        ax.axhline(SAFETY_ZONE_PREDEFINED * 1e3, color="tab:orange", ls="--", label="10 mm (Sec 4.3.1)")
+        ax.axhline(SAFETY_ZONE * 1e3, color="tab:red", ls="--", label="30 mm (Sec 4.3.2)")
+
+    return [
+        figure("joint_error", lambda ax: joints(ax, a.steps, np.degrees(a.joint_error)), "step-point",
+               "measured - planned [deg]", "Joint error (analogue of Figs 46, 48, 50, 52)", ncol=3,
+               fontsize=7),
+        figure("ee_error", ee, "step-point", "end-effector error [mm]",
+               f"End-effector error (analogue of Figs 47, 53): max {a.max_ee_error * 1e3:.1f} mm, "
+               f"mean {a.mean_ee_error * 1e3:.1f} mm", fontsize=7),
+        figure("velocity", lambda ax: joints(ax, a.samples_t, a.samples_dq), "time [s]",
+               "measured velocity [rad/s]", "Joint velocities (analogue of Fig 56, PCube_getVel)",
+               ncol=3, fontsize=7),
+    ]

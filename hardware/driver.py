@@ -39,12 +39,33 @@ from iik.arm import THESIS_ARM, Arm
 from . import protocol as P
 from .errors import BusError, CANTimeoutError, ModuleHalted, ProtocolError, SafetyError
 
-__all__ = ["PowerCubeModule", "PowerCubeArm", "Link", "scan", "DEFAULT_TIMEOUT", "WATCHDOG_PERIOD"]
+__all__ = ["PowerCubeModule", "PowerCubeArm", "Link", "scan", "open_bus", "DEFAULT_TIMEOUT",
+           "WATCHDOG_PERIOD"]
 
 #: Default time to wait for an ACK [s].
 DEFAULT_TIMEOUT = 0.1
 #: Watchdog refresh period of the C drivers [s].
 WATCHDOG_PERIOD = 0.040
+
+
+def open_bus(interface: str, channel, *, bitrate: int | None = None, port: int | None = None,
+             **kwargs) -> can.BusABC:
+    """Open a python-can bus (``PCube_openDevice``'s first half).
+
+    ``bitrate`` [bit/s] and ``port`` (``udp_multicast``) are passed only when given.
+
+    Raises:
+        BusError: the interface is unknown or could not be opened (python-can's
+            ``CanError``, ``OSError``, ``ValueError`` or a missing backend).
+    """
+    if bitrate is not None:
+        kwargs["bitrate"] = int(bitrate)
+    if port is not None:
+        kwargs["port"] = int(port)
+    try:
+        return can.Bus(interface=interface, channel=channel, **kwargs)
+    except (can.CanError, OSError, ValueError, ImportError) as exc:
+        raise BusError(f"cannot open {interface}:{channel}: {exc}") from exc
 
 
 class Link:
@@ -268,7 +289,9 @@ class PowerCubeModule:
         if self.halted:
             raise ModuleHalted(self.id)
 
-    def _check_target(self, pos, name: str = "pos") -> float:
+    def check_target(self, pos, name: str = "pos") -> float:
+        """``pos`` [rad] as a float if it is finite and inside this module's limits;
+        else :class:`SafetyError` naming ``name``. Sends nothing."""
         p = _finite(pos, name)
         if self.limits is not None and not self.limits[0] <= p <= self.limits[1]:
             raise SafetyError(f"module {self.id} {name}",
@@ -292,7 +315,7 @@ class PowerCubeModule:
         With ``extended`` the reply's (position, short state, dio) is returned.
         """
         self._refuse_if_halted()
-        p = self._check_target(pos)
+        p = self.check_target(pos)
         self.set_param(P.Param.FRAMPVEL, _check_positive(vel, "vel"))
         self.set_param(P.Param.FRAMPACC, _check_positive(acc, "acc"))
         return self._move(P.Mode.FRAMP, p, None, extended)
@@ -300,7 +323,7 @@ class PowerCubeModule:
     def move_step(self, pos: float, time_s: float, *, extended: bool = False):
         """Constant-velocity motion to ``pos`` [rad] in ``time_s`` [s] (``PCube_moveStep``;
         the time goes on the wire in whole ms, 1..65535)."""
-        p = self._check_target(pos)
+        p = self.check_target(pos)
         ms = step_ms(time_s)
         return self._move(P.Mode.FSTEP, p, ms, extended)
 
@@ -376,15 +399,16 @@ class PowerCubeArm:
     @classmethod
     def from_interface(cls, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), *, interface: str,
                        channel: str, bitrate: int | None = None, **kwargs) -> PowerCubeArm:
-        """Open a python-can bus (``PCube_openDevice``) and an arm on it; :meth:`close` shuts it."""
+        """Open a python-can bus (:func:`open_bus`, ``PCube_openDevice``) and an arm on it;
+        :meth:`close` shuts it. Other keyword arguments go to the bus, except ``arm`` and
+        ``timeout``. If the arm cannot be built the bus is shut down before the error propagates."""
         bus_kw = {k: kwargs.pop(k) for k in list(kwargs) if k not in ("arm", "timeout")}
-        if bitrate is not None:
-            bus_kw["bitrate"] = int(bitrate)
+        bus = open_bus(interface, channel, bitrate=bitrate, **bus_kw)
         try:
-            bus = can.Bus(interface=interface, channel=channel, **bus_kw)
-        except (can.CanError, OSError, ValueError, ImportError) as exc:
-            raise BusError(f"cannot open {interface}:{channel}: {exc}") from exc
-        return cls(bus, module_ids, owns_bus=True, **kwargs)
+            return cls(bus, module_ids, owns_bus=True, **kwargs)
+        except BaseException:
+            bus.shutdown()
+            raise
 
     def __repr__(self) -> str:
         return f"PowerCubeArm(module_ids={self.module_ids})"
@@ -476,10 +500,14 @@ class PowerCubeArm:
         """Broadcast STARTMOVE: buffered motions of all modules start together."""
         self.link.send(P.Broadcast(P.Cmd.STARTMOVE))
 
+    def _check_targets(self, qs: list[float]) -> None:
+        """Every joint target is checked before any module is commanded."""
+        for i, (m, p) in enumerate(zip(self.modules, qs, strict=True)):
+            m.check_target(p, f"q[{i}]")
+
     def move_ramp(self, q, vel, acc) -> None:
         qs, vs, as_ = (self._per_joint(q, "q"), self._per_joint(vel, "vel"), self._per_joint(acc, "acc"))
-        for i, m in enumerate(self.modules):
-            m._check_target(qs[i], f"q[{i}]")
+        self._check_targets(qs)
         for m, p, v, a in zip(self.modules, qs, vs, as_, strict=True):
             m.move_ramp(p, v, a)
 
@@ -488,8 +516,7 @@ class PowerCubeArm:
 
         With ``extended`` returns the (n,) actual positions and the short states."""
         qs = self._per_joint(q, "q")
-        for i, m in enumerate(self.modules):
-            m._check_target(qs[i], f"q[{i}]")
+        self._check_targets(qs)
         out = [m.move_step(p, time_s, extended=extended) for m, p in zip(self.modules, qs, strict=True)]
         if extended:
             return np.array([o[0] for o in out]), [o[1] for o in out]
@@ -512,7 +539,10 @@ class PowerCubeArm:
             return
         frame = P.encode(P.Broadcast(P.Cmd.WATCHDOG))
         self.link.send(P.Broadcast(P.Cmd.WATCHDOG))
-        self._watchdog = self.bus.send_periodic(frame, period)
+        try:
+            self._watchdog = self.bus.send_periodic(frame, period)
+        except can.CanError as exc:
+            raise BusError(f"cannot start the watchdog refresh: {exc}") from exc
         for m in self.modules:
             m.set_watchdog(True)
 

@@ -16,6 +16,8 @@ __all__ = [
     "ModuleFault",
     "ModuleHalted",
     "BusError",
+    "RunLogError",
+    "SimulatorError",
 ]
 
 
@@ -92,3 +94,20 @@ class ModuleHalted(SafetyError):
 
 class BusError(HardwareError, OSError):
     """The CAN interface itself failed (python-can raised ``CanError``)."""
+
+
+class RunLogError(HardwareError, ValueError):
+    """A run log is missing, malformed or incomplete, or cannot be written."""
+
+
+class SimulatorError(HardwareError, RuntimeError):
+    """The simulated arm (:mod:`hardware.sim`) failed: it raised while serving a frame,
+    or its modules did not come to rest in time.
+
+    Attributes:
+        reason: What went wrong, e.g. the first errors the server recorded.
+    """
+
+    def __init__(self, reason: str):
+        self.reason = reason
+        super().__init__(reason)

@@ -323,6 +323,15 @@ Message = Request | Reply
 
 
 # ----------------------------------------------------------------------------- encoding
+#: Parameter messages: (identifier base, command, parameters allowed, carries a value, name).
+_PARAM_FRAMES = {
+    GetParam: (ID_GET, Cmd.GETPARAM, READABLE, False, "GETPARAM"),
+    ParamReply: (ID_ACK, Cmd.GETPARAM, READABLE, True, "GETPARAM"),
+    SetParam: (ID_SET, Cmd.SETPARAM, WRITABLE, True, "SETPARAM"),
+    SetParamAck: (ID_ACK, Cmd.SETPARAM, WRITABLE, False, "SETPARAM"),
+}
+
+
 def _check_module(module) -> int:
     if isinstance(module, bool) or not isinstance(module, int) or module not in MODULE_IDS:
         raise ProtocolError(f"module id must be an int in 1..31, got {module!r}")
@@ -360,7 +369,7 @@ def _frame(arbitration_id: int, data: bytes) -> can.Message:
 def encode(msg: Message) -> can.Message:
     """The CAN frame of a message (request or reply). Raises :class:`ProtocolError`."""
     if isinstance(msg, Broadcast):
-        cmd = Cmd(msg.cmd) if msg.cmd in Cmd._value2member_map_ else None
+        cmd = Cmd(msg.cmd) if msg.cmd in _BROADCAST else None
         if cmd not in _BROADCAST:
             raise ProtocolError(f"command {msg.cmd!r} cannot be broadcast")
         if cmd is Cmd.BAUDRATE:
@@ -371,16 +380,11 @@ def encode(msg: Message) -> can.Message:
             raise ProtocolError(f"broadcast {cmd.name} takes no argument")
         return _frame(ID_ALL, bytes([cmd]))
     module = _check_module(msg.module)
-    if isinstance(msg, GetParam):
-        if msg.param not in READABLE:
-            raise ProtocolError(f"parameter {msg.param!r} is not readable")
-        return _frame(ID_GET + module, bytes([Cmd.GETPARAM, msg.param]))
-    if isinstance(msg, SetParam):
-        if msg.param not in WRITABLE:
-            raise ProtocolError(f"parameter {msg.param!r} is not writable")
-        ptype = PARAM_TYPES[Param(msg.param)]
-        return _frame(ID_SET + module, bytes([Cmd.SETPARAM, msg.param])
-                      + _pack(ptype, msg.value, Param(msg.param).name))
+    if type(msg) in _PARAM_FRAMES:
+        base, cmd, allowed, carries_value, where = _PARAM_FRAMES[type(msg)]
+        par = _param(msg.param, allowed, where)
+        value = _pack(PARAM_TYPES[par], msg.value, par.name) if carries_value else b""
+        return _frame(base + module, bytes([cmd, par]) + value)
     if isinstance(msg, SetMove):
         mode = _mode(msg.mode)
         payload = _pack(ParamType.F32, msg.value, f"{mode.name} value")
@@ -391,20 +395,6 @@ def encode(msg: Message) -> can.Message:
         elif msg.time_ms is not None:
             raise ProtocolError(f"{mode.name} takes no time")
         return _frame(ID_SET + module, bytes([Cmd.SETMOVE, mode]) + payload)
-    if isinstance(msg, Command):
-        if msg.cmd not in _PLAIN:
-            raise ProtocolError(f"{msg.cmd!r} is not a plain command (RESET, HOME, HALT)")
-        return _frame(ID_SET + module, bytes([msg.cmd]))
-    if isinstance(msg, ParamReply):
-        if msg.param not in READABLE:
-            raise ProtocolError(f"parameter {msg.param!r} is not readable")
-        ptype = PARAM_TYPES[Param(msg.param)]
-        return _frame(ID_ACK + module, bytes([Cmd.GETPARAM, msg.param])
-                      + _pack(ptype, msg.value, Param(msg.param).name))
-    if isinstance(msg, SetParamAck):
-        if msg.param not in WRITABLE:
-            raise ProtocolError(f"parameter {msg.param!r} is not writable")
-        return _frame(ID_ACK + module, bytes([Cmd.SETPARAM, msg.param]))
     if isinstance(msg, MoveAck):
         mode = _mode(msg.mode)
         data = bytes([Cmd.SETMOVE, mode])
@@ -413,20 +403,36 @@ def encode(msg: Message) -> can.Message:
         elif (msg.position, msg.short, msg.dio) != (None, None, None):
             raise ProtocolError(f"plain mode {mode.name} reply carries no position")
         return _frame(ID_ACK + module, data)
-    if isinstance(msg, CommandAck):
+    if isinstance(msg, (Command, CommandAck)):
         if msg.cmd not in _PLAIN:
-            raise ProtocolError(f"{msg.cmd!r} is not a plain command")
-        return _frame(ID_ACK + module, bytes([msg.cmd]))
+            raise ProtocolError(f"{msg.cmd!r} is not a plain command (RESET, HOME, HALT)")
+        return _frame((ID_SET if isinstance(msg, Command) else ID_ACK) + module, bytes([msg.cmd]))
     if isinstance(msg, StateFrame):
         return _frame(ID_STATE + module, _pack(ParamType.U32, int(msg.state), "state"))
     raise ProtocolError(f"not a PowerCube message: {type(msg).__name__}")
 
 
-def _mode(mode) -> Mode:
+def _code(code) -> str:
+    return f"0x{code:02x}" if isinstance(code, int) else repr(code)
+
+
+def _mode(code, where: str = "SETMOVE") -> Mode:
     try:
-        return Mode(mode)
-    except ValueError:
-        raise ProtocolError(f"unknown motion mode {mode!r}") from None
+        return Mode(code)
+    except (ValueError, TypeError):
+        raise ProtocolError(f"{where}: unknown motion mode {_code(code)}") from None
+
+
+def _param(code, allowed, where: str) -> Param:
+    if type(code) is Param and code in allowed:  # the common case, without an Enum lookup
+        return code
+    try:
+        par = Param(code)
+    except (ValueError, TypeError):
+        raise ProtocolError(f"{where}: unknown parameter {_code(code)}") from None
+    if par not in allowed:
+        raise ProtocolError(f"{where}: parameter {par.name} not allowed here")
+    return par
 
 
 # ----------------------------------------------------------------------------- decoding
@@ -439,16 +445,6 @@ def _unpack(ptype: ParamType, data: bytes, what: str):
     if ptype is ParamType.F32_U8_U8:
         return (vals[0], ShortState(vals[1]), vals[2])
     return vals[0]
-
-
-def _param(code: int, allowed, what: str) -> Param:
-    try:
-        par = Param(code)
-    except ValueError:
-        raise ProtocolError(f"{what}: unknown parameter 0x{code:02x}") from None
-    if par not in allowed:
-        raise ProtocolError(f"{what}: parameter {par.name} not allowed here")
-    return par
 
 
 def decode(frame: can.Message) -> Message:
@@ -491,7 +487,7 @@ def decode(frame: can.Message) -> Message:
             par = _param(data[1], WRITABLE, where)
             return SetParam(module, par, _unpack(PARAM_TYPES[par], data[2:], f"{where} {par.name}"))
         if cmd_code == Cmd.SETMOVE:
-            mode = _mode_or_error(data[1], where)
+            mode = _mode(data[1], where)
             if mode.plain is Mode.FSTEP:
                 if len(data) != 8:
                     raise ProtocolError(f"{where}: {mode.name} needs DLC 8, got {len(data)}")
@@ -510,19 +506,12 @@ def decode(frame: can.Message) -> Message:
     if cmd_code == Cmd.SETPARAM:
         return SetParamAck(module, _param(data[1], WRITABLE, where))
     if cmd_code == Cmd.SETMOVE:
-        mode = _mode_or_error(data[1], where)
+        mode = _mode(data[1], where)
         if mode.extended:
             pos, short, dio = _unpack(ParamType.F32_U8_U8, data[2:], f"{where} {mode.name} reply")
             return MoveAck(module, mode, pos, short, dio)
         return MoveAck(module, mode)  # B: a third byte 0x64 may follow; ignored
     raise ProtocolError(f"{where}: unknown reply command 0x{cmd_code:02x}")
-
-
-def _mode_or_error(code: int, where: str) -> Mode:
-    try:
-        return Mode(code)
-    except ValueError:
-        raise ProtocolError(f"{where}: unknown motion mode 0x{code:02x}") from None
 
 
 def _decode_broadcast(data: bytes) -> Broadcast:

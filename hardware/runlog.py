@@ -22,13 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from iik.errors import IIKError
+from .errors import RunLogError
 
-__all__ = ["RunLog", "Run", "read_run_log", "RunLogError"]
-
-
-class RunLogError(IIKError, ValueError):
-    """A run log is missing, malformed or incomplete."""
+__all__ = ["RunLog", "Run", "read_run_log"]
 
 
 class RunLog:

@@ -55,9 +55,10 @@ from ruckig import ControlInterface, InputParameter, Result, Ruckig, Trajectory
 from iik.arm import THESIS_ARM, Arm
 
 from . import protocol as P
+from .driver import PowerCubeArm, open_bus
 from .errors import ProtocolError, SafetyError
 
-__all__ = ["SimulatedArm", "SimModule", "FAULTS", "SIM_VERSION", "simulated_arm"]
+__all__ = ["SimulatedArm", "SimModule", "FAULTS", "SIM_VERSION", "simulated_arm", "serve"]
 
 #: VERSION reported by simulated modules (an arbitrary marker, not a real firmware).
 SIM_VERSION = 0x5151
@@ -447,6 +448,23 @@ class SimModule:
 
 
 # ----------------------------------------------------------------------------- server
+def _checked_modules(module_ids, initial) -> tuple[list[int], np.ndarray]:
+    """Module ids (distinct, 1..31) and initial positions [rad] (finite, one per module)."""
+    try:
+        ids = [int(i) for i in module_ids]
+    except (TypeError, ValueError):
+        raise SafetyError("module_ids", f"need distinct ids in 1..31, got {module_ids!r}") from None
+    if not ids or len(set(ids)) != len(ids) or any(i not in P.MODULE_IDS for i in ids):
+        raise SafetyError("module_ids", f"need distinct ids in 1..31, got {module_ids!r}")
+    try:
+        q0 = np.zeros(len(ids)) if initial is None else np.asarray(initial, dtype=float)
+    except (TypeError, ValueError):
+        q0 = np.full(0, np.nan)
+    if q0.shape != (len(ids),) or not np.all(np.isfinite(q0)):
+        raise SafetyError("initial", f"need {len(ids)} finite positions")
+    return ids, q0
+
+
 class SimulatedArm:
     """Simulated PowerCube modules served on a python-can bus by a thread.
 
@@ -467,12 +485,12 @@ class SimulatedArm:
                  tick: float = 0.002, watchdog_timeout: float = 0.25,
                  clock: Callable[[], float] = time.monotonic, owns_bus: bool = False,
                  start: bool = True):
-        ids = [int(i) for i in module_ids]
-        if not ids or len(set(ids)) != len(ids) or any(i not in P.MODULE_IDS for i in ids):
-            raise SafetyError("module_ids", f"need distinct ids in 1..31, got {module_ids!r}")
-        q0 = np.zeros(len(ids)) if initial is None else np.asarray(initial, dtype=float)
-        if q0.shape != (len(ids),) or not np.all(np.isfinite(q0)):
-            raise SafetyError("initial", f"need {len(ids)} finite positions")
+        try:
+            ids, q0 = _checked_modules(module_ids, initial)
+        except SafetyError:
+            if owns_bus:
+                bus.shutdown()
+            raise
         self.bus = bus
         self.clock = clock
         self.tick = float(tick)
@@ -502,8 +520,8 @@ class SimulatedArm:
     @classmethod
     def virtual(cls, channel: str, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), **kwargs):
         """A simulated arm on its own ``virtual`` bus object on ``channel``."""
-        bus = can.Bus(interface="virtual", channel=channel, receive_own_messages=False)
-        return cls(bus, module_ids, owns_bus=True, **kwargs)
+        return cls(open_bus("virtual", channel, receive_own_messages=False), module_ids, owns_bus=True,
+                   **kwargs)
 
     def __enter__(self) -> SimulatedArm:
         return self
@@ -658,17 +676,37 @@ def simulated_arm(module_ids=(1, 2, 3, 4, 5, 6), *, lag: float = 0.02, initial=N
     restored on exit; both the arm's bus and the simulator are closed on exit.
     ``clock`` is the simulator's time source [s] (pass the same one to ``execute``).
     """
-    import can
-
-    from .driver import PowerCubeArm
-
     channel = f"iik-run-{uuid.uuid4().hex}"
     switch = sys.getswitchinterval()
     sys.setswitchinterval(0.0005)
     try:
         with SimulatedArm.virtual(channel, module_ids, lag=lag, initial=initial, clock=clock) as sim, \
-                PowerCubeArm(can.Bus(interface="virtual", channel=channel), module_ids, timeout=timeout,
-                             owns_bus=True) as arm:
+                PowerCubeArm.from_interface(module_ids, interface="virtual", channel=channel,
+                                            timeout=timeout) as arm:
             yield sim, arm
     finally:
         sys.setswitchinterval(switch)
+
+
+def serve(interface: str, channel, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), *,
+          bitrate: int | None = None, port: int | None = None, lag: float = 0.02, initial=None,
+          homed: bool = True, duration: float | None = None, stop: threading.Event | None = None,
+          ready: Callable[[SimulatedArm], None] | None = None) -> None:
+    """Serve simulated modules on a python-can bus in real time until ``stop`` is set or
+    ``duration`` [s] has passed (blocking; Ctrl-C propagates). The bus is opened here
+    (:func:`hardware.driver.open_bus`) and shut down on return.
+
+    Args:
+        interface, channel, bitrate, port: The bus (e.g. ``udp_multicast`` on 239.74.163.2,
+            so a host in another process can reach the modules).
+        module_ids, lag, initial, homed: As for :class:`SimulatedArm`.
+        ready: Called with the running arm once it serves.
+
+    Raises:
+        BusError: the bus could not be opened. SafetyError: bad ids or initial positions.
+    """
+    bus = open_bus(interface, channel, bitrate=bitrate, port=port)
+    with SimulatedArm(bus, module_ids, lag=lag, initial=initial, homed=homed, owns_bus=True) as sim:
+        if ready is not None:
+            ready(sim)
+        (stop if stop is not None else threading.Event()).wait(duration)

@@ -22,7 +22,8 @@ from iik import fk
 from iik.planning.viewer import Shown, ViewOptions, show, style
 from iik.planning.viewer.motion import Motion, MotionView, Track
 
-from .runlog import Run, RunLogError, read_run_log
+from .errors import RunLogError
+from .runlog import Run, read_run_log
 
 __all__ = ["SIDE_BY_SIDE", "run_motion", "view_run"]
 

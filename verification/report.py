@@ -16,7 +16,7 @@ from pathlib import Path
 
 from .registry import Check, Context, Row, Verdict, registered_checks
 
-__all__ = ["CheckResult", "run_checks", "write_report", "summary"]
+__all__ = ["CheckResult", "Verification", "verify", "run_checks", "write_report", "summary"]
 
 
 @dataclass(frozen=True)
@@ -57,6 +57,39 @@ def run_checks(
         if progress:
             progress(i, len(checks), chk, res)
     return results
+
+
+@dataclass(frozen=True)
+class Verification:
+    """Outcome of :func:`verify`: every check's result, the report written, the time taken [s]."""
+
+    results: tuple[CheckResult, ...]
+    report: Path
+    seconds: float
+
+    @property
+    def failed(self) -> bool:
+        """True if any check failed to run (a software failure, not a verdict)."""
+        return any(r.error for r in self.results)
+
+    def summary(self) -> str:
+        """A few lines for the terminal (:func:`summary`)."""
+        return summary(self.results)
+
+
+def verify(out_dir: Path, *, quick: bool = False, seed: int = 20120101, select: Sequence[str] | None = None,
+           progress: Callable[[int, int, Check, CheckResult | None], None] | None = None) -> Verification:
+    """Run every registered check (:func:`run_checks`) and write ``out_dir/verification.md``.
+
+    The report is the same whether this is called from Python or by ``iik verify``:
+    every module of :mod:`verification.checks` registers its checks on loading.
+    """
+    t0 = time.perf_counter()
+    Path(out_dir).mkdir(parents=True, exist_ok=True)  # fail before the checks run, not after
+    results = run_checks(Context(out_dir=Path(out_dir), seed=seed, quick=quick), select=select,
+                         progress=progress)
+    path = write_report(results, Path(out_dir) / "verification.md")
+    return Verification(tuple(results), path, time.perf_counter() - t0)
 
 
 def _cell(text: str) -> str:

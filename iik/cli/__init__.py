@@ -1,9 +1,12 @@
 """The ``iik`` command line: the one place that wires iik, verification and hardware.
 
 Each subcommand is a module in this package defining ``NAME``, ``HELP``,
-``add_arguments(parser)`` and ``run(args) -> int``. Modules are discovered
-automatically; heavy packages (pinocchio, coal, python-can, verification,
-hardware) are imported lazily inside ``run``.
+``add_arguments(parser)`` and ``run(args) -> int``; it parses, calls one library
+function and prints. Modules are discovered automatically; heavy packages
+(pinocchio, coal, python-can, verification, hardware) are imported lazily inside ``run``.
+
+Every expected failure (an ``IIKError``, a bad argument, an unwritable file) ends the
+command with one line on stderr and exit code 2, never a traceback.
 """
 
 from __future__ import annotations
@@ -18,6 +21,27 @@ from ..errors import IIKError
 __all__ = ["main", "build_parser"]
 
 
+class UsageError(Exception):
+    """A command line that does not parse (instead of argparse's exit)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, raising :class:`UsageError` and remembering each option's spelling."""
+
+    def __init__(self, *args, **kwargs):
+        self.spelling: dict[str, str] = {}  # dest -> the option as typed, e.g. "--margin-deg"
+        super().__init__(*args, **kwargs)
+
+    def add_argument(self, *args, **kwargs):
+        action = super().add_argument(*args, **kwargs)
+        strings = action.option_strings
+        self.spelling[action.dest] = strings[-1] if strings else action.dest.upper()
+        return action
+
+    def error(self, message: str):
+        raise UsageError(f"{self.prog}: error: {message} (see {self.prog} --help)")
+
+
 def _command_modules():
     for info in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
         if info.name.startswith("_"):
@@ -28,7 +52,7 @@ def _command_modules():
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="iik",
         description="Verified kinematics, planning and PowerCube control for the "
         "six-joint arm of Mondragon Sanchez (2012). Units: m, rad, s unless --deg.",
@@ -38,16 +62,33 @@ def build_parser() -> argparse.ArgumentParser:
     for mod in _command_modules():
         p = sub.add_parser(mod.NAME, help=mod.HELP, description=mod.HELP)
         mod.add_arguments(p)
-        p.set_defaults(_run=mod.run)
+        p.set_defaults(_run=mod.run, _parser=p)
     return parser
 
 
+def _as_typed(exc: IIKError, parser: _Parser) -> str:
+    """``Type: message``, naming the option as typed (``--margin-deg`` for ``margin``)."""
+    name, reason = getattr(exc, "argument", None), getattr(exc, "reason", None)
+    for dest, shown in parser.spelling.items() if name and reason else ():
+        if dest == name or dest.startswith(f"{name}_"):
+            return f"{type(exc).__name__}: {shown}: {reason}"
+    return f"{type(exc).__name__}: {exc}"
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args, extra = build_parser().parse_known_args(argv)
+        if extra:  # reported by the command's parser, so the message names the command
+            args._parser.error(f"unrecognized arguments: {' '.join(extra)}")
+    except UsageError as exc:
+        print(exc, file=sys.stderr)
+        return 2
     try:
         return int(args._run(args) or 0)
     except IIKError as exc:
+        print(f"iik {args.command}: error: {_as_typed(exc, args._parser)}", file=sys.stderr)
+        return 2
+    except OSError as exc:  # an output file or folder that cannot be written
         print(f"iik {args.command}: error: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:

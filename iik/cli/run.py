@@ -1,27 +1,18 @@
 """``iik run``: plan, validate and execute a trajectory on a PowerCube arm (simulated by default).
 
-Sources of the trajectory (one of):
+Sources of the trajectory (one of): ``SCENARIO`` (a TOML file, or the name of a shipped
+scenario such as ``j``), planned by the project's planner (Sec 3.6); ``--trajectory
+FILE.csv`` with columns ``t,q1..q6`` [s, rad]; ``--demo``, a straight line with 30 mm
+step-points (Sec 4.2.1). Without ``--interface`` the arm is simulated in-process;
+``--interface udp_multicast`` talks to a separate ``iik sim-arm``; ``--interface socketcan
+--channel can0 --bitrate 500000`` (or any python-can interface) drives real modules.
 
-* ``SCENARIO`` (a TOML file, or the name of a shipped scenario such as ``j``): planned
-  by ``iik.planning.pipeline.plan_scenario`` (the thesis planner of Sec 3.6 with
-  ``iik.solve`` at every step-point, whole-arm Coal clearance, fallbacks);
-* ``--trajectory FILE.csv`` with columns ``t,q1..q6`` [s, rad]; the planned poses are
-  then FK of the file's joints, so the FK check cannot catch a wrong IK there;
-* ``--demo``: a straight line between two poses, 30 mm step-points (Sec 4.2.1), IK
-  by ``iik.solve`` and the least-effort solution (Eq 54) at each step.
-
-Without ``--interface`` the arm is simulated in-process (``hardware.sim.SimulatedArm``
-on a private ``virtual`` bus). ``--interface udp_multicast`` talks to a separate
-``iik sim-arm``; ``--interface socketcan --channel can0 --bitrate 500000`` (or any
-python-can interface) drives real modules.
-
-Writes ``OUT/<name>.jsonl`` (the run log) and three PNG figures, prints the
-end-effector error summary (Sec 4.3).
+Writes ``OUT/<name>.jsonl`` (the run log) and three PNG figures, prints the end-effector
+error summary (Sec 4.3). The work is :func:`hardware.runner.run`.
 """
 
 from __future__ import annotations
 
-import contextlib
 import math
 import sys
 from pathlib import Path
@@ -65,89 +56,30 @@ def add_arguments(p) -> None:
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
 
 
-# ----------------------------------------------------------------------------- main
 def run(args) -> int:
-    import can
+    from hardware.runner import RunRequest
+    from hardware.runner import run as run_request
 
-    from hardware import PowerCubeArm, analyse, execute, read_run_log, validate
-    from hardware.analysis import plot_run, summary_text
-    from hardware.errors import BusError
-    from hardware.executor import ExecutionOptions, ValidationOptions
-    from hardware.sim import simulated_arm
-    from hardware.sources import csv_trajectory, demo_trajectory, scenario_trajectory
-    from iik.errors import InvalidInputError
+    request = RunRequest(
+        scenario=args.scenario, trajectory=args.trajectory, demo=args.demo, interface=args.interface,
+        channel=args.channel, bitrate=args.bitrate, port=args.port, modules=tuple(args.modules),
+        timeout=args.timeout, early=args.early, update=args.update, speed=args.speed,
+        margin=math.radians(args.margin_deg), lag=args.lag, sim_start=args.sim_start,
+        watchdog=args.watchdog, reset=args.reset, home=args.home, out=args.out, figures=not args.no_figures)
+    tty, shown = sys.stderr.isatty(), []
 
-    chosen = [x for x in (args.scenario, args.trajectory, args.demo or None) if x is not None]
-    if len(chosen) != 1:
-        raise InvalidInputError("run", "give exactly one of SCENARIO, --trajectory FILE or --demo")
-    free = None
-    if args.demo:
-        name, times, q, poses = demo_trajectory(args.speed)
-    elif args.trajectory is not None:
-        name, times, q, poses = csv_trajectory(args.trajectory)
-    else:
-        name, times, q, poses, free = scenario_trajectory(args.scenario, args.speed)
-    traj = validate(times, q, poses, options=ValidationOptions(margin=math.radians(args.margin_deg)),
-                    orientation_free=free)
-    print(f"{name}: {len(traj)} step-points, {traj.times[-1]:.2f} s planned, validated "
-          f"(Table I - {args.margin_deg} deg, speed limits, FK vs planned poses)", file=sys.stderr)
+    def progress(k: int, n: int) -> None:
+        shown.append(k)
+        line = f"  executing on {request.where}: step {k}/{n}"
+        if tty:
+            print("\r" + line, end="", file=sys.stderr, flush=True)
+        elif k == 1 or k == n or k % max(1, n // 10) == 0:
+            print(line, file=sys.stderr, flush=True)
 
-    sim = None
-    stack = contextlib.ExitStack()
-    if args.interface is None:
-        initial = traj.q[0] if args.sim_start == "plan" else None
-        sim, arm = stack.enter_context(simulated_arm(args.modules, lag=args.lag, initial=initial,
-                                                     timeout=args.timeout or 0.5))
-        where = "simulated arm (in-process, virtual bus)"
-    else:
-        kw = {"port": args.port} if args.port is not None else {}
-        arm = PowerCubeArm.from_interface(args.modules, interface=args.interface,
-                                          channel=args.channel, bitrate=args.bitrate,
-                                          timeout=args.timeout or 0.1, **kw)
-        where = f"{args.interface}:{args.channel}"
-    args.out.mkdir(parents=True, exist_ok=True)
-    log_path = args.out / f"{name}.jsonl"
     try:
-        with arm:
-            arm.open()
-            if args.reset:
-                arm.reset()
-            if args.home:
-                from hardware.protocol import State
-
-                for m, s in zip(arm.modules, arm.states(), strict=True):
-                    if not s & State.HOME_OK:
-                        m.home()
-                arm.wait_homed()
-
-            tty = sys.stderr.isatty()
-
-            def progress(k, n):
-                if tty:
-                    print(f"\r  executing on {where}: step {k}/{n}", end="", file=sys.stderr, flush=True)
-                elif k == 1 or k == n or k % max(1, n // 10) == 0:
-                    print(f"  executing on {where}: step {k}/{n}", file=sys.stderr, flush=True)
-
-            try:
-                opts = ExecutionOptions(early=args.early, update=args.update, watchdog=args.watchdog)
-                result = execute(arm, traj, log_path, options=opts, progress=progress)
-            finally:
-                if tty:
-                    print(file=sys.stderr)
-    except can.CanError as exc:
-        raise BusError(str(exc)) from exc
+        report = run_request(request, notify=lambda text: print(text, file=sys.stderr), progress=progress)
     finally:
-        stack.close()
-    analysis = analyse(read_run_log(result.log_path))
-    print(summary_text(analysis, name))
-    if sim is not None:
-        rests = sum(len(m.stops) for m in sim.modules.values())
-        changes = len(sim.modules) * max(len(traj) - 2, 0)
-        print(f"  simulated joints came to rest between two steps {rests} times (of {changes} step "
-              f"changes; update {args.update}, early {args.early})")
-    print(f"run log: {result.log_path} ({result.commands} commands, {result.samples} samples, "
-          f"{result.duration:.2f} s)")
-    if not args.no_figures:
-        for p in plot_run(analysis, args.out, name):
-            print(f"figure: {p}")
+        if tty and shown:
+            print(file=sys.stderr)
+    print(report.summary())
     return 0

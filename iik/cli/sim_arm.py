@@ -6,7 +6,7 @@ Example (two terminals, no hardware)::
     iik run --demo --interface udp_multicast --channel 239.74.163.2
 
 Prints one ``sim-arm ready`` line when serving; stops on Ctrl-C / SIGTERM or after
-``--duration`` seconds.
+``--duration`` seconds. The work is :func:`hardware.sim.serve`.
 """
 
 from __future__ import annotations
@@ -35,35 +35,18 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
-    import can
+    from hardware.sim import serve
 
-    from hardware.errors import BusError
-    from hardware.sim import SimulatedArm
-
-    kw = {}
-    if args.port is not None:
-        kw["port"] = args.port
-    if args.bitrate is not None:
-        kw["bitrate"] = args.bitrate
-    try:
-        bus = can.Bus(interface=args.interface, channel=args.channel, **kw)
-    except (can.CanError, OSError, ValueError, ImportError) as exc:
-        raise BusError(f"cannot open {args.interface}:{args.channel}: {exc}") from exc
     stop = threading.Event()
+    signal.signal(signal.SIGTERM, lambda signum, frame: stop.set())
 
-    def on_signal(signum, frame):
-        stop.set()
+    def ready(sim) -> None:
+        print(f"sim-arm ready: modules {list(sim.module_ids)} on {args.interface}:{args.channel}", flush=True)
 
-    signal.signal(signal.SIGTERM, on_signal)
-    sim = SimulatedArm(bus, args.modules, lag=args.lag, initial=args.initial,
-                       homed=not args.not_homed, owns_bus=True)
     try:
-        print(f"sim-arm ready: modules {list(sim.module_ids)} on {args.interface}:{args.channel}",
-              flush=True)
-        stop.wait(args.duration)
+        serve(args.interface, args.channel, args.modules, bitrate=args.bitrate, port=args.port, lag=args.lag,
+              initial=args.initial, homed=not args.not_homed, duration=args.duration, stop=stop, ready=ready)
     except KeyboardInterrupt:
         pass
-    finally:
-        sim.close()
-        print("sim-arm stopped", file=sys.stderr, flush=True)
+    print("sim-arm stopped", file=sys.stderr, flush=True)
     return 0

@@ -31,6 +31,7 @@ def add_arguments(p) -> None:
 
 def run(args) -> int:
     import iik
+    from iik.ik import select_index
 
     ang = np.radians(args.zxz) if args.deg else np.array(args.zxz)
     T = iik.pose_from_zxz(np.array(args.xyz), *ang)
@@ -40,9 +41,8 @@ def run(args) -> int:
         prev = np.radians(args.previous) if args.deg else np.array(args.previous)
     efforts = iik.effort_index(prev, res.q) if (prev is not None and res.count) else None
     best = None
-    if prev is not None and res.count and np.any(res.within_limits):
-        idx = np.flatnonzero(res.within_limits)
-        best = int(idx[np.argmin(np.atleast_1d(efforts)[idx])])
+    if prev is not None and np.any(res.within_limits):  # Eq 54: least effort inside the limits
+        best = int(np.flatnonzero(res.within_limits)[select_index(res, prev)[0]])
     conv = np.degrees if args.deg else (lambda x: x)
     if args.json:
         out = res.to_dict(degrees=args.deg)

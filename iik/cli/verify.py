@@ -1,9 +1,9 @@
-"""``iik verify``: run every registered thesis check and write the report."""
+"""``iik verify``: run every registered thesis check and write the report
+(:func:`verification.verify`)."""
 
 from __future__ import annotations
 
 import sys
-import time
 from pathlib import Path
 
 NAME = "verify"
@@ -19,23 +19,20 @@ def add_arguments(p) -> None:
                    help="run only checks whose name or section contains TEXT")
 
 
+def progress(i, n, chk, res) -> None:
+    """One stderr line per check: its name, then its verdicts and time."""
+    if res is None:
+        print(f"[{i + 1:>2}/{n}] {chk.section}: {chk.name.rsplit('.', 1)[-1]} ...",
+              end="", flush=True, file=sys.stderr)
+    else:
+        status = "FAILED" if res.error else ", ".join(sorted({r.verdict.value for r in res.rows}))
+        print(f" {status} ({res.seconds:.1f} s)", file=sys.stderr, flush=True)
+
+
 def run(args) -> int:
-    from verification import Context, run_checks, summary, write_report
+    from verification import verify
 
-
-    ctx = Context(out_dir=args.out, seed=args.seed, quick=args.quick)
-    t0 = time.perf_counter()
-
-    def progress(i, n, chk, res):
-        if res is None:
-            print(f"[{i + 1:>2}/{n}] {chk.section}: {chk.name.rsplit('.', 1)[-1]} ...",
-                  end="", flush=True, file=sys.stderr)
-        else:
-            status = "FAILED" if res.error else ", ".join(sorted({r.verdict.value for r in res.rows}))
-            print(f" {status} ({res.seconds:.1f} s)", file=sys.stderr, flush=True)
-
-    results = run_checks(ctx, select=args.only, progress=progress)
-    path = write_report(results, args.out / "verification.md")
-    print(summary(results))
-    print(f"report: {path}  ({time.perf_counter() - t0:.1f} s)")
-    return 1 if any(r.error for r in results) else 0
+    done = verify(args.out, quick=args.quick, seed=args.seed, select=args.only, progress=progress)
+    print(done.summary())
+    print(f"report: {done.report}  ({done.seconds:.1f} s)")
+    return 1 if done.failed else 0

@@ -5,7 +5,8 @@ import pytest
 
 import iik
 from hardware.analysis import analyse, plot_run, summary_text
-from hardware.runlog import RunLog, RunLogError, read_run_log
+from hardware.errors import RunLogError
+from hardware.runlog import RunLog, read_run_log
 
 
 def write_log(path, q, poses, samples, end=True):

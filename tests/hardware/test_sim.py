@@ -2,6 +2,7 @@
 
 import math
 
+import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
@@ -167,3 +168,43 @@ def test_any_request_sequence_is_served(seq):
         p, v, a = m.setpoint(now)
         assert all(math.isfinite(x) for x in (p, v, a)) and abs(v) <= 1.2 + 1e-9
         assert all(math.isfinite(x) for x in m.measured(now))
+
+
+def test_serve_until_stopped(new_channel):
+    """`serve` (behind `iik sim-arm`) opens its bus, serves until stopped, shuts the bus down."""
+    import threading
+    import time
+
+    from hardware import PowerCubeArm
+    from hardware.sim import serve
+
+    ch, stop, ready = new_channel(), threading.Event(), []
+    th = threading.Thread(target=serve, args=("virtual", ch), daemon=True,
+                          kwargs={"stop": stop, "ready": ready.append, "initial": [0.1] * 6})
+    th.start()
+    deadline = time.monotonic() + 5.0
+    while not ready and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert ready and ready[0].running
+    with PowerCubeArm.from_interface(interface="virtual", channel=ch, timeout=0.5) as arm:
+        assert len(arm.open()) == 6
+        assert all(arm.get_pos() == np.float32(0.1))  # f32 on the wire
+    stop.set()
+    th.join(5.0)
+    assert not th.is_alive() and not ready[0].running
+
+
+def test_serve_refuses_bad_input_and_leaves_no_open_bus(new_channel, caplog):
+    import gc
+
+    from hardware.errors import BusError, SafetyError
+    from hardware.sim import serve
+
+    with pytest.raises(BusError, match="cannot open no-such-interface"):
+        serve("no-such-interface", "x", duration=0.0)
+    with pytest.raises(SafetyError, match="module_ids"):
+        serve("virtual", new_channel(), [0], duration=0.0)
+    with pytest.raises(SafetyError, match="initial"):
+        serve("virtual", new_channel(), initial=[0.0, float("nan")], duration=0.0)
+    gc.collect()
+    assert "not properly shut down" not in caplog.text

@@ -1,14 +1,9 @@
 """Hardware execution checks (Sec 4.3, App. A, Table V) for ``iik verify``.
 
-They live in the CLI layer because they wire ``hardware`` (driver, simulated arm,
-executor, run-log analysis) to ``verification`` (planning, Coal clearance, the
-report), and ``verification`` may not import ``hardware``. ``iik verify`` imports
-this module before running the checks (the leading underscore keeps it out of the
-CLI's command discovery).
-
-Every run is on the in-process simulated arm (:func:`hardware.sim.simulated_arm`)
-with the scenarios planned exactly as ``iik run`` plans them
-(:func:`hardware.sources.scenario_trajectory`: ``iik.planning.pipeline.plan_scenario``,
+They register like every other check, so :func:`verification.verify` and ``iik
+verify`` produce the same report. Every run is on the in-process simulated arm
+(:func:`hardware.sim.simulated_arm`) with the scenarios planned exactly as ``iik run``
+plans them (:func:`hardware.sources.scenario_trajectory`: the project's planner,
 steps timed at half the joint speed limits). The simulator's tracking lag (a pure
 delay) and current model are assumptions, not identified on the real modules, so
 what these rows measure is the *method* (FSTEP streaming with the thesis's early
@@ -31,17 +26,19 @@ The Table V round trips, which do not depend on latency, use a clock running
 
 from __future__ import annotations
 
-import contextlib
-import io
 import math
 import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from verification.registry import Erratum, Row, Verdict, register
+
+if TYPE_CHECKING:
+    from hardware.analysis import RunAnalysis
 
 __all__ = ["SECTION", "SCALE", "FAST_FORWARD", "SimRun", "scaled_clock", "fast_forward_clock",
            "execute_scenario"]
@@ -107,7 +104,7 @@ class SimRun:
         steps: Number of step-points.
         rests: Times a joint came to rest between two consecutive steps.
         changes: Step changes (6 joints x (steps - 2)).
-        ee_error: (m,) step-point end-effector errors [m] (FK of the measured joints).
+        analysis: The run log's step-point errors (:class:`hardware.RunAnalysis`).
         min_clearance: Smallest whole-arm clearance (Coal) of all measured joint
             samples to the scenario's boxes, platform and floor [m].
         lag: The simulator's tracking lag [s].
@@ -120,18 +117,23 @@ class SimRun:
     steps: int
     rests: int
     changes: int
-    ee_error: np.ndarray
+    analysis: RunAnalysis
     min_clearance: float
     lag: float
     wall: float
 
     @property
+    def ee_error(self) -> np.ndarray:
+        """(m,) step-point end-effector errors [m] (FK of the measured joints)."""
+        return self.analysis.ee_error
+
+    @property
     def max_ee(self) -> float:
-        return float(np.max(self.ee_error))
+        return self.analysis.max_ee_error
 
     @property
     def mean_ee(self) -> float:
-        return float(np.mean(self.ee_error))
+        return self.analysis.mean_ee_error
 
     @property
     def label(self) -> str:
@@ -148,18 +150,12 @@ def _planned(ctx, name: str, limit: int | None):
     """(validated trajectory, scenario) for a shipped scenario, planned as ``iik run`` does."""
     key = ("hardware.plan", name, limit)
     if key not in ctx.cache:
-        from hardware import validate
-        from hardware.executor import ValidationOptions
         from hardware.sources import scenario_trajectory
+        from iik.planning import scenario_path
         from iik.planning.scenario_io import load_scenario
-        from iik.resources import scenarios_dir
 
-        path = scenarios_dir() / f"{name}.toml"
-        with contextlib.redirect_stderr(io.StringIO()):  # keep iik verify's progress line intact
-            _, times, q, poses, free = scenario_trajectory(str(path))
-        n = len(times) if limit is None else min(limit, len(times))
-        traj = validate(times[:n], q[:n], poses[:n], options=ValidationOptions(), orientation_free=free[:n])
-        ctx.cache[key] = (traj, load_scenario(path))
+        path = scenario_path(name)
+        ctx.cache[key] = (scenario_trajectory(path).validate(limit=limit), load_scenario(path))
     return ctx.cache[key]
 
 
@@ -168,6 +164,7 @@ def execute_scenario(ctx, name: str, *, update: str = "thesis", early: float | N
     """Plan ``name``, execute it on a fresh simulated arm (starting at the first
     step-point) on the fast-forward clock, and analyse the run log. Cached per run."""
     from hardware import analyse, execute, read_run_log
+    from hardware.errors import SimulatorError
     from hardware.executor import EARLY_UPDATE, ExecutionOptions
     from hardware.sim import simulated_arm
     from iik.planning.collision import SceneCollision
@@ -192,13 +189,13 @@ def execute_scenario(ctx, name: str, *, update: str = "thesis", early: float | N
         wall = time.perf_counter() - t0
         run = read_run_log(log_path)
     if errors:
-        raise RuntimeError(f"simulated arm raised while serving {name}: {errors[:3]}")
+        raise SimulatorError(f"simulated arm raised while serving {name}: {errors[:3]}")
     analysis = analyse(run)
     checker = SceneCollision(scenario.obstacles)
     clearance = min(checker.clearance(q)[0] for q in run.samples_q)
     res = SimRun(name=name if limit is None else f"{name}[:{limit}]", update=update, early=early,
                  steps=len(traj), rests=rests, changes=6 * max(len(traj) - 2, 0),
-                 ee_error=np.asarray(analysis.ee_error), min_clearance=float(clearance), lag=lag,
+                 analysis=analysis, min_clearance=float(clearance), lag=lag,
                  wall=wall)
     ctx.cache[key] = res
     return res
@@ -221,6 +218,7 @@ def _note(lag: float) -> str:
 def check_table_v(ctx) -> Row:
     """Every Table V function round-trips against the simulated modules."""
     from hardware import protocol as P
+    from hardware.errors import SimulatorError
     from hardware.sim import SIM_VERSION, simulated_arm
 
     clock, _ = scaled_clock()
@@ -240,7 +238,7 @@ def check_table_v(ctx) -> Row:
         deadline = time.monotonic() + limit
         while any(s & busy for s in arm.states()):
             if time.monotonic() > deadline:
-                raise TimeoutError("simulated modules never came to rest")
+                raise SimulatorError(f"simulated modules did not come to rest within {limit} s")
             time.sleep(0.002)
         done = clock()
         wait_for(0.1)  # > the simulator's tracking lag
@@ -373,62 +371,62 @@ def _zone_rows(ctx) -> list[SimRun]:
             for name, limit in (_PREDEFINED_QUICK if ctx.quick else _PREDEFINED)]
 
 
+def _zone_row(runs: list[SimRun], zone: float, holds: bool, *, claim: str, reference: str, method: str,
+              per_run) -> Row:
+    """A safety-zone row (Sec 4.3.1, 4.3.2): the runs' errors against ``zone`` [m]."""
+    worst = max(r.max_ee for r in runs)
+    return Row(
+        claim=claim + " - checked for the method on a simulated arm",
+        reference=reference,
+        method=f"{_note(runs[0].lag)}; thesis update (95 %); {method}",
+        numbers="; ".join(per_run(r) for r in runs) + f"; worst {worst * 1e3:.2f} mm vs {zone * 1e3:.0f} mm",
+        verdict=Verdict.HOLDS if holds else Verdict.DOES_NOT_HOLD,
+        reason=f"on the simulated arm with an assumed {runs[0].lag * 1e3:.0f} ms lag (the real arm: see the "
+               "not-checkable row)",
+    )
+
+
 @register(SECTION, order=_ORDER + 2)
 def check_predefined_10mm(ctx) -> Row:
     """Sec 4.3.1: max end-effector error on predefined paths 1-3 <= 10 mm (the method, simulated)."""
     from hardware.analysis import SAFETY_ZONE_PREDEFINED
 
     runs = _zone_rows(ctx)
-    worst = max(r.max_ee for r in runs)
-    holds = worst <= SAFETY_ZONE_PREDEFINED
-    return Row(
+    return _zone_row(
+        runs, SAFETY_ZONE_PREDEFINED, max(r.max_ee for r in runs) <= SAFETY_ZONE_PREDEFINED,
         claim="On the predefined paths 1-3 the maximum end-effector error is not bigger than 10 mm, so 10 mm "
-              "is the minimum safety zone there (Sec 4.3.1, Figs 46-51) - checked for the method on a "
-              "simulated arm",
+              "is the minimum safety zone there (Sec 4.3.1, Figs 46-51)",
         reference="Sec 4.3.1",
-        method=f"{_note(runs[0].lag)}; thesis update (95 %); "
-               + ("quick: first 30 step-points of p3 only" if ctx.quick else "p1, p2, p3 in full"),
-        numbers="; ".join(f"{r.name} ({r.steps} step-points): max {r.max_ee * 1e3:.2f} mm, mean "
-                          f"{r.mean_ee * 1e3:.2f} mm" for r in runs)
-                + f"; worst {worst * 1e3:.2f} mm vs {SAFETY_ZONE_PREDEFINED * 1e3:.0f} mm",
-        verdict=Verdict.HOLDS if holds else Verdict.DOES_NOT_HOLD,
-        reason=f"on the simulated arm with an assumed {runs[0].lag * 1e3:.0f} ms lag (the real arm: see the "
-               "not-checkable row)",
-    )
+        method="quick: first 30 step-points of p3 only" if ctx.quick else "p1, p2, p3 in full",
+        per_run=lambda r: f"{r.name} ({r.steps} step-points): max {r.max_ee * 1e3:.2f} mm, mean "
+                          f"{r.mean_ee * 1e3:.2f} mm")
 
 
 @register(SECTION, order=_ORDER + 3)
 def check_safety_zone_30mm(ctx) -> Row:
     """Sec 4.3.2: 30 mm is enough in motion; start and end errors are zero."""
-    from hardware.analysis import SAFETY_ZONE_PLANNED
+    from iik.planning.obstacles import SAFETY_ZONE
 
     runs = list(_zone_rows(ctx))
     for name, limit in (_COMPARE_QUICK if ctx.quick else _COMPARE + _PLANNED_EXTRA):
         r = execute_scenario(ctx, name, limit=limit)
         if all(r is not x for x in runs):
             runs.append(r)
-    worst = max(r.max_ee for r in runs)
     ends = max(max(float(r.ee_error[0]), float(r.ee_error[-1])) for r in runs)
     clear = min(r.min_clearance for r in runs)
-    holds = worst <= SAFETY_ZONE_PLANNED and clear > 0.0 and ends < 1e-4
-    return Row(
+    holds = max(r.max_ee for r in runs) <= SAFETY_ZONE and clear > 0.0 and ends < 1e-4
+    return _zone_row(
+        runs, SAFETY_ZONE, holds,
         claim="A 30 mm safety zone is sufficient when the arm is in motion (max error of all paths), the "
               "mean error stays low, and the error at the beginning and end of each path is zero, so "
-              "the early update does not compromise accuracy (Sec 4.3.2) - checked for the method on a "
-              "simulated arm",
+              "the early update does not compromise accuracy (Sec 4.3.2)",
         reference="Sec 4.3.2",
-        method=f"{_note(runs[0].lag)}; thesis update (95 %); every path executed in this section; whole-arm "
-               "clearance (Coal, URDF collision shapes) of every measured joint sample to the scenario's "
-               "boxes, platform and floor. Holds if max error <= 30 mm, measured clearance > 0 and "
-               "start/end errors < 0.1 mm",
-        numbers="; ".join(f"{r.name}: max {r.max_ee * 1e3:.2f} mm, mean {r.mean_ee * 1e3:.2f} mm, start "
+        method="every path executed in this section; whole-arm clearance (Coal, URDF collision shapes) of "
+               "every measured joint sample to the scenario's boxes, platform and floor. Holds if max error "
+               "<= 30 mm, measured clearance > 0 and start/end errors < 0.1 mm",
+        per_run=lambda r: f"{r.name}: max {r.max_ee * 1e3:.2f} mm, mean {r.mean_ee * 1e3:.2f} mm, start "
                           f"{r.ee_error[0] * 1e3:.3f} mm, end {r.ee_error[-1] * 1e3:.3f} mm, min measured "
-                          f"clearance {r.min_clearance * 1e3:.1f} mm" for r in runs)
-                + f"; worst {worst * 1e3:.2f} mm vs {SAFETY_ZONE_PLANNED * 1e3:.0f} mm",
-        verdict=Verdict.HOLDS if holds else Verdict.DOES_NOT_HOLD,
-        reason=f"on the simulated arm with an assumed {runs[0].lag * 1e3:.0f} ms lag (the real arm: see the "
-               "not-checkable row)",
-    )
+                          f"clearance {r.min_clearance * 1e3:.1f} mm")
 
 
 @register(SECTION, order=_ORDER + 4)

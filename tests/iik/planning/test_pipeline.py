@@ -90,7 +90,7 @@ def test_impossible_scenario_exits_with_typed_error(tmp_path, capsys):
 def test_unknown_name_exits_with_the_shipped_names(tmp_path, capsys):
     assert main(["plan", "zz", "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err
-    assert "ScenarioError: scenario: 'zz'" in err and "p1, p2, p3, a" in err and "Traceback" not in err
+    assert "ScenarioError: SCENARIO: 'zz'" in err and "p1, p2, p3, a" in err and "Traceback" not in err
 
 
 @pytest.mark.parametrize("kw,argument", [

@@ -47,3 +47,35 @@ def test_run_thesis_scenario_j(tmp_path, capsys):
     assert main(["run", "j", "--sim-start", "plan", "--speed", "1.0", "--out", str(tmp_path),
                  "--no-figures"]) == 0
     assert "end-effector error" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(("argv", "named"), [
+    (["run", "--demo", "--early", "2"], "--early"),
+    (["run", "--demo", "--speed", "-1"], "--speed"),
+    (["run", "--demo", "--margin-deg", "nan"], "--margin-deg"),
+    (["run", "--demo", "--modules", "1", "1", "2", "3", "4", "5"], "--modules"),
+    (["run", "--demo", "--update", "sideways"], "--update"),
+    (["run", "--demo", "--bogus"], "--bogus"),
+    (["run", "--trajectory", "no/such/file.csv"], "--trajectory"),
+    (["run", "no-such-scenario"], "scenario"),
+    (["run", "--demo", "--interface", "no-such-interface", "--channel", "x"], "no-such-interface"),
+])
+def test_run_bad_input_is_one_line_and_exit_2(argv, named, tmp_path, capsys):
+    """Hostile options end in one stderr line naming the option as typed, exit 2, nothing on disk."""
+    assert main([*argv, "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    # planning/validation notes may come first; the error is the one line after them
+    errors = [line for line in err if "error" in line]
+    assert len(errors) == 1 and errors[0].startswith("iik run: error: ") and named in errors[0], err
+    assert "Traceback" not in "\n".join(err)
+    assert not list((tmp_path / "out").glob("*.jsonl")) if (tmp_path / "out").exists() else True
+
+
+def test_run_on_a_silent_bus_times_out_cleanly(tmp_path, capfd):
+    """No module answers on an empty virtual bus: a CANTimeoutError line, the bus shut down
+    (python-can's 'not properly shut down' warning never appears)."""
+    assert main(["run", "--demo", "--interface", "virtual", "--channel", f"empty-{tmp_path.name}",
+                 "--timeout", "0.05", "--out", str(tmp_path)]) == 2
+    err = capfd.readouterr().err
+    assert "CANTimeoutError: module 1: no reply" in err and "not properly shut down" not in err
+    assert "Traceback" not in err
