@@ -150,7 +150,7 @@ def _row_block(rec: dict, details: list[dict]) -> list[str]:
             for m in rec["measures"]
         )
         lines.append(f"- graded on: {_cell(ms)}")
-    lines.append("- depends on: " + (", ".join(f"`{a}`" for a in rec["depends_on"]) or "nothing assumed"))
+    lines.append("- depends on: " + (", ".join(f"`{a}`" for a in rec["depends_on"]) or "none declared"))
     if rec["appendix"]:
         lines.append(f"- long numbers: [appendix](#{_anchor(rec['id'])}-appendix)")
     for e in rec["errata"]:

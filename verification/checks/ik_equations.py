@@ -144,6 +144,49 @@ def _equation(order: float, **forms):
     return register(SECTION, order=order, prefix="ik", depends_on=_DEP, forms=Forms(**forms))
 
 
+def _step(
+    order: float,
+    name: str,
+    key: str,
+    claim: str,
+    method: str,
+    measure,
+    tol: float,
+    unit: str,
+    printed_text: str,
+    **forms,
+) -> None:
+    """Register a check of one printed step whose error is ``measure(sample, form)`` (n,)."""
+
+    def check(ctx, form):
+        s = sample(ctx)
+        return _row(
+            s,
+            key,
+            key.lower().replace(" ", ""),
+            claim,
+            method,
+            measure(s, form),
+            tol,
+            unit,
+            printed=printed_text,
+            corrected="-",
+        )
+
+    check.__name__ = check.__qualname__ = name
+    check.__doc__ = f"{key}: {claim}"
+    _equation(order, **forms)(check)
+
+
+_ATAN2 = dict(
+    printed=np.arctan2,
+    good=lambda sn, cs: np.angle(cs + 1j * sn),
+    bad=lambda sn, cs: np.arctan2(sn, cs) + 1e-6,
+    good_is="the argument of c + i s",
+    bad_is="atan2 + 1 urad",
+)
+
+
 # ----------------------------------------------------------------------------- Eq 5-8
 def eq5_printed(E, D, C, B):
     """[ED x DC] . BC (Eq 5), vectors as differences of the points."""
@@ -788,38 +831,6 @@ def eq15_s4(ctx, eq15):
     )
 
 
-def _atan2_complex(sn, cs):
-    return np.angle(cs + 1j * sn)
-
-
-def _atan2_slip(sn, cs):
-    return np.arctan2(sn, cs) + 1e-6
-
-
-@_equation(
-    22.2,
-    printed=np.arctan2,
-    good=_atan2_complex,
-    bad=_atan2_slip,
-    good_is="the argument of c + i s",
-    bad_is="atan2 + 1 urad",
-)
-def eq16_theta4(ctx, atan2):
-    s = sample(ctx)
-    return _row(
-        s,
-        "Eq 16",
-        "eq16",
-        "theta4 = atan2(s4, c4).",
-        "with the true s4, c4 vs theta4",
-        _wrap(atan2(s.s(4), s.c(4)) - s.q[:, 3]),
-        TOL,
-        "rad",
-        printed="theta4 = atan2(s4, c4)",
-        corrected="-",
-    )
-
-
 # ----------------------------------------------------------------------------- Eq 17-22
 def _links(q: np.ndarray, first: int, last: int) -> np.ndarray:
     """Product of the Table II link transforms first..last (1-based), (n, 4, 4)."""
@@ -1096,30 +1107,6 @@ def eq21_c3(ctx, eq21):
     )
 
 
-@_equation(
-    23.5,
-    printed=np.arctan2,
-    good=_atan2_complex,
-    bad=_atan2_slip,
-    good_is="the argument of c + i s",
-    bad_is="atan2 + 1 urad",
-)
-def eq22_theta3(ctx, atan2):
-    s = sample(ctx)
-    return _row(
-        s,
-        "Eq 22",
-        "eq22",
-        "theta3 = atan2(s3, c3).",
-        "with the true s3, c3 vs theta3",
-        _wrap(atan2(s.s(3), s.c(3)) - s.q[:, 2]),
-        TOL,
-        "rad",
-        printed="theta3 = atan2(s3, c3)",
-        corrected="-",
-    )
-
-
 # ----------------------------------------------------------------------------- Eq 23-28
 @_equation(24.0, **_COMPOSE)
 def eq23_composition(ctx, form):
@@ -1171,54 +1158,6 @@ def eq26_lhs(R, q):
 def _row3_lhs(R, q):
     """(0_2T^-1 R)_33 = -s1 r13 + c1 r23: the row-3 companion of Eq 25 (= s3 s45)."""
     return -np.sin(q[:, 0]) * R[:, 0, 2] + np.cos(q[:, 0]) * R[:, 1, 2]
-
-
-@_equation(
-    24.2,
-    printed=eq25_lhs,
-    good=eq25_lhs,
-    bad=_plus(eq25_lhs),
-    good_is="the printed left side (it is right)",
-    bad_is="the left side moved by 1e-9",
-)
-def eq25_element(ctx, lhs):
-    s = sample(ctx)
-    return _row(
-        s,
-        "Eq 25",
-        "eq25",
-        "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45.",
-        "printed left side with the true pose and theta1, theta2 vs -c3 s45 of the generating q",
-        lhs(s.R, s.q) + s.c(3) * np.sin(s.q[:, 3] + s.q[:, 4]),
-        TOL,
-        "-",
-        printed="r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45",
-        corrected="-",
-    )
-
-
-@_equation(
-    24.3,
-    printed=eq26_lhs,
-    good=eq26_lhs,
-    bad=_plus(eq26_lhs),
-    good_is="the printed left side (it is right)",
-    bad_is="the left side moved by 1e-9",
-)
-def eq26_element(ctx, lhs):
-    s = sample(ctx)
-    return _row(
-        s,
-        "Eq 26",
-        "eq26",
-        "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45.",
-        "printed left side with the true pose and theta1, theta2 vs -c45 of the generating q",
-        lhs(s.R, s.q) + np.cos(s.q[:, 3] + s.q[:, 4]),
-        TOL,
-        "-",
-        printed="r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45",
-        corrected="-",
-    )
 
 
 def eq27_printed(a13, a33, c3, s3):
@@ -1318,7 +1257,7 @@ def eq27_c3_zero(ctx, eq27):
         reason=""
         if verdict is Verdict.HOLDS
         else "Eq 27 divides by c3: at theta3 = +-90 deg it is 0/0 (the numerator is -c3 s45 = 0) and theta5 "
-             "is "
+        "is "
         "lost; s45 = -c3 (Eq 25 left side) + s3 (-s1 r13 + c1 r23) holds for every theta3",
     )
 
@@ -1440,7 +1379,7 @@ def eq30_matrices(ctx, mats):
             "m or -",
             printed="5_6T = [c6 -s6 0 0; 0 0 1 0; -s6 -c6 0 -l5; 0 0 0 1]",
             corrected="5_6T = [c6 -s6 0 0; 0 0 1 -l5; -s6 -c6 0 0; 0 0 0 1] (the offset d6 = -l5 lies along "
-                      "y5, "
+            "y5, "
             "row 2); harmless for Eq 31-32, which use only entries (3,1) and (3,2)",
         ),
     ]
@@ -1455,73 +1394,103 @@ def eq32_lhs(R, q):
     return eq31_lhs(R, q, col=1)
 
 
-@_equation(
+# ----------------------------------------------------------------------------- one-line steps
+_step(
+    22.2,
+    "eq16_theta4",
+    "Eq 16",
+    "theta4 = atan2(s4, c4).",
+    "with the true s4, c4 vs theta4",
+    lambda s, f: _wrap(f(s.s(4), s.c(4)) - s.q[:, 3]),
+    TOL,
+    "rad",
+    "theta4 = atan2(s4, c4)",
+    **_ATAN2,
+)
+_step(
+    23.5,
+    "eq22_theta3",
+    "Eq 22",
+    "theta3 = atan2(s3, c3).",
+    "with the true s3, c3 vs theta3",
+    lambda s, f: _wrap(f(s.s(3), s.c(3)) - s.q[:, 2]),
+    TOL,
+    "rad",
+    "theta3 = atan2(s3, c3)",
+    **_ATAN2,
+)
+_step(
+    26.4,
+    "eq33_theta6",
+    "Eq 33",
+    "theta6 = atan2(s6, c6).",
+    "with the true s6, c6 vs theta6",
+    lambda s, f: _wrap(f(s.s(6), s.c(6)) - s.q[:, 5]),
+    TOL,
+    "rad",
+    "theta6 = atan2(s6, c6)",
+    **_ATAN2,
+)
+
+_RIGHT = dict(good_is="the printed left side (it is right)", bad_is="the left side moved by 1e-9")
+_LHS = "printed left side with the true pose and joint angles vs"
+_step(
+    24.2,
+    "eq25_element",
+    "Eq 25",
+    "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45.",
+    f"{_LHS} -c3 s45",
+    lambda s, f: f(s.R, s.q) + s.c(3) * np.sin(s.q[:, 3] + s.q[:, 4]),
+    TOL,
+    "-",
+    "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45",
+    printed=eq25_lhs,
+    good=eq25_lhs,
+    bad=_plus(eq25_lhs),
+    **_RIGHT,
+)
+_step(
+    24.3,
+    "eq26_element",
+    "Eq 26",
+    "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45.",
+    f"{_LHS} -c45",
+    lambda s, f: f(s.R, s.q) + np.cos(s.q[:, 3] + s.q[:, 4]),
+    TOL,
+    "-",
+    "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45",
+    printed=eq26_lhs,
+    good=eq26_lhs,
+    bad=_plus(eq26_lhs),
+    **_RIGHT,
+)
+_step(
     26.2,
+    "eq31_s6",
+    "Eq 31",
+    "r11 (s1 c3 - c1 s2 s3) - r21 (c1 c3 + s1 s2 s3) - r31 (c2 s3) = -s6.",
+    f"{_LHS} -sin(theta6)",
+    lambda s, f: f(s.R, s.q) + s.s(6),
+    TOL,
+    "-",
+    "... = -s6",
     printed=eq31_lhs,
     good=eq31_lhs,
     bad=_plus(eq31_lhs),
-    good_is="the printed left side (it is right)",
-    bad_is="the left side moved by 1e-9",
+    **_RIGHT,
 )
-def eq31_s6(ctx, lhs):
-    s = sample(ctx)
-    return _row(
-        s,
-        "Eq 31",
-        "eq31",
-        "r11 (s1 c3 - c1 s2 s3) - r21 (c1 c3 + s1 s2 s3) - r31 (c2 s3) = -s6.",
-        "printed left side with the true pose and theta1..theta3 vs -sin(theta6)",
-        lhs(s.R, s.q) + s.s(6),
-        TOL,
-        "-",
-        printed="... = -s6",
-        corrected="-",
-    )
-
-
-@_equation(
+_step(
     26.3,
+    "eq32_c6",
+    "Eq 32",
+    "r12 (s1 c3 - c1 s2 s3) - r22 (c1 c3 + s1 s2 s3) - r32 (c2 s3) = -c6.",
+    f"{_LHS} -cos(theta6)",
+    lambda s, f: f(s.R, s.q) + s.c(6),
+    TOL,
+    "-",
+    "... = -c6",
     printed=eq32_lhs,
     good=eq32_lhs,
     bad=_plus(eq32_lhs),
-    good_is="the printed left side (it is right)",
-    bad_is="the left side moved by 1e-9",
+    **_RIGHT,
 )
-def eq32_c6(ctx, lhs):
-    s = sample(ctx)
-    return _row(
-        s,
-        "Eq 32",
-        "eq32",
-        "r12 (s1 c3 - c1 s2 s3) - r22 (c1 c3 + s1 s2 s3) - r32 (c2 s3) = -c6.",
-        "printed left side with the true pose and theta1..theta3 vs -cos(theta6)",
-        lhs(s.R, s.q) + s.c(6),
-        TOL,
-        "-",
-        printed="... = -c6",
-        corrected="-",
-    )
-
-
-@_equation(
-    26.4,
-    printed=np.arctan2,
-    good=_atan2_complex,
-    bad=_atan2_slip,
-    good_is="the argument of c + i s",
-    bad_is="atan2 + 1 urad",
-)
-def eq33_theta6(ctx, atan2):
-    s = sample(ctx)
-    return _row(
-        s,
-        "Eq 33",
-        "eq33",
-        "theta6 = atan2(s6, c6).",
-        "with the true s6, c6 vs theta6",
-        _wrap(atan2(s.s(6), s.c(6)) - s.q[:, 5]),
-        TOL,
-        "rad",
-        printed="theta6 = atan2(s6, c6)",
-        corrected="-",
-    )

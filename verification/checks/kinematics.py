@@ -1146,6 +1146,15 @@ def _euler_samples(ctx):
 _CONVENTIONS = ("ZYZ", "ZXZ")
 
 
+def _eq42_compare(ctx, eq42):
+    """The form on sampled angles: angles, matrices, |form - scipy| and matching entries per convention."""
+    a, b, g = _euler_samples(ctx)
+    P = eq42(a, b, g)
+    ang = np.stack([a, b, g], -1)
+    dev = {c: np.abs(P - Rotation.from_euler(c, ang).as_matrix()) for c in _CONVENTIONS}
+    return (a, b, g), P, dev, {c: int(np.sum(dev[c].max(axis=0) <= TOL_EXACT)) for c in _CONVENTIONS}
+
+
 @register(
     SECTION,
     order=16.0,
@@ -1160,11 +1169,7 @@ _CONVENTIONS = ("ZYZ", "ZXZ")
 )
 def eq42_matrix(ctx, eq42):
     """Eq 42 (the form) is the Euler-angle rotation matrix of some Z-?-Z convention (scipy as reference)."""
-    a, b, g = _euler_samples(ctx)
-    P = eq42(a, b, g)
-    ang = np.stack([a, b, g], -1)
-    dev = {c: np.abs(P - Rotation.from_euler(c, ang).as_matrix()) for c in _CONVENTIONS}
-    matching = {c: int(np.sum(dev[c].max(axis=0) <= TOL_EXACT)) for c in _CONVENTIONS}
+    (a, b, g), P, dev, matching = _eq42_compare(ctx, eq42)
     best = max(_CONVENTIONS, key=lambda c: (matching[c], -dev[c].max()))  # the convention most entries follow
     orth = np.abs(np.einsum("nji,njk->nik", P, P) - np.eye(3)).max()
     m = (
@@ -1218,19 +1223,7 @@ def eq42_matrix(ctx, eq42):
 )
 def eq42_convention(ctx, eq42):
     """Sec 3.5.1 names Eq 42 'the Z-X-Z convention of [2]': how many of the form's entries are Z-X-Z?"""
-    a, b, g = _euler_samples(ctx)
-    P = eq42(a, b, g)
-    ang = np.stack([a, b, g], -1)
-    counts = {
-        c: int(
-            sum(
-                np.abs(P[:, r, k] - Rotation.from_euler(c, ang).as_matrix()[:, r, k]).max() <= TOL_EXACT
-                for r in range(3)
-                for k in range(3)
-            )
-        )
-        for c in _CONVENTIONS
-    }
+    (a, b, g), _, _, counts = _eq42_compare(ctx, eq42)
     m = (Measure("entries of Eq 42 that are not Z-X-Z", 9 - counts["ZXZ"], 0),)
     verdict = verdict_of(m)
     a0, b0, g0 = 0.5, 0.7, 0.3
