@@ -690,7 +690,7 @@ def printed_admitted_set(ctx, admit):
     m = (Measure("share of admitted orientations that are solvable", s, _SOUND, bound=">="),)
     v = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
     figs = (
-        (_figure(ctx, sw, _iik_admitted(sw)[0], adm, _iik_admitted(sw)[1]),)
+        (_figure(ctx, sw, _iik_admitted(ctx, sw)[0], adm, _iik_admitted(ctx, sw)[1]),)
         if admit is admitted_printed
         else ()
     )
@@ -719,9 +719,10 @@ def printed_admitted_set(ctx, admit):
     )
 
 
-def _iik_admitted(sw):
-    key = id(sw)
-    if _IIK_CACHE.get("key") != key:
+def _iik_admitted(ctx, sw):
+    """iik.dexterity's admitted set and case per sweep point (cached in the run's context)."""
+    key = ("dex.iik_admitted", ctx.quick)
+    if key not in ctx.cache:
         adm = np.zeros_like(sw["truth"])
         cases = []
         for i, p in enumerate(sw["P"]):
@@ -731,11 +732,8 @@ def _iik_admitted(sw):
                 cases.append(r.case)
             except UnreachablePoseError:
                 cases.append("none")
-        _IIK_CACHE.update(key=key, value=(adm, cases))
-    return _IIK_CACHE["value"]
-
-
-_IIK_CACHE: dict = {}
+        ctx.cache[key] = (adm, cases)
+    return ctx.cache[key]
 
 
 def _iik_admit(p, A, B):
