@@ -1,17 +1,48 @@
-"""verification: machine checks of the thesis against Pinocchio and Coal.
+"""verification: machine checks of the thesis against Pinocchio, Coal and ground truth.
 
-Checks live in :mod:`verification.checks` and register themselves;
-:func:`verify` (behind ``iik verify``) runs them all and writes ``verification.md``.
+Checks live in :mod:`verification.checks` and register themselves; ``iik verify`` runs
+them all and writes ``reports/verification.json`` (one record per row, see
+``report.schema.json``) and ``reports/verification.md`` rendered from it;
+:func:`self_test` proves that every verdict can fail.
 """
 
-from .registry import Context, Erratum, Row, Verdict, load_checks, register, registered_checks
-from .report import CheckResult, Verification, run_checks, summary, verify, write_report
+from .errors import RegistrationError, ReportError, RowError, VerificationError
+from .registry import (
+    Check,
+    Context,
+    Erratum,
+    Forms,
+    Measure,
+    Row,
+    Scope,
+    Verdict,
+    load_checks,
+    register,
+    registered_checks,
+    verdict_of,
+)
+from .report import (
+    CheckResult,
+    Verification,
+    read_report,
+    report_document,
+    run_checks,
+    summary,
+    verify,
+    write_report,
+)
+from .self_test import SelfTestOutcome, run_self_test, self_test
 
 __all__ = [
+    "Check",
     "Context",
     "Erratum",
+    "Forms",
+    "Measure",
     "Row",
+    "Scope",
     "Verdict",
+    "verdict_of",
     "register",
     "registered_checks",
     "load_checks",
@@ -19,6 +50,15 @@ __all__ = [
     "Verification",
     "verify",
     "run_checks",
-    "summary",
+    "report_document",
     "write_report",
+    "read_report",
+    "summary",
+    "SelfTestOutcome",
+    "run_self_test",
+    "self_test",
+    "VerificationError",
+    "RegistrationError",
+    "RowError",
+    "ReportError",
 ]

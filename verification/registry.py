@@ -1,33 +1,60 @@
-"""The registry of thesis checks behind ``iik verify``.
+"""The registry of thesis checks behind ``iik verify``, and the row every check returns.
 
-A check is a function ``check(ctx) -> Row | Iterable[Row]`` registered with
-:func:`register`. Every module in :mod:`verification.checks` is imported by
-:func:`load_checks`, so a new feature adds its checks by adding a module there;
-no central list is edited.
+A check is a function registered with :func:`register`. Every module in
+:mod:`verification.checks` is imported by :func:`load_checks`, so a feature adds its
+checks by adding a module there; no central list is edited.
 
-Each :class:`Row` is one thesis claim with its reference (equation, table or
-section), the method used to check it, the measured numbers, and a
-:class:`Verdict`. A printed formula that is wrong gives ``Verdict.ERRATUM``
-with one or more :class:`Erratum` records; that is a finding, not a failure.
-Only an exception inside a check (the software failing) makes ``iik verify``
-exit non-zero.
+**A check is a measurement.** A check of a printed formula runs the same measurement
+on the printed form and on an independent reference (Pinocchio, Coal, finite
+differences, geometry, ground-truth sampling); its verdict comes from that comparison
+and a tolerance (:class:`Measure`, :func:`verdict_of`), never from a constant. To prove
+it, the check declares its :class:`Forms` -- the printed form, a known-good form and a
+deliberately perturbed form -- and takes the form as its second argument::
+
+    @register(SECTION, order=12, forms=Forms(printed=eq4_printed, good=eq4_from_dh,
+              bad=off_by(eq4_printed, 1e-9), good_is="...", bad_is="..."))
+    def eq4_vs_pinocchio(ctx, eq4) -> Row: ...
+
+``iik verify`` calls it with ``forms.printed``; :func:`verification.self_test` calls it
+again with ``forms.good`` (it must say "holds") and ``forms.bad`` (it must not). A check
+that cannot flip by its nature (a byte comparison, a transcription round trip, a
+statement that needs the real arm) says why with ``by_construction="..."`` and is
+counted apart.
+
+Each :class:`Row` is one thesis claim with its reference, the method, the measured
+numbers, a :class:`Verdict`, what the verdict depends on (ids of
+:mod:`verification.assumptions`) and whether it grades the thesis's own claim or a
+stricter project standard (:class:`Scope`). A printed formula that is wrong gives
+``Verdict.ERRATUM`` with :class:`Erratum` records; that is a finding, not a failure.
+Only an exception inside a check (the software failing) makes ``iik verify`` exit
+non-zero.
 """
 
 from __future__ import annotations
 
 import importlib
+import inspect
 import pkgutil
+import re
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import Enum
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
+from .assumptions import ASSUMPTIONS
+from .errors import RegistrationError, RowError
+
 __all__ = [
     "Verdict",
+    "Scope",
     "Erratum",
+    "Measure",
+    "verdict_of",
     "Row",
+    "Forms",
     "Context",
     "Check",
     "register",
@@ -43,6 +70,13 @@ class Verdict(str, Enum):
     ERRATUM = "erratum"  # a printed formula/number is wrong; corrected form recorded
     DOES_NOT_HOLD = "does not hold"  # a claim (not a formula) is refuted by measurement
     NOT_CHECKABLE = "not checkable"  # with its reason
+
+
+class Scope(str, Enum):
+    """Whose standard a row grades."""
+
+    THESIS = "thesis"  # the thesis's own claim under its own criterion
+    PROJECT = "project standard"  # a stricter standard of this project, reported separately
 
 
 @dataclass(frozen=True)
@@ -64,6 +98,53 @@ class Erratum:
 
 
 @dataclass(frozen=True)
+class Measure:
+    """One measured number and the bound it is graded against.
+
+    Attributes:
+        name: What was measured, e.g. ``"max |printed - Pinocchio|"``.
+        value: The measured value (SI units unless ``unit`` says otherwise).
+        limit: The tolerance or threshold.
+        unit: Unit of ``value`` and ``limit`` (display only).
+        bound: ``"<="`` (holds if ``value <= limit``) or ``">="``.
+    """
+
+    name: str
+    value: float
+    limit: float
+    unit: str = ""
+    bound: str = "<="
+
+    def __post_init__(self) -> None:
+        if self.bound not in ("<=", ">="):
+            raise RowError("measures", f"bound must be '<=' or '>=', got {self.bound!r}")
+        object.__setattr__(self, "value", float(self.value))
+        object.__setattr__(self, "limit", float(self.limit))
+
+    @property
+    def holds(self) -> bool:
+        """True if the value is within its bound (NaN never holds)."""
+        if np.isnan(self.value) or np.isnan(self.limit):
+            return False
+        return self.value <= self.limit if self.bound == "<=" else self.value >= self.limit
+
+    def __str__(self) -> str:
+        unit = f" {self.unit}" if self.unit else ""
+        return f"{self.name} = {self.value:.3g}{unit} ({self.bound} {self.limit:.3g}{unit})"
+
+
+def verdict_of(measures: Iterable[Measure], *, fail: Verdict = Verdict.ERRATUM) -> Verdict:
+    """``HOLDS`` if every measure is within its bound, else ``fail``."""
+    measures = tuple(measures)
+    if not measures:
+        raise RowError("measures", "a verdict needs at least one measure")
+    return Verdict.HOLDS if all(m.holds for m in measures) else fail
+
+
+_ID = re.compile(r"^[a-z0-9][a-z0-9_.-]*$")
+
+
+@dataclass(frozen=True)
 class Row:
     """One thesis claim and its verdict.
 
@@ -76,6 +157,19 @@ class Row:
         reason: Required for ``NOT_CHECKABLE``; optional elsewhere.
         errata: Erratum records (for ``ERRATUM``).
         figures: Paths of PNG figures (relative to the report's folder).
+        id: Row id. A check gives a short local id (``"eq9a"``); the registry
+            prefixes it with the check's module (``"ik.eq9a"``). Default: the
+            check's function name.
+        scope: The thesis's claim, or a stricter project standard.
+        depends_on: Ids of :data:`verification.assumptions.ASSUMPTIONS` the verdict
+            rests on. Default: those declared at registration.
+        covers: Index keys this row grades (``"Eq 9a"``, ``"Table VI"``,
+            ``"App. E"``, ``"Sec 4.3.1"``). Default: read from ``reference``.
+        measures: The graded numbers (machine-readable; the verdict follows them).
+        details: Rows of a grouped claim (App. C entries, Table VI sets): the
+            group counts once, its details are listed below it.
+        appendix: Long numbers (matrices) printed in the report's appendix.
+        check: ``module:function`` of the check (set by the registry).
     """
 
     claim: str
@@ -86,12 +180,54 @@ class Row:
     reason: str = ""
     errata: tuple[Erratum, ...] = ()
     figures: tuple[str, ...] = ()
+    id: str = ""
+    scope: Scope = Scope.THESIS
+    depends_on: tuple[str, ...] = ()
+    covers: tuple[str, ...] = ()
+    measures: tuple[Measure, ...] = ()
+    details: tuple[Row, ...] = ()
+    appendix: str = ""
+    check: str = ""
 
     def __post_init__(self) -> None:
+        if not isinstance(self.verdict, Verdict):
+            raise RowError("verdict", f"must be a Verdict, got {self.verdict!r}")
         if self.verdict is Verdict.NOT_CHECKABLE and not self.reason:
-            raise ValueError("a NOT_CHECKABLE row needs a reason")
+            raise RowError("reason", "a NOT_CHECKABLE row needs a reason")
         if self.verdict is Verdict.ERRATUM and not self.errata:
-            raise ValueError("an ERRATUM row needs at least one Erratum record")
+            raise RowError("errata", "an ERRATUM row needs at least one Erratum record")
+        if self.id and not _ID.match(self.id):
+            raise RowError("id", f"{self.id!r} must be lowercase letters, digits, '.', '_' or '-'")
+        unknown = [a for a in self.depends_on if a not in ASSUMPTIONS]
+        if unknown:
+            raise RowError("depends_on", f"unknown assumption(s) {unknown}; known: {', '.join(ASSUMPTIONS)}")
+        for name in ("errata", "figures", "depends_on", "covers", "measures", "details"):
+            object.__setattr__(self, name, tuple(getattr(self, name)))
+
+    def replace(self, **changes) -> Row:
+        """A copy with ``changes`` applied (rows are frozen)."""
+        return replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class Forms:
+    """The forms a falsifiable check measures (see the module docstring).
+
+    Attributes:
+        printed: The thesis's form (a function, a table, printed numbers).
+        good: A known-good form: the check must say "holds" with it.
+        bad: A deliberately perturbed form: the check must not say "holds".
+        good_is: What the good form is (for the self-test listing).
+        bad_is: What the perturbation is.
+        rows: Local ids of the rows the self-test grades; empty = every row of the check.
+    """
+
+    printed: Any
+    good: Any
+    bad: Any
+    good_is: str
+    bad_is: str
+    rows: tuple[str, ...] = ()
 
 
 @dataclass
@@ -102,7 +238,9 @@ class Context:
         out_dir: Folder of the report; figures go to ``out_dir / "figures"``.
         seed: Seed for every random sample a check draws.
         quick: If true, checks use small sample sizes (tests, notebooks).
-        cache: Scratch space shared by checks in one run (e.g. a loaded model).
+        cache: Scratch space shared by checks in one run (e.g. a loaded model). Never
+            cache anything computed from a check's form: the self-test reruns the check
+            with other forms in the same context.
     """
 
     out_dir: Path
@@ -140,36 +278,144 @@ class Context:
 
 @dataclass(frozen=True)
 class Check:
-    """A registered check."""
+    """A registered check.
+
+    Attributes:
+        name: ``module.function``.
+        section: Report section.
+        order: Sort key of the section (its smallest order) and of the check in it.
+        func: ``func(ctx)`` or, with ``forms``, ``func(ctx, form)``.
+        forms: The printed / good / bad forms (falsifiable checks).
+        by_construction: Why the check cannot flip, for checks without forms.
+        depends_on: Default assumptions of its rows.
+        prefix: Prefix of its row ids (the module's short name).
+    """
 
     name: str
     section: str
     order: float
-    func: Callable[[Context], Row | Iterable[Row]]
+    func: Callable[..., Row | Iterable[Row]]
+    forms: Forms | None = None
+    by_construction: str = ""
+    depends_on: tuple[str, ...] = ()
+    prefix: str = ""
 
-    def run(self, ctx: Context) -> list[Row]:
-        out = self.func(ctx)
+    @property
+    def where(self) -> str:
+        """``module:function`` (what a report row names as its check)."""
+        return f"{self.func.__module__}:{self.func.__qualname__}"
+
+    def run(self, ctx: Context, form: Any = None, *, use_printed: bool = True) -> list[Row]:
+        """Run the check (with ``forms.printed``, or with ``form`` if ``use_printed`` is
+        false) and return its rows with ids, check name and default assumptions filled in."""
+        if self.forms is not None:
+            out = self.func(ctx, self.forms.printed if use_printed else form)
+        else:
+            out = self.func(ctx)
         rows = [out] if isinstance(out, Row) else list(out)
         for r in rows:
             if not isinstance(r, Row):
                 raise TypeError(f"check {self.name} returned {type(r).__name__}, not Row")
-        return rows
+        return self._finish(rows)
+
+    def _finish(self, rows: list[Row]) -> list[Row]:
+        seen: dict[str, int] = {}
+        out = []
+        for r in rows:
+            local = r.id or self.func.__name__
+            seen[local] = seen.get(local, 0) + 1
+            if seen[local] > 1:
+                local = f"{local}-{seen[local]}"
+            rid = f"{self.prefix}.{local}"
+            details = tuple(
+                d.replace(
+                    id=f"{rid}.{d.id or k + 1}",
+                    check=self.where,
+                    depends_on=d.depends_on or r.depends_on or self.depends_on,
+                )
+                for k, d in enumerate(r.details)
+            )
+            out.append(
+                r.replace(
+                    id=rid, check=self.where, details=details, depends_on=r.depends_on or self.depends_on
+                )
+            )
+        return out
+
+    def local_id(self, row_id: str) -> str:
+        """The id a check gave a row (``row_id`` without the prefix)."""
+        return row_id[len(self.prefix) + 1 :] if row_id.startswith(self.prefix + ".") else row_id
 
 
 _REGISTRY: dict[str, Check] = {}
 
 
-def register(section: str, order: float = 0.0, name: str | None = None):
-    """Decorator: register ``func(ctx)`` as a check in report ``section``.
+def _takes_form(func) -> bool:
+    try:
+        params = list(inspect.signature(func).parameters.values())
+    except (TypeError, ValueError):
+        return False
+    positional = [p for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+    return len(positional) >= 2 or any(p.kind is p.VAR_POSITIONAL for p in params)
 
-    ``order`` sorts sections (by their smallest order) and checks within them.
+
+def register(
+    section: str,
+    order: float = 0.0,
+    name: str | None = None,
+    *,
+    forms: Forms | None = None,
+    by_construction: str = "",
+    depends_on: Iterable[str] = (),
+    prefix: str | None = None,
+):
+    """Decorator: register ``func`` as a check in report ``section``.
+
+    Args:
+        section: Report section (checks of one section are listed together).
+        order: Sorts sections (by their smallest order) and checks within them.
+        name: Registry key; default ``module.function``.
+        forms: Printed / good / bad forms; then ``func(ctx, form)``.
+        by_construction: Why the check cannot flip (no forms).
+        depends_on: Default assumption ids of the check's rows.
+        prefix: Row-id prefix; default the module's last name (``"kinematics"``).
+
+    Raises:
+        RegistrationError: the same name twice, forms and ``by_construction`` together,
+            forms on a function without a form argument, or an unknown assumption.
     """
+    depends_on = tuple(depends_on)
 
     def deco(func):
         key = name or f"{func.__module__}.{func.__qualname__}"
         if key in _REGISTRY and _REGISTRY[key].func is not func:
-            raise ValueError(f"check {key!r} registered twice")
-        _REGISTRY[key] = Check(name=key, section=section, order=order, func=func)
+            raise RegistrationError(key, "registered twice")
+        if forms is not None and by_construction:
+            raise RegistrationError(key, "declares forms and 'by construction' at once")
+        if forms is not None and not isinstance(forms, Forms):
+            raise RegistrationError(key, f"forms must be a Forms, got {type(forms).__name__}")
+        if forms is not None and not _takes_form(func):
+            raise RegistrationError(
+                key, "declares forms but its function takes no form argument (expected func(ctx, form))"
+            )
+        if forms is not None and not (forms.good_is and forms.bad_is):
+            raise RegistrationError(key, "forms need good_is and bad_is descriptions")
+        unknown = [a for a in depends_on if a not in ASSUMPTIONS]
+        if unknown:
+            raise RegistrationError(key, f"unknown assumption(s) {unknown}")
+        pre = prefix or func.__module__.rsplit(".", 1)[-1]
+        if not _ID.match(pre):
+            raise RegistrationError(key, f"row-id prefix {pre!r} is not a valid id")
+        _REGISTRY[key] = Check(
+            name=key,
+            section=section,
+            order=order,
+            func=func,
+            forms=forms,
+            by_construction=by_construction,
+            depends_on=depends_on,
+            prefix=pre,
+        )
         return func
 
     return deco

@@ -1,12 +1,21 @@
-"""Run the registered checks and write ``verification.md``.
+"""Run the registered checks and write ``verification.json`` and ``verification.md``.
 
-The report has one table row per thesis claim (claim, reference, method,
-numbers, verdict), grouped by section, followed by the errata with their
-printed and corrected forms and counterexamples, and the figures.
+The JSON document is the report: one record per row (id, claim, reference, verdict,
+numbers, measures, depends_on, check, figures, ...), the index of the thesis
+(:mod:`verification.thesis_index`) with the rows that grade each item, per-chapter
+counts and a header (commit, versions, seed, machine). It follows
+``report.schema.json``. The markdown is rendered from that document
+(:func:`verification.markdown.render`), and notebooks read it back with
+:func:`read_report`.
+
+Counting: a grouped claim (App. C entries, Table VI sets, Table VII groups) is one row
+with its entries as ``details``; the headline counts top-level rows only, thesis claims
+and project standards apart.
 """
 
 from __future__ import annotations
 
+import json
 import time
 import traceback
 from collections import Counter
@@ -14,19 +23,39 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from .registry import Check, Context, Row, Verdict, registered_checks
+from .assumptions import ASSUMPTIONS
+from .errors import ReportError
+from .markdown import render
+from .provenance import provenance
+from .registry import Check, Context, Row, Scope, Verdict, registered_checks
+from .schema import schema_errors
+from .thesis_index import ITEMS, chapter_of, chapter_of_reference, parse_refs
 
-__all__ = ["CheckResult", "Verification", "verify", "run_checks", "write_report", "summary"]
+__all__ = ["CheckResult", "Verification", "verify", "run_checks", "report_document", "write_report",
+           "read_report", "summary", "FORMAT"]
+
+#: The ``format`` field of every report document.
+FORMAT = "iik-verification-report/1"
 
 
 @dataclass(frozen=True)
 class CheckResult:
-    """Outcome of running one check: its rows, or the error it raised."""
+    """Outcome of running one check: its rows, or the error it raised.
+
+    Attributes:
+        check: The check.
+        rows: Its rows (ids and check name filled in).
+        seconds: Wall time of the check [s].
+        error: Traceback text if the software failed.
+        seed, quick: The run's context (for the report header).
+    """
 
     check: Check
     rows: tuple[Row, ...]
     seconds: float
-    error: str | None = None  # traceback text if the software failed
+    error: str | None = None
+    seed: int = 0
+    quick: bool = False
 
 
 def run_checks(
@@ -35,10 +64,9 @@ def run_checks(
     select: Sequence[str] | None = None,
     progress: Callable[[int, int, Check, CheckResult | None], None] | None = None,
 ) -> list[CheckResult]:
-    """Run every registered check (or those whose name contains a ``select`` item).
+    """Run every registered check (or those whose name or section contains a ``select`` item).
 
-    ``progress(i, n, check, result)`` is called before (result None) and after
-    each check.
+    ``progress(i, n, check, result)`` is called before (result None) and after each check.
     """
     checks = registered_checks()
     if select:
@@ -52,7 +80,7 @@ def run_checks(
             rows, err = tuple(chk.run(ctx)), None
         except Exception:  # a failing check is a software failure, reported
             rows, err = (), traceback.format_exc()
-        res = CheckResult(chk, rows, time.perf_counter() - t0, err)
+        res = CheckResult(chk, rows, time.perf_counter() - t0, err, ctx.seed, ctx.quick)
         results.append(res)
         if progress:
             progress(i, len(checks), chk, res)
@@ -92,87 +120,199 @@ def verify(out_dir: Path, *, quick: bool = False, seed: int = 20120101, select: 
     return Verification(tuple(results), path, time.perf_counter() - t0)
 
 
-def _cell(text: str) -> str:
-    return str(text).replace("|", "\\|").replace("\n", "<br>")
+def _counts(rows: Iterable[dict]) -> dict:
+    c = Counter(r["verdict"] for r in rows)
+    return {v.value: c.get(v.value, 0) for v in Verdict}
+
+
+def _covers(row: Row) -> tuple[str, ...]:
+    return row.covers or parse_refs(row.reference)
+
+
+def _record(row: Row, section: str, parent: str | None) -> dict:
+    covers = _covers(row)
+    chapter = (
+        "Project"
+        if row.scope is Scope.PROJECT
+        else (chapter_of(covers[0]) if covers else chapter_of_reference(row.reference))
+    )
+    return {
+        "id": row.id,
+        "claim": row.claim,
+        "reference": row.reference,
+        "verdict": row.verdict.value,
+        "reason": row.reason,
+        "scope": row.scope.value,
+        "method": row.method,
+        "numbers": row.numbers,
+        "measures": [
+            {
+                "name": m.name,
+                "value": _num(m.value),
+                "limit": _num(m.limit),
+                "unit": m.unit,
+                "bound": m.bound,
+                "holds": m.holds,
+            }
+            for m in row.measures
+        ],
+        "depends_on": list(row.depends_on),
+        "check": row.check,
+        "figures": list(row.figures),
+        "errata": [
+            {
+                "equation": e.equation,
+                "printed": e.printed,
+                "corrected": e.corrected,
+                "counterexample": e.counterexample,
+            }
+            for e in row.errata
+        ],
+        "covers": list(covers),
+        "section": section,
+        "chapter": chapter,
+        "parent": parent,
+        "appendix": row.appendix,
+    }
+
+
+def _num(x: float):
+    return None if x != x or x in (float("inf"), float("-inf")) else float(x)
+
+
+def _falsifiable(check: Check) -> str:
+    if check.forms is not None:
+        return f"forms: good = {check.forms.good_is}; bad = {check.forms.bad_is}"
+    if check.by_construction:
+        return f"by construction: {check.by_construction}"
+    return "not declared"
+
+
+def _index(records: list[dict]) -> list[dict]:
+    top = [r for r in records if r["parent"] is None]
+    parent_of = {r["id"]: r["parent"] for r in records}
+    verdict = {r["id"]: r["verdict"] for r in records}
+    out = []
+    for item in ITEMS:
+        ids = [r["id"] for r in top if item.key in r["covers"] or r["check"] in item.checks]
+        ids += [
+            parent_of[r["id"]]
+            for r in records
+            if r["parent"] is not None and item.key in r["covers"] and parent_of[r["id"]] not in ids
+        ]
+        ids = list(dict.fromkeys(ids))
+        out.append(
+            {
+                "key": item.key,
+                "kind": item.kind,
+                "where": item.where,
+                "title": item.title,
+                "status": item.status,
+                "note": item.note,
+                "rows": [{"id": i, "verdict": verdict[i]} for i in ids],
+                "missing": item.status == "checked" and not ids,
+            }
+        )
+    return out
+
+
+def report_document(results: Iterable[CheckResult], *, title: str | None = None) -> dict:
+    """The report as a JSON-ready dict (see ``report.schema.json``)."""
+    results = list(results)
+    seed = results[0].seed if results else 0
+    quick = results[0].quick if results else False
+    records, sections = [], []
+    for res in results:
+        sec = res.check.section
+        if not sections or sections[-1]["title"] != sec:
+            sections.append({"title": sec, "checks": []})
+        sections[-1]["checks"].append(
+            {
+                "check": res.check.where,
+                "seconds": round(res.seconds, 3),
+                "error": res.error,
+                "falsifiable": _falsifiable(res.check),
+                "rows": [r.id for r in res.rows],
+            }
+        )
+        for r in res.rows:
+            records.append(_record(r, sec, None))
+            records += [_record(d, sec, r.id) for d in r.details]
+    top = [r for r in records if r["parent"] is None]
+    chapters: dict[str, list] = {}
+    for r in top:
+        if r["scope"] == Scope.THESIS.value:
+            chapters.setdefault(r["chapter"], []).append(r)
+    header = provenance(seed, quick).as_dict()
+    header["seconds"] = round(sum(r.seconds for r in results), 2)
+    return {
+        "format": FORMAT,
+        "title": title or "Verification report",
+        "header": header,
+        "assumptions": [{"id": a.id, "text": a.text} for a in ASSUMPTIONS.values()],
+        "summary": {
+            "thesis": _counts(r for r in top if r["scope"] == Scope.THESIS.value),
+            "project": _counts(r for r in top if r["scope"] == Scope.PROJECT.value),
+            "failures": sum(1 for res in results if res.error),
+            "chapters": {k: _counts(v) for k, v in sorted(chapters.items())},
+        },
+        "index": _index(records),
+        "sections": sections,
+        "rows": records,
+    }
 
 
 def write_report(results: Iterable[CheckResult], path: Path, *, title: str | None = None) -> Path:
-    """Write the markdown report to ``path`` and return it."""
-    results = list(results)
+    """Write ``verification.json`` and the markdown report ``path`` (same folder); return ``path``."""
+    path = Path(path)
+    doc = report_document(results, title=title)
+    errors = schema_errors(doc)
+    if errors:  # a bug in this module, not bad input: fail loudly
+        raise AssertionError("report document breaks report.schema.json: " + "; ".join(errors[:5]))
     path.parent.mkdir(parents=True, exist_ok=True)
-    counts = Counter(r.verdict for res in results for r in res.rows)
-    failures = [res for res in results if res.error]
-    lines = [f"# {title or 'Verification report'}", ""]
-    lines.append(
-        "Each row is one claim of C. A. Mondragon Sanchez, *Dynamics and Motion of a Six "
-        "Degree of Freedom Robot Manipulator*, M.Sc. thesis, University of Saskatchewan, 2012, "
-        "checked by machine. Units: SI (m, rad) unless a cell says otherwise. "
-        "`l1 = 0.300 m` is an assumption (see `iik.THESIS_ARM.assumptions`)."
+    path.with_suffix(".json").write_text(
+        json.dumps(doc, indent=1, ensure_ascii=False) + "\n", encoding="utf-8"
     )
-    lines.append("")
-    lines.append(
-        "Summary: "
-        + ", ".join(f"{counts.get(v, 0)} {v.value}" for v in Verdict)
-        + f"; {len(failures)} check(s) failed to run."
-    )
-    lines.append("")
-    section = None
-    errata = []
-    figures = []
-    for res in results:
-        if res.check.section != section:
-            section = res.check.section
-            lines += ["", f"## {section}", "",
-                      "| claim | reference | method | numbers | verdict |",
-                      "|---|---|---|---|---|"]
-        if res.error:
-            lines.append(f"| `{res.check.name}` | | | | **software failure** (see below) |")
-        for r in res.rows:
-            verdict = r.verdict.value + (f": {r.reason}" if r.reason else "")
-            lines.append(
-                f"| {_cell(r.claim)} | {_cell(r.reference)} | {_cell(r.method)} | "
-                f"{_cell(r.numbers)} | **{_cell(verdict)}** |"
-            )
-            errata += r.errata
-            figures += [(r.claim, f) for f in r.figures]
-    if errata:
-        lines += ["", "## Errata", "",
-                  "| equation | printed | corrected | counterexample |", "|---|---|---|---|"]
-        for e in errata:
-            lines.append(
-                f"| {_cell(e.equation)} | {_cell(e.printed)} | {_cell(e.corrected)} | "
-                f"{_cell(e.counterexample)} |"
-            )
-    if figures:
-        lines += ["", "## Figures", ""]
-        for claim, f in figures:
-            lines += [f"![{_cell(claim)}]({f})", ""]
-    if failures:
-        lines += ["", "## Software failures", ""]
-        for res in failures:
-            lines += [f"### `{res.check.name}`", "", "```", res.error.rstrip(), "```", ""]
-    lines += ["", "## Timing", "", "| check | seconds |", "|---|---|"]
-    lines += [f"| `{res.check.name}` | {res.seconds:.2f} |" for res in results]
-    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    path.write_text(render(doc), encoding="utf-8")
     return path
 
 
+def read_report(path) -> dict:
+    """Read and validate a ``verification.json`` (for notebooks and tools).
+
+    Raises:
+        ReportError: the file is missing, not JSON, or does not follow the schema.
+    """
+    p = Path(path)
+    try:
+        doc = json.loads(p.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise ReportError(str(path), "no such file (run `iik verify` first)") from None
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise ReportError(str(path), f"not a JSON report ({exc})") from None
+    errors = schema_errors(doc)
+    if errors:
+        raise ReportError(str(path), "does not follow report.schema.json: " + "; ".join(errors[:3]))
+    return doc
+
+
 def summary(results: Iterable[CheckResult]) -> str:
-    """A few lines for the terminal."""
+    """A few lines for the terminal: grouped counts, findings, failures."""
     results = list(results)
-    counts = Counter(r.verdict for res in results for r in res.rows)
-    n_err = sum(1 for res in results if res.error)
-    out = [
-        f"{sum(counts.values())} claims from {len(results)} checks: "
-        + ", ".join(f"{counts.get(v, 0)} {v.value}" for v in Verdict)
-    ]
-    for res in results:
-        for r in res.rows:
-            if r.verdict is Verdict.ERRATUM:
-                out.append(f"  erratum: {r.reference}: " + "; ".join(e.equation for e in r.errata))
-            elif r.verdict is Verdict.DOES_NOT_HOLD:
-                out.append(f"  does not hold: {r.reference}: {r.claim}")
-    if n_err:
-        out.append(f"  {n_err} check(s) FAILED TO RUN: "
-                   + ", ".join(res.check.name for res in results if res.error))
-    return "\n".join(out)
+    top = [r for res in results for r in res.rows]
+    lines = []
+    for scope in Scope:
+        rows = [r for r in top if r.scope is scope]
+        if rows:
+            c = Counter(r.verdict for r in rows)
+            lines.append(f"  {scope.value}: " + ", ".join(f"{c.get(v, 0)} {v.value}" for v in Verdict))
+    lines[0:0] = [f"{len(top)} claims from {len(results)} checks (grouped claims counted once)"]
+    for r in top:
+        if r.scope is Scope.THESIS and r.verdict is Verdict.ERRATUM:
+            lines.append(f"  erratum: {r.id} ({r.reference}): " + "; ".join(e.equation for e in r.errata))
+        elif r.scope is Scope.THESIS and r.verdict is Verdict.DOES_NOT_HOLD:
+            lines.append(f"  does not hold: {r.id} ({r.reference})")
+    failed = [res.check.name for res in results if res.error]
+    if failed:
+        lines.append(f"  {len(failed)} check(s) FAILED TO RUN: " + ", ".join(failed))
+    return "\n".join(lines)

@@ -40,22 +40,24 @@ def panda_reference_path() -> Path:
     raise FileNotFoundError("panda.urdf not found in the example-robot-data distribution")
 
 
-@lru_cache(maxsize=1)
-def panda_models():
-    """``(generated model, tool frame id, reference model, panda_link8 frame id)``."""
+@lru_cache(maxsize=4)
+def panda_models(generator=urdf_from_dh):
+    """``(generated model, tool frame id, reference model, panda_link8 frame id)``; the
+    generated model is built by ``generator``."""
     ref = pin.buildModelFromUrdf(str(panda_reference_path()))
     rows = tuple(DHRow(alpha=al, a=a, d=d) for al, a, d in zip(PANDA_ALPHA, PANDA_A, PANDA_D, strict=True))
     table = DHTable(rows=rows, convention="modified", lower=tuple(ref.lowerPositionLimit[:7]),
                     upper=tuple(ref.upperPositionLimit[:7]), velocity=tuple(ref.velocityLimit[:7]))
     tool = np.eye(4)
     tool[2, 3] = PANDA_FLANGE
-    gen = pin.buildModelFromXML(urdf_from_dh(table, name="panda_from_dh", tool=tool))
+    gen = pin.buildModelFromXML(generator(table, name="panda_from_dh", tool=tool))
     return gen, gen.getFrameId(TOOL_FRAME), ref, ref.getFrameId(REFERENCE_FRAME)
 
 
-def panda_fk_pair(qs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Poses (n, 4, 4) of the generated ``tool`` and the reference flange at arm joints ``qs`` (n, 7)."""
-    gen, fg, ref, fr = panda_models()
+def panda_fk_pair(qs: np.ndarray, generator=urdf_from_dh) -> tuple[np.ndarray, np.ndarray]:
+    """Poses (n, 4, 4) of the generated ``tool`` and the reference flange at arm joints ``qs`` (n, 7)
+    (the generated model built by ``generator``, :func:`iik.urdf.urdf_from_dh` by default)."""
+    gen, fg, ref, fr = panda_models(generator)
     dg, dr = gen.createData(), ref.createData()
     Tg, Tr = np.empty((len(qs), 4, 4)), np.empty((len(qs), 4, 4))
     fingers = np.zeros(ref.nq - 7)

@@ -11,7 +11,7 @@ import pinocchio as pin
 
 from iik.planning.robot_model import thesis_model
 
-__all__ = ["thesis_model", "tool_frame_id", "tool_poses", "tool_jacobians"]
+__all__ = ["thesis_model", "tool_frame_id", "tool_poses", "tool_jacobians", "joint_placements"]
 
 
 def tool_frame_id() -> int:
@@ -38,4 +38,17 @@ def tool_jacobians(qs: np.ndarray) -> np.ndarray:
     out = np.empty((len(qs), 6, 6))
     for k, q in enumerate(qs):
         out[k] = pin.computeFrameJacobian(tm.model, data, q, tm.tool_frame_id, pin.LOCAL_WORLD_ALIGNED)
+    return out
+
+
+def joint_placements(qs: np.ndarray) -> np.ndarray:
+    """Pinocchio placements ``oMi`` of the joint frames 0..6 for each q in ``qs`` (n, 6):
+    (n, 7, 4, 4) [m]. Joint frame i of the URDF is DH frame i of Table II (frame 0 the base)."""
+    tm = thesis_model()
+    data = tm.model.createData()
+    out = np.empty((len(qs), tm.model.njoints, 4, 4))
+    for k, q in enumerate(qs):
+        pin.forwardKinematics(tm.model, data, q)
+        for i in range(tm.model.njoints):
+            out[k, i] = data.oMi[i].homogeneous
     return out

@@ -57,9 +57,10 @@ def ur5_dh_table() -> DHTable:
                    upper=(2 * np.pi,) * 6, velocity=(3.15,) * 6)
 
 
-def ur5_generated_urdf() -> str:
-    """URDF text of the UR5 from its DH table (no collision geometry)."""
-    return urdf_from_dh(ur5_dh_table(), name="ur5_from_dh", effort=(150.0,) * 3 + (28.0,) * 3)
+def ur5_generated_urdf(generator=urdf_from_dh) -> str:
+    """URDF text of the UR5 from its DH table (no collision geometry), by ``generator``
+    (:func:`iik.urdf.urdf_from_dh` unless a check substitutes another)."""
+    return generator(ur5_dh_table(), name="ur5_from_dh", effort=(150.0,) * 3 + (28.0,) * 3)
 
 
 def ur5_reference_path() -> Path:
@@ -70,17 +71,17 @@ def ur5_reference_path() -> Path:
     raise FileNotFoundError("ur5_robot.urdf not found in the example-robot-data distribution")
 
 
-@lru_cache(maxsize=1)
-def ur5_models():
+@lru_cache(maxsize=4)
+def ur5_models(generator=urdf_from_dh):
     """``(generated model, its tool frame id, reference model, its tool0 frame id)``."""
-    gen = pin.buildModelFromXML(ur5_generated_urdf())
+    gen = pin.buildModelFromXML(ur5_generated_urdf(generator))
     ref = pin.buildModelFromUrdf(str(ur5_reference_path()))
     return gen, gen.getFrameId(TOOL_FRAME), ref, ref.getFrameId(REFERENCE_FRAME)
 
 
-def ur5_fk_pair(qs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def ur5_fk_pair(qs: np.ndarray, generator=urdf_from_dh) -> tuple[np.ndarray, np.ndarray]:
     """Poses (n, 4, 4) of the generated ``tool`` and the reference ``tool0`` at ``qs`` (n, 6)."""
-    gen, fg, ref, fr = ur5_models()
+    gen, fg, ref, fr = ur5_models(generator)
     dg, dr = gen.createData(), ref.createData()
     Tg, Tr = np.empty((len(qs), 4, 4)), np.empty((len(qs), 4, 4))
     for k, q in enumerate(qs):

@@ -1,0 +1,80 @@
+"""verification.checks.appendix_e and dexterity: printed numbers and Eq 43-51 graded, not assumed."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from verification.checks import appendix_e as E
+from verification.checks import dexterity as X
+from verification.oracles.abdel_malek import normal_acceleration, position_and_jacobian
+from verification.registry import Context, Verdict
+
+D = np.pi / 180
+
+
+@pytest.fixture(scope="module")
+def ctx(tmp_path_factory):
+    return Context(out_dir=tmp_path_factory.mktemp("report"), quick=True)
+
+
+def test_abdel_malek_a1_reproduces_thesis():
+    r = normal_acceleration([-7 * np.pi / 9, 0, 0, 0, 0], (1, 2), normal_hint=[0.766, 0.6428, 0])
+    mm = r.in_mm()
+    assert r.N0 == pytest.approx([0.7660, 0.6428, 0.0], abs=1e-4)
+    # off-diagonal entries and Q* were not used to recover the link lengths
+    assert mm["H"][1, 3] == pytest.approx(-1703, abs=0.5)
+    assert mm["H"][1, 4] == pytest.approx(-1025.7, abs=0.1)
+    assert mm["Q"][3, 3] == pytest.approx(825.96, abs=0.05)
+    assert mm["Q"][4, 4] == pytest.approx(754.25, abs=0.05)
+    assert np.sort(mm["eig"])[-2:] == pytest.approx([291.4, 1288.9], abs=0.1)
+    assert r.verdict == "+N0"
+
+
+def test_abdel_malek_a2_sigma():
+    q0 = [-160 * D, np.pi / 12, 90 * D, -np.pi / 3, 0]
+    r = normal_acceleration(q0, (2, 4), normal_hint=[0.75, 0.6486, 0.1294])
+    assert r.at_limit == ((1, "lower"),)
+    assert abs(r.in_mm()["sigma"][1]) == pytest.approx(389.2341, abs=1e-3)
+    _, Gq = position_and_jacobian(np.array(q0))
+    assert np.abs(r.N0 @ Gq[:, [1, 3]]).max() < 1e-12
+
+
+def test_appendix_e_verdicts_follow_the_printed_numbers(ctx):
+    """A1 and A6 are graded number by number (issue 11: their errata were constants)."""
+    rows = {r.id: r for r in E.appendix_e(ctx, E.printed_values)}
+    a1 = {d.id: d for d in rows["a1"].details}
+    assert rows["a1"].verdict is Verdict.ERRATUM
+    assert a1["u0"].verdict is Verdict.ERRATUM and a1["h_offdiag"].verdict is Verdict.ERRATUM
+    assert a1["q"].verdict is Verdict.HOLDS and a1["conclusion"].verdict is Verdict.HOLDS
+    assert "lengths-circular" in a1["h_diag"].depends_on
+    assert rows["a2"].verdict is Verdict.DOES_NOT_HOLD
+    assert {d.id: d.verdict for d in rows["a6"].details}["conclusion"] is Verdict.HOLDS
+    good = E.appendix_e(ctx, E.recomputed_values)
+    assert all(r.verdict is Verdict.HOLDS for r in good)
+    assert E.eq69_surface(ctx, E.eq69_printed).verdict is Verdict.ERRATUM
+    assert E.eq69_surface(ctx, E.eq69_corrected).verdict is Verdict.HOLDS
+
+
+def test_dexterity_is_graded_from_the_printed_equations(ctx):
+    assert X.beta_convention(ctx, X.sec35_as_printed).verdict is Verdict.ERRATUM
+    assert X.beta_convention(ctx, X.sec35_to_eq42).verdict is Verdict.HOLDS
+    for check, ok in (
+        (X.eq43_nominal_beta, X.eq43_printed),
+        (X.eq44_beta_outer, X.eq44_delta),
+        (X.eq45_beta_inner, X.eq44_delta),
+        (X.eq47_slj_height, X.eq47_printed),
+        (X.eq49_alpha_outer, X.eq49_sigma),
+    ):
+        assert check(ctx, ok).verdict is Verdict.HOLDS, check.__name__
+    # Eq 48 and Eq 50 use atan where the geometry needs asin
+    assert X.eq48_inclination(ctx, X.eq48_printed).verdict is Verdict.ERRATUM
+    assert X.eq48_inclination(ctx, X.eq48_corrected).verdict is Verdict.HOLDS
+    assert X.eq50_inclination(ctx, X.eq48_printed).verdict is Verdict.ERRATUM
+    row = X.printed_admitted_set(ctx, X.admitted_printed)
+    assert row.verdict is Verdict.DOES_NOT_HOLD and "soundness" in row.numbers
+
+
+def test_printed_admits_uses_the_printed_atan():
+    """The transcription: with rise = run the printed Eq 48 gives 45 deg where the geometry gives asin."""
+    assert X.eq48_printed(np.array([X.L1 + 0.5]), 0.5)[0] == pytest.approx(np.pi / 4)

@@ -1,0 +1,54 @@
+"""verification.checks.ik_equations and ik: Eq 5-33 one by one, the method's claims."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from verification.checks import ik as C
+from verification.checks import ik_equations as Q
+from verification.registry import Context, Verdict
+
+
+@pytest.fixture(scope="module")
+def ctx(tmp_path_factory):
+    return Context(out_dir=tmp_path_factory.mktemp("report"), quick=True)
+
+
+def test_sample_points_are_the_joints(ctx):
+    s = Q.sample(ctx)
+    assert np.allclose(np.linalg.norm(s.C - s.B, axis=1), Q.L3)
+    assert np.allclose(np.linalg.norm(s.D - s.C, axis=1), Q.L4)
+    assert np.allclose(np.linalg.norm(s.E - s.D, axis=1), Q.L5)
+
+
+def test_errata_found_per_equation(ctx):
+    rows = {r.id: r for r in Q.wrist_point(ctx, Q.eq9abc_printed)}
+    assert all(rows[k].verdict is Verdict.ERRATUM for k in ("eq9a", "eq9b", "eq9c"))
+    assert Q.eq14_c4(ctx, Q.eq14_printed).verdict is Verdict.ERRATUM
+    assert Q.eq14_c4(ctx, Q.eq14_corrected).verdict is Verdict.HOLDS
+    t56 = {r.id: r for r in Q.eq30_matrices(ctx, lambda q: (Q.eq30_row3_printed(q), Q.eq30_t56_printed(q)))}
+    assert t56["eq30.row3"].verdict is Verdict.HOLDS and t56["eq30.t56"].verdict is Verdict.ERRATUM
+
+
+def test_eq27_holds_near_c3_zero_and_fails_at_it(ctx):
+    """Issue 11: as printed, Eq 27-28 reproduce theta5 on random q incl. |c3| < 1e-3; only c3 = 0 fails."""
+    assert Q.eq27_s45(ctx, Q.eq27_printed).verdict is Verdict.HOLDS
+    exact = Q.eq27_c3_zero(ctx, Q.eq27_printed)
+    assert exact.verdict is Verdict.DOES_NOT_HOLD and exact.measures[0].value == 0.0
+    assert Q.eq27_c3_zero(ctx, Q.eq27_companion).verdict is Verdict.HOLDS
+
+
+def test_eq12_eq13_graded_on_the_extrema_of_E(ctx):
+    """The minimum of ||E|| (not of |E|) is near the wrist azimuth, not the end-effector's (Eq 12)."""
+    r12 = Q.eq12_minimum(ctx, Q.eq12_printed)
+    assert r12.verdict is Verdict.ERRATUM and "atan2(yD, xD)" in r12.errata[0].corrected
+    assert Q.eq13_maximum(ctx, Q.eq13_corrected).verdict is Verdict.HOLDS
+
+
+def test_solution_counts_with_and_without_limits(ctx):
+    free = C.solution_counts(ctx, C.CountClaim(8, 2))
+    limited = C.solution_counts_table_i(ctx, C.CountClaim(8, 2))
+    assert free.verdict is Verdict.DOES_NOT_HOLD and limited.verdict is Verdict.DOES_NOT_HOLD
+    assert limited.measures[1].value < 2  # "at least two" fails with Table I
+    assert C.solution_counts_table_i(ctx, C.CountClaim(16, 1)).verdict is Verdict.HOLDS

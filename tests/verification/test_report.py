@@ -1,0 +1,130 @@
+"""verification.report: the JSON document (schema, index, counts), the markdown rendered from it, and
+stable verdicts across two runs."""
+
+from __future__ import annotations
+
+import json
+from collections import Counter
+
+import jsonschema
+import pytest
+
+from verification import Context, ReportError, read_report, run_checks, write_report
+from verification.assumptions import ASSUMPTIONS
+from verification.markdown import render
+from verification.schema import schema, schema_errors
+from verification.self_test import AWAITING_ADOPTION
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    """Two quick runs of every check, each in a fresh context (same seed)."""
+    out = []
+    for k in range(2):
+        folder = tmp_path_factory.mktemp(f"run{k}")
+        results = run_checks(Context(out_dir=folder, quick=True))
+        out.append((folder, results, write_report(results, folder / "verification.md")))
+    return out
+
+
+@pytest.fixture(scope="module")
+def doc(runs):
+    return json.loads(runs[0][2].with_suffix(".json").read_text(encoding="utf-8"))
+
+
+def test_no_software_failures(runs):
+    for _, results, _ in runs:
+        assert not [r.check.name for r in results if r.error]
+
+
+def test_json_follows_the_schema(doc):
+    jsonschema.validate(doc, schema())  # the reference validator
+    assert schema_errors(doc) == []  # the package's own, used by read_report
+    broken = dict(doc, rows=[dict(doc["rows"][0], verdict="maybe")])
+    assert schema_errors(broken) and schema_errors(dict(doc, extra=1))
+
+
+def test_markdown_is_rendered_from_the_json(runs, doc):
+    assert runs[0][2].read_text(encoding="utf-8") == render(doc)
+
+
+def test_index_lists_all_69_equations_and_7_tables(doc):
+    keys = {it["key"]: it for it in doc["index"]}
+    for n in range(1, 70):
+        assert f"Eq {n}" in keys, n
+    for sub in ("9a", "9b", "9c", "34a", "34b", "34c"):
+        assert f"Eq {sub}" in keys
+    for t in ("I", "II", "III", "IV", "V", "VI", "VII"):
+        assert f"Table {t}" in keys
+    for a in "ABCDEFGHI":
+        assert f"App. {a}" in keys
+    assert sum(it["kind"] == "conclusion" for it in doc["index"]) == 7
+    assert not [k for k, it in keys.items() if it["missing"]], "index items without a row"
+    for it in doc["index"]:
+        assert it["rows"] or it["status"] != "checked", it["key"]
+        assert it["status"] == "checked" or it["note"], it["key"]
+
+
+def test_every_equation_of_17_33_and_43_51_has_its_own_row(doc):
+    """Each has a row covering that equation alone (not only a range)."""
+    for n in list(range(17, 34)) + list(range(43, 52)):
+        own = [r for r in doc["rows"] if r["covers"] == [f"Eq {n}"]]
+        assert own, f"Eq {n}"
+
+
+def test_rows_are_navigable_and_declare_assumptions(doc):
+    ids = [r["id"] for r in doc["rows"]]
+    assert len(ids) == len(set(ids))
+    for r in doc["rows"]:
+        assert ":" in r["check"], r["id"]
+        assert set(r["depends_on"]) <= set(ASSUMPTIONS), r["id"]
+        for f in r["figures"]:
+            assert f.startswith("figures/")
+    mine = [
+        r
+        for r in doc["rows"]
+        if not r["check"].startswith(("verification.checks.planning", "verification.checks.hardware"))
+    ]
+    assert all(r["depends_on"] for r in mine if r["scope"] == "thesis" and r["parent"] is None)
+
+
+def test_grouped_claims_count_once(doc):
+    top = [r for r in doc["rows"] if r["parent"] is None]
+    counts = Counter(r["verdict"] for r in top if r["scope"] == "thesis")
+    assert doc["summary"]["thesis"] == {v: counts.get(v, 0) for v in doc["summary"]["thesis"]}
+    groups = {r["id"]: r for r in top}
+    for gid, n in (("kinematics.appc", 15), ("singularities.table_vi", 37), ("singularities.table_vii", 10)):
+        assert sum(r["parent"] == gid for r in doc["rows"]) == n and gid in groups
+
+
+def test_header_names_commit_versions_seed_machine(doc):
+    h = doc["header"]
+    assert h["commit"] and h["seed"] == 20120101 and h["quick"] is True
+    assert h["versions"]["numpy"] and h["machine"]["cpus"]
+
+
+def test_two_quick_runs_give_the_same_verdicts(runs):
+    """Same seed, fresh contexts: identical verdicts. The modules awaiting conversion are left out: the
+    Sec 4.3 early-update row depends on host latency (it flipped under load) until hardware.py converts."""
+    verdicts = [{r.id: r.verdict for res in results if res.check.func.__module__ not in AWAITING_ADOPTION
+                 for r in res.rows} for _, results, _ in runs]
+    assert verdicts[0].keys() == verdicts[1].keys()
+    differ = {
+        k: (verdicts[0][k].value, verdicts[1][k].value)
+        for k in verdicts[0]
+        if verdicts[0][k] != verdicts[1][k]
+    }
+    assert not differ, differ
+
+
+def test_read_report(runs, tmp_path):
+    doc = read_report(runs[0][2].with_suffix(".json"))
+    assert doc["format"] == "iik-verification-report/1"
+    with pytest.raises(ReportError, match="no such file"):
+        read_report(tmp_path / "none.json")
+    (tmp_path / "bad.json").write_text("{", encoding="utf-8")
+    with pytest.raises(ReportError, match="not a JSON"):
+        read_report(tmp_path / "bad.json")
+    (tmp_path / "wrong.json").write_text(json.dumps({"format": "x"}), encoding="utf-8")
+    with pytest.raises(ReportError, match="schema"):
+        read_report(tmp_path / "wrong.json")

@@ -1,0 +1,254 @@
+"""Sec 4.2.1: the three predefined paths -- step length, the IIK at every step, IIK vs Newton.
+
+The paths are the shipped scenarios ``p1``-``p3`` (reconstructed: the thesis gives the
+heights, two via-points per path, 39 steps per segment and an arc between the
+via-points of paths 1 and 2, but not the points or orientations), built into step-points
+with the nominal (gradually changing Euler) orientation of Sec 4.2.1 by
+:func:`iik.planning.build_path`. The arc-route claim (Sec 4.2.1.1-4.2.1.2) is graded in
+the Planning section.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+import iik
+from iik.joint_path import effort_index
+from iik.planning import build_path, poses_of
+from iik.planning.scenario_io import load_scenario, thesis_scenario_paths
+from iik.scene import THESIS_SCENE
+
+from ..oracles.baselines import newton_pinv
+from ..registry import Forms, Measure, Row, Verdict, register, verdict_of
+from .ik import Solver
+
+SECTION = "Predefined paths (Sec 4.2.1)"
+ARM = iik.THESIS_ARM
+PATHS = ("p1", "p2", "p3")
+MAX_STEP = 0.030  # [m] Sec 4.2.1: "to cover a maximum of 30 mm per step-point"
+_DEP = ("l1", "lengths", "scene", "platform")
+
+
+def _scenarios(ctx) -> dict:
+    key = "paths.scenarios"
+    if key not in ctx.cache:
+        ctx.cache[key] = {p.stem: load_scenario(p) for p in thesis_scenario_paths() if p.stem in PATHS}
+    return ctx.cache[key]
+
+
+def _path(sc, steps: int | None = None):
+    if steps is not None:
+        sc = dataclasses.replace(sc, steps_per_segment=steps)
+    return build_path(sc, scene=THESIS_SCENE)
+
+
+def _poses(ctx) -> dict:
+    key = "paths.poses"
+    if key not in ctx.cache:
+        ctx.cache[key] = {
+            name: poses_of(cp.points, cp.euler)
+            for name, cp in ((n, _path(sc)) for n, sc in _scenarios(ctx).items())
+        }
+    return ctx.cache[key]
+
+
+@register(
+    SECTION,
+    order=60.0,
+    depends_on=_DEP,
+    forms=Forms(printed=39, good=60, bad=10, good_is="60 steps per segment", bad_is="10 steps per segment"),
+)
+def step_length(ctx, steps):
+    """Sec 4.2.1: ``steps`` steps per segment keep every step within 30 mm."""
+    lines, worst = [], 0.0
+    for name, sc in _scenarios(ctx).items():
+        cp = _path(sc, steps)
+        d = np.linalg.norm(np.diff(cp.points, axis=0), axis=1)
+        seg = np.linalg.norm(np.diff(np.vstack([cp.points[i] for i in cp.key_index]), axis=0), axis=1)
+        worst = max(worst, float(d.max()))
+        lines.append(
+            f"{name}: segments {', '.join(f'{s * 1e3:.0f}' for s in seg)} mm ({'/'.join(cp.routes)}), "
+            f"{len(cp.points) - 1} steps, longest {d.max() * 1e3:.1f} mm"
+        )
+    m = (Measure("longest step", worst, MAX_STEP, "m"),)
+    return Row(
+        f"The segments of the predefined paths divided into {steps} steps each cover at most 30 mm per "
+        "step-point.",
+        "Sec 4.2.1",
+        f"scenarios {', '.join(PATHS)} (reconstructed start, via-points, goal) built with {steps} steps per "
+        "segment by iik.planning.build_path (arcs where the scenario says so; repulsion and platform/floor "
+        "lift included); every step length measured",
+        "; ".join(lines),
+        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        id="step_length",
+        measures=m,
+    )
+
+
+def _within(Q, V, i) -> np.ndarray:
+    q = Q[i][V[i]]
+    return q[np.atleast_1d(ARM.within_limits(q))] if len(q) else q
+
+
+def _solutions(solver: Solver, T) -> list[np.ndarray]:
+    Q, V, *_ = solver(T)
+    return [_within(Q, V, i) for i in range(len(T))]
+
+
+@register(
+    SECTION,
+    order=61.0,
+    depends_on=_DEP + ("complete-solver",),
+    forms=Forms(
+        printed=Solver("thesis IIK", "thesis"),
+        good=Solver("complete elimination solver", "complete"),
+        bad=Solver("thesis IIK on a 30 deg grid", "thesis", n_grid=12),
+        good_is="the complete elimination solver",
+        bad_is="the thesis IIK with a 30 deg theta1 grid",
+    ),
+)
+def iik_along_paths(ctx, solver):
+    """Sec 4.2.1 / 5.2: the IIK computed the joint angles at every position of the predefined paths."""
+    complete = Solver("complete", "complete")
+    lines, n_solvable, n_missed, n_none = [], 0, 0, 0
+    for name, T in _poses(ctx).items():
+        ref = _solutions(complete, T)
+        got = _solutions(solver, T)
+        solvable = np.array([len(r) > 0 for r in ref])
+        missed = solvable & np.array([len(g) == 0 for g in got])
+        n_solvable += int(solvable.sum())
+        n_missed += int(missed.sum())
+        n_none += int((~solvable).sum())
+        lines.append(
+            f"{name}: {len(T)} step-points, {int((~solvable).sum())} with no solution within Table I at "
+            f"the nominal orientation; the form misses {int(missed.sum())} of the {int(solvable.sum())} "
+            "solvable ones"
+        )
+    m = (Measure("solvable step-points without a solution from the form", n_missed, 0),)
+    return Row(
+        "The IIK computes the joint angles at each position along the predefined paths.",
+        "Sec 4.2.1, Sec 5.2",
+        f"{solver.name}, within Table I, at every step-point of {', '.join(PATHS)} with the nominal "
+        "orientation; "
+        "graded on the step-points where the complete solver finds a solution (the others are a limit of the "
+        "reconstructed paths and orientations, reported)",
+        "; ".join(lines)
+        + f". Total: {n_none} step-points unsolvable by any method at the nominal orientation",
+        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        id="iik_along_paths",
+        measures=m,
+        reason=""
+        if n_missed == 0
+        else "the theta1 grid misses roots and c3 = +-sqrt(1 - s3^2) (Eq 21) loses accuracy near theta3 = "
+             "+-90 "
+        "deg (see ik.completeness)",
+    )
+
+
+def _wrap(a):
+    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
+
+
+def _newton(T, prev):
+    """Newton from ``prev``; its answer wrapped to (-pi, pi] (it does not wrap while iterating)."""
+    r = newton_pinv(T, prev)
+    return _wrap(r.q) if r.converged else None
+
+
+def _pick_min_effort(cands: np.ndarray, prev: np.ndarray, T) -> np.ndarray:
+    """The thesis's rule: the IIK solution of least Eq 54 effort from the previous configuration."""
+    return cands[int(np.argmin(np.atleast_1d(effort_index(prev, cands))))]
+
+
+def _pick_max_effort(cands: np.ndarray, prev: np.ndarray, T) -> np.ndarray:
+    return cands[int(np.argmax(np.atleast_1d(effort_index(prev, cands))))]
+
+
+def _pick_newtons(cands: np.ndarray, prev: np.ndarray, T) -> np.ndarray:
+    """Newton's own answer (known-good: the check must call identical paths identical)."""
+    qn = _newton(T, prev)
+    return _pick_min_effort(cands, prev, T) if qn is None else qn
+
+
+_SAME = 1e-6  # [rad]: both iterate to 1e-6 deg (Sec 4.2.1); "the same values" within this
+
+
+@register(
+    SECTION,
+    order=62.0,
+    depends_on=_DEP,
+    forms=Forms(
+        printed=_pick_min_effort,
+        good=_pick_newtons,
+        bad=_pick_max_effort,
+        good_is="Newton's own answer in place of the IIK's",
+        bad_is="the IIK solution of largest effort",
+        rows=("iik_vs_newton.joints", "iik_vs_newton.effort"),
+    ),
+)
+def iik_vs_newton(ctx, pick):
+    """Sec 4.2.1.1: along the predefined paths IIK and Newton give the same joint values and effort."""
+    thesis = Solver("thesis IIK", "thesis")
+    dq_all, de_all, lines = [], [], []
+    for name, T in _poses(ctx).items():
+        sols = _solutions(thesis, T)
+        dq, de = [], []
+        prev = None
+        for i in range(len(T)):
+            if len(sols[i]) == 0:
+                prev = None  # a gap: restart after it
+                continue
+            if prev is None:
+                prev = _pick_min_effort(sols[i], np.zeros(6), T[i])
+                continue
+            q_iik = pick(sols[i], prev, T[i])
+            qn = _newton(T[i], prev)
+            dq.append(float(np.max(np.abs(_wrap(q_iik - qn)))) if qn is not None else np.inf)
+            de.append(abs(effort_index(prev, q_iik) - effort_index(prev, qn)) if qn is not None else np.inf)
+            prev = q_iik
+        dq, de = np.array(dq), np.array(de)
+        dq_all.append(dq)
+        de_all.append(de)
+        lines.append(
+            f"{name}: {len(dq)} steps compared, joints identical on {np.mean(dq <= _SAME):.0%}, largest "
+            f"difference {np.max(dq):.2g} rad"
+        )
+    dq, de = np.concatenate(dq_all), np.concatenate(de_all)
+    mq = (Measure("share of steps where the joint values differ", float(np.mean(dq > _SAME)), 0.0),)
+    me = (Measure("share of steps where the effort index differs", float(np.mean(de > _SAME)), 0.0),)
+    method = (
+        f"thesis IIK at every step-point of {', '.join(PATHS)} (nominal orientation), the solution chosen by "
+        "the form from the previous IIK configuration; Newton (pseudo-inverse, Pinocchio) started from the "
+        "same "
+        "previous configuration, as in the thesis; steps where the IIK has no solution skipped; same = "
+        "within "
+        f"{_SAME:g} rad"
+    )
+    return [
+        Row(
+            "IIK and Newton give exactly the same joint angles along the predefined paths (Figs 31, 35, 39).",
+            "Sec 4.2.1.1",
+            method,
+            "; ".join(lines),
+            verdict_of(mq, fail=Verdict.DOES_NOT_HOLD),
+            id="iik_vs_newton.joints",
+            measures=mq,
+            reason=""
+            if mq[0].holds
+            else "on some steps Newton reaches a solution the thesis IIK missed (theta3 "
+            "near +-90 deg, Eq 21), leaves Table I, or jumps to another branch",
+        ),
+        Row(
+            "Hence the effort index (Eq 54) of both is identical (Figs 32, 36, 40).",
+            "Sec 4.2.1.1, Eq 54",
+            method + "; Eq 54 from the previous configuration to each answer",
+            f"effort index differs (> {_SAME:g} rad) on {np.mean(de > _SAME):.1%} of {len(de)} steps; "
+            "largest "
+            f"difference {np.max(de):.2g} rad",
+            verdict_of(me, fail=Verdict.DOES_NOT_HOLD),
+            id="iik_vs_newton.effort",
+            measures=me,
+        ),
+    ]

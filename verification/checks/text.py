@@ -1,0 +1,120 @@
+"""The text's own cross-references: tables, figures, sections, equations and points it cites.
+
+Each slip is a citation whose target, by the thesis's own List of Figures, List of Tables,
+Table of Contents or equation numbering, is not what the sentence describes. The
+sentences and captions are quoted from the thesis text (copied here; the project does
+not read the thesis at run time). App. A's citation of [19] for the PowerCube guide is
+graded in the Hardware section.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..registry import Erratum, Measure, Row, Verdict, register
+
+SECTION = "The text (cross-references)"
+
+
+@dataclass(frozen=True)
+class Slip:
+    """A cross-reference: where, what the text cites, what that target is, and the right target."""
+
+    where: str
+    quote: str
+    cited_is: str
+    correct: str
+
+
+#: The slips found by reading each citation against the thesis's lists (captions quoted from them).
+SLIPS = (
+    Slip(
+        "Sec 3.3.1 (after Eq 9)",
+        "the offset links parameters from table I",
+        "Table I: 'The 6-DOF robotic arm joint limits'",
+        "Table II (Denavit-Hartenberg parameters: l2, l3, l4)",
+    ),
+    Slip(
+        "Sec 3.3.2",
+        "Using the Law of Cosines on the triangle formed by A, B and C in figure 9a",
+        "A is the base; Eq 14 relates |D - B|, l3 = |BC| and l4 = |CD| (rows ik.eq14, ik.eq7)",
+        "the triangle formed by B, C and D",
+    ),
+    Slip(
+        "Sec 3.3.3",
+        "x_D, y_D and z_D parameters, are known from Equation 9b",
+        "Eq 9b gives y_D only",
+        "Equations 9a-9c",
+    ),
+    Slip(
+        "Sec 3.4.3",
+        "The complete analysis ... for two sample points ... is presented in Appendix E",
+        "Appendix E analyses three points (A1, A2, A6)",
+        "three sample points",
+    ),
+    Slip(
+        "Sec 3.4.3",
+        "s(2) = [theta1 = 160, theta3 = 90, theta5 = 0]; s(3) = [theta1 = -160, ...]",
+        "Table VI and App. E list s(2) with theta1 = -160 deg and s(3) with +160 deg",
+        "s(2) with theta1 = -160 deg, s(3) with +160 deg (or swap the names in Table VI)",
+    ),
+    Slip(
+        "Sec 3.5.3.2",
+        "links 3 and 4 required to be completely contracted as shown in Figure 4a",
+        "Figure 4: 'Workspace of the manipulator' (it has no part a)",
+        "Figure 26 ('Configuration with maximum alpha orientation and links 3 and 4 contracted')",
+    ),
+    Slip(
+        "Sec 4.2.1.1",
+        "the index presented in Figure 27 represents the CPU cycles required for each method",
+        "Figure 27: 'Ellipsoid boundary enclosing a rectangular prism obstacle'",
+        "Figure 33 ('The first predefined path computational efforts')",
+    ),
+    Slip(
+        "Sec 4.2.1.3",
+        "Figures 32 to 35 show the representation of the path ... for the third predefined path",
+        "Figures 32-35 belong to paths 1 and 2 (Fig 32: effort index of path 1; Figs 33-35: path 2)",
+        "Figures 38 to 41",
+    ),
+    Slip(
+        "Sec 4.3",
+        "Each scenario was properly set (Figure 45) to mimic the simulations presented in Section 4.1",
+        "Section 4.1 is the chapter's introduction",
+        "Section 4.2 (Simulation Results)",
+    ),
+    Slip(
+        "App. G",
+        "As discussed in Section 5.2, the graphical interface can be enhanced by implementing a real time "
+        "visual sensor",
+        "Section 5.2 holds the conclusions",
+        "Section 5.3 (Recommendations, item 1)",
+    ),
+)
+
+
+@register(
+    SECTION,
+    order=990.0,
+    depends_on=("text",),
+    by_construction="a reading of each citation against the thesis's own lists of figures and tables, table "
+                    "of "
+    "contents and equation numbering (quoted in verification/checks/text.py); no computation",
+)
+def cross_references(ctx):
+    """The cross-reference slips of the text, one erratum record each."""
+    m = (Measure("citations whose target is not what the sentence describes", len(SLIPS), 0),)
+    return Row(
+        "The tables, figures, sections, equations and points the text cites are the ones it describes.",
+        "Cross-references (whole text)",
+        "every numbered citation read against the List of Figures, List of Tables, Table of Contents and "
+        "equation "
+        "numbering of the thesis; App. A's [19] for [20] is in the Hardware section",
+        "; ".join(f"{s.where}: '{s.quote}' -> {s.correct}" for s in SLIPS),
+        Verdict.ERRATUM if SLIPS else Verdict.HOLDS,
+        id="cross_references",
+        measures=m,
+        covers=("Cross-references",),
+        errata=tuple(
+            Erratum(f"{s.where} (citation)", s.quote, s.correct, f"cited target: {s.cited_is}") for s in SLIPS
+        ),
+    )
