@@ -20,9 +20,10 @@ import numpy as np
 from ..errors import InvalidInputError
 from ..rotations import pose_from_zxz, zxz_from_matrix
 from ..scene import AxisBox, Scene
+from .errors import ScenarioError
 from .obstacles import ellipsoid_value, enclosing_radii, repel_points
-from .path import arc_steps, densify, interpolate_orientation, straight_steps
-from .scenario import Scenario
+from .path import MAX_STEP_POINTS, arc_steps, densify, interpolate_orientation, straight_steps
+from .scenario import Scenario, check_step_points
 from .viapoints import via_point_path
 
 __all__ = ["CartesianPath", "build_path", "poses_of"]
@@ -105,17 +106,22 @@ def _lift(points: np.ndarray, platform: AxisBox | None, floor_z: float | None, s
 
 
 def _key_points(sc: Scenario, via_points) -> tuple[np.ndarray, np.ndarray, tuple[int, ...]]:
-    """(start, via-points, goal) rows, the via-points (k, 3) [m] and their Table III numbers."""
+    """(start, via-points, goal) rows, the via-points (k, 3) [m] and their Table III numbers.
+
+    The scenario's requested via-points stay where they are; the planner's own
+    (Table IV, or ``via_points`` given by a redesign) are repelled like step-points.
+    """
     p0 = np.asarray(sc.start.position, float)
     p1 = np.asarray(sc.goal.position, float)
     nums: tuple[int, ...] = ()
     if via_points is not None:
         vias = np.asarray(via_points, float).reshape(-1, 3)
-    elif sc.via_points is not None:
-        vias = np.asarray(sc.via_points, float).reshape(-1, 3)
+    elif sc.via_points is not None:  # requested: the tool passes through them (Sec 4.2.1), never moved
+        vias = np.reshape(sc.via_points, (-1, 3))
+        return np.vstack([p0, vias, p1]), vias, nums
     else:
         vias, nums = via_point_path(p0, p1)  # Table IV
-    if len(vias):  # via-points may be repelled by ordinary obstacles too (Sec 3.6.3)
+    if len(vias):  # the planner's via-points may be repelled by ordinary obstacles too (Sec 3.6.3)
         vias, _ = repel_points(np.vstack([p0, vias, p1]), sc.obstacles, p0, p1, safety_zone=sc.safety_zone)
         vias = vias[1:-1]
     return np.vstack([p0, vias, p1]), vias, nums
@@ -165,6 +171,7 @@ def build_path(sc: Scenario, *, scene: Scene | None = None, via_points=None,
     routes = tuple(routes or sc.segments or ("line",) * nseg)
     if len(routes) != nseg:
         raise InvalidInputError("routes", f"needs {nseg} entries, got {len(routes)}")
+    check_step_points(sc, keys, routes)  # bounded memory before any point is made
     p0, p1 = keys[0], keys[-1]
     pts, seg, key_index = [keys[:1]], [0], [0]
     for k in range(nseg):
@@ -192,6 +199,11 @@ def build_path(sc: Scenario, *, scene: Scene | None = None, via_points=None,
         dense, src = densify(points, max_step)
         if len(dense) == len(points):
             break
+        if len(dense) > MAX_STEP_POINTS:
+            raise ScenarioError("planning.max_step",
+                                f"the path repelled around the obstacles needs {len(dense)} step-points of "
+                                f"at most {max_step:g} m; at most {MAX_STEP_POINTS} are allowed (bounded "
+                                "memory and time)")
         old = np.rint(src).astype(int)
         kept = np.isclose(src, old)
         idx_map = {int(o): j for j, o in enumerate(old) if kept[j]}

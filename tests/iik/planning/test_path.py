@@ -12,6 +12,9 @@ from iik.planning.path import (
     densify,
     interpolate_joints,
     interpolate_orientation,
+    path_length,
+    segment_length,
+    segment_steps,
     straight_steps,
 )
 from iik.rotations import zxz_matrix
@@ -93,3 +96,13 @@ def test_bad_method_and_counts():
         interpolate_orientation([0, 0, 0], [1, 1, 1], 3, method="lerp")
     with pytest.raises(InvalidInputError, match="n_steps"):
         straight_steps([0, 0, 0], [1, 0, 0], n_steps=0)
+
+
+@given(point, point, st.sampled_from(["line", "arc"]), st.floats(0.005, 0.2),
+       st.one_of(st.none(), st.integers(1, 50)))
+def test_segment_steps_count_the_steps_without_making_them(a, b, route, max_step, n_steps):
+    make = arc_steps if route == "arc" else straight_steps
+    pts = make(a, b, max_step=max_step, n_steps=n_steps)
+    assert segment_steps(a, b, route=route, max_step=max_step, n_steps=n_steps) == len(pts) - 1
+    if route == "line":
+        assert segment_length(a, b) == pytest.approx(path_length(pts), rel=1e-12, abs=1e-15)
