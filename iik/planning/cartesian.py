@@ -2,10 +2,12 @@
 
 :func:`build_path` joins start, via-points (Table IV or explicit) and goal by
 straight lines (or arcs, Sec 4.2.1.1) divided into step-points (<= 30 mm, or a
-fixed count such as 39 per segment); points inside an obstacle's padded
-ellipsoid are repelled (Eq 52-53, Sec 3.6.2.2); step-points under the
-platform or floor safety level are lifted; too-long steps created by repulsion
-are subdivided and repelled again. Orientations follow the gradual Euler
+fixed count such as 39 per segment; at most :data:`~iik.planning.MAX_STEP_POINTS`
+in all); points inside an obstacle's padded ellipsoid are repelled (Eq 52-53,
+Sec 3.6.2.2), and so are the planner's via-points (Sec 3.6.3), never the
+scenario's requested ones (Sec 4.2.1: the tool "must pass through such
+via-points"); step-points under the platform or floor safety level are lifted;
+too-long steps created by repulsion are subdivided and repelled again. Orientations follow the gradual Euler
 change (or slerp). Frames and units: base frame 0, m, rad (Z-X-Z angles of the
 corrected Eq 42).
 """
@@ -160,9 +162,13 @@ def build_path(sc: Scenario, *, scene: Scene | None = None, via_points=None,
         sc: The scenario (base frame, m, rad).
         scene: Its platform is lifted over, never repelled (Sec 3.6.3), and points stay a
             safety zone above its floor; ``None``: no platform and no floor.
-        via_points: Override the via-points ((k, 3) [m]); default: ``sc.via_points``,
-            else Table IV by region.
+        via_points: The planner's own via-points ((k, 3) [m], repelled like step-points);
+            default: ``sc.via_points`` (requested: kept in place), else Table IV by region.
         routes: Override the per-segment routes.
+
+    Raises:
+        ScenarioError: (``planning.max_step`` / ``planning.steps_per_segment``) the path
+            would have more than :data:`~iik.planning.MAX_STEP_POINTS` step-points.
     """
     platform = scene.platform if scene is not None else None
     floor_z = scene.floor.z if scene is not None else None

@@ -62,13 +62,25 @@ def _point(p, name: str) -> np.ndarray:
 
 
 def _count(length: float, max_step: float, n_steps: int | None) -> int:
+    """Steps of a segment of ``length`` [m]: ``n_steps``, or ``ceil(length / max_step)`` (at most 2**62)."""
     if n_steps is not None:
         if int(n_steps) != n_steps or n_steps < 1:
             raise InvalidInputError("n_steps", f"must be a positive integer, got {n_steps!r}")
         return int(n_steps)
     if not (np.isfinite(max_step) and max_step > 0):
         raise InvalidInputError("max_step", f"must be positive and finite, got {max_step!r}")
-    return max(1, math.ceil(length / max_step - 1e-12))
+    ratio = length / max_step - 1e-12
+    return max(1, math.ceil(ratio)) if ratio < 2.0**62 else 2**62
+
+
+def _made(length: float, max_step: float, n_steps: int | None) -> int:
+    """:func:`_count`, refused above :data:`MAX_STEP_POINTS` (the points are about to be made)."""
+    n = _count(length, max_step, n_steps)
+    if n >= MAX_STEP_POINTS:
+        raise InvalidInputError("n_steps" if n_steps is not None else "max_step",
+                                f"{n} steps over {length:.3f} m; at most {MAX_STEP_POINTS - 1} "
+                                "(bounded memory)")
+    return n
 
 
 def straight_steps(a, b, *, max_step: float = MAX_STEP, n_steps: int | None = None) -> np.ndarray:
@@ -83,7 +95,7 @@ def straight_steps(a, b, *, max_step: float = MAX_STEP, n_steps: int | None = No
         (n_steps + 1, 3) points [m]; ``a`` first and ``b`` last.
     """
     a, b = _point(a, "a"), _point(b, "b")
-    n = _count(float(np.linalg.norm(b - a)), max_step, n_steps)
+    n = _made(float(np.linalg.norm(b - a)), max_step, n_steps)
     s = np.linspace(0.0, 1.0, n + 1)[:, None]
     return a + s * (b - a)  # Sec 3.6.1: linear division of the X, Y, Z differences
 
@@ -105,7 +117,7 @@ def arc_steps(a, b, *, max_step: float = MAX_STEP, n_steps: int | None = None) -
         return straight_steps(a, b, max_step=max_step, n_steps=n_steps)
     fa, fb = math.atan2(a[1], a[0]), math.atan2(b[1], b[0])
     s, cum, length = _arc_samples(a, b)
-    n = _count(length, max_step, n_steps)
+    n = _made(length, max_step, n_steps)
     # Equal arc-length spacing: invert the cumulative length.
     target = np.linspace(0.0, cum[-1], n + 1)
     out = _cyl(ra, rb, fa, fb, a[2], b[2], np.interp(target, cum, s))

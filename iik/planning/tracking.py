@@ -129,7 +129,7 @@ def _solve(points: np.ndarray, euler: np.ndarray, arm: Arm, budget: Budget) -> l
     """Usable solutions at every pose, solved :data:`IK_CHUNK` poses at a time (a budget tick between)."""
     out: list[np.ndarray] = []
     for i in range(0, len(points), IK_CHUNK):
-        budget.tick("IK", i, len(points))
+        budget.tick("IK poses", i, len(points))
         T = poses_of(points[i:i + IK_CHUNK], euler[i:i + IK_CHUNK])
         out += [_usable(r, arm) for r in solve_many(T, arm=arm)]
     return out
