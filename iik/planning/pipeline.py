@@ -224,8 +224,7 @@ class PlanResult:
     @property
     def best_attempt(self) -> Attempt | None:
         """The checked candidate of largest clearance (the accepted one if any); None if none was checked."""
-        checked = [a for a in self.attempts if not math.isnan(a.clearance)]
-        return max(checked, key=lambda a: (a.accepted, a.clearance), default=None)
+        return _best(self.attempts)
 
     @property
     def log(self) -> tuple[str, ...]:
@@ -293,9 +292,14 @@ def plan(scenario: Scenario | str | Path, options: PlanOptions = PlanOptions(), 
     return _failed(p, log, reason)
 
 
+def _best(attempts) -> Attempt | None:
+    """The checked attempt of largest clearance, accepted ones first (None if none was checked)."""
+    checked = [a for a in attempts if not math.isnan(a.clearance)]
+    return max(checked, key=lambda a: (a.accepted, a.clearance), default=None)
+
+
 def _timeout_reason(exc: PlanningTimeout, log: list[Attempt]) -> str:
-    checked = [a for a in log if not math.isnan(a.clearance)]
-    best = max(checked, key=lambda a: (a.accepted, a.clearance), default=None)
+    best = _best(log)
     return (f"timed out after {exc.elapsed:.1f} s (timeout {exc.timeout:g} s: PlanOptions.timeout, "
             f"iik plan --timeout) during {exc.stage}; "
             + (f"best attempt so far: {best}" if best else "no candidate path was checked"))
