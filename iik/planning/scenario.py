@@ -199,6 +199,9 @@ class Scenario:
             if isinstance(self.via_points, (str, bytes, dict)) or not hasattr(self.via_points, "__len__"):
                 raise ScenarioError("planning.via_points",
                                     f"expected a list of points, got {brief(self.via_points)}")
+            if len(self.via_points) > MAX_STEP_POINTS - 2:  # each adds a step-point
+                raise ScenarioError("planning.via_points", f"{len(self.via_points)} via-points; at most "
+                                                           f"{MAX_STEP_POINTS - 2} are allowed")
             set_(self, "via_points", tuple(point3(v, f"planning.via_points[{i}]")
                                            for i, v in enumerate(self.via_points)))
         if self.segments is not None:
@@ -245,9 +248,6 @@ def check_step_points(sc: Scenario, keys: np.ndarray | None = None,
         vias = (via_point_path(sc.start.position, sc.goal.position)[0] if sc.via_points is None
                 else sc.via_points)
         keys = np.vstack([sc.start.position, np.reshape(vias, (-1, 3)), sc.goal.position])
-    if len(keys) > MAX_STEP_POINTS:
-        raise ScenarioError("planning.via_points",
-                            f"{len(keys) - 2} via-points; at most {MAX_STEP_POINTS - 2} are allowed")
     routes = routes or sc.segments or ("line",) * (len(keys) - 1)
     counts = [segment_steps(a, b, route=r, max_step=sc.max_step, n_steps=sc.steps_per_segment)
               for a, b, r in zip(keys[:-1], keys[1:], routes, strict=True)]
@@ -338,7 +338,7 @@ def check_scenario(sc: Scenario, *, platform: Obstacle | None = None, floor_z: f
     * inside the workspace (if ``in_workspace`` is given), with the closest
       reachable point in the message (``closest_reachable``), rounded so that
       pasting it into the file passes these checks;
-    * and the path has at most :data:`~iik.planning.MAX_STEP_POINTS` step-points
+    * then the path has at most :data:`~iik.planning.MAX_STEP_POINTS` step-points
       (:func:`check_step_points`).
 
     Args:
@@ -347,7 +347,6 @@ def check_scenario(sc: Scenario, *, platform: Obstacle | None = None, floor_z: f
     """
     if frame not in FRAMES or (frame == "floor" and floor_z is None):
         raise InvalidInputError("frame", f"expected 'base', or 'floor' with floor_z, got {frame!r}")
-    check_step_points(sc)
     place = _Placement(sc.obstacles, platform, floor_z, in_workspace, _Frame(frame, floor_z or 0.0))
     points = [("start.position", sc.start.position), ("goal.position", sc.goal.position)]
     points += [(f"planning.via_points[{i}]", v) for i, v in enumerate(sc.via_points or ())]
@@ -358,3 +357,4 @@ def check_scenario(sc: Scenario, *, platform: Obstacle | None = None, floor_z: f
         if not place.reachable(p):
             hint = place.suggest(p, closest_reachable) if closest_reachable is not None else ""
             raise ScenarioError(fld, f"{place.frame.show(p)} is outside the workspace{hint}")
+    check_step_points(sc)
