@@ -67,6 +67,8 @@ P = (0.3, 0.25, -0.35)
     (lambda: Scenario(name="../out", start=S, goal=G), "name"),
     (lambda: Scenario(name="t", start=S, goal=G, title=b"x"), "title"),
     (lambda: Scenario(name="t", start=S, goal=G, obstacles=("box",)), "obstacles[0]"),
+    (lambda: Scenario(name="t", start=S, goal=G, obstacles=[Obstacle((0.5, 0, 0), (1, 1, 1))] * 101),
+     "obstacles"),
     (lambda: Scenario(name="t", start=S, goal=G, obstacles=(Obstacle((500.0, 0, 0), (1, 1, 1)),)),
      "obstacles[0].center[0]"),
 ])
@@ -126,3 +128,11 @@ def test_too_many_step_points_name_the_limit_and_the_smallest_max_step_that_fits
     with pytest.raises(ScenarioError) as exc:
         check_step_points(_placed(via_points=((0.4, 0.1, 0.0),), steps_per_segment=MAX_STEP_POINTS // 2))
     assert exc.value.field == "planning.steps_per_segment"
+
+
+def test_an_obstacle_name_is_a_string():
+    from iik.errors import InvalidInputError
+
+    with pytest.raises(InvalidInputError) as exc:
+        Obstacle((0.5, 0.0, 0.0), (0.1, 0.1, 0.1), name=7)
+    assert exc.value.argument == "name"
