@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 
@@ -17,12 +18,15 @@ def add_arguments(p) -> None:
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     p.add_argument("--dt", type=float, default=0.01, help="trajectory sample period [s] (default 0.01)")
     p.add_argument("--seed", type=int, default=1, help="seed of the RRT-Connect fallback")
+    p.add_argument("--timeout", default="60", metavar="SECONDS",
+                   help="stop planning after this many seconds with the best attempt so far (default 60)")
 
 
 def run(args) -> int:
     from iik.planning import PlanOptions, plan, write_outputs
 
-    opts = PlanOptions(fallbacks=not args.no_fallbacks, rrt=not args.no_fallbacks, dt=args.dt, seed=args.seed)
+    opts = PlanOptions(fallbacks=not args.no_fallbacks, rrt=not args.no_fallbacks, dt=args.dt, seed=args.seed,
+                       timeout=_seconds(args.timeout, "--timeout"))
 
     def progress(msg: str) -> None:
         print(f"  ... {msg}", file=sys.stderr, flush=True)
@@ -36,3 +40,16 @@ def run(args) -> int:
         print(f"  - {line}")
     print("wrote: " + ", ".join(str(f) for f in files))
     return 0 if res.success else 1
+
+
+def _seconds(text: str, flag: str) -> float:
+    """A positive finite number of seconds, else an error naming ``flag`` (one line, exit 2)."""
+    from iik.errors import InvalidInputError
+
+    try:
+        t = float(text)
+    except ValueError:
+        t = math.nan
+    if not (math.isfinite(t) and t > 0):
+        raise InvalidInputError(flag, f"expected a positive finite number of seconds, got {text!r}")
+    return t

@@ -11,30 +11,45 @@
   repulsion, Table III/IV;
 * :mod:`.collision`, :mod:`.robot_model` -- whole-arm Coal distances from the arm's URDF (Pinocchio);
 * :mod:`.rrt` -- the OMPL RRT-Connect fallback; :mod:`.timing` -- TOPP-RA timing;
-* :mod:`.output` -- CSV files and figures of a result; :mod:`.errors` -- the layer's errors.
+* :mod:`.output` -- CSV files and figures of a result; :mod:`.errors` -- the layer's errors;
+* :mod:`.budget` -- the time budget (``PlanOptions.timeout``) and progress reports of a plan.
 
 Units: m, rad, s; frames: the arm's base frame 0.
 """
 
+from .budget import Budget
 from .cartesian import CartesianPath, build_path, poses_of
 from .collision import PathClearance, SceneCollision
-from .errors import PlanningError, PlanningFailed, SamplingError, ScenarioError, TimingError
+from .errors import PlanningError, PlanningFailed, PlanningTimeout, SamplingError, ScenarioError, TimingError
 from .obstacles import SAFETY_ZONE, Obstacle, ellipsoid_value, enclosing_radii, repel_points, repulsion_normal
 from .output import plot_effort, plot_joints, plot_scene, write_outputs
 from .path import (
     MAX_STEP,
+    MAX_STEP_POINTS,
     arc_steps,
     densify,
     interpolate_joints,
     interpolate_orientation,
     path_length,
+    segment_length,
+    segment_steps,
     straight_steps,
 )
-from .pipeline import Attempt, PlanOptions, PlanResult, plan
+from .pipeline import VIA_POINT_TOLERANCE, Attempt, PlanOptions, PlanResult, plan
 from .robot_model import ThesisModel, thesis_model
 from .rrt import rrt_connect
-from .scenario import Scenario, Waypoint, check_scenario
+from .scenario import (
+    MAX_ANGLE,
+    MAX_COORDINATE,
+    MAX_OBSTACLES,
+    MAX_STEPS_PER_SEGMENT,
+    Scenario,
+    Waypoint,
+    check_scenario,
+    check_step_points,
+)
 from .scenario_io import (
+    MAX_FILE_SIZE,
     dexterity_notes,
     load_scenario,
     platform_box,
@@ -64,11 +79,14 @@ __all__ = [
     "PlanOptions",
     "PlanResult",
     "Attempt",
+    "Budget",
+    "VIA_POINT_TOLERANCE",
     # scenarios and their files
     "Scenario",
     "Waypoint",
     "Obstacle",
     "check_scenario",
+    "check_step_points",
     "load_scenario",
     "validate_scenario",
     "scenario_from_dict",
@@ -78,6 +96,13 @@ __all__ = [
     "thesis_scenario_paths",
     "platform_box",
     "dexterity_notes",
+    # bounds of a scenario (memory and time)
+    "MAX_STEP_POINTS",
+    "MAX_STEPS_PER_SEGMENT",
+    "MAX_COORDINATE",
+    "MAX_OBSTACLES",
+    "MAX_ANGLE",
+    "MAX_FILE_SIZE",
     # the thesis planner (Sec 3.6)
     "SAFETY_ZONE",
     "MAX_STEP",
@@ -88,6 +113,8 @@ __all__ = [
     "arc_steps",
     "densify",
     "path_length",
+    "segment_length",
+    "segment_steps",
     "interpolate_joints",
     "interpolate_orientation",
     "enclosing_radii",
@@ -128,4 +155,5 @@ __all__ = [
     "PlanningFailed",
     "TimingError",
     "SamplingError",
+    "PlanningTimeout",
 ]

@@ -2,10 +2,12 @@
 
 :func:`build_path` joins start, via-points (Table IV or explicit) and goal by
 straight lines (or arcs, Sec 4.2.1.1) divided into step-points (<= 30 mm, or a
-fixed count such as 39 per segment); points inside an obstacle's padded
-ellipsoid are repelled (Eq 52-53, Sec 3.6.2.2); step-points under the
-platform or floor safety level are lifted; too-long steps created by repulsion
-are subdivided and repelled again. Orientations follow the gradual Euler
+fixed count such as 39 per segment; at most :data:`~iik.planning.MAX_STEP_POINTS`
+in all); points inside an obstacle's padded ellipsoid are repelled (Eq 52-53,
+Sec 3.6.2.2), and so are the planner's via-points (Sec 3.6.3), never the
+scenario's requested ones (Sec 4.2.1: the tool "must pass through such
+via-points"); step-points under the platform or floor safety level are lifted;
+too-long steps created by repulsion are subdivided and repelled again. Orientations follow the gradual Euler
 change (or slerp). Frames and units: base frame 0, m, rad (Z-X-Z angles of the
 corrected Eq 42).
 """
@@ -20,9 +22,10 @@ import numpy as np
 from ..errors import InvalidInputError
 from ..rotations import pose_from_zxz, zxz_from_matrix
 from ..scene import AxisBox, Scene
+from .errors import ScenarioError
 from .obstacles import ellipsoid_value, enclosing_radii, repel_points
-from .path import arc_steps, densify, interpolate_orientation, straight_steps
-from .scenario import Scenario
+from .path import MAX_STEP_POINTS, arc_steps, densify, interpolate_orientation, straight_steps
+from .scenario import Scenario, check_step_points
 from .viapoints import via_point_path
 
 __all__ = ["CartesianPath", "build_path", "poses_of"]
@@ -105,17 +108,22 @@ def _lift(points: np.ndarray, platform: AxisBox | None, floor_z: float | None, s
 
 
 def _key_points(sc: Scenario, via_points) -> tuple[np.ndarray, np.ndarray, tuple[int, ...]]:
-    """(start, via-points, goal) rows, the via-points (k, 3) [m] and their Table III numbers."""
+    """(start, via-points, goal) rows, the via-points (k, 3) [m] and their Table III numbers.
+
+    The scenario's requested via-points stay where they are; the planner's own
+    (Table IV, or ``via_points`` given by a redesign) are repelled like step-points.
+    """
     p0 = np.asarray(sc.start.position, float)
     p1 = np.asarray(sc.goal.position, float)
     nums: tuple[int, ...] = ()
     if via_points is not None:
         vias = np.asarray(via_points, float).reshape(-1, 3)
-    elif sc.via_points is not None:
-        vias = np.asarray(sc.via_points, float).reshape(-1, 3)
+    elif sc.via_points is not None:  # requested: the tool passes through them (Sec 4.2.1), never moved
+        vias = np.reshape(sc.via_points, (-1, 3))
+        return np.vstack([p0, vias, p1]), vias, nums
     else:
         vias, nums = via_point_path(p0, p1)  # Table IV
-    if len(vias):  # via-points may be repelled by ordinary obstacles too (Sec 3.6.3)
+    if len(vias):  # the planner's via-points may be repelled by ordinary obstacles too (Sec 3.6.3)
         vias, _ = repel_points(np.vstack([p0, vias, p1]), sc.obstacles, p0, p1, safety_zone=sc.safety_zone)
         vias = vias[1:-1]
     return np.vstack([p0, vias, p1]), vias, nums
@@ -154,9 +162,13 @@ def build_path(sc: Scenario, *, scene: Scene | None = None, via_points=None,
         sc: The scenario (base frame, m, rad).
         scene: Its platform is lifted over, never repelled (Sec 3.6.3), and points stay a
             safety zone above its floor; ``None``: no platform and no floor.
-        via_points: Override the via-points ((k, 3) [m]); default: ``sc.via_points``,
-            else Table IV by region.
+        via_points: The planner's own via-points ((k, 3) [m], repelled like step-points);
+            default: ``sc.via_points`` (requested: kept in place), else Table IV by region.
         routes: Override the per-segment routes.
+
+    Raises:
+        ScenarioError: (``planning.max_step`` / ``planning.steps_per_segment``) the path
+            would have more than :data:`~iik.planning.MAX_STEP_POINTS` step-points.
     """
     platform = scene.platform if scene is not None else None
     floor_z = scene.floor.z if scene is not None else None
@@ -165,6 +177,7 @@ def build_path(sc: Scenario, *, scene: Scene | None = None, via_points=None,
     routes = tuple(routes or sc.segments or ("line",) * nseg)
     if len(routes) != nseg:
         raise InvalidInputError("routes", f"needs {nseg} entries, got {len(routes)}")
+    check_step_points(sc, keys, routes)  # bounded memory before any point is made
     p0, p1 = keys[0], keys[-1]
     pts, seg, key_index = [keys[:1]], [0], [0]
     for k in range(nseg):
@@ -192,6 +205,11 @@ def build_path(sc: Scenario, *, scene: Scene | None = None, via_points=None,
         dense, src = densify(points, max_step)
         if len(dense) == len(points):
             break
+        if len(dense) > MAX_STEP_POINTS:
+            raise ScenarioError("planning.max_step",
+                                f"the path repelled around the obstacles needs {len(dense)} step-points of "
+                                f"at most {max_step:g} m; at most {MAX_STEP_POINTS} are allowed (bounded "
+                                "memory and time)")
         old = np.rint(src).astype(int)
         kept = np.isclose(src, old)
         idx_map = {int(o): j for j, o in enumerate(old) if kept[j]}

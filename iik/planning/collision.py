@@ -38,6 +38,7 @@ from iik.arm import THESIS_ARM, Arm
 from iik.scene import THESIS_SCENE, Scene
 from iik.validation import as_joints
 
+from .budget import Budget
 from .obstacles import Obstacle
 from .robot_model import collision_link, thesis_model
 
@@ -210,7 +211,7 @@ class SceneCollision:
         return float(self.radius_bound @ np.abs(np.asarray(q1, float) - np.asarray(q0, float)))
 
     def path_clearance(self, qs, required: float = 0.0, *, resolution: float = 0.002,
-                       check_self: bool = True) -> PathClearance:
+                       check_self: bool = True, budget: Budget | None = None) -> PathClearance:
         """Clearance at every configuration and a certified bound on every motion between them.
 
         Args:
@@ -218,7 +219,10 @@ class SceneCollision:
             required: Clearance the motions must keep [m] (bisection stops once certified).
             resolution: Stop bisecting when the motion bound is below this [m].
             check_self: Also compute the self-distance at the steps.
+            budget: Time budget and progress (:class:`~iik.planning.Budget`), ticked at
+                every configuration and bisection sample; default: none.
         """
+        budget = budget or Budget()
         Q, _ = as_joints(qs, "qs")
         n = len(Q)
         step = np.empty(n)
@@ -226,6 +230,7 @@ class SceneCollision:
         obj = np.empty(n, dtype=object)
         self_min = np.inf
         for i, q in enumerate(Q):
+            budget.tick("whole-arm Coal check", i, n)
             step[i], k = self._closest(q)
             link[i], obj[i] = self.arm_link[self._pair_arm[k]], self.env_names[self._pair_env[k]]
             if check_self:
@@ -233,21 +238,23 @@ class SceneCollision:
         checks = n
         motion = np.empty(max(n - 1, 0))
         for i in range(n - 1):
-            lb, c = self._segment(Q[i], Q[i + 1], step[i], step[i + 1], required, resolution, 0)
+            budget.tick("whole-arm Coal check of the motions", i, n - 1)
+            lb, c = self._segment(Q[i], Q[i + 1], step[i], step[i + 1], required, resolution, 0, budget)
             motion[i] = lb
             checks += c
         return PathClearance(step=step, step_link=link.astype(str), step_object=obj.astype(str),
                              motion=motion, self_min=float(self_min), checks=checks)
 
-    def _segment(self, q0, q1, d0, d1, required, resolution, depth) -> tuple[float, int]:
+    def _segment(self, q0, q1, d0, d1, required, resolution, depth, budget: Budget) -> tuple[float, int]:
         B = self.motion_bound(q0, q1)
         lb = min(d0, d1) if B <= abs(d0 - d1) else (d0 + d1 - B) / 2
         if lb >= required or B <= resolution or depth > 20:
             return lb, 0
+        budget.tick("whole-arm Coal check of the motions (bisection)", depth, 20)
         qm = 0.5 * (q0 + q1)
         dm, _ = self._closest(qm)
         if dm < required:  # a violation is established (a sampled distance); stop refining
             return dm, 1
-        a, ca = self._segment(q0, qm, d0, dm, required, resolution, depth + 1)
-        b, cb = self._segment(qm, q1, dm, d1, required, resolution, depth + 1)
+        a, ca = self._segment(q0, qm, d0, dm, required, resolution, depth + 1, budget)
+        b, cb = self._segment(qm, q1, dm, d1, required, resolution, depth + 1, budget)
         return min(a, b), ca + cb + 1

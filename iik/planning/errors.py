@@ -4,11 +4,13 @@
 * :class:`ScenarioError` -- a scenario (file or object) is malformed or impossible;
 * :class:`PlanningFailed` -- no attempt kept the safety zone (carries the result);
 * :class:`TimingError` -- TOPP-RA found no time parameterisation (wraps its failure);
-* :class:`SamplingError` -- OMPL failed while sampling (wraps its exception).
+* :class:`SamplingError` -- OMPL failed while sampling (wraps its exception);
+* :class:`PlanningTimeout` -- a stage ran past the plan's time budget
+  (:func:`~iik.planning.plan` turns it into a result with ``timed_out`` set).
 
 Subclasses also inherit the matching built-in (``ValueError`` for bad input, via
-:class:`iik.errors.InvalidInputError`; ``RuntimeError`` for a failed computation)
-so generic handlers keep working.
+:class:`iik.errors.InvalidInputError`; ``RuntimeError`` for a failed computation,
+``TimeoutError`` for a time budget) so generic handlers keep working.
 """
 
 from __future__ import annotations
@@ -20,7 +22,8 @@ from ..errors import IIKError, InvalidInputError
 if TYPE_CHECKING:  # pragma: no cover
     from .pipeline import PlanResult
 
-__all__ = ["PlanningError", "ScenarioError", "PlanningFailed", "TimingError", "SamplingError"]
+__all__ = ["PlanningError", "ScenarioError", "PlanningFailed", "TimingError", "SamplingError",
+           "PlanningTimeout"]
 
 
 class PlanningError(IIKError):
@@ -59,3 +62,20 @@ class TimingError(PlanningError, RuntimeError):
 
 class SamplingError(PlanningError, RuntimeError):
     """OMPL raised while planning (the library's exception is the ``__cause__``)."""
+
+
+class PlanningTimeout(PlanningError, TimeoutError):
+    """A planning stage ran past its time budget (:class:`~iik.planning.Budget`).
+
+    :func:`~iik.planning.plan` never lets it escape: it returns the best result so
+    far with ``timed_out`` set. Stages called directly with a budget raise it.
+
+    Attributes:
+        stage: What was running, e.g. ``"IK along the path: 1200/4000 steps"``.
+        elapsed: Time since the budget started [s].
+        timeout: The budget [s].
+    """
+
+    def __init__(self, stage: str, elapsed: float, timeout: float):
+        self.stage, self.elapsed, self.timeout = stage, elapsed, timeout
+        super().__init__(f"timed out after {elapsed:.1f} s (budget {timeout:g} s) during {stage}")

@@ -68,6 +68,8 @@ class Obstacle:
     kind: str = "obstacle"
 
     def __post_init__(self) -> None:
+        if not isinstance(self.name, str):
+            raise InvalidInputError("name", f"expected a string, got {type(self.name).__name__}")
         c = as_float_array(self.center, f"{self.name}.center").reshape(-1)
         s = as_float_array(self.size, f"{self.name}.size").reshape(-1)
         if c.shape != (3,):

@@ -31,6 +31,19 @@ TOPP-RA within the arm's velocity and acceleration limits
 joint, velocity and acceleration limits, and the timed curve is checked for
 clearance again. Every candidate checked is logged as an :class:`Attempt`.
 
+Requested via-points (``planning.via_points``) are part of the acceptance
+rule: the tool passes within :data:`VIA_POINT_TOLERANCE` of each, so the steps
+that would move or drop them (moved via-points, RRT-Connect) are skipped and
+logged, and a plan that cannot pass them fails and says so. The planner's own
+via-points (Table IV, Sec 3.6.3) may be repelled, moved or dropped.
+
+Bounded: the scenario's checks cap the step-points
+(:data:`~iik.planning.MAX_STEP_POINTS`); ``PlanOptions.timeout`` bounds the
+time. Every stage reports through ``progress`` (:class:`~iik.planning.Budget`:
+each stage and candidate, and every second inside long loops); past the
+timeout :func:`plan` stops at the next check and returns a failed result with
+``timed_out`` set, the attempts so far and the best of them.
+
 The arm (``arm=``) is used throughout: IK and joint limits, workspace checks,
 the collision model (its generated URDF) and the timing limits.
 """
@@ -39,7 +52,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -52,8 +64,10 @@ from iik.joint_path import JointPath, branch_switches, path_effort
 from iik.kinematics import fk
 from iik.scene import THESIS_SCENE, Scene
 
+from .budget import Budget
 from .cartesian import CartesianPath, build_path
 from .collision import PathClearance, SceneCollision
+from .errors import PlanningTimeout, ScenarioError
 from .path import interpolate_joints, path_length
 from .rrt import rrt_connect
 from .scenario import Scenario
@@ -61,7 +75,14 @@ from .scenario_io import dexterity_notes, load_scenario, scenario_path, validate
 from .timing import Trajectory, thesis_timing, time_parameterize
 from .tracking import Tracking, all_solutions, track_branches, track_dp
 
-__all__ = ["PlanOptions", "Attempt", "PlanResult", "plan"]
+__all__ = ["PlanOptions", "Attempt", "PlanResult", "plan", "VIA_POINT_TOLERANCE"]
+
+#: An accepted path passes every requested via-point within this distance [m] (its tool points).
+VIA_POINT_TOLERANCE = 1e-3
+
+#: Bounds of the numeric options: (low, high, unit); the low end is exclusive for 0.
+_BOUNDS = {"rrt_time": (0.0, math.inf, "s"), "resolution": (1e-4, 0.1, "m"), "dt": (1e-3, 1.0, "s"),
+           "timeout": (0.0, math.inf, "s")}
 
 
 @dataclass(frozen=True)
@@ -71,11 +92,14 @@ class PlanOptions:
     Attributes:
         fallbacks: Allow branches/arcs/moved via-points/RRT-Connect after the thesis path.
         rrt: Allow the OMPL fallback (with ``fallbacks``).
-        rrt_time: OMPL time limit per attempt [s].
-        resolution: Continuous-check resolution [m] (see ``SceneCollision.path_clearance``).
-        dt: Trajectory sample period [s].
+        rrt_time: OMPL time limit per attempt [s] (and at most what is left of ``timeout``).
+        resolution: Continuous-check resolution [m], 0.1 mm .. 0.1 m (see
+            ``SceneCollision.path_clearance``).
+        dt: Trajectory sample period [s], 1 ms .. 1 s.
         seed: OMPL seed (1 .. 2**31).
         timing: Time-parameterise the accepted path.
+        timeout: Wall-time budget of :func:`plan` [s] (60 s: a shipped scenario needs
+            well under 10 s); past it the plan stops with ``timed_out`` set.
 
     Raises:
         InvalidInputError: An option has the wrong type or an impossible value (named).
@@ -88,15 +112,18 @@ class PlanOptions:
     dt: float = 0.01
     seed: int = 1
     timing: bool = True
+    timeout: float = 60.0
 
     def __post_init__(self) -> None:
         for name in ("fallbacks", "rrt", "timing"):
             if not isinstance(getattr(self, name), bool):
                 raise InvalidInputError(name, f"expected True or False, got {getattr(self, name)!r}")
-        for name in ("rrt_time", "resolution", "dt"):
+        for name, (lo, hi, unit) in _BOUNDS.items():
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v > 0):
-                raise InvalidInputError(name, f"expected a positive finite number, got {v!r}")
+                raise InvalidInputError(name, f"expected a positive finite number of {unit}, got {v!r}")
+            if not lo <= v <= hi:
+                raise InvalidInputError(name, f"must be in [{lo:g}, {hi:g}] {unit}, got {v!r}")
         if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)) or not (
                 1 <= self.seed <= 2**31):
             raise InvalidInputError("seed", f"expected an integer in 1..2**31, got {self.seed!r}")
@@ -113,7 +140,8 @@ class Attempt:
             NaN when no path was checked.
         self_clearance: Smallest distance between non-adjacent links at the steps [m] (NaN: none).
         closest_link, closest_object: The pair at the step of smallest clearance.
-        reason: Why no path was checked, or a note on the step ("" for a checked path).
+        reason: Why no path was checked, a note on the step, or why a path that kept the
+            safety zone was rejected (a requested via-point missed).
     """
 
     label: str
@@ -129,7 +157,7 @@ class Attempt:
             return f"{self.label}: {self.reason}"
         return (f"{self.label}: min clearance {self.clearance * 1000:.1f} mm ({self.closest_link} to "
                 f"{self.closest_object}), self {self.self_clearance * 1000:.1f} mm"
-                + (" -> accepted" if self.accepted else ""))
+                + (f" -- {self.reason}" if self.reason else "") + (" -> accepted" if self.accepted else ""))
 
 
 @dataclass(frozen=True)
@@ -155,6 +183,8 @@ class PlanResult:
         gamma_changed_steps: Steps of ``cartesian`` where the gripper is turned by pi about its
             axis (gamma + pi, the same grasp for the symmetric gripper; theta6 -/+ pi).
         planning_time: Wall time of :func:`plan` without timing [s].
+        timed_out: The plan stopped at ``PlanOptions.timeout`` (``success`` False; ``reason``
+            says during what; ``q`` is the accepted path if only its timing was cut short).
         attempts: Every candidate checked, in order (:class:`Attempt`).
         notes: Advisory notes on the scenario (start/goal outside the Sec 3.5 dexterity range).
         cartesian: The thesis Cartesian path of the accepted attempt (None for RRT).
@@ -189,6 +219,12 @@ class PlanResult:
     trajectory_clearance: float
     arm: Arm
     scene: Scene
+    timed_out: bool = False
+
+    @property
+    def best_attempt(self) -> Attempt | None:
+        """The checked candidate of largest clearance (the accepted one if any); None if none was checked."""
+        return _best(self.attempts)
 
     @property
     def log(self) -> tuple[str, ...]:
@@ -223,32 +259,50 @@ def plan(scenario: Scenario | str | Path, options: PlanOptions = PlanOptions(), 
         options: :class:`PlanOptions`.
         arm: The arm (IK, joint limits, workspace, collision shapes, timing limits).
         scene: Platform and floor.
-        progress: Called with a short message before each stage.
+        progress: Called with a short message before each stage and candidate, and
+            every second inside long loops (:class:`~iik.planning.Budget`).
 
     Raises:
-        ScenarioError: The file is malformed, or start/goal are impossible
-            (inside an obstacle, the platform, below the floor, outside the workspace).
+        ScenarioError: The file is malformed, or start/goal/requested via-points are
+            impossible (inside an obstacle, the platform, below the floor, outside the
+            workspace), or the path would exceed :data:`~iik.planning.MAX_STEP_POINTS`.
         TimingError, SamplingError: TOPP-RA or OMPL failed.
 
     Returns:
         :class:`PlanResult`; ``success`` False with ``reason`` when no step keeps
-        the safety zone (the failure is a result, not an exception; use
+        the safety zone and passes the requested via-points, or when ``options.timeout``
+        ran out (``timed_out``) (a failure is a result, not an exception; use
         ``raise PlanningFailed(result)`` to turn it into one).
     """
-    t0 = time.perf_counter()
-    p = _problem(scenario, options, arm, scene, progress or _quiet)
+    p = _problem(scenario, options, arm, scene, progress)
     log: list[Attempt] = []
-    for step in _steps(options):
-        found = step(p, log)
-        if found is not None:
-            return _result(p, found, log, time.perf_counter() - t0)
+    try:
+        p.budget.stage(f"IK along the thesis path ({p.thesis.n} step-points)")
+        p = dataclasses.replace(p, tracking=track_branches(p.thesis, arm=p.arm, adapt_orientation=False,
+                                                           budget=p.budget))
+        for step in _steps(options):
+            found = step(p, log)
+            if found is not None:
+                return _result(p, found, log)
+    except PlanningTimeout as exc:
+        return _failed(p, log, _timeout_reason(exc, log), timed_out=True)
+    vias = " through the requested via-points" if p.scenario.via_points else ""
     reason = ("thesis path rejected (fallbacks off)" if not options.fallbacks else
-              "no method kept the safety zone; last attempts: " + " | ".join(str(a) for a in log[-2:]))
-    return _failed(p, log, time.perf_counter() - t0, reason)
+              f"no method kept the safety zone{vias}; last attempts: " + " | ".join(str(a) for a in log[-2:]))
+    return _failed(p, log, reason)
 
 
-def _quiet(msg: str) -> None:
-    """The default ``progress``: say nothing."""
+def _best(attempts) -> Attempt | None:
+    """The checked attempt of largest clearance, accepted ones first (None if none was checked)."""
+    checked = [a for a in attempts if not math.isnan(a.clearance)]
+    return max(checked, key=lambda a: (a.accepted, a.clearance), default=None)
+
+
+def _timeout_reason(exc: PlanningTimeout, log: list[Attempt]) -> str:
+    best = _best(log)
+    return (f"timed out after {exc.elapsed:.1f} s (timeout {exc.timeout:g} s: PlanOptions.timeout, "
+            f"iik plan --timeout) during {exc.stage}; "
+            + (f"best attempt so far: {best}" if best else "no candidate path was checked"))
 
 
 @dataclass(frozen=True)
@@ -261,9 +315,9 @@ class _Problem:
     scene: Scene
     checker: SceneCollision
     thesis: CartesianPath
-    tracking: Tracking  # IK along the thesis path at the nominal orientation (Sec 3.6)
     notes: tuple[str, ...]
-    say: Callable[[str], None]
+    budget: Budget
+    tracking: Tracking | None = None  # IK along the thesis path at the nominal orientation (Sec 3.6)
 
     @property
     def required(self) -> float:
@@ -292,28 +346,46 @@ def _scenario(scenario, arm: Arm, scene: Scene) -> Scenario:
                                         f"got {type(scenario).__name__}")
 
 
-def _problem(scenario, options, arm, scene, say) -> _Problem:
+def _problem(scenario, options, arm, scene, progress) -> _Problem:
+    """Check the arguments, load and validate the scenario, build the thesis path (bounded, not timed)."""
     for name, value, kind in (("options", options, PlanOptions), ("arm", arm, Arm), ("scene", scene, Scene)):
         if not isinstance(value, kind):
             raise InvalidInputError(name, f"expected {kind.__name__}, got {type(value).__name__}")
+    budget = Budget(options.timeout, progress)
     sc = _scenario(scenario, arm, scene)
-    say("thesis path (Sec 3.6)")
+    budget.say("thesis path (Sec 3.6)")
     thesis = build_path(sc, scene=scene)
     return _Problem(scenario=sc, options=options, arm=arm, scene=scene,
                     checker=SceneCollision(sc.obstacles, arm=arm, scene=scene), thesis=thesis,
-                    tracking=track_branches(thesis, arm=arm, adapt_orientation=False),
-                    notes=tuple(dexterity_notes(sc, arm)), say=say)
+                    notes=tuple(dexterity_notes(sc, arm)), budget=budget)
 
 
 # ---------------------------------------------------------------------------- the acceptance rule
 
 
 def _check(p: _Problem, q: np.ndarray, label: str, log: list[Attempt]) -> PathClearance | None:
-    """Certified whole-arm clearance of ``q``, logged; the clearance if the path is accepted, else None."""
-    pc = p.checker.path_clearance(q, p.required, resolution=p.options.resolution)
-    ok = pc.keeps(p.required)
-    log.append(Attempt(label, ok, pc.minimum, pc.self_min, pc.closest_link, pc.closest_object))
+    """The acceptance rule, logged: certified whole-arm clearance of ``q`` and the requested via-points.
+
+    Returns the clearance if the path is accepted, else None.
+    """
+    p.budget.stage(f"whole-arm check: {label}")
+    pc = p.checker.path_clearance(q, p.required, resolution=p.options.resolution, budget=p.budget)
+    missed = _missed_via_point(p, q)
+    ok = pc.keeps(p.required) and not missed
+    log.append(Attempt(label, ok, pc.minimum, pc.self_min, pc.closest_link, pc.closest_object, missed))
     return pc if ok else None
+
+
+def _missed_via_point(p: _Problem, q: np.ndarray) -> str:
+    """The requested via-point the tool of ``q`` misses by over :data:`VIA_POINT_TOLERANCE` ("" if none)."""
+    if not p.scenario.via_points:
+        return ""
+    tool = fk(q, p.arm)[:, :3, 3]
+    for i, v in enumerate(p.scenario.via_points):
+        d = float(np.linalg.norm(tool - np.asarray(v), axis=1).min())
+        if d > VIA_POINT_TOLERANCE:
+            return f"misses the requested via-point planning.via_points[{i}] by {d * 1000:.1f} mm"
+    return ""
 
 
 def _follow(p: _Problem, cpath: CartesianPath, label: str, log: list[Attempt], method: str,
@@ -323,11 +395,12 @@ def _follow(p: _Problem, cpath: CartesianPath, label: str, log: list[Attempt], m
     When no branch covers every step at the nominal orientation (and fallbacks
     are on) the orientation search (:func:`track_dp`) supplies the branches.
     """
-    nominal = tracking or track_branches(cpath, arm=p.arm, adapt_orientation=False)
+    nominal = tracking or track_branches(cpath, arm=p.arm, adapt_orientation=False, budget=p.budget)
     tr = nominal
     no_sol = nominal.failed_steps
     if not tr.complete and p.options.fallbacks:
-        tr = track_dp(cpath, arm=p.arm)
+        p.budget.stage(f"orientation search (IK branches x orientation grid): {label}")
+        tr = track_dp(cpath, arm=p.arm, budget=p.budget)
         label += " + orientation search"
         if tr.complete:
             log.append(Attempt(label, reason=f"{len(no_sol)} steps had no solution at the nominal "
@@ -355,7 +428,7 @@ def _lji(p: _Problem, log: list[Attempt]) -> _Candidate | None:
     if p.scenario.mode != "LJI":
         return None
     kpath = p.thesis.key_path()
-    for k, b in enumerate(track_branches(kpath, arm=p.arm).complete):
+    for k, b in enumerate(track_branches(kpath, arm=p.arm, budget=p.budget).complete):
         q = interpolate_joints(b.q, max_joint_step=0.05)
         if (pc := _check(p, q, f"LJI (Sec 2.6), key IK branch {b.start_solution}", log)) is not None:
             return _Candidate("thesis LJI" if k == 0 else "thesis LJI, other IK branch", q, pc, kpath, b)
@@ -377,9 +450,20 @@ def _arc_route(p: _Problem, log: list[Attempt]) -> _Candidate | None:
     routes = tuple("arc" if (k in bad and r == "line") else r for k, r in enumerate(cpath.routes))
     if routes == cpath.routes:
         return None
-    p.say("arc route (Sec 4.2.1.1)")
-    arcs = build_path(p.scenario, scene=p.scene, via_points=cpath.via_points, routes=routes)
-    return _follow(p, arcs, f"arc route {routes}", log, "thesis, arc route")
+    p.budget.stage("arc route (Sec 4.2.1.1)")
+    label = f"arc route {routes}"
+    planner_vias = None if p.scenario.via_points is not None else cpath.via_points  # requested: kept as given
+    arcs = _build(p, log, label, p.scenario, via_points=planner_vias, routes=routes)
+    return None if arcs is None else _follow(p, arcs, label, log, "thesis, arc route")
+
+
+def _build(p: _Problem, log: list[Attempt], label: str, sc: Scenario, **kw) -> CartesianPath | None:
+    """:func:`build_path` of a variant; None (logged) if it would exceed the step-point limit."""
+    try:
+        return build_path(sc, scene=p.scene, **kw)
+    except ScenarioError as exc:
+        log.append(Attempt(label, reason=str(exc)))
+        return None
 
 
 @dataclass(frozen=True)
@@ -394,22 +478,30 @@ class _Redesign:
 
 def _redesigns(p: _Problem, log: list[Attempt]) -> _Candidate | None:
     """Wider padding around the obstacles (the thesis pads only the tool point), then moved via-points."""
-    p.say("redesigned path (wider padding, moved via-points)")
+    p.budget.stage("redesigned path (wider padding, moved via-points)")
+    if p.scenario.via_points:
+        log.append(Attempt("redesigns that move via-points", reason="skipped: the via-points are requested "
+                                                                    "(planning.via_points)"))
     for r in _variants(p.scenario, p.thesis):
+        p.budget.stage(f"redesigned path: {r.label}")
         sc = p.scenario if r.padding == 0 else dataclasses.replace(
             p.scenario, safety_zone=p.scenario.safety_zone + r.padding)
-        cpath = build_path(sc, scene=p.scene, via_points=r.via_points, routes=r.routes)
-        if (found := _follow(p, cpath, r.label, log, "thesis, redesigned: " + r.label)) is not None:
+        cpath = _build(p, log, r.label, sc, via_points=r.via_points, routes=r.routes)
+        if cpath is not None and (found := _follow(p, cpath, r.label, log, "thesis, redesigned: " + r.label)):
             return found
     return None
 
 
 def _variants(sc: Scenario, cpath: CartesianPath):
-    """Redesigns: wider padding; moved via-points (raised, radially); an added via-point."""
+    """Redesigns: wider padding; moved via-points (raised, radially; never requested ones); an added one."""
     v = cpath.via_points
+    requested = sc.via_points is not None  # kept in place: build_path uses them when via_points is None
     if any(b.kind == "obstacle" for b in sc.obstacles):
         for pad in (0.05, 0.10):
-            yield _Redesign(f"padding +{pad * 1000:.0f} mm", v if len(v) else None, cpath.routes, pad)
+            yield _Redesign(f"padding +{pad * 1000:.0f} mm", v if len(v) and not requested else None,
+                            cpath.routes, pad)
+    if len(v) and requested:
+        return
     if len(v):
         for dz in (0.10, 0.20):
             yield _Redesign(f"via-points raised {dz:.2f} m", v + [0.0, 0.0, dz], cpath.routes)
@@ -425,9 +517,13 @@ def _variants(sc: Scenario, cpath: CartesianPath):
 
 def _rrt_connect(p: _Problem, log: list[Attempt]) -> _Candidate | None:
     """OMPL RRT-Connect in joint space between the start/goal IK solutions that keep the zone."""
-    p.say("RRT-Connect (OMPL) in joint space")
+    if p.scenario.via_points:
+        log.append(Attempt("rrt-connect", reason="skipped: it cannot pass the requested via-points "
+                                                 "(planning.via_points)"))
+        return None
+    p.budget.stage("RRT-Connect (OMPL) in joint space")
     req = p.required
-    ends = all_solutions(p.thesis.points[[0, -1]], p.thesis.euler[[0, -1]], arm=p.arm)[0]
+    ends = all_solutions(p.thesis.points[[0, -1]], p.thesis.euler[[0, -1]], arm=p.arm, budget=p.budget)[0]
     good = []
     for which, Q in zip(("start", "goal"), ends, strict=True):
         good.append([q for q in Q if p.checker.keeps(q, req)])
@@ -439,10 +535,11 @@ def _rrt_connect(p: _Problem, log: list[Attempt]) -> _Candidate | None:
     pairs = sorted(((a, b) for a in good[0] for b in good[1]),
                    key=lambda ab: float(np.abs(ab[0] - ab[1]).sum()))  # nearest pairs first
     for j, (qa, qb) in enumerate(pairs[:3]):
-        P = rrt_connect(qa, qb, p.checker, required=req, arm=p.arm, time_limit=p.options.rrt_time,
-                        seed=p.options.seed + j)
+        p.budget.stage(f"RRT-Connect attempt {j}")
+        limit = min(p.options.rrt_time, max(p.budget.remaining, 1e-3))
+        P = rrt_connect(qa, qb, p.checker, required=req, arm=p.arm, time_limit=limit, seed=p.options.seed + j)
         if P is None:
-            log.append(Attempt(f"rrt-connect attempt {j}", reason=f"no path in {p.options.rrt_time:.1f} s"))
+            log.append(Attempt(f"rrt-connect attempt {j}", reason=f"no path in {limit:.1f} s"))
         elif (pc := _check(p, P, f"rrt-connect attempt {j} ({len(P)} states)", log)) is not None:
             return _Candidate("rrt-connect", P, pc)
     return None
@@ -464,19 +561,20 @@ class _Timed:
     thesis: Trajectory | None = None
     clearance: float = float("nan")
     reason: str = ""
+    timed_out: bool = False
 
 
 def _time(p: _Problem, q: np.ndarray) -> _Timed:
     """TOPP-RA timing within the arm's limits, its limit check, and the timed curve's clearance."""
-    p.say("timing (TOPP-RA)")
+    p.budget.stage("timing (TOPP-RA)")
     traj = time_parameterize(q, p.arm, dt=p.options.dt)
     thesis = thesis_timing(q, p.arm)
     if traj.violations:
         return _Timed(traj, thesis, reason="timing violates limits: " + "; ".join(traj.violations))
     # The timed curve is a spline through the checked waypoints: check it too.
-    p.say("checking the timed trajectory")
+    p.budget.stage("checking the timed trajectory")
     c = p.checker.path_clearance(traj.q, p.required, resolution=p.options.resolution,
-                                 check_self=False).minimum
+                                 check_self=False, budget=p.budget).minimum
     reason = "" if c >= p.required else (
         f"timed trajectory comes within {c * 1000:.1f} mm of the scene (< {p.required * 1000:.0f} mm) "
         "between waypoints")
@@ -494,9 +592,13 @@ def _tool_length(q: np.ndarray, arm: Arm) -> float:
     return path_length(fk(q[i] * (1 - t) + q[i + 1] * t, arm)[:, :3, 3])
 
 
-def _result(p: _Problem, c: _Candidate, log: list[Attempt], planning_time: float) -> PlanResult:
+def _result(p: _Problem, c: _Candidate, log: list[Attempt]) -> PlanResult:
     """The one result builder of an accepted path (timed when ``options.timing``)."""
-    timed = _time(p, c.q) if p.options.timing else _Timed()
+    planning_time = p.budget.elapsed
+    try:
+        timed = _time(p, c.q) if p.options.timing else _Timed()
+    except PlanningTimeout as exc:
+        timed = _Timed(reason=_timeout_reason(exc, log), timed_out=True)
     b = c.branch
     return PlanResult(
         scenario=p.scenario, success=not timed.reason, method=c.method, reason=timed.reason, q=c.q,
@@ -508,16 +610,18 @@ def _result(p: _Problem, c: _Candidate, log: list[Attempt], planning_time: float
         gamma_changed_steps=b.changed_steps("gamma") if b else (),
         planning_time=planning_time, attempts=tuple(log), notes=p.notes, cartesian=c.cartesian,
         trajectory=timed.trajectory, thesis_trajectory=timed.thesis, trajectory_clearance=timed.clearance,
-        arm=p.arm, scene=p.scene)
+        arm=p.arm, scene=p.scene, timed_out=timed.timed_out)
 
 
-def _failed(p: _Problem, log: list[Attempt], planning_time: float, reason: str) -> PlanResult:
-    """The result when no step kept the safety zone."""
+def _failed(p: _Problem, log: list[Attempt], reason: str, timed_out: bool = False) -> PlanResult:
+    """The result when no step kept the safety zone (or the time ran out first)."""
+    tr = p.tracking
     return PlanResult(
         scenario=p.scenario, success=False, method="none", reason=reason, q=np.zeros((0, 6)),
         points=np.zeros((0, 3)), effort=np.zeros(0), clearance=None, min_clearance=float("nan"),
-        path_length=0.0, branch_switches=(), failed_steps=p.tracking.failed_steps,
-        beta_changed_steps=p.tracking.beta_changed_steps, alpha_changed_steps=p.tracking.alpha_changed_steps,
-        gamma_changed_steps=(), planning_time=planning_time, attempts=tuple(log), notes=p.notes,
+        path_length=0.0, branch_switches=(), failed_steps=tr.failed_steps if tr else (),
+        beta_changed_steps=tr.beta_changed_steps if tr else (),
+        alpha_changed_steps=tr.alpha_changed_steps if tr else (),
+        gamma_changed_steps=(), planning_time=p.budget.elapsed, attempts=tuple(log), notes=p.notes,
         cartesian=p.thesis, trajectory=None, thesis_trajectory=None, trajectory_clearance=float("nan"),
-        arm=p.arm, scene=p.scene)
+        arm=p.arm, scene=p.scene, timed_out=timed_out)

@@ -28,10 +28,14 @@ File format (all keys documented in ``scenarios/README.md``)::
     size = [0.2, 0.3, 0.3]          # full width (x), depth (y), height (z) [m]
     kind = "obstacle"               # or "support" (a table the object stands on)
 
-Every problem is a :class:`iik.planning.ScenarioError` naming the field: TOML
-syntax errors (with line/column), missing or mistyped keys, unknown keys,
-and impossible tasks (start/goal in an obstacle, the platform, below the
-floor, or outside the workspace of the arm -- with the closest reachable point).
+Every problem is a :class:`iik.planning.ScenarioError` naming the field: an
+unreadable file (missing, not UTF-8, over :data:`MAX_FILE_SIZE`, nested too
+deeply), TOML syntax errors (with line/column), missing or mistyped keys,
+unknown keys, values outside the bounds of :mod:`iik.planning.scenario`, and
+impossible tasks (start, goal or a requested via-point in an obstacle, the
+platform, below the floor, or outside the workspace of the arm -- with the
+closest reachable point -- or a path of too many step-points). Points in
+messages are in the file's frame, and the message says which.
 
 :func:`scenario_to_toml` / :func:`write_scenario` write the base frame and
 every field, so ``load_scenario(write_scenario(sc, path)) == sc`` exactly:
@@ -53,7 +57,18 @@ from iik.scene import THESIS_SCENE, Scene
 
 from .errors import ScenarioError
 from .obstacles import Obstacle
-from .scenario import Scenario, Waypoint, check_scenario
+from .scenario import (
+    FRAMES,
+    MAX_ANGLE,
+    MAX_COORDINATE,
+    MAX_OBSTACLES,
+    Scenario,
+    Waypoint,
+    brief,
+    check_scenario,
+    finite_number,
+    point3,
+)
 
 try:  # Python >= 3.11
     import tomllib
@@ -61,7 +76,10 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 __all__ = ["load_scenario", "scenario_from_dict", "scenario_to_toml", "write_scenario", "scenario_path",
-           "thesis_scenario_paths", "platform_box", "validate_scenario", "dexterity_notes"]
+           "thesis_scenario_paths", "platform_box", "validate_scenario", "dexterity_notes", "MAX_FILE_SIZE"]
+
+#: Largest scenario file [bytes] (a shipped one is about 2 kB).
+MAX_FILE_SIZE = 1_000_000
 
 _TOP = {"name", "title", "reference", "reconstruction", "frame", "start", "goal", "planning", "obstacles"}
 _ANGLES = ("alpha", "beta", "gamma")
@@ -104,6 +122,9 @@ def load_scenario(path, *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
     """Read and validate one scenario file (see the module docstring) for ``arm`` in ``scene``."""
     path = Path(path)
     try:
+        if (size := path.stat().st_size) > MAX_FILE_SIZE:
+            raise ScenarioError("file", f"{path} has {size} bytes; a scenario file has at most "
+                                        f"{MAX_FILE_SIZE}")
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise ScenarioError("file", f"{path} does not exist") from None
@@ -113,21 +134,28 @@ def load_scenario(path, *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError("file", f"{path.name} is not valid TOML: {exc}") from None
+    except RecursionError:
+        raise ScenarioError("file", f"{path.name} nests arrays or tables too deeply") from None
     sc = scenario_from_dict(data, source=str(path), default_name=path.stem, scene=scene)
-    validate_scenario(sc, arm=arm, scene=scene, check_workspace=check_workspace)
+    validate_scenario(sc, arm=arm, scene=scene, check_workspace=check_workspace,
+                      frame=data.get("frame", "base"))
     return sc
 
 
 def validate_scenario(sc: Scenario, *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
-                      check_workspace: bool = True) -> None:
-    """Geometric and workspace (of ``arm``) checks of Sec 3.6.1 (raises :class:`ScenarioError`)."""
+                      check_workspace: bool = True, frame: str = "base") -> None:
+    """Geometric and workspace (of ``arm``) checks of Sec 3.6.1 (raises :class:`ScenarioError`).
+
+    ``frame``: the frame of the file ``sc`` came from (``"base"`` or ``"floor"``); messages
+    give points in it.
+    """
     kw = {}
     if check_workspace:
         from iik.workspace import closest_reachable, in_workspace
 
         kw = {"in_workspace": lambda p: in_workspace(p, arm),
               "closest_reachable": lambda p: closest_reachable(p, arm).point}
-    check_scenario(sc, platform=platform_box(scene), floor_z=scene.floor.z, **kw)
+    check_scenario(sc, platform=platform_box(scene), floor_z=scene.floor.z, frame=frame, **kw)
 
 
 def dexterity_notes(sc: Scenario, arm: Arm = THESIS_ARM) -> list[str]:
@@ -151,16 +179,11 @@ def dexterity_notes(sc: Scenario, arm: Arm = THESIS_ARM) -> list[str]:
     return notes
 
 
-def _num(v, field: str) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise ScenarioError(field, f"expected a finite number, got {v!r}")
-    return float(v)
-
-
-def _vec(v, field: str, n: int = 3) -> np.ndarray:
-    if not isinstance(v, list) or len(v) != n:
-        raise ScenarioError(field, f"expected a list of {n} numbers, got {v!r}")
-    return np.array([_num(x, f"{field}[{i}]") for i, x in enumerate(v)])
+def _vec(v, field: str, bound: float = MAX_COORDINATE) -> np.ndarray:
+    """Three numbers of the file [m] within ``+-bound`` (a list, not a string or a table)."""
+    if not isinstance(v, list):
+        raise ScenarioError(field, f"expected a list of 3 numbers, got {brief(v)}")
+    return np.array(point3(v, field, bound))
 
 
 def _angle(d: dict, table: str, name: str) -> float | None:
@@ -168,8 +191,12 @@ def _angle(d: dict, table: str, name: str) -> float | None:
     if name in d and f"{name}_deg" in d:
         raise ScenarioError(f"{table}.{name}", f"given twice (as {name} [rad] and {name}_deg)")
     if f"{name}_deg" in d:
-        return math.radians(_num(d[f"{name}_deg"], f"{table}.{name}_deg"))
-    return _num(d[name], f"{table}.{name}") if name in d else None
+        deg = math.degrees(MAX_ANGLE)
+        return math.radians(finite_number(d[f"{name}_deg"], f"{table}.{name}_deg", lo=-deg, hi=deg,
+                                          unit=" deg"))
+    if name in d:
+        return finite_number(d[name], f"{table}.{name}", lo=-MAX_ANGLE, hi=MAX_ANGLE, unit=" rad")
+    return None
 
 
 def _table(d, field: str, allowed: set[str]) -> dict:
@@ -187,12 +214,12 @@ def scenario_from_dict(data: dict, *, source: str = "", default_name: str = "sce
     """Build a :class:`Scenario` from parsed TOML (no validation against the workspace)."""
     _table(data, "", _TOP)
     frame = data.get("frame", "base")
-    if frame not in ("base", "floor"):
-        raise ScenarioError("frame", f"expected 'base' or 'floor', got {frame!r}")
+    if not isinstance(frame, str) or frame not in FRAMES:
+        raise ScenarioError("frame", f"expected 'base' or 'floor', got {brief(frame)}")
     dz = scene.floor.z if frame == "floor" else 0.0  # floor frame: z = height above the floor
     for k in ("name", "title", "reference", "reconstruction"):
         if k in data and not isinstance(data[k], str):
-            raise ScenarioError(k, "expected a string")
+            raise ScenarioError(k, f"expected a string, got {brief(data[k])}")
     start, goal = _waypoint(data, "start", dz), _waypoint(data, "goal", dz)
     plan = _table(data.get("planning", {}), "planning", _PLAN)
     return Scenario(name=str(data.get("name", default_name)), start=start, goal=goal,
@@ -217,8 +244,11 @@ def _waypoint(data: dict, key: str, dz: float) -> Waypoint:
     if "beta_deg" not in d and "beta" not in d:
         raise ScenarioError(f"{key}.beta_deg", "missing")
     alpha, beta, gamma = (_angle(d, key, a) for a in _ANGLES)
-    return Waypoint(_position(d["position"], f"{key}.position", dz), alpha, beta,
-                    0.0 if gamma is None else gamma)
+    position = _position(d["position"], f"{key}.position", dz)
+    try:
+        return Waypoint(position, alpha, beta, 0.0 if gamma is None else gamma)
+    except ScenarioError as exc:  # a bound crossed by the frame shift: name the field as in the file
+        raise ScenarioError(f"{key}.{exc.field}", exc.reason) from None
 
 
 def _planning(plan: dict, dz: float) -> dict:
@@ -228,7 +258,7 @@ def _planning(plan: dict, dz: float) -> dict:
     if isinstance(vias, list):
         kw["via_points"] = tuple(_position(v, f"planning.via_points[{i}]", dz) for i, v in enumerate(vias))
     elif vias != "auto":
-        raise ScenarioError("planning.via_points", f"expected 'auto' or a list of points, got {vias!r}")
+        raise ScenarioError("planning.via_points", f"expected 'auto' or a list of points, got {brief(vias)}")
     segs = plan.get("segments")
     if segs is not None:
         if not isinstance(segs, list) or not all(isinstance(s, str) for s in segs):
@@ -237,11 +267,11 @@ def _planning(plan: dict, dz: float) -> dict:
     steps = plan.get("steps_per_segment")
     if steps is not None:
         if isinstance(steps, bool) or not isinstance(steps, int):
-            raise ScenarioError("planning.steps_per_segment", f"expected an integer, got {steps!r}")
+            raise ScenarioError("planning.steps_per_segment", f"expected an integer, got {brief(steps)}")
         kw["steps_per_segment"] = steps
     for key in ("max_step", "safety_zone"):
         if key in plan:
-            kw[key] = float(_num(plan[key], f"planning.{key}"))
+            kw[key] = finite_number(plan[key], f"planning.{key}", unit=" m")
     for key in ("orientation", "mode"):
         if key in plan:
             kw[key] = plan[key]
@@ -252,6 +282,8 @@ def _obstacles(data: dict, dz: float) -> tuple[Obstacle, ...]:
     obs = data.get("obstacles", [])
     if not isinstance(obs, list):
         raise ScenarioError("obstacles", "expected an array of tables ([[obstacles]])")
+    if len(obs) > MAX_OBSTACLES:
+        raise ScenarioError("obstacles", f"{len(obs)} boxes; at most {MAX_OBSTACLES} are allowed")
     out = []
     for i, o in enumerate(obs):
         f = f"obstacles[{i}]"
@@ -259,10 +291,14 @@ def _obstacles(data: dict, dz: float) -> tuple[Obstacle, ...]:
         for k in ("center", "size"):
             if k not in o:
                 raise ScenarioError(f"{f}.{k}", "missing")
-        center, size = _position(o["center"], f"{f}.center", dz), tuple(_vec(o["size"], f"{f}.size"))
+        for k in ("name", "kind"):
+            if not isinstance(o.get(k, ""), str):
+                raise ScenarioError(f"{f}.{k}", f"expected a string, got {brief(o[k])}")
+        center = _position(o["center"], f"{f}.center", dz)
+        size = tuple(_vec(o["size"], f"{f}.size", 2 * MAX_COORDINATE))
         try:
-            out.append(Obstacle(center, size, name=str(o.get("name", f"obstacle{i}")),
-                                kind=str(o.get("kind", "obstacle"))))
+            out.append(Obstacle(center, size, name=o.get("name", f"obstacle{i}"),
+                                kind=o.get("kind", "obstacle")))
         except InvalidInputError as exc:  # the box's own checks (positive size, kind)
             raise ScenarioError(f, exc.reason) from None
     return tuple(out)
@@ -273,7 +309,7 @@ def _str(v: str, field: str) -> str:
     try:
         v.encode("utf-8")
     except UnicodeEncodeError:
-        raise ScenarioError(field, f"{v!r} is not valid Unicode text") from None
+        raise ScenarioError(field, f"{brief(v)} is not valid Unicode text") from None
     esc = {'"': '\\"', "\\": "\\\\"}
     return '"' + "".join(esc.get(ch) or (f"\\u{ord(ch):04X}" if ord(ch) < 0x20 or ord(ch) == 0x7F else ch)
                          for ch in v) + '"'

@@ -10,7 +10,10 @@
   programme over IK branches and a small grid of alpha/beta changes (alpha is
   free in Sec 3.6; beta changes are penalised), with a penalty per branch switch.
 
-Both return a :class:`Tracking`. IK is solved for the given :class:`~iik.arm.Arm`
+Both return a :class:`Tracking` and take an optional :class:`~iik.planning.Budget`
+(progress every second, :class:`~iik.planning.PlanningTimeout` past its deadline,
+checked every :data:`IK_CHUNK` poses and every loop iteration). IK is solved for
+the given :class:`~iik.arm.Arm`
 (``iik.solve_many``); solutions within :data:`LIMIT_MARGIN` of one of that arm's
 joint stops are not used, so the timed curve through the step-points cannot
 overshoot a stop. Units: rad.
@@ -33,10 +36,12 @@ from ..joint_path import (
     effort_matrix,
     path_effort,
 )
+from .budget import Budget
 from .cartesian import CartesianPath, poses_of
 
 __all__ = [
     "LIMIT_MARGIN",
+    "IK_CHUNK",
     "BETA_STEPS",
     "ORIENTATION_OFFSETS",
     "DP_OFFSETS",
@@ -49,6 +54,9 @@ __all__ = [
 #: Solutions closer than this to a joint stop are not used [rad]: a smooth timed
 #: curve through a waypoint *on* a stop would overshoot it (e.g. theta6 = pi exactly).
 LIMIT_MARGIN = 0.01
+
+#: Poses solved per call of the IK between two budget checks.
+IK_CHUNK = 256
 
 #: Slight beta changes tried at a step without IK solutions [rad] (Sec 3.6), smallest first.
 BETA_STEPS = tuple(math.radians(d) * s for d in (2, 4, 6, 8, 10, 15, 20) for s in (1, -1))
@@ -117,13 +125,19 @@ def _usable(res, arm: Arm) -> np.ndarray:
     return q[arm.within_limits(q, tol=-LIMIT_MARGIN)] if len(q) else q
 
 
-def _solve(points: np.ndarray, euler: np.ndarray, arm: Arm) -> list[np.ndarray]:
-    return [_usable(r, arm) for r in solve_many(poses_of(points, euler), arm=arm)]
+def _solve(points: np.ndarray, euler: np.ndarray, arm: Arm, budget: Budget) -> list[np.ndarray]:
+    """Usable solutions at every pose, solved :data:`IK_CHUNK` poses at a time (a budget tick between)."""
+    out: list[np.ndarray] = []
+    for i in range(0, len(points), IK_CHUNK):
+        budget.tick("IK poses", i, len(points))
+        T = poses_of(points[i:i + IK_CHUNK], euler[i:i + IK_CHUNK])
+        out += [_usable(r, arm) for r in solve_many(T, arm=arm)]
+    return out
 
 
 def all_solutions(points: np.ndarray, euler: np.ndarray, *, arm: Arm = THESIS_ARM,
                   beta_steps: tuple[float, ...] = BETA_STEPS, adapt_orientation: bool = True,
-                  ramp: int = 8) -> tuple[list[np.ndarray], np.ndarray]:
+                  ramp: int = 8, budget: Budget | None = None) -> tuple[list[np.ndarray], np.ndarray]:
     """Usable IK solutions of ``arm`` at every step, with orientation changes where needed.
 
     First the nominal orientation; then, at steps without a solution, the slight
@@ -135,12 +149,14 @@ def all_solutions(points: np.ndarray, euler: np.ndarray, *, arm: Arm = THESIS_AR
         arm: The arm whose IK and joint limits are used.
         ramp: Spread every needed change linearly over this many steps on each
             side, then solve again (gradual orientation change, Sec 4.2.1).
+        budget: Time budget and progress (:class:`~iik.planning.Budget`); default: none.
 
     Returns:
         ``(solutions, offsets)``: a list of (k_i, 6) arrays [rad] and the (n, 2)
         (d_alpha, d_beta) used at each step [rad].
     """
-    sols, offs = _solve_with_offsets(points, euler, arm, beta_steps, adapt_orientation)
+    budget = budget or Budget()
+    sols, offs = _solve_with_offsets(points, euler, arm, beta_steps, adapt_orientation, budget)
     if ramp > 0 and np.any(offs) and len(points) > 2:
         # Spread each needed change over +-ramp steps so orientation (and the joints)
         # change gradually instead of jumping at the first step that needs it.
@@ -148,7 +164,7 @@ def all_solutions(points: np.ndarray, euler: np.ndarray, *, arm: Arm = THESIS_AR
         e2 = euler.copy()
         e2[:, 0] += base[:, 0]
         e2[:, 1] += base[:, 1]
-        sols2, offs2 = _solve_with_offsets(points, e2, arm, beta_steps, adapt_orientation)
+        sols2, offs2 = _solve_with_offsets(points, e2, arm, beta_steps, adapt_orientation, budget)
         if sum(len(q) == 0 for q in sols2) <= sum(len(q) == 0 for q in sols):
             sols, offs = sols2, base + offs2
     return sols, offs
@@ -157,38 +173,44 @@ def all_solutions(points: np.ndarray, euler: np.ndarray, *, arm: Arm = THESIS_AR
 def _ramp(offs: np.ndarray, w: int) -> np.ndarray:
     """Triangular envelope: each step takes the strongest nearby offset, tapered over ``w`` steps."""
     n = len(offs)
-    i = np.arange(n)
-    tri = np.maximum(0.0, 1.0 - np.abs(i[:, None] - i[None, :]) / (w + 1))
     out = np.zeros_like(offs)
-    for c in range(offs.shape[1]):
-        m = np.abs(offs[None, :, c]) * tri
-        j = np.argmax(m, axis=1)
-        out[:, c] = offs[j, c] * tri[i, j]
+    best = np.zeros_like(offs)  # strongest |offset| x weight so far, per step and column
+    for d in range(-w, w + 1):  # neighbour j = i + d in increasing j: the first strongest one wins
+        lo, hi = max(0, -d), min(n, n - d)
+        if lo >= hi:
+            continue
+        weight = max(0.0, 1.0 - abs(d) / (w + 1))
+        near = offs[lo + d:hi + d]
+        stronger = np.abs(near) * weight > best[lo:hi]
+        best[lo:hi] = np.where(stronger, np.abs(near) * weight, best[lo:hi])
+        out[lo:hi] = np.where(stronger, near * weight, out[lo:hi])
     return out
 
 
-def _solve_with_offsets(points, euler, arm, beta_steps, adapt_orientation):
+def _solve_with_offsets(points, euler, arm, beta_steps, adapt_orientation, budget: Budget):
     n = len(points)
-    sols = _solve(points, euler, arm)
+    sols = _solve(points, euler, arm, budget)
     offs = np.zeros((n, 2))
     tries = [(0.0, db) for db in beta_steps]
     if adapt_orientation:
         tries += list(ORIENTATION_OFFSETS)
-    for da, db in tries:
+    for k, (da, db) in enumerate(tries):
         missing = [i for i in range(n) if len(sols[i]) == 0]
         if not missing:
             break
+        budget.tick("orientation changes at steps without IK solutions", k, len(tries))
         e = euler[missing].copy()
         e[:, 0] += da
         e[:, 1] += db
-        for i, q in zip(missing, _solve(points[missing], e, arm), strict=True):
+        for i, q in zip(missing, _solve(points[missing], e, arm, budget), strict=True):
             if len(q):
                 sols[i], offs[i] = q, (da, db)
     return sols, offs
 
 
 def track_branches(path: CartesianPath, *, arm: Arm = THESIS_ARM, beta_steps: tuple[float, ...] = BETA_STEPS,
-                   switch_threshold: float = BRANCH_SWITCH_STEP, adapt_orientation: bool = True) -> Tracking:
+                   switch_threshold: float = BRANCH_SWITCH_STEP, adapt_orientation: bool = True,
+                   budget: Budget | None = None) -> Tracking:
     """Follow every IK branch along the path, choosing by the effort index (Eq 54).
 
     Args:
@@ -198,18 +220,21 @@ def track_branches(path: CartesianPath, *, arm: Arm = THESIS_ARM, beta_steps: tu
         adapt_orientation: Then also try the alpha/beta changes of :data:`ORIENTATION_OFFSETS`.
         switch_threshold: A step whose largest joint change exceeds this [rad] is
             reported as a branch switch.
+        budget: Time budget and progress (:class:`~iik.planning.Budget`); default: none.
 
     Returns:
         :class:`Tracking` with one branch per start solution, sorted by (complete
         first, number of switches, total effort); a step without a solution
         repeats the previous row (``ok`` False).
     """
+    budget = budget or Budget()
     sols, offs = all_solutions(path.points, path.euler, arm=arm, beta_steps=beta_steps,
-                               adapt_orientation=adapt_orientation)
+                               adapt_orientation=adapt_orientation, budget=budget)
     n = path.n
     counts = np.array([len(s) for s in sols])
     branches = []
     for j, q0 in enumerate(sols[0]):
+        budget.tick("IK branches along the path", j, len(sols[0]))
         qs = np.empty((n, 6))
         ok = np.zeros(n, bool)
         eff = np.zeros(n)
@@ -230,16 +255,17 @@ def track_branches(path: CartesianPath, *, arm: Arm = THESIS_ARM, beta_steps: tu
                     alpha_changed_steps=_steps(offs[:, 0]), beta_changed_steps=_steps(offs[:, 1]))
 
 
-def _dp_layers(path: CartesianPath, arm: Arm, offsets, half_turn: bool):
+def _dp_layers(path: CartesianPath, arm: Arm, offsets, half_turn: bool, budget: Budget):
     """Candidates per step: (q (k, 6), offsets (k, 3) = (d_alpha, d_beta, d_gamma)) for every step."""
     n, K = path.n, len(offsets)
     off = np.asarray(offsets, float)
     e = np.repeat(path.euler[None], K, axis=0).copy()
     e[:, :, 0] += off[:, 0, None]
     e[:, :, 1] += off[:, 1, None]
-    sols = _solve(np.tile(path.points, (K, 1)), e.reshape(-1, 3), arm)
+    sols = _solve(np.tile(path.points, (K, 1)), e.reshape(-1, 3), arm, budget)
     layers = []
     for i in range(n):
+        budget.tick("orientation grid", i, n)
         qs, os_ = [], []
         for k in range(K):
             q = sols[k * n + i]
@@ -264,7 +290,8 @@ def _dp_layers(path: CartesianPath, arm: Arm, offsets, half_turn: bool):
 
 def track_dp(path: CartesianPath, *, arm: Arm = THESIS_ARM, offsets=DP_OFFSETS, w_change: float = 3.0,
              w_offset: float = 0.05, w_switch: float = 2.0, half_turn: bool = True,
-             w_half_turn: float = 1.0, switch_threshold: float = BRANCH_SWITCH_STEP) -> Tracking:
+             w_half_turn: float = 1.0, switch_threshold: float = BRANCH_SWITCH_STEP,
+             budget: Budget | None = None) -> Tracking:
     """Least-effort joint path over IK branches *and* small orientation changes (dynamic programming).
 
     Used when the nominal orientations leave steps without solutions. At every
@@ -279,9 +306,11 @@ def track_dp(path: CartesianPath, *, arm: Arm = THESIS_ARM, offsets=DP_OFFSETS, 
     (URDF link6 shapes too); it removes theta6 swings of nearly a full turn at
     its +-180 deg stops. The half turn itself is free, switching it mid-path
     costs ``w_half_turn``. One path per start solution, sorted by (number of
-    switches, total effort); none if a step has no candidate.
+    switches, total effort); none if a step has no candidate. ``budget``: time budget
+    and progress (:class:`~iik.planning.Budget`); default: none.
     """
-    layers = _dp_layers(path, arm, offsets, half_turn)
+    budget = budget or Budget()
+    layers = _dp_layers(path, arm, offsets, half_turn, budget)
     counts = np.array([len(q) for q, _ in layers])
     if np.any(counts == 0):
         return Tracking(branches=(), solutions_per_step=counts, orientation_search=True)
@@ -290,7 +319,7 @@ def track_dp(path: CartesianPath, *, arm: Arm = THESIS_ARM, offsets=DP_OFFSETS, 
     nominal0 = np.all(o_first[:, :2] == 0, axis=1)
     starts = np.flatnonzero(nominal0) if nominal0.any() else np.arange(len(q_first))
     costs = _DPCosts(w_change, w_offset, w_switch, w_half_turn, switch_threshold)
-    branches = [b for s0 in starts if (b := _dp_branch(layers, int(s0), costs, counts)) is not None]
+    branches = [b for s0 in starts if (b := _dp_branch(layers, int(s0), costs, counts, budget)) is not None]
     branches.sort(key=lambda b: (len(b.switches), b.total_effort))
     if not branches:
         return Tracking(branches=(), solutions_per_step=counts, orientation_search=True)
@@ -312,13 +341,14 @@ class _DPCosts:
     switch_threshold: float
 
 
-def _dp_branch(layers, s0: int, c: _DPCosts, counts) -> JointPath | None:
+def _dp_branch(layers, s0: int, c: _DPCosts, counts, budget: Budget) -> JointPath | None:
     """The least-cost path through ``layers`` from start candidate ``s0`` (None if unreachable)."""
     n = len(layers)
     cost = np.full(len(layers[0][0]), np.inf)
     cost[s0] = 0.0
     back = []
     for i in range(1, n):
+        budget.tick(f"orientation search from start candidate {s0}", i, n)
         (qa, oa), (qb, ob) = layers[i - 1], layers[i]
         dO = np.abs(ob[None] - oa[:, None])
         C = (effort_matrix(qa, qb)  # Eq 54 for all pairs

@@ -12,6 +12,9 @@ from iik.planning.path import (
     densify,
     interpolate_joints,
     interpolate_orientation,
+    path_length,
+    segment_length,
+    segment_steps,
     straight_steps,
 )
 from iik.rotations import zxz_matrix
@@ -93,3 +96,23 @@ def test_bad_method_and_counts():
         interpolate_orientation([0, 0, 0], [1, 1, 1], 3, method="lerp")
     with pytest.raises(InvalidInputError, match="n_steps"):
         straight_steps([0, 0, 0], [1, 0, 0], n_steps=0)
+
+
+@given(point, point, st.sampled_from(["line", "arc"]), st.floats(0.005, 0.2),
+       st.one_of(st.none(), st.integers(1, 50)))
+def test_segment_steps_count_the_steps_without_making_them(a, b, route, max_step, n_steps):
+    make = arc_steps if route == "arc" else straight_steps
+    pts = make(a, b, max_step=max_step, n_steps=n_steps)
+    assert segment_steps(a, b, route=route, max_step=max_step, n_steps=n_steps) == len(pts) - 1
+    if route == "line":
+        assert segment_length(a, b) == pytest.approx(path_length(pts), rel=1e-12, abs=1e-15)
+
+
+@pytest.mark.parametrize("make", [straight_steps, arc_steps])
+@pytest.mark.parametrize("kw,argument", [({"max_step": 1e-7}, "max_step"), ({"max_step": 5e-324}, "max_step"),
+                                         ({"n_steps": 10**6}, "n_steps")])
+def test_step_primitives_refuse_unbounded_step_counts(make, kw, argument):
+    with pytest.raises(InvalidInputError) as exc:
+        make([0.3, 0.2, 0.1], [0.3, -0.2, 0.1], **kw)
+    assert exc.value.argument == argument and "at most 4999" in exc.value.reason
+    assert segment_steps([0.3, 0.2, 0.1], [0.3, -0.2, 0.1], max_step=5e-324) == 2**62  # counted, not made

@@ -2,16 +2,18 @@
 
 import csv
 import dataclasses
+import time
 
 import coal
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
+import iik.planning.budget as budget_module
 from iik import THESIS_ARM, fk, joint_frames
 from iik.cli import main
 from iik.errors import InvalidInputError
-from iik.planning import Attempt, PlanOptions, PlanResult, load_scenario, plan
+from iik.planning import VIA_POINT_TOLERANCE, Attempt, PlanOptions, PlanResult, load_scenario, plan
 from iik.resources import scenarios_dir
 from iik.urdf import BoxShape, thesis_geometry
 
@@ -96,6 +98,8 @@ def test_unknown_name_exits_with_the_shipped_names(tmp_path, capsys):
 @pytest.mark.parametrize("kw,argument", [
     ({"rrt_time": 0.0}, "rrt_time"), ({"dt": float("nan")}, "dt"), ({"resolution": -1.0}, "resolution"),
     ({"seed": 0}, "seed"), ({"seed": 1.5}, "seed"), ({"fallbacks": "no"}, "fallbacks"),
+    ({"timeout": 0.0}, "timeout"), ({"timeout": float("inf")}, "timeout"), ({"timeout": "60"}, "timeout"),
+    ({"dt": 1e-9}, "dt"), ({"resolution": 1e-12}, "resolution"),
 ])
 def test_hostile_options_name_the_option(kw, argument):
     with pytest.raises(InvalidInputError) as exc:
@@ -126,6 +130,122 @@ def test_lji_mode_interpolates_joints_between_key_points(tmp_path):
     if r.method.startswith("thesis LJI"):
         assert np.abs(np.diff(r.q, axis=0)).max() <= 0.05 + 1e-12
         assert len(r.cartesian.points) == 2  # start and goal only (no via-points in j)
+
+
+# ------------------------------------------------------------------ bounded planning (issue 12, item 2)
+
+
+def _j_with(tmp_path, planning: str, name: str = "j_mod.toml"):
+    p = tmp_path / name
+    p.write_text((scenarios_dir() / "j.toml").read_text() + "\n[planning]\n" + planning + "\n")
+    return p
+
+
+@pytest.mark.parametrize("planning,field", [
+    ("via_points = [[0.3, 0.0, -10.0]]", "planning.via_points[0]"),  # 10 m below the floor
+    ("via_points = [[50.0, 0.0, 0.9]]", "planning.via_points[0]"),  # 50 m away
+    ("via_points = [[2.0, 0.0, 0.9]]", "planning.via_points[0]"),  # out of reach
+    ("max_step = 1e-7", "planning.max_step"),  # 5.4 million step-points
+])
+def test_absurd_via_points_and_step_sizes_fail_in_seconds_with_exit_2(tmp_path, capsys, planning, field):
+    t0 = time.perf_counter()
+    code = main(["plan", str(_j_with(tmp_path, planning)), "--out", str(tmp_path / "o"), "--no-figures"])
+    elapsed = time.perf_counter() - t0
+    err = capsys.readouterr().err
+    assert code == 2 and f"ScenarioError: {field}: " in err and "Traceback" not in err
+    assert elapsed < 20.0, f"{planning}: {elapsed:.1f} s"  # before: minutes and GBs (issue 12)
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("value", ["0", "-5", "nan", "inf", "soon"])
+def test_a_hostile_timeout_is_one_error_line_naming_the_flag(tmp_path, capsys, value):
+    assert main(["plan", "j", "--out", str(tmp_path / "o"), f"--timeout={value}"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"iik plan: error: InvalidInputError: --timeout: expected a positive finite number of "
+                   f"seconds, got {value!r}"]
+
+
+def test_a_requested_via_point_that_cannot_be_passed_fails_and_says_so(tmp_path):
+    # 15 mm above the cabinet's top: reachable and outside every box, but the gripper there is
+    # closer than the 30 mm safety zone. Before issue 12 the planner repelled the via-point by
+    # 251 mm and reported "OK via thesis"; RRT-Connect would have dropped it as well.
+    r = plan(_j_with(tmp_path, "via_points = [[0.40, 0.0, 0.715]]"), PlanOptions(timing=False))
+    assert not r.success and r.method == "none" and not r.timed_out
+    assert "no method kept the safety zone through the requested via-points" in r.reason
+    assert not any(a.accepted for a in r.attempts)
+    skipped = {a.label: a.reason for a in r.attempts if a.reason.startswith("skipped")}
+    assert set(skipped) == {"rrt-connect", "redesigns that move via-points"}
+    assert all("planning.via_points" in why for why in skipped.values())
+    checked = [a for a in r.attempts if not np.isnan(a.clearance)]
+    assert checked and all(a.clearance < r.scenario.safety_zone for a in checked)
+
+
+@pytest.mark.parametrize("name", ["p1", "p2", "p3"])
+def test_accepted_plans_pass_every_requested_via_point(name):
+    r = plan(name, PlanOptions(timing=False))
+    assert r.success and r.scenario.via_points
+    tool = fk(r.q)[:, :3, 3]
+    for v in r.scenario.via_points:
+        assert np.linalg.norm(tool - v, axis=1).min() <= VIA_POINT_TOLERANCE
+
+
+class _JumpingClock:
+    """``time`` for the budget: real time plus a jump the test triggers from a progress message."""
+
+    def __init__(self):
+        self.jump = 0.0
+
+    def perf_counter(self) -> float:
+        return time.perf_counter() + self.jump
+
+
+@pytest.mark.parametrize("name,at,accepted", [
+    ("a", "redesigned path: padding +50 mm", False),  # after the thesis path's candidates were rejected
+    ("j", "timing (TOPP-RA)", True),  # after a path was accepted, before it was timed
+    ("j", "IK along the thesis path", False),  # before any candidate
+])
+def test_the_timeout_stops_with_a_typed_result_and_the_best_attempt_so_far(monkeypatch, name, at, accepted):
+    clock = _JumpingClock()
+    monkeypatch.setattr(budget_module, "time", clock)
+    said = []
+
+    def progress(msg):
+        said.append(msg)
+        if msg.startswith(at):
+            clock.jump = 100.0  # the next check finds the 60 s budget spent
+
+    r = plan(name, PlanOptions(timeout=60.0), progress=progress)
+    assert r.timed_out and not r.success and r.trajectory is None
+    assert r.reason.startswith("timed out after 1") and "(timeout 60 s: PlanOptions.timeout" in r.reason
+    assert f"during {at}" in r.reason
+    best = r.best_attempt
+    if best is None:
+        assert "no candidate path was checked" in r.reason and len(r.q) == 0
+    else:
+        assert r.reason.endswith(f"best attempt so far: {best}")
+        assert best.clearance == max(a.clearance for a in r.attempts if not np.isnan(a.clearance))
+        assert best.accepted == accepted and (len(r.q) > 0) == accepted  # an accepted path is kept, untimed
+    assert not any(m.startswith("whole-arm check") for m in said[said.index(next(m for m in said
+                                                                              if m.startswith(at))) + 1:])
+
+
+def test_a_long_plan_stops_near_its_timeout_in_real_time(tmp_path):
+    p = tmp_path / "fine.toml"
+    p.write_text((scenarios_dir() / "a.toml").read_text() + "\n[planning]\nmax_step = 0.0005\n")
+    said = []
+    t0 = time.perf_counter()
+    r = plan(p, PlanOptions(timeout=2.0), progress=said.append)
+    elapsed = time.perf_counter() - t0
+    assert r.timed_out and not r.success
+    assert elapsed < 2.0 + 5.0  # the overrun is one IK chunk or Coal query, not a stage
+    assert any(": " in m and "/" in m and m.endswith(" s)") for m in said)  # progress inside a long loop
+
+
+def test_progress_names_each_stage_and_candidate(repo_result):
+    said = []
+    plan("j", PlanOptions(timing=False), progress=said.append)
+    assert said[:2] == ["thesis path (Sec 3.6)", "IK along the thesis path (25 step-points)"]
+    assert f"whole-arm check: {repo_result.attempts[-1].label}" in said
 
 
 # ------------------------------------------------------------------ another arm, end to end

@@ -142,8 +142,9 @@ def test_any_scenario_round_trips_exactly(tmp_path_factory, start, angles, alpha
 
 
 def test_writing_a_non_finite_value_names_the_field():
-    sc = Scenario(name="n", start=Waypoint((0.3, 0.25, np.nan), None, 0.0),
+    sc = Scenario(name="n", start=Waypoint((0.3, 0.25, 0.1), None, 0.0),
                   goal=Waypoint((0.3, -0.25, 0.1), None, 0.0))
+    object.__setattr__(sc.start, "position", (0.3, 0.25, np.nan))  # past the Waypoint's own check
     with pytest.raises(ScenarioError) as exc:
         scenario_to_toml(sc)
     assert exc.value.field == "start.position[2]"
@@ -153,3 +154,75 @@ def test_written_text_is_the_documented_format():
     sc = dataclasses.replace(load_scenario(scenarios_dir() / "j.toml"), name="j2")
     text = scenario_to_toml(sc)
     assert 'frame = "base"' in text and 'name = "j2"' in text and "[[obstacles]]" in text
+
+
+VIAS = "\n[planning]\nvia_points = {}\n"
+
+
+@pytest.mark.parametrize("text,field,needle", [
+    (GOOD + VIAS.format("[[0.3, 0.0, -10.0]]"), "planning.via_points[0]", "below the floor"),
+    (GOOD + VIAS.format("[[0.3, 0.1, 0.1], [50.0, 0.0, 0.9]]"), "planning.via_points[1]",
+     "outside the workspace"),
+    (GOOD + VIAS.format("[[0.32, 0.0, 0.05]]"), "planning.via_points[0]", "inside obstacle 'box'"),
+    (GOOD + VIAS.format("[[-0.3, 0.0, 0.3]]"), "planning.via_points[0]", "inside the mobile platform"),
+    (GOOD + VIAS.format("[[0.3, 0.0, nan]]"), "planning.via_points[0][2]", "finite"),
+    (GOOD + VIAS.format("[[0.3, 0.0, 1e300]]"), "planning.via_points[0][2]", "[-100, 100] m"),
+    (GOOD + VIAS.format("[[0.3, 0.0]]"), "planning.via_points[0]", "3 numbers"),
+    (GOOD + VIAS.format("'[[0.3, 0.0, 0.1]]'"), "planning.via_points", "'auto' or a list"),
+    (GOOD + "\n[planning]\nmax_step = 1e-7\n", "planning.max_step", "at most 5000"),
+    (GOOD + "\n[planning]\nmax_step = -0.01\n", "planning.max_step", "(0, 0.5]"),
+    (GOOD + "\n[planning]\nsteps_per_segment = 100000\n", "planning.steps_per_segment", "1..10000"),
+    (GOOD + "\n[planning]\nsegments = ['arc']\n", "planning.segments", "explicit planning.via_points"),
+    (GOOD.replace("beta_deg = 0.0", "beta_deg = 1e6", 1), "start.beta_deg", "[-360, 360] deg"),
+    (GOOD.replace("[0.30, 0.25, 0.10]", "[1e300, 0.25, 0.10]"), "start.position[0]", "[-100, 100] m"),
+    (GOOD.replace('name = "box"', "name = 7"), "obstacles[0].name", "string"),
+    (GOOD.replace('frame = "floor"', "frame = 'x'"), "frame", "'base' or 'floor'"),
+    ("a = " + "[" * 3000 + "]" * 3000, "file", "too deeply"),
+])
+def test_requested_via_points_and_bounds_are_checked_naming_the_field(tmp_path, text, field, needle):
+    with pytest.raises(ScenarioError) as exc:
+        load_scenario(_write(tmp_path, text))
+    assert exc.value.field == field and needle in exc.value.reason
+
+
+def test_unreadable_files_are_scenario_errors(tmp_path):
+    bad = tmp_path / "bytes.toml"
+    bad.write_bytes(GOOD.encode() + b"\n# \xff\xfe not UTF-8\n")
+    with pytest.raises(ScenarioError, match="cannot read") as exc:
+        load_scenario(bad)
+    assert exc.value.field == "file"
+    big = _write(tmp_path, GOOD + "#" * 1_000_001 + "\n", "big.toml")
+    with pytest.raises(ScenarioError, match="at most 1000000") as exc:
+        load_scenario(big)
+
+
+def _suggested(reason: str) -> str:
+    """The "[x, y, z]" of "closest reachable point [x, y, z] m (floor frame)" in a message."""
+    return reason.split("closest reachable point ", 1)[1].split(" m (", 1)[0]
+
+
+@pytest.mark.parametrize("frame", ["floor", "base"])
+@pytest.mark.parametrize("where", ["goal", "via"])
+def test_the_suggested_point_is_in_the_file_frame_and_pasting_it_back_passes(tmp_path, frame, where):
+    from iik.scene import THESIS_SCENE
+    from iik.workspace import closest_reachable
+
+    dz = 0.0 if frame == "floor" else THESIS_SCENE.floor.z  # the same scene written in either frame
+    text = GOOD.replace('frame = "floor"', f'frame = "{frame}"')
+    for xy in ("0.30, 0.25, ", "0.30, -0.25, ", "0.32, 0.0, "):  # the points' z (not the box size)
+        text = text.replace(f"[{xy}0.10]", f"[{xy}{0.10 + dz!r}]")
+    far = f"[2.0, -0.25, {0.9 + dz!r}]"
+    if where == "goal":
+        text, field = text.replace(f"[0.30, -0.25, {0.10 + dz!r}]", far), "goal.position"
+    else:
+        text, field = text + VIAS.format(f"[{far}]"), "planning.via_points[0]"
+    assert far in text
+    with pytest.raises(ScenarioError) as exc:
+        load_scenario(_write(tmp_path, text))
+    assert exc.value.field == field
+    assert f"[2.000, -0.250, {0.9 + dz:.3f}] m ({frame} frame) is outside the workspace" in exc.value.reason
+    assert f"m ({frame} frame) (" in exc.value.reason.split("closest reachable point", 1)[1]
+    sc = load_scenario(_write(tmp_path, text.replace(far, _suggested(exc.value.reason)), "fixed.toml"))
+    pasted = sc.goal.position if where == "goal" else sc.via_points[0]  # base frame, as loaded
+    closest = closest_reachable([2.0, -0.25, 0.9 + THESIS_SCENE.floor.z]).point
+    assert np.linalg.norm(np.subtract(pasted, closest)) <= 0.011  # the same point (mm rounding, <= 10 mm in)
