@@ -128,3 +128,21 @@ def test_read_report(runs, tmp_path):
     (tmp_path / "wrong.json").write_text(json.dumps({"format": "x"}), encoding="utf-8")
     with pytest.raises(ReportError, match="schema"):
         read_report(tmp_path / "wrong.json")
+
+
+def test_planning_links_the_exported_3d_view(runs, doc):
+    """Issue 13 item 2: the Planning section links the offline 3D view exported into the report folder
+    (quick mode: scenario j only)."""
+    folder, _, md_path = runs[0]
+    row = next(r for r in doc["rows"] if r["id"] == "planning.scenarios")
+    assert row["views"] == ["views/j/index.html"]
+    page = folder / "views" / "j" / "index.html"
+    assert page.stat().st_size > 100_000 and "<html" in page.read_text(encoding="utf-8")[:2000].lower()
+    planning = md_path.read_text(encoding="utf-8").split("\n## Planning")[1].split("\n## ")[0]
+    assert "](views/j/index.html)" in planning
+
+
+def test_quick_report_is_marked(runs, doc):
+    assert doc["title"].startswith("QUICK")
+    assert runs[0][2].read_text(encoding="utf-8").startswith("# QUICK")
+    assert runs[0][2].with_suffix(".json").read_text(encoding="utf-8").startswith('{"title": "QUICK')
