@@ -489,7 +489,10 @@ def check_early_update(ctx, early: float) -> Row:
         f"early update ({early * 100:.0f} %), buffered; rests = a joint at rest between two consecutive "
         "steps (SimModule.stops). Holds if waiting has rests, the early update leaves at most a tenth of "
         "them, and its mean error is larger. Host latency is excluded from the graded runs (module "
-        "docstring); vibrations themselves need a structural model: not simulated",
+        "docstring): the waiting scheme's next command then arrives within microseconds of the end of the "
+        "step, so some of its step changes (about half or more) register as a rest and the count varies "
+        "between runs, while the 95 % update is 5 % of a step (>= 2.5 ms) early, never a rest. Vibrations "
+        "themselves need a structural model: not simulated",
         numbers=numbers + "." + buffered,
         verdict=verdict,
         measures=m,
