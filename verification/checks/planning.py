@@ -532,10 +532,29 @@ def _names(ctx, among=None) -> list[str]:
     return [n for n in _planned(ctx) if among is None or n in among]
 
 
-def _group(details: list[Row], what: str) -> tuple[Verdict, tuple[Measure, ...]]:
-    failing = sum(d.verdict is not Verdict.HOLDS for d in details)
-    m = (Measure(f"scenarios where {what} fails", failing, 0),)
-    return verdict_of(m, fail=Verdict.DOES_NOT_HOLD), m
+def _no_path(sc, method: str, why: str, scope: Scope = Scope.THESIS) -> Row:
+    """The detail row of a scenario for which the form offers no path (it does not hold)."""
+    return Row(
+        sc.title,
+        sc.reference or "Sec 4.2",
+        method,
+        why,
+        Verdict.DOES_NOT_HOLD,
+        reason=why,
+        id=sc.name,
+        scope=scope,
+    )
+
+
+def _grouped(details: list[Row], what: str, failing: Callable[[list[Row]], str], **fields) -> Row:
+    """A claim over the scenarios, counted once with one detail per scenario: it holds if every detail
+    holds; ``failing(rows)`` words the reason from the failing details."""
+    bad = [d for d in details if d.verdict is not Verdict.HOLDS]
+    m = (Measure(f"scenarios where {what} fails", len(bad), 0),)
+    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
+    return Row(
+        verdict=verdict, measures=m, details=tuple(details), reason=failing(bad) if bad else "", **fields
+    )
 
 
 def _quick_note(ctx, among=None) -> str:
@@ -562,17 +581,7 @@ def check_scenarios(ctx, source: PathSource) -> Row:
         sc = _planned(ctx)[name][0].scenario
         ch = _choose(ctx, source, name)
         if ch.q is None:
-            details.append(
-                Row(
-                    sc.title,
-                    sc.reference,
-                    source.name,
-                    "no IK branch covers every step-point",
-                    Verdict.DOES_NOT_HOLD,
-                    reason="no complete IK branch",
-                    id=name,
-                )
-            )
+            details.append(_no_path(sc, source.name, "no IK branch covers every step-point"))
             continue
         ev, dbox = _tool_zone(sc, ch.q)
         c = ch.clearance
@@ -609,9 +618,11 @@ def check_scenarios(ctx, source: PathSource) -> Row:
                 id=name,
             )
         )
-    verdict, m = _group(details, "the thesis's criterion")
     figs, views = _illustrations(ctx)
-    return Row(
+    return _grouped(
+        details,
+        "the thesis's criterion",
+        lambda bad: "; ".join(f"{d.id}: {d.numbers}" for d in bad),
         claim="The Sec 3.6 planner gives a collision-free path in each scenario of Fig 42: every tool "
         "step-point outside the obstacles' ellipsoids padded by the 30 mm safety zone, and no part of the "
         "arm touching the scene (the thesis's own criterion: the zone pads the tool point; joints must not "
@@ -624,14 +635,8 @@ def check_scenarios(ctx, source: PathSource) -> Row:
         numbers="; ".join(
             f"{d.id}: {d.verdict.value}" + (f" (arm {_mm(d)})" if d.measures else "") for d in details
         ),
-        verdict=verdict,
-        measures=m,
-        details=tuple(details),
         figures=figs,
         views=views,
-        reason=""
-        if verdict is Verdict.HOLDS
-        else "; ".join(f"{d.id}: {d.numbers}" for d in details if d.verdict is not Verdict.HOLDS),
         id="scenarios",
     )
 
@@ -651,18 +656,7 @@ def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
         sc = res.scenario
         ch = _choose(ctx, source, name)
         if ch.q is None:
-            details.append(
-                Row(
-                    sc.title,
-                    sc.reference,
-                    source.name,
-                    "no IK branch covers every step-point",
-                    Verdict.DOES_NOT_HOLD,
-                    reason="no complete IK branch",
-                    id=name,
-                    scope=Scope.PROJECT,
-                )
-            )
+            details.append(_no_path(sc, source.name, "no IK branch covers every step-point", Scope.PROJECT))
             continue
         c = measure_clearance(_checker(ctx, name), ch.q, sc.safety_zone)
         m = (Measure("whole-arm clearance", c.value, sc.safety_zone, "m", bound=">="),)
@@ -680,8 +674,10 @@ def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
                 scope=Scope.PROJECT,
             )
         )
-    verdict, m = _group(details, "the whole-arm 30 mm standard")
-    return Row(
+    return _grouped(
+        details,
+        "the whole-arm 30 mm standard",
+        lambda bad: "below the zone: " + ", ".join(f"{d.id} ({_mm(d)})" for d in bad),
         claim="(Project standard) The Sec 3.6 planner's own path keeps the whole arm -- every link, not "
         "only the tool point -- at least the 30 mm safety zone from the scene, on every step-point and "
         "motion",
@@ -690,15 +686,8 @@ def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
         "bisection "
         "where the bound is undecided)." + _quick_note(ctx),
         numbers="; ".join(f"{d.id}: {_mm(d)}" for d in details),
-        verdict=verdict,
-        measures=m,
-        details=tuple(details),
         scope=Scope.PROJECT,
         id="scenarios_whole_arm",
-        reason=""
-        if verdict is Verdict.HOLDS
-        else "below the zone: "
-        + ", ".join(f"{d.id} ({_mm(d)})" for d in details if d.verdict is not Verdict.HOLDS),
     )
 
 
@@ -721,16 +710,7 @@ def check_planner(ctx, source: PathSource) -> Row:
         paths = source.paths(ctx, name)
         if not paths:
             details.append(
-                Row(
-                    sc.title,
-                    sc.reference,
-                    source.name,
-                    f"no path ({res.reason})",
-                    Verdict.DOES_NOT_HOLD,
-                    reason=res.reason or "no path",
-                    id=name,
-                    scope=Scope.PROJECT,
-                )
+                _no_path(sc, source.name, f"no path ({res.reason or 'none offered'})", Scope.PROJECT)
             )
             continue
         cs = [measure_clearance(_checker(ctx, name), q, sc.safety_zone) for q in paths]
@@ -754,8 +734,10 @@ def check_planner(ctx, source: PathSource) -> Row:
                 scope=Scope.PROJECT,
             )
         )
-    verdict, m = _group(details, "the planner's 30 mm standard")
-    return Row(
+    return _grouped(
+        details,
+        "the planner's 30 mm standard",
+        lambda bad: "; ".join(f"{d.id}: {d.numbers}" for d in bad),
         claim="(Project standard) iik.planning.plan gives a path and a timed trajectory that keep the whole "
         "arm at least the 30 mm safety zone from the scene in every shipped scenario",
         reference="Sec 4.2, Sec 3.6",
@@ -764,14 +746,8 @@ def check_planner(ctx, source: PathSource) -> Row:
         "clearance every "
         "2 mm of arm motion." + _quick_note(ctx),
         numbers="; ".join(f"{d.id}: {_mm(d)}" for d in details),
-        verdict=verdict,
-        measures=m,
-        details=tuple(details),
         scope=Scope.PROJECT,
         id="planner",
-        reason=""
-        if verdict is Verdict.HOLDS
-        else "; ".join(f"{d.id}: {d.numbers}" for d in details if d.verdict is not Verdict.HOLDS),
     )
 
 
@@ -820,17 +796,7 @@ def check_smooth_joints(ctx, form) -> Row:
         sc = _planned(ctx)[name][0].scenario
         q = _smooth_path(ctx, form, name)
         if q is None or len(q) < 2:
-            details.append(
-                Row(
-                    sc.title,
-                    sc.reference,
-                    "-",
-                    "no complete IK branch",
-                    Verdict.DOES_NOT_HOLD,
-                    reason="no path",
-                    id=name,
-                )
-            )
+            details.append(_no_path(sc, "thesis path", "no IK branch covers every step-point"))
             continue
         dq = np.abs(np.diff(q, axis=0))
         step = dq.max(axis=1)
@@ -856,8 +822,16 @@ def check_smooth_joints(ctx, form) -> Row:
                 id=name,
             )
         )
-    verdict, m = _group(details, "smoothness")
-    return Row(
+    return _grouped(
+        details,
+        "smoothness",
+        lambda bad: (
+            "jumps in "
+            + ", ".join(d.id for d in bad)
+            + ": where the nominal orientation has no IK solution the reconstructed path needs the "
+            "orientation search, which may turn the gripper by half a turn (joint 6) or change IK branch "
+            "between two step-points"
+        ),
         claim="The joint angles of the planned paths change smoothly from step-point to step-point (no jump "
         "to another IK branch)",
         reference="Sec 4.2.2 (Figs 43-44)",
@@ -868,17 +842,7 @@ def check_smooth_joints(ctx, form) -> Row:
             f"{d.id}: {math.degrees(d.measures[0].value):.1f} deg" if d.measures else f"{d.id}: -"
             for d in details
         ),
-        verdict=verdict,
-        measures=m,
-        details=tuple(details),
         id="smooth_joints",
-        reason=""
-        if verdict is Verdict.HOLDS
-        else "jumps in "
-        + ", ".join(d.id for d in details if d.verdict is not Verdict.HOLDS)
-        + ": where the nominal orientation has no IK solution the reconstructed path needs the orientation "
-        "search, which may turn the gripper by half a turn (joint 6) or change IK branch between two "
-        "step-points",
     )
 
 
@@ -936,10 +900,6 @@ def _peak(traj, arm) -> tuple[float, float]:
     return v, (math.inf if jumps > 1e-12 else 0.0)
 
 
-def _toppra(q, arm):
-    return time_parameterize(q, arm)
-
-
 def _toppra_double_limits(q, arm):
     fast = dataclasses.replace(
         arm,
@@ -955,7 +915,7 @@ def _toppra_double_limits(q, arm):
     depends_on=("speed-limits", "accel-limits", "scene", "sec36-method"),
     forms=Forms(
         printed=thesis_timing,
-        good=_toppra,
+        good=time_parameterize,
         bad=_toppra_double_limits,
         good_is="TOPP-RA within the speed and acceleration limits",
         bad_is="TOPP-RA with both limits doubled",
