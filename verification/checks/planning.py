@@ -372,7 +372,8 @@ class Clearance:
     step: int
 
     def mm(self) -> str:
-        return f"{self.value * 1e3:.1f} mm ({self.link} to {self.obj}, step {self.step})"
+        where = f"at or after step-point {self.step}, 0-based"
+        return f"{self.value * 1e3:.1f} mm ({self.link} to {self.obj}, {where})"
 
 
 def measure_clearance(checker: SceneCollision, q, limit: float) -> Clearance:
