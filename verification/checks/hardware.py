@@ -20,9 +20,9 @@ and two runs give the same verdicts. (With bus round trips at their real length,
 many flipped the Sec 4.3 row between two runs; the early-update row still reports that
 real-latency count, ungraded.) The simulator's motion is an analytic function of the
 clock, so the jumps are exact. The executor samples every 30 ms (:data:`SAMPLE_PERIOD`;
-on p3 the errors agree with 10 ms sampling to 0.05 mm). The Table V round trips, which
-do not depend on latency, use a clock running :data:`SCALE` times real time
-(:func:`scaled_clock`).
+on p3 the errors agree with 10 ms sampling to 0.05 mm). The Table V round trips use the
+same clock, so their timings (a step's duration, the velocity half-way) do not depend on
+the host's load either.
 
 Forms. The error rows take the simulated arm as their form (:class:`SimArm`): the
 assumed lag (printed), an arm without lag (good) and one ten times as sluggish (bad);
@@ -48,19 +48,15 @@ if TYPE_CHECKING:
 
 __all__ = [
     "SECTION",
-    "SCALE",
     "FAST_FORWARD",
     "LATENCY_SCALE",
     "SimArm",
     "SimRun",
-    "scaled_clock",
     "fast_forward_clock",
     "execute_scenario",
 ]
 
 SECTION = "Hardware execution (Sec 4.3, App. A)"
-#: Simulated seconds per real second of the Table V round trips.
-SCALE = 4.0
 #: The executor sleeps 1/FAST_FORWARD of each wait; the clock advances by all of it.
 FAST_FORWARD = 20.0
 #: Share of the host's real time (computation, bus round trips) that the graded runs' clock counts.
@@ -83,20 +79,6 @@ _PREDEFINED_QUICK = (("p3", 30),)
 #: Further planned scenarios (Sec 4.2.2) executed for the 30 mm row of Sec 4.3.2 (the short ones).
 _PLANNED_EXTRA = (("b", None), ("h", None))
 _DEP = ("sim-arm", "speed-limits", "scene", "l1", "lengths")
-
-
-def scaled_clock(scale: float = SCALE):
-    """``(clock, sleep)``: a monotonic clock running ``scale`` times real time [s] and
-    a sleep taking durations on that clock."""
-    t0 = time.monotonic()
-
-    def clock() -> float:
-        return t0 + (time.monotonic() - t0) * scale
-
-    def sleep(seconds: float) -> None:
-        time.sleep(max(seconds, 0.0) / scale)
-
-    return clock, sleep
 
 
 def fast_forward_clock(factor: float = FAST_FORWARD, latency: float = 1.0):
@@ -296,30 +278,34 @@ def check_table_v(ctx) -> Row:
     from hardware.errors import SimulatorError
     from hardware.sim import SIM_VERSION, simulated_arm
 
-    clock, _ = scaled_clock()
+    clock, wait_for = fast_forward_clock(latency=LATENCY_SCALE)  # waits in simulated time [s]
     q0 = np.full(6, 0.1)  # [rad], away from home
     ok: dict[str, bool] = {}
 
-    def wait_for(seconds: float) -> None:
-        """Wait ``seconds`` of simulated time."""
-        t = clock()
-        while clock() < t + seconds:
-            time.sleep(0.001)
-
-    def wait_still(arm, limit: float = 10.0) -> float:
-        """Poll until no module is in progress or moving, then let the measurement catch up
-        (the simulator's lag); returns the (simulated) time at which the set-points had stopped."""
-        busy = P.State.INPROGRESS | P.State.MOTION
+    def wait_until(states_ok, what: str, limit: float = 10.0) -> float:
+        """Poll the modules' states every 2 ms of simulated time until ``states_ok(states)``; returns the
+        simulated time it became true (``limit``: real seconds before giving up)."""
         deadline = time.monotonic() + limit
-        while any(s & busy for s in arm.states()):
+        while not states_ok(arm.states()):
             if time.monotonic() > deadline:
-                raise SimulatorError(f"simulated modules did not come to rest within {limit} s")
-            time.sleep(0.002)
-        done = clock()
+                raise SimulatorError(f"simulated modules: {what} not within {limit} s")
+            wait_for(0.002)
+        return clock()
+
+    def wait_still() -> float:
+        """Wait until no module is in progress or moving, then let the measurement catch up (the
+        simulator's lag); returns the (simulated) time at which the set-points had stopped."""
+        busy = P.State.INPROGRESS | P.State.MOTION
+        done = wait_until(lambda states: not any(s & busy for s in states), "at rest")
         wait_for(0.1)  # > the simulator's tracking lag
         return done
 
-    with simulated_arm(initial=q0, clock=clock) as (sim, arm):
+    def homed(ids):
+        return lambda states: all(
+            s & P.State.HOME_OK and not s & P.State.MOTION for i, s in enumerate(states) if i in ids
+        )
+
+    with simulated_arm(initial=q0, clock=clock, timeout=REQUEST_TIMEOUT) as (sim, arm):
         states = arm.open()  # PCube_openDevice: every module answers VERSION
         ok["openDevice"] = len(states) == 6 and all(m.version() == SIM_VERSION for m in arm.modules)
         ok["getPos"] = bool(np.allclose(arm.get_pos(), q0, atol=1e-6))
@@ -331,16 +317,16 @@ def check_table_v(ctx) -> Row:
         ok["setMaxCur"] = bool(np.allclose(back, 1.5) and np.all(np.abs(arm.get_cur()) <= 1.5 + 1e-6))
         first = arm.modules[0]
         first.home()  # PCube_homeModule
-        first.wait_homed(timeout=10.0)
+        wait_until(homed({0}), "module 1 homed")
         ok["homeModule"] = abs(first.get_pos()) < 1e-6 and np.allclose(arm.get_pos()[1:], q0[1:], atol=1e-6)
         arm.home_all()  # PCube_homeAll (broadcast)
-        arm.wait_homed(timeout=10.0)
+        wait_until(homed(set(range(6))), "all modules homed")
         ok["homeAll"] = bool(np.allclose(arm.get_pos(), 0.0, atol=1e-6))
         # PCube_moveRamp: 0.2 rad at 0.3 rad/s, 0.6 rad/s^2: trapezoid of d/v + v/a = 1.17 s
         d, v, a = 0.2, 0.3, 0.6
         t_cmd = clock()
         arm.move_ramp(np.full(6, d), v, a)
-        waited = wait_still(arm) - t_cmd
+        waited = wait_still() - t_cmd
         ok["moveRamp"] = bool(np.allclose(arm.get_pos(), d, atol=1e-5)) and waited >= 0.95 * (d / v + v / a)
         # PCube_moveStep: -0.15 rad in 0.5 s at constant velocity -0.3 rad/s, then at rest at the target
         T, dq = 0.5, -0.15
@@ -348,7 +334,7 @@ def check_table_v(ctx) -> Row:
         arm.move_step(np.full(6, d + dq), T)
         wait_for(0.5 * T)
         mid_vel = arm.get_vel()
-        step_time = wait_still(arm) - t_cmd  # >= T: every module starts after t_cmd
+        step_time = wait_still() - t_cmd  # >= T: every module starts after t_cmd
         ok["moveStep"] = (
             bool(np.allclose(mid_vel, dq / T, rtol=1e-3) and np.allclose(arm.get_pos(), d + dq, atol=1e-5))
             and T <= step_time < T + 0.5
@@ -400,12 +386,12 @@ def check_table_v(ctx) -> Row:
         "constant-velocity function PCube_moveStep, which receives a goal position and a time (Sec 4.3)",
         reference="Sec 4.3, App. A, Table V",
         method="hardware driver (python-can) against the in-process simulated modules on a virtual bus, "
-        f"clock {SCALE:.0f}x real time: each function's frame observed on the bus (POWERCUBE.md) and its "
-        "effect read back: VERSION of 6 modules; getPos = initial 0.1 rad; getVel = 0; setMaxCur 1.5 A read "
-        "back (FMAXCUR) and |getCur| <= 1.5 A; home one module, then homeAll -> 0 rad; moveRamp 0.2 rad at "
-        "0.3 rad/s, 0.6 rad/s^2 (>= trapezoid time); moveStep -0.15 rad in 0.5 s (mid-step velocity -0.3 "
-        "rad/s, target reached); moveVel 0.2 rad/s; moveCur +0.5 A moves forward. Checks our driver against "
-        "our simulator (built from POWERCUBE.md), not the real modules",
+        "fast-forward clock counting 1/100 of the host's time: each function's frame observed on the bus "
+        "(POWERCUBE.md) and its effect read back: VERSION of 6 modules; getPos = initial 0.1 rad; getVel = "
+        "0; setMaxCur 1.5 A read back (FMAXCUR) and |getCur| <= 1.5 A; home one module, then homeAll -> 0 "
+        "rad; moveRamp 0.2 rad at 0.3 rad/s, 0.6 rad/s^2 (>= trapezoid time); moveStep -0.15 rad in 0.5 s "
+        "(mid-step velocity -0.3 rad/s, target reached); moveVel 0.2 rad/s; moveCur +0.5 A moves forward. "
+        "Checks our driver against our simulator (built from POWERCUBE.md), not the real modules",
         numbers=f"{len(good)}/{len(ok)} Table V functions round-trip "
         f"({', '.join('PCube_' + f for f in good)})"
         + (f"; FAILED: {', '.join('PCube_' + f for f in bad)}" if bad else "")
@@ -657,16 +643,14 @@ def check_set_max_cur(ctx, reading: LimitReading) -> Row:
     from hardware.sim import simulated_arm
 
     # PCube_setMaxCur(0.3) then a 0.6 rad/s velocity command for 1 s on the simulated modules
-    clock, _ = scaled_clock()
-    with simulated_arm(clock=clock) as (sim, arm):
+    clock, wait_for = fast_forward_clock(latency=LATENCY_SCALE)
+    with simulated_arm(clock=clock, timeout=REQUEST_TIMEOUT) as (sim, arm):
         arm.open()
         m = arm.modules[0]
         p0 = m.get_pos()
         m.set_max_cur(0.3)
         m.move_vel(0.6)  # [rad/s], twice "0.3 rad/s"
-        t = clock()
-        while clock() < t + 1.0:
-            time.sleep(0.002)
+        wait_for(1.0)
         observed = {
             "velocity": abs(m.get_vel()),
             "current": abs(m.get_cur()),
