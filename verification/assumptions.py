@@ -85,6 +85,14 @@ _ALL = (
         "orientations and obstacle sizes are not printed",
     ),
     Assumption(
+        "sec36-method",
+        "the Sec 3.6 planner is reconstructed (iik.planning.build_path, track_branches): "
+        "repulsion along the printed plane normal, Eq 53 corrected, least-effort IK "
+        "(Eq 54) per step, the orientation search where the nominal orientation has no "
+        "solution; the thesis does not say which start configuration it took (the first "
+        "IK branch whose arm does not touch the scene is taken)",
+    ),
+    Assumption(
         "platform",
         "the platform box (0.65 x 0.50 x 0.45 m) and the floor at z = -0.45 m "
         "are assumed (iik.scene); the thesis gives only the heights",

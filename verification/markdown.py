@@ -52,9 +52,15 @@ def _header(doc: dict) -> list[str]:
     dirty = {True: " (uncommitted changes)", False: "", None: ""}[h["dirty"]]
     versions = ", ".join(f"{k} {v}" for k, v in h["versions"].items())
     m = h["machine"]
+    quick = (
+        "> **Quick mode:** small samples and only some scenarios; verdicts may differ from the full report. "
+        "Run `iik verify` (without `--quick`) for the report of record."
+    )
+    banner = [quick, ""] if h["quick"] else []
     return [
         f"# {doc['title']}",
         "",
+        *banner,
         _INTRO,
         "",
         f"- commit: `{h['commit']}`{dirty}",
@@ -167,6 +173,14 @@ def _row_block(rec: dict, details: list[dict]) -> list[str]:
                 f"{_cell(d['numbers'])} | **{_cell(dv)}** |"
             )
     lines.append("")
+    for v in rec["views"]:
+        name = v.split("/")[1]
+        lines += [
+            f"- 3D view of `{name}` (the planned motion with the arm's collision shapes, the scene, the tool "
+            f"path and the nearest link's clearance; opens from disk in a browser, no server, no network): "
+            f"[{v}]({v})",
+            "",
+        ]
     for f in rec["figures"]:
         lines += [f"![{_cell(rec['id'])}]({f})", ""]
     return lines

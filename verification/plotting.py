@@ -6,9 +6,10 @@ import numpy as np
 
 from iik.arm import THESIS_ARM, Arm
 from iik.kinematics import joint_frames
+from iik.planning.output import box_faces, collision_faces
 from iik.scene import THESIS_SCENE, Scene
 
-__all__ = ["arm_points", "draw_arm", "draw_scene", "new_figure", "shape_edges", "draw_collision"]
+__all__ = ["arm_points", "draw_arm", "draw_scene", "new_figure", "draw_collision"]
 
 
 def new_figure(*args, **kwargs):
@@ -35,19 +36,19 @@ def draw_arm(ax, q, arm: Arm = THESIS_ARM, **kwargs):
 
 
 def draw_scene(ax, scene: Scene = THESIS_SCENE) -> None:
-    """Outline the platform box and the floor (2 m x 2 m patch) on a 3-D axes, equal scale."""
-    lo, hi = np.asarray(scene.platform.lower), np.asarray(scene.platform.upper)
-    for a in (0, 1, 2):
-        for b in (lo, hi):
-            for c in (lo, hi):
-                p0, p1 = lo.copy(), hi.copy()
-                others = [k for k in (0, 1, 2) if k != a]
-                p0[others[0]] = p1[others[0]] = b[others[0]]
-                p0[others[1]] = p1[others[1]] = c[others[1]]
-                ax.plot(*np.stack([p0, p1]).T, color="goldenrod", lw=1)
+    """The platform box (translucent) and a 2 m x 2 m patch of the floor on a 3-D axes, base frame 0
+    [m], with equal scales on x, y and z (limits x, y in [-1, 1], z from the floor to 1.2 m)."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    from iik.planning.viewer import style
+
+    p = scene.platform
+    grey = style.rgb01(style.PLATFORM)
+    ax.add_collection3d(Poly3DCollection(box_faces(p.center, p.size), facecolor=grey, edgecolor=grey,
+                                         alpha=0.2, linewidth=0.5))
     g = np.linspace(-1, 1, 9)
     X, Y = np.meshgrid(g, g)
-    ax.plot_wireframe(X, Y, np.full_like(X, scene.floor.z), color="0.5", lw=0.4)
+    ax.plot_wireframe(X, Y, np.full_like(X, scene.floor.z), color="0.6", lw=0.4)
     ax.set_xlim(-1, 1)
     ax.set_ylim(-1, 1)
     ax.set_zlim(scene.floor.z, 1.2)
@@ -55,41 +56,16 @@ def draw_scene(ax, scene: Scene = THESIS_SCENE) -> None:
     ax.view_init(elev=15, azim=-65)
 
 
-def shape_edges(geom, M: np.ndarray) -> list[np.ndarray]:
-    """Wireframe polylines (each (k, 3), metres) of a coal Box or Cylinder placed at 4x4 ``M``."""
-    import coal
+def draw_collision(ax, model, collision_model, q, *, colours=None, alpha: float = 0.35) -> dict[str, tuple]:
+    """Draw the collision shapes of a Pinocchio model at ``q`` [rad] (base frame 0, m) as translucent
+    polygons placed by Pinocchio's ``oMg``, one colour per link (``colours``: {link: RGB}, default
+    matplotlib's cycle); returns {link: colour} for a legend."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    R, t = M[:3, :3], M[:3, 3]
-    lines = []
-    if isinstance(geom, coal.Box):
-        h = np.asarray(geom.halfSide)
-        corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * h
-        for i in range(8):
-            for j in range(i + 1, 8):
-                if np.sum(np.abs(corners[i] - corners[j]) > 0) == 1:
-                    lines.append(np.stack([corners[i], corners[j]]) @ R.T + t)
-    elif isinstance(geom, coal.Cylinder):
-        a = np.linspace(0, 2 * np.pi, 25)
-        r, hz = geom.radius, geom.halfLength
-        for z in (-hz, hz):
-            lines.append(np.stack([r * np.cos(a), r * np.sin(a), np.full_like(a, z)], 1) @ R.T + t)
-        for k in range(4):
-            c, s = r * np.cos(k * np.pi / 2), r * np.sin(k * np.pi / 2)
-            lines.append(np.array([[c, s, -hz], [c, s, hz]]) @ R.T + t)
-    return lines
-
-
-def draw_collision(ax, model, collision_model, q, **kwargs) -> None:
-    """Draw the collision shapes of a Pinocchio model at ``q`` [rad], one colour per link."""
-    import pinocchio as pin
-
-    data, gdata = model.createData(), pin.GeometryData(collision_model)
-    pin.forwardKinematics(model, data, np.asarray(q, float))
-    pin.updateGeometryPlacements(model, data, collision_model, gdata)
-    per_link: dict[str, list[np.ndarray]] = {}
-    for k, go in enumerate(collision_model.geometryObjects):
-        lines = per_link.setdefault(model.frames[go.parentFrame].name, [])
-        for line in shape_edges(go.geometry, gdata.oMg[k].homogeneous):
-            lines += [line, np.full((1, 3), np.nan)]  # NaN rows break the polyline
-    for i, lines in enumerate(per_link.values()):
-        ax.plot(*np.concatenate(lines).T, color=f"C{i % 10}", lw=0.7, **kwargs)
+    used = {}
+    for i, (link, faces) in enumerate(collision_faces(model, collision_model, q).items()):
+        c = (colours or {}).get(link, f"C{i % 10}")
+        ax.add_collection3d(Poly3DCollection(faces, facecolor=c, edgecolor=c, linewidth=0.3, alpha=alpha),
+                            autolim=False)
+        used[link] = c
+    return used

@@ -157,6 +157,8 @@ class Row:
         reason: Required for ``NOT_CHECKABLE``; optional elsewhere.
         errata: Erratum records (for ``ERRATUM``).
         figures: Paths of PNG figures (relative to the report's folder).
+        views: Paths of exported 3D views (``views/NAME/index.html``, relative to the report's
+            folder; pages that play from disk, :func:`iik.planning.viewer.export`).
         id: Row id. A check gives a short local id (``"eq9a"``); the registry
             prefixes it with the check's module (``"ik.eq9a"``). Default: the
             check's function name.
@@ -180,6 +182,7 @@ class Row:
     reason: str = ""
     errata: tuple[Erratum, ...] = ()
     figures: tuple[str, ...] = ()
+    views: tuple[str, ...] = ()
     id: str = ""
     scope: Scope = Scope.THESIS
     depends_on: tuple[str, ...] = ()
@@ -201,7 +204,7 @@ class Row:
         unknown = [a for a in self.depends_on if a not in ASSUMPTIONS]
         if unknown:
             raise RowError("depends_on", f"unknown assumption(s) {unknown}; known: {', '.join(ASSUMPTIONS)}")
-        for name in ("errata", "figures", "depends_on", "covers", "measures", "details"):
+        for name in ("errata", "figures", "views", "depends_on", "covers", "measures", "details"):
             object.__setattr__(self, name, tuple(getattr(self, name)))
 
     def replace(self, **changes) -> Row:
@@ -263,6 +266,10 @@ class Context:
         fig_dir = self.out_dir / "figures"
         fig_dir.mkdir(parents=True, exist_ok=True)
         return fig_dir / name, f"figures/{name}"
+
+    def view_path(self, name: str) -> tuple[Path, str]:
+        """Return ``(absolute folder, relative page path)`` of the exported 3D view ``views/name``."""
+        return self.out_dir / "views" / name, f"views/{name}/index.html"
 
     def save_figure(self, fig, name: str, dpi: int = 90) -> str:
         """Lay out, save as ``figures/name`` and close a matplotlib figure; return its

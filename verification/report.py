@@ -32,10 +32,12 @@ from .schema import schema_errors
 from .thesis_index import ITEMS, chapter_of, chapter_of_reference, parse_refs
 
 __all__ = ["CheckResult", "Verification", "verify", "run_checks", "report_document", "write_report",
-           "read_report", "summary", "FORMAT"]
+           "read_report", "summary", "FORMAT", "QUICK_TITLE"]
 
 #: The ``format`` field of every report document.
 FORMAT = "iik-verification-report/1"
+#: The title of a ``--quick`` report: its first line says so (markdown heading, first JSON field).
+QUICK_TITLE = "QUICK verification report (small samples, not the report of record: run `iik verify`)"
 
 
 @dataclass(frozen=True)
@@ -159,6 +161,7 @@ def _record(row: Row, section: str, parent: str | None) -> dict:
         "depends_on": list(row.depends_on),
         "check": row.check,
         "figures": list(row.figures),
+        "views": list(row.views),
         "errata": [
             {
                 "equation": e.equation,
@@ -246,8 +249,8 @@ def report_document(results: Iterable[CheckResult], *, title: str | None = None)
     header = provenance(seed, quick).as_dict()
     header["seconds"] = round(sum(r.seconds for r in results), 2)
     return {
+        "title": title or (QUICK_TITLE if quick else "Verification report"),
         "format": FORMAT,
-        "title": title or "Verification report",
         "header": header,
         "assumptions": [{"id": a.id, "text": a.text} for a in ASSUMPTIONS.values()],
         "summary": {
@@ -270,9 +273,9 @@ def write_report(results: Iterable[CheckResult], path: Path, *, title: str | Non
     if errors:  # a bug in this module, not bad input: fail loudly
         raise AssertionError("report document breaks report.schema.json: " + "; ".join(errors[:5]))
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.with_suffix(".json").write_text(
-        json.dumps(doc, indent=1, ensure_ascii=False) + "\n", encoding="utf-8"
-    )
+    text = json.dumps(doc, indent=1, ensure_ascii=False)
+    # the title on the first line (a --quick report says so there), then one field per line
+    path.with_suffix(".json").write_text("{" + text[1:].lstrip() + "\n", encoding="utf-8")
     path.write_text(render(doc), encoding="utf-8")
     return path
 

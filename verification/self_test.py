@@ -13,20 +13,18 @@ their nature declare ``by_construction`` and are counted apart.
 from __future__ import annotations
 
 import sys
+import tempfile
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 from .registry import Check, Context, Row, Verdict, registered_checks
 
-__all__ = ["SelfTestOutcome", "self_test_check", "run_self_test", "self_test", "AWAITING_ADOPTION"]
-
-#: Check modules not yet converted to forms (issue 11: handed over after the planning and
-#: hardware restructuring). Their checks are listed as "awaiting adoption", not passed.
-AWAITING_ADOPTION = frozenset({"verification.checks.planning", "verification.checks.hardware"})
+__all__ = ["SelfTestOutcome", "self_test_check", "run_self_test", "self_test"]
 
 FLIPS, CANNOT_FLIP, BY_CONSTRUCTION = "flips", "CANNOT FLIP", "by construction"
-AWAITING, UNDECLARED, ERROR = "awaiting adoption", "UNDECLARED", "ERROR"
+UNDECLARED, ERROR = "UNDECLARED", "ERROR"
 #: Statuses that make the self-test fail.
 FAILING = frozenset({CANNOT_FLIP, UNDECLARED, ERROR})
 
@@ -37,8 +35,7 @@ class SelfTestOutcome:
 
     Attributes:
         check: ``module:function``.
-        status: ``"flips"``, ``"CANNOT FLIP"``, ``"by construction"``, ``"awaiting adoption"``,
-            ``"UNDECLARED"`` or ``"ERROR"``.
+        status: ``"flips"``, ``"CANNOT FLIP"``, ``"by construction"``, ``"UNDECLARED"`` or ``"ERROR"``.
         printed, good, bad: The graded rows' verdicts with each form (``"-"`` if not run).
         note: What the good and bad forms are, or why the check is by construction, or the error.
     """
@@ -86,8 +83,6 @@ def self_test_check(check: Check, ctx: Context) -> SelfTestOutcome:
     if check.forms is None:
         if check.by_construction:
             return SelfTestOutcome(where, BY_CONSTRUCTION, note=check.by_construction)
-        if check.func.__module__ in AWAITING_ADOPTION:
-            return SelfTestOutcome(where, AWAITING, note="not yet converted to forms")
         return SelfTestOutcome(where, UNDECLARED, note="declares neither forms nor 'by construction'")
     f = check.forms
     try:
@@ -115,18 +110,26 @@ def run_self_test(ctx: Context, *, select: Sequence[str] | None = None) -> list[
     return [self_test_check(c, ctx) for c in checks]
 
 
-def self_test(ctx: Context, *, select: Sequence[str] | None = None, out=None) -> int:
+def self_test(ctx: Context | None = None, *, quick: bool = False, seed: int = 20120101,
+              select: Sequence[str] | None = None, out=None) -> int:
     """Run the self-test, print one line per check and a summary to ``out`` (stdout);
-    return 0 if every check can flip (or is by construction / awaiting adoption), else 1."""
+    return 0 if every check flips (or is by construction), else 1.
+
+    Without ``ctx`` the checks run in a fresh context (``quick``, ``seed``) whose figures and
+    views go to a temporary folder, so a report folder is never touched.
+    """
     out = out or sys.stdout
+    if ctx is None:
+        with tempfile.TemporaryDirectory(prefix="iik-self-test-") as tmp:
+            return self_test(Context(out_dir=Path(tmp), seed=seed, quick=quick), select=select, out=out)
     outcomes = run_self_test(ctx, select=select)
     for o in outcomes:
         print(o.line(), file=out)
     c = Counter(o.status for o in outcomes)
     print(
         f"self-test: {c.get(FLIPS, 0)} checks flip (holds with the good form, not with the bad one); "
-        f"{c.get(BY_CONSTRUCTION, 0)} by construction; {c.get(AWAITING, 0)} awaiting adoption; "
-        f"{c.get(CANNOT_FLIP, 0)} cannot flip; {c.get(UNDECLARED, 0)} undeclared; {c.get(ERROR, 0)} errors",
+        f"{c.get(BY_CONSTRUCTION, 0)} by construction; {c.get(CANNOT_FLIP, 0)} cannot flip; "
+        f"{c.get(UNDECLARED, 0)} undeclared; {c.get(ERROR, 0)} errors",
         file=out,
     )
     return 1 if any(o.failed for o in outcomes) else 0

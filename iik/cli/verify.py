@@ -17,6 +17,9 @@ def add_arguments(p) -> None:
     p.add_argument("--seed", type=int, default=20120101, help="seed for all random samples")
     p.add_argument("--only", nargs="*", default=None, metavar="TEXT",
                    help="run only checks whose name or section contains TEXT")
+    p.add_argument("--self-test", action="store_true",
+                   help="prove every verdict can fail: rerun each check with a known-good and a "
+                        "perturbed form (writes no report; exit 1 if a check cannot flip)")
 
 
 def progress(i, n, chk, res) -> None:
@@ -30,7 +33,10 @@ def progress(i, n, chk, res) -> None:
 
 
 def run(args) -> int:
-    from verification import verify
+    from verification import self_test, verify
+
+    if args.self_test:
+        return self_test(quick=args.quick, seed=args.seed, select=args.only)
 
     done = verify(args.out, quick=args.quick, seed=args.seed, select=args.only, progress=progress)
     print(done.summary())

@@ -17,14 +17,15 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from iik.kinematics import joint_frames
+from iik.arm import THESIS_ARM, Arm
 
 from .obstacles import enclosing_radii
 
 if TYPE_CHECKING:  # pragma: no cover
     from .pipeline import PlanResult
 
-__all__ = ["write_outputs", "plot_scene", "plot_joints", "plot_effort"]
+__all__ = ["write_outputs", "plot_scene", "plot_joints", "plot_effort", "box_faces", "collision_faces",
+           "draw_arm_bodies", "set_equal_axes"]
 
 
 def write_outputs(res: PlanResult, out: Path, *, figures: bool = True) -> list[Path]:
@@ -78,53 +79,169 @@ def write_outputs(res: PlanResult, out: Path, *, figures: bool = True) -> list[P
     return files
 
 
-def _box_faces(center, size):
+def box_faces(center, size) -> list[list[np.ndarray]]:
+    """The six faces (4 corners each, [m]) of an axis-aligned box of full ``size`` at ``center``."""
     c, h = np.asarray(center), 0.5 * np.asarray(size)
     v = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * h + c
     idx = [(0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4), (1, 3, 7, 5)]
     return [[v[i] for i in f] for f in idx]
 
 
-def plot_scene(res: PlanResult, ax, *, n_arms: int = 8) -> None:
-    """3D scene like Fig 42: boxes, padded ellipsoids, the tool path and arm snapshots (base frame, m)."""
+def _shape_faces(geom, M: np.ndarray, n: int = 16) -> list[np.ndarray]:
+    """Polygons (each (k, 3) [m]) of a coal Box or Cylinder placed at the 4x4 pose ``M``."""
+    import coal
+
+    if isinstance(geom, coal.Box):
+        local = [np.array(f) for f in box_faces((0.0, 0.0, 0.0), 2.0 * np.asarray(geom.halfSide))]
+    elif isinstance(geom, coal.Cylinder):
+        a = np.linspace(0.0, 2.0 * np.pi, n + 1)
+        ring = np.stack([geom.radius * np.cos(a), geom.radius * np.sin(a)], axis=1)
+        lo = np.column_stack([ring, np.full(n + 1, -geom.halfLength)])
+        hi = np.column_stack([ring, np.full(n + 1, geom.halfLength)])
+        local = [lo[:-1], hi[:-1]] + [np.array([lo[k], lo[k + 1], hi[k + 1], hi[k]]) for k in range(n)]
+    else:
+        raise TypeError(f"cannot draw a {type(geom).__name__} collision shape (boxes and cylinders only)")
+    return [f @ M[:3, :3].T + M[:3, 3] for f in local]
+
+
+def collision_faces(model, collision_model, q) -> dict[str, list[np.ndarray]]:
+    """Polygons of a Pinocchio model's collision shapes at ``q`` [rad], per link, placed by
+    Pinocchio's ``oMg`` (base frame 0, each polygon (k, 3) [m])."""
+    import pinocchio as pin
+
+    from .robot_model import collision_link
+
+    data, gdata = model.createData(), pin.GeometryData(collision_model)
+    pin.forwardKinematics(model, data, np.asarray(q, float))
+    pin.updateGeometryPlacements(model, data, collision_model, gdata)
+    out: dict[str, list[np.ndarray]] = {}
+    for k, go in enumerate(collision_model.geometryObjects):
+        faces = _shape_faces(go.geometry, gdata.oMg[k].homogeneous)
+        out.setdefault(collision_link(model, go), []).extend(faces)
+    return out
+
+
+def draw_arm_bodies(ax, q, *, arm: Arm = THESIS_ARM, colour=(0.16, 0.35, 0.78), alpha: float = 0.3,
+                    link_colours=None, zorder: float = 3.0) -> np.ndarray:
+    """Draw the arm's URDF collision shapes at ``q`` (6,) [rad] on a 3-D axes (base frame 0, m).
+
+    Args:
+        colour: RGB (0-1) of every link, unless ``link_colours`` ({link name: RGB}) says otherwise.
+        alpha: Opacity of the faces.
+
+    Returns:
+        All vertices drawn (k, 3) [m] (for the axis limits).
+    """
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
+    from .robot_model import thesis_model
+
+    tm = thesis_model(arm)
+    verts = []
+    for link, faces in collision_faces(tm.model, tm.collision_model, q).items():
+        c = (link_colours or {}).get(link, colour)
+        # ragged faces (caps, quads): no autoscaling, the caller sets the limits
+        ax.add_collection3d(Poly3DCollection(faces, facecolor=c, edgecolor=c, linewidth=0.2, alpha=alpha,
+                                             zorder=zorder), autolim=False)
+        verts.extend(faces)
+    return np.vstack(verts)
+
+
+def set_equal_axes(ax, points, *, margin: float = 0.05) -> np.ndarray:
+    """Cubic limits around ``points`` (k, 3) [m] plus ``margin`` with equal scales on x, y and z;
+    returns the (3, 2) limits."""
+    P = np.asarray(points, float).reshape(-1, 3)
+    P = P[np.all(np.isfinite(P), axis=1)]
+    c = 0.5 * (P.min(axis=0) + P.max(axis=0))
+    r = 0.5 * float(np.ptp(P, axis=0).max()) + margin
+    limits = np.stack([c - r, c + r], axis=1)
+    ax.set_xlim(*limits[0])
+    ax.set_ylim(*limits[1])
+    ax.set_zlim(*limits[2])
+    ax.set_box_aspect(np.ptp(limits, axis=1))
+    return limits
+
+
+def _legend(ax, entries, **kwargs) -> None:
+    """A legend from ``(label, colour, kind)`` with kind ``"patch"``, ``"line"`` or a marker."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    handles = [Patch(facecolor=c, edgecolor=c, alpha=0.6, label=lab) if kind == "patch"
+               else Line2D([], [], color=c, lw=1.5 if kind == "line" else 0, marker=None if kind == "line"
+                           else kind, label=lab) for lab, c, kind in entries]
+    ax.legend(handles=handles, **kwargs)
+
+
+def plot_scene(res: PlanResult, ax, *, n_arms: int = 5) -> None:
+    """3D scene like Fig 42 in base frame 0 [m], equal scales: platform, obstacles, supports, the
+    padded Eq 52-53 ellipsoids, the tool path with step-points and via-points, the arm's URDF
+    collision shapes at ``n_arms`` instants, and the link nearest the scene at the step of least
+    clearance (amber, magenta inside the safety zone) with that clearance in mm."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    from .viewer import style
+    from .viewer.plan_data import frame_clearance
+
+    rgb = style.rgb01
     sc = res.scenario
+    ax.computed_zorder = False  # draw in layers: scene, arms, path, nearest link (all translucent)
     plat = res.scene.platform
-    ax.add_collection3d(Poly3DCollection(_box_faces(plat.center, plat.size), facecolor="tab:red", alpha=0.15,
-                                         edgecolor="tab:red", linewidth=0.5))
+    pts = [np.asarray(box_faces(plat.center, plat.size)).reshape(-1, 3)]
+    grey = rgb(style.PLATFORM)
+    ax.add_collection3d(Poly3DCollection(box_faces(plat.center, plat.size), alpha=0.25, linewidth=0.4,
+                                         zorder=1, facecolor=grey, edgecolor=grey))
     u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 24), np.linspace(0, np.pi, 12))
     for b in sc.obstacles:
-        col = "gold" if b.kind == "obstacle" else "tab:gray"
-        ax.add_collection3d(Poly3DCollection(_box_faces(b.center, b.size), facecolor=col, alpha=0.35,
-                                             edgecolor="k", linewidth=0.3))
+        col = rgb(style.OBSTACLE if b.kind == "obstacle" else style.SUPPORT)
+        alpha = 0.45 if b.kind == "obstacle" else 0.5 * style.SUPPORT_OPACITY
+        ax.add_collection3d(Poly3DCollection(box_faces(b.center, b.size), facecolor=col, alpha=alpha,
+                                             edgecolor="k", linewidth=0.3, zorder=1))
+        pts.append(np.asarray(b.corners))
         if b.kind == "obstacle":
             r = enclosing_radii(b) + sc.safety_zone
             x = b.center[0] + r[0] * np.cos(u) * np.sin(v)
             y = b.center[1] + r[1] * np.sin(u) * np.sin(v)
             z = b.center[2] + r[2] * np.cos(v)
-            ax.plot_wireframe(x, y, z, color="tab:orange", linewidth=0.3, alpha=0.5)
-    if res.cartesian is not None:
-        P = res.cartesian.points
-        ax.plot(P[:, 0], P[:, 1], P[:, 2], ".", color="tab:cyan", ms=2, label="thesis step-points")
+            ax.plot_wireframe(x, y, z, color=rgb(style.ELLIPSOID), linewidth=0.3, alpha=0.5, zorder=2)
+    entries = [("arm (URDF collision shapes)", rgb(style.ARM), "patch"),
+               ("obstacle", rgb(style.OBSTACLE), "patch"), ("support", rgb(style.SUPPORT), "patch"),
+               ("platform", rgb(style.PLATFORM), "patch"),
+               (f"ellipsoid + {sc.safety_zone * 1e3:.0f} mm zone (Eq 52-53)", rgb(style.ELLIPSOID), "line")]
+    title = f"{sc.title or sc.name} ({res.method})"
     if len(res.points):
-        ax.plot(res.points[:, 0], res.points[:, 1], res.points[:, 2], "-", color="tab:blue", lw=1.5,
-                label=f"tool path ({res.method})")
-        for i in np.linspace(0, len(res.q) - 1, min(n_arms, len(res.q))).astype(int):
-            F = joint_frames(res.q[i], res.arm)
-            pts = np.vstack([[0, 0, 0], F[:, :3, 3]])
-            ax.plot(pts[:, 0], pts[:, 1], pts[:, 2], "-o", color="tab:blue", lw=0.8, ms=2, alpha=0.5)
-        ax.scatter(*res.points[0], color="red", s=20, label="start")
-        ax.scatter(*res.points[-1], color="blue", s=20, label="goal")
-    fz = res.scene.floor.z
-    ax.set_xlim(-0.6, 0.9)
-    ax.set_ylim(-0.75, 0.75)
-    ax.set_zlim(fz, fz + 1.5)
+        P = res.points
+        ax.plot(P[:, 0], P[:, 1], P[:, 2], "-", color=rgb(style.TOOL_PATH), lw=1.5, zorder=4)
+        ax.plot(P[:, 0], P[:, 1], P[:, 2], ".", color=rgb(style.STEP_POINT), ms=2.5, zorder=4)
+        entries += [("tool path", rgb(style.TOOL_PATH), "line"), ("step-points", rgb(style.STEP_POINT), ".")]
+        if res.cartesian is not None and len(res.cartesian.via_points):
+            V = np.asarray(res.cartesian.via_points).reshape(-1, 3)
+            ax.scatter(V[:, 0], V[:, 1], V[:, 2], color=rgb(style.VIA_POINT), marker="D", s=25,
+                       depthshade=False, zorder=4)
+            entries.append(("via-point", rgb(style.VIA_POINT), "D"))
+        pts.append(P)
+        worst = int(np.argmin(res.clearance.step)) if res.clearance is not None else 0
+        for i in sorted(set(np.linspace(0, len(res.q) - 1, min(n_arms, len(res.q))).astype(int)) - {worst}):
+            pts.append(draw_arm_bodies(ax, res.q[i], arm=res.arm, colour=rgb(style.ARM), alpha=0.07))
+        fc = frame_clearance(sc.obstacles, res.q[[worst]], scene=res.scene)
+        near = rgb(style.UNSAFE if fc.distance[0] < sc.safety_zone else style.NEAREST)
+        pts.append(draw_arm_bodies(ax, res.q[worst], arm=res.arm, colour=rgb(style.ARM), alpha=0.3,
+                                   link_colours={fc.link[0]: near}, zorder=3.5))
+        seg = np.stack([fc.on_link[0], fc.on_obstacle[0]])
+        ax.plot(seg[:, 0], seg[:, 1], seg[:, 2], "-o", color=near, lw=2.0, ms=3, zorder=5)
+        d_mm = fc.distance[0] * 1e3
+        ax.text(*seg.mean(axis=0), f" {d_mm:.1f} mm", color="k", fontsize=8, zorder=6)
+        entries += [(f"nearest link at step {worst}: {fc.link[0]} to {fc.obstacle[0]}, {d_mm:.1f} mm", near,
+                     "line")]
+        title += (f"\nleast clearance at the step-points {d_mm:.1f} mm "
+                  f"(safety zone {sc.safety_zone * 1e3:.0f} mm)")
+    set_equal_axes(ax, np.vstack(pts))
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_zlabel("z [m] (base frame)")
-    ax.set_title(sc.title or sc.name, fontsize=9)
-    ax.legend(fontsize=7, loc="upper left")
+    ax.set_zlabel("z [m]")
+    ax.set_title(title + "\nbase frame 0, x/y/z [m]; clearances in mm", fontsize=8)
+    ax.view_init(elev=25, azim=-60)
+    _legend(ax, entries, fontsize=6, loc="upper left", bbox_to_anchor=(0.0, 1.0))
 
 
 def plot_joints(res: PlanResult, ax) -> None:

@@ -18,6 +18,7 @@ from scipy.spatial.transform import Rotation
 from iik.arm import THESIS_ARM
 from iik.dh import DHRow, DHTable, dh_chain, dh_link_transform
 from iik.kinematics import fk, jacobian, joint_frames, position_jacobian
+from iik.planning.output import draw_arm_bodies
 from iik.resources import urdf_path
 from iik.rotations import rotation_angle
 from iik.urdf import thesis_urdf, urdf_from_dh
@@ -501,20 +502,35 @@ def urdf_is_generated(ctx):
     """The committed URDF is the generator's output (and a picture of its assumed shapes)."""
     committed = urdf_path().read_text(encoding="utf-8")
     same = committed == thesis_urdf()
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
     tm = thesis_model()
-    fig = new_figure(figsize=(11, 5.2))
+    fig = new_figure(figsize=(11, 5.6))
     for k, q in enumerate((np.zeros(6), np.array([0.5, -0.6, 0.4, 1.1, 0.7, 0.3]))):
         ax = fig.add_subplot(1, 2, k + 1, projection="3d")
-        draw_collision(ax, tm.model, tm.collision_model, q)
+        used = draw_collision(ax, tm.model, tm.collision_model, q)
         draw_arm(ax, q, color="k", lw=1, markersize=2)
         ax.set_xlim(-0.2, 1.0)
         ax.set_ylim(-0.5, 0.5)
         ax.set_zlim(0.0, 1.0)
-        ax.set_box_aspect((1.2, 1.0, 1.0))
+        ax.set_box_aspect((1.2, 1.0, 1.0))  # equal scales: the limits' spans
         ax.view_init(elev=20, azim=-60)
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        ax.set_zlabel("z [m]")
         ax.set_title(("home pose (Fig 8)" if k == 0 else fmt_q(q)), fontsize=7)
+    fig.legend(
+        handles=[Patch(facecolor=c, alpha=0.5, label=link) for link, c in used.items()]
+        + [Line2D([], [], color="k", marker="o", ms=2, lw=1, label="frame origins (Table II)")],
+        loc="lower center",
+        ncol=8,
+        fontsize=7,
+    )
     fig.suptitle(
-        "Assumed PowerCube collision shapes of urdf/thesis_arm.urdf (one colour per link)", fontsize=9
+        "Assumed PowerCube collision shapes of urdf/thesis_arm.urdf (one colour per link); base frame 0, "
+        "x/y/z [m]",
+        fontsize=9,
     )
     frel = ctx.save_figure(fig, "collision_geometry.png")
     return Row(
@@ -590,7 +606,10 @@ def eq4_vs_pinocchio(ctx, eq4):
 
 
 def _arm_figure(ctx) -> str:
-    f2 = new_figure(figsize=(6.4, 5.2))
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    f2 = new_figure(figsize=(6.4, 5.6))
     ax = f2.add_subplot(projection="3d")
     draw_scene(ax)
     poses = np.array(
@@ -601,16 +620,27 @@ def _arm_figure(ctx) -> str:
             [2.2, -1.0, 1.0, -0.5, 1.2, 0.0],
         ]
     )
-    for q in poses:
-        draw_arm(ax, q, label=fmt_q(q[:5]).replace(" rad", ""))
+    for k, q in enumerate(poses):
+        draw_arm_bodies(ax, q, colour=f"C{k}", alpha=0.25)
+        draw_arm(ax, q, color=f"C{k}", label=fmt_q(q[:5]).replace(" rad", ""), markersize=3)
         ax.scatter(*tool_poses(q[None])[0, :3, 3], marker="x", color="k", s=40)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")
     ax.set_title(
-        "Arm (Table II frame origins) at 4 poses, platform and floor;\nx = Pinocchio tool point", fontsize=9
+        "The arm at 4 poses: URDF collision shapes, Table II frame origins (dots), x = Pinocchio tool "
+        "point;\nplatform and floor (iik.scene); base frame 0, x/y/z [m], equal scales",
+        fontsize=8,
     )
-    ax.legend(fontsize=6, loc="upper left")
+    ax.legend(
+        handles=ax.get_legend_handles_labels()[0]
+        + [
+            Patch(facecolor="0.45", alpha=0.3, label="platform"),
+            Line2D([], [], color="0.6", lw=0.6, label="floor"),
+        ],
+        fontsize=6,
+        loc="upper left",
+    )
     p2, rel2 = ctx.figure_path("arm_poses.png")
     f2.savefig(p2, dpi=90)
     return rel2

@@ -3,8 +3,7 @@
 Each slip is a citation whose target, by the thesis's own List of Figures, List of Tables,
 Table of Contents or equation numbering, is not what the sentence describes. The
 sentences and captions are quoted from the thesis text (copied here; the project does
-not read the thesis at run time). App. A's citation of [19] for the PowerCube guide is
-graded in the Hardware section.
+not read the thesis at run time).
 """
 
 from __future__ import annotations
@@ -83,6 +82,12 @@ SLIPS = (
         "Section 4.2 (Simulation Results)",
     ),
     Slip(
+        "App. A",
+        "the commands were selected from the programming guide [19] provided by the manipulator manufacturer",
+        "[19] is 'MathWorks, Matlab Documentation Center: ellipsoid', which Eq 52 cites correctly",
+        "[20] (Schunk, Amtec Robotics - Programmers guide for PowerCube, Version 1.3, 2007)",
+    ),
+    Slip(
         "App. G",
         "As discussed in Section 5.2, the graphical interface can be enhanced by implementing a real time "
         "visual sensor",
@@ -104,11 +109,12 @@ def cross_references(ctx):
     """The cross-reference slips of the text, one erratum record each."""
     m = (Measure("citations whose target is not what the sentence describes", len(SLIPS), 0),)
     return Row(
-        "The tables, figures, sections, equations and points the text cites are the ones it describes.",
+        "The tables, figures, sections, equations, points and references the text cites are the ones it "
+        "describes.",
         "Cross-references (whole text)",
         "every numbered citation read against the List of Figures, List of Tables, Table of Contents and "
         "equation "
-        "numbering of the thesis; App. A's [19] for [20] is in the Hardware section",
+        "numbering of the thesis and its reference list",
         "; ".join(f"{s.where}: '{s.quote}' -> {s.correct}" for s in SLIPS),
         Verdict.ERRATUM if SLIPS else Verdict.HOLDS,
         id="cross_references",

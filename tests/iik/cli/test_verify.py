@@ -42,6 +42,26 @@ def test_iik_verify_quick_writes_report(cli_report, capsys):
     assert (out_dir / "figures" / "eq4_errors.png").exists()
 
 
+def test_quick_report_says_so_in_its_first_line(cli_report):
+    """Issue 12 item 8: a --quick report is marked on its first line, in markdown and in JSON."""
+    _, out_dir = cli_report
+    md = (out_dir / "verification.md").read_text(encoding="utf-8").splitlines()[0]
+    js = (out_dir / "verification.json").read_text(encoding="utf-8").splitlines()[0]
+    assert md.startswith("# QUICK") and '"title": "QUICK' in js
+
+
+def test_iik_verify_self_test(tmp_path, capsys):
+    """`--self-test` runs the checks with their good and bad forms, prints one line each, writes no report."""
+    code = main(["verify", "--self-test", "--quick", "--only", "check_eq53", "check_table_v",
+                 "--out", str(tmp_path)])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    assert "flips  verification.checks.planning:check_eq53_ellipsoid" in out
+    assert "by construction  verification.checks.hardware:check_table_v" in out
+    assert out.strip().splitlines()[-1].startswith("self-test: 1 checks flip")
+    assert not any(tmp_path.iterdir())
+
+
 def test_iik_verify_prints_summary(tmp_path, capsys):
     assert main(["verify", "--quick", "--only", "table_ii_encoding", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
