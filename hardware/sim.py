@@ -2,7 +2,7 @@
 
 :class:`SimulatedArm` attaches :class:`SimModule` objects to a
 :class:`can.BusABC` and serves them from a thread until :meth:`SimulatedArm.close`
-(also a context manager). It answers exactly as ``shared/POWERCUBE.md`` says:
+(also a context manager). It answers exactly as ``docs/POWERCUBE.md`` says:
 GETPARAM/SETPARAM/SETMOVE/RESET/HOME/HALT are acknowledged by an echo on
 ``0x0A0 + id``; broadcasts on 0x100 get no reply; errors are announced by an
 unsolicited state frame on ``0x060 + id``.
@@ -53,6 +53,7 @@ import numpy as np
 from ruckig import ControlInterface, InputParameter, Result, Ruckig, Trajectory
 
 from iik.arm import THESIS_ARM, Arm
+from iik.errors import InvalidInputError
 
 from . import protocol as P
 from .driver import PowerCubeArm, open_bus
@@ -448,8 +449,9 @@ class SimModule:
 
 
 # ----------------------------------------------------------------------------- server
-def _checked_modules(module_ids, initial) -> tuple[list[int], np.ndarray]:
-    """Module ids (distinct, 1..31) and initial positions [rad] (finite, one per module)."""
+def _checked_modules(module_ids, initial, arm: Arm, lag) -> tuple[list[int], np.ndarray]:
+    """Module ids (distinct, 1..31), initial positions [rad] (finite, one per module, inside the
+    modules' soft limits: Table I for the first six) and the lag ([0, 1] s)."""
     try:
         ids = [int(i) for i in module_ids]
     except (TypeError, ValueError):
@@ -461,7 +463,16 @@ def _checked_modules(module_ids, initial) -> tuple[list[int], np.ndarray]:
     except (TypeError, ValueError):
         q0 = np.full(0, np.nan)
     if q0.shape != (len(ids),) or not np.all(np.isfinite(q0)):
-        raise SafetyError("initial", f"need {len(ids)} finite positions")
+        raise SafetyError("initial", f"need {len(ids)} finite positions [rad], one per module")
+    for j, p in enumerate(q0):
+        k = j if j < 6 else 0  # as SimulatedArm assigns the limits
+        lo, hi = arm.lower[k], arm.upper[k]
+        if not lo <= p <= hi:
+            raise SafetyError("initial", f"joint q{j + 1} at {p:g} rad is outside its soft limits "
+                              f"[{lo:.4f}, {hi:.4f}] rad (Table I)")
+    if isinstance(lag, bool) or not isinstance(lag, (int, float)) or not (math.isfinite(lag)
+                                                                           and 0 <= lag <= 1):
+        raise InvalidInputError("lag", f"must be a finite number in [0, 1] s, got {lag!r}")
     return ids, q0
 
 
@@ -486,8 +497,8 @@ class SimulatedArm:
                  clock: Callable[[], float] = time.monotonic, owns_bus: bool = False,
                  start: bool = True):
         try:
-            ids, q0 = _checked_modules(module_ids, initial)
-        except SafetyError:
+            ids, q0 = _checked_modules(module_ids, initial, arm, lag)
+        except (SafetyError, InvalidInputError):
             if owns_bus:
                 bus.shutdown()
             raise
@@ -703,8 +714,19 @@ def serve(interface: str, channel, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6
         ready: Called with the running arm once it serves.
 
     Raises:
-        BusError: the bus could not be opened. SafetyError: bad ids or initial positions.
+        BusError: the bus could not be opened. SafetyError: bad ids or initial positions
+        (outside Table I). InvalidInputError: a lag outside [0, 1] s, a duration that is not
+        a positive finite number of seconds, a bit rate or port that is not one.
     """
+    _checked_modules(module_ids, initial, THESIS_ARM, lag)  # before any bus is opened
+    if duration is not None and (isinstance(duration, bool) or not isinstance(duration, (int, float))
+                                 or not (math.isfinite(duration) and duration > 0)):
+        raise InvalidInputError("duration", f"must be a positive finite number of seconds, got {duration!r}")
+    if bitrate is not None and bitrate not in P.BAUD_CODES:
+        raise InvalidInputError("bitrate", "must be a PowerCube bit rate, one of "
+                                + ", ".join(map(str, P.BAUD_CODES)) + f" bit/s, got {bitrate!r}")
+    if port is not None and (isinstance(port, bool) or not isinstance(port, int) or not 1 <= port <= 65535):
+        raise InvalidInputError("port", f"must be a UDP port in 1..65535, got {port!r}")
     bus = open_bus(interface, channel, bitrate=bitrate, port=port)
     with SimulatedArm(bus, module_ids, lag=lag, initial=initial, homed=homed, owns_bus=True) as sim:
         if ready is not None:
