@@ -165,17 +165,20 @@ def validate(times, q, poses, *, arm: Arm = THESIS_ARM,
 def _step_ms(t: np.ndarray, min_step: float) -> np.ndarray:
     """Step times as they go on the wire: whole ms (nearest; a tolerance of 0.5 ms), each at
     least ``min_step`` [s] (compared in whole ms too) and at most 65535 ms."""
-    ms = np.rint(np.diff(t) * 1000.0)
+    with np.errstate(over="ignore", invalid="ignore"):  # absurd times are refused below, not warned about
+        dt = np.diff(t)
+    longest = 0xFFFF / 1000.0 + 0.0005
+    if np.any(~np.isfinite(dt) | (dt >= longest)):
+        k = int(np.argmax(~np.isfinite(dt) | (dt >= longest)))
+        raise SafetyError(target_name(k + 1), f"the step to it takes {dt[k]:.6g} s, longer than 65.535 s "
+                          "(FSTEP's u16 ms)", step=k + 1)
+    ms = np.rint(np.maximum(dt, -1.0) * 1000.0)
     least = max(int(round(min_step * 1000.0)), 1)
     if np.any(ms < least):
         k = int(np.argmax(ms < least))
-        raise SafetyError(target_name(k + 1), f"the step to it takes {np.diff(t)[k] * 1e3:.3f} ms, "
-                          f"{ms[k]:.0f} ms on the wire (whole ms): shorter than the {least} ms minimum",
-                          step=k + 1)
-    if np.any(ms > 0xFFFF):
-        k = int(np.argmax(ms > 0xFFFF))
-        raise SafetyError(target_name(k + 1), "the step to it is longer than 65.535 s (FSTEP's u16 ms)",
-                          step=k + 1)
+        took = f"{dt[k] * 1e3:.3f} ms" if dt[k] > -1.0 else f"{dt[k]:.6g} s (times must increase)"
+        raise SafetyError(target_name(k + 1), f"the step to it takes {took}, {ms[k]:.0f} ms on the wire "
+                          f"(whole ms): shorter than the {least} ms minimum", step=k + 1)
     return ms.astype(int)
 
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 import csv
 import math
 import os
+import re
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -39,6 +40,8 @@ DEMO_STEP = 0.030
 DEMO_SPEED = 0.25
 #: Columns a trajectory CSV must name in its header line (others are ignored).
 CSV_COLUMNS = ("t", "q1", "q2", "q3", "q4", "q5", "q6")
+#: A number in a trajectory CSV: plain decimal, optional exponent (no "1_000", no non-ASCII digits).
+NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 #: Bounds of a trajectory CSV (memory and time stay bounded): rows of step-points and file size.
 MAX_CSV_ROWS = 1_000_000
 MAX_CSV_BYTES = 200_000_000
@@ -95,7 +98,8 @@ class StepTargets:
         1/``speed`` as long, rounded up to whole ms (so no joint goes faster than before)."""
         if speed == 1.0:
             return self
-        dt = np.ceil(np.diff(self.times) / speed * 1000.0 - 1e-6) / 1000.0
+        with np.errstate(over="ignore", invalid="ignore"):  # absurd times: validation refuses them
+            dt = np.ceil(np.diff(self.times) / speed * 1000.0 - 1e-6) / 1000.0
         return replace(self, times=self.times[0] + np.concatenate([[0.0], np.cumsum(dt)]))
 
 
@@ -199,19 +203,16 @@ def _header_index(cells: list[str], line: int, bad) -> dict[str, int]:
 
 
 def _is_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
+    return NUMBER.fullmatch(text) is not None or text.lower() in ("nan", "inf", "-inf", "+inf")
 
 
 def _cell(text: str, line: int, col: int, name: str, bad) -> float:
     where = f"line {line}, column {col + 1} ({name}; lines and columns count from 1)"
-    try:
-        value = float(text)
-    except ValueError:
-        raise bad(f"{where}: {text[:40]!r} is not a number") from None
+    if text.lower().lstrip("+-") in ("nan", "inf", "infinity"):
+        raise bad(f"{where}: {text[:40]!r} is not a finite number")
+    if NUMBER.fullmatch(text) is None:
+        raise bad(f"{where}: {text[:40]!r} is not a number")
+    value = float(text)
     if not math.isfinite(value):
         raise bad(f"{where}: {text[:40]!r} is not a finite number")
     return value
