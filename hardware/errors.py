@@ -109,7 +109,7 @@ class ModuleHalted(SafetyError):
 
     def __init__(self, module_id: int):
         self.module_id = module_id
-        super().__init__(f"module {module_id}", "halted; call reset() before moving again")
+        super().__init__(f"module {module_id}", "halted; call reset() before moving again (iik run --reset)")
 
 
 class DuplicateModuleError(HardwareError):
