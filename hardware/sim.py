@@ -678,14 +678,15 @@ class SimulatedArm:
 
 @contextlib.contextmanager
 def simulated_arm(module_ids=(1, 2, 3, 4, 5, 6), *, lag: float = 0.02, initial=None,
-                  timeout: float = 0.5, clock=time.monotonic):
+                  timeout: float = 2.0, clock=time.monotonic):
     """Yield ``(sim, arm)``: an in-process :class:`hardware.sim.SimulatedArm` on a private
     ``virtual`` channel and a :class:`hardware.PowerCubeArm` talking to it.
 
     Host and simulated modules are threads of this process, so the interpreter's
     switch interval is shortened meanwhile (request round trips stay short) and
     restored on exit; both the arm's bus and the simulator are closed on exit.
-    ``clock`` is the simulator's time source [s] (pass the same one to ``execute``).
+    ``clock`` is the simulator's time source [s] (pass the same one to ``execute``). ``timeout``
+    is the arm's ACK timeout [s], generous because host and modules share one interpreter.
     """
     channel = f"iik-run-{uuid.uuid4().hex}"
     switch = sys.getswitchinterval()

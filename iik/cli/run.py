@@ -41,7 +41,7 @@ def add_arguments(p) -> None:
     p.add_argument("--modules", type=int, nargs=6, default=[1, 2, 3, 4, 5, 6], metavar="ID",
                    help="the six module ids in joint order (default: 1..6)")
     p.add_argument("--timeout", type=float, default=None, help="ACK timeout (0, 10] s (default: 0.1 on "
-                   "a bus, 0.5 for the in-process simulation, whose threads share one interpreter)")
+                   "a bus, 2 for the in-process simulation, whose threads share one interpreter)")
     p.add_argument("--early", type=float, default=0.95,
                    help="send the next step after this fraction of the previous one (Sec 4.3: 0.95)")
     p.add_argument("--update", choices=("thesis", "buffered"), default="thesis",
