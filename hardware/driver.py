@@ -600,14 +600,14 @@ class PowerCubeArm:
     def _check_targets(self, qs: list[float]) -> None:
         """Every joint target is checked before any module is commanded."""
         for i, (m, p) in enumerate(zip(self.modules, qs, strict=True)):
-            m.check_target(p, f"q[{i}]")
+            m.check_target(p, f"joint q{i + 1}")
 
     def move_ramp(self, q, vel, acc) -> None:
         """Ramp every joint (``PCube_moveRamp``); every joint is checked before any is commanded."""
         qs, vs, as_ = (self._per_joint(q, "q"), self._per_joint(vel, "vel"), self._per_joint(acc, "acc"))
         self._check_targets(qs)
         for i, (m, p, v, a) in enumerate(zip(self.modules, qs, vs, as_, strict=True)):
-            m.check_ramp(p, v, a, f"q[{i}]")
+            m.check_ramp(p, v, a, f"joint q{i + 1}")
         for m, p, v, a in zip(self.modules, qs, vs, as_, strict=True):
             m.move_ramp(p, v, a)
 
@@ -619,7 +619,7 @@ class PowerCubeArm:
         qs = self._per_joint(q, "q")
         self._check_targets(qs)
         for i, (m, p) in enumerate(zip(self.modules, qs, strict=True)):
-            m.check_step(p, time_s, f"q[{i}]")
+            m.check_step(p, time_s, f"joint q{i + 1}")
         out = [m.move_step(p, time_s, extended=extended) for m, p in zip(self.modules, qs, strict=True)]
         if extended:
             return np.array([o[0] for o in out]), [o[1] for o in out]

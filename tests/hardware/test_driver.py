@@ -356,7 +356,7 @@ def test_motion_beyond_the_modules_limits_is_refused_before_sending(arm, sim):
         arm.modules[0].set_max_vel(vmax[0] * 2)
     assert moves() == []  # nothing reached the bus
     arm.modules[0].set_max_vel(0.1)  # a module configured slower than Sec 3.2
-    with pytest.raises(SafetyError, match=r"module 1 q\[0\] step of 500 ms: 0\.2000 rad/s .* 0\.1000"):
+    with pytest.raises(SafetyError, match=r"module 1 joint q1 step of 500 ms: 0\.2000 rad/s .* 0\.1000"):
         arm.move_step(np.array([0.1, 0, 0, 0, 0, 0]), 0.5)
     arm.move_step(np.full(6, 0.05), 0.5)  # within every limit
     assert len(moves()) == 6

@@ -184,6 +184,7 @@ def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_pa
                               f"{log} ends with the fault; the modules stay halted until reset: run again "
                               "with --reset"), err
     assert listener.halts, "no HALT broadcast seen on the bus"
+    assert "not properly shut down" not in "\n".join(err) and "Traceback" not in "\n".join(err)
     records = read_run_log(log).records
     fault, end = records[-2:]
     assert fault["type"] == "fault" and fault["error"] == "StopSignal" and fault["halted"] is True
