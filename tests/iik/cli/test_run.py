@@ -14,8 +14,6 @@ from hardware import protocol as P
 from hardware import read_run_log
 from iik.cli import main
 
-from .conftest import GROUP, iik_process, stop
-
 STEMS = ("joint_error", "ee_error", "velocity")
 ANGLE = "--margin-deg: must be a finite angle in [0, 90) deg, got "
 
@@ -136,8 +134,8 @@ def test_run_on_a_silent_bus_times_out_cleanly(tmp_path, capfd):
 class _Listener:
     """A node on the bus recording every broadcast HALT it sees."""
 
-    def __init__(self, port: int):
-        self.bus = can.Bus(interface="udp_multicast", channel=GROUP, port=port)
+    def __init__(self, udp):
+        self.bus = can.Bus(interface="udp_multicast", channel=udp.group, port=udp.port)
         self.halts = []
         self.done = threading.Event()
         self.thread = threading.Thread(target=self._listen, daemon=True)
@@ -159,12 +157,10 @@ class _Listener:
 def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_path, signum):
     """SIGTERM/SIGHUP to a running `iik run` process: HALT on the bus, fault and end records on
     disk, the modules halted, exit 128 + signal, and the message says how to go on (--reset)."""
-    port, start_sim = udp_bus
-    start_sim()
-    listener = _Listener(port)
+    udp_bus.start_sim()
+    listener = _Listener(udp_bus)
     log = tmp_path / "run.jsonl"
-    bus = ["--interface", "udp_multicast", "--channel", GROUP, "--port", str(port), "--timeout", "1.0"]
-    run = iik_process("run", "--demo", *bus, "--out", str(log), "--no-figures")
+    run = udp_bus.process("run", "--demo", *udp_bus.args, "--timeout", "1", "--out", str(log), "--no-figures")
     try:
         lines = []
         while not any("step 1/" in x for x in lines):  # the arm is moving along the trajectory
@@ -176,7 +172,6 @@ def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_pa
         rc = run.wait(timeout=30)
         err = lines + run.stderr.read().splitlines()
     finally:
-        stop(run)
         listener.close()
     name = signal.Signals(signum).name
     assert rc == 128 + signum, err
@@ -192,22 +187,19 @@ def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_pa
     assert end == {"type": "end", "t": end["t"], "status": "fault"}
     from hardware import PowerCubeArm
 
-    with PowerCubeArm.from_interface(interface="udp_multicast", channel=GROUP, port=port, timeout=1.0) as arm:
+    with PowerCubeArm.from_interface(interface="udp_multicast", channel=udp_bus.group, port=udp_bus.port,
+                                     timeout=1.0) as arm:
         assert all(s & P.State.HALTED for s in arm.states())  # latched until --reset
 
 
 def test_two_sim_arms_on_one_channel_are_a_fault(udp_bus, tmp_path):
     """Two `iik sim-arm` on one channel: every module id answers twice; the run stops before
     anything moves, with one line, and every bus is shut down."""
-    port, start_sim = udp_bus
-    start_sim()
-    start_sim()
-    bus = ["--interface", "udp_multicast", "--channel", GROUP, "--port", str(port), "--timeout", "1.0"]
-    run = iik_process("run", "--demo", *bus, "--out", str(tmp_path), "--no-figures")
-    try:
-        _, err = run.communicate(timeout=60)
-    finally:
-        stop(run)
+    udp_bus.start_sim()
+    udp_bus.start_sim()
+    run = udp_bus.process("run", "--demo", *udp_bus.args, "--timeout", "1", "--out", str(tmp_path),
+                          "--no-figures")
+    _, err = run.communicate(timeout=60)
     assert run.returncode == 2, err
     (line,) = [x for x in err.splitlines() if "error" in x]
     assert line.startswith("iik run: error: DuplicateModuleError: module 1: two answers to GETPARAM VERSION")
