@@ -65,6 +65,9 @@ def run(args) -> int:
               f"{res.seconds:.2f} s): open it in a browser, no server needed")
         return 0
     print(f"viewer at {res.url}  (Ctrl-C to stop)", flush=True)
-    res.serve_forever()
+    try:
+        res.serve_forever()
+    except KeyboardInterrupt:  # Ctrl-C before serve_forever took SIGINT over: the same clean stop
+        res.stop()
     print("viewer stopped")
     return 0
