@@ -18,6 +18,7 @@ import csv
 import math
 import os
 import re
+from array import array
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -43,8 +44,8 @@ CSV_COLUMNS = ("t", "q1", "q2", "q3", "q4", "q5", "q6")
 #: A number in a trajectory CSV: plain decimal, optional exponent (no "1_000", no non-ASCII digits).
 NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 #: Bounds of a trajectory CSV (memory and time stay bounded): rows of step-points and file size.
-MAX_CSV_ROWS = 1_000_000
-MAX_CSV_BYTES = 200_000_000
+MAX_CSV_ROWS = 200_000  # 33 min of 10 ms steps
+MAX_CSV_BYTES = 50_000_000
 
 
 @dataclass(frozen=True)
@@ -153,17 +154,18 @@ def csv_trajectory(path: str | os.PathLike) -> StepTargets:
     except csv.Error as exc:
         raise bad(f"not CSV ({exc})") from None
     lines, values = rows
-    if len(values) < 2:
-        raise bad(f"needs at least 2 data lines (step-points) below the header, has {len(values)}")
-    data = np.asarray(values, dtype=float)
+    if len(lines) < 2:
+        raise bad(f"needs at least 2 data lines (step-points) below the header, has {len(lines)}")
+    data = np.array(values, dtype=float).reshape(len(lines), len(CSV_COLUMNS))
     q = data[:, 1:]
     return StepTargets(path.stem, data[:, 0], q, fk(q), origin=str(path), lines=np.asarray(lines))
 
 
-def _csv_rows(reader, bad) -> tuple[list[int], list[list[float]]]:
-    """(line numbers, [t, q1..q6] per data line) of a trajectory CSV; ``bad(reason)`` builds the error."""
+def _csv_rows(reader, bad) -> tuple[array, array]:
+    """(line numbers, t, q1..q6 of every data line in one flat array) of a trajectory CSV;
+    ``bad(reason)`` builds the error."""
     header, index = None, {}
-    lines, values = [], []
+    lines, values = array("q"), array("d")
     for row in reader:
         line = reader.line_num
         cells = [c.strip() for c in row]
@@ -176,9 +178,9 @@ def _csv_rows(reader, bad) -> tuple[list[int], list[list[float]]]:
         if len(cells) != len(header):
             raise bad(f"line {line} has {len(cells)} cells, the header has {len(header)} "
                       "(lines count from 1)")
-        if len(values) >= MAX_CSV_ROWS:
+        if len(lines) >= MAX_CSV_ROWS:
             raise bad(f"more than {MAX_CSV_ROWS} data lines (the limit of a trajectory file)")
-        values.append([_cell(cells[index[name]], line, index[name], name, bad) for name in CSV_COLUMNS])
+        values.extend(_cell(cells[index[name]], line, index[name], name, bad) for name in CSV_COLUMNS)
         lines.append(line)
     if header is None:
         raise bad("the file is empty: it needs a header line naming the columns " + ",".join(CSV_COLUMNS))

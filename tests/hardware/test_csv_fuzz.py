@@ -200,7 +200,7 @@ def test_a_long_file_is_bounded(tmp_path):
     try:
         csv_trajectory(path)
     except IIKError as exc:
-        assert "more than 1000000 data lines" in str(exc)
+        assert f"more than {sources.MAX_CSV_ROWS} data lines" in str(exc)
     else:
         raise AssertionError("a file past the row limit was read")
     assert time.perf_counter() - t0 < 60
