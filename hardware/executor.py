@@ -331,8 +331,8 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
     # Refusals before anything moves: no HALT needed, no log written.
     for m, s in zip(arm.modules, arm.states(), strict=True):
         if s & (P.State.ERROR | P.State.HALTED):
-            raise ModuleFault(m.id, s, "before start: the module must be reset first "
-                              "(RESET: iik run --reset)")
+            what = "halted (HALT latches)" if s & P.State.HALTED else "in error"
+            raise ModuleFault(m.id, s, f"before start: {what}; reset it first: iik run --reset")
     limits = arm.speed_limits()  # the modules' own FMAXVEL may be below the Sec 3.2 limits
     over = np.argwhere(np.abs(np.diff(tr.q, axis=0)) / (tr.step_ms[:, None] / 1000.0)
                        > limits * (1.0 + SPEED_TOLERANCE))

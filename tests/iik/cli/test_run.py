@@ -192,6 +192,9 @@ def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_pa
     with PowerCubeArm.from_interface(interface="udp_multicast", channel=udp_bus.group, port=udp_bus.port,
                                      timeout=1.0) as arm:
         assert all(s & P.State.HALTED for s in arm.states())  # latched until --reset
+    again = udp_bus.process("run", "--demo", *udp_bus.args, "--timeout", "1", "--out", str(tmp_path / "a"))
+    _, err2 = again.communicate(timeout=60)
+    assert again.returncode == 2 and "halted" in err2 and "iik run --reset" in err2, err2
 
 
 def test_two_sim_arms_on_one_channel_are_a_fault(udp_bus, tmp_path):
