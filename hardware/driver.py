@@ -56,7 +56,7 @@ __all__ = ["PowerCubeModule", "PowerCubeArm", "Link", "scan", "open_bus", "DEFAU
 DEFAULT_TIMEOUT = 0.1
 #: Watchdog refresh period [s]: a WATCHDOG broadcast every 40 ms, as the C drivers send it
 #: (docs/POWERCUBE.md). The modules stop by themselves when it stays away longer than
-#: their watchdog time (not in the public sources; the simulator uses 0.25 s).
+#: their watchdog time (not in the public sources; the simulator uses 1 s).
 WATCHDOG_PERIOD = 0.040
 #: A second echo of a request answered this recently [s] is a duplicate module id.
 DUPLICATE_WINDOW = 2.0

@@ -228,7 +228,8 @@ class ExecutionOptions:
     Attributes:
         early: Send the next command after this fraction of the previous step (Sec 4.3: 0.95).
         sample_period: Time between measurement samples [s] (as fast as the bus allows if 0).
-        settle: Keep sampling this long after the last step ends [s].
+        settle: Keep sampling this long after the last step ends [s]; one complete sample
+            follows, so the final error is measured at rest however slow the bus is.
         start_tolerance: Max |measured - q[0]| per joint to start without an approach [rad].
         approach: Move to ``q[0]`` first (FSTEP at ``approach_speed`` of the limits) if needed.
         approach_speed: Fraction of the speed limits for the approach.
@@ -426,6 +427,7 @@ class _Stream:
             if progress is not None:
                 progress(k, n - 1)
             self.sample_until(next_at, k)
+        self.sampler.sample(n - 1)  # one complete sample after the settle time: the final pose at rest
         if options.watchdog:
             self.arm.stop_watchdog(disable=True)
 

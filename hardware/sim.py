@@ -161,12 +161,13 @@ class SimModule:
         lag: Tracking lag of the measured signals behind the set-point [s].
         initial: Initial position [rad].
         homed: Start with HOME_OK set.
-        watchdog_timeout: Watchdog gap that stops the module [s].
+        watchdog_timeout: Watchdog gap that stops the module [s] (assumed: the public sources give
+            none; 1 s, 25 refresh periods, so a loaded host does not trip it by accident).
     """
 
     def __init__(self, module_id: int, *, lower: float = -math.pi, upper: float = math.pi,
                  vmax: float = 1.2, amax: float = 2.0, lag: float = 0.02, initial: float = 0.0,
-                 homed: bool = True, watchdog_timeout: float = 0.25, now: float = 0.0):
+                 homed: bool = True, watchdog_timeout: float = 1.0, now: float = 0.0):
         self.id = module_id
         self.vmax_hw = float(vmax)
         self.lag = float(lag)
@@ -493,7 +494,7 @@ class SimulatedArm:
 
     def __init__(self, bus: can.BusABC, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), *,
                  arm: Arm = THESIS_ARM, lag: float = 0.02, initial=None, homed: bool = True,
-                 tick: float = 0.002, watchdog_timeout: float = 0.25,
+                 tick: float = 0.002, watchdog_timeout: float = 1.0,
                  clock: Callable[[], float] = time.monotonic, owns_bus: bool = False,
                  start: bool = True):
         try:

@@ -278,16 +278,17 @@ def test_soft_limits_default_to_table_i_and_refuse_targets(new_channel):
 
 
 def test_watchdog(arm, sim):
+    timeout = sim.module(1).watchdog_timeout  # the simulated modules' watchdog time (1 s)
     arm.start_watchdog(period=0.02)
     assert all(m.get_param(P.Param.CONFIG) & P.CONFIG_WATCHDOG for m in arm.modules)
-    time.sleep(0.4)  # refreshed: no trip
+    time.sleep(1.5 * timeout)  # longer than the watchdog time, but refreshed: no trip
     assert not any(s & P.State.ERROR for s in arm.states())
     arm.stop_watchdog(disable=False)  # refresh stops, bit stays: the modules must stop
-    assert wait_until(lambda: all(s & P.State.COMM_ERROR for s in sim.states()), 1.0)
+    assert wait_until(lambda: all(s & P.State.COMM_ERROR for s in sim.states()), 3 * timeout)
     arm.reset()
     arm.start_watchdog(period=0.02)
     arm.stop_watchdog(disable=True)  # clean stop: bit cleared first
-    time.sleep(0.4)
+    time.sleep(1.5 * timeout)
     assert not any(s & P.State.ERROR for s in arm.states())
 
 

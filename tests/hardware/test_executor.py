@@ -394,13 +394,13 @@ def test_can_error_frame_halts_and_logs(rig):
 
 def test_watchdog_during_the_run(rig):
     sim, arm, log = rig
-    tr = validate(*line(4))
-    execute(arm, tr, log, options=ExecutionOptions(settle=0.05, sample_period=0.005, watchdog=True))
+    tr = validate(*line(6, speed=0.25))
+    res = execute(arm, tr, log, options=ExecutionOptions(settle=0.05, sample_period=0.005, watchdog=True))
     wd = [m for _, m in sim.received() if isinstance(m, P.Broadcast) and m.cmd is P.Cmd.WATCHDOG]
-    assert len(wd) >= 6 * 5  # refreshed every 40 ms on every module during a ~0.3 s run
+    assert res.duration > 0.5 and len(wd) >= 6 * 5  # refreshed every 40 ms on every module
     cfg = [m.get_param(P.Param.CONFIG) for m in arm.modules]
     assert not any(c & P.CONFIG_WATCHDOG for c in cfg)  # cleared at the end
-    time.sleep(0.3)
+    time.sleep(1.5 * sim.module(1).watchdog_timeout)  # no refresh now, but no watchdog either
     assert not any(s & P.State.ERROR for s in sim.states())
 
 
