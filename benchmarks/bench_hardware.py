@@ -7,23 +7,31 @@ Run: ``python benchmarks/bench_hardware.py [n]``. Prints the median time of
   by ``hardware.sim.SimulatedArm``,
 * one executor sample (state, position, velocity, current of six modules: 24 requests),
 * protocol encode+decode alone,
+* one FSTEP command of six modules, unchecked (six SETMOVE requests) and through
+  ``PowerCubeArm.move_step`` (limits and the step's speed checked against FMAXVEL first),
 
-each with its ratio to the baseline measured in the same run. The executor's
-sample budget follows from it: a 50 ms FSTEP leaves room for a few samples.
+each with its ratio to the raw-echo baseline measured in the same run. The executor's
+sample budget follows from it: a 50 ms FSTEP leaves room for a few samples. Last, parsing
+a 10 000-line trajectory CSV (``hardware.sources.csv_trajectory``: line/column errors, plain
+decimals) against ``numpy.loadtxt`` of the same file.
 """
 
 from __future__ import annotations
 
 import statistics
 import sys
+import tempfile
 import threading
 import time
 import uuid
+from pathlib import Path
 
 import can
+import numpy as np
 
 from hardware import PowerCubeArm, SimulatedArm
 from hardware import protocol as P
+from hardware.sources import csv_trajectory
 
 
 def _median(fn, n: int, reps: int = 5) -> float:
@@ -78,6 +86,19 @@ def main(n: int = 500) -> None:
                     mod.get_param(par)
 
         smp = _median(sample, max(n // 24, 5))
+        flip = [0.0]
+
+        def raw_step():
+            flip[0] = 0.01 - flip[0]
+            for mod in arm.modules:
+                arm.link.request(P.SetMove(mod.id, P.Mode.FSTEP, flip[0], 100))
+
+        def checked_step():
+            flip[0] = 0.01 - flip[0]
+            arm.move_step(np.full(6, flip[0]), 0.1)
+
+        raw = _median(raw_step, max(n // 6, 5))
+        checked = _median(checked_step, max(n // 6, 5))
     msg = P.GetParam(1, P.Param.ACT_FPOS)
     reply = P.encode(P.ParamReply(1, P.Param.ACT_FPOS, 0.5))
     codec = _median(lambda: (P.encode(msg), P.decode(reply)), n * 10)
@@ -85,8 +106,24 @@ def main(n: int = 500) -> None:
     for name, t in (("raw echo on virtual (baseline)", base),
                     ("driver request GETPARAM (SimulatedArm)", req),
                     ("executor sample, 6 modules x 4 requests", smp),
-                    ("protocol encode + decode", codec)):
+                    ("protocol encode + decode", codec),
+                    ("FSTEP x 6, unchecked SETMOVE requests", raw),
+                    ("FSTEP x 6, PowerCubeArm.move_step (checked)", checked)):
         print(f"{name:44s} {t * 1e6:8.1f} us {t / base:10.2f}")
+    _csv_bench()
+
+
+def _csv_bench(lines: int = 10_000) -> None:
+    """csv_trajectory vs numpy.loadtxt on the same file (the baseline of this row)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "t.csv"
+        q = np.linspace(0, 1, lines)[:, None] * np.full(6, 0.3)
+        np.savetxt(path, np.column_stack([np.arange(lines) * 0.01, q]), delimiter=",", fmt="%.9f",
+                   header="t,q1,q2,q3,q4,q5,q6", comments="")
+        base = _median(lambda: np.loadtxt(path, delimiter=",", skiprows=1), 1, reps=5)
+        ours = _median(lambda: csv_trajectory(path), 1, reps=5)
+    print(f"{'CSV ' + str(lines) + ' lines, numpy.loadtxt (baseline)':44s} {base * 1e3:8.1f} ms {1.0:10.2f}")
+    print(f"{'CSV ' + str(lines) + ' lines, csv_trajectory':44s} {ours * 1e3:8.1f} ms {ours / base:10.2f}")
 
 
 if __name__ == "__main__":

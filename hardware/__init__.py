@@ -3,13 +3,14 @@
 Built on python-can; uses ``iik`` for limits and forward kinematics and ``iik.planning``
 for planned scenarios.
 
-* :mod:`hardware.protocol`: frames <-> typed messages (POWERCUBE.md).
+* :mod:`hardware.protocol`: frames <-> typed messages (docs/POWERCUBE.md).
 * :class:`PowerCubeModule`, :class:`PowerCubeArm`: the driver (Table V functions), any ``can.BusABC``.
 * :class:`hardware.sim.SimulatedArm`: simulated modules served on any bus (:func:`hardware.sim.serve`).
 * :func:`validate` / :func:`execute`: validated FSTEP streaming with the early update of Sec 4.3.
 * :func:`analyse`: joint and end-effector errors of a run log (Sec 4.3, Figs 46-56).
 * :mod:`hardware.sources`: step targets from a scenario, a CSV file or the demo line.
 * :func:`run`: one run end to end (:class:`RunRequest` -> :class:`RunReport`), behind ``iik run``.
+* :mod:`hardware.signals`: SIGTERM and SIGHUP stop a run like Ctrl-C (HALT, complete log).
 * :mod:`hardware.errors`: every error of the layer, under :class:`iik.errors.IIKError`.
 """
 

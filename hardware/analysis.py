@@ -123,8 +123,9 @@ def analyse(run: Run, arm: Arm = THESIS_ARM) -> RunAnalysis:
 
 def summary_text(a: RunAnalysis, name: str = "run") -> str:
     """Human-readable summary (mm and degrees for display)."""
+    done = {"ok": "executed to the end", "fault": "stopped by a fault"}.get(a.status, "incomplete log")
     lines = [
-        f"{name}: {len(a.steps)} step-points, status {a.status}",
+        f"{name}: {len(a.steps)} step-points measured, {done}",
         f"  end-effector error: max {a.max_ee_error * 1e3:.2f} mm, mean {a.mean_ee_error * 1e3:.2f} mm, "
         f"start {a.start_ee_error * 1e3:.2f} mm, end {a.final_ee_error * 1e3:.2f} mm",
         "  max |joint error| [deg]: " + " ".join(f"{np.degrees(v):.3f}" for v in a.max_joint_error),

@@ -20,8 +20,17 @@ broadcast 0x07 every 40 ms, sent by python-can's ``send_periodic``).
 
 Every request waits for its echoing ACK (:func:`hardware.protocol.is_echo`)
 until a timeout; every other frame read meanwhile is discarded (unsolicited
-state frames are remembered as faults). HALT latches until RESET: after
-:meth:`halt` the driver refuses motion commands locally until :meth:`reset`.
+state frames are remembered as faults), except a second echo of a request already
+answered: two modules share an id, a :class:`~hardware.errors.DuplicateModuleError`
+(:meth:`PowerCubeArm.open` also listens for such answers). HALT latches until RESET:
+after :meth:`halt` the driver refuses motion commands locally until :meth:`reset`.
+
+Motion commands are checked before they are sent: finite; position targets inside
+the module's limits; speeds (an FSTEP's distance over its time, a ramp's or a
+velocity command's speed) within the module's speed limit (its FMAXVEL, and the
+joint's Sec 3.2 limit when the arm is known), ramp accelerations within its FMAXACC,
+currents within its FMAXCUR (each read once from the module, updated when set here).
+The protocol is described in ``docs/POWERCUBE.md``.
 """
 
 from __future__ import annotations
@@ -29,6 +38,7 @@ from __future__ import annotations
 import math
 import threading
 import time
+from collections import deque
 from collections.abc import Iterable, Sequence
 
 import can
@@ -37,15 +47,23 @@ import numpy as np
 from iik.arm import THESIS_ARM, Arm
 
 from . import protocol as P
-from .errors import BusError, CANTimeoutError, ModuleHalted, ProtocolError, SafetyError
+from .errors import BusError, CANTimeoutError, DuplicateModuleError, ModuleHalted, ProtocolError, SafetyError
 
 __all__ = ["PowerCubeModule", "PowerCubeArm", "Link", "scan", "open_bus", "DEFAULT_TIMEOUT",
-           "WATCHDOG_PERIOD"]
+           "WATCHDOG_PERIOD", "DUPLICATE_WINDOW", "SPEED_TOLERANCE"]
 
 #: Default time to wait for an ACK [s].
 DEFAULT_TIMEOUT = 0.1
-#: Watchdog refresh period of the C drivers [s].
+#: Watchdog refresh period [s]: a WATCHDOG broadcast every 40 ms, as the C drivers send it
+#: (docs/POWERCUBE.md). The modules stop by themselves when it stays away longer than
+#: their watchdog time (not in the public sources; the simulator uses 1 s).
 WATCHDOG_PERIOD = 0.040
+#: A second echo of a request answered this recently [s] is a duplicate module id.
+DUPLICATE_WINDOW = 2.0
+#: :meth:`PowerCubeArm.open` listens this long [s] for second answers to its VERSION reads.
+OPEN_LISTEN = 0.05
+#: Relative tolerance of the speed, acceleration and current checks (f32 values on the wire).
+SPEED_TOLERANCE = 1e-6
 
 
 def open_bus(interface: str, channel, *, bitrate: int | None = None, port: int | None = None,
@@ -86,6 +104,7 @@ class Link:
         self.discarded = 0
         self.error_frames = 0  # CAN error frames seen (bus errors reported by the interface)
         self._lock = threading.RLock()
+        self._answered: deque[tuple[float, P.Request]] = deque(maxlen=64)  # (when, request) answered
 
     def send(self, msg: P.Message) -> None:
         """Encode and send one frame; python-can errors become :class:`BusError`."""
@@ -102,10 +121,16 @@ class Link:
             raise BusError(f"CAN receive failed: {exc}") from exc
 
     def _observe(self, frame: can.Message) -> None:
+        """Account for a frame that answers no pending request: error frame, state frame,
+        a stale reply; a second answer to an answered request raises DuplicateModuleError."""
         self.discarded += 1
         if frame.is_error_frame:
             self.error_frames += 1
             return
+        recent = time.monotonic() - DUPLICATE_WINDOW
+        for when, req in self._answered:
+            if when >= recent and P.is_echo(req, frame):
+                raise DuplicateModuleError(req.module, P.describe(req))
         if P.ID_STATE < frame.arbitration_id < P.ID_STATE + 32 and not frame.is_extended_id:
             try:
                 msg = P.decode(frame)
@@ -114,10 +139,15 @@ class Link:
             if isinstance(msg, P.StateFrame):
                 self.faults[msg.module] = msg.state
 
-    def drain(self) -> None:
-        """Read and discard whatever is queued (late ACKs of earlier requests)."""
-        while (frame := self._recv(0.0)) is not None:
-            self._observe(frame)
+    def drain(self, wait: float = 0.0) -> None:
+        """Read and discard whatever is queued (late ACKs of earlier requests), listening
+        ``wait`` s for more. Raises :class:`DuplicateModuleError` on a second answer."""
+        deadline = time.monotonic() + wait
+        with self._lock:
+            while (frame := self._recv(max(deadline - time.monotonic(), 0.0))) is not None \
+                    or time.monotonic() < deadline:
+                if frame is not None:
+                    self._observe(frame)
 
     def request(self, req: P.Request, timeout: float | None = None) -> P.Reply:
         """Send ``req`` and return its decoded echoing reply.
@@ -140,7 +170,9 @@ class Link:
                 if frame is None:
                     continue
                 if P.is_echo(req, frame):
-                    return P.decode(frame)
+                    reply = P.decode(frame)
+                    self._answered.append((time.monotonic(), req))
+                    return reply
                 self._observe(frame)
 
 
@@ -167,6 +199,8 @@ class PowerCubeModule:
         timeout: Time to wait for each ACK [s].
         limits: Optional ``(lower, upper)`` [rad]; position targets outside are
             refused with :class:`SafetyError` before anything is sent.
+        max_vel: Optional speed limit of the joint [rad/s] (Sec 3.2); motion needing more
+            is refused, as is motion beyond the module's own FMAXVEL, FMAXACC, FMAXCUR.
         link: Share a :class:`Link` with other modules on the same bus (the arm does).
 
     Attributes:
@@ -174,7 +208,8 @@ class PowerCubeModule:
     """
 
     def __init__(self, bus: can.BusABC, module_id: int, *, timeout: float = DEFAULT_TIMEOUT,
-                 limits: tuple[float, float] | None = None, link: Link | None = None):
+                 limits: tuple[float, float] | None = None, max_vel: float | None = None,
+                 link: Link | None = None):
         if isinstance(module_id, bool) or not isinstance(module_id, (int, np.integer)) \
                 or int(module_id) not in P.MODULE_IDS:
             raise SafetyError("module_id", f"must be an int in 1..31, got {module_id!r}")
@@ -186,8 +221,11 @@ class PowerCubeModule:
             if not lo < hi:
                 raise SafetyError("limits", f"need lower < upper, got {limits!r}")
             self.limits = (lo, hi)
+        self.max_vel = None if max_vel is None else _check_positive(max_vel, "max_vel")
         self.halted = False
         self.last_short: P.ShortState | None = None
+        self._target: float | None = None  # last position target commanded (reference of the next step)
+        self._fmax: dict[P.Param, float] = {}  # the module's FMAXVEL/FMAXACC/FMAXCUR, read once
 
     def __repr__(self) -> str:
         return f"PowerCubeModule(id={self.id}, halted={self.halted})"
@@ -201,6 +239,22 @@ class PowerCubeModule:
     def set_param(self, param: P.Param, value) -> None:
         """Write a parameter (SETPARAM) and wait for its ACK."""
         self.link.request(P.SetParam(self.id, P.Param(param), value))
+        self._fmax.pop(P.Param(param), None)  # a limit written here is read again when needed
+
+    def module_limit(self, param: P.Param) -> float:
+        """The module's own limit FMAXVEL [rad/s], FMAXACC [rad/s^2] or FMAXCUR [A]; for
+        FMAXVEL also at most ``max_vel``. Read from the module once, then remembered."""
+        if param not in self._fmax:
+            self._fmax[param] = float(self.get_param(param))
+        value = self._fmax[param]
+        return min(value, self.max_vel) if param is P.Param.FMAXVEL and self.max_vel is not None else value
+
+    def check_limit(self, value: float, param: P.Param, what: str, unit: str) -> None:
+        """Refuse ``|value|`` above the module's limit ``param`` (:meth:`module_limit`): SafetyError."""
+        limit = self.module_limit(param)
+        if abs(value) > limit * (1.0 + SPEED_TOLERANCE):
+            raise SafetyError(f"module {self.id} {what}", f"{abs(value):.4f} {unit} exceeds the module's "
+                              f"limit of {limit:.4f} {unit} ({P.Param(param).name})")
 
     def get_pos(self) -> float:
         """Actual position [rad] (``PCube_getPos``)."""
@@ -238,7 +292,12 @@ class PowerCubeModule:
         self.set_param(P.Param.FMAXCUR, _check_positive(current, "current"))
 
     def set_max_vel(self, velocity: float) -> None:
-        self.set_param(P.Param.FMAXVEL, _check_positive(velocity, "velocity"))
+        """Maximum speed [rad/s]; refused above the joint's Sec 3.2 limit ``max_vel``."""
+        v = _check_positive(velocity, "velocity")
+        if self.max_vel is not None and v > self.max_vel * (1.0 + SPEED_TOLERANCE):
+            raise SafetyError(f"module {self.id} velocity", f"{v:.4f} rad/s exceeds the joint's speed "
+                              f"limit of {self.max_vel:.4f} rad/s (Sec 3.2)")
+        self.set_param(P.Param.FMAXVEL, v)
 
     def set_max_acc(self, acceleration: float) -> None:
         self.set_param(P.Param.FMAXACC, _check_positive(acceleration, "acceleration"))
@@ -260,15 +319,18 @@ class PowerCubeModule:
     def home(self) -> None:
         """Start homing (``PCube_homeModule``); see :meth:`wait_homed`."""
         self._refuse_if_halted()
+        self._target = None
         self._command(P.Cmd.HOME)
 
     def halt(self) -> None:
         """Stop now. Latches: no motion is accepted until :meth:`reset`."""
         self.halted = True
+        self._target = None
         self._command(P.Cmd.HALT)
 
     def reset(self) -> None:
         """Clear an error or a halt."""
+        self._target = None
         self._command(P.Cmd.RESET)
         self.halted = False
         self.link.faults.pop(self.id, None)
@@ -300,13 +362,23 @@ class PowerCubeModule:
 
     def _move(self, mode: P.Mode, value: float, time_ms: int | None, extended: bool):
         self._refuse_if_halted()
-        if extended:
-            mode = mode.as_extended()
-        ack = self.link.request(P.SetMove(self.id, mode, value, time_ms))
+        self._target = None  # unknown until acknowledged
+        ack = self.link.request(P.SetMove(self.id, mode.as_extended() if extended else mode, value, time_ms))
+        if mode in (P.Mode.FSTEP, P.Mode.FRAMP):
+            self._target = value
         if extended:
             self.last_short = ack.short
             return ack.position, ack.short, ack.dio
         return None
+
+    def check_ramp(self, pos, vel, acc, name: str = "pos") -> tuple[float, float, float]:
+        """``(pos, vel, acc)`` of a ramp if finite, inside the limits and within the module's
+        FMAXVEL/FMAXACC; else :class:`SafetyError`. Sends nothing but the limit reads."""
+        p = self.check_target(pos, name)
+        v, a = _check_positive(vel, "vel"), _check_positive(acc, "acc")
+        self.check_limit(v, P.Param.FMAXVEL, "ramp speed", "rad/s")
+        self.check_limit(a, P.Param.FMAXACC, "ramp acceleration", "rad/s^2")
+        return p, v, a
 
     def move_ramp(self, pos: float, vel: float, acc: float, *, extended: bool = False):
         """Ramp (trapezoidal) motion to ``pos`` [rad] with ``vel`` [rad/s], ``acc`` [rad/s^2]
@@ -315,25 +387,39 @@ class PowerCubeModule:
         With ``extended`` the reply's (position, short state, dio) is returned.
         """
         self._refuse_if_halted()
-        p = self.check_target(pos)
-        self.set_param(P.Param.FRAMPVEL, _check_positive(vel, "vel"))
-        self.set_param(P.Param.FRAMPACC, _check_positive(acc, "acc"))
+        p, v, a = self.check_ramp(pos, vel, acc)
+        self.set_param(P.Param.FRAMPVEL, v)
+        self.set_param(P.Param.FRAMPACC, a)
         return self._move(P.Mode.FRAMP, p, None, extended)
+
+    def check_step(self, pos, time_s: float, name: str = "pos") -> tuple[float, int]:
+        """``(pos, ms)`` of an FSTEP if the target is finite and inside the limits, the time
+        is 1..65535 whole ms and the speed it needs (distance from the previous target, or
+        from the measured position, over the time on the wire) is within the module's
+        speed limit; else :class:`SafetyError`. Sends nothing but reads."""
+        p = self.check_target(pos, name)
+        ms = step_ms(time_s)
+        ref = self._target if self._target is not None else self.get_pos()
+        self.check_limit((p - ref) / (ms / 1000.0), P.Param.FMAXVEL, f"{name} step of {ms} ms", "rad/s")
+        return p, ms
 
     def move_step(self, pos: float, time_s: float, *, extended: bool = False):
         """Constant-velocity motion to ``pos`` [rad] in ``time_s`` [s] (``PCube_moveStep``;
-        the time goes on the wire in whole ms, 1..65535)."""
-        p = self.check_target(pos)
-        ms = step_ms(time_s)
-        return self._move(P.Mode.FSTEP, p, ms, extended)
+        the time goes on the wire in whole ms, 1..65535); see :meth:`check_step`."""
+        self._refuse_if_halted()
+        return self._move(P.Mode.FSTEP, *self.check_step(pos, time_s), extended)
 
     def move_vel(self, vel: float, *, extended: bool = False):
-        """Constant-velocity motion at ``vel`` [rad/s] (``PCube_moveVel``)."""
-        return self._move(P.Mode.FVEL, _finite(vel, "vel"), None, extended)
+        """Constant-velocity motion at ``vel`` [rad/s] (``PCube_moveVel``), within FMAXVEL."""
+        v = _finite(vel, "vel")
+        self.check_limit(v, P.Param.FMAXVEL, "velocity", "rad/s")
+        return self._move(P.Mode.FVEL, v, None, extended)
 
     def move_cur(self, current: float, *, extended: bool = False):
-        """Constant-current motion at ``current`` [A] (``PCube_moveCur``)."""
-        return self._move(P.Mode.FCUR, _finite(current, "current"), None, extended)
+        """Constant-current motion at ``current`` [A] (``PCube_moveCur``), within FMAXCUR."""
+        c = _finite(current, "current")
+        self.check_limit(c, P.Param.FMAXCUR, "current", "A")
+        return self._move(P.Mode.FCUR, c, None, extended)
 
     # -- watchdog
     def set_watchdog(self, enabled: bool) -> None:
@@ -354,7 +440,11 @@ def step_ms(time_s: float) -> int:
 
 def scan(bus: can.BusABC, ids: Iterable[int] = P.MODULE_IDS, *, timeout: float = 0.02,
          link: Link | None = None) -> dict[int, int]:
-    """Find modules: read VERSION on each id; returns ``{id: version}`` of those that answer."""
+    """Find modules: read VERSION on each id; returns ``{id: version}`` of those that answer.
+
+    Raises:
+        DuplicateModuleError: an id answered twice (two modules with that id).
+    """
     link = link if link is not None else Link(bus, timeout)
     found = {}
     for i in ids:
@@ -362,6 +452,7 @@ def scan(bus: can.BusABC, ids: Iterable[int] = P.MODULE_IDS, *, timeout: float =
             found[int(i)] = link.request(P.GetParam(int(i), P.Param.VERSION), timeout).value
         except CANTimeoutError:
             continue
+    link.drain(timeout)  # a second answer to the last request
     return found
 
 
@@ -386,11 +477,11 @@ class PowerCubeArm:
             raise SafetyError("module_ids", f"need distinct ids, got {module_ids!r}")
         self.bus = bus
         self.link = Link(bus, timeout)
-        lims = [None] * len(ids)
+        lims, vels = [None] * len(ids), [None] * len(ids)
         if arm is not None and len(ids) == 6:
-            lims = list(zip(arm.lower, arm.upper, strict=True))
-        self.modules = [PowerCubeModule(bus, i, limits=lim, link=self.link)
-                        for i, lim in zip(ids, lims, strict=True)]
+            lims, vels = list(zip(arm.lower, arm.upper, strict=True)), list(arm.velocity)
+        self.modules = [PowerCubeModule(bus, i, limits=lim, max_vel=v, link=self.link)
+                        for i, lim, v in zip(ids, lims, vels, strict=True)]
         self.module_ids = tuple(ids)
         self.arm = arm
         self._owns_bus = owns_bus
@@ -423,10 +514,16 @@ class PowerCubeArm:
         self.close()
 
     def open(self) -> list[P.State]:
-        """Check every module answers (VERSION) and return their states."""
+        """Check every module answers (VERSION), exactly once (a second answer is a
+        :class:`DuplicateModuleError`), and return their states."""
         for m in self.modules:
             m.version()
+        self.link.drain(OPEN_LISTEN)
         return self.states()
+
+    def speed_limits(self) -> np.ndarray:
+        """Each module's speed limit [rad/s]: its FMAXVEL, at most the joint's Sec 3.2 limit."""
+        return np.array([m.module_limit(P.Param.FMAXVEL) for m in self.modules])
 
     def close(self) -> None:
         """Disable the watchdog and, if this arm opened the bus, shut the bus down."""
@@ -503,31 +600,45 @@ class PowerCubeArm:
     def _check_targets(self, qs: list[float]) -> None:
         """Every joint target is checked before any module is commanded."""
         for i, (m, p) in enumerate(zip(self.modules, qs, strict=True)):
-            m.check_target(p, f"q[{i}]")
+            m.check_target(p, f"joint q{i + 1}")
 
     def move_ramp(self, q, vel, acc) -> None:
+        """Ramp every joint (``PCube_moveRamp``); every joint is checked before any is commanded."""
         qs, vs, as_ = (self._per_joint(q, "q"), self._per_joint(vel, "vel"), self._per_joint(acc, "acc"))
         self._check_targets(qs)
+        for i, (m, p, v, a) in enumerate(zip(self.modules, qs, vs, as_, strict=True)):
+            m.check_ramp(p, v, a, f"joint q{i + 1}")
         for m, p, v, a in zip(self.modules, qs, vs, as_, strict=True):
             m.move_ramp(p, v, a)
 
     def move_step(self, q, time_s: float, *, extended: bool = False):
-        """FSTEP every joint to ``q`` [rad] in ``time_s`` [s]. All targets are checked first.
+        """FSTEP every joint to ``q`` [rad] in ``time_s`` [s]. Every joint is checked first
+        (:meth:`PowerCubeModule.check_step`: limits, whole ms, speed).
 
         With ``extended`` returns the (n,) actual positions and the short states."""
         qs = self._per_joint(q, "q")
         self._check_targets(qs)
+        for i, (m, p) in enumerate(zip(self.modules, qs, strict=True)):
+            m.check_step(p, time_s, f"joint q{i + 1}")
         out = [m.move_step(p, time_s, extended=extended) for m, p in zip(self.modules, qs, strict=True)]
         if extended:
             return np.array([o[0] for o in out]), [o[1] for o in out]
         return None
 
     def move_vel(self, vel) -> None:
-        for m, v in zip(self.modules, self._per_joint(vel, "vel"), strict=True):
+        """Constant velocity [rad/s] on every joint, each within its FMAXVEL (all checked first)."""
+        vs = self._per_joint(vel, "vel")
+        for m, v in zip(self.modules, vs, strict=True):
+            m.check_limit(v, P.Param.FMAXVEL, "velocity", "rad/s")
+        for m, v in zip(self.modules, vs, strict=True):
             m.move_vel(v)
 
     def move_cur(self, current) -> None:
-        for m, c in zip(self.modules, self._per_joint(current, "current"), strict=True):
+        """Constant current [A] on every joint, each within its FMAXCUR (all checked first)."""
+        cs = self._per_joint(current, "current")
+        for m, c in zip(self.modules, cs, strict=True):
+            m.check_limit(c, P.Param.FMAXCUR, "current", "A")
+        for m, c in zip(self.modules, cs, strict=True):
             m.move_cur(c)
 
     # -- watchdog

@@ -2,9 +2,15 @@
 
 Each also derives from the matching built-in so generic handlers keep working:
 a malformed frame is a ``ValueError``, a missing reply a ``TimeoutError``.
+
+:class:`StopSignal` is the exception: SIGTERM or SIGHUP during a run is a
+``KeyboardInterrupt`` (like Ctrl-C), not an error, so that no ``except Exception``
+swallows it before the arm is halted.
 """
 
 from __future__ import annotations
+
+import signal
 
 from iik.errors import IIKError
 
@@ -15,9 +21,11 @@ __all__ = [
     "SafetyError",
     "ModuleFault",
     "ModuleHalted",
+    "DuplicateModuleError",
     "BusError",
     "RunLogError",
     "SimulatorError",
+    "StopSignal",
 ]
 
 
@@ -57,14 +65,26 @@ class SafetyError(HardwareError, ValueError):
     """A command was refused before reaching the bus (limit, non-finite value, halted module).
 
     Attributes:
-        argument: What was refused, e.g. ``"q[12, 3]"``.
+        argument: What was refused, as a user reads it, e.g. ``"step-point 12 (counting
+            from 0), joint q4"`` or ``"traj.csv line 14 (step-point 12 ...), joint q4"``.
         reason: Why.
+        step: Index of the refused step-point (from 0), or None.
+        joint: Index of the refused joint (from 0; joint ``q{joint + 1}``), or None.
     """
 
-    def __init__(self, argument: str, reason: str):
+    def __init__(self, argument: str, reason: str, *, step: int | None = None, joint: int | None = None):
         self.argument = argument
         self.reason = reason
+        self.step = step
+        self.joint = joint
         super().__init__(f"{argument}: {reason}")
+
+
+def target_name(step: int | None = None, joint: int | None = None) -> str:
+    """How messages name step-point ``step`` and joint ``joint`` (both counted from 0):
+    ``"step-point 5 (counting from 0), joint q1"``."""
+    parts = [] if step is None else [f"step-point {step} (counting from 0)"]
+    return ", ".join(parts + ([] if joint is None else [f"joint q{joint + 1}"]))
 
 
 class ModuleFault(HardwareError):
@@ -89,7 +109,23 @@ class ModuleHalted(SafetyError):
 
     def __init__(self, module_id: int):
         self.module_id = module_id
-        super().__init__(f"module {module_id}", "halted; call reset() before moving again")
+        super().__init__(f"module {module_id}", "halted; call reset() before moving again (iik run --reset)")
+
+
+class DuplicateModuleError(HardwareError):
+    """Two answers to one request: two modules with the same id on the bus (a wiring or
+    configuration fault; also two ``iik sim-arm`` on one channel). Stops the run.
+
+    Attributes:
+        module_id: The id that answered twice.
+        request: Short description of the request, e.g. ``"GETPARAM VERSION"``.
+    """
+
+    def __init__(self, module_id: int, request: str):
+        self.module_id = module_id
+        self.request = request
+        super().__init__(f"module {module_id}: two answers to {request}: more than one module with id "
+                         f"{module_id} is on the bus (give each module its own id)")
 
 
 class BusError(HardwareError, OSError):
@@ -111,3 +147,16 @@ class SimulatorError(HardwareError, RuntimeError):
     def __init__(self, reason: str):
         self.reason = reason
         super().__init__(reason)
+
+
+class StopSignal(KeyboardInterrupt):
+    """SIGTERM or SIGHUP arrived during a run (:func:`hardware.signals.stop_on_signals`);
+    handled like Ctrl-C: HALT broadcast, fault and end records, log flushed.
+
+    Attributes:
+        signum: The signal number (``signal.SIGTERM``...).
+    """
+
+    def __init__(self, signum: int):
+        self.signum = int(signum)
+        super().__init__(f"stopped by {signal.Signals(self.signum).name}")

@@ -15,8 +15,13 @@ Two steps, and the second only accepts the output of the first:
    every module into a JSON-lines run log (:mod:`hardware.runlog`), flushed per line.
 
 On any fault (ACK timeout, ERROR bit or unsolicited state frame, CAN error,
-malformed reply, Ctrl-C) it broadcasts HALT, records the fault, fsyncs the log and
-re-raises.
+malformed reply, a duplicate module id, Ctrl-C, SIGTERM or SIGHUP) it broadcasts HALT,
+records the fault, fsyncs the log and re-raises (:mod:`hardware.signals`).
+
+Times are compared as they go on the wire: a step lasts a whole number of
+milliseconds (FSTEP's u16, the time resolution of the protocol), so a step time is
+rounded to the nearest millisecond before it is checked (a tolerance of 0.5 ms):
+the 9.985 ms steps of a trajectory sampled every 10 ms are 10 ms steps.
 """
 
 from __future__ import annotations
@@ -33,15 +38,17 @@ import numpy as np
 from iik.arm import THESIS_ARM, Arm
 from iik.errors import InvalidInputError
 from iik.kinematics import fk
+from iik.planning.timing import EXECUTION_MARGIN, MIN_STEP
 from iik.rotations import rotation_angle
 
 from . import protocol as P
-from .driver import PowerCubeArm
-from .errors import BusError, ModuleFault, SafetyError
+from .driver import SPEED_TOLERANCE, PowerCubeArm
+from .errors import BusError, ModuleFault, SafetyError, target_name
 from .runlog import RunLog
+from .signals import stop_on_signals
 
-__all__ = ["ValidationOptions", "ValidatedTrajectory", "validate", "ExecutionOptions", "RunResult",
-           "execute", "time_steps", "EARLY_UPDATE"]
+__all__ = ["ValidationOptions", "ValidatedTrajectory", "validate", "check_poses", "ExecutionOptions",
+           "RunResult", "execute", "time_steps", "EARLY_UPDATE"]
 
 #: Sec 4.3: the next command is sent after 95 % of the previous one's time.
 EARLY_UPDATE = 0.95
@@ -53,18 +60,19 @@ class ValidationOptions:
     """Limits applied by :func:`validate`.
 
     Attributes:
-        margin: Keep targets this far inside Table I [rad].
+        margin: Keep targets this far inside Table I [rad] (default
+            :data:`iik.planning.timing.EXECUTION_MARGIN`, 0.5 deg, which planned trajectories keep).
         velocity_fraction: Allowed fraction of each joint's speed limit.
         fk_position_tol: Max distance between FK(target) and the planned position [m].
         fk_rotation_tol: Max angle between FK(target) and the planned orientation [rad].
-        min_step: Shortest step time [s].
+        min_step: Shortest step time [s], compared in whole milliseconds as sent.
     """
 
-    margin: float = math.radians(0.5)
+    margin: float = EXECUTION_MARGIN
     velocity_fraction: float = 1.0
     fk_position_tol: float = 1e-5
     fk_rotation_tol: float = 1e-4
-    min_step: float = 0.01
+    min_step: float = MIN_STEP
 
 
 class ValidatedTrajectory:
@@ -111,7 +119,8 @@ def validate(times, q, poses, *, arm: Arm = THESIS_ARM,
             compared (the planner changed alpha/beta there on purpose, Sec 3.6).
 
     Raises:
-        SafetyError: naming the first offending target, e.g. ``q[12, 3]``.
+        SafetyError: naming the first offending target (step-point and joint, counted
+            from 0 and as ``q1..q6``) in ``argument`` and in ``step``/``joint``.
     """
     try:
         t = np.asarray(times, dtype=float)
@@ -120,7 +129,7 @@ def validate(times, q, poses, *, arm: Arm = THESIS_ARM,
     except (TypeError, ValueError) as exc:
         raise SafetyError("trajectory", f"not numeric ({exc})") from None
     if t.ndim != 1 or len(t) < 2:
-        raise SafetyError("times", f"need a 1-D array of at least 2 times, got shape {t.shape}")
+        raise SafetyError("times", f"need at least 2 step-points, got {t.size}")
     n = len(t)
     if qa.shape != (n, 6):
         raise SafetyError("q", f"expected shape ({n}, 6), got {qa.shape}")
@@ -129,30 +138,57 @@ def validate(times, q, poses, *, arm: Arm = THESIS_ARM,
     for name, a in (("times", t), ("q", qa), ("poses", Ta)):
         bad = np.argwhere(~np.isfinite(a))
         if len(bad):
-            raise SafetyError(f"{name}[{', '.join(map(str, bad[0]))}]", "not finite")
+            k, j = int(bad[0][0]), (int(bad[0][1]) if name == "q" else None)
+            raise SafetyError(target_name(k, j), f"{name} not finite", step=k, joint=j)
     # Table I with a margin
     lo = arm.q_min + options.margin
     hi = arm.q_max - options.margin
     out = np.argwhere((qa < lo) | (qa > hi))
     if len(out):
-        k, j = out[0]
-        raise SafetyError(f"q[{k}, {j}]", f"{qa[k, j]:.6f} rad outside Table I "
-                          f"[{arm.q_min[j]:.4f}, {arm.q_max[j]:.4f}] with margin {options.margin:.4f} rad")
-    # step times as they go on the wire, and the speeds they imply
-    dt = np.diff(t)
-    if np.any(dt < options.min_step):
-        k = int(np.argmax(dt < options.min_step))
-        raise SafetyError(f"times[{k + 1}]", f"step of {dt[k]:.4f} s is shorter than {options.min_step} s")
-    ms = np.rint(dt * 1000.0)
-    if np.any(ms > 0xFFFF):
-        raise SafetyError("times", "a step is longer than 65.535 s")
-    vel = np.abs(np.diff(qa, axis=0)) / (ms[:, None] / 1000.0)
+        k, j = (int(v) for v in out[0])
+        raise SafetyError(target_name(k, j), f"{qa[k, j]:.6f} rad outside Table I [{arm.q_min[j]:.4f}, "
+                          f"{arm.q_max[j]:.4f}] rad less the margin of {options.margin:.4f} rad "
+                          f"({math.degrees(options.margin):g} deg)", step=k, joint=j)
+    step_ms = _step_ms(t, options.min_step)
+    vel = np.abs(np.diff(qa, axis=0)) / (step_ms[:, None] / 1000.0)
     vmax = np.asarray(arm.velocity) * options.velocity_fraction
     over = np.argwhere(vel > vmax)
     if len(over):
-        k, j = over[0]
-        raise SafetyError(f"q[{k + 1}, {j}]", f"needs {vel[k, j]:.4f} rad/s > limit {vmax[j]:.4f} rad/s")
-    # FK of every target against its planned pose (Eq 4)
+        k, j = (int(v) for v in over[0])
+        raise SafetyError(target_name(k + 1, j), f"the step to it ({step_ms[k]} ms) needs {vel[k, j]:.4f} "
+                          f"rad/s > limit {vmax[j]:.4f} rad/s", step=k + 1, joint=j)
+    check_poses(qa, Ta, arm=arm, options=options, orientation_free=orientation_free)
+    return ValidatedTrajectory(_token=_TOKEN, times=t - t[0], q=qa, poses=Ta, step_ms=step_ms,
+                               arm=arm, options=options)
+
+
+def _step_ms(t: np.ndarray, min_step: float) -> np.ndarray:
+    """Step times as they go on the wire: whole ms (nearest; a tolerance of 0.5 ms), each at
+    least ``min_step`` [s] (compared in whole ms too) and at most 65535 ms."""
+    with np.errstate(over="ignore", invalid="ignore"):  # absurd times are refused below, not warned about
+        dt = np.diff(t)
+    longest = 0xFFFF / 1000.0 + 0.0005
+    if np.any(~np.isfinite(dt) | (dt >= longest)):
+        k = int(np.argmax(~np.isfinite(dt) | (dt >= longest)))
+        raise SafetyError(target_name(k + 1), f"the step to it takes {dt[k]:.6g} s, longer than 65.535 s "
+                          "(FSTEP's u16 ms)", step=k + 1)
+    ms = np.rint(np.maximum(dt, -1.0) * 1000.0)
+    least = max(int(round(min_step * 1000.0)), 1)
+    if np.any(ms < least):
+        k = int(np.argmax(ms < least))
+        took = f"{dt[k] * 1e3:.3f} ms" if dt[k] > -1.0 else f"{dt[k]:.6g} s (times must increase)"
+        raise SafetyError(target_name(k + 1), f"the step to it takes {took}, {ms[k]:.0f} ms on the wire "
+                          f"(whole ms): shorter than the {least} ms minimum", step=k + 1)
+    return ms.astype(int)
+
+
+def check_poses(q, poses, *, arm: Arm = THESIS_ARM, options: ValidationOptions = ValidationOptions(),
+                orientation_free=None) -> None:
+    """FK (Eq 4) of every target ``q`` (n,6) [rad] against its planned pose ``poses`` (n,4,4) [m]:
+    the targets come from an FK-verified IK solution. Raises :class:`SafetyError` naming the
+    first step-point (counted from 0) whose FK is farther than the options' tolerances."""
+    qa, Ta = np.asarray(q, dtype=float), np.asarray(poses, dtype=float)
+    n = len(qa)
     try:
         from iik.validation import as_poses
 
@@ -170,10 +206,8 @@ def validate(times, q, poses, *, arm: Arm = THESIS_ARM,
     bad = np.flatnonzero((dp > options.fk_position_tol) | (dr > options.fk_rotation_tol))
     if len(bad):
         k = int(bad[0])
-        raise SafetyError(f"q[{k}]", f"FK does not match the planned pose ({dp[k] * 1e3:.3f} mm, "
-                          f"{math.degrees(dr[k]):.4f} deg)")
-    return ValidatedTrajectory(_token=_TOKEN, times=t - t[0], q=qa, poses=Ta, step_ms=ms.astype(int),
-                               arm=arm, options=options)
+        raise SafetyError(target_name(k), f"FK does not match the planned pose ({dp[k] * 1e3:.3f} mm, "
+                          f"{math.degrees(dr[k]):.4f} deg)", step=k)
 
 
 def time_steps(q, *, arm: Arm = THESIS_ARM, speed_fraction: float = 0.5, min_step: float = 0.05,
@@ -194,7 +228,8 @@ class ExecutionOptions:
     Attributes:
         early: Send the next command after this fraction of the previous step (Sec 4.3: 0.95).
         sample_period: Time between measurement samples [s] (as fast as the bus allows if 0).
-        settle: Keep sampling this long after the last step ends [s].
+        settle: Keep sampling this long after the last step ends [s]; one complete sample
+            follows, so the final error is measured at rest however slow the bus is.
         start_tolerance: Max |measured - q[0]| per joint to start without an approach [rad].
         approach: Move to ``q[0]`` first (FSTEP at ``approach_speed`` of the limits) if needed.
         approach_speed: Fraction of the speed limits for the approach.
@@ -275,11 +310,14 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
             sleep: Callable[[float], None] = time.sleep) -> RunResult:
     """Stream ``trajectory`` to ``arm`` and log it to ``log_path`` (JSON lines).
 
+    SIGTERM and SIGHUP are handled like Ctrl-C meanwhile (:func:`hardware.signals.stop_on_signals`).
+
     Raises:
         SafetyError: ``trajectory`` is not a :class:`ValidatedTrajectory`, or the arm
             is not where the trajectory starts and ``options.approach`` is off.
-        CANTimeoutError, ModuleFault, BusError, ProtocolError, KeyboardInterrupt:
-            after HALT was broadcast and the fault logged.
+        ModuleFault: a module reports an error or a halt before the start (nothing is sent).
+        CANTimeoutError, ModuleFault, BusError, ProtocolError, DuplicateModuleError,
+        KeyboardInterrupt, StopSignal: after HALT was broadcast and the fault logged.
     """
     if not isinstance(trajectory, ValidatedTrajectory):
         raise SafetyError("trajectory", "must be a ValidatedTrajectory from hardware.executor.validate()")
@@ -294,95 +332,120 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
     # Refusals before anything moves: no HALT needed, no log written.
     for m, s in zip(arm.modules, arm.states(), strict=True):
         if s & (P.State.ERROR | P.State.HALTED):
-            raise ModuleFault(m.id, s, "before start: reset the module first")
-    q_now = arm.get_pos()
-    err = np.abs(q_now - tr.q[0])
+            what = "halted (HALT latches)" if s & P.State.HALTED else "in error"
+            raise ModuleFault(m.id, s, f"before start: {what}; reset it first: iik run --reset")
+    limits = arm.speed_limits()  # the modules' own FMAXVEL may be below the Sec 3.2 limits
+    over = np.argwhere(np.abs(np.diff(tr.q, axis=0)) / (tr.step_ms[:, None] / 1000.0)
+                       > limits * (1.0 + SPEED_TOLERANCE))
+    if len(over):
+        k, j = (int(v) for v in over[0])
+        raise SafetyError(target_name(k + 1, j), f"the step to it needs more than module "
+                          f"{arm.module_ids[j]}'s speed limit of {limits[j]:.4f} rad/s", step=k + 1, joint=j)
+    err = np.abs(arm.get_pos() - tr.q[0])
     if np.max(err) > options.start_tolerance and not options.approach:
         raise SafetyError("arm", f"is {np.max(err):.4f} rad from the trajectory start")
-    log = RunLog(log_path)
-    log.write({"type": "header", "version": 1, "module_ids": list(arm.module_ids),
-               "times": tr.times.tolist(), "q": tr.q.tolist(), "poses": tr.poses.tolist(),
-               "step_ms": tr.step_ms.tolist(), "early": options.early, "sync": options.sync,
-               "update": options.update,
-               "bus": str(arm.bus.channel_info), "arm": tr.arm.name,
-               "started": datetime.now(timezone.utc).isoformat()})
-    t0 = clock()
-    sampler = _Sampler(arm, log, t0, clock)
-    n_cmd = 0
+    with stop_on_signals():
+        log = RunLog(log_path)
+        log.write({"type": "header", "version": 1, "module_ids": list(arm.module_ids),
+                   "times": tr.times.tolist(), "q": tr.q.tolist(), "poses": tr.poses.tolist(),
+                   "step_ms": tr.step_ms.tolist(), "early": options.early, "sync": options.sync,
+                   "update": options.update, "watchdog": options.watchdog,
+                   "bus": str(arm.bus.channel_info), "arm": tr.arm.name,
+                   "started": datetime.now(timezone.utc).isoformat()})
+        stream = _Stream(arm, tr, log, options, clock, sleep)
+        try:
+            stream.run(err, progress)
+            log.write({"type": "end", "t": clock() - stream.t0, "status": "ok"})
+            log.close()
+            return RunResult(Path(log_path), stream.commands, stream.sampler.count, clock() - stream.t0)
+        except BaseException as exc:
+            stream.stop(exc)
+            raise
 
-    def command(k: int, q, time_s: float, start: bool = True) -> float:
-        nonlocal n_cmd
-        t = clock()
+
+class _Stream:
+    """The streaming of one validated trajectory (:func:`execute`), and its stop on a fault."""
+
+    def __init__(self, arm: PowerCubeArm, tr: ValidatedTrajectory, log: RunLog, options: ExecutionOptions,
+                 clock, sleep):
+        self.arm, self.tr, self.log, self.options = arm, tr, log, options
+        self.clock, self.sleep = clock, sleep
+        self.t0 = clock()
+        self.sampler = _Sampler(arm, log, self.t0, clock)
+        self.commands = 0
+
+    def command(self, k: int, q, time_s: float, start: bool = True) -> float:
+        """FSTEP every joint to ``q`` in ``time_s`` (and STARTMOVE); returns when it was sent."""
+        t = self.clock()
         # extended FSTEP: each ACK carries the module's actual position when the command
         # arrived, i.e. the measurement at the step-point the early update leaves
-        q_meas, short = arm.move_step(q, time_s, extended=True)
+        q_meas, short = self.arm.move_step(q, time_s, extended=True)
         if start:
-            arm.start_move()
-        log.write({"type": "command", "t": t - t0, "k": k, "q": [float(v) for v in q], "time_s": time_s,
-                   "q_meas": [float(v) for v in q_meas], "short": [int(v) for v in short]})
-        n_cmd += 1
+            self.arm.start_move()
+        self.log.write({"type": "command", "t": t - self.t0, "k": k, "q": [float(v) for v in q],
+                        "time_s": time_s, "q_meas": [float(v) for v in q_meas],
+                        "short": [int(v) for v in short]})
+        self.commands += 1
         return t
 
-    def step_point(k: int, t_end: float) -> None:
-        log.write({"type": "step_end", "k": k, "t": t_end - t0})
-
-    def sample_until(deadline: float, k: int) -> None:
+    def sample_until(self, deadline: float, k: int) -> None:
         """Sample every ``sample_period`` until ``deadline`` without delaying the next command."""
         while True:
-            sampler.sample(k, deadline)
-            now = clock()
+            self.sampler.sample(k, deadline)
+            now = self.clock()
             if now >= deadline:
                 return
-            sleep(min(options.sample_period, deadline - now))
+            self.sleep(min(self.options.sample_period, deadline - now))
 
-    try:
+    def run(self, err: np.ndarray, progress) -> None:
+        """Approach the start if needed, then every step (Sec 4.3 or buffered update)."""
+        tr, options = self.tr, self.options
         if options.watchdog:
-            arm.start_watchdog()
+            self.arm.start_watchdog()
         if np.max(err) > options.start_tolerance:
             v = np.asarray(tr.arm.velocity) * options.approach_speed
             t_app = math.ceil(max(float(np.max(err / v)), 0.05) * 1000.0) / 1000.0
-            ts = command(0, tr.q[0], t_app)
-            sample_until(ts + t_app + options.settle, 0)
+            ts = self.command(0, tr.q[0], t_app)
+            self.sample_until(ts + t_app + options.settle, 0)
         else:
-            sampler.sample(0)
+            self.sampler.sample(0)
         n = len(tr)
         step_end = -math.inf  # end of the current step on the modules' timeline (buffered)
         for k in range(1, n):
             dt = tr.step_ms[k - 1] / 1000.0
             if options.update == "thesis":  # Sec 4.3: next command after 95 % of this one
-                ts = command(k, tr.q[k], dt, start=options.sync)
+                ts = self.command(k, tr.q[k], dt, start=options.sync)
                 next_at = ts + (options.early * dt if k < n - 1 else dt + options.settle)
             else:  # buffered: queue the next step shortly before this one ends
-                ts = command(k, tr.q[k], dt, start=(k == 1))
+                ts = self.command(k, tr.q[k], dt, start=(k == 1))
                 # the step starts when the previous one ends, or at once if that already
                 # happened (a late command): keep the timeline so no buffered step is overwritten
                 step_end = max(step_end, ts) + dt
-                step_point(k, step_end)
+                self.log.write({"type": "step_end", "k": k, "t": step_end - self.t0})
                 lead = min(max((1.0 - options.early) * dt, 0.020), 0.5 * dt)
                 next_at = step_end - lead if k < n - 1 else step_end + options.settle
             if progress is not None:
                 progress(k, n - 1)
-            sample_until(next_at, k)
+            self.sample_until(next_at, k)
+        self.sampler.sample(n - 1)  # one complete sample after the settle time: the final pose at rest
         if options.watchdog:
-            arm.stop_watchdog(disable=True)
-        log.write({"type": "end", "t": clock() - t0, "status": "ok"})
-        log.close()
-        return RunResult(Path(log_path), n_cmd, sampler.count, clock() - t0)
-    except BaseException as exc:
+            self.arm.stop_watchdog(disable=True)
+
+    def stop(self, exc: BaseException) -> None:
+        """HALT every module (one broadcast), stop the watchdog, log the fault and the end, fsync."""
         halted = True
         try:
-            arm.halt()  # broadcast: one frame stops every module
+            self.arm.halt()  # broadcast: one frame stops every module
         except BaseException:  # noqa: BLE001 - the fault being handled matters more
             halted = False
-        if options.watchdog:
+        if self.options.watchdog:
             try:  # halted already; keep the latch, stop refreshing and clear the bit
-                arm.stop_watchdog(disable=True)
+                self.arm.stop_watchdog(disable=True)
             except BaseException:  # noqa: BLE001
                 pass
         try:
-            log.write({"type": "fault", "t": clock() - t0, "error": type(exc).__name__,
-                       "message": str(exc), "halted": halted, "command": n_cmd})
-            log.write({"type": "end", "t": clock() - t0, "status": "fault"})
+            self.log.write({"type": "fault", "t": self.clock() - self.t0, "error": type(exc).__name__,
+                            "message": str(exc), "halted": halted, "command": self.commands})
+            self.log.write({"type": "end", "t": self.clock() - self.t0, "status": "fault"})
         finally:
-            log.close()
-        raise
+            self.log.close()

@@ -1,6 +1,6 @@
 """The PowerCube (Schunk/Amtec M5) CAN protocol: frames as typed messages.
 
-Pure encode/decode, no I/O. Every frame in ``shared/POWERCUBE.md`` has a frozen
+Pure encode/decode, no I/O. Every frame in ``docs/POWERCUBE.md`` has a frozen
 message class; :func:`encode` turns a message into a :class:`can.Message` and
 :func:`decode` turns a :class:`can.Message` back, raising
 :class:`~hardware.errors.ProtocolError` (and nothing else) on any malformed frame.
@@ -542,7 +542,7 @@ def _echo_key(request: Request) -> tuple[int, int, int | None]:
 
 
 def is_echo(request: Request, frame: can.Message) -> bool:
-    """The echo rule of POWERCUBE.md: does ``frame`` answer ``request``?
+    """The echo rule of docs/POWERCUBE.md: does ``frame`` answer ``request``?
 
     True iff the identifier is 0x0A0 + id, ``data[0]`` is the command and, for
     parameter and motion commands, ``data[1]`` is the parameter or motion code.

@@ -3,15 +3,20 @@
 
 :func:`run` takes a :class:`RunRequest` (what to execute and how) and returns a
 :class:`RunReport`. The trajectory comes from one source (:mod:`hardware.sources`):
-a scenario planned by the project's planner (Sec 3.6), a CSV file, or the demo line.
-Every target is validated (:func:`hardware.validate`: Table I with a margin, Sec 3.2
-speeds, FK vs the planned pose) before the arm is opened. Without an ``interface``
-the arm is simulated in-process (:func:`hardware.sim.simulated_arm`); otherwise the
-modules are reached through python-can (``udp_multicast`` to a separate ``iik
-sim-arm``, ``socketcan`` for real modules). The run log (``OUT/<name>.jsonl``) is
-analysed as in Sec 4.3 (:func:`hardware.analyse`).
+a scenario planned by the project's planner (Sec 3.6) and timed as ``iik plan`` times
+it, a CSV file (``iik plan``'s files qualify as written), or the demo line; ``speed``
+slows any of them. Every target is validated (:func:`hardware.validate`: Table I with a
+margin, Sec 3.2 speeds, FK vs the planned pose) before the arm is opened. Without an
+``interface`` the arm is simulated in-process (:func:`hardware.sim.simulated_arm`);
+otherwise the modules are reached through python-can (``udp_multicast`` to a separate
+``iik sim-arm``, ``socketcan`` for real modules), with the modules' watchdog on unless
+turned off. The run log (``OUT/<name>-<date>-<time>.jsonl``, never overwritten; or the
+file ``out`` names) is analysed as in Sec 4.3 (:func:`hardware.analyse`), and the run
+is ``ok`` only if its end-effector error stays inside its safety zone.
 
-Nothing here prints: notes and executed steps are reported through callbacks.
+SIGTERM and SIGHUP stop a run like Ctrl-C (:mod:`hardware.signals`): HALT, fault and
+end records, log on disk. Nothing here prints: notes and executed steps are reported
+through callbacks.
 """
 
 from __future__ import annotations
@@ -20,36 +25,47 @@ import contextlib
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
+from datetime import datetime
 from pathlib import Path
 
 from iik.errors import InvalidInputError
+from iik.planning.timing import EXECUTION_MARGIN
 
 from . import protocol as P
-from .analysis import RunAnalysis, analyse, plot_run, summary_text
-from .driver import PowerCubeArm
+from .analysis import SAFETY_ZONE_PREDEFINED, RunAnalysis, analyse, plot_run, summary_text
+from .driver import WATCHDOG_PERIOD, PowerCubeArm
 from .executor import EARLY_UPDATE, ExecutionOptions, RunResult, ValidationOptions, execute
 from .runlog import read_run_log
+from .signals import stop_on_signals
 from .sim import SimulatedArm, simulated_arm
-from .sources import StepTargets, csv_trajectory, demo_trajectory, scenario_trajectory
+from .sources import DEMO_SPEED, StepTargets, csv_trajectory, demo_trajectory, scenario_trajectory
 
-__all__ = ["RunRequest", "RunReport", "run", "SIM_TIMEOUT", "BUS_TIMEOUT"]
+__all__ = ["RunRequest", "RunReport", "run", "SIM_TIMEOUT", "BUS_TIMEOUT", "MAX_TIMEOUT"]
 
-#: ACK timeout [s] for the in-process simulation, whose threads share one interpreter.
-SIM_TIMEOUT = 0.5
+#: ACK timeout [s] for the in-process simulation: generous, since its threads share one interpreter
+#: (and a loaded machine) with the host; it never goes silent unless a fault is injected.
+SIM_TIMEOUT = 2.0
 #: ACK timeout [s] on a real bus (or a simulator in another process).
 BUS_TIMEOUT = 0.1
+#: Longest ACK timeout accepted [s] (a reply takes milliseconds; more only hides a dead bus).
+MAX_TIMEOUT = 10.0
 UPDATES = ("thesis", "buffered")
 SIM_STARTS = ("home", "plan")
 
 
-def _number(value, name: str, lo: float, hi: float = math.inf, *, open_lo: bool = True) -> float:
+def _number(value, name: str, lo: float, hi: float, unit: str, *, open_lo: bool = True) -> float:
     """``value`` as a float in (lo, hi] (or [lo, hi] if not ``open_lo``); else InvalidInputError."""
     ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value) \
         and (value > lo if open_lo else value >= lo) and value <= hi
     if not ok:
         where = f"({lo:g}, {hi:g}]" if open_lo else f"[{lo:g}, {hi:g}]"
-        raise InvalidInputError(name, f"must be a finite number in {where}, got {value!r}")
+        raise InvalidInputError(name, f"must be a finite number in {where}{unit}, got {value!r}")
     return float(value)
+
+
+def _integer(value, name: str, allowed, what: str) -> None:
+    if isinstance(value, bool) or not isinstance(value, int) or value not in allowed:
+        raise InvalidInputError(name, f"must be {what}, got {value!r}")
 
 
 @dataclass(frozen=True)
@@ -61,16 +77,25 @@ class RunRequest:
         trajectory: A CSV file with columns ``t,q1..q6`` [s, rad].
         demo: The built-in straight-line demo (:func:`hardware.sources.demo_trajectory`).
         interface, channel, bitrate, port: The python-can bus; ``interface=None`` simulates
-            the arm in-process.
+            the arm in-process. ``bitrate`` [bit/s] is a PowerCube rate (125k, 250k, 500k, 1M).
         modules: The six module ids in joint order.
-        timeout: ACK timeout [s]; None: :data:`SIM_TIMEOUT` simulated, :data:`BUS_TIMEOUT` on a bus.
-        early, update, watchdog: See :class:`hardware.executor.ExecutionOptions` (Sec 4.3).
-        speed: Fraction of the joint speed limits used to time the steps (Sec 3.2).
-        margin: Keep targets this far inside Table I [rad].
-        lag: Tracking lag of the simulated arm [s].
+        timeout: ACK timeout (0, 10] s; None: :data:`SIM_TIMEOUT` simulated, :data:`BUS_TIMEOUT` on a bus.
+        early, update: See :class:`hardware.executor.ExecutionOptions` (Sec 4.3).
+        watchdog: The modules' watchdog (a WATCHDOG broadcast every
+            :data:`hardware.driver.WATCHDOG_PERIOD` = 40 ms; they stop if it stays away);
+            None: on for a bus interface, off for the in-process simulation.
+        speed: Run at this fraction (0, 1] of the source's speed: every step lasts 1/speed as
+            long (scenario: as ``iik plan`` times it; CSV: as written; demo: timed at
+            :data:`hardware.sources.DEMO_SPEED` of the joint speed limits).
+        margin: Keep targets this far inside Table I [rad] (0 to 90 deg; default 0.5 deg).
+        zone: Largest end-effector error of an ``ok`` run [m]; None: the scenario's safety
+            zone (Sec 4.3.2), or the 10 mm of Sec 4.3.1 for a file or the demo.
+        lag: Tracking lag of the simulated arm [0, 1] s.
         sim_start: The simulated arm starts at q = 0 (``"home"``) or at the first target (``"plan"``).
         reset: RESET every module first. home: HOME the modules whose HOME_OK is clear.
-        out: Folder of the run log and figures. figures: Write the three PNG figures.
+        out: Folder of the run log (a new ``<name>-<date>-<time>.jsonl`` each run) and figures,
+            or a ``.jsonl`` file to write exactly (figures beside it).
+        figures: Write the three PNG figures.
     """
 
     scenario: str | Path | None = None
@@ -84,11 +109,12 @@ class RunRequest:
     timeout: float | None = None
     early: float = EARLY_UPDATE
     update: str = "thesis"
-    speed: float = 0.5
-    margin: float = math.radians(0.5)
+    speed: float = 1.0
+    margin: float = EXECUTION_MARGIN
+    zone: float | None = None
     lag: float = 0.02
     sim_start: str = "home"
-    watchdog: bool = False
+    watchdog: bool | None = None
     reset: bool = False
     home: bool = False
     out: Path = Path("runs")
@@ -103,14 +129,23 @@ class RunRequest:
             raise InvalidInputError("modules", f"need six distinct ids in 1..31, got {list(mods)}")
         object.__setattr__(self, "modules", mods)
         if self.timeout is not None:
-            _number(self.timeout, "timeout", 0.0)
-        _number(self.early, "early", 0.0, 1.0)
-        _number(self.speed, "speed", 0.0, 1.0)
+            _number(self.timeout, "timeout", 0.0, MAX_TIMEOUT, " s")
+        if self.bitrate is not None:
+            _integer(self.bitrate, "bitrate", P.BAUD_CODES, "a PowerCube bit rate, one of "
+                     + ", ".join(f"{b}" for b in P.BAUD_CODES) + " bit/s (docs/POWERCUBE.md)")
+        if self.port is not None:
+            _integer(self.port, "port", range(1, 65536), "a UDP port in 1..65535")
+        _number(self.early, "early", 0.0, 1.0, " (fraction of a step)")
+        _number(self.speed, "speed", 0.0, 1.0, " (fraction of the planned speed)")
         number = isinstance(self.margin, (int, float)) and not isinstance(self.margin, bool)
         if not (number and 0.0 <= self.margin < math.pi / 2):
             shown = f"{math.degrees(self.margin):g} deg" if number else repr(self.margin)
-            raise InvalidInputError("margin", f"must be in [0, 90) deg, got {shown}")
-        _number(self.lag, "lag", 0.0, open_lo=False)
+            raise InvalidInputError("margin", f"must be a finite angle in [0, 90) deg, got {shown}")
+        if self.zone is not None:
+            _number(self.zone, "zone", 0.0, 1.0, " m")
+        _number(self.lag, "lag", 0.0, 1.0, " s", open_lo=False)
+        if self.watchdog not in (None, True, False):
+            raise InvalidInputError("watchdog", f"must be True, False or None, got {self.watchdog!r}")
         for name, allowed in (("update", UPDATES), ("sim_start", SIM_STARTS)):
             value = getattr(self, name)
             if value not in allowed:
@@ -121,6 +156,11 @@ class RunRequest:
     def simulated(self) -> bool:
         """True if the arm is simulated in-process."""
         return self.interface is None
+
+    @property
+    def watchdog_on(self) -> bool:
+        """Whether the run enables the modules' watchdog (default: on a bus interface)."""
+        return (not self.simulated) if self.watchdog is None else self.watchdog
 
     @property
     def where(self) -> str:
@@ -138,6 +178,7 @@ class RunReport:
         request: What was run. targets: The step targets (before validation).
         result: The executor's counts (log path, commands, samples, duration [s]).
         analysis: Step-point joint and end-effector errors (Sec 4.3).
+        zone: The safety zone the end-effector error had to stay in [m].
         rests: Simulated runs: times a joint came to rest between two steps; None on a bus.
         figures: Paths of the PNG figures written.
     """
@@ -146,8 +187,19 @@ class RunReport:
     targets: StepTargets
     result: RunResult
     analysis: RunAnalysis
+    zone: float = SAFETY_ZONE_PREDEFINED
     rests: int | None = None
     figures: tuple[Path, ...] = field(default=())
+
+    @property
+    def ok(self) -> bool:
+        """The run went to the end and its end-effector error stayed inside :attr:`zone`."""
+        return self.analysis.status == "ok" and self.analysis.within(self.zone)
+
+    @property
+    def status(self) -> str:
+        """``"ok"``, or ``"outside zone"`` (executed to the end, error beyond :attr:`zone`)."""
+        return "ok" if self.ok else "outside zone"
 
     @property
     def step_changes(self) -> int:
@@ -155,7 +207,7 @@ class RunReport:
         return len(self.request.modules) * max(len(self.targets) - 2, 0)
 
     def summary(self) -> str:
-        """The run's summary for a terminal (mm and degrees for display)."""
+        """The run's summary for a terminal (mm and degrees for display); its last line is the status."""
         r, req = self.result, self.request
         lines = [summary_text(self.analysis, self.targets.name)]
         if self.rests is not None:
@@ -164,15 +216,55 @@ class RunReport:
         lines.append(f"run log: {r.log_path} ({r.commands} commands, {r.samples} samples, "
                      f"{r.duration:.2f} s)")
         lines += [f"figure: {p}" for p in self.figures]
+        err, zone = self.analysis.max_ee_error * 1e3, self.zone * 1e3
+        lines.append(f"status: {self.status} (max end-effector error {err:.2f} mm "
+                     f"{'within' if self.ok else 'OUTSIDE'} the {zone:g} mm zone)")
         return "\n".join(lines)
 
 
 def _targets(request: RunRequest) -> StepTargets:
     if request.demo:
-        return demo_trajectory(request.speed)
-    if request.trajectory is not None:
-        return csv_trajectory(request.trajectory)
-    return scenario_trajectory(request.scenario, request.speed)
+        targets = demo_trajectory(DEMO_SPEED)
+    elif request.trajectory is not None:
+        targets = csv_trajectory(request.trajectory)
+    else:
+        targets = scenario_trajectory(request.scenario)
+    return targets.slowed(request.speed)
+
+
+def _zone(request: RunRequest) -> float:
+    """The safety zone of the run [m] (:attr:`RunRequest.zone`)."""
+    if request.zone is not None:
+        return request.zone
+    if request.scenario is not None:
+        from iik.planning import load_scenario, scenario_path
+
+        return float(load_scenario(scenario_path(request.scenario)).safety_zone)
+    return SAFETY_ZONE_PREDEFINED
+
+
+def _log_path(request: RunRequest, name: str) -> Path:
+    """The run log's path: ``out`` if it names a ``.jsonl`` file, else a new file in the folder
+    ``out`` (``<name>-<date>-<time>.jsonl``, ``-2``, ``-3``... if taken), created here so no
+    other run takes it."""
+    out = request.out
+    folder = out.parent if out.suffix == ".jsonl" else out
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        if out.suffix == ".jsonl":
+            return out
+        stem = f"{name}-{datetime.now().strftime('%Y%m%d-%H%M%S')}"
+        for k in range(1, 10_000):
+            path = folder / (stem if k == 1 else f"{stem}-{k}")
+            path = path.with_name(path.name + ".jsonl")
+            try:
+                path.open("x").close()
+                return path
+            except FileExistsError:
+                continue
+    except OSError as exc:
+        raise InvalidInputError("out", f"cannot write the run log in {folder}: {exc.strerror}") from None
+    raise InvalidInputError("out", f"{folder} already holds 9999 logs named {stem}-N.jsonl")
 
 
 @contextlib.contextmanager
@@ -191,15 +283,30 @@ def _open_arm(request: RunRequest, initial) -> Iterator[tuple[SimulatedArm | Non
 
 
 def _prepare(arm: PowerCubeArm, request: RunRequest) -> None:
-    """Open the arm (every module answers), RESET and HOME as requested."""
-    arm.open()
-    if request.reset:
-        arm.reset()
-    if request.home:
-        for m, s in zip(arm.modules, arm.states(), strict=True):
-            if not s & P.State.HOME_OK:
-                m.home()
-        arm.wait_homed()
+    """Open the arm (every module answers, once), RESET and HOME as requested; HALT if that fails."""
+    try:
+        arm.open()
+        if request.reset:
+            arm.reset()
+        if request.home:
+            for m, s in zip(arm.modules, arm.states(), strict=True):
+                if not s & P.State.HOME_OK:
+                    m.home()
+            arm.wait_homed()
+    except BaseException:
+        with contextlib.suppress(BaseException):
+            arm.halt()  # a homing motion may have started
+        raise
+
+
+def _halted_note(request: RunRequest, log_path: Path) -> str | None:
+    """What to tell after a run stopped by a fault, if it had started (its log has records)."""
+    if not log_path.exists() or log_path.stat().st_size == 0:
+        return None
+    note = f"HALT broadcast to every module; the run log {log_path} ends with the fault"
+    if not request.simulated:
+        note += "; the modules stay halted until reset: run again with --reset"
+    return note
 
 
 def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
@@ -209,33 +316,47 @@ def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
     Args:
         request: What to run (:class:`RunRequest`).
         notify: Called with a line of text at each stage before execution (planned,
-            validated).
+            validated, watchdog).
         progress: Called with ``(k, n)`` after step ``k`` of ``n`` was commanded.
+
+    Returns:
+        :class:`RunReport`; :attr:`RunReport.ok` is False if the end-effector error left
+        the safety zone (the run itself went to the end).
 
     Raises:
         IIKError: bad input (``InvalidInputError``, ``ScenarioError``), a plan that
             failed, a target refused by validation (``SafetyError``), or a hardware
-            fault during the run (``CANTimeoutError``, ``ModuleFault``, ``BusError``...),
-            after HALT was broadcast and the fault logged.
+            fault during the run (``CANTimeoutError``, ``ModuleFault``, ``BusError``,
+            ``DuplicateModuleError``...), after HALT was broadcast and the fault logged
+            (the exception's note says where the log is).
+        KeyboardInterrupt, StopSignal: Ctrl-C, SIGTERM or SIGHUP, handled the same way.
     """
     say = notify or (lambda text: None)
-    targets = _targets(request)
-    if targets.note:
-        say(targets.note)
-    traj = targets.validate(ValidationOptions(margin=request.margin))
-    say(f"{targets.name}: {len(traj)} step-points, {traj.times[-1]:.2f} s planned, validated "
-        f"(Table I - {math.degrees(request.margin):g} deg, speed limits, FK vs planned poses)")
-    try:
-        request.out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise InvalidInputError("out", f"cannot create the folder {request.out}: {exc.strerror}") from None
-    log_path = request.out / f"{targets.name}.jsonl"
-    options = ExecutionOptions(early=request.early, update=request.update, watchdog=request.watchdog)
-    initial = traj.q[0] if request.sim_start == "plan" else None
-    with _open_arm(request, initial) as (sim, arm):
-        _prepare(arm, request)
-        result = execute(arm, traj, log_path, options=options, progress=progress)
-        rests = None if sim is None else sum(len(m.stops) for m in sim.modules.values())
+    with stop_on_signals():
+        targets = _targets(request)
+        if targets.note:
+            say(targets.note)
+        traj = targets.validate(ValidationOptions(margin=request.margin))
+        say(f"{targets.name}: {len(traj)} step-points, {traj.times[-1]:.3f} s, validated "
+            f"(Table I - {math.degrees(request.margin):g} deg, speed limits, FK vs planned poses)")
+        zone = _zone(request)
+        log_path = _log_path(request, targets.name)
+        if request.watchdog_on:
+            say(f"watchdog on: WATCHDOG broadcast every {WATCHDOG_PERIOD * 1e3:.0f} ms; the modules stop "
+                "if it stays away (--no-watchdog to turn it off)")
+        options = ExecutionOptions(early=request.early, update=request.update, watchdog=request.watchdog_on)
+        initial = traj.q[0] if request.sim_start == "plan" else None
+        try:
+            with _open_arm(request, initial) as (sim, arm):
+                _prepare(arm, request)
+                result = execute(arm, traj, log_path, options=options, progress=progress)
+                rests = None if sim is None else sum(len(m.stops) for m in sim.modules.values())
+        except BaseException as exc:
+            if (note := _halted_note(request, log_path)) is not None:
+                exc.add_note(note)
+            elif request.out.suffix != ".jsonl":
+                log_path.unlink(missing_ok=True)  # reserved, never written: the run did not start
+            raise
     analysis = analyse(read_run_log(result.log_path))
-    figures = tuple(plot_run(analysis, request.out, targets.name)) if request.figures else ()
-    return RunReport(request, targets, result, analysis, rests, figures)
+    figures = tuple(plot_run(analysis, log_path.parent, log_path.stem)) if request.figures else ()
+    return RunReport(request, targets, result, analysis, zone, rests, figures)

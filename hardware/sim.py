@@ -2,7 +2,7 @@
 
 :class:`SimulatedArm` attaches :class:`SimModule` objects to a
 :class:`can.BusABC` and serves them from a thread until :meth:`SimulatedArm.close`
-(also a context manager). It answers exactly as ``shared/POWERCUBE.md`` says:
+(also a context manager). It answers exactly as ``docs/POWERCUBE.md`` says:
 GETPARAM/SETPARAM/SETMOVE/RESET/HOME/HALT are acknowledged by an echo on
 ``0x0A0 + id``; broadcasts on 0x100 get no reply; errors are announced by an
 unsolicited state frame on ``0x060 + id``.
@@ -53,6 +53,7 @@ import numpy as np
 from ruckig import ControlInterface, InputParameter, Result, Ruckig, Trajectory
 
 from iik.arm import THESIS_ARM, Arm
+from iik.errors import InvalidInputError
 
 from . import protocol as P
 from .driver import PowerCubeArm, open_bus
@@ -160,12 +161,13 @@ class SimModule:
         lag: Tracking lag of the measured signals behind the set-point [s].
         initial: Initial position [rad].
         homed: Start with HOME_OK set.
-        watchdog_timeout: Watchdog gap that stops the module [s].
+        watchdog_timeout: Watchdog gap that stops the module [s] (assumed: the public sources give
+            none; 1 s, 25 refresh periods, so a loaded host does not trip it by accident).
     """
 
     def __init__(self, module_id: int, *, lower: float = -math.pi, upper: float = math.pi,
                  vmax: float = 1.2, amax: float = 2.0, lag: float = 0.02, initial: float = 0.0,
-                 homed: bool = True, watchdog_timeout: float = 0.25, now: float = 0.0):
+                 homed: bool = True, watchdog_timeout: float = 1.0, now: float = 0.0):
         self.id = module_id
         self.vmax_hw = float(vmax)
         self.lag = float(lag)
@@ -448,8 +450,9 @@ class SimModule:
 
 
 # ----------------------------------------------------------------------------- server
-def _checked_modules(module_ids, initial) -> tuple[list[int], np.ndarray]:
-    """Module ids (distinct, 1..31) and initial positions [rad] (finite, one per module)."""
+def _checked_modules(module_ids, initial, arm: Arm, lag) -> tuple[list[int], np.ndarray]:
+    """Module ids (distinct, 1..31), initial positions [rad] (finite, one per module, inside the
+    modules' soft limits: Table I for the first six) and the lag ([0, 1] s)."""
     try:
         ids = [int(i) for i in module_ids]
     except (TypeError, ValueError):
@@ -461,7 +464,16 @@ def _checked_modules(module_ids, initial) -> tuple[list[int], np.ndarray]:
     except (TypeError, ValueError):
         q0 = np.full(0, np.nan)
     if q0.shape != (len(ids),) or not np.all(np.isfinite(q0)):
-        raise SafetyError("initial", f"need {len(ids)} finite positions")
+        raise SafetyError("initial", f"need {len(ids)} finite positions [rad], one per module")
+    for j, p in enumerate(q0):
+        k = j if j < 6 else 0  # as SimulatedArm assigns the limits
+        lo, hi = arm.lower[k], arm.upper[k]
+        if not lo <= p <= hi:
+            raise SafetyError("initial", f"joint q{j + 1} at {p:g} rad is outside its soft limits "
+                              f"[{lo:.4f}, {hi:.4f}] rad (Table I)")
+    if isinstance(lag, bool) or not isinstance(lag, (int, float)) or not (math.isfinite(lag)
+                                                                           and 0 <= lag <= 1):
+        raise InvalidInputError("lag", f"must be a finite number in [0, 1] s, got {lag!r}")
     return ids, q0
 
 
@@ -482,12 +494,12 @@ class SimulatedArm:
 
     def __init__(self, bus: can.BusABC, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), *,
                  arm: Arm = THESIS_ARM, lag: float = 0.02, initial=None, homed: bool = True,
-                 tick: float = 0.002, watchdog_timeout: float = 0.25,
+                 tick: float = 0.002, watchdog_timeout: float = 1.0,
                  clock: Callable[[], float] = time.monotonic, owns_bus: bool = False,
                  start: bool = True):
         try:
-            ids, q0 = _checked_modules(module_ids, initial)
-        except SafetyError:
+            ids, q0 = _checked_modules(module_ids, initial, arm, lag)
+        except (SafetyError, InvalidInputError):
             if owns_bus:
                 bus.shutdown()
             raise
@@ -667,14 +679,15 @@ class SimulatedArm:
 
 @contextlib.contextmanager
 def simulated_arm(module_ids=(1, 2, 3, 4, 5, 6), *, lag: float = 0.02, initial=None,
-                  timeout: float = 0.5, clock=time.monotonic):
+                  timeout: float = 2.0, clock=time.monotonic):
     """Yield ``(sim, arm)``: an in-process :class:`hardware.sim.SimulatedArm` on a private
     ``virtual`` channel and a :class:`hardware.PowerCubeArm` talking to it.
 
     Host and simulated modules are threads of this process, so the interpreter's
     switch interval is shortened meanwhile (request round trips stay short) and
     restored on exit; both the arm's bus and the simulator are closed on exit.
-    ``clock`` is the simulator's time source [s] (pass the same one to ``execute``).
+    ``clock`` is the simulator's time source [s] (pass the same one to ``execute``). ``timeout``
+    is the arm's ACK timeout [s], generous because host and modules share one interpreter.
     """
     channel = f"iik-run-{uuid.uuid4().hex}"
     switch = sys.getswitchinterval()
@@ -703,8 +716,19 @@ def serve(interface: str, channel, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6
         ready: Called with the running arm once it serves.
 
     Raises:
-        BusError: the bus could not be opened. SafetyError: bad ids or initial positions.
+        BusError: the bus could not be opened. SafetyError: bad ids or initial positions
+        (outside Table I). InvalidInputError: a lag outside [0, 1] s, a duration that is not
+        a positive finite number of seconds, a bit rate or port that is not one.
     """
+    _checked_modules(module_ids, initial, THESIS_ARM, lag)  # before any bus is opened
+    if duration is not None and (isinstance(duration, bool) or not isinstance(duration, (int, float))
+                                 or not (math.isfinite(duration) and duration > 0)):
+        raise InvalidInputError("duration", f"must be a positive finite number of seconds, got {duration!r}")
+    if bitrate is not None and bitrate not in P.BAUD_CODES:
+        raise InvalidInputError("bitrate", "must be a PowerCube bit rate, one of "
+                                + ", ".join(map(str, P.BAUD_CODES)) + f" bit/s, got {bitrate!r}")
+    if port is not None and (isinstance(port, bool) or not isinstance(port, int) or not 1 <= port <= 65535):
+        raise InvalidInputError("port", f"must be a UDP port in 1..65535, got {port!r}")
     bus = open_bus(interface, channel, bitrate=bitrate, port=port)
     with SimulatedArm(bus, module_ids, lag=lag, initial=initial, homed=homed, owns_bus=True) as sim:
         if ready is not None:

@@ -4,12 +4,22 @@ Each source returns :class:`StepTargets`: the step times [s], joint targets (n, 
 [rad] and the planned tool poses (n, 4, 4) [m] that :func:`hardware.validate`
 checks the targets against. Nothing here prints; what a source has to say (which
 planner method succeeded, the clearance) is in :attr:`StepTargets.note`.
+
+A scenario runs exactly the trajectory ``iik plan`` writes: the planner's step-points
+at the times its TOPP-RA timing passes them, on the FSTEP millisecond clock
+(:attr:`iik.planning.Trajectory.step_t`, the ``t`` column of ``steps.csv``). A CSV file
+runs as written (``iik plan``'s ``steps.csv`` and ``trajectory.csv`` both qualify).
+:meth:`StepTargets.slowed` stretches any of them (``iik run --speed``).
 """
 
 from __future__ import annotations
 
+import csv
 import math
-from dataclasses import dataclass
+import os
+import re
+from array import array
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -18,12 +28,24 @@ from iik.errors import InvalidInputError
 from iik.ik import select, solve
 from iik.kinematics import fk
 
+from .errors import SafetyError, target_name
 from .executor import ValidatedTrajectory, ValidationOptions, time_steps, validate
 
-__all__ = ["StepTargets", "demo_trajectory", "csv_trajectory", "scenario_trajectory"]
+__all__ = ["StepTargets", "demo_trajectory", "csv_trajectory", "scenario_trajectory", "CSV_COLUMNS",
+           "MAX_CSV_ROWS", "MAX_CSV_BYTES", "DEMO_SPEED"]
 
 #: Largest Cartesian step between two step-points of the demo line [m] (Sec 4.2.1).
 DEMO_STEP = 0.030
+#: Fraction of the joint speed limits the demo line is timed at: gentle, so that the simulated run
+#: (20 ms tracking lag) stays inside the 10 mm zone of Sec 4.3.1 it is judged by.
+DEMO_SPEED = 0.25
+#: Columns a trajectory CSV must name in its header line (others are ignored).
+CSV_COLUMNS = ("t", "q1", "q2", "q3", "q4", "q5", "q6")
+#: A number in a trajectory CSV: plain decimal, optional exponent (no "1_000", no non-ASCII digits).
+NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+#: Bounds of a trajectory CSV (memory and time stay bounded): rows of step-points and file size.
+MAX_CSV_ROWS = 200_000  # 33 min of 10 ms steps
+MAX_CSV_BYTES = 50_000_000
 
 
 @dataclass(frozen=True)
@@ -38,6 +60,8 @@ class StepTargets:
         orientation_free: (n,) bool: steps at which only the position is compared
             (the planner changed alpha/beta/gamma there on purpose, Sec 3.6), or None.
         note: What the source reports about itself (e.g. the planner's method), or "".
+        origin: The file the step-points were read from ("" otherwise).
+        lines: (n,) the line of ``origin`` (counting from 1) of each step-point, or None.
     """
 
     name: str
@@ -46,6 +70,8 @@ class StepTargets:
     poses: np.ndarray
     orientation_free: np.ndarray | None = None
     note: str = ""
+    origin: str = ""
+    lines: np.ndarray | None = None
 
     def __len__(self) -> int:
         return len(self.times)
@@ -53,14 +79,32 @@ class StepTargets:
     def validate(self, options: ValidationOptions | None = None, *,
                  limit: int | None = None) -> ValidatedTrajectory:
         """:func:`hardware.validate` of the first ``limit`` step-points (all if None), with
-        ``options`` (default :class:`ValidationOptions`)."""
+        ``options`` (default :class:`ValidationOptions`). A refused step-point of a file is
+        named by its line too."""
         n = len(self) if limit is None else min(int(limit), len(self))
         options = ValidationOptions() if options is None else options
         free = None if self.orientation_free is None else self.orientation_free[:n]
-        return validate(self.times[:n], self.q[:n], self.poses[:n], options=options, orientation_free=free)
+        try:
+            return validate(self.times[:n], self.q[:n], self.poses[:n], options=options,
+                            orientation_free=free)
+        except SafetyError as exc:
+            if exc.step is None or self.lines is None:
+                raise
+            where = f"{self.origin} line {self.lines[exc.step]} ({target_name(exc.step)})"
+            where += "" if exc.joint is None else f", joint q{exc.joint + 1}"
+            raise SafetyError(where, exc.reason, step=exc.step, joint=exc.joint) from None
+
+    def slowed(self, speed: float) -> StepTargets:
+        """The same step-points at ``speed`` (0, 1] of their speed: every step lasts
+        1/``speed`` as long, rounded up to whole ms (so no joint goes faster than before)."""
+        if speed == 1.0:
+            return self
+        with np.errstate(over="ignore", invalid="ignore"):  # absurd times: validation refuses them
+            dt = np.ceil(np.diff(self.times) / speed * 1000.0 - 1e-6) / 1000.0
+        return replace(self, times=self.times[0] + np.concatenate([[0.0], np.cumsum(dt)]))
 
 
-def demo_trajectory(speed: float = 0.5) -> StepTargets:
+def demo_trajectory(speed: float = DEMO_SPEED) -> StepTargets:
     """A straight line between two poses with step-points at most :data:`DEMO_STEP` apart
     (Sec 4.2.1), the least-effort IK solution (Eq 54) at each, timed at ``speed`` of the
     joint speed limits."""
@@ -83,39 +127,114 @@ def demo_trajectory(speed: float = 0.5) -> StepTargets:
     return StepTargets("demo", time_steps(q, speed_fraction=speed), q, poses)
 
 
-def csv_trajectory(path: Path) -> StepTargets:
-    """Step-points from a CSV file with the header columns ``t,q1..q6`` [s, rad]; the
-    planned poses are FK (Eq 4) of the file's joints, so validation cannot catch a wrong IK."""
+def csv_trajectory(path: str | os.PathLike) -> StepTargets:
+    """Step-points from a CSV file whose header line names the columns ``t,q1..q6`` [s, rad]
+    (in any order; other columns are ignored). The planned poses are FK (Eq 4) of the
+    file's joints, so validation cannot catch a wrong IK.
+
+    Raises:
+        InvalidInputError: (argument ``trajectory``) the file cannot be read, is empty, has no
+            header line, or a cell is missing, not a number or not finite -- naming the line and
+            column (both counted from 1) -- or it exceeds :data:`MAX_CSV_ROWS` / :data:`MAX_CSV_BYTES`.
+    """
     path = Path(path)
+
+    def bad(reason: str) -> InvalidInputError:
+        return InvalidInputError("trajectory", f"{path}: {reason}")
+
     try:
-        data = np.genfromtxt(path, delimiter=",", names=True, dtype=float)
-    except (OSError, ValueError) as exc:
-        raise InvalidInputError("trajectory", f"cannot read {path}: {exc}") from None
-    cols = ["t", "q1", "q2", "q3", "q4", "q5", "q6"]
-    if data.dtype.names is None or any(c not in data.dtype.names for c in cols):
-        raise InvalidInputError("trajectory", f"{path} needs the header columns {','.join(cols)}")
-    data = np.atleast_1d(data)
-    t = np.asarray(data["t"], dtype=float)
-    q = np.stack([np.asarray(data[c], dtype=float) for c in cols[1:]], axis=1)
-    if not np.all(np.isfinite(q)) or not np.all(np.isfinite(t)):
-        raise InvalidInputError("trajectory", f"{path} contains empty or non-numeric cells")
-    return StepTargets(path.stem, t, q, fk(q))
+        if path.stat().st_size > MAX_CSV_BYTES:
+            raise bad(f"larger than the {MAX_CSV_BYTES // 1_000_000} MB limit of a trajectory file")
+        with path.open(encoding="utf-8-sig", newline="") as f:
+            rows = _csv_rows(csv.reader(f), bad)
+    except OSError as exc:
+        raise bad(f"cannot read it ({exc.strerror or exc})") from None
+    except UnicodeDecodeError as exc:
+        raise bad(f"not UTF-8 text (byte 0x{exc.object[exc.start]:02x} at offset {exc.start})") from None
+    except csv.Error as exc:
+        raise bad(f"not CSV ({exc})") from None
+    lines, values = rows
+    if len(lines) < 2:
+        raise bad(f"needs at least 2 data lines (step-points) below the header, has {len(lines)}")
+    data = np.array(values, dtype=float).reshape(len(lines), len(CSV_COLUMNS))
+    q = data[:, 1:]
+    return StepTargets(path.stem, data[:, 0], q, fk(q), origin=str(path), lines=np.asarray(lines))
+
+
+def _csv_rows(reader, bad) -> tuple[array, array]:
+    """(line numbers, t, q1..q6 of every data line in one flat array) of a trajectory CSV;
+    ``bad(reason)`` builds the error."""
+    header, index = None, {}
+    lines, values = array("q"), array("d")
+    for row in reader:
+        line = reader.line_num
+        cells = [c.strip() for c in row]
+        if not any(cells):
+            continue  # blank line
+        if header is None:
+            header = cells
+            index = _header_index(cells, line, bad)
+            continue
+        if len(cells) != len(header):
+            raise bad(f"line {line} has {len(cells)} cells, the header has {len(header)} "
+                      "(lines count from 1)")
+        if len(lines) >= MAX_CSV_ROWS:
+            raise bad(f"more than {MAX_CSV_ROWS} data lines (the limit of a trajectory file)")
+        values.extend(_cell(cells[index[name]], line, index[name], name, bad) for name in CSV_COLUMNS)
+        lines.append(line)
+    if header is None:
+        raise bad("the file is empty: it needs a header line naming the columns " + ",".join(CSV_COLUMNS))
+    return lines, values
+
+
+def _header_index(cells: list[str], line: int, bad) -> dict[str, int]:
+    """Column of each of :data:`CSV_COLUMNS` in the header line ``cells``."""
+    need = ",".join(CSV_COLUMNS)
+    if all(_is_number(c) for c in cells):
+        raise bad(f"line {line} holds numbers, not a header: the first line must name the columns {need}")
+    index: dict[str, int] = {}
+    for col, name in enumerate(cells):
+        if name in CSV_COLUMNS and name in index:
+            raise bad(f"line {line}: column {name!r} appears twice (columns {index[name] + 1} and {col + 1}, "
+                      "counting from 1)")
+        index.setdefault(name, col)
+    missing = [c for c in CSV_COLUMNS if c not in index]
+    if missing:
+        raise bad(f"line {line} (the header) lacks the column(s) {', '.join(missing)}: it must name {need}")
+    return index
+
+
+def _is_number(text: str) -> bool:
+    return NUMBER.fullmatch(text) is not None or text.lower() in ("nan", "inf", "-inf", "+inf")
+
+
+def _cell(text: str, line: int, col: int, name: str, bad) -> float:
+    where = f"line {line}, column {col + 1} ({name}; lines and columns count from 1)"
+    if text.lower().lstrip("+-") in ("nan", "inf", "infinity"):
+        raise bad(f"{where}: {text[:40]!r} is not a finite number")
+    if NUMBER.fullmatch(text) is None:
+        raise bad(f"{where}: {text[:40]!r} is not a number")
+    value = float(text)
+    if not math.isfinite(value):
+        raise bad(f"{where}: {text[:40]!r} is not a finite number")
+    return value
 
 
 def _plan(path: Path):
-    """The planner's result for a scenario file (untimed: the steps are timed here)."""
-    from iik.planning import PlanningFailed, PlanOptions, plan
+    """The planner's result for a scenario file, timed as ``iik plan`` times it."""
+    from iik.planning import PlanningFailed, plan
 
-    res = plan(path, PlanOptions(timing=False))
+    res = plan(path)
     if not res.success:
         raise PlanningFailed(res)
     return res
 
 
-def scenario_trajectory(name: str | Path, speed: float = 0.5) -> StepTargets:
+def scenario_trajectory(name: str | Path, speed: float = 1.0) -> StepTargets:
     """Step-points of a scenario (file or shipped name, :func:`iik.planning.scenario_path`) planned by
     the project's planner (thesis planner of Sec 3.6 with its fallbacks and the whole-arm
-    Coal check), timed at ``speed`` of the joint speed limits.
+    Coal check) at the times ``iik plan`` writes for them (TOPP-RA on the FSTEP clock,
+    :attr:`iik.planning.Trajectory.step_t`), slowed to ``speed`` (0, 1] of that (:meth:`StepTargets.slowed`).
 
     The planned poses are those of the thesis Cartesian path; where the planner
     changed alpha/beta (Sec 3.6) only the position is checked. For an RRT-Connect
@@ -136,7 +255,7 @@ def scenario_trajectory(name: str | Path, speed: float = 0.5) -> StepTargets:
         notes.append(f"{res.scenario.name}: planned by {res.method}; no Cartesian plan, poses are FK of "
                      "the joints")
         poses = fk(q)
-    notes.append(f"{res.scenario.name}: planned via {res.method} ({len(q)} step-points, min whole-arm "
-                 f"clearance {res.min_clearance * 1e3:.1f} mm)")
-    return StepTargets(res.scenario.name, time_steps(q, speed_fraction=speed), q, poses, free,
-                       "\n".join(notes))
+    times = np.asarray(res.trajectory.step_t, dtype=float)
+    notes.append(f"{res.scenario.name}: planned via {res.method} ({len(q)} step-points, {times[-1]:.3f} s "
+                 f"as iik plan times them, min whole-arm clearance {res.min_clearance * 1e3:.1f} mm)")
+    return StepTargets(res.scenario.name, times, q, poses, free, "\n".join(notes)).slowed(speed)

@@ -1,8 +1,10 @@
 """Hypothesis profiles: ``ci`` (derandomised, used when CI is set), ``dev``
-(default) and ``thorough`` (long runs: HYPOTHESIS_PROFILE=thorough)."""
+(default) and ``thorough`` (long runs: HYPOTHESIS_PROFILE=thorough); the ``udp_bus``
+fixture for tests that run ``iik`` processes on udp_multicast."""
 
 import os
 
+import pytest
 from hypothesis import HealthCheck, settings
 
 settings.register_profile(
@@ -17,3 +19,83 @@ settings.register_profile(
 settings.load_profile(
     os.environ.get("HYPOTHESIS_PROFILE") or ("ci" if os.environ.get("CI") else "dev")
 )
+
+
+# --------------------------------------------------------------------------- processes on udp_multicast
+class UdpBus:
+    """A private udp_multicast bus (its own port) for ``iik`` processes: ``start_sim()`` launches
+    an ``iik sim-arm`` and waits until it serves; ``process(*argv)`` runs ``python -m iik.cli``.
+    Every process is stopped when the test ends."""
+
+    group = "239.74.163.2"
+
+    def __init__(self, port: int):
+        self.port = port
+        self.procs = []
+
+    @property
+    def args(self) -> list[str]:
+        """The ``--interface/--channel/--port`` options of this bus."""
+        return ["--interface", "udp_multicast", "--channel", self.group, "--port", str(self.port)]
+
+    def process(self, *argv: str):
+        import subprocess
+        import sys
+
+        proc = subprocess.Popen([sys.executable, "-m", "iik.cli", *argv], stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True, env=dict(os.environ, PYTHONUNBUFFERED="1"))
+        self.procs.append(proc)
+        return proc
+
+    def start_sim(self, *extra: str):
+        proc = self.process("sim-arm", *self.args, "--lag", "0.01", "--duration", "120", *extra)
+        line = proc.stdout.readline()
+        assert "sim-arm ready" in line, (line, proc.stderr.read() if proc.poll() is not None else "")
+        return proc
+
+    def unavailable(self) -> str | None:
+        """Why udp_multicast cannot be used here (None if it can): the loopback must deliver."""
+        import time
+
+        try:
+            import can
+
+            a, b = (can.Bus(interface="udp_multicast", channel=self.group, port=self.port) for _ in range(2))
+            try:
+                a.send(can.Message(arbitration_id=0x7FF, data=[1], is_extended_id=False))
+                t0 = time.monotonic()
+                while time.monotonic() - t0 < 1.0:
+                    f = b.recv(0.2)
+                    if f is not None and f.arbitration_id == 0x7FF:
+                        return None
+                return "multicast loopback delivers nothing"
+            finally:
+                a.shutdown()
+                b.shutdown()
+        except (OSError, ImportError) as exc:
+            return f"udp_multicast unavailable: {exc}"
+
+    def close(self) -> None:
+        import subprocess
+
+        for proc in self.procs:
+            if proc.poll() is None:
+                proc.terminate()
+                try:
+                    proc.wait(timeout=10)
+                except subprocess.TimeoutExpired:
+                    proc.kill()
+                    proc.wait()
+
+
+@pytest.fixture
+def udp_bus():
+    """A :class:`UdpBus` on a random port (skips the test where multicast does not loop back)."""
+    import random
+
+    bus = UdpBus(random.randint(20000, 60000))
+    reason = bus.unavailable()
+    if reason:
+        pytest.skip(reason)
+    yield bus
+    bus.close()

@@ -1,12 +1,15 @@
 """The ``iik`` command line: the one place that wires iik, verification and hardware.
 
 Each subcommand is a module in this package defining ``NAME``, ``HELP``,
-``add_arguments(parser)`` and ``run(args) -> int``; it parses, calls one library
-function and prints. Modules are discovered automatically; heavy packages
-(pinocchio, coal, python-can, verification, hardware) are imported lazily inside ``run``.
+``add_arguments(parser)`` and ``run(args) -> int``; it parses, calls one library function
+and prints (``parser.spelling`` maps a library argument to the option as typed, e.g.
+``p`` -> ``--xyz``). Modules are discovered automatically; heavy packages (pinocchio,
+coal, python-can, verification, hardware) are imported lazily inside ``run``.
 
 Every expected failure (an ``IIKError``, a bad argument, an unwritable file) ends the
-command with one line on stderr and exit code 2, never a traceback.
+command with one line on stderr naming the option as typed, and exit code 2, never a
+traceback. Ctrl-C, SIGTERM and SIGHUP (where a command handles them, e.g. ``iik run``)
+end it with one line and exit code 128 + the signal number.
 """
 
 from __future__ import annotations
@@ -14,6 +17,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import pkgutil
+import signal
 import sys
 
 from ..errors import IIKError
@@ -29,7 +33,7 @@ class _Parser(argparse.ArgumentParser):
     """argparse, raising :class:`UsageError` and remembering each option's spelling."""
 
     def __init__(self, *args, **kwargs):
-        self.spelling: dict[str, str] = {}  # dest -> the option as typed, e.g. "--margin-deg"
+        self.spelling: dict[str, str] = {}  # dest or library argument -> the option as typed
         super().__init__(*args, **kwargs)
 
     def add_argument(self, *args, **kwargs):
@@ -66,13 +70,14 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _as_typed(exc: IIKError, parser: _Parser) -> str:
-    """``Type: message``, naming the option as typed (``--margin-deg`` for ``margin``)."""
+def _as_typed(exc: BaseException, parser: _Parser) -> str:
+    """``Type: message``, naming the option as typed (``--margin-deg`` for ``margin``), with
+    the exception's notes (e.g. where the run log is) after it on the same line."""
     name, reason = getattr(exc, "argument", None), getattr(exc, "reason", None)
-    for dest, shown in parser.spelling.items() if name and reason else ():
-        if dest == name or dest.startswith(f"{name}_"):
-            return f"{type(exc).__name__}: {shown}: {reason}"
-    return f"{type(exc).__name__}: {exc}"
+    shown = next((typed for dest, typed in parser.spelling.items() if name and reason and (
+        dest == name or dest.startswith(f"{name}_"))), None)
+    text = f"{type(exc).__name__}: " + (f"{shown}: {reason}" if shown else str(exc))
+    return "; ".join([text, *getattr(exc, "__notes__", ())])
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -91,9 +96,12 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:  # an output file or folder that cannot be written
         print(f"iik {args.command}: error: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        print(f"iik {args.command}: interrupted", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:  # Ctrl-C, or SIGTERM/SIGHUP as hardware.errors.StopSignal
+        signum = getattr(exc, "signum", signal.SIGINT)
+        notes = "".join(f"; {n}" for n in getattr(exc, "__notes__", ()))
+        print(f"iik {args.command}: interrupted by {signal.Signals(signum).name}{notes}", file=sys.stderr,
+              flush=True)
+        return 128 + int(signum)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -4,16 +4,19 @@ The pose is a position [m] and the Eq 42 Euler angles (corrected, see
 :mod:`iik.rotations`) in rad, or in degrees with ``--deg``. Prints every
 solution with its FK residuals, the joint-limit flag and the Eq 54 effort index
 to ``--previous`` (which, like the angles, is read in degrees with ``--deg``).
+Exit 0 if a solution was found, 1 if none (unreachable, or none inside Table I).
 """
 
 from __future__ import annotations
 
 import json
+import math
+import sys
 
 import numpy as np
 
 NAME = "solve"
-HELP = "all IK solutions of a pose given as --xyz X Y Z --zxz ALPHA BETA GAMMA"
+HELP = "all IK solutions of a pose given as --xyz X Y Z --zxz ALPHA BETA GAMMA (exit 1 if none)"
 
 
 def add_arguments(p) -> None:
@@ -27,19 +30,29 @@ def add_arguments(p) -> None:
     p.add_argument("--method", choices=("complete", "thesis"), default="complete")
     p.add_argument("--all", action="store_true", help="also list solutions outside the joint limits")
     p.add_argument("--json", action="store_true", help="machine-readable output")
+    p.spelling.update(p="--xyz", T="--xyz/--zxz", alpha="--zxz", beta="--zxz", gamma="--zxz",
+                      q_prev="--previous", previous_q="--previous")  # the library's names as typed
+
+
+def _warn_degrees(args) -> None:
+    """Angles beyond one turn read as radians are almost surely degrees typed without --deg."""
+    for flag, values in (("--zxz", args.zxz), ("--previous", args.previous or ())):
+        if not args.deg and any(abs(v) > 2 * math.pi for v in values if math.isfinite(v)):
+            print(f"iik solve: warning: {flag} {' '.join(f'{v:g}' for v in values)} look like degrees "
+                  "(beyond 2 pi); they are read as radians: add --deg", file=sys.stderr)
 
 
 def run(args) -> int:
     import iik
     from iik.ik import select_index
 
-    ang = np.radians(args.zxz) if args.deg else np.array(args.zxz)
-    T = iik.pose_from_zxz(np.array(args.xyz), *ang)
-    res = iik.solve(T, method=args.method, within_limits=not args.all)
-    prev = None
-    if args.previous is not None:
-        prev = np.radians(args.previous) if args.deg else np.array(args.previous)
-    efforts = iik.effort_index(prev, res.q) if (prev is not None and res.count) else None
+    _warn_degrees(args)
+    conv_in = np.radians if args.deg else np.asarray
+    prev = None if args.previous is None else conv_in(args.previous)
+    with np.errstate(all="ignore"):  # absurd inputs (--xyz 1e308) are unreachable, not warnings
+        T = iik.pose_from_zxz(np.array(args.xyz), *conv_in(args.zxz))
+        res = iik.solve(T, method=args.method, within_limits=not args.all)
+        efforts = iik.effort_index(prev, res.q) if (prev is not None and res.count) else None
     best = None
     if prev is not None and np.any(res.within_limits):  # Eq 54: least effort inside the limits
         best = int(np.flatnonzero(res.within_limits)[select_index(res, prev)[0]])
@@ -53,11 +66,11 @@ def run(args) -> int:
                 s["effort_index"] = float(conv(e))
             out["selected"] = best
         print(json.dumps(out, indent=2))
-        return 0
+        return 0 if res.count else 1
     unit = "deg" if args.deg else "rad"
     if res.count == 0:
         print(f"no solution: {res.reason}")
-        return 0
+        return 1
     print(f"{res.count} solution(s) ({args.method}), joint angles in {unit}:")
     for i in range(res.count):
         q = " ".join(f"{v:9.4f}" for v in conv(res.q[i]))

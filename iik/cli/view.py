@@ -27,8 +27,8 @@ def add_arguments(p) -> None:
     p.add_argument("--previous", nargs=6, type=float, default=None, metavar="Q",
                    help="reference configuration of the Eq 54 effort index (default: --q, else q = 0)")
     p.add_argument("--interactive", action="store_true", help="add a draggable gizmo for the tool pose")
-    p.add_argument("--run", type=Path, default=None, metavar="LOG", help="a run log (runs/j.jsonl): "
-                   "commanded and measured arms side by side")
+    p.add_argument("--run", type=Path, default=None, metavar="LOG",
+                   help="a log of iik run (runs/NAME-DATE-TIME.jsonl): commanded and measured arms")
     p.add_argument("--port", type=int, default=8080, help="TCP port (default 8080)")
     p.add_argument("--host", default="127.0.0.1",
                    help="interface to listen on (default 127.0.0.1: this machine only)")
@@ -65,6 +65,9 @@ def run(args) -> int:
               f"{res.seconds:.2f} s): open it in a browser, no server needed")
         return 0
     print(f"viewer at {res.url}  (Ctrl-C to stop)", flush=True)
-    res.serve_forever()
+    try:
+        res.serve_forever()
+    except KeyboardInterrupt:  # Ctrl-C before serve_forever took SIGINT over: the same clean stop
+        res.stop()
     print("viewer stopped")
     return 0

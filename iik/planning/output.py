@@ -1,10 +1,14 @@
 """Files and figures of a :class:`~iik.planning.PlanResult` (used by ``iik plan``, notebook, report).
 
-* ``trajectory.csv`` -- the timed joint trajectory: ``t`` [s], ``q1..q6`` [rad],
-  ``qd1..qd6`` [rad/s], ``qdd1..qdd6`` [rad/s^2];
-* ``steps.csv`` -- per step-point: tool point [m], joints [rad], effort index
-  (Eq 54) [rad], whole-arm clearance [m] with the closest link and object, and
-  the certified clearance of the motion to the next step [m];
+* ``trajectory.csv`` -- the timed joint trajectory sampled every ``dt``: ``t`` [s], ``q1..q6``
+  [rad], ``qd1..qd6`` [rad/s], ``qdd1..qdd6`` [rad/s^2];
+* ``steps.csv`` -- per step-point: the time the arm executes it (``t`` [s], whole ms:
+  :attr:`~iik.planning.Trajectory.step_t`; only for a successful plan), tool point [m],
+  joints [rad], effort index (Eq 54) [rad], whole-arm clearance [m] with the closest link
+  and object, and the certified clearance of the motion to the next step [m];
+
+``iik run SCENARIO`` executes exactly the ``t, q1..q6`` of ``steps.csv``, and
+``iik run --trajectory`` accepts either CSV as written (:mod:`iik.planning.timing`).
 * ``summary.txt`` -- the summary, the notes and every attempt;
 * ``scene.png`` (like Fig 42), ``joints.png`` (like Fig 43), ``effort.png`` (like Fig 44).
 """
@@ -47,14 +51,16 @@ def write_outputs(res: PlanResult, out: Path, *, figures: bool = True) -> list[P
     if len(res.q):
         p = out / "steps.csv"
         c = res.clearance
+        timed = res.success and res.trajectory is not None and res.trajectory.step_t is not None
         with p.open("w", newline="") as f:
             w = csv.writer(f)
-            w.writerow(["step", "x", "y", "z"] + [f"q{i}" for i in range(1, 7)]
+            w.writerow(["step"] + (["t"] if timed else []) + ["x", "y", "z"] + [f"q{i}" for i in range(1, 7)]
                        + ["effort", "clearance", "closest_link", "closest_object",
                           "motion_clearance_to_next"])
             for i in range(len(res.q)):
                 mot = c.motion[i] if i < len(c.motion) else float("nan")
-                w.writerow([i] + [f"{v:.6f}" for v in res.points[i]] + [f"{v:.9f}" for v in res.q[i]]
+                w.writerow([i] + ([f"{res.trajectory.step_t[i]:.3f}"] if timed else [])
+                           + [f"{v:.6f}" for v in res.points[i]] + [f"{v:.9f}" for v in res.q[i]]
                            + [f"{res.effort[i]:.9f}", f"{c.step[i]:.6f}", c.step_link[i], c.step_object[i],
                               f"{mot:.6f}"])
         files.append(p)

@@ -6,8 +6,18 @@ length (``toppra.SplineInterpolator``); if the spline overshoots a limit, a
 shape-preserving PCHIP curve is tried instead and retimed time-optimally by TOPP-RA
 (``toppra.algorithm.TOPPRA``) under the joint velocity limits ``arm.velocity``
 and acceleration limits ``arm.acceleration``. The result is sampled at ``dt``
-and every sample is checked against the joint, velocity and acceleration limits
-(:attr:`Trajectory.violations`).
+and every sample is checked against the joint limits *with the executor's margin*
+(:data:`EXECUTION_MARGIN`), the velocity and the acceleration limits
+(:attr:`Trajectory.violations`), so that what the planner writes the arm can run.
+
+One trajectory from plan to run. The arm executes the step-points themselves
+(FSTEP: constant velocity from one to the next, Sec 4.3) at the times the TOPP-RA
+curve passes them, on the FSTEP clock: :attr:`Trajectory.step_t` are those times
+rounded to whole milliseconds (:data:`STEP_RESOLUTION`), each step at least
+:data:`MIN_STEP` long and slow enough for the joint speed limits at its rounded
+length (:func:`step_schedule`). ``iik plan`` writes them (``steps.csv``, column ``t``)
+and ``iik run`` executes exactly them; the dense samples (``trajectory.csv``) follow
+the same timing law every ``dt`` and are accepted by ``iik run --trajectory`` too.
 
 :func:`thesis_timing` is the thesis's scheme for comparison (Sec 4.2.2: "The
 angular velocity chosen for the 6-DOF manipulator is proportional to the joint
@@ -18,6 +28,7 @@ change (and so to the effort index of Eq 54).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,7 +39,16 @@ from iik.validation import as_joints
 from .errors import TimingError
 from .path import interpolate_joints
 
-__all__ = ["Trajectory", "time_parameterize", "thesis_timing"]
+__all__ = ["Trajectory", "time_parameterize", "thesis_timing", "step_schedule", "EXECUTION_MARGIN",
+           "STEP_RESOLUTION", "MIN_STEP"]
+
+#: Margin inside Table I [rad] that every timed sample keeps (0.5 deg): the default
+#: margin of :func:`hardware.validate`, so a planned trajectory is never refused for it.
+EXECUTION_MARGIN = math.radians(0.5)
+#: Resolution of an executed step time [s]: FSTEP carries whole milliseconds (docs/POWERCUBE.md).
+STEP_RESOLUTION = 0.001
+#: Shortest executed step [s] (the default of :func:`hardware.validate`).
+MIN_STEP = 0.010
 
 
 @dataclass(frozen=True)
@@ -40,6 +60,9 @@ class Trajectory:
         duration: Total time [s].
         method: How it was timed.
         violations: Human-readable limit violations found at the samples (empty = none).
+        step_q: (n, 6) the input waypoints (step-points) [rad], or None.
+        step_t: (n,) times [s] at which the arm executes them: the curve's passing times on
+            the FSTEP clock (:func:`step_schedule`); None for :func:`thesis_timing`.
     """
 
     t: np.ndarray
@@ -49,14 +72,19 @@ class Trajectory:
     duration: float
     method: str
     violations: tuple[str, ...] = ()
+    step_q: np.ndarray | None = None
+    step_t: np.ndarray | None = None
 
 
-def _check(q, qd, qdd, arm: Arm, tol: float = 1e-6) -> tuple[str, ...]:
+def _check(q, qd, qdd, arm: Arm, joint_margin: float, tol: float = 1e-9) -> tuple[str, ...]:
     out = []
-    lo, hi = arm.q_min, arm.q_max
+    lo, hi = arm.q_min + joint_margin, arm.q_max - joint_margin
     v, a = np.asarray(arm.velocity), np.asarray(arm.acceleration)
-    if np.any(q < lo - tol) or np.any(q > hi + tol):
-        out.append(f"joint limit exceeded by {max((lo - q).max(), (q - hi).max()):.2e} rad")
+    over = np.maximum(lo - q, q - hi)
+    if np.any(over > tol):
+        k, j = np.unravel_index(int(np.argmax(over)), over.shape)
+        out.append(f"joint q{j + 1} comes {math.degrees(over[k, j]):.3f} deg beyond Table I less the "
+                   f"execution margin of {math.degrees(joint_margin):g} deg (sample {k}, counting from 0)")
     if np.any(np.abs(qd) > v * (1 + 1e-9)):
         out.append(f"velocity limit exceeded: max |qd|/v = {(np.abs(qd) / v).max():.4f}")
     if np.any(np.abs(qdd) > a * (1 + 1e-9)):
@@ -110,7 +138,8 @@ class _PchipPath:
 
 
 def time_parameterize(qs, arm: Arm = THESIS_ARM, *, dt: float = 0.01,
-                      gridpoints: int | None = None, margin: float = 0.95) -> Trajectory:
+                      gridpoints: int | None = None, margin: float = 0.95,
+                      joint_margin: float = EXECUTION_MARGIN) -> Trajectory:
     """Time-optimal timing of the joint path ``qs`` (n, 6) [rad] by TOPP-RA within ``arm``'s limits.
 
     Starts and ends at rest. A path with a single distinct configuration gives
@@ -120,22 +149,58 @@ def time_parameterize(qs, arm: Arm = THESIS_ARM, *, dt: float = 0.01,
     through the polyline densified to 0.02 rad (hugs the polyline; slower at
     corners); 3) a shape-preserving PCHIP curve through the waypoints on a fine grid.
 
+    Args:
+        margin: Fraction of the velocity and acceleration limits TOPP-RA plans with.
+        joint_margin: Every sample stays this far inside Table I [rad]
+            (:data:`EXECUTION_MARGIN`: what ``hardware.validate`` requires by default).
+
     Raises:
         TimingError: TOPP-RA failed or found no parameterisation (its exception is the cause).
     """
-    Q, _ = as_joints(qs, "qs")
-    Q = _dedupe(Q)
+    Q0, _ = as_joints(qs, "qs")
+    Q = _dedupe(Q0)
     if len(Q) < 2:
         z = np.zeros((1, 6))
-        return Trajectory(np.zeros(1), Q[:1].copy(), z, z, 0.0, "static")
+        return Trajectory(np.zeros(1), Q[:1].copy(), z, z, 0.0, "static", step_q=Q0.copy(),
+                          step_t=step_schedule(np.zeros(len(Q0)), Q0, arm))
     timed = []
     for kind in ("spline", "dense spline", "pchip"):
-        timed.append(_toppra(_curve(Q, kind, gridpoints), kind, arm, margin, dt))
+        timed.append(_toppra(_curve(Q, kind, gridpoints), kind, arm, margin, joint_margin, dt, Q0))
         if not timed[-1].violations:
             break
     tr = timed[-1] if not timed[-1].violations else timed[0]
     tr.q[0], tr.q[-1] = Q[0], Q[-1]
     return tr
+
+
+def step_schedule(t, q, arm: Arm = THESIS_ARM, *, min_step: float = MIN_STEP,
+                  resolution: float = STEP_RESOLUTION) -> np.ndarray:
+    """Times [s] at which the arm executes the step-points ``q`` (n, 6) [rad] meant for times ``t``.
+
+    Each time is ``t`` rounded to ``resolution`` (FSTEP's whole milliseconds), except that a
+    step is never shorter than ``min_step`` nor than its slowest joint needs at its speed
+    limit; where that holds a step-point back, the later ones follow as early as allowed.
+    Starts at 0. A step's joint speeds are then at most ``arm.velocity`` at its rounded length.
+    """
+    ta, qa = np.asarray(t, dtype=float), np.asarray(q, dtype=float)
+    ticks = np.rint((ta - ta[0]) / resolution)
+    need = np.ceil(np.maximum(np.max(np.abs(np.diff(qa, axis=0)) / np.asarray(arm.velocity), axis=1),
+                              min_step) / resolution - 1e-9)
+    out = np.zeros(len(ta))
+    for k in range(1, len(ta)):
+        out[k] = max(ticks[k], out[k - 1] + need[k - 1])
+    return out * resolution
+
+
+def _passing_times(grid: np.ndarray, sd: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Times [s] at which a constant-acceleration parameterisation (TOPP-RA's
+    ``ParametrizeConstAccel``: path speed ``sd`` at ``grid``) reaches the path positions ``s``."""
+    ts = np.concatenate([[0.0], np.cumsum(2.0 * np.diff(grid) / (sd[:-1] + sd[1:]))])
+    i = np.clip(np.searchsorted(grid, s, side="right") - 1, 0, len(grid) - 2)
+    ds = s - grid[i]
+    x = sd[i] ** 2 + (sd[i + 1] ** 2 - sd[i] ** 2) * ds / (grid[i + 1] - grid[i])  # sd^2 is linear in s
+    denom = sd[i] + np.sqrt(np.maximum(x, 0.0))
+    return ts[i] + np.divide(2.0 * ds, denom, out=np.zeros_like(ds), where=denom > 0)
 
 
 def _curve(Q: np.ndarray, kind: str, gridpoints: int | None):
@@ -153,7 +218,8 @@ def _curve(Q: np.ndarray, kind: str, gridpoints: int | None):
     return ta.SplineInterpolator(s, W, bc_type="clamped"), grid
 
 
-def _toppra(curve, kind: str, arm: Arm, margin: float, dt: float) -> Trajectory:
+def _toppra(curve, kind: str, arm: Arm, margin: float, joint_margin: float, dt: float,
+            waypoints: np.ndarray) -> Trajectory:
     """TOPP-RA on ``curve``; limits scaled by ``margin`` and tightened until every sample is inside.
 
     TOPP-RA enforces the limits at grid points only, so plan inside them and
@@ -178,10 +244,15 @@ def _toppra(curve, kind: str, arm: Arm, margin: float, dt: float) -> Trajectory:
         T = float(traj.duration)
         t = np.linspace(0.0, T, max(2, int(np.ceil(T / dt)) + 1))
         q, qd, qdd = traj(t), traj(t, 1), traj(t, 2)
-        bad = _check(q, qd, qdd, arm)
-        if not bad:
+        bad = _check(q, qd, qdd, arm, joint_margin)
+        if not bad or bad[0].startswith("joint"):  # slower timing cannot move the curve off a stop
             break
-    return Trajectory(t, q, qd, qdd, T, f"toppra {kind} (limits x{m:.2f})", bad)
+    data = instance.problem_data
+    steps = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(waypoints, axis=0), axis=1))])
+    t_wp = _passing_times(np.asarray(data.gridpoints, float), np.asarray(data.sd_vec, float),
+                          np.clip(steps / steps[-1], 0.0, 1.0))
+    return Trajectory(t, q, qd, qdd, T, f"toppra {kind} (limits x{m:.2f})", bad, step_q=waypoints.copy(),
+                      step_t=step_schedule(t_wp, waypoints, arm))
 
 
 def thesis_timing(qs, arm: Arm = THESIS_ARM) -> Trajectory:

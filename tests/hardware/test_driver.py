@@ -12,7 +12,7 @@ import pytest
 import iik
 from hardware import PowerCubeArm, PowerCubeModule, SimulatedArm, scan
 from hardware import protocol as P
-from hardware.errors import CANTimeoutError, ModuleHalted, SafetyError
+from hardware.errors import CANTimeoutError, DuplicateModuleError, ModuleHalted, SafetyError
 
 
 def wait_until(pred, timeout=2.0):
@@ -99,9 +99,12 @@ def test_move_step_extended_reply(arm, sim):
 def test_speed_limit_of_sec_3_2_slows_a_too_fast_step(new_channel):
     ch = new_channel()
     with SimulatedArm.virtual(ch, (1,), lag=0.0) as sim, can.Bus(interface="virtual", channel=ch) as bus:
-        m = PowerCubeModule(bus, 1, timeout=0.2)  # no local limits: the module's own limit acts
+        m = PowerCubeModule(bus, 1, timeout=0.2)  # no local limits given: the module's FMAXVEL is read
         vmax = iik.THESIS_ARM.velocity[0]
-        m.move_step(0.6, 0.1)  # asks for 6 rad/s
+        with pytest.raises(SafetyError, match="FMAXVEL"):
+            m.move_step(0.6, 0.1)  # asks for 6 rad/s: the driver refuses it
+        assert not [x for _, x in sim.received() if isinstance(x, P.SetMove)]
+        m.link.request(P.SetMove(1, P.Mode.FSTEP, 0.6, 100))  # behind the driver's back
         time.sleep(0.2)
         assert m.get_vel() == pytest.approx(vmax)
         assert 0.1 < m.get_pos() < 0.6
@@ -184,15 +187,19 @@ class _Rogue:
 
 
 def test_echo_rule_discards_non_matching_replies(new_channel):
+    """The module answers 0.3 s late, the rogue at once: its five wrong frames reach the
+    host before every real reply and must be discarded, whatever the machine's load."""
     ch = new_channel()
     rogue = _Rogue(ch)
     try:
-        with SimulatedArm.virtual(ch, (1,), initial=[0.3]), can.Bus(interface="virtual", channel=ch) as bus:
-            m = PowerCubeModule(bus, 1, timeout=0.1)
-            for _ in range(5):
+        with SimulatedArm.virtual(ch, (1,), initial=[0.3]) as sim, \
+                can.Bus(interface="virtual", channel=ch) as bus:
+            sim.inject(1, "late_ack", delay=0.3, count=-1)
+            m = PowerCubeModule(bus, 1, timeout=5.0)  # the echo rule is under test, not the timeout
+            for _ in range(3):
                 assert m.get_pos() == pytest.approx(0.3, abs=1e-6)  # never the rogue's 99
             m.move_step(0.31, 0.05)
-            assert m.link.discarded >= 5
+            assert m.link.discarded >= 5 * 3
     finally:
         rogue.close()
 
@@ -258,7 +265,7 @@ def test_soft_limits_default_to_table_i_and_refuse_targets(new_channel):
         m = PowerCubeModule(bus, 2, timeout=0.2)  # joint 2, no local check
         lo, hi = m.soft_limits()
         assert lo == pytest.approx(iik.THESIS_ARM.lower[1]) and hi == pytest.approx(iik.THESIS_ARM.upper[1])
-        m.move_step(hi + 0.1, 0.5)
+        m.move_step(hi + 0.1, 5.0)
         time.sleep(0.02)
         s = m.state()
         assert s & P.State.ERROR and s & P.State.BEYOND_SOFT
@@ -267,20 +274,21 @@ def test_soft_limits_default_to_table_i_and_refuse_targets(new_channel):
         assert not m.state() & P.State.ERROR
         guarded = PowerCubeModule(bus, 2, timeout=0.2, limits=(lo, hi))
         with pytest.raises(SafetyError):
-            guarded.move_step(hi + 0.1, 0.5)
+            guarded.move_step(hi + 0.1, 5.0)
 
 
 def test_watchdog(arm, sim):
+    timeout = sim.module(1).watchdog_timeout  # the simulated modules' watchdog time (1 s)
     arm.start_watchdog(period=0.02)
     assert all(m.get_param(P.Param.CONFIG) & P.CONFIG_WATCHDOG for m in arm.modules)
-    time.sleep(0.4)  # refreshed: no trip
+    time.sleep(1.5 * timeout)  # longer than the watchdog time, but refreshed: no trip
     assert not any(s & P.State.ERROR for s in arm.states())
     arm.stop_watchdog(disable=False)  # refresh stops, bit stays: the modules must stop
-    assert wait_until(lambda: all(s & P.State.COMM_ERROR for s in sim.states()), 1.0)
+    assert wait_until(lambda: all(s & P.State.COMM_ERROR for s in sim.states()), 3 * timeout)
     arm.reset()
     arm.start_watchdog(period=0.02)
     arm.stop_watchdog(disable=True)  # clean stop: bit cleared first
-    time.sleep(0.4)
+    time.sleep(1.5 * timeout)
     assert not any(s & P.State.ERROR for s in arm.states())
 
 
@@ -297,3 +305,67 @@ def test_bad_arguments_are_typed_errors(arm, sim):
         arm.move_step(np.full(6, 4.0), 1.0)  # outside Table I
     with pytest.raises(SafetyError):
         arm.move_vel(np.full(6, math.inf))
+
+
+# ----------------------------------------------------------------------------- duplicate module ids
+def test_two_modules_with_one_id_are_a_fault_at_open(new_channel):
+    """Two simulated arms on one channel (as two `iik sim-arm` on one bus): every id answers twice."""
+    ch = new_channel()
+    with SimulatedArm.virtual(ch), SimulatedArm.virtual(ch), can.Bus(interface="virtual", channel=ch) as bus:
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0)
+        with pytest.raises(DuplicateModuleError) as info:
+            arm.open()
+        assert info.value.module_id in range(1, 7) and "two answers to GETPARAM VERSION" in str(info.value)
+        with pytest.raises(DuplicateModuleError):
+            scan(bus, range(1, 4), timeout=0.2)
+
+
+def test_one_module_each_opens_cleanly(new_channel):
+    ch = new_channel()
+    with SimulatedArm.virtual(ch, (1, 2, 3)), SimulatedArm.virtual(ch, (4, 5, 6)), \
+            can.Bus(interface="virtual", channel=ch) as bus:
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0)
+        assert len(arm.open()) == 6 and sorted(scan(bus, range(1, 8), timeout=0.2)) == [1, 2, 3, 4, 5, 6]
+
+
+def test_a_second_answer_during_requests_is_a_fault(arm, sim, channel):
+    arm.open()
+    with SimulatedArm.virtual(channel, (3,)):  # a module with id 3 appears on the bus
+        with pytest.raises(DuplicateModuleError) as info:
+            for _ in range(20):
+                arm.get_pos()
+        assert info.value.module_id == 3
+
+
+# ----------------------------------------------------------------------------- the module's limits
+def test_motion_beyond_the_modules_limits_is_refused_before_sending(arm, sim):
+    vmax = np.asarray(iik.THESIS_ARM.velocity)
+    sent = len(sim.received())
+
+    def moves():
+        return [m for _, m in sim.received()[sent:] if isinstance(m, P.SetMove)]
+
+    with pytest.raises(SafetyError, match=r"exceeds the module's limit .*FMAXVEL"):
+        arm.move_step(np.full(6, 1.5), 0.1)  # 15 rad/s
+    with pytest.raises(SafetyError, match="FMAXVEL"):
+        arm.move_vel(vmax * 1.01)
+    with pytest.raises(SafetyError, match="FMAXCUR"):
+        arm.move_cur(np.full(6, 100.0))
+    with pytest.raises(SafetyError, match="FMAXACC"):
+        arm.move_ramp(np.full(6, 0.1), 0.1, 1e3)
+    with pytest.raises(SafetyError, match="Sec 3.2"):
+        arm.modules[0].set_max_vel(vmax[0] * 2)
+    assert moves() == []  # nothing reached the bus
+    arm.modules[0].set_max_vel(0.1)  # a module configured slower than Sec 3.2
+    with pytest.raises(SafetyError, match=r"module 1 joint q1 step of 500 ms: 0\.2000 rad/s .* 0\.1000"):
+        arm.move_step(np.array([0.1, 0, 0, 0, 0, 0]), 0.5)
+    arm.move_step(np.full(6, 0.05), 0.5)  # within every limit
+    assert len(moves()) == 6
+
+
+def test_step_speed_is_measured_from_the_previous_target(arm, sim):
+    m = arm.modules[0]
+    m.move_step(0.3, 0.5)  # 0.6 rad/s from the measured 0
+    with pytest.raises(SafetyError, match="FMAXVEL"):
+        m.move_step(-0.3, 0.2)  # 3 rad/s from the previous target 0.3
+    m.move_step(-0.3, 0.6)  # 1 rad/s: fine

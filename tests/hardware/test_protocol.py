@@ -1,4 +1,4 @@
-"""Protocol layer: every frame of POWERCUBE.md, the echo rule, and fuzzing."""
+"""Protocol layer: every frame of docs/POWERCUBE.md, the echo rule, and fuzzing."""
 
 import math
 import struct

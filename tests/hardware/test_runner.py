@@ -1,6 +1,7 @@
 """`hardware.run`: one run end to end from a typed request to a typed report."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -16,14 +17,28 @@ def test_run_demo_on_the_simulated_arm(tmp_path):
     assert isinstance(report, RunReport)
     n = len(report.targets)
     assert steps == [(k, n - 1) for k in range(1, n)]
-    assert any("validated" in t for t in notes)
+    assert any("validated" in t for t in notes) and not any("watchdog" in t for t in notes)
     assert read_run_log(report.result.log_path).status == "ok"
+    assert read_run_log(report.result.log_path).header["watchdog"] is False  # off when simulated
     a = report.analysis
     assert len(a.steps) == n and a.start_ee_error < 1e-4 and a.final_ee_error < 1e-4
     assert report.rests is not None and 0 <= report.rests <= report.step_changes == 6 * (n - 2)
     assert report.figures == ()
+    assert report.zone == 0.010 and report.ok == (a.max_ee_error <= 0.010)
     text = report.summary()
     assert "end-effector error: max" in text and str(report.result.log_path) in text
+    assert text.splitlines()[-1].startswith(f"status: {report.status} (max end-effector error")
+
+
+def test_an_error_beyond_the_zone_is_not_ok(tmp_path):
+    """The run goes to the end, but its error leaves the zone: status 'outside zone'."""
+    report = run(RunRequest(demo=True, sim_start="plan", lag=0.2, out=tmp_path, figures=False))
+    assert read_run_log(report.result.log_path).status == "ok"  # executed to the end ...
+    assert report.analysis.max_ee_error > 0.010  # ... 0.2 s behind the set-point: far off
+    assert not report.ok and report.status == "outside zone"
+    assert "status: outside zone" in report.summary() and "OUTSIDE the 10 mm zone" in report.summary()
+    wide = run(RunRequest(demo=True, sim_start="plan", lag=0.2, zone=1.0, out=tmp_path, figures=False))
+    assert wide.ok == (wide.analysis.max_ee_error <= 1.0)
 
 
 @pytest.mark.parametrize(("kwargs", "argument"), [
@@ -32,9 +47,24 @@ def test_run_demo_on_the_simulated_arm(tmp_path):
     ({"demo": True, "early": 0.0}, "early"),
     ({"demo": True, "early": math.nan}, "early"),
     ({"demo": True, "speed": 1.5}, "speed"),
+    ({"demo": True, "speed": 0.0}, "speed"),
+    ({"demo": True, "speed": math.nan}, "speed"),
     ({"demo": True, "margin": -0.01}, "margin"),
+    ({"demo": True, "margin": math.nan}, "margin"),
+    ({"demo": True, "margin": math.inf}, "margin"),
     ({"demo": True, "lag": -1.0}, "lag"),
+    ({"demo": True, "lag": math.nan}, "lag"),
+    ({"demo": True, "lag": 5.0}, "lag"),
     ({"demo": True, "timeout": 0.0}, "timeout"),
+    ({"demo": True, "timeout": math.inf}, "timeout"),
+    ({"demo": True, "timeout": 1e6}, "timeout"),
+    ({"demo": True, "bitrate": -5}, "bitrate"),
+    ({"demo": True, "bitrate": 300_000}, "bitrate"),
+    ({"demo": True, "port": 0}, "port"),
+    ({"demo": True, "port": 70_000}, "port"),
+    ({"demo": True, "zone": 0.0}, "zone"),
+    ({"demo": True, "zone": math.nan}, "zone"),
+    ({"demo": True, "watchdog": "yes"}, "watchdog"),
     ({"demo": True, "modules": (1, 2, 3, 4, 5)}, "modules"),
     ({"demo": True, "modules": (0, 1, 2, 3, 4, 5)}, "modules"),
     ({"demo": True, "update": "eager"}, "update"),
@@ -46,6 +76,43 @@ def test_request_refuses_bad_options_by_name(kwargs, argument):
     assert info.value.argument == argument
 
 
+@pytest.mark.parametrize(("kwargs", "unit"), [
+    ({"timeout": 0.0}, " s,"), ({"lag": -1.0}, " s,"), ({"zone": 2.0}, " m,"), ({"margin": -0.01}, "deg"),
+    ({"bitrate": -5}, "bit/s"),
+])
+def test_option_errors_state_the_units(kwargs, unit):
+    with pytest.raises(InvalidInputError, match=re.escape(unit)):
+        RunRequest(demo=True, **kwargs)
+
+
+def test_watchdog_is_on_by_default_on_a_bus_only():
+    assert RunRequest(demo=True).watchdog_on is False  # in-process simulation
+    assert RunRequest(demo=True, interface="socketcan", channel="can0").watchdog_on is True
+    assert RunRequest(demo=True, interface="socketcan", channel="can0", watchdog=False).watchdog_on is False
+
+
+def test_run_logs_are_never_overwritten_unless_a_file_is_named(tmp_path):
+    first = run(RunRequest(demo=True, sim_start="plan", out=tmp_path, figures=False))
+    second = run(RunRequest(demo=True, sim_start="plan", out=tmp_path, figures=False))
+    a, b = first.result.log_path, second.result.log_path
+    assert a != b and a.parent == b.parent == tmp_path and a.exists() and b.exists()
+    assert re.fullmatch(r"demo-\d{8}-\d{6}(-\d+)?\.jsonl", a.name), a.name
+    named = tmp_path / "sub" / "mine.jsonl"
+    third = run(RunRequest(demo=True, sim_start="plan", out=named))
+    assert third.result.log_path == named and read_run_log(named).status == "ok"
+    stems = ("joint_error", "ee_error", "velocity")
+    assert {p.name for p in third.figures} == {f"mine_{s}.png" for s in stems}
+    assert all(p.parent == named.parent for p in third.figures)
+
+
+def test_speed_slows_every_source(tmp_path):
+    fast = run(RunRequest(demo=True, sim_start="plan", out=tmp_path, figures=False))
+    slow = run(RunRequest(demo=True, sim_start="plan", speed=0.5, out=tmp_path, figures=False))
+    np.testing.assert_allclose(np.diff(slow.targets.times), 2 * np.diff(fast.targets.times), atol=1e-9)
+    header = read_run_log(slow.result.log_path).header
+    np.testing.assert_allclose(header["times"], slow.targets.times - slow.targets.times[0])
+
+
 def test_run_refuses_before_touching_the_bus(tmp_path):
     """A trajectory outside Table I is refused by validation: no log, no bus opened."""
     q = np.zeros((3, 6))
@@ -55,7 +122,7 @@ def test_run_refuses_before_touching_the_bus(tmp_path):
                header="t,q1,q2,q3,q4,q5,q6", comments="")
     with pytest.raises(IIKError, match="Table I"):
         run(RunRequest(trajectory=path, interface="no-such-interface", channel="x", out=tmp_path))
-    assert not (tmp_path / "bad.jsonl").exists()
+    assert not list(tmp_path.glob("*.jsonl"))
 
 
 def test_run_on_an_empty_bus_raises_a_typed_timeout(tmp_path):
@@ -64,3 +131,4 @@ def test_run_on_an_empty_bus_raises_a_typed_timeout(tmp_path):
     assert req.where == f"virtual:empty-{tmp_path.name}" and not req.simulated
     with pytest.raises(CANTimeoutError):
         run(req)
+    assert not list(tmp_path.glob("*.jsonl"))  # the reserved log name is given back: nothing ran

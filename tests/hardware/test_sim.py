@@ -201,10 +201,10 @@ def test_serve_refuses_bad_input_and_leaves_no_open_bus(new_channel, caplog):
     from hardware.sim import serve
 
     with pytest.raises(BusError, match="cannot open no-such-interface"):
-        serve("no-such-interface", "x", duration=0.0)
+        serve("no-such-interface", "x", duration=0.1)
     with pytest.raises(SafetyError, match="module_ids"):
-        serve("virtual", new_channel(), [0], duration=0.0)
+        serve("virtual", new_channel(), [0], duration=0.1)
     with pytest.raises(SafetyError, match="initial"):
-        serve("virtual", new_channel(), initial=[0.0, float("nan")], duration=0.0)
+        serve("virtual", new_channel(), initial=[0.0, float("nan")], duration=0.1)
     gc.collect()
     assert "not properly shut down" not in caplog.text

@@ -1,4 +1,4 @@
-"""`hardware.sources`: step targets as typed results."""
+"""`hardware.sources`: step targets as typed results; CSV errors name the line and column."""
 
 import dataclasses
 
@@ -7,8 +7,21 @@ import pytest
 
 import iik
 from hardware import StepTargets
-from hardware.sources import DEMO_STEP, csv_trajectory, demo_trajectory
+from hardware.errors import SafetyError
+from hardware.sources import DEMO_STEP, csv_trajectory, demo_trajectory, scenario_trajectory
 from iik.errors import InvalidInputError
+
+Q = np.linspace(0, 1, 4)[:, None] * np.array([0.05, 0.04, -0.03, 0.02, 0.1, 0.0])
+HEADER = "t,q1,q2,q3,q4,q5,q6"
+
+
+def write(path, rows, header=HEADER):
+    path.write_text("".join(f"{r}\n" for r in ([header] if header is not None else []) + rows))
+    return path
+
+
+def good_rows():
+    return [",".join(f"{v:.9f}" for v in [k * 0.1, *Q[k]]) for k in range(4)]
 
 
 def test_demo_is_a_short_step_line_solved_by_ik():
@@ -23,17 +36,83 @@ def test_demo_is_a_short_step_line_solved_by_ik():
     assert len(t.validate(limit=4)) == 4
 
 
-def test_csv_targets_and_bad_files(tmp_path):
-    q = np.linspace(0, 1, 4)[:, None] * np.array([0.05, 0.04, -0.03, 0.02, 0.1, 0.0])
-    path = tmp_path / "traj.csv"
-    np.savetxt(path, np.column_stack([np.arange(4) * 0.1, q]), delimiter=",",
-               header="t,q1,q2,q3,q4,q5,q6", comments="")
-    t = csv_trajectory(path)
-    assert t.name == "traj" and t.q.shape == (4, 6)
-    np.testing.assert_allclose(t.poses, iik.fk(q))
-    bad = tmp_path / "bad.csv"
-    bad.write_text("t,q1,q2\n0,1,2\n")
-    with pytest.raises(InvalidInputError, match="header columns"):
-        csv_trajectory(bad)
+def test_csv_targets(tmp_path):
+    t = csv_trajectory(write(tmp_path / "traj.csv", good_rows()))
+    assert t.name == "traj" and t.q.shape == (4, 6) and list(t.lines) == [2, 3, 4, 5]
+    np.testing.assert_allclose(t.poses, iik.fk(t.q))
+    np.testing.assert_allclose(t.q, Q, atol=1e-9)
+    # columns in another order, extra columns and blank lines are fine
+    rows = [",".join([f"{v:.9f}" for v in Q[k][::-1]] + ["x", f"{k * 0.1}"]) for k in range(4)]
+    shuffled = csv_trajectory(write(tmp_path / "s.csv", rows[:2] + [""] + rows[2:],
+                                    header="q6,q5,q4,q3,q2,q1,note,t"))
+    np.testing.assert_allclose(shuffled.q, t.q)
+    np.testing.assert_allclose(shuffled.times, t.times)
+    assert list(shuffled.lines) == [2, 3, 5, 6]
 
 
+@pytest.mark.parametrize(("content", "match"), [
+    ("", r"the file is empty: it needs a header line naming the columns t,q1,q2,q3,q4,q5,q6"),
+    ("\n\n", r"the file is empty"),
+    (None, r"line 1 holds numbers, not a header"),  # headerless: the data alone
+    (HEADER + "\n", r"needs at least 2 data lines \(step-points\) below the header, has 0"),
+    ("t,q1,q2\n0,1,2\n", r"line 1 \(the header\) lacks the column\(s\) q3, q4, q5, q6"),
+    ("t,q1,q1,q2,q3,q4,q5,q6\n", r"line 1: column 'q1' appears twice \(columns 2 and 3, counting from 1\)"),
+    (HEADER + "\n0,0,0,0,0,0,0\n0.1,0,0,abc,0,0,0\n",
+     r"line 3, column 4 \(q3; lines and columns count from 1\): 'abc' is not a number"),
+    (HEADER + "\n0,0,0,0,0,0,0\n0.1,0,0,0,0,nan,0\n", r"line 3, column 6 \(q5; .*\): 'nan' is not a finite"),
+    (HEADER + "\n0,0,0,0,0,0,0\n0.1,0,0,0,0,0,\n", r"line 3, column 7 \(q6; .*\): '' is not a number"),
+    (HEADER + "\n0,0,0,0,0,0,0\n0.1,0,0,0\n", r"line 3 has 4 cells, the header has 7"),
+])
+def test_bad_csv_files_are_typed_errors_naming_line_and_column(tmp_path, content, match):
+    path = tmp_path / "bad.csv"
+    if content is None:
+        write(path, good_rows(), header=None)
+    else:
+        path.write_text(content)
+    with pytest.raises(InvalidInputError, match=match) as info:
+        csv_trajectory(path)
+    assert info.value.argument == "trajectory" and str(path) in str(info.value)
+
+
+def test_unreadable_and_binary_files(tmp_path):
+    with pytest.raises(InvalidInputError, match="cannot read it"):
+        csv_trajectory(tmp_path / "missing.csv")
+    with pytest.raises(InvalidInputError, match="cannot read it"):
+        csv_trajectory(tmp_path)  # a folder
+    (tmp_path / "bin.csv").write_bytes(b"t,q1\x00\xff\xfe")
+    with pytest.raises(InvalidInputError, match=r"not UTF-8 text|not CSV"):
+        csv_trajectory(tmp_path / "bin.csv")
+
+
+def test_a_refused_csv_step_point_is_named_by_its_line(tmp_path):
+    rows = good_rows()
+    rows[2] = ",".join(["0.2", "0", "4.0", "0", "0", "0", "0"])  # q2 = 4 rad, outside Table I
+    t = csv_trajectory(write(tmp_path / "far.csv", rows))
+    with pytest.raises(SafetyError) as info:
+        t.validate()
+    assert (info.value.step, info.value.joint) == (2, 1)
+    assert str(info.value).startswith(f"{tmp_path / 'far.csv'} line 4 (step-point 2 (counting from 0)), "
+                                      "joint q2: 4.000000 rad outside Table I")
+
+
+def test_slowed_lengthens_every_step_and_keeps_whole_ms():
+    t = demo_trajectory()
+    half = t.slowed(0.5)
+    assert half is not t and t.slowed(1.0) is t
+    np.testing.assert_allclose(np.diff(half.times), 2 * np.diff(t.times), atol=1e-9)
+    odd = t.slowed(0.7)
+    steps_ms = np.diff(odd.times) * 1000
+    np.testing.assert_allclose(steps_ms, np.rint(steps_ms), atol=1e-6)  # whole ms
+    assert np.all(np.diff(odd.times) >= np.diff(t.times) / 0.7 - 1e-9)  # never faster than asked
+
+
+def test_scenario_runs_the_step_times_the_plan_writes():
+    from iik.planning import plan
+
+    res = plan("j")
+    t = scenario_trajectory("j")
+    np.testing.assert_array_equal(t.times, res.trajectory.step_t)
+    np.testing.assert_array_equal(t.q, res.q)
+    assert t.times[-1] == pytest.approx(res.trajectory.duration, abs=0.01)  # the plan's duration
+    assert "as iik plan times them" in t.note
+    t.validate()  # executable as planned: Table I less the margin, speeds, FK vs the planned poses

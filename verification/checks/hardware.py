@@ -4,10 +4,11 @@ They register like every other check, so :func:`verification.verify` and ``iik
 verify`` produce the same report. Every run is on the in-process simulated arm
 (:func:`hardware.sim.simulated_arm`) with the scenarios planned exactly as ``iik run``
 plans them (:func:`hardware.sources.scenario_trajectory`: the project's planner,
-steps timed at half the joint speed limits). The simulator's tracking lag (a pure
-delay) and current model are assumptions, not identified on the real modules, so
-what these rows measure is the *method* (FSTEP streaming with the thesis's early
-update) on a simulated arm; the real arm's errors (Figs 46-55) are not checkable here.
+step-points at the times ``iik plan`` writes for them, TOPP-RA within the Sec 3.2
+limits). The simulator's tracking lag (a pure delay) and current model are
+assumptions, not identified on the real modules, so what these rows measure is the
+*method* (FSTEP streaming with the thesis's early update) on a simulated arm; the
+real arm's errors (Figs 46-55) are not checkable here.
 
 Time base. Executions run on a *fast-forward* clock shared by the simulator and
 the executor (:func:`fast_forward_clock`): every wait of the executor advances the
@@ -252,10 +253,11 @@ def execute_scenario(
 _SIM_NOTE = (
     "in-process simulated arm (hardware.sim: FSTEP = constant velocity to the target in the given time, "
     "joints at rest between steps that do not overlap; measured signals lag the set-point by a pure delay "
-    "of {lag:.0f} ms), host waits fast-forwarded and the host's own time (bus round trips, computation) "
-    "counted at {latency:g} of its length, samples every 30 ms; scenarios planned as `iik run` plans them "
-    "(plan_scenario, steps timed at 0.5 of the speed limits, Sec 3.2), validated, streamed by "
-    "hardware.executor; step-point error = |p(FK(measured q)) - planned p| (Eq 4, as in Sec 4.3)"
+    "of {lag:.0f} ms, an assumption), host waits fast-forwarded and the host's own time (bus round trips, "
+    "computation) counted at {latency:g} of its length, samples every 30 ms; scenarios planned as `iik run` "
+    "plans them (step-points at the times iik plan writes: TOPP-RA within the Sec 3.2 limits, whole ms), "
+    "validated, streamed by hardware.executor; step-point error = |p(FK(measured q)) - planned p| (Eq 4, "
+    "as in Sec 4.3)"
 )
 
 

@@ -3,6 +3,7 @@
 import json
 
 import numpy as np
+import pytest
 
 import iik
 from iik.cli import main
@@ -28,6 +29,37 @@ def test_solve_json_round_trip(capsys):
 def test_solve_degrees_and_unreachable(capsys):
     assert main(["solve", "--xyz", "0.3", "0.2", "0.5", "--zxz", "30", "120", "0", "--deg"]) == 0
     assert "solution" in capsys.readouterr().out
-    assert main(["solve", "--xyz", "3", "0", "0", "--zxz", "0", "0", "0", "--json"]) == 0
+    assert main(["solve", "--xyz", "3", "0", "0", "--zxz", "0", "0", "0", "--json"]) == 1  # nothing found
     out = json.loads(capsys.readouterr().out)
     assert out["count"] == 0 and "unreachable" in out["reason"]
+    assert main(["solve", "--xyz", "3", "0", "0", "--zxz", "0", "0", "0"]) == 1
+    assert capsys.readouterr().out.startswith("no solution: unreachable")
+
+
+def test_angles_that_look_like_degrees_get_a_warning(capsys):
+    argv = ["solve", "--xyz", "0.4", "0.3", "0.2", "--zxz", "180", "120", "0"]
+    main(argv)
+    err = capsys.readouterr().err
+    assert "warning: --zxz 180 120 0 look like degrees" in err and "add --deg" in err
+    assert main([*argv, "--deg"]) == 0
+    assert "warning" not in capsys.readouterr().err
+    main(["solve", *"--xyz 0.4 0.3 0.2 --zxz 3 2 0 --previous 0 90 0 0 0 0".split()])
+    assert "warning: --previous 0 90 0 0 0 0 look like degrees" in capsys.readouterr().err
+
+
+def test_absurd_positions_are_unreachable_without_internal_warnings(capfd):
+    assert main(["solve", "--xyz", "1e308", "0", "0", "--zxz", "0", "0", "0"]) == 1
+    out, err = capfd.readouterr()
+    assert out.startswith("no solution: unreachable") and err == ""
+
+
+@pytest.mark.parametrize(("argv", "named"), [
+    (["--xyz", "nan", "0", "0", "--zxz", "0", "0", "0"], "--xyz: "),
+    (["--xyz", "0.4", "0.3", "0.2", "--zxz", "0", "inf", "0"], "--zxz: "),
+    (["--xyz", "0.4", "0.3", "0.2", "--zxz", "0", "0", "0", "--previous", "nan", "0", "0", "0", "0", "0"],
+     "--previous: "),
+])
+def test_errors_name_the_option_as_typed(argv, named, capsys):
+    assert main(["solve", *argv]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("iik solve: error: InvalidInputError: " + named), err
