@@ -13,7 +13,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 import iik
-from iik.workspace import _joint4_distance, in_workspace, tool_positions
+from iik.workspace import in_workspace, joint4_distance, tool_positions
 
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
@@ -293,7 +293,7 @@ def three_surface_boundary(ctx):
     if (~front).any():
         Bb = B[~front]
         rb = np.where(np.arctan2(Bb[:, 1], Bb[:, 0]) > 0, ARM.upper[0], ARM.lower[0])
-        dev = np.array([_joint4_distance(b[None], t, ARM)[0] for b, t in zip(Bb, rb, strict=True)])
+        dev = np.array([joint4_distance(b[None], t, ARM)[0] for b, t in zip(Bb, rb, strict=True)])
         dev = np.abs(dev - (ARM.l4 + ARM.l5))
         lines.append("boundary points at |azimuth| >= 160 deg vs the corrected Eq 39-41 surface "
                      "(joint 1 at its limit, |p - joint 4| = l4 + l5): | rho23 - (l4 + l5) | median "
