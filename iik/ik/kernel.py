@@ -28,13 +28,14 @@ from numba.core import caching as _nb_caching
 
 from .. import kinematics as _kin
 from ..arm import Arm
+from . import elimination as _elim
 
 __all__ = ["ArmData", "arm_data", "fk_one", "fk_many", "position_jacobian_one",
            "position_jacobian_many", "jacobian_one", "jacobian_many", "SOURCES"]
 
 # ----------------------------------------------------------------------------- cache
 #: Every source file whose code the kernel compiles (the cache key hashes them all).
-SOURCES = (__file__, _kin.__file__)
+SOURCES = (__file__, _kin.__file__, _elim.__file__)
 
 
 def _digest() -> str:
@@ -77,21 +78,25 @@ class _FunctionCache(_nb_caching.FunctionCache):
 
 
 def _entry(**options):
-    """``numba.njit(**options)`` with the on-disk cache described in the module docstring."""
+    """``numba.njit(**options)`` with the on-disk cache described in the module docstring.
+
+    IEEE arithmetic (``error_model="numpy"``): x / 0 is inf or nan, never an exception.
+    """
     def wrap(fn):
-        disp = numba.njit(**options)(fn)
+        disp = numba.njit(error_model="numpy", **options)(fn)
         disp._cache = _FunctionCache(disp.py_func)  # what njit(cache=True) does, with our key
         return disp
     return wrap
 
 
-_inner = numba.njit  # helpers: compiled into the entry points that call them
+_inner = numba.njit(error_model="numpy")  # helpers: compiled into the entry points that call them
 
 _terms = _inner(_kin.eq4_terms)
 _position = _inner(_kin.eq4_position)
 _wrist_axes = _inner(_kin.eq4_wrist_axes)
 _rotation = _inner(_kin.eq4_rotation)
 _app_c = _inner(_kin.app_c_position_jacobian)
+_eq8_eq11 = _inner(_elim.eq8_eq11_terms)
 
 
 # ----------------------------------------------------------------------------- arm data
@@ -267,8 +272,10 @@ OK, NONFINITE, BOTTOM_ROW, NOT_ORTHONORMAL, REFLECTION = 0, 1, 2, 3, 4
 
 #: Upper bound on the number of distinct solutions returned (8 roots x 2 wrist branches).
 MAX_SOLUTIONS = 16
-#: Free-joint kinds (bit set): theta1/theta6 and theta3/theta6 continua.
-FREE_Q1_Q6, FREE_Q3_Q6 = 1, 2
+#: Free-joint kinds (bit set): theta1/theta6 and theta3/theta6 continua; 4: a numerical
+#: theta3/theta6 continuum (|sin theta4|, |sin(theta4 + theta5)| <= CONTINUUM_SIN but not exactly
+#: singular: the pose fixes theta3 only loosely; no continuum data).
+FREE_Q1_Q6, FREE_Q3_Q6, NUMERICAL_Q3_Q6 = 1, 2, 4
 
 # Columns of a row of ``info`` (float64): residuals against the pose as given, flags and
 # the continuum data (sign and feasible interval of the free joint, for theta1 then theta3).
@@ -285,16 +292,16 @@ N_HDR = 9
 # Columns of the candidate table (internal): q, residuals against the projected pose,
 # class (1 exact, 2 approximate), free kind, continuum data as in ``info``.
 _C_PRES, _C_RRES, _C_CLASS, _C_FREE = 6, 7, 8, 9
-_C_S1, _C_LO1, _C_HI1, _C_S3, _C_LO3, _C_HI3 = 10, 11, 12, 13, 14, 15
-N_CAND = 16
+_C_S1, _C_LO1, _C_HI1, _C_S3, _C_LO3, _C_HI3, _C_PRIO = 10, 11, 12, 13, 14, 15, 16
+N_CAND = 17
 _MAX_T1 = 40  # theta1 candidates per pose
 MAX_CAND = 4 * _MAX_T1  # configurations per pose (x 2 theta2 options x 2 wrist branches)
 
 # Scratch layout (one float64 buffer per serial loop, carved into views; no allocation per pose).
 _W_RU, _W_CO, _W_TH1, _W_CAREFUL, _W_T4, _W_Q, _W_TH2, _W_Q2 = 0, 9, 25, 65, 105, 121, 127, 133
 _W_P, _W_ROOTS, _W_KINDS, _W_D, _W_CRIT, _W_NEW, _W_QUAD, _W_PROD = 140, 149, 165, 181, 262, 272, 282, 294
-_W_E, _W_DQ, _W_G = 310, 316, 322
-N_WORK = 330
+_W_E, _W_DQ, _W_G, _W_ET, _W_QT = 310, 316, 322, 328, 334
+N_WORK = 340
 # matrix scratch (N_MATS, 9, 9): projected rotation, a pose, a Jacobian, normal equations, derivatives
 _M_RU, _M_T4, _M_J, _M_A, _M_D = 0, 1, 2, 3, 4
 N_MATS = 5
@@ -314,12 +321,21 @@ _COLS_126 = np.array([0, 1, 5])
 FREE_TOL = 1e-7
 #: |sin theta4|, |sin(theta4 + theta5)| of a solution below this: tried as a theta3/theta6 continuum.
 CONTINUUM_SIN = 1e-5
+#: ... and below this (but not exactly singular): a numerical theta3/theta6 continuum. Near it
+#: the configurations within the tolerance of the pose form a thin family in which theta3
+#: (with theta6, theta4, theta5) varies a lot: the row is one of them, flagged (3, 6).
+NUMERICAL_SIN = 1e-4
 #: A critical point of the eliminant with |F| below this (relative to sum |c_i| |t|^i) may be a
 #: double root (a tangent root, or two roots closer than the arithmetic separates) ...
 TANGENT_REL = 1e-3
 #: ... it becomes a candidate if the length error of Eq 11 there, |E| / (2 l4) [m], is below
 #: this many times ``approximate_tol`` (an approximate solution can lie there).
 TANGENT_REACH = 10.0
+#: |p^(k)(x)| below this (relative to sum |c_i| |x|^i) is rounding noise: no sign (a root there).
+ROUNDING_REL = 1e-14
+#: theta1 roots closer than this [rad] are both treated as candidate double roots (F's roots
+#: lose accuracy like eps / separation there).
+CROWDED = 1e-5
 #: Candidates farther than this from the pose after the closed forms are dropped unpolished [m], [rad].
 NEAR_POSITION = 1e-3
 NEAR_ROTATION = 1e-2
@@ -435,12 +451,13 @@ def _pose_error(q, L, Ru, T, T4, e):
 
 
 @_inner
-def _least_squares_step(J, e, cols, n, dq, A, g):
+def _least_squares_step(J, e, cols, n, dq, A, g, lam):
     """dq = (J_c^T J_c + mu I)^-1 J_c^T e over the columns ``cols[:n]`` (Cholesky); A, g scratch.
 
-    mu = 1e-14 trace / n keeps the normal equations positive definite at singular
-    configurations; there the step is the minimum-norm Gauss-Newton step up to directions
-    with singular values below ~1e-7, which the pose does not determine anyway.
+    mu = (1e-14 + lam) trace / n: a tiny floor keeps the normal equations positive definite
+    at singular configurations (there the step is the minimum-norm Gauss-Newton step up to
+    directions with singular values below ~1e-7, which the pose does not determine anyway);
+    ``lam`` is the Levenberg-Marquardt damping.
     """
     tr = 0.0
     for a in range(n):
@@ -457,7 +474,7 @@ def _least_squares_step(J, e, cols, n, dq, A, g):
             A[a, b] = s
             A[b, a] = s
         tr += A[a, a]
-    mu = 1e-14 * tr / n + 1e-300
+    mu = (1e-14 + lam) * tr / n + 1e-300
     for a in range(n):
         A[a, a] += mu
     for a in range(n):  # Cholesky A = U^T U, U in the upper triangle
@@ -486,32 +503,88 @@ def _least_squares_step(J, e, cols, n, dq, A, g):
 
 
 @_inner
-def _polish(q, L, dh, Ru, T, ws, wm, cols, n, iters):
-    """Gauss-Newton on the full FK over joints ``cols[:n]`` (q in place, wrapped at the end).
+def _newton_step(J, e, dq, A, g):
+    """dq = J^-1 e (6 x 6, Gaussian elimination with partial pivoting); False if J is singular
+    to 1e-12 of its largest pivot (then the caller takes a least-squares step)."""
+    for r in range(6):
+        g[r] = e[r]
+        for c in range(6):
+            A[r, c] = J[r, c]
+    big = 0.0
+    for k in range(6):
+        p, best = k, abs(A[k, k])
+        for r in range(k + 1, 6):
+            if abs(A[r, k]) > best:
+                p, best = r, abs(A[r, k])
+        big = max(big, best)
+        if best <= 1e-12 * big or best == 0.0:
+            return False
+        if p != k:
+            for c in range(6):
+                A[k, c], A[p, c] = A[p, c], A[k, c]
+            g[k], g[p] = g[p], g[k]
+        for r in range(k + 1, 6):
+            f = A[r, k] / A[k, k]
+            for c in range(k + 1, 6):
+                A[r, c] -= f * A[k, c]
+            g[r] -= f * g[k]
+    for k in range(5, -1, -1):
+        t = g[k]
+        for c in range(k + 1, 6):
+            t -= A[k, c] * dq[c]
+        dq[k] = t / A[k, k]
+    return True
 
-    Stops when a step is below 1e-14 rad, or when the error stops shrinking (by half per
-    step, after three steps): then the pose is out of reach there and q is the least-squares
-    configuration (an approximate solution).
+
+@_inner
+def _sq(e):
+    return e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3] + e[4] * e[4] + e[5] * e[5]
+
+
+@_inner
+def _polish(q, L, dh, Ru, T, ws, wm, cols, n, iters):
+    """Levenberg-Marquardt on the full FK over joints ``cols[:n]``; q in place, wrapped at the end.
+
+    The first try of every iteration is the Newton step (6 joints, J^-1 e; least squares
+    for fewer joints or a singular J); a step that does not reduce the pose error is
+    rejected and retried with more damping (so a near-singular valley is not jumped
+    across). Stops when a step is below 1e-14 rad or the damping has grown without
+    progress: then q is a least-squares configuration (approximate if the error is not 0).
     """
-    T4, e, J, dq = wm[_M_T4, :4, :4], ws[_W_E:_W_E + 6], wm[_M_J, :6, :6], ws[_W_DQ:_W_DQ + 6]
-    A, g = wm[_M_A, :6, :6], ws[_W_G:_W_G + 6]
-    prev = np.inf
-    for it in range(iters):
-        _pose_error(q, L, Ru, T, T4, e)
-        err = 0.0
-        for r in range(6):
-            err += e[r] * e[r]
-        if err == 0.0 or (it >= 3 and err > 0.25 * prev):
+    T4, J, A = wm[_M_T4, :4, :4], wm[_M_J, :6, :6], wm[_M_A, :6, :6]
+    e, dq, g = ws[_W_E:_W_E + 6], ws[_W_DQ:_W_DQ + 6], ws[_W_G:_W_G + 6]
+    et, qt = ws[_W_ET:_W_ET + 6], ws[_W_QT:_W_QT + 6]
+    _pose_error(q, L, Ru, T, T4, e)
+    err = _sq(e)
+    lam = 0.0
+    fresh = False
+    for _ in range(iters):
+        if err == 0.0:
             break
-        prev = err
-        _jacobian_into(q, dh, J)
-        _least_squares_step(J, e, cols, n, dq, A, g)
+        if not fresh:
+            _jacobian_into(q, dh, J)
+        fresh = True
+        if lam > 0.0 or n < 6 or not _newton_step(J, e, dq, A, g):
+            _least_squares_step(J, e, cols, n, dq, A, g, lam)
+        for j in range(6):
+            qt[j] = q[j]
         big = 0.0
         for a in range(n):
-            q[cols[a]] += dq[a]
+            qt[cols[a]] += dq[a]
             big = max(big, abs(dq[a]))
-        if big <= 1e-14:
-            break
+        _pose_error(qt, L, Ru, T, T4, et)
+        errt = _sq(et)
+        if errt <= err:
+            for j in range(6):
+                q[j], e[j] = qt[j], et[j]
+            err, fresh = errt, False
+            lam = 0.0 if lam <= 1e-10 else 0.1 * lam
+            if big <= 1e-14:
+                break
+        else:
+            lam = 1e-10 if lam == 0.0 else 10.0 * lam
+            if lam > 1e4:
+                break
     for j in range(6):
         q[j] = wrap(q[j])
 
@@ -519,24 +592,11 @@ def _polish(q, L, dh, Ru, T, ws, wm, cols, n, iters):
 # ----------------------------------------------------------------------------- the eliminant
 @_inner
 def _coefficients(Ru, T, L, co):
-    """First-degree trig polynomials of Eq 8 / Eq 11 in theta1 (the corrected forms).
-
-    ``co`` (16,): ``a, b, P, Q`` as ``[const, cos, sin]`` (0-11), ``c`` (12) and the wrist
-    point ``D = p + l5 z6 - l1 e_z`` (13-15, Eq 9a-c corrected, origin moved up by l1).
-    The same numbers as :func:`iik.ik.elimination.eliminant_coefficients`.
-    """
-    l1, l2, l3, l4, l5 = L[0], L[1], L[2], L[3], L[4]
-    r13, r23, r33 = Ru[0, 2], Ru[1, 2], Ru[2, 2]
-    xD = T[0, 3] + l5 * r13  # Eq 9a (corrected sign)
-    yD = T[1, 3] + l5 * r23  # Eq 9b (corrected sign)
-    zD = T[2, 3] + l5 * r33 - l1  # Eq 9c (corrected sign; Sec 3.3.1 origin moved up by l1)
-    K = xD * xD + yD * yD + zD * zD + l2 * l2 + l3 * l3 - l4 * l4
-    co[0], co[1], co[2] = K, -2 * l2 * xD, -2 * l2 * yD  # Eq 11: a
-    co[3], co[4], co[5] = 2 * l3 * l2, -2 * l3 * xD, -2 * l3 * yD  # Eq 11: b
-    co[6], co[7], co[8] = 0.0, r23 * zD - r33 * yD, r33 * xD - r13 * zD  # Eq 8: P
-    co[9], co[10], co[11] = r23 * xD - r13 * yD, -r23 * l2, r13 * l2  # Eq 8: Q
-    co[12] = 2 * l3 * zD  # Eq 11: c
-    co[13], co[14], co[15] = xD, yD, zD
+    """The eliminant's coefficients (:func:`iik.ik.elimination.eq8_eq11_terms`) into co (16,):
+    ``a, b, P, Q`` as ``[const, cos, sin]`` (0-11), ``c`` (12), the wrist point D (13-15)."""
+    v = _eq8_eq11(Ru[0, 2], Ru[1, 2], Ru[2, 2], T[0, 3], T[1, 3], T[2, 3], L[0], L[1], L[2], L[3], L[4])
+    for i in range(16):
+        co[i] = v[i]
 
 
 @_inner
@@ -686,10 +746,17 @@ def _real_roots(p, ws, wm):
         fa, _, _ = _horner(ck, deg, xa)
         for j in range(ncrit + 1):
             xb = crit[j] if j < ncrit else bound
-            fb, _, _ = _horner(ck, deg, xb)
+            fb, _, mb = _horner(ck, deg, xb)
+            # a value at rounding level has no sign: the end point counts as a root itself
+            zero = k > 0 and j < ncrit and abs(fb) <= ROUNDING_REL * mb
+            if zero:
+                fb = 0.0
             if (fa < 0.0 and fb > 0.0) or (fa > 0.0 and fb < 0.0):
                 new[nnew] = _bracketed_root(ck, deg, xa, xb, fa, fb, j > 0, j < ncrit,
                                             1e-15 if k == 0 else 1e-12)
+                nnew += 1
+            if zero and k > 0:
+                new[nnew] = xb
                 nnew += 1
             xa, fa = xb, fb
         if k > 0:
@@ -700,12 +767,16 @@ def _real_roots(p, ws, wm):
         i_new = 0  # p itself: merge simple roots and candidate double roots, in order
         for j in range(ncrit):
             x = crit[j]
+            before = i_new < nnew and new[i_new] < x and (j == 0 or new[i_new] > crit[j - 1])
             while i_new < nnew and new[i_new] < x:
                 roots[nk], kinds[nk] = new[i_new], 0.0
                 nk += 1
                 i_new += 1
+            after = i_new < nnew and (j + 1 >= ncrit or new[i_new] < crit[j + 1])
             f, _, m = _horner(ck, deg, x)
-            if abs(f) <= TANGENT_REL * m:
+            # an extremum between two roots found on both sides adds nothing, unless it is
+            # at rounding level (then the two roots may be one double root)
+            if abs(f) <= TANGENT_REL * m and not (before and after and abs(f) > 1e3 * ROUNDING_REL * m):
                 roots[nk], kinds[nk] = x, 1.0
                 nk += 1
         while i_new < nnew:
@@ -756,25 +827,84 @@ def _theta1_candidates(co, L, opt, ws, wm):
     nr = _real_roots(p, ws, wm)
     roots, kinds = ws[_W_ROOTS:_W_ROOTS + 16], ws[_W_KINDS:_W_KINDS + 16]
     reach = max(TANGENT_REACH * opt[OPT_APPROX_TOL], 1e-9)
+    weak = 1e-6 * (math.sqrt(co[13] ** 2 + co[14] ** 2 + co[15] ** 2) + L[1] + L[2])
     for i in range(nr):
         if n >= _MAX_T1:
             break
         t = wrap(thr + 2.0 * math.atan(roots[i]))
         if kinds[i] == 1.0:
-            # keep a double-root candidate only if Eq 11 can (nearly) hold there
+            # keep a double-root candidate only if Eq 11 can (nearly) hold there:
+            # |E| = |a N +- g| / N is 2 l4 times the length error; unknown where N = 0
             a, b, P, Q = _abPQ(co, math.cos(t), math.sin(t))
             N = math.hypot(P, Q)
             g = b * Q - co[12] * P
-            if N > 0.0 and min(abs(a * N + g), abs(a * N - g)) / N > 2.0 * L[3] * reach:
+            if N > weak and min(abs(a * N + g), abs(a * N - g)) / N > 2.0 * L[3] * reach:
                 continue
         th1[n], careful[n] = t, kinds[i]
         n += 1
-    # roots closer than 1e-3 rad: their closed-form candidates are inaccurate, polish both
+    # roots closer than CROWDED: F's roots are inaccurate there, refine and polish both
     for i in range(n):
         for j in range(i + 1, n):
-            if abs(wrap(th1[i] - th1[j])) <= 1e-3:
+            if abs(wrap(th1[i] - th1[j])) <= CROWDED:
                 careful[i], careful[j] = 1.0, 1.0
     return n
+
+
+@_inner
+def _f_sigma(co, th, sigma):
+    """The unsquared eliminant f = a N + sigma (b Q - c P), N = |(P, Q)|, and its first two
+    derivatives in theta1 (F = f_+ f_-)."""
+    C, S = math.cos(th), math.sin(th)
+    a, b, P, Q = _abPQ(co, C, S)
+    a1, b1 = -co[1] * S + co[2] * C, -co[4] * S + co[5] * C
+    P1, Q1 = -co[7] * S + co[8] * C, -co[10] * S + co[11] * C
+    a2, b2, P2, Q2 = co[0] - a, co[3] - b, co[6] - P, co[9] - Q  # x'' = x0 - x
+    c = co[12]
+    N = math.hypot(P, Q)
+    u = P * P1 + Q * Q1
+    N1 = u / N
+    N2 = (P1 * P1 + P * P2 + Q1 * Q1 + Q * Q2) / N - u * u / (N * N * N)
+    g = b * Q - c * P
+    g1 = b1 * Q + b * Q1 - c * P1
+    g2 = b2 * Q + 2.0 * b1 * Q1 + b * Q2 - c * P2
+    f = a * N + sigma * g
+    f1 = a1 * N + a * N1 + sigma * g1
+    f2 = a2 * N + 2.0 * a1 * N1 + a * N2 + sigma * g2
+    return f, f1, f2
+
+
+@_inner
+def _newton_f(co, th, sigma, order):
+    """Newton on f_sigma (order 0: a root) or on its derivative (order 1: the extremum, where a
+    double root of F is a simple root), from th; steps clipped to 0.05 rad."""
+    for _ in range(12):
+        f, f1, f2 = _f_sigma(co, th, sigma)
+        num, den = (f, f1) if order == 0 else (f1, f2)
+        if den == 0.0 or not math.isfinite(num / den):
+            break
+        step = min(max(num / den, -0.05), 0.05)
+        th -= step
+        if abs(step) <= 1e-15:
+            break
+    return wrap(th)
+
+
+@_inner
+def _min_pq(co, th):
+    """Newton on d(P^2 + Q^2)/2 = P P' + Q Q' from th: where Eq 8 vanishes identically."""
+    for _ in range(12):
+        C, S = math.cos(th), math.sin(th)
+        P, Q = co[6] + co[7] * C + co[8] * S, co[9] + co[10] * C + co[11] * S
+        P1, Q1 = -co[7] * S + co[8] * C, -co[10] * S + co[11] * C
+        P2, Q2 = co[6] - P, co[9] - Q
+        num, den = P * P1 + Q * Q1, P1 * P1 + P * P2 + Q1 * Q1 + Q * Q2
+        if den == 0.0 or not math.isfinite(num / den):
+            break
+        step = min(max(num / den, -0.05), 0.05)
+        th -= step
+        if abs(step) <= 1e-15:
+            break
+    return wrap(th)
 
 
 @_inner
@@ -892,19 +1022,11 @@ def _within(q, lo, hi, tol):
 
 
 @_inner
-def _add_candidate(q, careful, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
-    """Finish one closed-form configuration (theta6, polish, classify) into row nc of cand."""
-    T4 = wm[_M_T4, :4, :4]
-    _theta6(q, L, Ru, T4)
-    pres = _position_error(T4, T)
-    if pres > NEAR_POSITION:
-        return nc
-    rres = _rotation_angle(T4, Ru)
-    if rres > NEAR_ROTATION:
-        return nc
-    if careful or pres > 1e-3 * opt[OPT_POSITION_TOL] or rres > 1e-3 * opt[OPT_ROTATION_TOL]:
-        _polish(q, L, dh, Ru, T, ws, wm, _ALL6, 6, 30 if careful else 12)
-        pres, rres = _residuals(q, L, Ru, T, T4)
+def _finish(q, pres, rres, polish, iters, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
+    """Polish (if asked) and classify configuration q into row nc of cand; the new count."""
+    if polish:
+        _polish(q, L, dh, Ru, T, ws, wm, _ALL6, 6, iters)
+        pres, rres = _residuals(q, L, Ru, T, wm[_M_T4, :4, :4])
     if pres + rres < best[0] + best[1]:
         best[0], best[1] = pres, rres
     if pres <= opt[OPT_POSITION_TOL] and rres <= opt[OPT_ROTATION_TOL]:
@@ -916,9 +1038,39 @@ def _add_candidate(q, careful, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
     for j in range(6):
         cand[nc, j] = q[j]
     cand[nc, _C_PRES], cand[nc, _C_RRES], cand[nc, _C_CLASS], cand[nc, _C_FREE] = pres, rres, cls, 0.0
-    for j in range(_C_S1, N_CAND):
+    for j in range(_C_S1, _C_HI3 + 1):
         cand[nc, j] = np.nan
+    cand[nc, _C_PRIO] = prio
     return nc + 1
+
+
+@_inner
+def _add_candidate(q, careful, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
+    """Finish one closed-form configuration (theta6, polish, classify) into row nc of cand.
+
+    ``prio`` 0 marks a configuration from the extremum of f_sigma (the exact place of a double
+    root): of duplicates it is kept (:func:`_distinct_sorted`).
+    """
+    T4 = wm[_M_T4, :4, :4]
+    _theta6(q, L, Ru, T4)
+    pres = _position_error(T4, T)
+    if pres > NEAR_POSITION:
+        return nc
+    rres = _rotation_angle(T4, Ru)
+    if rres > NEAR_ROTATION:
+        return nc
+    polish = pres > 1e-3 * opt[OPT_POSITION_TOL] or rres > 1e-3 * opt[OPT_ROTATION_TOL]
+    if polish and careful:
+        # candidates near a double root crowd: skip one already found (to 1e-9 rad)
+        for i in range(nc):
+            if cand[i, _C_CLASS] == 1.0:
+                d = 0.0
+                for j in range(6):
+                    d = max(d, abs(wrap(cand[i, j] - q[j])))
+                if d <= 1e-9:
+                    return nc
+    return _finish(q, pres, rres, polish, 20 if careful else 12, prio, L, dh, Ru, T, opt, cand, nc, ws, wm,
+                   best)
 
 
 @_inner
@@ -949,7 +1101,7 @@ def _same(cand, ia, ib, L, Ru, T, ws, wm, opt):
     if fa != 0 and fa == fb:
         fixed = 0.0
         for j in range(5):
-            if (j == 0 and fa & FREE_Q1_Q6) or (j == 2 and fa & FREE_Q3_Q6):
+            if (j == 0 and fa & FREE_Q1_Q6) or (j == 2 and fa & (FREE_Q3_Q6 | NUMERICAL_Q3_Q6)):
                 continue
             fixed = max(fixed, abs(wrap(cand[ia, j] - cand[ib, j])))
         if fixed <= 1e-6:
@@ -974,8 +1126,8 @@ def _before(cand, ia, ib):
 def _distinct_sorted(cand, nc, cls, L, Ru, T, ws, wm, opt, idx):
     """Indices (into idx) of the distinct rows of class ``cls``, lexicographically sorted; count.
 
-    Of a group of duplicates the row with the least residual (relative to the tolerances)
-    is kept. At most :data:`MAX_SOLUTIONS`.
+    Of a group of duplicates the row from an extremum (priority 0) is kept, then the row with
+    the least residual (relative to the tolerances). At most :data:`MAX_SOLUTIONS`.
     """
     tp, tr = opt[OPT_POSITION_TOL], opt[OPT_ROTATION_TOL]
     m = 0
@@ -983,11 +1135,12 @@ def _distinct_sorted(cand, nc, cls, L, Ru, T, ws, wm, opt, idx):
         if cand[i, _C_CLASS] == cls:
             idx[m] = i
             m += 1
-    for i in range(1, m):  # by residual (insertion sort; m is small)
+    for i in range(1, m):  # by priority, then residual (insertion sort; m is small)
         v = int(idx[i])
-        key = cand[v, _C_PRES] / tp + cand[v, _C_RRES] / tr
+        key = cand[v, _C_PRIO] + 0.25 * (cand[v, _C_PRES] / tp + cand[v, _C_RRES] / tr)
         j = i - 1
-        while j >= 0 and cand[int(idx[j]), _C_PRES] / tp + cand[int(idx[j]), _C_RRES] / tr > key:
+        while j >= 0 and (cand[int(idx[j]), _C_PRIO]
+                          + 0.25 * (cand[int(idx[j]), _C_PRES] / tp + cand[int(idx[j]), _C_RRES] / tr)) > key:
             idx[j + 1] = idx[j]
             j -= 1
         idx[j + 1] = v
@@ -1021,16 +1174,53 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
     th1, careful = ws[_W_TH1:_W_TH1 + _MAX_T1], ws[_W_CAREFUL:_W_CAREFUL + _MAX_T1]
     scale = math.sqrt(co[13] ** 2 + co[14] ** 2 + co[15] ** 2) + L[1] + L[2]
     nc = 0
+    n1_roots = n1
+    for i in range(n1_roots):
+        # a careful candidate also gets, for both signs, the root and the extremum of the
+        # unsquared f_sigma by Newton (accurate where F has a double root, unlike F's roots)
+        # and the two roots near the extremum (two roots closer than F's arithmetic resolves)
+        if careful[i] == 1.0 and n1 + 8 <= _MAX_T1:
+            C, S = math.cos(th1[i]), math.sin(th1[i])
+            a, b, P, Q = _abPQ(co, C, S)
+            if math.hypot(P, Q) <= 1e-6 * scale:
+                # Eq 8 vanishes near here: the theta1 where P = Q = 0 (minimum of P^2 + Q^2)
+                th1[n1], careful[n1] = _min_pq(co, th1[i]), 1.0
+                n1 += 1
+            else:
+                for sg in (1.0, -1.0):
+                    known = 2.0 if sg > 0 else 3.0  # careful, with this sign of Eq 8
+                    th1[n1], careful[n1] = _newton_f(co, th1[i], sg, 0), known
+                    tb = _newton_f(co, th1[i], sg, 1)
+                    th1[n1 + 1], careful[n1 + 1] = tb, known + 2.0  # 4, 5: the extremum
+                    n1 += 2
+                    # the two roots of the local quadratic model around the extremum
+                    f, _, f2 = _f_sigma(co, tb, sg)
+                    d2 = -2.0 * f / f2
+                    if 0.0 < d2 <= 1e-6:
+                        d = math.sqrt(d2)
+                        th1[n1], careful[n1] = _newton_f(co, tb + d, sg, 0), known
+                        th1[n1 + 1], careful[n1 + 1] = _newton_f(co, tb - d, sg, 0), known
+                        n1 += 2
     for i in range(n1):
+        repeat = False
+        for j in range(i):
+            if careful[j] == careful[i] and abs(th1[j] - th1[i]) <= 1e-14:
+                repeat = True
+        if repeat:
+            continue
         C, S = math.cos(th1[i]), math.sin(th1[i])
         a, b, P, Q = _abPQ(co, C, S)
         N = math.hypot(P, Q)
         g = b * Q - co[12] * P
         weak = N <= 1e-6 * scale
         # Eq 8 (corrected Eq 9): (c2, s2) = sigma (Q, -P) / N, sigma where |a N + sigma g| is least
-        if careful[i] != 0.0:
+        if careful[i] == 1.0:
             th2s[0], th2s[1] = math.atan2(-P, Q), math.atan2(P, -Q)
             n2 = 2
+        elif careful[i] == 2.0 or careful[i] == 4.0:
+            th2s[0], n2 = math.atan2(-P, Q), 1
+        elif careful[i] == 3.0 or careful[i] == 5.0:
+            th2s[0], n2 = math.atan2(P, -Q), 1
         else:
             th2s[0] = math.atan2(-P, Q) if abs(a * N + g) <= abs(a * N - g) else math.atan2(P, -Q)
             n2 = 1
@@ -1051,7 +1241,8 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
                 free = _wrist(Ru, co, L, C, S, c2, s2, branch, q)
                 if free and branch == 1:
                     continue  # on a theta3/theta6 continuum both branches are one continuum
-                nc = _add_candidate(q, careful[i] != 0.0 or weak, L, dh, Ru, T, opt, cand, nc, ws, wm, best)
+                prio = 0.0 if careful[i] >= 4.0 else 1.0
+                nc = _add_candidate(q, careful[i] != 0.0 or weak, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best)
     return nc
 
 
@@ -1072,7 +1263,10 @@ def _continua(T, L, dh, lo, hi, opt, ws, wm, cand, nc):
         c = cand[i]
         if c[_C_CLASS] != 1.0:
             continue
-        if abs(math.sin(c[3])) <= CONTINUUM_SIN and abs(math.sin(c[3] + c[4])) <= CONTINUUM_SIN:
+        s4, s45 = abs(math.sin(c[3])), abs(math.sin(c[3] + c[4]))
+        if s4 <= NUMERICAL_SIN and s45 <= NUMERICAL_SIN and (s4 > CONTINUUM_SIN or s45 > CONTINUUM_SIN):
+            c[_C_FREE] = NUMERICAL_Q3_Q6
+        elif s4 <= CONTINUUM_SIN and s45 <= CONTINUUM_SIN:
             for j in range(6):
                 q[j] = c[j]
             s4 = round(q[3] / math.pi) * math.pi
@@ -1084,10 +1278,12 @@ def _continua(T, L, dh, lo, hi, opt, ws, wm, cand, nc):
                 for j in range(6):
                     c[j] = q[j]
                 c[_C_PRES], c[_C_RRES], c[_C_FREE] = pres, rres, FREE_Q3_Q6
-        if 2 * pxy + c[_C_PRES] <= tp and 2 * tilt + c[_C_RRES] <= tr:
+            else:  # a numerical continuum: flagged, not resolved (no exact members)
+                c[_C_FREE] = NUMERICAL_Q3_Q6
+        if 2 * pxy + c[_C_PRES] <= tp and 2 * tilt + c[_C_RRES] <= tr and c[_C_FREE] != NUMERICAL_Q3_Q6:
             c[_C_FREE] = int(c[_C_FREE]) | FREE_Q1_Q6
         f = int(c[_C_FREE])
-        if f != 0:
+        if f != 0 and f != NUMERICAL_Q3_Q6:
             if f & FREE_Q1_Q6:
                 _resolve_continuum(c, L, Ru, T, ws, wm, lo, hi, 0, _C_S1, ltol)
             if f & FREE_Q3_Q6:
@@ -1155,6 +1351,17 @@ def solve_many(Ts, armv, opt, within_only, scratch, outq, info, flags, hdr):
     for i in range(Ts.shape[0]):
         _solve_pose(Ts[i], L, dh, lo, hi, opt, within_only, ws, wm, cand, idx, outq[i], info[i], flags[i],
                     hdr[i])
+
+
+_SCRATCH = None
+
+
+def scratch() -> np.ndarray:
+    """The working memory of :func:`solve_many` (one buffer: the kernel holds the GIL)."""
+    global _SCRATCH
+    if _SCRATCH is None:
+        _SCRATCH = np.zeros(N_SCRATCH)
+    return _SCRATCH
 
 
 @_entry(parallel=True)

@@ -9,17 +9,10 @@ from hypothesis import strategies as st
 
 import iik
 from iik.errors import IIKError, InvalidInputError
-from iik.ik.complete import (
-    FREE_Q3_Q6,
-    MAX_SOLUTIONS,
-    POSE_EPS,
-    POSITION_TOL,
-    ROTATION_TOL,
-    _wrap,
-    contains,
-    eliminant_coefficients,
-    solve_arrays,
-)
+from iik.ik.angles import wrap_angle as _wrap
+from iik.ik.compare import POSE_EPS, contains
+from iik.ik.elimination import eliminant_coefficients
+from iik.ik.reference import FREE_Q3_Q6, MAX_SOLUTIONS, POSITION_TOL, ROTATION_TOL, solve_arrays
 
 ARM = iik.THESIS_ARM
 LO, HI = ARM.q_min, ARM.q_max
@@ -128,10 +121,13 @@ def test_theta1_at_pi_where_plain_t_polynomial_loses_degree():
     q = np.array([np.pi, -0.4, 0.9, 0.8, -0.6, 1.2])
     T = iik.fk(q)
     co = eliminant_coefficients(T[None, :3, :3], T[None, :3, 3], ARM)
-    from iik.ik.complete import _F_at
 
-    scale = np.max(np.abs(_F_at(co, np.linspace(0, 2 * np.pi, 16)[None])))
-    assert abs(_F_at(co, np.array([[np.pi]]))[0, 0]) <= 1e-12 * scale  # leading coeff of plain t-poly
+    def F(th):  # the eliminant a^2 (P^2 + Q^2) - (b Q - c P)^2
+        a, b, P, Q = (x[0] + x[1] * np.cos(th) + x[2] * np.sin(th) for x in co.abPQ[0])
+        return a * a * (P * P + Q * Q) - (b * Q - co.c[0] * P) ** 2
+
+    scale = np.max(np.abs(F(np.linspace(0, 2 * np.pi, 16))))
+    assert abs(F(np.pi)) <= 1e-12 * scale  # the leading coefficient of the plain t-polynomial
     r = iik.solve(T, within_limits=False)
     assert contains(r.q, q, T, ARM)
     assert np.min(np.max(np.abs(_wrap(r.q - q)), axis=1)) <= 1e-9

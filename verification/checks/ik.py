@@ -13,8 +13,10 @@ import io
 import numpy as np
 
 import iik
-from iik.ik.complete import _wrap, contains, eliminant_coefficients, solve_arrays
-from iik.ik.thesis import thesis_candidates
+from iik.ik.angles import wrap_angle
+from iik.ik.compare import contains, free_joints_of
+from iik.ik.elimination import eliminant_coefficients
+from iik.ik.thesis import eq11_error, thesis_candidates
 
 from ..registry import Erratum, Row, Verdict, register
 
@@ -122,8 +124,8 @@ def eq9_theta2(ctx):
     P, Q = _PQ(T, D, q[:, 0])
     printed = np.stack([np.arctan2(P, Q), np.arctan2(P, -Q)], axis=1)  # Eq 9: tan = P / (+-Q)
     corrected = np.stack([np.arctan2(-P, Q), np.arctan2(P, -Q)], axis=1)
-    dp = np.min(np.abs(_wrap(printed - q[:, 1:2])), axis=1)
-    dc = np.min(np.abs(_wrap(corrected - q[:, 1:2])), axis=1)
+    dp = np.min(np.abs(wrap_angle(printed - q[:, 1:2])), axis=1)
+    dc = np.min(np.abs(wrap_angle(corrected - q[:, 1:2])), axis=1)
     miss = dp > 1e-9
     i = int(np.argmax(dp))
     return Row(
@@ -147,16 +149,14 @@ def eq12_13_extrema(ctx):
     T = iik.fk(q)
     co = eliminant_coefficients(T[:, :3, :3], T[:, :3, 3], ARM)
     th = np.linspace(-np.pi, np.pi, 1441)[None, :].repeat(len(q), 0)
-    from iik.ik.thesis import _E
-
-    _, Ep = _E(co, th, 1.0)
-    _, Em = _E(co, th, -1.0)
+    _, Ep = eq11_error(co, th, 1.0)
+    _, Em = eq11_error(co, th, -1.0)
     E = np.minimum(np.abs(Ep), np.abs(Em))
     th_min = th[0, np.argmin(E, axis=1)]
     th_max = th[0, np.argmax(np.maximum(np.abs(Ep), np.abs(Em)), axis=1)]
     phi = np.arctan2(T[:, 1, 3], T[:, 0, 3])
-    near_min = np.abs(_wrap(th_min - phi)) <= np.radians(10)
-    near_max = np.abs(_wrap(th_max - phi - np.pi)) <= np.radians(10)
+    near_min = np.abs(wrap_angle(th_min - phi)) <= np.radians(10)
+    near_max = np.abs(wrap_angle(th_max - phi - np.pi)) <= np.radians(10)
     ok = near_min.mean() > 0.95 and near_max.mean() > 0.95
     return Row(
         claim="The minimum of |E| lies at theta1 = atan2(py, px), the maximum at atan2(py, px) +- pi",
@@ -240,7 +240,7 @@ def four_configurations(ctx):
     q = _sample(ctx, "ik-four", 2000, 200)
     T = iik.fk(q)
     d = thesis_candidates(T, ARM)
-    per_root = np.bincount(d["root"], weights=d["ok"], minlength=int(d["root"].max()) + 1)
+    per_root = np.bincount(d.root, weights=d.ok, minlength=int(d.root.max()) + 1)
     hist = np.bincount(per_root.astype(int), minlength=5)
     real = per_root[per_root > 0]
     frac2 = float(np.mean(real == 2)) if len(real) else 0.0
@@ -257,12 +257,19 @@ def four_configurations(ctx):
     )
 
 
+def _complete(T):
+    """The complete solver (compiled kernel, limits ignored) as padded arrays (Q, V, F, P, R)."""
+    b = iik.ik.solve_batch(T, within_limits=False)
+    V = np.arange(b.q.shape[1])[None, :] < b.count[:, None]
+    return b.q, V, b.free, b.position_residual, b.rotation_residual
+
+
 def _cached_solutions(ctx):
     key = "ik.solutions"
     if key not in ctx.cache:
         q = _sample(ctx, "ik-complete", 4000, 300)
         T = iik.fk(q)
-        ctx.cache[key] = (q, T, solve_arrays(T, ARM))
+        ctx.cache[key] = (q, T, _complete(T))
     return ctx.cache[key]
 
 
@@ -294,7 +301,7 @@ def eq27_theta3_90(ctx):
 
     Qt, Vt, _F, _P, _R = solve_thesis_arrays(T, ARM)
     hit = np.mean([contains(Qt[i][Vt[i]], q[i], T[i], ARM, tol=1e-6) for i in range(len(q))])
-    Q, V, F, _P2, _R2 = solve_arrays(T, ARM)
+    Q, V, F, _P2, _R2 = _complete(T)
     hitc = np.mean([contains(Q[i][V[i]], q[i], T[i], ARM) for i in range(len(q))])
     return Row(
         claim="theta5 from s45 = (r13 c1 s2 + r23 s1 s2 + r33 c2) / (-c3)", reference="Eq 27-28",
@@ -314,7 +321,7 @@ def completeness(ctx):
     def rate(Qx, Vx, Fx, tol):
         hit = 0
         for i in range(len(q)):
-            fj = [() if f == 0 else ((3, 6) if f == 2 else (1, 6)) for f in Fx[i][Vx[i]]]
+            fj = free_joints_of(Fx[i][Vx[i]])
             hit += contains(Qx[i][Vx[i]], q[i], T[i], ARM, tol=tol, free_joints=fj)
         return hit / len(q)
 
