@@ -34,7 +34,8 @@ def run(args) -> int:
 
     ang = np.radians(args.zxz) if args.deg else np.array(args.zxz)
     T = iik.pose_from_zxz(np.array(args.xyz), *ang)
-    res = iik.solve(T, method=args.method, within_limits=not args.all)
+    with iik.ik.compile_notice():  # one line on stderr if the kernel compiles (> 1 s)
+        res = iik.solve(T, method=args.method, within_limits=not args.all)
     prev = None
     if args.previous is not None:
         prev = np.radians(args.previous) if args.deg else np.array(args.previous)

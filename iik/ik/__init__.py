@@ -9,7 +9,7 @@
 from .options import DEFAULT_OPTIONS, IKOptions
 from .result import Continuum, IKBatch, IKResult
 from .selection import branch_signature, follow_path, select, select_index
-from .solve import METHODS, solve, solve_batch, solve_many
+from .solve import COMPILE_MESSAGE, METHODS, compile_notice, solve, solve_batch, solve_many
 
 __all__ = [
     "IKResult",
@@ -21,6 +21,8 @@ __all__ = [
     "solve",
     "solve_many",
     "solve_batch",
+    "compile_notice",
+    "COMPILE_MESSAGE",
     "select",
     "select_index",
     "follow_path",

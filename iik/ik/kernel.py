@@ -1088,10 +1088,25 @@ def _connected(cand, ia, ib, L, Ru, T, ws, wm, tol_p, tol_r):
 
 
 @_inner
+def _unfinished(cand, i, opt):
+    """Has row i not converged (residual above 1/1000 of the tolerance)?"""
+    return cand[i, _C_PRES] > 1e-3 * opt[OPT_POSITION_TOL] or cand[i, _C_RRES] > 1e-3 * opt[OPT_ROTATION_TOL]
+
+
+@_inner
+def _order_key(cand, i, opt):
+    """Of duplicates keep the finished row, then the extremum one (priority 0), then the least residual."""
+    return (2.0 * _unfinished(cand, i, opt) + cand[i, _C_PRIO]
+            + 0.25 * (cand[i, _C_PRES] / opt[OPT_POSITION_TOL] + cand[i, _C_RRES] / opt[OPT_ROTATION_TOL]))
+
+
+@_inner
 def _same(cand, ia, ib, L, Ru, T, ws, wm, opt):
-    """Are candidate rows ia and ib one solution? (to 1e-7 rad; one continuum; or joined within
-    1e-4 rad by a segment inside 1/100 of the tolerance: near a singularity a pose fixes q
-    only to ~sqrt(eps))."""
+    """Are candidate rows ia and ib one solution? (to 1e-7 rad; one continuum; within 1e-3 rad of
+    each other when one has converged and the other not; or joined within 1e-4 rad by a
+    segment inside 1/100 of the tolerance: near a singularity a pose fixes q only to
+    ~sqrt(eps)). Rows are tried by priority and residual (:func:`_distinct_sorted`), so the
+    converged one of such a pair is kept."""
     dmax = 0.0
     for j in range(6):
         dmax = max(dmax, abs(wrap(cand[ia, j] - cand[ib, j])))
@@ -1106,6 +1121,11 @@ def _same(cand, ia, ib, L, Ru, T, ws, wm, opt):
             fixed = max(fixed, abs(wrap(cand[ia, j] - cand[ib, j])))
         if fixed <= 1e-6:
             return True
+    # near a fold the polish converges slowly or stalls in the shallow valley between two
+    # solutions: a row within 1e-3 rad of another that has not converged (residual above 1/1000
+    # of the tolerance) is that row, unfinished
+    if dmax <= 1e-3 and _unfinished(cand, ia, opt) != _unfinished(cand, ib, opt):
+        return True
     if dmax <= 1e-4:
         return _connected(cand, ia, ib, L, Ru, T, ws, wm, 1e-2 * opt[OPT_POSITION_TOL],
                           1e-2 * opt[OPT_ROTATION_TOL])
@@ -1126,21 +1146,18 @@ def _before(cand, ia, ib):
 def _distinct_sorted(cand, nc, cls, L, Ru, T, ws, wm, opt, idx):
     """Indices (into idx) of the distinct rows of class ``cls``, lexicographically sorted; count.
 
-    Of a group of duplicates the row from an extremum (priority 0) is kept, then the row with
-    the least residual (relative to the tolerances). At most :data:`MAX_SOLUTIONS`.
+    Of a group of duplicates the first by :func:`_order_key` is kept. At most :data:`MAX_SOLUTIONS`.
     """
-    tp, tr = opt[OPT_POSITION_TOL], opt[OPT_ROTATION_TOL]
     m = 0
     for i in range(nc):
         if cand[i, _C_CLASS] == cls:
             idx[m] = i
             m += 1
-    for i in range(1, m):  # by priority, then residual (insertion sort; m is small)
+    for i in range(1, m):  # by _order_key (insertion sort; m is small)
         v = int(idx[i])
-        key = cand[v, _C_PRIO] + 0.25 * (cand[v, _C_PRES] / tp + cand[v, _C_RRES] / tr)
+        key = _order_key(cand, v, opt)
         j = i - 1
-        while j >= 0 and (cand[int(idx[j]), _C_PRIO]
-                          + 0.25 * (cand[int(idx[j]), _C_PRES] / tp + cand[int(idx[j]), _C_RRES] / tr)) > key:
+        while j >= 0 and _order_key(cand, int(idx[j]), opt) > key:
             idx[j + 1] = idx[j]
             j -= 1
         idx[j + 1] = v
@@ -1242,7 +1259,8 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
                 if free and branch == 1:
                     continue  # on a theta3/theta6 continuum both branches are one continuum
                 prio = 0.0 if careful[i] >= 4.0 else 1.0
-                nc = _add_candidate(q, careful[i] != 0.0 or weak, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best)
+                nc = _add_candidate(q, careful[i] != 0.0 or weak, prio, L, dh, Ru, T, opt, cand, nc, ws, wm,
+                                    best)
     return nc
 
 

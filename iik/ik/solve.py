@@ -16,6 +16,11 @@ method returns approximate configurations for poses just out of reach.
 
 from __future__ import annotations
 
+import sys
+import threading
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+
 import numpy as np
 
 from ..arm import LIMIT_TOL, THESIS_ARM, Arm
@@ -24,7 +29,7 @@ from . import poses as _poses
 from .options import DEFAULT_OPTIONS, IKOptions
 from .result import Continuum, IKBatch, IKResult
 
-__all__ = ["solve", "solve_many", "solve_batch", "METHODS"]
+__all__ = ["solve", "solve_many", "solve_batch", "METHODS", "compile_notice", "COMPILE_MESSAGE"]
 
 METHODS = ("complete", "reference", "thesis")
 
@@ -270,3 +275,30 @@ def solve_batch(Ts, *, method: str = "complete", within_limits: bool = True, arm
                    within_limits=flags[:, :, 0], approximate=flags[:, :, 1], free=out[4],
                    continuum=info[:, :, 5:11], total=out[1], rotation_projection=out[2], closest=out[3],
                    method=method)
+
+
+#: What :func:`compile_notice` says.
+COMPILE_MESSAGE = "compiling the IK kernel, once"
+
+
+@contextmanager
+def compile_notice(emit: Callable[[str], None] | None = None, after: float = 1.0) -> Iterator[None]:
+    """Say :data:`COMPILE_MESSAGE` (one line) if the block is still running ``after`` seconds
+    while the IK kernel is not compiled in this process yet (the first call after an install
+    compiles it; later processes load it from the on-disk cache in well under a second).
+
+    Args:
+        emit: Receives the message (default: print to stderr).
+        after: Delay [s].
+    """
+    if _KERNEL is not None and _KERNEL.solve_many.signatures:
+        yield
+        return
+    timer = threading.Timer(after, emit or (lambda m: print(m, file=sys.stderr, flush=True)),
+                            args=(COMPILE_MESSAGE,))
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
