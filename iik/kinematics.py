@@ -116,8 +116,13 @@ _F64 = np.dtype(np.float64)
 
 
 def _one_q(q) -> bool:
-    """Is ``q`` one float64 (6,) array (the scalar fast path; finiteness is checked by the kernel)?"""
-    return type(q) is np.ndarray and q.dtype is _F64 and q.shape == (6,)
+    """Is ``q`` one contiguous float64 (6,) array (the scalar fast path; the kernel checks finiteness)?"""
+    return type(q) is np.ndarray and q.dtype is _F64 and q.shape == (6,) and q.flags.c_contiguous
+
+
+def _batch(q) -> tuple[np.ndarray, bool]:
+    qb, batched = as_joints(q, "q")
+    return np.ascontiguousarray(qb), batched
 
 
 def _finite_or_raise(ok: bool, q) -> None:
@@ -143,7 +148,7 @@ def fk(q, arm: Arm = THESIS_ARM) -> np.ndarray:
         T = np.empty((4, 4))
         _finite_or_raise(k.fk_one(q, k.arm_data(arm).lengths, T), q)
         return T
-    qb, batched = as_joints(q, "q")
+    qb, batched = _batch(q)
     T = np.empty((qb.shape[0], 4, 4))
     k.fk_many(qb, k.arm_data(arm).lengths, T)
     return T if batched else T[0]
@@ -174,7 +179,7 @@ def position_jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
         J = np.empty((3, 5))
         _finite_or_raise(k.position_jacobian_one(q, k.arm_data(arm).lengths, J), q)
         return J
-    qb, batched = as_joints(q, "q")
+    qb, batched = _batch(q)
     J = np.empty((qb.shape[0], 3, 5))
     k.position_jacobian_many(qb, k.arm_data(arm).lengths, J)
     return J if batched else J[0]
@@ -194,7 +199,7 @@ def jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
         J = np.empty((6, 6))
         _finite_or_raise(k.jacobian_one(q, k.arm_data(arm).dh, J), q)
         return J
-    qb, batched = as_joints(q, "q")
+    qb, batched = _batch(q)
     J = np.empty((qb.shape[0], 6, 6))
     k.jacobian_many(qb, k.arm_data(arm).dh, J)
     return J if batched else J[0]

@@ -28,7 +28,8 @@ def family_poses(n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
     (theta4 ~ 0, theta5 ~ 0, theta3 ~ +-90 deg, theta1 at +-160 deg), offsets 0 or 10^U(-12, -2)."""
     rng = np.random.default_rng(seed)
     blocks = []
-    for j, centre in ((None, 0.0), (3, 0.0), (4, 0.0), (2, np.pi / 2), (2, -np.pi / 2), (0, HI[0]), (0, LO[0])):
+    families = ((None, 0.0), (3, 0.0), (4, 0.0), (2, np.pi / 2), (2, -np.pi / 2), (0, HI[0]), (0, LO[0]))
+    for j, centre in families:
         q = rng.uniform(LO, HI, size=(n, 6))
         if j is not None:
             off = np.where(rng.random(n) < 0.2, 0.0, 10 ** rng.uniform(-12, -2, n))
@@ -178,8 +179,8 @@ def test_cache_in_user_folder_when_package_is_read_only_and_keyed_on_all_sources
     env.pop("NUMBA_CACHE_DIR", None)
 
     def once():
-        out = subprocess.run(run([sys.executable, "-c", _PROGRAM]), env=env, cwd=tmp_path, capture_output=True,
-                             text=True, timeout=600)
+        out = subprocess.run(run([sys.executable, "-c", _PROGRAM]), env=env, cwd=tmp_path,
+                             capture_output=True, text=True, timeout=600)
         assert out.returncode == 0, out.stderr
         hits, misses, where = out.stdout.split()
         assert Path(where).parent == pkg / "ik"  # the copy ran, not the worktree
