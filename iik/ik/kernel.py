@@ -1,19 +1,57 @@
 """The compiled kernel (Numba): forward kinematics, Jacobians and the complete IK.
 
-Everything here is scalar code compiled with ``numba.njit``; the public
-functions live in :mod:`iik.kinematics` and :mod:`iik.ik.solve`, which call
-this module (imported on first use, so ``import iik`` does not load Numba).
+Everything here is scalar code compiled with ``numba.njit``; the public functions live in
+:mod:`iik.kinematics` and :mod:`iik.ik.solve`, which call this module (imported on first
+use, so ``import iik`` does not load Numba). Units: metres and radians; frames as in
+:mod:`iik.kinematics`.
 
-**Compilation and cache.** Each entry point compiles on its first call (so a
-program that only calls :func:`iik.fk` compiles only the FK) and is cached on
-disk: next to this file when that folder is writable, else in the user cache
-folder (``~/.cache/numba``, or ``$NUMBA_CACHE_DIR`` when set), which is
-Numba's own fallback. The closed forms of :mod:`iik.kinematics` are compiled
-into these entry points, so the cache key covers both source files (Numba
-alone keys a cache on the defining file only and would keep a stale kernel
-after an edit of ``kinematics.py``).
+The complete IK of one pose (:func:`solve_many`, a serial loop; :func:`solve_many_parallel`
+on all cores):
 
-Units: metres and radians; frames as in :mod:`iik.kinematics`.
+1. The pose is checked (finite, bottom row, rotation orthonormal to ``orthonormal_tol``,
+   det > 0) and its rotation replaced by the nearest rotation (polar factor).
+2. theta2 is eliminated from Eq 8 and Eq 11 (:mod:`iik.ik.elimination`):
+   ``F(theta1) = a^2 (P^2 + Q^2) - (b Q - c P)^2``, a trigonometric polynomial of degree 4,
+   becomes with ``t = tan((theta1 - theta_r) / 2)`` a real polynomial ``p`` of degree 8
+   (``theta_r`` of a 12-point grid with the largest |F(theta_r + pi)|: no root near t = inf).
+3. **Root isolation** (:func:`_real_roots`). The real roots of p^(7), p^(6), ..., p' are found
+   from the linear one up; consecutive roots of p^(k+1) bound intervals on which p^(k) is
+   monotone, so each holds at most one root of p^(k), bracketed by a sign change and found
+   by safeguarded Newton. Cauchy's bound B on the roots of p also bounds those of its
+   derivatives (Gauss-Lucas), so [-B, B] holds them all. *Guarantee:* in exact arithmetic
+   every real root of p is found, a root of odd multiplicity by its sign change and one of
+   even multiplicity (a tangent root) as a critical point where p = 0. *Numerical limits:*
+   p's coefficients carry rounding errors of ~1e-16 relative, so a root is only defined to
+   ~eps^(1/m) for multiplicity m (1e-8 for a double root); where a value of a derivative is
+   at rounding level its sign is unknown and the point is taken as a root of it; every
+   critical point where |p| is below 1e-3 of the size of its terms becomes a candidate
+   (kind 1: a tangent root, two roots closer than the arithmetic separates, or a pose just
+   out of reach); a root nearer than ~1e-12 to another may come out as one candidate. Roots
+   closer than 1e-5 rad and candidates of kind 1 are refined on the unsquared
+   ``f_sigma = a N + sigma (b Q - c P)`` (its roots, its extremum, the roots of its local
+   quadratic model), where a double root of F is a simple root of f_sigma' (full accuracy).
+4. theta2 from Eq 8 (Eq 11 alone where P = Q = 0), theta3..theta5 by the corrected Eq 14-28
+   (both wrist branches), theta6 from the remaining rotation (Eq 31-33).
+5. Candidates that miss the tolerance by a little get Levenberg-Marquardt steps (Newton
+   first) on the full FK before they are judged: within the tolerances (``position_tol``,
+   ``rotation_tol``) a solution; within ``approximate_tol`` an approximate one (returned
+   only if there is no solution); else dropped.
+6. Continua: theta4 = theta4 + theta5 = 0 (mod pi) makes joints 3 and 6 collinear (theta3 -
+   sign theta6 fixed), the tool point on the joint-1 axis with z6 vertical joints 1 and 6;
+   the representative is moved inside the joint limits if any member is, and the feasible
+   interval of the free joint is reported. Near such a continuum (|sin theta4|,
+   |sin(theta4 + theta5)| <= 1e-4) the configurations within the tolerance form a thin
+   family in which theta3 is loosely fixed: such rows are flagged as numerical continua.
+7. Duplicates (1e-7 rad, one continuum, unfinished polish, or joined within the tolerance)
+   are merged; rows sorted lexicographically; the joint-limit filter (LIMIT_TOL) applied.
+
+**Compilation and cache.** Each entry point compiles on its first call (so a program that
+only calls :func:`iik.fk` compiles only the FK) and is cached on disk: next to this file
+when that folder is writable, else in the user cache folder (``~/.cache/numba``, or
+``$NUMBA_CACHE_DIR`` when set), which is Numba's own fallback. The closed forms of
+:mod:`iik.kinematics` and :mod:`iik.ik.elimination` are compiled into these entry points,
+so the cache key covers those source files too (Numba alone keys a cache on the defining
+file only and would keep a stale kernel after an edit of ``kinematics.py``).
 """
 
 from __future__ import annotations
@@ -890,6 +928,12 @@ def _newton_f(co, th, sigma, order):
 
 
 @_inner
+def _sign_group(kind):
+    """The sign of Eq 8 a theta1 candidate is tried with: 0 both (kinds 0, 1), 1 (+: 2, 4), 2 (-: 3, 5)."""
+    return 0 if kind < 2.0 else (1 if kind == 2.0 or kind == 4.0 else 2)
+
+
+@_inner
 def _min_pq(co, th):
     """Newton on d(P^2 + Q^2)/2 = P P' + Q Q' from th: where Eq 8 vanishes identically."""
     for _ in range(12):
@@ -1061,9 +1105,9 @@ def _add_candidate(q, careful, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
         return nc
     polish = pres > 1e-3 * opt[OPT_POSITION_TOL] or rres > 1e-3 * opt[OPT_ROTATION_TOL]
     if polish and careful:
-        # candidates near a double root crowd: skip one already found (to 1e-9 rad)
+        # candidates near a double root crowd: skip one already found and finished (1e-9 rad)
         for i in range(nc):
-            if cand[i, _C_CLASS] == 1.0:
+            if cand[i, _C_CLASS] == 1.0 and not _unfinished(cand, i, opt):
                 d = 0.0
                 for j in range(6):
                     d = max(d, abs(wrap(cand[i, j] - q[j])))
@@ -1102,7 +1146,7 @@ def _order_key(cand, i, opt):
 
 @_inner
 def _same(cand, ia, ib, L, Ru, T, ws, wm, opt):
-    """Are candidate rows ia and ib one solution? (to 1e-7 rad; one continuum; within 1e-3 rad of
+    """Are candidate rows ia and ib one solution? (to 1e-7 rad; one continuum; within 0.1 rad of
     each other when one has converged and the other not; or joined within 1e-4 rad by a
     segment inside 1/100 of the tolerance: near a singularity a pose fixes q only to
     ~sqrt(eps)). Rows are tried by priority and residual (:func:`_distinct_sorted`), so the
@@ -1121,10 +1165,10 @@ def _same(cand, ia, ib, L, Ru, T, ws, wm, opt):
             fixed = max(fixed, abs(wrap(cand[ia, j] - cand[ib, j])))
         if fixed <= 1e-6:
             return True
-    # near a fold the polish converges slowly or stalls in the shallow valley between two
-    # solutions: a row within 1e-3 rad of another that has not converged (residual above 1/1000
-    # of the tolerance) is that row, unfinished
-    if dmax <= 1e-3 and _unfinished(cand, ia, opt) != _unfinished(cand, ib, opt):
+    # near a fold or a continuum the polish converges slowly or stalls in a shallow valley of
+    # the residual: a row that has not converged (residual above 1/1000 of the tolerance)
+    # within 0.1 rad of one that has is that one, approached along the valley
+    if dmax <= 0.1 and _unfinished(cand, ia, opt) != _unfinished(cand, ib, opt):
         return True
     if dmax <= 1e-4:
         return _connected(cand, ia, ib, L, Ru, T, ws, wm, 1e-2 * opt[OPT_POSITION_TOL],
@@ -1196,7 +1240,11 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
         # a careful candidate also gets, for both signs, the root and the extremum of the
         # unsquared f_sigma by Newton (accurate where F has a double root, unlike F's roots)
         # and the two roots near the extremum (two roots closer than F's arithmetic resolves)
-        if careful[i] == 1.0 and n1 + 8 <= _MAX_T1:
+        clustered = False  # one refinement per cluster of careful roots (Newton lands alike)
+        for j in range(i):
+            if careful[j] == 1.0 and abs(wrap(th1[j] - th1[i])) <= CROWDED:
+                clustered = True
+        if careful[i] == 1.0 and not clustered and n1 + 8 <= _MAX_T1:
             C, S = math.cos(th1[i]), math.sin(th1[i])
             a, b, P, Q = _abPQ(co, C, S)
             if math.hypot(P, Q) <= 1e-6 * scale:
@@ -1219,10 +1267,13 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
                         th1[n1 + 1], careful[n1 + 1] = _newton_f(co, tb - d, sg, 0), known
                         n1 += 2
     for i in range(n1):
+        # refinements often land on the same theta1: one try per value and sign of Eq 8
         repeat = False
         for j in range(i):
-            if careful[j] == careful[i] and abs(th1[j] - th1[i]) <= 1e-14:
-                repeat = True
+            if careful[i] < 4.0 and abs(th1[j] - th1[i]) <= 1e-13 and (
+                    careful[j] == 1.0 or _sign_group(careful[j]) == _sign_group(careful[i])):
+                repeat = True  # (an extremum, kinds 4 and 5, is always tried: it has priority)
+                break
         if repeat:
             continue
         C, S = math.cos(th1[i]), math.sin(th1[i])
