@@ -115,20 +115,20 @@ def _kernel():
 _F64 = np.dtype(np.float64)
 
 
-def _one_q(q) -> bool:
-    """Is ``q`` one contiguous float64 (6,) array (the scalar fast path; the kernel checks finiteness)?"""
-    return type(q) is np.ndarray and q.dtype is _F64 and q.shape == (6,) and q.flags.c_contiguous
+def _apply(q, compiled, data, shape: tuple[int, ...]) -> np.ndarray:
+    """Run a compiled ``(Q (n, 6), data, out (n, *shape)) -> all finite`` on q (6,) or (n, 6).
 
-
-def _batch(q) -> tuple[np.ndarray, bool]:
-    qb, batched = as_joints(q, "q")
-    return np.ascontiguousarray(qb), batched
-
-
-def _finite_or_raise(ok: bool, q) -> None:
-    if not ok:
-        as_joints(q, "q")  # raises the typed error of the general path
-        raise AssertionError("kernel and as_joints disagree on finiteness")  # pragma: no cover
+    One contiguous float64 q skips the general validation (the kernel checks finiteness).
+    """
+    if type(q) is np.ndarray and q.dtype is _F64 and q.shape == (6,) and q.flags.c_contiguous:
+        out = np.empty((1, *shape))
+        if compiled(q.reshape(1, 6), data, out):
+            return out[0]
+    qb, batched = as_joints(q, "q")  # the typed errors
+    out = np.empty((qb.shape[0], *shape))
+    if not compiled(np.ascontiguousarray(qb), data, out):  # pragma: no cover (as_joints checked)
+        raise AssertionError("kernel and as_joints disagree on finiteness")
+    return out if batched else out[0]
 
 
 def fk(q, arm: Arm = THESIS_ARM) -> np.ndarray:
@@ -144,14 +144,7 @@ def fk(q, arm: Arm = THESIS_ARM) -> np.ndarray:
         position of its origin [m], both in base frame 0.
     """
     k = _kernel()
-    if _one_q(q):
-        T = np.empty((4, 4))
-        _finite_or_raise(k.fk_one(q, k.arm_data(arm).lengths, T), q)
-        return T
-    qb, batched = _batch(q)
-    T = np.empty((qb.shape[0], 4, 4))
-    k.fk_many(qb, k.arm_data(arm).lengths, T)
-    return T if batched else T[0]
+    return _apply(q, k.fk_many, k.arm_data(arm).lengths, (4, 4))
 
 
 def fk_chain(q, arm: Arm = THESIS_ARM) -> np.ndarray:
@@ -175,14 +168,7 @@ def position_jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
     1..5 (joint 6 does not move the tool point, Eq 34). Shape (3, 5) or (n, 3, 5).
     """
     k = _kernel()
-    if _one_q(q):
-        J = np.empty((3, 5))
-        _finite_or_raise(k.position_jacobian_one(q, k.arm_data(arm).lengths, J), q)
-        return J
-    qb, batched = _batch(q)
-    J = np.empty((qb.shape[0], 3, 5))
-    k.position_jacobian_many(qb, k.arm_data(arm).lengths, J)
-    return J if batched else J[0]
+    return _apply(q, k.position_jacobian_many, k.arm_data(arm).lengths, (3, 5))
 
 
 def jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
@@ -195,11 +181,4 @@ def jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
     Table II). Shape (6, 6) or (n, 6, 6).
     """
     k = _kernel()
-    if _one_q(q):
-        J = np.empty((6, 6))
-        _finite_or_raise(k.jacobian_one(q, k.arm_data(arm).dh, J), q)
-        return J
-    qb, batched = _batch(q)
-    J = np.empty((qb.shape[0], 6, 6))
-    k.jacobian_many(qb, k.arm_data(arm).dh, J)
-    return J if batched else J[0]
+    return _apply(q, k.jacobian_many, k.arm_data(arm).dh, (6, 6))

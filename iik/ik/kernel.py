@@ -68,8 +68,8 @@ from .. import kinematics as _kin
 from ..arm import Arm
 from . import elimination as _elim
 
-__all__ = ["ArmData", "arm_data", "fk_one", "fk_many", "position_jacobian_one",
-           "position_jacobian_many", "jacobian_one", "jacobian_many", "SOURCES"]
+__all__ = ["ArmData", "arm_data", "fk_many", "position_jacobian_many", "jacobian_many", "solve_many",
+           "solve_many_parallel", "scratch", "SOURCES"]
 
 # ----------------------------------------------------------------------------- cache
 #: Every source file whose code the kernel compiles (the cache key hashes them all).
@@ -208,20 +208,22 @@ def _fk_into(q, L, T) -> None:
     T[3, 0], T[3, 1], T[3, 2], T[3, 3] = 0.0, 0.0, 0.0, 1.0
 
 
-@_entry()
-def fk_one(q, L, T) -> bool:
-    """Eq 4 of one q (6,) into T (4, 4); False (T untouched) if q is not finite."""
-    if not _finite6(q):
-        return False
-    _fk_into(q, L, T)
+@_inner
+def _finite_rows(Q) -> bool:
+    for i in range(Q.shape[0]):
+        if not _finite6(Q[i]):
+            return False
     return True
 
 
 @_entry()
-def fk_many(Q, L, T) -> None:
-    """Eq 4 of validated q (n, 6) into T (n, 4, 4)."""
+def fk_many(Q, L, T) -> bool:
+    """Eq 4 of q (n, 6) into T (n, 4, 4); False (T untouched) if some q is not finite."""
+    if not _finite_rows(Q):
+        return False
     for i in range(Q.shape[0]):
         _fk_into(Q[i], L, T[i])
+    return True
 
 
 @_inner
@@ -238,19 +240,13 @@ def _position_jacobian_into(q, L, J) -> None:
 
 
 @_entry()
-def position_jacobian_one(q, L, J) -> bool:
-    """App. C of one q into J (3, 5); False if q is not finite."""
-    if not _finite6(q):
+def position_jacobian_many(Q, L, J) -> bool:
+    """App. C of q (n, 6) into J (n, 3, 5); False if some q is not finite."""
+    if not _finite_rows(Q):
         return False
-    _position_jacobian_into(q, L, J)
-    return True
-
-
-@_entry()
-def position_jacobian_many(Q, L, J) -> None:
-    """App. C of validated q (n, 6) into J (n, 3, 5)."""
     for i in range(Q.shape[0]):
         _position_jacobian_into(Q[i], L, J[i])
+    return True
 
 
 @_inner
@@ -285,19 +281,13 @@ def _jacobian_into(q, dh, J) -> None:
 
 
 @_entry()
-def jacobian_one(q, dh, J) -> bool:
-    """Geometric Jacobian of one q into J (6, 6); False if q is not finite."""
-    if not _finite6(q):
+def jacobian_many(Q, dh, J) -> bool:
+    """Geometric Jacobians of q (n, 6) into J (n, 6, 6); False if some q is not finite."""
+    if not _finite_rows(Q):
         return False
-    _jacobian_into(q, dh, J)
-    return True
-
-
-@_entry()
-def jacobian_many(Q, dh, J) -> None:
-    """Geometric Jacobians of validated q (n, 6) into J (n, 6, 6)."""
     for i in range(Q.shape[0]):
         _jacobian_into(Q[i], dh, J[i])
+    return True
 
 
 # ============================================================================= complete IK

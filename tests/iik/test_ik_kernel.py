@@ -145,7 +145,7 @@ _PROGRAM = textwrap.dedent("""
     from iik.ik import kernel
     T = iik.fk(np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0]))
     assert iik.fk(np.zeros(6)).shape == (4, 4)
-    s = kernel.fk_one.stats
+    s = kernel.fk_many.stats
     print(sum(s.cache_hits.values()), sum(s.cache_misses.values()), kernel.__file__)
 """)
 
@@ -187,7 +187,7 @@ def test_cache_in_user_folder_when_package_is_read_only_and_keyed_on_all_sources
         return int(hits), int(misses)
 
     assert once() == (0, 1)  # first process compiles ...
-    cached = list((tmp_path / "cache").rglob("kernel.fk_one*.nbi"))
+    cached = list((tmp_path / "cache").rglob("kernel.fk_many*.nbi"))
     assert cached, "no index in the user cache folder"
     assert not list(pkg.rglob("*.nbi")), "wrote into the read-only package"
     assert once() == (1, 0)  # ... the next one loads it
