@@ -781,7 +781,7 @@ def _real_roots(p, ws, wm):
                 fb = 0.0
             if (fa < 0.0 and fb > 0.0) or (fa > 0.0 and fb < 0.0):
                 new[nnew] = _bracketed_root(ck, deg, xa, xb, fa, fb, j > 0, j < ncrit,
-                                            1e-15 if k == 0 else 1e-12)
+                                            1e-15 if k == 0 else 1e-9)
                 nnew += 1
             if zero and k > 0:
                 new[nnew] = xb
@@ -1375,8 +1375,11 @@ def _solve_pose(T, L, dh, lo, hi, opt, within_only, ws, wm, cand, idx, outq, inf
                 continue
             for j in range(6):
                 outq[m, j] = cand[c, j]
-            _fk_into(outq[m], L, T4)  # residuals against the pose as given
-            info[m, I_PRES], info[m, I_RRES] = _position_error(T4, T), _rotation_angle(T4, T[:3, :3])
+            if dist == 0.0:  # the rotation was used as given: the residuals are the candidate's
+                info[m, I_PRES], info[m, I_RRES] = cand[c, _C_PRES], cand[c, _C_RRES]
+            else:  # residuals against the pose as given
+                _fk_into(outq[m], L, T4)
+                info[m, I_PRES], info[m, I_RRES] = _position_error(T4, T), _rotation_angle(T4, T[:3, :3])
             info[m, I_FREE] = cand[c, _C_FREE]
             nfree += cand[c, _C_FREE] != 0.0
             for j in range(6):
