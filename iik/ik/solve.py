@@ -95,14 +95,15 @@ def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, metho
     """The reference or thesis method in the kernel's output layout."""
     from .compare import pose_residuals
 
+    k = _kernel()  # (for its output layout)
     n = Tb.shape[0]
     status, measure, Ru, dist = _poses.check_poses(Tb, opts.orthonormal_tol)
-    hdr = np.zeros((n, 9))
-    hdr[:, 0], hdr[:, 1], hdr[:, 2] = status, measure, dist
-    hdr[:, 5:7] = np.inf
-    q = np.full((n, 16, 6), np.nan)
-    info = np.full((n, 16, 11), np.nan)
-    flags = np.zeros((n, 16, 2), dtype=bool)
+    hdr = np.zeros((n, k.N_HDR))
+    hdr[:, k.H_STATUS], hdr[:, k.H_MEASURE], hdr[:, k.H_PROJECTION] = status, measure, dist
+    hdr[:, k.H_BEST_P], hdr[:, k.H_BEST_R] = np.inf, np.inf
+    q = np.full((n, k.MAX_SOLUTIONS, 6), np.nan)
+    info = np.full((n, k.MAX_SOLUTIONS, k.N_INFO), np.nan)
+    flags = np.zeros((n, k.MAX_SOLUTIONS, 2), dtype=bool)
     good = np.flatnonzero(status == _poses.OK)
     if len(good) == 0:
         return q, info, flags, hdr
@@ -118,18 +119,18 @@ def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, metho
         Q, V, F, _P, _R = solve_arrays(Tu, arm, tol_p=opts.position_tol, tol_r=opts.rotation_tol)
     inside = arm.within_limits(Q.reshape(-1, 6)).reshape(Q.shape[:2]) & V
     keep = inside if within else V
-    hdr[good, 3] = V.sum(axis=1)
+    hdr[good, k.H_TOTAL] = V.sum(axis=1)
     for gi, i in enumerate(good):  # rows are sorted valid-first: keep them in order
         rows = np.flatnonzero(keep[gi])
         m = len(rows)
-        hdr[i, 4] = m
+        hdr[i, k.H_COUNT] = m
         if m == 0:
             continue
         q[i, :m] = Q[gi, rows]
         pres, rres = pose_residuals(Q[gi, rows], np.broadcast_to(Tb[i], (m, 4, 4)), arm)
-        info[i, :m, 0], info[i, :m, 1], info[i, :m, 4] = pres, rres, F[gi, rows]
+        info[i, :m, k.I_PRES], info[i, :m, k.I_RRES], info[i, :m, k.I_FREE] = pres, rres, F[gi, rows]
         flags[i, :m, 0] = inside[gi, rows]
-        hdr[i, 7] = np.count_nonzero(F[gi, rows])
+        hdr[i, k.H_FREE] = np.count_nonzero(F[gi, rows])
     return q, info, flags, hdr
 
 
