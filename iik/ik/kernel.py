@@ -326,10 +326,13 @@ _MAX_T1 = 40  # theta1 candidates per pose
 MAX_CAND = 4 * _MAX_T1  # configurations per pose (x 2 theta2 options x 2 wrist branches)
 
 # Scratch layout (one float64 buffer per serial loop, carved into views; no allocation per pose).
-_W_RU, _W_CO, _W_TH1, _W_CAREFUL, _W_T4, _W_Q, _W_TH2, _W_Q2 = 0, 9, 25, 65, 105, 121, 127, 133
-_W_P, _W_ROOTS, _W_KINDS, _W_D, _W_CRIT, _W_NEW, _W_QUAD, _W_PROD = 140, 149, 165, 181, 262, 272, 282, 294
-_W_E, _W_DQ, _W_G, _W_ET, _W_QT = 310, 316, 322, 328, 334
-N_WORK = 340
+# vectors: coefficients (16), theta1 candidates and their kinds (40 + 40), q, theta2 options, a
+# second q, p (9), roots and kinds (16 + 16), derivative roots (10 + 10), quadratics (12),
+# products (15), Newton / LM vectors (5 x 6)
+_W_CO, _W_TH1, _W_CAREFUL, _W_Q, _W_TH2, _W_Q2 = 0, 16, 56, 96, 102, 106
+_W_P, _W_ROOTS, _W_KINDS, _W_CRIT, _W_NEW, _W_QUAD, _W_PROD = 112, 121, 137, 153, 163, 173, 185
+_W_E, _W_DQ, _W_G, _W_ET, _W_QT = 200, 206, 212, 218, 224
+N_WORK = 230
 # matrix scratch (N_MATS, 9, 9): projected rotation, a pose, a Jacobian, normal equations, derivatives
 _M_RU, _M_T4, _M_J, _M_A, _M_D = 0, 1, 2, 3, 4
 N_MATS = 5
@@ -802,9 +805,10 @@ def _real_roots(p, ws, wm):
                 i_new += 1
             after = i_new < nnew and (j + 1 >= ncrit or new[i_new] < crit[j + 1])
             f, _, m = _horner(ck, deg, x)
+            size = _horner(ck, deg, max(1.0, abs(x)))[2]  # sum |c_i| max(1, |x|)^i: p's scale there
             # an extremum between two roots found on both sides adds nothing, unless it is
             # at rounding level (then the two roots may be one double root)
-            if abs(f) <= TANGENT_REL * m and not (before and after and abs(f) > 1e3 * ROUNDING_REL * m):
+            if abs(f) <= TANGENT_REL * size and not (before and after and abs(f) > 1e3 * ROUNDING_REL * m):
                 roots[nk], kinds[nk] = x, 1.0
                 nk += 1
         while i_new < nnew:
@@ -1103,8 +1107,22 @@ def _add_candidate(q, careful, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
                     d = max(d, abs(wrap(cand[i, j] - q[j])))
                 if d <= 1e-9:
                     return nc
-    return _finish(q, pres, rres, polish, 20 if careful else 12, prio, L, dh, Ru, T, opt, cand, nc, ws, wm,
-                   best)
+    n0 = nc
+    iters = 20 if careful else 12
+    nc = _finish(q, pres, rres, polish, iters, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best)
+    if careful and polish and (nc == n0 or _unfinished(cand, nc - 1, opt)) and nc + 8 <= MAX_CAND \
+            and abs(math.sin(q[3])) <= 1e-2 and abs(math.sin(q[3] + q[4])) <= 1e-2:
+        # stalled near the theta3/theta6 continuum, where the residual is a long flat valley in
+        # theta3 (with theta6): start again from 7 more theta3 around the circle
+        qs = ws[_W_Q2:_W_Q2 + 6]
+        s = _coupling_sign(q, L, Ru, T, ws, wm, 2)
+        for k in range(1, 8):
+            for j in range(6):
+                qs[j] = q[j]
+            qs[2] = wrap(q[2] + k * _TWO_PI / 8)
+            qs[5] = wrap(q[5] + s * k * _TWO_PI / 8)
+            nc = _finish(qs, 0.0, 0.0, True, 20, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best)
+    return nc
 
 
 @_inner
@@ -1137,10 +1155,11 @@ def _order_key(cand, i, opt):
 @_inner
 def _same(cand, ia, ib, L, Ru, T, ws, wm, opt):
     """Are candidate rows ia and ib one solution? (to 1e-7 rad; one continuum; within 0.1 rad of
-    each other when one has converged and the other not; or joined within 1e-4 rad by a
-    segment inside 1/100 of the tolerance: near a singularity a pose fixes q only to
-    ~sqrt(eps)). Rows are tried by priority and residual (:func:`_distinct_sorted`), so the
-    converged one of such a pair is kept."""
+    each other when one has converged and the other not; joined within 1e-4 rad by a segment
+    inside 1/100 of the tolerance (near a singularity a pose fixes q only to ~sqrt(eps)); or,
+    near the theta3/theta6 continuum, joined within 0.1 rad by a segment inside the tolerance).
+    Rows are tried by priority and residual (:func:`_distinct_sorted`), so the converged one of
+    such a pair is kept."""
     dmax = 0.0
     for j in range(6):
         dmax = max(dmax, abs(wrap(cand[ia, j] - cand[ib, j])))
@@ -1160,10 +1179,19 @@ def _same(cand, ia, ib, L, Ru, T, ws, wm, opt):
     # within 0.1 rad of one that has is that one, approached along the valley
     if dmax <= 0.1 and _unfinished(cand, ia, opt) != _unfinished(cand, ib, opt):
         return True
+    # near the theta3/theta6 continuum the rows within the tolerance form a long valley: two of
+    # its rows up to 0.1 rad apart are one if the segment between them stays in it
     if dmax <= 1e-4:
         return _connected(cand, ia, ib, L, Ru, T, ws, wm, 1e-2 * opt[OPT_POSITION_TOL],
                           1e-2 * opt[OPT_ROTATION_TOL])
+    if dmax <= 0.1 and _near_q3_q6(cand, ia) and _near_q3_q6(cand, ib):
+        return _connected(cand, ia, ib, L, Ru, T, ws, wm, opt[OPT_POSITION_TOL], opt[OPT_ROTATION_TOL])
     return False
+
+
+@_inner
+def _near_q3_q6(cand, i):
+    return abs(math.sin(cand[i, 3])) <= 1e-3 and abs(math.sin(cand[i, 3] + cand[i, 4])) <= 1e-3
 
 
 @_inner

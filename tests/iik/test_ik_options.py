@@ -138,9 +138,10 @@ def test_noisy_reachable_poses_are_never_unreachable(case):
     r = iik.solve(Tn, within_limits=False)
     assert r.count > 0, (kind, r.reason)
     assert not r.reason.startswith("unreachable")
-    s = _scale(kind)
-    assert np.max(r.position_residual) <= 10 * s + 1e-10  # against the pose as given
-    assert np.max(r.rotation_residual) <= 20 * s + 1e-10
+    s = _scale(kind)  # against the pose as given: the best row is as close as the noise ...
+    assert np.min(r.position_residual) <= 10 * s + 1e-10 and np.min(r.rotation_residual) <= 20 * s + 1e-10
+    tol = DEFAULT_OPTIONS.approximate_tol  # ... every row (other branches too) within the tolerance
+    assert np.max(r.position_residual) <= max(tol, 10 * s) and np.max(r.rotation_residual) <= max(tol, 20 * s)
 
 
 def test_noisy_poses_figures():
@@ -152,8 +153,9 @@ def test_noisy_poses_figures():
         Tn = np.stack([noisy_pose(t, kind, rng) for t in T])
         res = iik.solve_many(Tn, within_limits=False)
         unreachable = sum(r.count == 0 for r in res)
-        worst = max(max(r.position_residual.max(), r.rotation_residual.max()) for r in res if r.count)
+        worst = max(max(r.position_residual.min(), r.rotation_residual.min()) for r in res if r.count)
         print(f"{kind}: {len(res) - unreachable}/{len(res)} solved "
-              f"({sum(r.is_approximate for r in res)} approximate), worst residual {worst:.2e}")
+              f"({sum(r.is_approximate for r in res)} approximate), "
+              f"worst residual of the best row {worst:.2e}")
         assert unreachable == 0
         assert worst <= 20 * _scale(kind) + 1e-10
