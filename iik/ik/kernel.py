@@ -1166,10 +1166,10 @@ def _same(cand, ia, ib, L, Ru, T, ws, wm, opt):
     if dmax <= 1e-7:
         return True
     fa, fb = int(cand[ia, _C_FREE]), int(cand[ib, _C_FREE])
-    if fa != 0 and fa == fb:
+    if fa != 0 and fa == fb and fa != NUMERICAL_Q3_Q6:  # one exact continuum
         fixed = 0.0
         for j in range(5):
-            if (j == 0 and fa & FREE_Q1_Q6) or (j == 2 and fa & (FREE_Q3_Q6 | NUMERICAL_Q3_Q6)):
+            if (j == 0 and fa & FREE_Q1_Q6) or (j == 2 and fa & FREE_Q3_Q6):
                 continue
             fixed = max(fixed, abs(wrap(cand[ia, j] - cand[ib, j])))
         if fixed <= 1e-6:
@@ -1324,9 +1324,8 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
                 if nc >= MAX_CAND:
                     return nc
                 q[0], q[1] = th1[i], t2
-                free = _wrist(Ru, co, L, C, S, c2, s2, branch, q)
-                if free and branch == 1:
-                    continue  # on a theta3/theta6 continuum both branches are one continuum
+                _wrist(Ru, co, L, C, S, c2, s2, branch, q)  # (both branches: near a continuum
+                # they are distinct solutions; on it they merge as one continuum)
                 prio = 0.0 if careful[i] >= 4.0 else 1.0
                 nc = _add_candidate(q, careful[i] != 0.0 or weak, prio, L, dh, Ru, T, opt, cand, nc, ws, wm,
                                     best)
