@@ -74,7 +74,11 @@ class IKResult:
         free_joints: Per solution, the joints (1-based) of a continuum of solutions:
             ``(3, 6)`` when joints 3 and 6 are collinear (theta4 = theta5 = 0: only
             theta3 - theta6 is fixed), ``(1, 6)`` when joints 1 and 6 are; the row is then
-            one representative, described by ``continua``. Empty tuple for isolated solutions.
+            one representative, described by ``continua``. ``(3, 6)`` without a ``continua``
+            entry marks a numerical continuum: near joints 3 and 6 being collinear
+            (|sin theta4|, |sin(theta4 + theta5)| <= 1e-4) the configurations within the
+            tolerance form a thin family in which theta3 is only loosely fixed, and the row is
+            one of them. Empty tuple for isolated solutions.
         reason: Why there is no solution, or why the solutions are approximate; else "".
         method: ``"complete"``, ``"reference"`` or ``"thesis"``.
         info: Free-form extras (not compared).
