@@ -56,11 +56,16 @@ _HALF_PI = 0.5 * math.pi
 class Dexterity:
     """Admissible end-effector orientations at one point (angles in rad, Eq 42 convention).
 
+    Like :class:`iik.IKResult`, an unreachable point is an answer, not an error: ``case`` is
+    ``"unreachable"`` and ``reason`` says why; :meth:`raise_if_unreachable` raises
+    :class:`~iik.errors.UnreachablePoseError` on request.
+
     Attributes:
         point: The tool point [m], (3,).
-        case: ``"outer"``, ``"ring"`` or ``"inner"`` (Figs 20-21), or ``"none"`` when the
+        case: ``"outer"``, ``"ring"`` or ``"inner"`` (Figs 20-21), ``"none"`` when the
             service sphere lies inside the inner SLJ boundary (the model admits nothing, although
-            the point may be reachable: ``iik verify`` measures how often).
+            the point may be reachable: ``iik verify`` measures how often), or ``"unreachable"``
+            (farther than ``l3 + l4 + l5`` from joint 2, Eq 38: no orientation at all).
         beta_range: ``(beta_min, beta_max)``: polar angle of z6 from +z (None for ``"none"``).
         inclination_range: The same range in the thesis's Sec 3.5 convention
             (elevation of link 5 above the horizontal): ``beta - pi/2``.
@@ -74,6 +79,7 @@ class Dexterity:
         nominal_inclination: beta' of Eq 43 [rad].
         delta_out, delta_in: Cone half-angles of Eq 44 / Eq 45 [rad] (``pi`` /
             ``0`` when that boundary does not cut the service sphere).
+        reason: Why nothing is admissible (cases ``"unreachable"`` and ``"none"``), else "".
     """
 
     point: np.ndarray
@@ -88,6 +94,20 @@ class Dexterity:
     nominal_inclination: float
     delta_out: float
     delta_in: float
+    reason: str = ""
+
+    @property
+    def reachable(self) -> bool:
+        """False if the point is outside the workspace (case ``"unreachable"``)."""
+        return self.case != "unreachable"
+
+    def raise_if_unreachable(self) -> Dexterity:
+        """Return self, or raise :class:`~iik.errors.UnreachablePoseError` (with ``reason``) if
+        the point is outside the workspace (the same request as
+        :meth:`iik.IKResult.raise_if_unreachable`)."""
+        if not self.reachable:
+            raise UnreachablePoseError(self.reason)
+        return self
 
     def admits(self, alpha: float, beta: float, tol: float = 0.0) -> bool:
         """Is ``(alpha, beta)`` admissible (any gamma)? ``tol`` widens every bound [rad]."""
@@ -160,13 +180,13 @@ def dexterity(p, beta: float | None = None, arm: Arm = THESIS_ARM) -> Dexterity:
         arm: Arm parameters.
 
     Returns:
-        :class:`Dexterity`.
+        :class:`Dexterity`; for ``p`` outside the workspace (farther than ``l3 + l4 + l5``
+        from joint 2, Eq 38) case ``"unreachable"`` with a ``reason`` (like an empty
+        :class:`iik.IKResult`; ``.raise_if_unreachable()`` raises instead).
 
     Raises:
         InvalidInputError: NaN/inf or a wrong shape.
-        DexterityError: ``beta`` outside the admissible range (names the range).
-        UnreachablePoseError: ``p`` is outside the workspace (farther than
-            ``l3 + l4 + l5`` from joint 2, Eq 38).
+        DexterityError: ``beta`` outside the admissible range at a reachable point (names the range).
     """
     px, py, pz = _point3(p)
     if beta is not None:
@@ -185,18 +205,22 @@ def dexterity(p, beta: float | None = None, arm: Arm = THESIS_ARM) -> Dexterity:
     rho = math.sqrt(vx * vx + vy * vy + vz * vz)  # Eq 44
     r_out = l3 + l4
     r_in = math.sqrt(l3 * l3 + l4 * l4 - 2 * l3 * l4 * math.cos(math.pi - lim4))  # Eq 45 d
+    gamma_range = (float(arm.lower[5]), float(arm.upper[5]))
     if rho > r_out + l5 + 1e-12:
-        raise UnreachablePoseError(
-            f"p = [{px:.4f}, {py:.4f}, {pz:.4f}] m is outside the workspace: {rho:.4f} m from joint 2, "
-            f"more than l3 + l4 + l5 = {r_out + l5:.4f} m"
-        )
+        reason = (f"unreachable: p = [{px:.4f}, {py:.4f}, {pz:.4f}] m is outside the workspace: "
+                  f"{rho:.4f} m from joint 2, more than l3 + l4 + l5 = {r_out + l5:.4f} m (Eq 38)")
+        return Dexterity(point=np.array((px, py, pz)), case="unreachable", beta_range=None,
+                         inclination_range=None, beta=None, alpha_intervals=(), alpha_center=0.0,
+                         alpha_halfwidth=(0.0, -1.0), gamma_range=gamma_range, nominal_inclination=0.0,
+                         delta_out=0.0, delta_in=math.pi, reason=reason)
     if rho + l5 < r_in - 1e-12 or rho < 1e-12:  # service sphere inside the inner SLJ boundary
-        gamma_range = (float(arm.lower[5]), float(arm.upper[5]))
         if beta is not None:
             raise DexterityError(beta, None)
         return Dexterity(point=np.array((px, py, pz)), case="none", beta_range=None, inclination_range=None,
                          beta=None, alpha_intervals=(), alpha_center=0.0, alpha_halfwidth=(0.0, -1.0),
-                         gamma_range=gamma_range, nominal_inclination=0.0, delta_out=0.0, delta_in=math.pi)
+                         gamma_range=gamma_range, nominal_inclination=0.0, delta_out=0.0, delta_in=math.pi,
+                         reason="the Sec 3.5 model admits no orientation here (service sphere inside the "
+                                "inner boundary of the second-last joint)")
     inc0 = math.atan2(vz, math.hypot(vx, vy))  # Eq 43 (beta')
     c_out = (l5 * l5 + rho * rho - r_out * r_out) / (2 * l5 * rho)  # Eq 44
     c_in = (l5 * l5 + rho * rho - r_in * r_in) / (2 * l5 * rho)  # Eq 45

@@ -5,6 +5,14 @@ optional :class:`~iik.arm.Arm` (default :data:`~iik.arm.THESIS_ARM`).
 Positions are in metres in the base frame 0 of Table II (z up along joint 1,
 origin on the joint-1 axis at the mounting plane, i.e. ``l1`` below joint 2).
 The tool point is the origin of frame 6 (the end-effector point ``p`` of Eq 4).
+
+The closed forms are written once, as plain arithmetic on cosines and sines
+(:func:`eq4_terms`, :func:`eq4_position`, :func:`eq4_wrist_axes`,
+:func:`eq4_rotation`, :func:`app_c_position_jacobian`). They work on floats and
+on NumPy arrays alike; :mod:`iik.ik.kernel` compiles the very same functions
+with Numba, and :func:`fk`, :func:`position_jacobian` and :func:`jacobian` run
+that compiled code, for one ``q`` and for a batch (so a batch is bit-for-bit a
+loop of single calls).
 """
 
 from __future__ import annotations
@@ -15,13 +23,112 @@ from .arm import THESIS_ARM, Arm
 from .dh import dh_chain
 from .validation import as_joints
 
-__all__ = ["fk", "fk_chain", "position_jacobian", "jacobian", "joint_frames"]
+__all__ = ["fk", "fk_chain", "position_jacobian", "jacobian", "joint_frames", "eq4_terms",
+           "eq4_position", "eq4_wrist_axes", "eq4_rotation", "app_c_position_jacobian"]
 
 
-def _trig(qb: np.ndarray):
-    c, s = np.cos(qb).T, np.sin(qb).T
-    c45, s45 = np.cos(qb[:, 3] + qb[:, 4]), np.sin(qb[:, 3] + qb[:, 4])
-    return c, s, c45, s45
+# ----------------------------------------------------------------------------- closed forms
+def eq4_terms(c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, l4, l5):
+    """The recurring terms of Eq 4 (also of Eq 34 and App. C): ``(A, B, W, V)``.
+
+    ``A = s1 s3 + c1 s2 c3``, ``B = c1 s3 - s1 s2 c3`` (dimensionless) and
+    ``W = l5 s45 + l4 s4``, ``V = l5 c45 + l4 c4`` [m], with ``c45 = cos(theta4 + theta5)``.
+    """
+    A = s1 * s3 + c1 * s2 * c3  # Eq 4 recurring term
+    B = c1 * s3 - s1 * s2 * c3  # Eq 4 recurring term
+    W = l5 * s45 + l4 * s4  # Eq 4 recurring term [m]
+    V = l5 * c45 + l4 * c4  # Eq 4 recurring term [m]
+    return A, B, W, V
+
+
+def eq4_position(c1, s1, c2, s2, c3, A, B, W, V, l1, l2, l3):
+    """Tool point ``(px, py, pz)`` [m] of Eq 4 (= Eq 34) from the terms of :func:`eq4_terms`."""
+    px = l2 * c1 + l3 * c1 * c2 + W * A + V * c1 * c2  # Eq 4 px (Eq 34a)
+    py = l2 * s1 + l3 * s1 * c2 - W * B + V * s1 * c2  # Eq 4 py (Eq 34b)
+    pz = W * c2 * c3 - V * s2 - l3 * s2 + l1  # Eq 4 pz (Eq 34c)
+    return px, py, pz
+
+
+def eq4_wrist_axes(c1, s1, c2, s2, c3, s3, c45, s45, A, B):
+    """The theta6-free part of the Eq 4 rotation: ``(X1, X2, X3, Y1, Y2, Y3, Z1, Z2, Z3)``.
+
+    ``X`` is the x axis of frame 6 at theta6 = 0, ``-Y`` its y axis and ``Z`` the
+    tool axis z6 (all in base frame 0); :func:`eq4_rotation` turns X and Y by theta6.
+    """
+    X1 = c45 * A - s45 * c1 * c2  # Eq 4 r11 at theta6 = 0
+    X2 = -(c45 * B + s45 * s1 * c2)  # Eq 4 r21 at theta6 = 0
+    X3 = s45 * s2 + c45 * c2 * c3  # Eq 4 r31 at theta6 = 0
+    Y1 = s1 * c3 - c1 * s2 * s3  # -(Eq 4 r12 at theta6 = 0)
+    Y2 = -(c1 * c3 + s1 * s2 * s3)  # -(Eq 4 r22 at theta6 = 0)
+    Y3 = -c2 * s3  # -(Eq 4 r32 at theta6 = 0)
+    Z1 = -s45 * A - c45 * c1 * c2  # Eq 4 r13
+    Z2 = s45 * B - c45 * s1 * c2  # Eq 4 r23
+    Z3 = c45 * s2 - s45 * c2 * c3  # Eq 4 r33
+    return X1, X2, X3, Y1, Y2, Y3, Z1, Z2, Z3
+
+
+def eq4_rotation(c6, s6, X1, X2, X3, Y1, Y2, Y3):
+    """Columns 1 and 2 of the Eq 4 rotation: ``(r11, r21, r31, r12, r22, r32)``."""
+    r11 = c6 * X1 - s6 * Y1  # Eq 4 r11
+    r21 = c6 * X2 - s6 * Y2  # Eq 4 r21
+    r31 = c6 * X3 - s6 * Y3  # Eq 4 r31
+    r12 = -s6 * X1 - c6 * Y1  # Eq 4 r12
+    r22 = -s6 * X2 - c6 * Y2  # Eq 4 r22
+    r32 = -s6 * X3 - c6 * Y3  # Eq 4 r32
+    return r11, r21, r31, r12, r22, r32
+
+
+def app_c_position_jacobian(c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, A, B, W, V, l2, l3, l4, l5):
+    """Appendix C: the 15 entries of ``d(px, py, pz) / d(theta1..theta5)``, row-major (3 x 5) [m/rad]."""
+    j11 = -l2 * s1 - l3 * s1 * c2 + W * B - V * s1 * c2  # App C df1/dth1
+    j12 = -l3 * c1 * s2 + W * c1 * c2 * c3 - V * c1 * s2  # App C df1/dth2
+    j13 = W * (s1 * c3 - c1 * s2 * s3)  # App C df1/dth3
+    j14 = V * A - W * c1 * c2  # App C df1/dth4
+    j15 = l5 * c45 * A - l5 * c1 * c2 * s45  # App C df1/dth5
+    j21 = l2 * c1 + l3 * c1 * c2 + W * A + V * c1 * c2  # App C df2/dth1
+    j22 = -l3 * s1 * s2 + W * s1 * c2 * c3 - V * s1 * s2  # App C df2/dth2
+    j23 = -W * (c1 * c3 + s1 * s2 * s3)  # App C df2/dth3
+    j24 = -V * B - W * s1 * c2  # App C df2/dth4
+    j25 = -l5 * c45 * B - l5 * s1 * c2 * s45  # App C df2/dth5
+    j31 = 0.0 * c1  # App C df3/dth1 = 0
+    j32 = -l5 * (s45 * s2 * c3 + c45 * c2) - l4 * (s2 * c3 * s4 + c4 * c2) - l3 * c2  # App C df3/dth2
+    j33 = -l5 * s45 * c2 * s3 - l4 * c2 * s3 * s4  # App C df3/dth3
+    j34 = l5 * (c45 * c2 * c3 + s45 * s2) + l4 * (c2 * c3 * c4 + s4 * s2)  # App C df3/dth4
+    j35 = l5 * (c45 * c2 * c3 + s45 * s2)  # App C df3/dth5
+    return (j11, j12, j13, j14, j15, j21, j22, j23, j24, j25, j31, j32, j33, j34, j35)
+
+
+# ----------------------------------------------------------------------------- public API
+_KERNEL = None
+
+
+def _kernel():
+    """The compiled kernel module (imported on first use: ``import iik`` stays light)."""
+    global _KERNEL
+    if _KERNEL is None:
+        from .ik import kernel
+
+        _KERNEL = kernel
+    return _KERNEL
+
+
+_F64 = np.dtype(np.float64)
+
+
+def _apply(q, compiled, data, shape: tuple[int, ...]) -> np.ndarray:
+    """Run a compiled ``(Q (n, 6), data, out (n, *shape)) -> all finite`` on q (6,) or (n, 6).
+
+    One contiguous float64 q skips the general validation (the kernel checks finiteness).
+    """
+    if type(q) is np.ndarray and q.dtype is _F64 and q.shape == (6,) and q.flags.c_contiguous:
+        out = np.empty((1, *shape))
+        if compiled(q.reshape(1, 6), data, out):
+            return out[0]
+    qb, batched = as_joints(q, "q")  # the typed errors
+    out = np.empty((qb.shape[0], *shape))
+    if not compiled(np.ascontiguousarray(qb), data, out):  # pragma: no cover (as_joints checked)
+        raise AssertionError("kernel and as_joints disagree on finiteness")
+    return out if batched else out[0]
 
 
 def fk(q, arm: Arm = THESIS_ARM) -> np.ndarray:
@@ -36,28 +143,8 @@ def fk(q, arm: Arm = THESIS_ARM) -> np.ndarray:
         Homogeneous transform(s) (4, 4) or (n, 4, 4): rotation of frame 6 and
         position of its origin [m], both in base frame 0.
     """
-    qb, batched = as_joints(q, "q")
-    (c1, c2, c3, c4, _c5, c6), (s1, s2, s3, s4, _s5, s6), c45, s45 = _trig(qb)
-    l1, l2, l3, l4, l5 = arm.lengths
-    A = s1 * s3 + c1 * s2 * c3  # recurring term of Eq 4
-    B = c1 * s3 - s1 * s2 * c3  # recurring term of Eq 4
-    W = l5 * s45 + l4 * s4
-    V = l5 * c45 + l4 * c4
-    T = np.zeros((qb.shape[0], 4, 4))
-    T[:, 0, 0] = c6 * (c45 * A - s45 * c1 * c2) - s6 * (s1 * c3 - c1 * s2 * s3)  # Eq 4 r11
-    T[:, 1, 0] = s6 * (c1 * c3 + s1 * s2 * s3) - c6 * (c45 * B + s45 * s1 * c2)  # Eq 4 r21
-    T[:, 2, 0] = c6 * (s45 * s2 + c45 * c2 * c3) + c2 * s3 * s6  # Eq 4 r31
-    T[:, 0, 1] = -s6 * (c45 * A - s45 * c1 * c2) - c6 * (c3 * s1 - c1 * s2 * s3)  # Eq 4 r12
-    T[:, 1, 1] = s6 * (c45 * B + s45 * s1 * c2) + c6 * (c1 * c3 + s1 * s2 * s3)  # Eq 4 r22
-    T[:, 2, 1] = c2 * s3 * c6 - s6 * (s45 * s2 + c45 * c2 * c3)  # Eq 4 r32
-    T[:, 0, 2] = -s45 * A - c45 * c1 * c2  # Eq 4 r13
-    T[:, 1, 2] = s45 * B - c45 * s1 * c2  # Eq 4 r23
-    T[:, 2, 2] = c45 * s2 - s45 * c2 * c3  # Eq 4 r33
-    T[:, 0, 3] = l2 * c1 + l3 * c1 * c2 + W * A + V * c1 * c2  # Eq 4 px
-    T[:, 1, 3] = l2 * s1 + l3 * s1 * c2 - W * B + V * s1 * c2  # Eq 4 py
-    T[:, 2, 3] = l5 * (s45 * c2 * c3 - c45 * s2) + l4 * (c2 * c3 * s4 - c4 * s2) - l3 * s2 + l1  # Eq 4 pz
-    T[:, 3, 3] = 1.0
-    return T if batched else T[0]
+    k = _kernel()
+    return _apply(q, k.fk_many, k.arm_data(arm).lengths, (4, 4))
 
 
 def fk_chain(q, arm: Arm = THESIS_ARM) -> np.ndarray:
@@ -80,30 +167,8 @@ def position_jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
     Rows are x, y, z of the tool point in the base frame; columns are joints
     1..5 (joint 6 does not move the tool point, Eq 34). Shape (3, 5) or (n, 3, 5).
     """
-    qb, batched = as_joints(q, "q")
-    (c1, c2, c3, c4, _c5, _c6), (s1, s2, s3, s4, _s5, _s6), c45, s45 = _trig(qb)
-    _l1, l2, l3, l4, l5 = arm.lengths
-    A = s1 * s3 + c1 * s2 * c3
-    B = c1 * s3 - s1 * s2 * c3
-    W = l5 * s45 + l4 * s4
-    V = l5 * c45 + l4 * c4
-    J = np.zeros((qb.shape[0], 3, 5))
-    J[:, 0, 0] = -l2 * s1 - l3 * s1 * c2 + W * B - V * s1 * c2  # App C df1/dth1
-    J[:, 0, 1] = -l3 * c1 * s2 + W * c1 * c2 * c3 - V * c1 * s2  # App C df1/dth2
-    J[:, 0, 2] = W * (s1 * c3 - c1 * s2 * s3)  # App C df1/dth3
-    J[:, 0, 3] = V * A - W * c1 * c2  # App C df1/dth4
-    J[:, 0, 4] = l5 * c45 * A - l5 * c1 * c2 * s45  # App C df1/dth5
-    J[:, 1, 0] = l2 * c1 + l3 * c1 * c2 + W * A + V * c1 * c2  # App C df2/dth1
-    J[:, 1, 1] = -l3 * s1 * s2 + W * s1 * c2 * c3 - V * s1 * s2  # App C df2/dth2
-    J[:, 1, 2] = -W * (c1 * c3 + s1 * s2 * s3)  # App C df2/dth3
-    J[:, 1, 3] = -V * B - W * s1 * c2  # App C df2/dth4
-    J[:, 1, 4] = -l5 * c45 * B - l5 * s1 * c2 * s45  # App C df2/dth5
-    # App C df3/dth1 = 0
-    J[:, 2, 1] = -l5 * (s45 * s2 * c3 + c45 * c2) - l4 * (s2 * c3 * s4 + c4 * c2) - l3 * c2  # App C df3/dth2
-    J[:, 2, 2] = -l5 * s45 * c2 * s3 - l4 * c2 * s3 * s4  # App C df3/dth3
-    J[:, 2, 3] = l5 * (c45 * c2 * c3 + s45 * s2) + l4 * (c2 * c3 * c4 + s4 * s2)  # App C df3/dth4
-    J[:, 2, 4] = l5 * (c45 * c2 * c3 + s45 * s2)  # App C df3/dth5
-    return J if batched else J[0]
+    k = _kernel()
+    return _apply(q, k.position_jacobian_many, k.arm_data(arm).lengths, (3, 5))
 
 
 def jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
@@ -112,15 +177,8 @@ def jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
     Rows 0-2 are the linear velocity [m/s per rad/s], rows 3-5 the angular
     velocity [rad/s per rad/s], all expressed in the axes of base frame 0
     (Pinocchio's ``LOCAL_WORLD_ALIGNED``). Column i is ``[z_i x (p - o_i); z_i]``
-    with ``z_i``, ``o_i`` the axis and origin of joint frame i (modified DH).
-    Shape (6, 6) or (n, 6, 6).
+    with ``z_i``, ``o_i`` the axis and origin of joint frame i (modified DH,
+    Table II). Shape (6, 6) or (n, 6, 6).
     """
-    qb, batched = as_joints(q, "q")
-    frames = dh_chain(arm.dh_table(), qb, all_frames=True)  # (n, 6, 4, 4)
-    z = frames[:, :, :3, 2]
-    o = frames[:, :, :3, 3]
-    p = frames[:, -1, :3, 3]
-    J = np.empty((qb.shape[0], 6, 6))
-    J[:, :3, :] = np.cross(z, p[:, None, :] - o).transpose(0, 2, 1)
-    J[:, 3:, :] = z.transpose(0, 2, 1)
-    return J if batched else J[0]
+    k = _kernel()
+    return _apply(q, k.jacobian_many, k.arm_data(arm).dh, (6, 6))

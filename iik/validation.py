@@ -11,7 +11,24 @@ import numpy as np
 
 from .errors import InvalidInputError
 
-__all__ = ["as_float_array", "as_joints", "as_points", "as_poses"]
+__all__ = ["as_float_array", "as_joints", "as_points", "as_poses", "NotOrthonormalError"]
+
+
+class NotOrthonormalError(InvalidInputError):
+    """A rotation block is too far from a rotation to be one.
+
+    Attributes:
+        deviation: max |R^T R - I| of the offending rotation.
+        tolerance: The tolerance it exceeds.
+        index: Index of the offending pose in a batch, or None.
+    """
+
+    def __init__(self, argument: str, reason: str, deviation: float, tolerance: float,
+                 index: int | None = None):
+        self.deviation = deviation
+        self.tolerance = tolerance
+        self.index = index
+        super().__init__(argument, reason)
 
 
 def as_float_array(value, name: str) -> np.ndarray:
@@ -70,11 +87,12 @@ def as_poses(T, name: str = "T", *, orthonormal_tol: float = 1e-6) -> tuple[np.n
     err = np.abs(np.einsum("nji,njk->nik", R, R) - np.eye(3)).max(axis=(1, 2))
     if np.any(err > orthonormal_tol):
         i = int(np.argmax(err))
-        raise InvalidInputError(
+        raise NotOrthonormalError(
             name,
             f"rotation block is not orthonormal (max |R^T R - I| = {err[i]:.3g}"
             + (f" at index {i}" if batched else "")
             + ")",
+            float(err[i]), orthonormal_tol, i if batched else None,
         )
     det = np.linalg.det(R)
     if np.any(det < 0):

@@ -35,28 +35,27 @@ from scipy.spatial import cKDTree
 
 from .arm import THESIS_ARM, Arm
 from .errors import InvalidInputError
-from .kinematics import position_jacobian
+from .kinematics import eq4_position, eq4_terms, position_jacobian
 from .validation import as_points
 
-__all__ = ["in_workspace", "closest_reachable", "ClosestReachable", "position_lm", "tool_positions"]
+__all__ = ["in_workspace", "closest_reachable", "ClosestReachable", "position_lm", "tool_positions",
+           "joint4_distance"]
 
 
 def tool_positions(q5: np.ndarray, arm: Arm = THESIS_ARM) -> np.ndarray:
     """Tool-point positions [m], (n, 3), for joint angles ``q5`` (n, 5) [rad] of joints 1-5.
 
-    Eq 34 (the position column of Eq 4; joint 6 does not move the tool point).
-    Equal to ``fk(q)[:, :3, 3]`` (tested), without building the rotation.
+    Eq 34 (the position column of Eq 4; joint 6 does not move the tool point), evaluated
+    by the closed forms of :mod:`iik.kinematics` on arrays. Equal to ``fk(q)[:, :3, 3]``
+    (tested), without building the rotation.
     """
     c1, c2, c3, c4 = (np.cos(q5[:, i]) for i in range(4))
     s1, s2, s3, s4 = (np.sin(q5[:, i]) for i in range(4))
     c45, s45 = np.cos(q5[:, 3] + q5[:, 4]), np.sin(q5[:, 3] + q5[:, 4])
     l1, l2, l3, l4, l5 = arm.lengths
-    W = l5 * s45 + l4 * s4  # recurring terms of Eq 4 / Eq 34
-    V = l5 * c45 + l4 * c4
+    A, B, W, V = eq4_terms(c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, l4, l5)
     out = np.empty((q5.shape[0], 3))
-    out[:, 0] = l2 * c1 + l3 * c1 * c2 + W * (s1 * s3 + c1 * s2 * c3) + V * c1 * c2  # Eq 34a
-    out[:, 1] = l2 * s1 + l3 * s1 * c2 - W * (c1 * s3 - s1 * s2 * c3) + V * s1 * c2  # Eq 34b
-    out[:, 2] = W * c2 * c3 - V * s2 - l3 * s2 + l1  # Eq 34c
+    out[:, 0], out[:, 1], out[:, 2] = eq4_position(c1, s1, c2, s2, c3, A, B, W, V, l1, l2, l3)  # Eq 34
     return out
 
 
@@ -67,8 +66,9 @@ def _regions(p: np.ndarray, arm: Arm):
     return phi, r2, r3
 
 
-def _joint4_distance(p: np.ndarray, th1: float, arm: Arm) -> np.ndarray:
-    """rho_23 of Eq 41 with joint 1 at ``th1``, corrected Eq 39-40 (see module doc)."""
+def joint4_distance(p: np.ndarray, th1: float, arm: Arm) -> np.ndarray:
+    """rho_23 of Eq 41 [m]: distance of points ``p`` (n, 3) from joint 4 with joint 1 at ``th1``
+    [rad] and joint 2 aimed at them (corrected Eq 39-40, see the module docstring)."""
     l1, l2, l3 = arm.l1, arm.l2, arm.l3
     u = p[:, 0] * np.cos(th1) + p[:, 1] * np.sin(th1)
     th2 = np.clip(-np.arctan2(p[:, 2] - l1, u - l2), arm.lower[1], arm.upper[1])  # Eq 39 (corrected)
@@ -103,7 +103,7 @@ def in_workspace(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-9) -> np.ndarray |
     inside = rho1 <= l3 + l4 + l5 + tol  # Eq 38
     for region, th1 in ((r2, arm.upper[0]), (r3, arm.lower[0])):
         if np.any(region):
-            rho23 = _joint4_distance(pb[region], th1, arm)
+            rho23 = joint4_distance(pb[region], th1, arm)
             inside[region] = rho23 <= l4 + l5 + tol  # Eq 41
     return inside if batched else bool(inside[0])
 

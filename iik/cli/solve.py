@@ -51,7 +51,8 @@ def run(args) -> int:
     prev = None if args.previous is None else conv_in(args.previous)
     with np.errstate(all="ignore"):  # absurd inputs (--xyz 1e308) are unreachable, not warnings
         T = iik.pose_from_zxz(np.array(args.xyz), *conv_in(args.zxz))
-        res = iik.solve(T, method=args.method, within_limits=not args.all)
+        with iik.ik.compile_notice():  # one line on stderr if the kernel compiles (> 1 s)
+            res = iik.solve(T, method=args.method, within_limits=not args.all)
         efforts = iik.effort_index(prev, res.q) if (prev is not None and res.count) else None
     best = None
     if prev is not None and np.any(res.within_limits):  # Eq 54: least effort inside the limits

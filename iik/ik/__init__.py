@@ -1,19 +1,28 @@
 """Inverse kinematics of the thesis arm (Sec 3.3): complete solver, thesis IIK, selection.
 
-* :func:`solve` / :func:`solve_many`: all solutions of a pose (``method="complete"``
-  by polynomial elimination, or ``method="thesis"``: Sec 3.3 with errata fixed).
+* :func:`solve` / :func:`solve_many` / :func:`solve_batch`: all solutions of a pose
+  (``method="complete"``: the compiled elimination, the default; ``"reference"``: the same
+  in NumPy; ``"thesis"``: Sec 3.3 with errata fixed), with :class:`IKOptions`.
 * :func:`select` (least Eq 54 effort within Table I), :func:`follow_path`.
 """
 
-from .result import IKResult
+from .options import DEFAULT_OPTIONS, IKOptions
+from .result import Continuum, IKBatch, IKResult
 from .selection import branch_signature, follow_path, select, select_index
-from .solve import METHODS, solve, solve_many
+from .solve import COMPILE_MESSAGE, METHODS, compile_notice, solve, solve_batch, solve_many
 
 __all__ = [
     "IKResult",
+    "IKBatch",
+    "Continuum",
+    "IKOptions",
+    "DEFAULT_OPTIONS",
     "METHODS",
     "solve",
     "solve_many",
+    "solve_batch",
+    "compile_notice",
+    "COMPILE_MESSAGE",
     "select",
     "select_index",
     "follow_path",

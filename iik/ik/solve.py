@@ -1,109 +1,305 @@
-"""Public inverse-kinematics entry points: :func:`solve` and :func:`solve_many`.
+"""Public inverse-kinematics entry points: :func:`solve`, :func:`solve_many`, :func:`solve_batch`.
 
-``method="complete"`` (default) is the elimination solver of
-:mod:`iik.ik.complete` (all solutions, cannot miss a root);
-``method="thesis"`` is the Sec 3.3 IIK (theta1 grid + bisection) of
-:mod:`iik.ik.thesis`, kept to reproduce and measure the thesis.
+Methods:
+
+* ``"complete"`` (default): the compiled kernel (:mod:`iik.ik.kernel`): every solution,
+  real roots of the eliminant isolated so that none can be missed.
+* ``"reference"``: the same elimination vectorised in NumPy (:mod:`iik.ik.reference`),
+  kept as an independent reference; the two agree (tested on 10^5 poses).
+* ``"thesis"``: the Sec 3.3 IIK (theta1 grid + bisection, errata corrected,
+  :mod:`iik.ik.thesis`), kept to reproduce and measure the thesis.
+
+Every method takes the same options (:class:`~iik.ik.options.IKOptions`): rotations
+within ``orthonormal_tol`` of orthonormal are projected and solved. Only the complete
+method returns approximate configurations for poses just out of reach.
 """
 
 from __future__ import annotations
+
+import sys
+import threading
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 
 import numpy as np
 
 from ..arm import LIMIT_TOL, THESIS_ARM, Arm
 from ..errors import InvalidInputError
-from ..validation import as_poses
-from . import complete as _complete
-from .result import IKResult
+from . import poses as _poses
+from .options import DEFAULT_OPTIONS, IKOptions
+from .result import Continuum, IKBatch, IKResult
 
-__all__ = ["solve", "solve_many", "METHODS"]
+__all__ = ["solve", "solve_many", "solve_batch", "METHODS", "compile_notice", "COMPILE_MESSAGE"]
 
-METHODS = ("complete", "thesis")
+METHODS = ("complete", "reference", "thesis")
 
-_FREE = {_complete.FREE_Q1_Q6: (1, 6), _complete.FREE_Q3_Q6: (3, 6),
-         _complete.FREE_Q1_Q6 | _complete.FREE_Q3_Q6: (1, 3, 6)}
+_F64 = np.dtype(np.float64)
+_FREE = {0: (), 1: (1, 6), 2: (3, 6), 3: (1, 3, 6), 4: (3, 6)}  # 4: numerical (kernel)
+_NO_FREE: dict[int, tuple] = {}
+_KERNEL = None
+_OPT_VECTORS: dict[int, tuple[IKOptions, np.ndarray]] = {}
 
 
-def _check_method(method: str) -> None:
+def _kernel():
+    """The compiled kernel module (imported on first use; Numba loads then)."""
+    global _KERNEL
+    if _KERNEL is None:
+        from . import kernel
+
+        _KERNEL = kernel
+    return _KERNEL
+
+
+def _check_args(method, options) -> IKOptions:
     if method not in METHODS:
         raise InvalidInputError("method", f"expected one of {METHODS}, got {method!r}")
+    if options is None:
+        return DEFAULT_OPTIONS
+    if not isinstance(options, IKOptions):
+        raise InvalidInputError("options", f"expected an IKOptions, got {type(options).__name__}")
+    return options
 
 
-def _readonly(a):
-    a.setflags(write=False)
-    return a
+def _option_vector(opts: IKOptions) -> np.ndarray:
+    hit = _OPT_VECTORS.get(id(opts))
+    if hit is not None and hit[0] is opts:
+        return hit[1]
+    v = np.array([opts.position_tol, opts.rotation_tol, opts.approximate_tol, opts.orthonormal_tol,
+                  LIMIT_TOL])  # the kernel's OPT_* layout
+    v.setflags(write=False)
+    if len(_OPT_VECTORS) > 64:
+        _OPT_VECTORS.clear()
+    _OPT_VECTORS[id(opts)] = (opts, v)
+    return v
 
 
-def _build_all(q, valid, flags, pres, rres, arm, within_limits, method):
-    """One :class:`IKResult` per pose from the padded arrays (n, S, ...) of a solver.
+# ----------------------------------------------------------------------------- the methods
+def _complete(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool):
+    """Kernel outputs (q, info, flags, hdr) for validated-shape poses (n, 4, 4)."""
+    k = _kernel()
+    n = Tb.shape[0]
+    q = np.empty((n, k.MAX_SOLUTIONS, 6))  # rows past the count are not written
+    info = np.empty((n, k.MAX_SOLUTIONS, k.N_INFO))
+    flags = np.empty((n, k.MAX_SOLUTIONS, 2), dtype=bool)
+    hdr = np.empty((n, k.N_HDR))
+    Tc = Tb if Tb.flags.c_contiguous else np.ascontiguousarray(Tb)
+    if opts.parallel and n > 1:
+        k.solve_many_parallel(Tc, k.arm_data(arm).vector, _option_vector(opts), within, q, info, flags, hdr)
+    else:
+        k.solve_many(Tc, k.arm_data(arm).vector, _option_vector(opts), within, k.scratch(), q, info,
+                     flags, hdr)
+    return q, info, flags, hdr
 
-    Vectorised over the batch: the limit test runs once on all rows; each result
-    holds read-only views of one compacted copy.
-    """
-    lo, hi = arm.q_min, arm.q_max
-    inside = np.all((q >= lo - LIMIT_TOL) & (q <= hi + LIMIT_TOL), axis=-1)
-    # a continuum representative stands for q within CONTINUUM_TOL of it
-    tol_c = _complete.CONTINUUM_TOL
-    inside |= (flags > 0) & np.all((q >= lo - tol_c) & (q <= hi + tol_c), axis=-1)
-    inside &= valid
-    total = valid.sum(axis=1)
-    keep = inside if within_limits else valid
-    counts = keep.sum(axis=1)
-    qq = _readonly(q[keep])
-    pp, rr = _readonly(pres[keep]), _readonly(rres[keep])
-    ii, ff = _readonly(inside[keep]), flags[keep].tolist()
-    bounds = np.concatenate([[0], np.cumsum(counts)]).tolist()
-    anyflag = np.any((flags > 0) & keep, axis=1).tolist()
+
+def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, method: str):
+    """The reference or thesis method in the kernel's output layout."""
+    from .compare import pose_residuals
+
+    k = _kernel()  # (for its output layout)
+    n = Tb.shape[0]
+    status, measure, Ru, dist = _poses.check_poses(Tb, opts.orthonormal_tol)
+    hdr = np.zeros((n, k.N_HDR))
+    hdr[:, k.H_STATUS], hdr[:, k.H_MEASURE], hdr[:, k.H_PROJECTION] = status, measure, dist
+    hdr[:, k.H_BEST_P], hdr[:, k.H_BEST_R] = np.inf, np.inf
+    q = np.full((n, k.MAX_SOLUTIONS, 6), np.nan)
+    info = np.full((n, k.MAX_SOLUTIONS, k.N_INFO), np.nan)
+    flags = np.zeros((n, k.MAX_SOLUTIONS, 2), dtype=bool)
+    good = np.flatnonzero(status == _poses.OK)
+    if len(good) == 0:
+        return q, info, flags, hdr
+    Tu = Tb[good].copy()
+    Tu[:, :3, :3] = Ru[good]
+    if method == "thesis":
+        from .thesis import solve_thesis_arrays
+
+        Q, V, F, _P, _R = solve_thesis_arrays(Tu, arm)
+    else:
+        from .reference import solve_arrays
+
+        Q, V, F, _P, _R = solve_arrays(Tu, arm, tol_p=opts.position_tol, tol_r=opts.rotation_tol)
+    inside = arm.within_limits(Q.reshape(-1, 6)).reshape(Q.shape[:2]) & V
+    keep = inside if within else V
+    hdr[good, k.H_TOTAL] = V.sum(axis=1)
+    for gi, i in enumerate(good):  # rows are sorted valid-first: keep them in order
+        rows = np.flatnonzero(keep[gi])
+        m = len(rows)
+        hdr[i, k.H_COUNT] = m
+        if m == 0:
+            continue
+        q[i, :m] = Q[gi, rows]
+        pres, rres = pose_residuals(Q[gi, rows], np.broadcast_to(Tb[i], (m, 4, 4)), arm)
+        info[i, :m, k.I_PRES], info[i, :m, k.I_RRES], info[i, :m, k.I_FREE] = pres, rres, F[gi, rows]
+        flags[i, :m, 0] = inside[gi, rows]
+        hdr[i, k.H_FREE] = np.count_nonzero(F[gi, rows])
+    return q, info, flags, hdr
+
+
+def _run(Tb, arm, opts, within, method):
+    if method == "complete":
+        return _complete(Tb, arm, opts, within)
+    return _numpy_method(Tb, arm, opts, within, method)
+
+
+def _raise_first_bad(hdr, name: str, batched: bool, opts: IKOptions) -> None:
+    bad = np.flatnonzero(hdr[:, 0] != _poses.OK)
+    if len(bad):
+        i = int(bad[0])
+        raise _poses.pose_error(int(hdr[i, 0]), float(hdr[i, 1]), name, i if batched else None,
+                                opts.orthonormal_tol)
+
+
+# ----------------------------------------------------------------------------- results
+def _reason(count: int, total: int, approx: bool, closest_p: float, closest_r: float, opts: IKOptions) -> str:
+    if count and not approx:
+        return ""
+    if count:
+        return (f"approximate: no configuration reaches the pose within the tolerances "
+                f"({opts.position_tol:g} m, {opts.rotation_tol:g} rad); the {count} configuration(s) "
+                f"returned are within IKOptions.approximate_tol = {opts.approximate_tol:g} of it "
+                "(least-residual configurations, flagged approximate)")
+    if total:
+        return f"{total} solution(s) exist but none within the joint limits (Table I)"
+    if closest_p <= opts.approximate_tol and closest_r <= opts.approximate_tol:
+        return ("unreachable within the joint limits: configurations within IKOptions.approximate_tol = "
+                f"{opts.approximate_tol:g} of the pose exist, but none within the joint limits (Table I)")
+    text = "unreachable: no joint configuration reaches this pose"
+    if np.isfinite(closest_p):
+        text += (f" (the closest configuration found misses it by {closest_p:.3g} m / {closest_r:.3g} rad, "
+                 f"more than IKOptions.approximate_tol = {opts.approximate_tol:g})")
+    return text
+
+
+def _continua(qrow: np.ndarray, free: int, cont: np.ndarray) -> tuple[Continuum, ...]:
     out = []
-    for i, (k, t) in enumerate(zip(counts.tolist(), total.tolist(), strict=True)):
-        a, b = bounds[i], bounds[i + 1]
-        if k == 0:
-            reason = ("unreachable: no joint configuration reaches this pose" if t == 0 else
-                      f"{t} solution(s) exist but none within the joint limits (Table I)")
+    for bit, j, base in ((1, 1, 0), (2, 3, 3)):
+        s, lo, hi = cont[base], cont[base + 1], cont[base + 2]
+        if free & bit and not np.isnan(s):  # no data: a numerical continuum (or a NumPy method)
+            rep = qrow.copy()
+            rep.setflags(write=False)
+            val = float(qrow[j - 1] - s * qrow[5])
+            val = float(np.pi - (np.pi - val) % (2 * np.pi))
+            out.append(Continuum(free_joint=j, sign=int(s), value=val, interval=(float(lo), float(hi)),
+                                 representative=rep))
+    return tuple(out)
+
+
+def _results(q, info, flags, hdr, method: str, opts: IKOptions) -> list[IKResult]:
+    """One :class:`IKResult` per pose: read-only views of the padded arrays."""
+    for a in (q, info, flags):
+        a.setflags(write=False)
+    pres, rres = info[:, :, 0], info[:, :, 1]
+    within, approx = flags[:, :, 0], flags[:, :, 1]
+    out = []
+    make = IKResult.trusted
+    for i, (_st, _m, proj, total, count, cp, cr, nfree, isapprox) in enumerate(hdr.tolist()):
+        k = int(count)
+        if nfree:
+            kinds = info[i, :k, 4].astype(int).tolist()
+            free = tuple(_FREE[f] for f in kinds)
+            cont = tuple(_continua(q[i, r], f, info[i, r, 5:11]) for r, f in enumerate(kinds))
         else:
-            reason = ""
-        free = tuple(_FREE.get(f, ()) for f in ff[a:b]) if anyflag[i] else ((),) * k
-        out.append(IKResult._trusted(qq[a:b], pp[a:b], rr[a:b], ii[a:b], free, reason, method, {}))
+            free = cont = ((),) * k
+        reason = "" if (k and not isapprox) else _reason(k, int(total), bool(isapprox), cp, cr, opts)
+        out.append(make(q[i, :k], pres[i, :k], rres[i, :k], within[i, :k], free, reason, method,
+                        approx[i, :k], cont, proj))
     return out
 
 
-def solve(T, *, method: str = "complete", within_limits: bool = True,
-          arm: Arm = THESIS_ARM) -> IKResult:
+# ----------------------------------------------------------------------------- public API
+def solve(T, *, method: str = "complete", within_limits: bool = True, arm: Arm = THESIS_ARM,
+          options: IKOptions | None = None) -> IKResult:
     """All inverse-kinematics solutions of one end-effector pose.
 
     Args:
         T: Pose of frame 6 in base frame 0, (4, 4) homogeneous, position in m.
-        method: ``"complete"`` (elimination; every solution) or ``"thesis"``
-            (Sec 3.3 as printed, with the errata corrected).
+        method: ``"complete"`` (compiled elimination; every solution), ``"reference"`` (the
+            same in NumPy) or ``"thesis"`` (Sec 3.3 as printed, with the errata corrected).
         within_limits: Keep only solutions inside the joint limits (Table I).
         arm: Arm parameters.
+        options: Tolerances (:class:`~iik.ik.options.IKOptions`; defaults documented there).
 
     Returns:
-        :class:`IKResult`. An unreachable pose gives an empty result with ``reason``.
+        :class:`IKResult`. An unreachable pose gives an empty result with ``reason``
+        (``result.raise_if_unreachable()`` raises instead); a pose just out of reach (within
+        ``options.approximate_tol``) gives its least-residual configurations, flagged
+        ``approximate``.
 
     Raises:
-        InvalidInputError: wrong shape, NaN/inf, non-orthonormal rotation, unknown method.
+        InvalidInputError: wrong shape, NaN/inf, bad bottom row, a reflection, unknown method.
+        NotOrthonormalError: a rotation block farther than ``options.orthonormal_tol`` from
+            orthonormal (says how far, and which option to change).
     """
-    _check_method(method)
-    Tb, batched = as_poses(T, "T")
-    if batched:
-        raise InvalidInputError("T", f"expected one (4, 4) pose, got shape {Tb.shape}; use solve_many")
-    return _solve_batch(Tb, method, within_limits, arm)[0]
-
-
-def solve_many(Ts, *, method: str = "complete", within_limits: bool = True,
-               arm: Arm = THESIS_ARM) -> list[IKResult]:
-    """:func:`solve` for a batch (n, 4, 4) of poses (vectorised); identical answers."""
-    _check_method(method)
-    Tb, _ = as_poses(Ts, "Ts")
-    return _solve_batch(Tb, method, within_limits, arm)
-
-
-def _solve_batch(Tb, method, within_limits, arm):
-    if method == "thesis":
-        from .thesis import solve_thesis_arrays
-
-        arrays = solve_thesis_arrays(Tb, arm)
+    opts = _check_args(method, options)
+    if type(T) is np.ndarray and T.dtype is _F64 and T.shape == (4, 4):
+        Tb, batched = T.reshape(1, 4, 4), False  # fast path: no copy
     else:
-        arrays = _complete.solve_arrays(Tb, arm)
-    return _build_all(*arrays, arm, within_limits, method)
+        Tb, batched = _poses.as_pose_batch(T, "T")
+        if batched:
+            raise InvalidInputError("T", f"expected one (4, 4) pose, got shape {Tb.shape}; use solve_many")
+    q, info, flags, hdr = _run(Tb, arm, opts, within_limits, method)
+    if hdr[0, 0] != _poses.OK:
+        _raise_first_bad(hdr, "T", False, opts)
+    return _results(q, info, flags, hdr, method, opts)[0]
+
+
+def solve_many(Ts, *, method: str = "complete", within_limits: bool = True, arm: Arm = THESIS_ARM,
+               options: IKOptions | None = None) -> list[IKResult]:
+    """:func:`solve` for a batch (n, 4, 4) of poses; identical answers, one result per pose.
+
+    The compiled kernel runs once over the batch (on all cores with
+    ``IKOptions(parallel=True)``).
+    """
+    opts = _check_args(method, options)
+    Tb, batched = _poses.as_pose_batch(Ts, "Ts")
+    q, info, flags, hdr = _run(Tb, arm, opts, within_limits, method)
+    _raise_first_bad(hdr, "Ts", batched, opts)
+    return _results(q, info, flags, hdr, method, opts)
+
+
+def solve_batch(Ts, *, method: str = "complete", within_limits: bool = True, arm: Arm = THESIS_ARM,
+                options: IKOptions | None = None) -> IKBatch:
+    """:func:`solve_many` as padded arrays (:class:`IKBatch`): no Python object per pose."""
+    opts = _check_args(method, options)
+    Tb, batched = _poses.as_pose_batch(Ts, "Ts")
+    q, info, flags, hdr = _run(Tb, arm, opts, within_limits, method)
+    _raise_first_bad(hdr, "Ts", batched, opts)
+    count = hdr[:, 4].astype(int)
+    pad = np.arange(q.shape[1])[None, :] >= count[:, None]
+    q[pad], info[pad], flags[pad] = np.nan, np.nan, False  # the kernel leaves padding unwritten
+    info[:, :, 4][pad] = 0.0
+    for a in (q, info, flags):
+        a.setflags(write=False)
+    out = [count, hdr[:, 3].astype(int), hdr[:, 2].copy(), hdr[:, 5:7].copy(), info[:, :, 4].astype(int)]
+    for a in out:
+        a.setflags(write=False)
+    return IKBatch(q=q, count=out[0], position_residual=info[:, :, 0], rotation_residual=info[:, :, 1],
+                   within_limits=flags[:, :, 0], approximate=flags[:, :, 1], free=out[4],
+                   continuum=info[:, :, 5:11], total=out[1], rotation_projection=out[2], closest=out[3],
+                   method=method)
+
+
+#: What :func:`compile_notice` says.
+COMPILE_MESSAGE = "compiling the IK kernel, once"
+
+
+@contextmanager
+def compile_notice(emit: Callable[[str], None] | None = None, after: float = 1.0) -> Iterator[None]:
+    """Say :data:`COMPILE_MESSAGE` (one line) if the block is still running ``after`` seconds
+    while the IK kernel is not compiled in this process yet (the first call after an install
+    compiles it; later processes load it from the on-disk cache in well under a second).
+
+    Args:
+        emit: Receives the message (default: print to stderr).
+        after: Delay [s].
+    """
+    if _KERNEL is not None and _KERNEL.solve_many.signatures:
+        yield
+        return
+    timer = threading.Timer(after, emit or (lambda m: print(m, file=sys.stderr, flush=True)),
+                            args=(COMPILE_MESSAGE,))
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()

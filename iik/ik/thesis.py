@@ -16,18 +16,23 @@ Steps (vectorised over poses):
 7. Keep the configurations whose Eq 4 pose matches (Sec 3.3.5 does this check).
 
 What the grid cannot see (two roots in one cell, tangent roots) is lost;
-:mod:`iik.ik.complete` has no such gap. Units: m, rad.
+:mod:`iik.ik.kernel` and :mod:`iik.ik.reference` have no such gap. Units: m, rad.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ..arm import Arm
-from .complete import _dedupe, _trig1, _wrap, eliminant_coefficients, pose_residuals
+from .angles import wrap_angle as _wrap
+from .compare import pose_residuals
+from .elimination import EliminantCoefficients, eliminant_coefficients
+from .reference import dedupe
 
-__all__ = ["solve_thesis_arrays", "thesis_candidates", "DEFAULT_GRID", "THESIS_TOL_DEG",
-           "ACCEPT_TOL"]
+__all__ = ["solve_thesis_arrays", "thesis_candidates", "ThesisCandidates", "eq11_error",
+           "DEFAULT_GRID", "THESIS_TOL_DEG", "ACCEPT_TOL"]
 
 #: Number of theta1 grid cells over the full turn (5 deg spacing).
 DEFAULT_GRID = 72
@@ -37,37 +42,60 @@ THESIS_TOL_DEG = 1e-6
 ACCEPT_TOL = 1e-6
 
 
-def _E(co, th1, s):
-    """theta2 (Eq 9 corrected, sign s) and the Eq 11 error at th1; arrays (n, m)."""
+def _trig1(x, c, s):
+    """x0 + xc cos + xs sin for coefficient rows x (..., 3)."""
+    return x[..., 0] + x[..., 1] * c + x[..., 2] * s
+
+
+def eq11_error(co: EliminantCoefficients, th1: np.ndarray, s: float):
+    """theta2 (Eq 9 corrected, sign s) and the Eq 11 error E [m^2] at theta1 values th1 (n, m)."""
     C, S = np.cos(th1), np.sin(th1)
-    P = _trig1(co["P"][:, None], C, S)
-    Q = _trig1(co["Q"][:, None], C, S)
+    P = _trig1(co.P[:, None], C, S)
+    Q = _trig1(co.Q[:, None], C, S)
     th2 = np.arctan2(-s * P, s * Q)  # Eq 9 (corrected numerator sign)
-    a = _trig1(co["a"][:, None], C, S)
-    b = _trig1(co["b"][:, None], C, S)
-    E = a + b * np.cos(th2) + co["c"][:, None] * np.sin(th2)  # Eq 11
+    a = _trig1(co.a[:, None], C, S)
+    b = _trig1(co.b[:, None], C, S)
+    E = a + b * np.cos(th2) + co.c[:, None] * np.sin(th2)  # Eq 11
     return th2, E
 
 
-def _E_flat(co, idx, th1, s):
+def _E_flat(co: EliminantCoefficients, idx, th1, s):
     C, S = np.cos(th1), np.sin(th1)
-    P = _trig1(co["P"][idx], C, S)
-    Q = _trig1(co["Q"][idx], C, S)
+    P = _trig1(co.P[idx], C, S)
+    Q = _trig1(co.Q[idx], C, S)
     th2 = np.arctan2(-s * P, s * Q)  # Eq 9 (corrected)
-    a = _trig1(co["a"][idx], C, S)
-    b = _trig1(co["b"][idx], C, S)
-    return th2, a + b * np.cos(th2) + co["c"][idx] * np.sin(th2)  # Eq 11
+    a = _trig1(co.a[idx], C, S)
+    b = _trig1(co.b[idx], C, S)
+    return th2, a + b * np.cos(th2) + co.c[idx] * np.sin(th2)  # Eq 11
+
+
+@dataclass(frozen=True)
+class ThesisCandidates:
+    """Every configuration Sec 3.3 tries, flat over all poses.
+
+    Attributes:
+        owner: (m,) pose index of each configuration.
+        root: (m,) global index of its theta1 root (4 configurations per root, Sec 3.3.3).
+        q: (m, 6) joint angles [rad].
+        position_residual, rotation_residual: (m,) FK residuals [m], [rad].
+        ok: (m,) satisfies Eq 4 within ``accept_tol`` (m and rad).
+        n_roots: (n,) theta1 roots per pose.
+        sigma: (m,) sign of Eq 9 used.
+    """
+
+    owner: np.ndarray
+    root: np.ndarray
+    q: np.ndarray
+    position_residual: np.ndarray
+    rotation_residual: np.ndarray
+    ok: np.ndarray
+    n_roots: np.ndarray
+    sigma: np.ndarray
 
 
 def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
-                      tol_deg: float = THESIS_TOL_DEG, accept_tol: float = ACCEPT_TOL) -> dict:
-    """Run Sec 3.3 on validated poses ``T`` (n, 4, 4) and return every intermediate.
-
-    Returns:
-        dict with flat arrays over all tried configurations: ``owner`` (pose index),
-        ``root`` (global root index), ``q`` (m, 6) [rad], ``pres`` [m], ``rres`` [rad],
-        ``ok`` (satisfies Eq 4 within ``accept_tol`` m and rad), and ``n_roots`` (n,).
-    """
+                      tol_deg: float = THESIS_TOL_DEG, accept_tol: float = ACCEPT_TOL) -> ThesisCandidates:
+    """Run Sec 3.3 on validated poses ``T`` (n, 4, 4); every configuration it tries."""
     n = T.shape[0]
     R, p = T[:, :3, :3], T[:, :3, 3]
     l1, l2, l3, l4, l5 = arm.lengths
@@ -80,7 +108,7 @@ def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
     grid = np.concatenate([grid, grid[:, :1] + 2 * np.pi], axis=1)  # close the circle
     owners, los, his, sig = [], [], [], []
     for s in (1.0, -1.0):
-        _th2, E = _E(co, grid, s)
+        _th2, E = eq11_error(co, grid, s)
         change = (E[:, :-1] * E[:, 1:] <= 0) & (grid[:, 1:] > grid[:, :-1])
         i, j = np.nonzero(change)
         owners.append(i)
@@ -102,7 +130,7 @@ def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
     th2, _ = _E_flat(co, own, th1, s)
     n_roots = np.bincount(own, minlength=n)
     # --- the four configurations per root: signs of Eq 15 and Eq 21 -------------
-    D = co["D"][own]
+    D = co.D[own]
     xD, yD = D[:, 0], D[:, 1]
     c1, s1, c2, s2 = np.cos(th1), np.sin(th1), np.cos(th2), np.sin(th2)
     c4 = (np.sum(D**2, axis=1) + l2**2 - l3**2 - l4**2
@@ -140,13 +168,13 @@ def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
     else:
         pres = rres = np.zeros(0)
     ok = (pres <= accept_tol) & (rres <= accept_tol)
-    return {"owner": owner, "root": root, "q": q, "pres": pres, "rres": rres, "ok": ok,
-            "n_roots": n_roots, "sigma": np.tile(s, 4)}
+    return ThesisCandidates(owner=owner, root=root, q=q, position_residual=pres, rotation_residual=rres,
+                            ok=ok, n_roots=n_roots, sigma=np.tile(s, 4))
 
 
 def solve_thesis_arrays(T: np.ndarray, arm: Arm, **kw):
-    """Sec 3.3 solutions in the padded-array format of :func:`iik.ik.complete.solve_arrays`."""
+    """Sec 3.3 solutions in the padded-array format of :func:`iik.ik.reference.solve_arrays`."""
     d = thesis_candidates(T, arm, **kw)
-    k = d["ok"]
-    return _dedupe(T.shape[0], _wrap(d["q"][k]), np.zeros(int(k.sum()), dtype=int),
-                   d["owner"][k], d["pres"][k], d["rres"][k], tol=1e-5)
+    k = d.ok
+    return dedupe(T.shape[0], _wrap(d.q[k]), np.zeros(int(k.sum()), dtype=int),
+                  d.owner[k], d.position_residual[k], d.rotation_residual[k], tol=1e-5)

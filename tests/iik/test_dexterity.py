@@ -52,9 +52,23 @@ def test_beta_outside_range_names_range():
     assert f"{lo:.6g}" in str(err) and f"{hi:.6g}" in str(err)
 
 
-def test_outside_workspace():
-    with pytest.raises(UnreachablePoseError):
-        iik.dexterity([1.5, 0.0, 0.3])
+def test_outside_workspace_is_an_answer_like_ik():
+    """dexterity and solve agree: an unreachable point is a result with a reason; raising is on request."""
+    p = [1.5, 0.0, 0.3]
+    r = iik.dexterity(p)
+    assert r.case == "unreachable" and not r.reachable and r.beta_range is None
+    assert "outside the workspace" in r.reason and not alpha_admissible(r, 0.0, 1.0)
+    assert iik.dexterity(p, beta=1.0).case == "unreachable"  # a beta does not turn it into an error
+    T = iik.pose_from_zxz(p, 0.0, 1.0, 0.0)
+    ik = iik.solve(T)
+    assert ik.count == 0 and ik.reason.startswith("unreachable")
+    for res in (r, ik):
+        with pytest.raises(UnreachablePoseError) as e:
+            res.raise_if_unreachable()
+        assert "unreachable" in str(e.value)
+    reachable = iik.fk(np.array([0.3, -0.2, 0.4, 0.8, -0.5, 0.1]))
+    assert iik.dexterity(reachable[:3, 3]).raise_if_unreachable().reachable
+    assert iik.solve(reachable).raise_if_unreachable().count > 0
 
 
 def test_home_pose_has_one_orientation():

@@ -9,17 +9,10 @@ from hypothesis import strategies as st
 
 import iik
 from iik.errors import IIKError, InvalidInputError
-from iik.ik.complete import (
-    FREE_Q3_Q6,
-    MAX_SOLUTIONS,
-    POSE_EPS,
-    POSITION_TOL,
-    ROTATION_TOL,
-    _wrap,
-    contains,
-    eliminant_coefficients,
-    solve_arrays,
-)
+from iik.ik.angles import wrap_angle as _wrap
+from iik.ik.compare import POSE_EPS, contains
+from iik.ik.elimination import eliminant_coefficients
+from iik.ik.reference import FREE_Q3_Q6, MAX_SOLUTIONS, POSITION_TOL, ROTATION_TOL, solve_arrays
 
 ARM = iik.THESIS_ARM
 LO, HI = ARM.q_min, ARM.q_max
@@ -128,10 +121,13 @@ def test_theta1_at_pi_where_plain_t_polynomial_loses_degree():
     q = np.array([np.pi, -0.4, 0.9, 0.8, -0.6, 1.2])
     T = iik.fk(q)
     co = eliminant_coefficients(T[None, :3, :3], T[None, :3, 3], ARM)
-    from iik.ik.complete import _F_at
 
-    scale = np.max(np.abs(_F_at(co, np.linspace(0, 2 * np.pi, 16)[None])))
-    assert abs(_F_at(co, np.array([[np.pi]]))[0, 0]) <= 1e-12 * scale  # leading coeff of plain t-poly
+    def F(th):  # the eliminant a^2 (P^2 + Q^2) - (b Q - c P)^2
+        a, b, P, Q = (x[0] + x[1] * np.cos(th) + x[2] * np.sin(th) for x in co.abPQ[0])
+        return a * a * (P * P + Q * Q) - (b * Q - co.c[0] * P) ** 2
+
+    scale = np.max(np.abs(F(np.linspace(0, 2 * np.pi, 16))))
+    assert abs(F(np.pi)) <= 1e-12 * scale  # the leading coefficient of the plain t-polynomial
     r = iik.solve(T, within_limits=False)
     assert contains(r.q, q, T, ARM)
     assert np.min(np.max(np.abs(_wrap(r.q - q)), axis=1)) <= 1e-9
@@ -292,3 +288,74 @@ def test_clustered_candidates_are_deduplicated_not_truncated():
     r = iik.solve(T, within_limits=False)
     assert r.count < MAX_SOLUTIONS
     assert contains(r.q, q, T, ARM, free_joints=r.free_joints)
+
+
+# ----------------------------------------------------------------------------- continua (issue 10, item 4)
+def test_issue_example_continuum_inside_table_i_with_its_interval():
+    """q with theta4 = theta5 = 0 inside Table I: the representative is inside Table I, the fixed
+    combination is theta3 - theta6 and every member of the free interval reaches the pose."""
+    q = np.array([0.98902373, 0.75632699, 0.01209722, 0.0, 0.0, 0.96039359])
+    T = iik.fk(q)
+    r = iik.solve(T)
+    assert r.count >= 1 and np.all(r.within_limits) and ARM.within_limits(r.q).all()
+    i = r.free_joints.index((3, 6))
+    (c,) = r.continua[i]
+    assert c.free_joint == 3 and c.sign == 1 and c.fixed == "theta3 - theta6"
+    assert c.value == pytest.approx(_wrap(q[2] - q[5]), abs=1e-9)
+    assert c.interval == pytest.approx((LO[2], HI[2]))  # joint 6 spans a full turn
+    assert np.array_equal(c.representative, r.q[i])
+    for th in np.linspace(*c.interval, 7):
+        m = c.member(th)
+        assert ARM.within_limits(m)
+        assert np.allclose(iik.fk(m), T, atol=1e-10)
+    assert contains(r.q, q, T, ARM, free_joints=r.free_joints)
+
+
+def test_exact_singular_poses_inside_table_i_have_a_solution_inside_table_i():
+    rng = np.random.default_rng(21)
+    fixes = ({3: 0.0, 4: 0.0}, {3: 0.0}, {4: 0.0}, {2: np.pi / 2}, {2: -np.pi / 2}, {0: HI[0]}, {0: LO[0]})
+    for fix in fixes:
+        q = rng.uniform(LO, HI, size=(150, 6))
+        for j, v in fix.items():
+            q[:, j] = v
+        for qi, r in zip(q, iik.solve_many(iik.fk(q)), strict=True):
+            assert r.count >= 1 and not r.is_approximate, (qi, r.reason)
+            assert ARM.within_limits(r.q).all()
+
+
+def test_continuum_representative_moves_inside_the_limits():
+    """A theta3/theta6 continuum whose solver representative would be outside Table I
+    (theta3 = 170 deg) still returns a member inside it, at the end of the interval."""
+    q = np.array([0.4, -0.3, np.radians(170.0), 0.0, 0.0, -0.2])
+    T = iik.fk(q)
+    r = iik.solve(T)
+    rows = [i for i, f in enumerate(r.free_joints) if f == (3, 6)]
+    assert rows and all(r.within_limits[i] for i in rows)
+    for i in rows:
+        (c,) = r.continua[i]
+        assert c.interval[0] - 1e-12 <= r.q[i, 2] <= c.interval[1] + 1e-12
+        assert np.allclose(iik.fk(r.q[i]), T, atol=1e-10)
+
+
+def test_theta1_theta6_continuum_is_resolved():
+    """Tool point on the joint-1 axis and z6 vertical: joints 1 and 6 collinear."""
+    from scipy.optimize import least_squares
+
+    def f(x):
+        q = np.array([0, x[0], 0, x[1], x[2], 0])
+        return [*iik.fk(q)[:2, 3], *iik.fk(q)[:2, 2]]
+
+    x = least_squares(f, [0.5, -2.0, 0.5], xtol=1e-15, ftol=1e-15, gtol=1e-15).x
+    q = np.array([0.0, x[0], 0.0, x[1], x[2], 0.3])
+    T = iik.fk(q)
+    T[:2, 3] = 0.0  # exactly on the axis, z6 exactly vertical
+    T[:3, 2] = [0.0, 0.0, np.sign(T[2, 2])]
+    T[:3, :3] = np.linalg.svd(T[:3, :3])[0] @ np.linalg.svd(T[:3, :3])[2]
+    r = iik.solve(T, within_limits=False)
+    rows = [i for i, fj in enumerate(r.free_joints) if 1 in fj]
+    assert rows, r.free_joints
+    for i in rows:
+        c = next(c for c in r.continua[i] if c.free_joint == 1)
+        assert c.fixed in ("theta1 - theta6", "theta1 + theta6")
+        for th in (-1.0, 0.5, 2.0):
+            assert np.allclose(iik.fk(c.member(th)), T, atol=1e-9)

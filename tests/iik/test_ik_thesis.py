@@ -5,7 +5,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import iik
-from iik.ik.complete import _wrap, contains
+from iik.ik.angles import wrap_angle as _wrap
+from iik.ik.compare import contains
 from iik.ik.thesis import ACCEPT_TOL, thesis_candidates
 
 ARM = iik.THESIS_ARM
@@ -42,7 +43,7 @@ def test_only_two_of_four_configurations_per_root_satisfy_fk():
     rng = np.random.default_rng(2)
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(200, 6))
     d = thesis_candidates(iik.fk(q), ARM)
-    per_root = np.bincount(d["root"], weights=d["ok"])
+    per_root = np.bincount(d.root, weights=d.ok)
     real = per_root[per_root > 0]
     assert np.all(real <= 2)
     assert np.mean(real == 2) > 0.9

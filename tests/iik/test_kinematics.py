@@ -131,3 +131,32 @@ def test_any_non_finite_entry_is_rejected(i, v):
     q[i] = v
     with pytest.raises(InvalidInputError, match="NaN or inf"):
         iik.fk(q)
+
+
+@given(joint_batches())
+def test_compiled_closed_forms_equal_the_same_formulas_run_by_numpy(qs):
+    """iik.fk runs the Eq 4 closed forms compiled (one q or a batch); the same functions
+    evaluated by NumPy on arrays agree to rounding (sin/cos implementations differ)."""
+    from iik.kinematics import eq4_position, eq4_rotation, eq4_terms, eq4_wrist_axes
+
+    c, s = np.cos(qs).T, np.sin(qs).T
+    c45, s45 = np.cos(qs[:, 3] + qs[:, 4]), np.sin(qs[:, 3] + qs[:, 4])
+    A, B, W, V = eq4_terms(c[0], s[0], c[1], s[1], c[2], s[2], c[3], s[3], c45, s45, ARM.l4, ARM.l5)
+    X1, X2, X3, Y1, Y2, Y3, Z1, Z2, Z3 = eq4_wrist_axes(c[0], s[0], c[1], s[1], c[2], s[2], c45, s45, A, B)
+    r11, r21, r31, r12, r22, r32 = eq4_rotation(c[5], s[5], X1, X2, X3, Y1, Y2, Y3)
+    p = eq4_position(c[0], s[0], c[1], s[1], c[2], A, B, W, V, ARM.l1, ARM.l2, ARM.l3)
+    T = iik.fk(qs)
+    np.testing.assert_allclose(T[:, :3, 3], np.stack(p, axis=1), atol=1e-15)
+    R = np.stack([np.stack([r11, r12, Z1], 1), np.stack([r21, r22, Z2], 1), np.stack([r31, r32, Z3], 1)], 1)
+    np.testing.assert_allclose(T[:, :3, :3], R, atol=1e-15)
+
+
+def test_one_q_fast_path_accepts_any_layout_and_dtype():
+    q = np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0])
+    T = iik.fk(q)
+    strided = np.zeros(12)
+    strided[::2] = q
+    for variant in (strided[::2], list(q), tuple(q), q.reshape(1, 6)[0]):
+        np.testing.assert_array_equal(iik.fk(variant), T)
+    assert np.abs(iik.fk(q.astype(np.float32)) - T).max() < 1e-6
+    np.testing.assert_array_equal(iik.jacobian(strided[::2]), iik.jacobian(q))

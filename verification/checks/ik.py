@@ -6,8 +6,8 @@ claims about the method are graded: "four configurations per theta1 root" (Sec 3
 (Sec 3.3.5, with and without the Table I limits), "the IIK finds all solutions"
 (Sec 3.3.1, Sec 5.2) and "the IIK costs less than Newton per solution" (Sec 4.2.1,
 Sec 5.2). The thesis IIK is :mod:`iik.ik.thesis` (Sec 3.3 with the errata corrected);
-ground truth is the complete elimination solver :mod:`iik.ik.complete` at poses fk(q) of
-random q within Table I, whose generating q is known.
+ground truth is the complete elimination solver (:func:`iik.ik.solve_batch`, the compiled
+kernel) at poses fk(q) of random q within Table I, whose generating q is known.
 """
 
 from __future__ import annotations
@@ -17,11 +17,12 @@ from dataclasses import dataclass
 import numpy as np
 
 import iik
-from iik.ik.complete import contains, solve_arrays
+from iik.ik import solve_batch
+from iik.ik.compare import contains, free_joints_of
 from iik.ik.thesis import solve_thesis_arrays, thesis_candidates
 
 from ..registry import Forms, Measure, Row, Verdict, register, verdict_of
-from ..testing.ik_benchmark import ThesisSolver, compare_cost
+from ..testing.ik_cost import ThesisSolver, compare_cost
 from .ik_equations import SECTION
 
 ARM = iik.THESIS_ARM
@@ -37,12 +38,15 @@ def _cached_solutions(ctx):
     if key not in ctx.cache:
         q = _sample(ctx, "ik-complete", 4000, 300)
         T = iik.fk(q)
-        ctx.cache[key] = (q, T, solve_arrays(T, ARM))
+        ctx.cache[key] = (q, T, _complete_arrays(T))
     return ctx.cache[key]
 
 
-def _free(F_row) -> list:
-    return [() if f == 0 else ((3, 6) if f == 2 else (1, 6)) for f in F_row]
+def _complete_arrays(T):
+    """The complete solver (compiled kernel) as padded arrays ``(Q, V, F, P, R)``, limits ignored."""
+    b = solve_batch(T, within_limits=False)
+    V = np.arange(b.q.shape[1])[None, :] < b.count[:, None]
+    return np.where(V[..., None], b.q, 0.0), V, b.free, b.position_residual, b.rotation_residual
 
 
 # ----------------------------------------------------------------------------- Sec 3.3.3
@@ -63,7 +67,7 @@ def four_configurations(ctx, per_root):
     """Sec 3.3.3: combining the signs of Eq 15 and Eq 21 gives ``per_root`` configurations per theta1 root."""
     q = _sample(ctx, "ik-four", 2000, 200)
     d = thesis_candidates(iik.fk(q), ARM)
-    valid = np.bincount(d["root"], weights=d["ok"], minlength=int(d["root"].max()) + 1).astype(int)
+    valid = np.bincount(d.root, weights=d.ok, minlength=int(d.root.max()) + 1).astype(int)
     hist = np.bincount(valid, minlength=5)
     real = valid[valid > 0]
     off = float(np.mean(real != per_root)) if len(real) else 1.0
@@ -170,7 +174,7 @@ class Solver:
 
     def __call__(self, T):
         if self.method == "complete":
-            return solve_arrays(T, ARM)
+            return _complete_arrays(T)
         return solve_thesis_arrays(T, ARM, n_grid=self.n_grid)
 
 
@@ -196,7 +200,8 @@ def completeness(ctx, solver):
     Qs, Vs, Fs, Ps, Rs = solver(T)
     hit = np.array(
         [
-            contains(Qs[i][Vs[i]], q[i], T[i], ARM, tol=_RECOVER_TOL, free_joints=_free(Fs[i][Vs[i]]))
+            contains(Qs[i][Vs[i]], q[i], T[i], ARM, tol=_RECOVER_TOL,
+                     free_joints=free_joints_of(Fs[i][Vs[i]]))
             for i in range(len(q))
         ]
     )

@@ -1,8 +1,12 @@
-"""The complete inverse kinematics: every solution, by elimination to one polynomial.
+"""The complete inverse kinematics, vectorised in NumPy (``method="reference"``).
+
+The compiled kernel (:mod:`iik.ik.kernel`, ``method="complete"``, the default) and
+this module solve the same elimination; this one is kept as an independent
+reference (tests show the two agree) and for its batched LAPACK root finding.
 
 The thesis (Sec 3.3) reduces the problem to two equations in (theta1, theta2):
-the coplanarity condition Eq 8 and the length error Eq 11. For a fixed theta1,
-Eq 8 is linear in (c2, s2)::
+the coplanarity condition Eq 8 and the length error Eq 11 (:mod:`iik.ik.elimination`).
+For a fixed theta1, Eq 8 is linear in (c2, s2)::
 
     P(theta1) c2 + Q(theta1) s2 = 0   =>   (c2, s2) = sigma (Q, -P) / N,  N = sqrt(P^2 + Q^2)
 
@@ -11,13 +15,10 @@ signs sigma = +-1 together eliminates theta2::
 
     F(theta1) = a^2 (P^2 + Q^2) - (b Q - c P)^2 = 0,
 
-where ``a, b, P, Q`` are first-degree trigonometric polynomials in theta1 and
-``c`` is constant, so ``F`` is a trigonometric polynomial of degree 4. With a
-pose-dependent reference angle ``theta_r`` and ``t = tan((theta1 - theta_r)/2)``
-it becomes a real polynomial of degree 8 in ``t``. Its real roots are all
-eigenvalues of the companion matrix (batched LAPACK), so no root can be
-missed the way the thesis's bisection on a grid can (two roots in one cell,
-tangent roots). ``theta_r`` is chosen per pose so that ``theta1 = theta_r + pi``
+a trigonometric polynomial of degree 4. With a pose-dependent reference angle
+``theta_r`` and ``t = tan((theta1 - theta_r)/2)`` it becomes a real polynomial of
+degree 8 in ``t``; here its roots are the eigenvalues of the companion matrix
+(batched LAPACK). ``theta_r`` is chosen per pose so that ``theta1 = theta_r + pi``
 (``t = infinity``, where the degree drops) is far from every root.
 
 Each real root is refined by Newton's method on the *unsquared* equation
@@ -41,10 +42,12 @@ import numpy as np
 from ..arm import Arm
 from ..kinematics import fk, jacobian
 from ..rotations import rotation_angle
+from .angles import wrap_angle as _wrap
+from .compare import pose_residuals
+from .elimination import EliminantCoefficients, eliminant_coefficients
 
-__all__ = ["solve_arrays", "contains", "FREE_NONE", "FREE_Q1_Q6", "FREE_Q3_Q6", "MAX_SOLUTIONS",
-           "POSITION_TOL", "ROTATION_TOL", "pose_residuals",
-           "eliminant_coefficients"]
+__all__ = ["solve_arrays", "dedupe", "FREE_NONE", "FREE_Q1_Q6", "FREE_Q3_Q6", "MAX_SOLUTIONS",
+           "POSITION_TOL", "ROTATION_TOL", "CONTINUUM_SIN"]
 
 #: Upper bound on the number of distinct solutions (8 roots x 2 wrist branches).
 MAX_SOLUTIONS = 16
@@ -64,13 +67,6 @@ FREE_Q3_Q6 = 2
 #: q only to ~sqrt(machine eps) there, so the threshold sits well above 1e-8).
 FREE_TOL = 1e-7
 
-#: Size of the pose perturbation (rounding of fk(q) and of the solver, ~1000 ulp) used to
-#: bound how precisely a pose determines q near a singularity, see :func:`contains`.
-POSE_EPS = 1e-13
-
-#: A flagged continuum row stands for every q reaching the pose whose non-free joints
-#: are within this of it [rad].
-CONTINUUM_TOL = 1e-4
 #: |sin theta4| and |sin(theta4 + theta5)| of a final solution below this: flagged as a
 #: theta3/theta6 continuum (sigma_min(J) < ~1e-10 there: the pose fixes theta3 to ~1e-3 rad).
 CONTINUUM_SIN = 1e-5
@@ -79,21 +75,9 @@ _TWO_PI = 2.0 * np.pi
 _N_REF = 12  # candidate reference angles for the t-substitution
 
 
-def _wrap(x):
-    """Wrap angles to (-pi, pi]."""
-    return np.pi - np.mod(np.pi - x, _TWO_PI)
-
-
 def _norm(x):
     """Euclidean norm over the last axis; the same arithmetic as ``np.linalg.norm(x, axis=-1)``."""
     return np.sqrt(np.add.reduce(x * x, axis=-1))
-
-
-def pose_residuals(q: np.ndarray, T: np.ndarray, arm: Arm) -> tuple[np.ndarray, np.ndarray]:
-    """Position [m] and rotation [rad] residuals of ``fk(q)`` against ``T`` (batched)."""
-    Tq = fk(q, arm)
-    return (np.linalg.norm(Tq[..., :3, 3] - T[..., :3, 3], axis=-1),
-            rotation_angle(Tq[..., :3, :3], T[..., :3, :3]))
 
 
 # --------------------------------------------------------------------------- #
@@ -101,51 +85,16 @@ def pose_residuals(q: np.ndarray, T: np.ndarray, arm: Arm) -> tuple[np.ndarray, 
 # --------------------------------------------------------------------------- #
 
 def _trig1(x, c, s):
+    """x0 + xc cos + xs sin for coefficient rows x (..., 3)."""
     return x[..., 0] + x[..., 1] * c + x[..., 2] * s
 
 
-def _dtrig1(x, c, s):
-    return -x[..., 1] * s + x[..., 2] * c
-
-
-def eliminant_coefficients(R: np.ndarray, p: np.ndarray, arm: Arm) -> dict:
-    """Coefficients of the first-degree trig polynomials of the elimination.
-
-    Args:
-        R: Rotations (n, 3, 3); p: positions (n, 3) [m], base frame 0.
-
-    Returns:
-        dict with arrays (n, 3) ``a, b, P, Q`` (``[const, cos, sin]`` in theta1),
-        ``c`` (n,) and the shifted wrist point ``D`` (n, 3) (Eq 9a-c corrected:
-        ``D = p + l5 z6 - l1 e_z``); ``abPQ`` (n, 4, 3) holds a, b, P, Q (which are views of it).
-    """
-    l1, l2, l3, l4, l5 = arm.lengths
-    z = R[:, :, 2]
-    D = p + l5 * z  # Eq 9a-c (corrected sign, see verification/checks/ik.py)
-    D = D - np.array([0.0, 0.0, l1])  # Sec 3.3.1: origin moved up by l1
-    xD, yD, zD = D[:, 0], D[:, 1], D[:, 2]
-    r13, r23, r33 = z[:, 0], z[:, 1], z[:, 2]
-    n = len(p)
-    X = np.empty((n, 4, 3))  # a, b, P, Q as [const, cos, sin] rows
-    a, b, P, Q = X[:, 0], X[:, 1], X[:, 2], X[:, 3]
-    # Eq 8: P c2 + Q s2 = 0 with P = (r23 zD - r33 yD) c1 + (r33 xD - r13 zD) s1,
-    #       Q = (r23 xD - r13 yD) + r13 l2 s1 - r23 l2 c1
-    P[:, 0], P[:, 1], P[:, 2] = 0.0, r23 * zD - r33 * yD, r33 * xD - r13 * zD
-    Q[:, 0], Q[:, 1], Q[:, 2] = r23 * xD - r13 * yD, -r23 * l2, r13 * l2
-    # Eq 11: E = a + b c2 + c s2
-    K = xD**2 + yD**2 + zD**2 + l2**2 + l3**2 - l4**2
-    a[:, 0], a[:, 1], a[:, 2] = K, -2 * l2 * xD, -2 * l2 * yD
-    b[:, 0], b[:, 1], b[:, 2] = 2 * l3 * l2, -2 * l3 * xD, -2 * l3 * yD
-    c = 2 * l3 * zD
-    return {"a": a, "b": b, "c": c, "P": P, "Q": Q, "D": D, "abPQ": X}
-
-
-def _F_cs(co, C, S):
+def _F_cs(co: EliminantCoefficients, C, S):
     """F = a^2 (P^2+Q^2) - (bQ - cP)^2 from cos/sin of theta1 (broadcast to (n, m))."""
-    X = _abPQ(co)[:, None]  # (n, 1, 4, 3)
+    X = co.abPQ[:, None]  # (n, 1, 4, 3)
     v = X[..., 0] + X[..., 1] * C[..., None] + X[..., 2] * S[..., None]
     a, b, P, Q = v[..., 0], v[..., 1], v[..., 2], v[..., 3]
-    g = b * Q - co["c"][:, None] * P
+    g = b * Q - co.c[:, None] * P
     return a * a * (P * P + Q * Q) - g * g
 
 
@@ -186,19 +135,19 @@ _SUB8 = (np.arange(1, 8), np.arange(7))  # companion-matrix subdiagonal
 
 def _theta1_candidates(co, imag_tol: float = 1e-3):
     """All theta1 candidates (n, 8) [rad] (NaN where none) from the degree-8 polynomial."""
-    n = co["a"].shape[0]
+    n = co.a.shape[0]
     # Pick theta_r so that theta_r + pi (t = inf) is far from the roots:
     # the leading coefficient of the t-polynomial is F(theta_r + pi).
     Fg = np.abs(_F_cs(co, _GRID_C[None], _GRID_S[None]))
     th_r = _GRID[np.argmax(Fg, axis=1)]
     cr, sr = np.cos(th_r)[:, None], np.sin(th_r)[:, None]
-    X = _quad_in_t(_abPQ(co), cr, sr)  # (n, 4, 3): a, b, P, Q
+    X = _quad_in_t(co.abPQ, cr, sr)  # (n, 4, 3): a, b, P, Q
     # five products at once: B Q, A A, P P, Q Q, (1 + t^2) P
     L = np.empty((n, 5, 3))
     L[:, :4] = X[:, [1, 0, 2, 3]]
     L[:, 4] = _ONE_T2
     BQ, A2, PP, QQ, P1 = _pmul(L, X[:, [3, 0, 2, 3, 2]]).transpose(1, 0, 2)
-    G = BQ - co["c"][:, None] * P1
+    G = BQ - co.c[:, None] * P1
     L2, R2 = np.empty((n, 2, 5)), np.empty((n, 2, 5))
     L2[:, 0], L2[:, 1], R2[:, 0], R2[:, 1] = A2, G, PP + QQ, G
     F2 = _pmul(L2, R2)
@@ -222,26 +171,18 @@ def _theta1_candidates(co, imag_tol: float = 1e-3):
     return cand, imag, th_r, ~ok & ~degenerate, degenerate
 
 
-def _abPQ(co):
-    """The four trig polynomials a, b, P, Q stacked as (n, 4, 3) (cached in ``co``)."""
-    x = co.get("abPQ")
-    if x is None:
-        x = co["abPQ"] = np.stack([co["a"], co["b"], co["P"], co["Q"]], axis=1)
-    return x
-
-
 def _f_derivs(co, own, th, sigma, second: bool = True):
     """f_sigma = a N + sigma (b Q - c P) and its first two derivatives (flat arrays).
 
     With ``second=False`` the second derivative is not computed (returned as None).
     """
     C, S = np.cos(th)[:, None], np.sin(th)[:, None]
-    x = _abPQ(co)[own]  # (m, 4, 3)
+    x = co.abPQ[own]  # (m, 4, 3)
     v = x[..., 0] + x[..., 1] * C + x[..., 2] * S
     d1 = -x[..., 1] * S + x[..., 2] * C
     a, b, P, Q = v.T
     a1, b1, P1, Q1 = d1.T
-    c = co["c"][own]
+    c = co.c[own]
     N = np.hypot(P, Q)
     Ns = np.where(N > 1e-150, N, 1.0)
     u = P * P1 + Q * Q1
@@ -291,9 +232,9 @@ def _theta1_list(co, cand, imag, cluster_tol: float = 1e-3):
     own0, col = np.nonzero(valid)
     th0 = cand[own0, col]
     C, S = np.cos(th0)[:, None], np.sin(th0)[:, None]
-    x = _abPQ(co)[own0]
+    x = co.abPQ[own0]
     a, b, P, Q = (x[..., 0] + x[..., 1] * C + x[..., 2] * S).T
-    aN, g = a * np.hypot(P, Q), b * Q - co["c"][own0] * P
+    aN, g = a * np.hypot(P, Q), b * Q - co.c[own0] * P
     s0 = np.where(np.abs(aN + g) <= np.abs(aN - g), 1.0, -1.0)  # |f_+| <= |f_-|
     thA = _newton(co, own0, th0, s0, 0)
     d = np.abs(cand[:, :, None] - cand[:, None, :])
@@ -329,7 +270,7 @@ def _theta1_list(co, cand, imag, cluster_tol: float = 1e-3):
 def _theta2_eq8(co, own, th1, sig):
     """theta2 from Eq 8 for the sign ``sig`` of each flat (own, th1), and N = |(P, Q)|."""
     C, S = np.cos(th1)[:, None], np.sin(th1)[:, None]
-    x = _abPQ(co)[own][:, 2:]
+    x = co.abPQ[own][:, 2:]
     v = x[..., 0] + x[..., 1] * C + x[..., 2] * S
     P, Q = v[:, 0], v[:, 1]
     # Eq 9 corrected: tan(theta2) = -P / Q; sigma = -1 is the opposite direction
@@ -343,9 +284,9 @@ def _theta2_eq11(co, own, th1):
     Elsewhere they are spurious and removed by the FK check.
     """
     C, S = np.cos(th1), np.sin(th1)
-    a = _trig1(co["a"][own], C, S)
-    b = _trig1(co["b"][own], C, S)
-    c = co["c"][own]
+    a = _trig1(co.a[own], C, S)
+    b = _trig1(co.b[own], C, S)
+    c = co.c[own]
     # Eq 11 alone: a + b c2 + c s2 = 0  ->  theta2 = atan2(c, b) +- acos(-a / |(b, c)|)
     r = np.sqrt(b * b + c * c)
     phi = np.arctan2(c, b)
@@ -505,7 +446,7 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
         fr1 = np.concatenate([fr1, np.ones(2 * len(dg), dtype=bool)])
     t2, N = _theta2_eq8(co, own, t1, sig)
     # Where Eq 8 vanishes identically (P = Q = 0) theta2 comes from Eq 11 alone.
-    scale = _norm(co["D"])[own] + arm.l2 + arm.l3
+    scale = _norm(co.D)[own] + arm.l2 + arm.l3
     weak = (N <= 1e-6 * scale) | fr1
     if weak.any():
         opts = _theta2_eq11(co, own[weak], t1[weak])
@@ -515,7 +456,7 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
         prio = np.concatenate([prio, prio[weak], prio[weak]])
         careful = np.concatenate([careful | weak, np.ones(2 * int(weak.sum()), dtype=bool)])
         fr1 = np.concatenate([fr1, fr1[weak], fr1[weak]])
-    wr, free3 = _wrist(R[own], co["D"][own], t1[:, None], t2[:, None], arm, FREE_TOL)
+    wr, free3 = _wrist(R[own], co.D[own], t1[:, None], t2[:, None], arm, FREE_TOL)
     k = len(t1)
     q = np.empty((k, 2, 6))
     q[..., 0] = t1[:, None]
@@ -556,15 +497,8 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
         qf[idx], pres[idx], rres[idx] = qs[better], ps[better], rs[better]
     keep = (pres <= tol_p) & (rres <= tol_r)
     qf, flf, owner, pres, rres, prio = (x[keep] for x in (qf, flf, owner, pres, rres, prio))
-    return _dedupe(n, qf, flf, owner, pres, rres, prio=prio, T=T, arm=arm,
+    return dedupe(n, qf, flf, owner, pres, rres, prio=prio, T=T, arm=arm,
                    near=1e-4 if tol_p <= POSITION_TOL else 0.0)
-
-
-def _f_sigma(co, th, sigma):
-    """The unsquared eliminant f_sigma = a N + sigma (b Q - c P) at th (n, m)."""
-    C, S = np.cos(th), np.sin(th)
-    a, b, P, Q = (_trig1(co[k][:, None], C, S) for k in ("a", "b", "P", "Q"))
-    return a * np.hypot(P, Q) + sigma * (b * Q - co["c"][:, None] * P)
 
 
 def _connected(qa, qb, T, arm: Arm, tol_p: float = POSITION_TOL, tol_r: float = ROTATION_TOL):
@@ -602,7 +536,7 @@ def _canonical_order(qf, owner):
     return order
 
 
-def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None, T=None, arm=None,
+def dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None, T=None, arm=None,
             near: float = 1e-4):
     """Distinct solutions per pose, sorted lexicographically; padded to MAX_SOLUTIONS.
 
@@ -672,60 +606,3 @@ def _dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None, T=None,
     out_q[o, s], out_v[o, s], out_f[o, s] = qf[sel], True, flf[sel]
     out_p[o, s], out_r[o, s] = pres[sel], rres[sel]
     return out_q, out_v, out_f, out_p, out_r
-
-
-def contains(solutions: np.ndarray, q: np.ndarray, T: np.ndarray, arm: Arm, *,
-             tol: float = 1e-9, tol_p: float = POSITION_TOL, tol_r: float = ROTATION_TOL,
-             free_joints=None) -> bool:
-    """Is configuration ``q`` (6,) among ``solutions`` (k, 6) of pose ``T``?
-
-    Yes if some solution is within ``tol`` rad in every joint (angles wrapped),
-    or within ``POSE_EPS / sigma_min(J(q))`` (how far q moves when the pose is
-    perturbed by :data:`POSE_EPS`, i.e. the accuracy the pose carries).
-    Near a singularity a pose fixes q only to ~sqrt(machine eps), so a solution
-    also counts if the straight joint-space segment from it to ``q`` stays
-    inside the FK tolerance (``tol_p`` m, ``tol_r`` rad) at 9 interior points:
-    then the two are the same solution within the accuracy the pose carries.
-    With ``free_joints`` (per solution, as in :class:`~iik.ik.result.IKResult`),
-    ``q`` also counts if it reaches ``T`` and matches a flagged continuum
-    representative to :data:`CONTINUUM_TOL` in every joint that is not free
-    (near theta4 = theta5 = 0 the isolated solutions crowd within ~1e-6 rad in
-    those joints: numerically a continuum).
-    """
-    sol = np.asarray(solutions, float).reshape(-1, 6)
-    if len(sol) == 0:
-        return False
-    if free_joints is not None and any(free_joints):
-        pr, rr = pose_residuals(np.asarray(q, float)[None], np.asarray(T)[None], arm)
-        if pr[0] <= tol_p and rr[0] <= tol_r:
-            for row, fj in zip(sol, free_joints, strict=False):
-                fixed = [j for j in range(6) if j + 1 not in fj]
-                if fj and np.max(np.abs(_wrap(row[fixed] - q[fixed]))) <= CONTINUUM_TOL:
-                    return True  # q reaches T and lies on the flagged (numerical) continuum
-        # Move each continuum representative along its continuum to q's free joints.
-        extra = []
-        for row, fj in zip(sol, free_joints, strict=False):
-            for j in (1, 3):
-                if j in fj:
-                    for sgn in (1.0, -1.0):
-                        r2 = row.copy()
-                        r2[j - 1] = q[j - 1]
-                        r2[5] = _wrap(row[5] + sgn * (q[j - 1] - row[j - 1]))
-                        extra.append(r2)
-        if extra:
-            sol = np.concatenate([sol, np.array(extra)])
-    d = _wrap(sol - q)
-    dist = np.max(np.abs(d), axis=1)
-    # First-order sensitivity: a pose known to POSE_EPS moves q by up to POSE_EPS / sigma_min(J).
-    smin = np.linalg.svd(jacobian(np.asarray(q, float), arm), compute_uv=False)[-1]
-    if np.min(dist) <= max(tol, POSE_EPS / max(smin, 1e-300)):
-        return True
-    s = np.linspace(0.1, 0.9, 9)
-    for i in np.argsort(dist)[:4]:
-        if dist[i] > 1e-3:
-            break
-        pts = q + s[:, None] * d[i]
-        pr, rr = pose_residuals(pts, np.broadcast_to(T, (len(s), 4, 4)), arm)
-        if np.all(pr <= tol_p) and np.all(rr <= tol_r):
-            return True
-    return False

@@ -1,0 +1,62 @@
+"""Options of the inverse kinematics: tolerances with documented defaults."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+
+from ..errors import InvalidInputError
+
+__all__ = ["IKOptions", "DEFAULT_OPTIONS"]
+
+
+@dataclass(frozen=True)
+class IKOptions:
+    """Tolerances of :func:`iik.solve` / :func:`iik.solve_many` (pass ``options=IKOptions(...)``).
+
+    Attributes:
+        position_tol: A configuration solves the pose if its tool point is within this of the
+            requested one [m] ...
+        rotation_tol: ... and its rotation within this angle of the requested one [rad]
+            (after the projection below).
+        orthonormal_tol: A rotation block with max |R^T R - I| up to this is projected onto the
+            nearest rotation (polar decomposition) and solved; the result reports the distance
+            (``rotation_projection``) and the residuals against the pose as given. Beyond it
+            the pose is rejected (:class:`~iik.validation.NotOrthonormalError`). The default
+            accepts float32 matrices, matrices rounded to 6 decimals and noise of ~1e-5,
+            and still rejects a scaled or wrong matrix.
+        approximate_tol: When no configuration solves the pose within the tolerances above
+            (within the joint limits, if asked), configurations within this [m and rad] of it
+            are returned, flagged ``approximate``: a pose this close to the reachable set is
+            not called unreachable.
+        parallel: :func:`iik.solve_many` runs the compiled kernel on all cores.
+    """
+
+    position_tol: float = 1e-10
+    rotation_tol: float = 1e-10
+    orthonormal_tol: float = 1e-4
+    approximate_tol: float = 1e-5
+    parallel: bool = False
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if f.name == "parallel":
+                if not isinstance(v, bool):
+                    raise InvalidInputError(f"options.{f.name}", f"expected True or False, got {v!r}")
+                continue
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+                raise InvalidInputError(f"options.{f.name}", f"expected a positive finite number, got {v!r}")
+            object.__setattr__(self, f.name, float(v))
+        if self.orthonormal_tol >= 0.5:
+            raise InvalidInputError("options.orthonormal_tol",
+                                    f"must be below 0.5, got {self.orthonormal_tol}")
+        for name in ("position_tol", "rotation_tol"):
+            if getattr(self, name) > self.approximate_tol:
+                raise InvalidInputError(f"options.{name}",
+                                        f"{getattr(self, name):g} is larger than approximate_tol "
+                                        f"= {self.approximate_tol:g}")
+
+
+#: The defaults.
+DEFAULT_OPTIONS = IKOptions()

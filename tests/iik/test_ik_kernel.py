@@ -1,0 +1,198 @@
+"""The compiled IK kernel (method "complete") against the NumPy reference, its input
+checks against the reference path's, solve / solve_many / solve_batch consistency, and the
+on-disk cache (read-only package folder, invalidation by an edit of the formulas)."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import iik
+from iik.errors import IIKError, InvalidInputError
+from iik.ik.compare import contains
+from iik.validation import NotOrthonormalError
+
+ARM = iik.THESIS_ARM
+LO, HI = ARM.q_min, ARM.q_max
+
+
+def family_poses(n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
+    """q (7 n, 6) and fk(q): random, and the singular families of the recovery sweep
+    (theta4 ~ 0, theta5 ~ 0, theta3 ~ +-90 deg, theta1 at +-160 deg), offsets 0 or 10^U(-12, -2)."""
+    rng = np.random.default_rng(seed)
+    blocks = []
+    families = ((None, 0.0), (3, 0.0), (4, 0.0), (2, np.pi / 2), (2, -np.pi / 2), (0, HI[0]), (0, LO[0]))
+    for j, centre in families:
+        q = rng.uniform(LO, HI, size=(n, 6))
+        if j is not None:
+            off = np.where(rng.random(n) < 0.2, 0.0, 10 ** rng.uniform(-12, -2, n))
+            sign = -np.sign(centre) if j == 0 else rng.choice([-1.0, 1.0], n)
+            q[:, j] = centre + sign * off
+        blocks.append(q)
+    q = np.concatenate(blocks)
+    return q, iik.fk(q)
+
+
+def agreement(T: np.ndarray) -> tuple[int, list[int]]:
+    """Compare the kernel with the reference on poses T: (poses compared, indices that differ).
+
+    Two solution sets agree if every solution of each is among the other's
+    (:func:`iik.ik.compare.contains`: to 1e-9 rad, or the accuracy the pose carries near a
+    singularity, or on a flagged continuum), i.e. the same sets after wrapping.
+    """
+    kern = iik.solve_many(T, within_limits=False)
+    ref = iik.solve_many(T, within_limits=False, method="reference")
+    bad = []
+    for i, (a, b) in enumerate(zip(kern, ref, strict=True)):
+        ok = all(contains(b.q, row, T[i], ARM, free_joints=b.free_joints) for row in a.q)
+        ok &= all(contains(a.q, row, T[i], ARM, free_joints=a.free_joints) for row in b.q)
+        if not ok:
+            bad.append(i)
+    return len(T), bad
+
+
+def test_kernel_agrees_with_reference():
+    """Always-run version of the 10^5-pose agreement: 7 x 300 poses (random and singular families)."""
+    _q, T = family_poses(300, seed=101)
+    n, bad = agreement(T)
+    assert n == 2100 and bad == [], bad[:5]
+
+
+@pytest.mark.slow
+def test_kernel_agrees_with_reference_on_1e5_poses():
+    """Issue 10 item 6: the kernel and the NumPy reference give the same solution sets on >= 10^5 poses."""
+    _q, T = family_poses(15_000, seed=102)  # 105 000 poses
+    n, bad = agreement(T)
+    assert n >= 100_000 and bad == [], (len(bad), bad[:5])
+
+
+def test_solve_many_and_solve_batch_match_solve():
+    q, T = family_poses(20, seed=103)
+    many = iik.solve_many(T, within_limits=False)
+    batch = iik.ik.solve_batch(T, within_limits=False)
+    assert np.all(batch.count == [r.count for r in many])
+    for i, r in enumerate(many):
+        one = iik.solve(T[i], within_limits=False)
+        assert np.array_equal(one.q, r.q) and one.free_joints == r.free_joints
+        assert np.array_equal(batch.q[i, :r.count], r.q)
+        assert np.array_equal(batch.position_residual[i, :r.count], r.position_residual)
+        assert np.all(np.isnan(batch.q[i, r.count:]))
+
+
+def test_parallel_option_gives_the_same_answers():
+    _q, T = family_poses(30, seed=104)
+    serial = iik.ik.solve_batch(T)
+    par = iik.ik.solve_batch(T, options=iik.ik.IKOptions(parallel=True))
+    assert np.array_equal(serial.count, par.count)
+    assert np.array_equal(np.nan_to_num(serial.q), np.nan_to_num(par.q))
+
+
+def test_reported_residuals_are_those_of_fk():
+    """The residuals in the result are |fk(q) - T| and rotation_angle(fk(q), R), recomputed here."""
+    _q, T = family_poses(10, seed=105)
+    for Ti, r in zip(T, iik.solve_many(T, within_limits=False), strict=True):
+        F = iik.fk(r.q)
+        assert np.allclose(r.position_residual, np.linalg.norm(F[:, :3, 3] - Ti[:3, 3], axis=1), atol=1e-16)
+        assert np.allclose(r.rotation_residual, iik.rotation_angle(F[:, :3, :3], Ti[:3, :3]), atol=1e-15)
+        assert np.array_equal(r.within_limits, ARM.within_limits(r.q))  # the one limit test
+
+
+BAD_POSES = [
+    (np.full((4, 4), np.nan), "NaN"),
+    (np.eye(4) + np.diag([0, 0, 0, np.inf]), "NaN or inf"),
+    (np.eye(3), "shape"),
+    (np.zeros((2, 2, 4, 4)), "shape"),
+    (np.diag([1.0, 2.0, 1.0, 1.0]), "orthonormal"),
+    (np.diag([1.0, 1.0, -1.0, 1.0]), "det"),
+    (np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0.5, 0, 0, 1.0]]), "bottom row"),
+    ("pose", "numbers"),
+    ([[1, 0], [0, 1, 2]], "array"),
+    (np.eye(4, dtype=complex), "complex"),
+]
+
+
+@pytest.mark.parametrize("bad, word", BAD_POSES)
+def test_fast_path_and_reference_give_the_same_typed_errors(bad, word):
+    errors = []
+    for method in ("complete", "reference", "thesis"):
+        with pytest.raises(InvalidInputError) as e:
+            iik.solve(bad, method=method)
+        assert word in str(e.value) and e.value.argument == "T" and isinstance(e.value, IIKError)
+        errors.append((type(e.value), str(e.value)))
+    assert len(set(errors)) == 1, errors
+
+
+def test_batch_errors_name_the_index():
+    Ts = iik.fk(np.zeros((3, 6)))
+    Ts[2, :3, :3] *= 1.01
+    for method in ("complete", "reference"):
+        with pytest.raises(NotOrthonormalError) as e:
+            iik.solve_many(Ts, method=method)
+        assert e.value.index == 2 and "index 2" in str(e.value) and e.value.argument == "Ts"
+        assert e.value.deviation == pytest.approx(0.0201, rel=1e-3)
+
+
+# ----------------------------------------------------------------------------- the on-disk cache
+_PROGRAM = textwrap.dedent("""
+    import numpy as np, iik
+    from iik.ik import kernel
+    T = iik.fk(np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0]))
+    assert iik.fk(np.zeros(6)).shape == (4, 4)
+    s = kernel.fk_many.stats
+    print(sum(s.cache_hits.values()), sum(s.cache_misses.values()), kernel.__file__)
+""")
+
+
+def _read_only_runner(pkg: Path):
+    """A command prefix under which ``pkg`` is read-only: file modes for a normal user, a
+    read-only bind mount in a private mount namespace for root (who ignores modes)."""
+    if os.geteuid() != 0:
+        for p in [pkg, *pkg.rglob("*")]:
+            p.chmod(p.stat().st_mode & ~0o222)
+        return lambda cmd: cmd
+    if shutil.which("unshare") is None:
+        pytest.skip("running as root without unshare: cannot make a read-only folder")
+    probe = subprocess.run(["unshare", "-m", "true"], capture_output=True)
+    if probe.returncode != 0:
+        pytest.skip("running as root and unshare -m is not permitted: cannot make a read-only folder")
+    mount = f"mount --bind {pkg} {pkg} && mount -o remount,ro,bind {pkg} {pkg} && exec \"$@\""
+    return lambda cmd: ["unshare", "-m", "sh", "-c", mount, "sh", *cmd]
+
+
+def test_cache_in_user_folder_when_package_is_read_only_and_keyed_on_all_sources(tmp_path):
+    """Issue 10 item 7: with the installed package read-only the compiled kernel is cached in
+    the user cache folder and loaded from there by the next process; an edit of
+    iik/kinematics.py (compiled into the kernel) invalidates it."""
+    src = Path(iik.__file__).parent
+    pkg = tmp_path / "site" / "iik"
+    shutil.copytree(src, pkg, ignore=shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc"))
+    run = _read_only_runner(pkg)
+    env = {**os.environ, "PYTHONPATH": str(tmp_path / "site"), "XDG_CACHE_HOME": str(tmp_path / "cache"),
+           "HOME": str(tmp_path)}
+    env.pop("NUMBA_CACHE_DIR", None)
+
+    def once():
+        out = subprocess.run(run([sys.executable, "-c", _PROGRAM]), env=env, cwd=tmp_path,
+                             capture_output=True, text=True, timeout=600)
+        assert out.returncode == 0, out.stderr
+        hits, misses, where = out.stdout.split()
+        assert Path(where).parent == pkg / "ik"  # the copy ran, not the worktree
+        return int(hits), int(misses)
+
+    assert once() == (0, 1)  # first process compiles ...
+    cached = list((tmp_path / "cache").rglob("kernel.fk_many*.nbi"))
+    assert cached, "no index in the user cache folder"
+    assert not list(pkg.rglob("*.nbi")), "wrote into the read-only package"
+    assert once() == (1, 0)  # ... the next one loads it
+    if os.geteuid() != 0:
+        (pkg / "kinematics.py").chmod(0o644)
+    with open(pkg / "kinematics.py", "a") as f:
+        f.write("\n# edited\n")
+    assert once() == (0, 1)  # the formulas changed: compiled again, not a stale kernel
