@@ -19,7 +19,7 @@ import numpy as np
 import iik
 from iik.errors import InvalidInputError
 
-from .errors import ViewerError
+from ..errors import ViewRequestError
 from .plan import PlanScene
 from .plan_data import plan_for_view
 from .pose import PoseView
@@ -69,8 +69,8 @@ def show(view, options: ViewOptions | None = None, *, headline: str = "") -> Sho
     """Present any view (:func:`~.session.present`), refusing to export a live-only one."""
     options = options or ViewOptions()
     if options.export is not None and getattr(view, "live_only", False):
-        raise ViewerError("--export: interactive IK needs the live server; give a pose (--q or --xyz/--zxz), "
-                          "a scenario or a run log to export")
+        raise ViewRequestError("export", "interactive IK needs the live server; give a pose (--q or "
+                                         "--xyz/--zxz), a scenario or a run log to export")
     result = present(view, options)
     return Shown(result=result, warnings=tuple(getattr(view, "warnings", ())), headline=headline)
 
