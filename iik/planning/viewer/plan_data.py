@@ -118,18 +118,8 @@ def plan_for_view(scenario: str | Path, *, scene: Scene = THESIS_SCENE) -> PlanV
 def frame_clearance(obstacles, q, *, scene: Scene = THESIS_SCENE) -> FrameClearance:
     """Nearest arm link and scene object, their distance and nearest points at each ``q`` (k, 6) [rad]."""
     checker = SceneCollision(tuple(obstacles), scene=scene)
-    Q = np.asarray(q, float).reshape(-1, 6)
-    dist = np.empty(len(Q))
-    p_link, p_obj = np.empty((len(Q), 3)), np.empty((len(Q), 3))
-    links, objs = [], []
-    for k, qk in enumerate(Q):
-        d = checker.distances(qk)
-        i = int(np.argmin(d))
-        res = checker.geom_data.distanceResults[i]  # pair i = (arm shape, scene object) of checker.pairs
-        a, e = checker.pairs[i]
-        dist[k] = d[i]
-        p_link[k], p_obj[k] = res.getNearestPoint1(), res.getNearestPoint2()
-        links.append(str(checker.arm_link[a]))
-        objs.append(str(checker.env_names[e]))
-    return FrameClearance(distance=dist, link=tuple(links), obstacle=tuple(objs), on_link=p_link,
-                          on_obstacle=p_obj)
+    near = [checker.nearest(qk) for qk in np.asarray(q, float).reshape(-1, 6)]
+    return FrameClearance(distance=np.array([n.distance for n in near]), link=tuple(n.link for n in near),
+                          obstacle=tuple(n.object for n in near),
+                          on_link=np.array([n.on_link for n in near]).reshape(-1, 3),
+                          on_obstacle=np.array([n.on_object for n in near]).reshape(-1, 3))
