@@ -11,9 +11,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from matplotlib.colors import rgb_to_hsv
 
 import iik
+from iik.planning import PlanOptions
 from iik.planning.viewer import PlanScene, PoseView, export, plan_for_view, serve
+from iik.planning.viewer.environment import view_top
 
 from .conftest import canvas_rect, hue_mask, project, screenshot, wait_for_scene
 
@@ -99,6 +102,41 @@ def test_exported_pose_shows_every_solution(browser, tmp_path):
     _keep(img, "pose_all_solutions.png")
     blue = _in_canvas(hue_mask(img, *BLUE, min_sat=0.25), canvas_rect(browser))
     assert blue.sum() > 300
+
+
+def test_exported_failed_plan_shows_the_arm_and_its_attempt_log(browser, tmp_path):
+    """A failed plan opened from disk: the arm at the start pose and the caption (verdict, attempts)."""
+    plan = plan_for_view("a", PlanOptions(fallbacks=False, timing=False))
+    assert not plan.success and plan.attempts
+    view = PlanScene(plan)
+    res = export(view, tmp_path / "a")
+    browser.get((res.path / "index.html").resolve().as_uri())
+    img = wait_for_scene(browser)
+    _keep(img, "exported_failed_plan_a.png")
+    rect = canvas_rect(browser)
+    eye, target, fov = view.camera
+    blue = _in_canvas(hue_mask(img, *BLUE), rect)
+    assert _inside(blue, _box(project(_arm_points(plan.q), eye, target, fov_deg=fov, rect=rect), 40)) > 0.9
+    # The caption hangs from the top centre of the view: dark text on the white page above the scene.
+    u, v = project(view_top(eye, target, fov), eye, target, fov_deg=fov, rect=rect)[0]
+    band = img[int(v):int(v) + 12 * len(view.caption.splitlines()), int(u) - 250:int(u) + 250]
+    hsv = rgb_to_hsv(np.clip(band, 0, 1))
+    text = (hsv[..., 2] < 0.35) & (hsv[..., 1] < 0.3)
+    assert text.sum() > 300, "no caption text below the top centre of the view"
+
+
+def test_a_q_outside_the_limits_is_drawn_red(browser, tmp_path):
+    """The links moved by a joint outside Table I are red; the same pose with that joint inside is not."""
+    counts = {}
+    for name, q4 in (("outside", 2.6), ("inside", 2.0)):
+        view = PoseView(q=[0.3, -0.5, 0.4, q4, 0.2, 0.0])
+        assert bool(view.warnings) == (name == "outside")
+        res = export(view, tmp_path / name)
+        browser.get((res.path / "index.html").resolve().as_uri())
+        img = wait_for_scene(browser)
+        _keep(img, f"pose_q4_{name}_limits.png")
+        counts[name] = int(_in_canvas(hue_mask(img, *RED, min_sat=0.6), canvas_rect(browser)).sum())
+    assert counts["outside"] > 400 and counts["outside"] > 5 * counts["inside"], counts
 
 
 def _thumb(browser):
