@@ -318,14 +318,20 @@ def export(view: View, directory: Path | str, *, force: bool = False, fps: float
 
 
 def inline(view: View, *, height: int = 420, fps: float = 25.0):
-    """The recorded view as an ``IPython.display.HTML`` iframe for a notebook (no server stays up)."""
+    """The recorded view as an ``IPython.display.HTML`` iframe for a notebook (no server stays up).
+
+    viser's own messages (its banner, "Server stopped"), which its console shows as notebook
+    displays rather than on stdout, are kept out of the cell.
+    """
     import html
 
     from IPython.display import HTML
+    from IPython.utils.capture import capture_output
 
-    page, _ = record(view, fps=fps)
-    return HTML(f'<iframe srcdoc="{html.escape(page, quote=True)}" width="100%" height="{int(height)}" '
-                'style="border:1px solid #ddd"></iframe>')
+    with capture_output():
+        page, _ = record(view, fps=fps)
+    return HTML(f'<div><iframe srcdoc="{html.escape(page, quote=True)}" width="100%" height="{int(height)}" '
+                'style="border:1px solid #ddd"></iframe></div>')
 
 
 def present(view: View, options: ViewOptions = ViewOptions()) -> LiveView | ExportResult:
