@@ -1,15 +1,19 @@
 """Show a run log in the 3D viewer: the commanded and the measured arm side by side.
 
-Reads a JSON-lines run log (:func:`hardware.runlog.read_run_log`) and turns it
-into a neutral :class:`iik.planning.viewer.motion.Motion` at the sample times:
+Reads a JSON-lines run log (:func:`hardware.runlog.read_run_log`, format version 1)
+and turns it into a neutral :class:`iik.planning.viewer.motion.Motion` at the sample times:
 
-* **commanded**: the target of the last command sent before each sample
-  (header ``q`` at the sample's ``k``) [rad]: what the modules were told to reach;
+* **commanded**: the target of the step the modules were executing at each sample
+  (:func:`commanded_steps`; header ``q`` at that step) [rad]. With the thesis's early
+  update (Sec 4.3) a step starts when its command is sent; with the buffered update a
+  command waits in the modules' buffer until the previous step ends (``step_end``
+  records), so the last command sent is not yet the one being executed;
 * **measured**: the positions the modules reported (``sample`` records) [rad].
 
 The measured arm stands :data:`SIDE_BY_SIDE` m along +y from the commanded one,
-each on its own platform. Every frame notes the largest joint error [deg]
-and the tool-position error [mm] (Eq 4 FK of both) between the two.
+each on its own platform. Every frame notes the largest joint difference [deg]
+and the tool-position difference [mm] (Eq 4 FK of both) between the measured arm
+and the commanded target (during a step the arm is still on its way to it).
 """
 
 from __future__ import annotations
@@ -18,17 +22,57 @@ import os
 
 import numpy as np
 
-from iik import fk
+from iik import THESIS_ARM, fk
 from iik.planning.viewer import Shown, ViewOptions, show, style
 from iik.planning.viewer.motion import Motion, MotionView, Track
 
 from .errors import RunLogError
 from .runlog import Run, read_run_log
 
-__all__ = ["SIDE_BY_SIDE", "run_motion", "view_run"]
+__all__ = ["SIDE_BY_SIDE", "LOG_VERSION", "commanded_steps", "run_motion", "run_warnings", "view_run"]
 
 #: Offset of the measured arm along +y [m] (the arm reaches about 0.9 m).
 SIDE_BY_SIDE = 1.2
+
+#: The run-log format version this view reads (header ``version``).
+LOG_VERSION = 1
+
+
+def commanded_steps(run: Run) -> np.ndarray:
+    """(m,) index of the target the modules were executing at each sample.
+
+    The last command sent (the sample's ``k``), except with the buffered update, where
+    a queued step starts only when the previous one ends (its ``step_end`` record): then
+    it is the first step that had not ended at the sample's time.
+    """
+    k = run.samples_k.copy()
+    if run.step_end:
+        steps = np.array(sorted(run.step_end))
+        ends = np.array([run.step_end[s] for s in steps])
+        in_progress = steps[np.minimum(np.searchsorted(ends, run.samples_t, side="right"), len(steps) - 1)]
+        k = np.minimum(k, in_progress)
+    return k
+
+
+def _fault(run: Run) -> str:
+    f = run.fault
+    if not f:
+        return ""
+    halt = "HALT sent" if f.get("halted") else "HALT not confirmed"
+    return f"; fault: {f.get('error', 'error')}: {f.get('message', '')} ({halt})"
+
+
+def _headline(run: Run, name: str, k: np.ndarray, dq: np.ndarray, dp: np.ndarray) -> str:
+    """Counts, duration, update mode, status, fault; the largest differences during the planned steps."""
+    t, steps = run.samples_t, k >= 1  # step 0: the start (an approach reaches it when the arm was elsewhere)
+    largest = (f"Largest difference to the target during the planned steps {dq[steps].max():.2f} deg, "
+               f"{dp[steps].max():.1f} mm at the tool" if steps.any() else "No planned step was commanded")
+    approached = 0 in run.command_k and steps.any()
+    approach = f", approach to the start {t[steps][0] - t[0]:.2f} s" if approached else ""
+    status = run.status or "incomplete (no end record)"
+    return (f"Run log {name}: {len(run.command_t)} commands, {len(t)} samples, {t[-1] - t[0]:.2f} s"
+            f"{approach}, {run.header.get('update', 'thesis')} update, status {status}{_fault(run)}. "
+            f"Commanded target at the base; measured beside it (+{SIDE_BY_SIDE} m along y). {largest}.")
 
 
 def run_motion(run: Run, *, name: str = "run") -> Motion:
@@ -37,27 +81,32 @@ def run_motion(run: Run, *, name: str = "run") -> Motion:
         raise RunLogError(f"{name}: the run log has no samples to show")
     if len(run.q_planned) == 0:
         raise RunLogError(f"{name}: the run log's header has no planned trajectory")
-    t = run.samples_t
     if np.any(run.samples_k < 0) or np.any(run.samples_k >= len(run.q_planned)):
         raise RunLogError(f"{name}: a sample names a target outside the planned trajectory")
-    cmd = run.q_planned[run.samples_k]
-    meas = run.samples_q
+    k = commanded_steps(run)
+    cmd, meas = run.q_planned[k], run.samples_q
     if not np.all(np.isfinite(meas)):
         raise RunLogError(f"{name}: measured positions contain non-finite values")
     dq = np.degrees(np.abs(meas - cmd).max(axis=1))
     dp = np.linalg.norm(fk(meas)[:, :3, 3] - fk(cmd)[:, :3, 3], axis=1) * 1000
-    notes = tuple(f"max joint error {a:.2f} deg, tool error {b:.1f} mm" for a, b in zip(dq, dp, strict=True))
-    status = run.status or "incomplete (no end record)"
-    headline = (f"Run log {name}: {len(run.command_t)} commands, {len(t)} samples, {t[-1]:.2f} s, "
-                f"status {status}" + (f"; fault: {run.fault.get('message', '')}" if run.fault else "")
-                + f". Commanded (target of the last command) at the base; measured beside it "
-                  f"(+{SIDE_BY_SIDE} m along y). Largest joint error {dq.max():.2f} deg, "
-                  f"tool error {dp.max():.1f} mm.")
-    return Motion(
-        title=f"iik view: run {name}", t=t - t[0], headline=headline, notes=notes,
-        tracks=(Track("commanded", cmd, style.ARM),
-                Track("measured", meas, style.MEASURED, (0.0, SIDE_BY_SIDE, 0.0))),
-    )
+    notes = tuple(f"step {s}: measured - commanded target: joints {a:.2f} deg, tool {b:.1f} mm"
+                  for s, a, b in zip(k, dq, dp, strict=True))
+    return Motion(title=f"iik view: run {name}", t=run.samples_t - run.samples_t[0],
+                  headline=_headline(run, name, k, dq, dp), notes=notes, warnings=run_warnings(run),
+                  tracks=(Track("commanded target", cmd, style.ARM),
+                          Track("measured", meas, style.MEASURED, (0.0, SIDE_BY_SIDE, 0.0))))
+
+
+def run_warnings(run: Run) -> tuple[str, ...]:
+    """What the view cannot show faithfully: a newer log format, an arm other than the thesis arm."""
+    out = []
+    version = run.header.get("version", LOG_VERSION)
+    if version != LOG_VERSION:
+        out.append(f"run-log format version {version}; this viewer reads version {LOG_VERSION}")
+    arm = run.header.get("arm")
+    if arm is not None and arm != THESIS_ARM.name:
+        out.append(f"the run used the arm {arm!r}; it is drawn with the thesis arm's geometry and FK")
+    return tuple(out)
 
 
 def view_run(path: str | os.PathLike, options: ViewOptions | None = None) -> Shown:

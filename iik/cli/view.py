@@ -12,13 +12,25 @@ from pathlib import Path
 
 NAME = "view"
 HELP = "3D web viewer: a pose (--q, --xyz/--zxz), interactive IK (no target), a plan (SCENARIO), a run log"
+EPILOG = ("A --q outside the joint limits (Table I) is bad input: one-line error, exit 2, nothing shown or "
+          "written; with --allow-outside-limits it is shown, the links its offending joints move in red, "
+          "with a one-line warning on stderr, exit 0. Exit status: 0 shown; 1 shown, but the plan failed or "
+          "timed out (as iik plan); 2 bad input (nothing shown or written).")
 
 
 def add_arguments(p) -> None:
+    p.epilog = EPILOG
     p.add_argument("scenario", nargs="?", default=None,
-                   help="scenario file, or a shipped scenario name (e.g. j): plan it and play the plan")
+                   help="scenario file or shipped name (e.g. j): plan it, play the plan, list its attempts; "
+                        "a plan that fails or times out is shown with its reason and best attempt")
+    p.add_argument("--timeout", type=float, default=None, metavar="SECONDS",
+                   help="with SCENARIO: stop planning after this many seconds (default 60)")
+    p.add_argument("--no-fallbacks", action="store_true",
+                   help="with SCENARIO: thesis planner only (no other branches, redesigns or RRT-Connect)")
     p.add_argument("--q", nargs=6, type=float, default=None, metavar="Q",
                    help="a configuration [rad, deg with --deg]")
+    p.add_argument("--allow-outside-limits", action="store_true",
+                   help="show a --q outside Table I (those links red, a warning) instead of refusing it")
     p.add_argument("--xyz", nargs=3, type=float, default=None, metavar=("X", "Y", "Z"),
                    help="tool position [m]")
     p.add_argument("--zxz", nargs=3, type=float, default=None, metavar=("A", "B", "G"),
@@ -37,13 +49,26 @@ def add_arguments(p) -> None:
     p.add_argument("--force", action="store_true", help="with --export: replace a non-empty DIR")
 
 
-def run(args) -> int:
+def _request(args):
+    """The :class:`~iik.planning.viewer.ViewRequest` of the command line (angles to rad)."""
     import numpy as np
 
-    from iik.errors import InvalidInputError
-    from iik.planning.viewer import ExportResult, ViewOptions, ViewRequest, view
+    from iik.planning import PlanOptions
+    from iik.planning.viewer import ViewRequest
 
     ang = (lambda v: None if v is None else tuple(np.radians(v) if args.deg else v))
+    plan = ({} if args.timeout is None else {"timeout": args.timeout}) | (
+        {"fallbacks": False, "rrt": False} if args.no_fallbacks else {})
+    return ViewRequest(scenario=args.scenario, planning=PlanOptions(**plan) if plan else None, q=ang(args.q),
+                       xyz=None if args.xyz is None else tuple(args.xyz), zxz=ang(args.zxz),
+                       previous=ang(args.previous), interactive=args.interactive,
+                       allow_outside_limits=args.allow_outside_limits)
+
+
+def run(args) -> int:
+    from iik.errors import InvalidInputError
+    from iik.planning.viewer import ExportResult, ViewOptions, view
+
     opts = ViewOptions(host=args.host, port=args.port, export=args.export, force=args.force)
     if args.run is not None:
         if args.scenario or args.q or args.xyz or args.zxz:
@@ -52,22 +77,21 @@ def run(args) -> int:
 
         shown = view_run(args.run, opts)
     else:
-        xyz = None if args.xyz is None else tuple(args.xyz)
-        req = ViewRequest(scenario=args.scenario, q=ang(args.q), xyz=xyz, zxz=ang(args.zxz),
-                          previous=ang(args.previous), interactive=args.interactive)
-        shown = view(req, opts)
+        shown = view(_request(args), opts)
     for w in shown.warnings:
         print(f"iik view: warning: {w}", file=sys.stderr)
     print(shown.headline)
+    for line in shown.details:
+        print(f"  - {line}")
     res = shown.result
     if isinstance(res, ExportResult):
         print(f"wrote {res.path / 'index.html'} ({res.size / 1e6:.2f} MB, {res.frames} frame(s), "
               f"{res.seconds:.2f} s): open it in a browser, no server needed")
-        return 0
-    print(f"viewer at {res.url}  (Ctrl-C to stop)", flush=True)
-    try:
-        res.serve_forever()
-    except KeyboardInterrupt:  # Ctrl-C before serve_forever took SIGINT over: the same clean stop
-        res.stop()
-    print("viewer stopped")
-    return 0
+    else:
+        try:
+            print(f"viewer at {res.url}  (Ctrl-C to stop)", flush=True)
+            res.serve_forever()
+        except KeyboardInterrupt:  # Ctrl-C before serve_forever took SIGINT over: the same clean stop
+            res.stop()
+        print("viewer stopped")
+    return 0 if shown.ok else 1

@@ -35,6 +35,7 @@ import numpy as np
 import pinocchio as pin
 
 from iik.arm import THESIS_ARM, Arm
+from iik.errors import InvalidInputError
 from iik.scene import THESIS_SCENE, Scene
 from iik.validation import as_joints
 
@@ -42,7 +43,26 @@ from .budget import Budget
 from .obstacles import Obstacle
 from .robot_model import collision_link, thesis_model
 
-__all__ = ["SceneCollision", "PathClearance"]
+__all__ = ["SceneCollision", "PathClearance", "Nearest"]
+
+
+@dataclass(frozen=True)
+class Nearest:
+    """The closest arm-environment pair at one configuration (Coal distance; base frame 0, m).
+
+    Attributes:
+        distance: Distance between the pair [m]; negative: penetration depth.
+        link: URDF link of the nearest arm shape, e.g. ``"link4"``.
+        object: The environment object: a scenario box's name, ``"platform"`` or ``"floor"``.
+        on_link: (3,) nearest point on the link's shape [m].
+        on_object: (3,) nearest point on the object [m] (``|on_link - on_object| = |distance|``).
+    """
+
+    distance: float
+    link: str
+    object: str
+    on_link: np.ndarray
+    on_object: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -174,6 +194,18 @@ class SceneCollision:
         qb, _ = as_joints(q, "q")
         d, i = self._closest(qb[0])
         return d, str(self.arm_link[self._pair_arm[i]]), str(self.env_names[self._pair_env[i]])
+
+    def nearest(self, q) -> Nearest:
+        """The closest arm-environment pair at ``q`` (6,) [rad]: distance, link, object, nearest points."""
+        qb, batched = as_joints(q, "q")
+        if batched:
+            raise InvalidInputError("q", f"expected one configuration (6,), got shape {np.shape(q)}")
+        d, i = self._closest(qb[0])
+        res = self.geom_data.distanceResults[i]  # pair i: (arm shape, environment object), in that order
+        return Nearest(distance=d, link=str(self.arm_link[self._pair_arm[i]]),
+                       object=str(self.env_names[self._pair_env[i]]),
+                       on_link=np.array(res.getNearestPoint1(), float),
+                       on_object=np.array(res.getNearestPoint2(), float))
 
     def keeps(self, q, required: float) -> bool:
         """Does the whole arm at ``q`` [rad] stay ``required`` [m] from the scene, with no self-contact?

@@ -6,15 +6,22 @@
 * :class:`TimingError` -- TOPP-RA found no time parameterisation (wraps its failure);
 * :class:`SamplingError` -- OMPL failed while sampling (wraps its exception);
 * :class:`PlanningTimeout` -- a stage ran past the plan's time budget
-  (:func:`~iik.planning.plan` turns it into a result with ``timed_out`` set).
+  (:func:`~iik.planning.plan` turns it into a result with ``timed_out`` set);
+* :class:`ViewerError` -- root of the 3D viewer's errors (:mod:`iik.planning.viewer`):
+  :class:`ViewRequestError` (a view that cannot be shown as asked, naming the option),
+  :class:`OutsideLimitsError` (a configuration outside Table I, not allowed to be shown),
+  :class:`PortInUseError` (the viewer cannot listen there), :class:`ExportError` (an
+  offline export cannot be written).
 
 Subclasses also inherit the matching built-in (``ValueError`` for bad input, via
 :class:`iik.errors.InvalidInputError`; ``RuntimeError`` for a failed computation,
-``TimeoutError`` for a time budget) so generic handlers keep working.
+``TimeoutError`` for a time budget, ``OSError`` for a port or folder) so generic
+handlers keep working.
 """
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import IIKError, InvalidInputError
@@ -23,7 +30,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from .pipeline import PlanResult
 
 __all__ = ["PlanningError", "ScenarioError", "PlanningFailed", "TimingError", "SamplingError",
-           "PlanningTimeout"]
+           "PlanningTimeout", "ViewerError", "ViewRequestError", "OutsideLimitsError", "PortInUseError",
+           "ExportError"]
 
 
 class PlanningError(IIKError):
@@ -79,3 +87,57 @@ class PlanningTimeout(PlanningError, TimeoutError):
     def __init__(self, stage: str, elapsed: float, timeout: float):
         self.stage, self.elapsed, self.timeout = stage, elapsed, timeout
         super().__init__(f"timed out after {elapsed:.1f} s (budget {timeout:g} s) during {stage}")
+
+
+class ViewerError(PlanningError):
+    """Root of the errors the 3D viewer (:mod:`iik.planning.viewer`) raises on purpose."""
+
+
+class ViewRequestError(ViewerError, InvalidInputError):
+    """A view that cannot be shown as asked (bad input naming the option, e.g. ``"export"``).
+
+    Attributes:
+        argument: The option, by its library name (the CLI shows it as typed, e.g. ``--export``).
+        reason: Why.
+    """
+
+
+class OutsideLimitsError(ViewRequestError):
+    """A configuration to show is outside the arm's joint limits (Table I) and was not allowed.
+
+    Attributes:
+        joints: 0-based indices of the joints outside the limits (joint ``q{j + 1}``).
+    """
+
+    def __init__(self, argument: str, reason: str, joints: tuple[int, ...]):
+        self.joints = tuple(joints)
+        super().__init__(argument, reason)
+
+
+class PortInUseError(ViewerError, OSError):
+    """The viewer cannot listen on the requested address.
+
+    Attributes:
+        host: The interface asked for.
+        port: The TCP port asked for.
+    """
+
+    def __init__(self, host: str, port: int, detail: str = ""):
+        self.host = host
+        self.port = port
+        super().__init__(f"port {port} on {host} is in use or not available"
+                         + (f" ({detail})" if detail else "") + "; choose another with --port")
+
+
+class ExportError(ViewerError, OSError):
+    """An offline export cannot be written (nothing is left half-written).
+
+    Attributes:
+        path: The export folder as given.
+        reason: Why.
+    """
+
+    def __init__(self, path: Path | str, reason: str):
+        self.path = Path(path)
+        self.reason = reason
+        super().__init__(f"{path}: {reason}")

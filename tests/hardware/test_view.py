@@ -1,10 +1,21 @@
-"""A run log in the viewer: commanded vs measured arms, and bad logs as typed errors."""
+"""A run log in the viewer: commanded vs measured arms, and bad logs as typed errors.
 
+Logs come from the executor itself (a simulated arm on a virtual bus, both update
+modes) and, for exact values and malformed cases, from hand-written records.
+"""
+
+import dataclasses
+import uuid
+
+import can
 import numpy as np
 import pytest
 
+import iik
+from hardware import PowerCubeArm, SimulatedArm, execute, validate
+from hardware.executor import ExecutionOptions, time_steps
 from hardware.runlog import RunLog, RunLogError, read_run_log
-from hardware.view import SIDE_BY_SIDE, run_motion, view_run
+from hardware.view import LOG_VERSION, SIDE_BY_SIDE, commanded_steps, run_motion, run_warnings, view_run
 from iik import fk
 from iik.planning.viewer import ViewOptions
 
@@ -33,7 +44,7 @@ def test_run_motion_pairs_each_sample_with_its_command(tmp_path):
     assert np.allclose(m.t, np.arange(5) * 0.25)  # sample times from the first sample
     assert np.allclose(cmd.q, q) and np.allclose(meas.q[1:], q[1:] - 0.01)
     assert meas.offset == (0.0, SIDE_BY_SIDE, 0.0) and cmd.offset == (0.0, 0.0, 0.0)
-    assert "0.57 deg" in m.notes[1]  # 0.01 rad
+    assert "0.57 deg" in m.notes[1] and m.notes[1].startswith("step 1:")  # 0.01 rad
     tool_mm = np.linalg.norm(fk(q[1] - 0.01)[:3, 3] - fk(q[1])[:3, 3]) * 1000
     assert f"{tool_mm:.1f} mm" in m.notes[1] and "status ok" in m.headline
 
@@ -53,3 +64,57 @@ def test_a_run_exports_as_two_arms(tmp_path):
     shown = view_run(tmp_path / "r.jsonl", ViewOptions(export=tmp_path / "out"))
     assert shown.result.frames == 5 and (tmp_path / "out" / "index.html").is_file()
     assert "incomplete" in shown.headline
+
+
+@pytest.fixture(scope="module", params=["thesis", "buffered"])
+def executed(request, tmp_path_factory):
+    """A run log written by :func:`hardware.execute` on a simulated arm (virtual bus), per update mode."""
+    ch = f"view-{uuid.uuid4().hex}"
+    qa, qb = np.array([0.1, -0.3, 0.4, 0.5, -0.2, 0.7]), np.array([0.3, -0.1, 0.2, 0.6, 0.1, 0.5])
+    q = qa + (qb - qa) * np.linspace(0, 1, 8)[:, None]
+    tr = validate(time_steps(q, speed_fraction=0.5, min_step=0.05), q, iik.fk(q))
+    log = tmp_path_factory.mktemp("run") / f"{request.param}.jsonl"
+    sim = SimulatedArm.virtual(ch, lag=0.01, initial=qa)
+    bus = can.Bus(interface="virtual", channel=ch)
+    try:
+        execute(PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=2.0), tr, log,  # ACK timeout not under test
+                options=ExecutionOptions(settle=0.05, sample_period=0.005, update=request.param))
+    finally:
+        sim.close()
+        bus.shutdown()
+    return request.param, read_run_log(log), log
+
+
+def test_commanded_target_is_the_step_being_executed(executed):
+    """Thesis update: the last command sent. Buffered: the queued command waits for the step end."""
+    mode, run, _ = executed
+    assert run.header["version"] == LOG_VERSION and run.status == "ok" and len(run.samples_t) > 20
+    k = commanded_steps(run)
+    assert np.all(k <= run.samples_k)
+    if mode == "thesis":
+        assert not run.step_end and np.array_equal(k, run.samples_k)
+        return
+    last = max(run.step_end)
+    for t, ki in zip(run.samples_t, k, strict=True):
+        if ki >= 1:
+            assert ki - 1 not in run.step_end or t >= run.step_end[ki - 1]  # its step has started ...
+            assert ki == last or t < run.step_end[ki]  # ... and not yet ended
+    assert np.any(k < run.samples_k)  # the last command sent was often still queued
+
+
+def test_an_executed_run_is_shown_and_exported(executed, tmp_path):
+    mode, run, log = executed
+    m = run_motion(run, name="r")
+    assert np.allclose(m.tracks[0].q, run.q_planned[commanded_steps(run)]) and m.warnings == ()
+    assert f"{mode} update, status ok" in m.headline and "during the planned steps" in m.headline
+    shown = view_run(log, ViewOptions(export=tmp_path / "out"))
+    assert shown.result.frames >= 2 and (tmp_path / "out" / "index.html").is_file()
+
+
+def test_what_the_view_cannot_show_faithfully_is_a_warning(tmp_path):
+    _write_log(tmp_path / "r.jsonl")
+    run = read_run_log(tmp_path / "r.jsonl")
+    assert run_warnings(run) == ()
+    newer = dict(run.header, version=LOG_VERSION + 1, arm="a longer arm")
+    warnings = run_warnings(dataclasses.replace(run, header=newer))
+    assert len(warnings) == 2 and "version 2" in warnings[0] and "'a longer arm'" in warnings[1]

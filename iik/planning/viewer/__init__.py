@@ -12,12 +12,17 @@ disk with no server and no network (:func:`export`).
 * :mod:`.pose` -- a pose: every IK solution, pick one; interactive IK with a gizmo.
 * :mod:`.plan_data` -- the one adapter from the planner's result (:func:`plan_scene`).
 * :mod:`.plan` -- a plan played back with clearance and branch switches.
+* :mod:`.attempts` -- the planner's attempt log as a table (panel, notebook) and a caption (scene).
 * :mod:`.motion` -- several arms following recorded joint tracks (run logs).
 * :mod:`.app` -- :func:`view`: one call from a request (pose, scenario, interactive) to a view.
+
+Errors (:class:`ViewerError` and its subclasses) live in :mod:`iik.planning.errors`, the
+layer's one errors module; they are re-exported here.
 """
 
+from ..errors import ExportError, OutsideLimitsError, PortInUseError, ViewerError, ViewRequestError
 from .app import Shown, ViewRequest, show, view
-from .errors import ExportError, PortInUseError, ViewerError
+from .attempts import attempt_table
 from .motion import Motion, MotionView, Track
 from .plan import PlanScene
 from .plan_data import FrameClearance, PlanView, frame_clearance, plan_for_view, plan_scene
@@ -45,6 +50,8 @@ __all__ = [
     "MotionView",
     "Track",
     "ViewerError",
+    "ViewRequestError",
+    "OutsideLimitsError",
     "PortInUseError",
     "ExportError",
     "Animation",
@@ -63,4 +70,5 @@ __all__ = [
     "plan_for_view",
     "frame_clearance",
     "PlanScene",
+    "attempt_table",
 ]

@@ -2,8 +2,12 @@
 
 The modes of ``iik view``:
 
-* a scenario (file or shipped name): plan it and play the plan (:class:`~.plan.PlanScene`);
-* ``q``: the arm at ``q`` and every IK solution of its pose (:class:`~.pose.PoseView`);
+* a scenario (file or shipped name): plan it (``planning`` options) and play the plan
+  (:class:`~.plan.PlanScene`); a plan that fails or times out is shown with its reason and attempt log;
+* ``q``: the arm at ``q`` and every IK solution of its pose (:class:`~.pose.PoseView`); a ``q``
+  outside Table I is bad input (:class:`~iik.planning.errors.OutsideLimitsError`, nothing shown
+  or written) unless ``allow_outside_limits``: then it is shown, the links moved by the offending
+  joints red, with one warning line;
 * ``xyz`` + ``zxz``: every IK solution of that pose (position [m], Eq 42 angles [rad]);
 * nothing, or ``interactive``: interactive IK with a draggable gizmo (live only).
 
@@ -19,7 +23,10 @@ import numpy as np
 import iik
 from iik.errors import InvalidInputError
 
-from .errors import ViewerError
+from ..errors import OutsideLimitsError, ViewRequestError
+from ..pipeline import PlanOptions
+from .attempts import plan_log
+from .bodies import joints_outside_limits, outside_limits_text
 from .plan import PlanScene
 from .plan_data import plan_for_view
 from .pose import PoseView
@@ -33,23 +40,35 @@ HOME_TARGET = ((0.4, 0.0, 0.2), (0.0, np.pi, 0.0))
 
 @dataclass(frozen=True)
 class ViewRequest:
-    """What to show (see the module docstring); angles in rad, positions in m."""
+    """What to show (see the module docstring); angles in rad, positions in m.
+
+    ``planning`` (:class:`~iik.planning.PlanOptions`, default options when None) only with a scenario;
+    ``allow_outside_limits``: show a ``q`` outside Table I (red, with a warning) instead of refusing it.
+    """
 
     scenario: str | None = None
+    planning: PlanOptions | None = None
     q: tuple[float, ...] | None = None
     xyz: tuple[float, float, float] | None = None
     zxz: tuple[float, float, float] | None = None
     previous: tuple[float, ...] | None = None
     interactive: bool = False
+    allow_outside_limits: bool = False
 
 
 @dataclass(frozen=True)
 class Shown:
-    """A served or exported view: ``result``, the view's warnings and its one-line headline."""
+    """A served or exported view: ``result``, the view's warnings, its one-line headline and details.
+
+    ``details``: further display lines (a plan's notes and attempt log, one line each);
+    ``ok``: False when what is shown failed (a plan that failed or timed out).
+    """
 
     result: LiveView | ExportResult
     warnings: tuple[str, ...] = ()
     headline: str = ""
+    details: tuple[str, ...] = ()
+    ok: bool = True
 
 
 def _pose_view(req: ViewRequest) -> PoseView:
@@ -58,6 +77,11 @@ def _pose_view(req: ViewRequest) -> PoseView:
     if req.q is not None and req.xyz is not None:
         raise InvalidInputError("--q", "give either --q or --xyz/--zxz, not both")
     if req.q is not None:
+        outside = outside_limits_text(req.q)
+        if outside and not req.allow_outside_limits:
+            raise OutsideLimitsError("q", f"{outside}; not shown (to show it with those links in red: iik "
+                                          "view --allow-outside-limits, ViewRequest.allow_outside_limits)",
+                                     joints_outside_limits(req.q))
         return PoseView(q=req.q, previous=req.previous, interactive=req.interactive)
     xyz, zxz = (req.xyz, req.zxz) if req.xyz is not None else HOME_TARGET
     T = iik.pose_from_zxz(np.asarray(xyz, float), *np.asarray(zxz, float))
@@ -65,14 +89,16 @@ def _pose_view(req: ViewRequest) -> PoseView:
     return PoseView(T, previous=req.previous, interactive=interactive)
 
 
-def show(view, options: ViewOptions | None = None, *, headline: str = "") -> Shown:
+def show(view, options: ViewOptions | None = None, *, headline: str = "", details: tuple[str, ...] = (),
+         ok: bool = True) -> Shown:
     """Present any view (:func:`~.session.present`), refusing to export a live-only one."""
     options = options or ViewOptions()
     if options.export is not None and getattr(view, "live_only", False):
-        raise ViewerError("--export: interactive IK needs the live server; give a pose (--q or --xyz/--zxz), "
-                          "a scenario or a run log to export")
+        raise ViewRequestError("export", "interactive IK needs the live server; give a pose (--q or "
+                                         "--xyz/--zxz), a scenario or a run log to export")
     result = present(view, options)
-    return Shown(result=result, warnings=tuple(getattr(view, "warnings", ())), headline=headline)
+    return Shown(result=result, warnings=tuple(getattr(view, "warnings", ())), headline=headline,
+                 details=tuple(details), ok=ok)
 
 
 def view(request: ViewRequest, options: ViewOptions | None = None) -> Shown:
@@ -80,13 +106,17 @@ def view(request: ViewRequest, options: ViewOptions | None = None) -> Shown:
 
     Raises:
         ScenarioError: the scenario does not exist or fails validation.
+        OutsideLimitsError: ``q`` is outside Table I and ``allow_outside_limits`` is False.
+        ViewRequestError: planning options without a scenario; exporting interactive IK.
         InvalidInputError: inconsistent or non-finite pose arguments.
         PortInUseError, ExportError: see :mod:`.session`.
     """
     if request.scenario is not None:
         if request.q is not None or request.xyz is not None:
             raise InvalidInputError("SCENARIO", "give a scenario or a pose, not both")
-        plan = plan_for_view(request.scenario)
-        return show(PlanScene(plan), options, headline=plan.headline)
+        plan = plan_for_view(request.scenario, request.planning)
+        return show(PlanScene(plan), options, headline=plan.headline, details=plan_log(plan), ok=plan.success)
+    if request.planning is not None:
+        raise ViewRequestError("--timeout/--no-fallbacks", "planning options need a SCENARIO")
     pv = _pose_view(request)
     return show(pv, options, headline=pv.summary().split("\n")[0].replace("**", ""))

@@ -18,12 +18,13 @@ import viser
 from pinocchio.visualize import ViserVisualizer
 
 from iik import THESIS_ARM, Arm
+from iik.errors import InvalidInputError
 from iik.validation import as_joints
 
 from ..robot_model import ThesisModel, collision_link, thesis_model
 from .style import Colour, rgb01
 
-__all__ = ["ArmBody", "joints_outside_limits", "link_of_joint"]
+__all__ = ["ArmBody", "joints_outside_limits", "outside_limits_text", "link_of_joint"]
 
 
 def link_of_joint(j: int) -> str:
@@ -39,10 +40,23 @@ def joints_outside_limits(q, arm: Arm = THESIS_ARM) -> tuple[int, ...]:
     """
     qb, batched = as_joints(q, "q")
     if batched:
-        raise ValueError("joints_outside_limits takes one joint vector (6,)")
+        raise InvalidInputError("q", f"expected one configuration (6,), got shape {np.shape(q)}")
     rows = np.tile(0.5 * (arm.q_min + arm.q_max), (6, 1))
     rows[np.arange(6), np.arange(6)] = qb[0]
     return tuple(int(j) for j in np.flatnonzero(~arm.within_limits(rows)))
+
+
+def outside_limits_text(q, arm: Arm = THESIS_ARM) -> str:
+    """One line naming each joint of ``q`` (6,) [rad] outside Table I with its value and limits; "" if none.
+
+    Joints are named ``q1`` .. ``q6`` (as in the thesis); values in rad and deg.
+    """
+    qv = as_joints(q, "q")[0][0]
+    deg = np.degrees
+    return "; ".join(
+        f"q{j + 1} = {qv[j]:.4f} rad ({deg(qv[j]):.1f} deg) is outside Table I [{arm.q_min[j]:.4f}, "
+        f"{arm.q_max[j]:.4f}] rad ([{deg(arm.q_min[j]):.1f}, {deg(arm.q_max[j]):.1f}] deg)"
+        for j in joints_outside_limits(qv, arm))
 
 
 class ArmBody:

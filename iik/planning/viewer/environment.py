@@ -20,7 +20,7 @@ from iik.scene import THESIS_SCENE, Scene
 from ..obstacles import Obstacle, enclosing_radii
 from . import style
 
-__all__ = ["draw_environment", "configure_server", "aim_camera", "camera_pose", "legend_html"]
+__all__ = ["draw_environment", "configure_server", "aim_camera", "camera_pose", "view_top", "legend_html"]
 
 
 def configure_server(server: viser.ViserServer, title: str) -> None:
@@ -45,6 +45,19 @@ def aim_camera(server: viser.ViserServer, look_at, distance: float = style.CAMER
     server.initial_camera.look_at = tuple(target)
     server.initial_camera.position = tuple(eye)
     return eye, target, float(np.degrees(server.initial_camera.fov))
+
+
+def view_top(eye, target, fov_deg: float, fraction: float = 0.9) -> np.ndarray:
+    """The scene point [m] at the top centre of the initial view, ``fraction`` of the way up from its middle.
+
+    A label anchored there (``top-center``) stays on screen in a page with no panel (an export),
+    whatever the window's width. The view's up vector is +z projected on the image plane.
+    """
+    eye, target = np.asarray(eye, float), np.asarray(target, float)
+    fwd = (target - eye) / np.linalg.norm(target - eye)
+    right = np.cross(fwd, [0.0, 0.0, 1.0])
+    up = np.cross(right / np.linalg.norm(right), fwd)
+    return target + up * fraction * np.linalg.norm(target - eye) * np.tan(np.radians(fov_deg) / 2)
 
 
 def legend_html() -> str:

@@ -43,13 +43,17 @@ class Track:
 
 @dataclass(frozen=True)
 class Motion:
-    """Frame times ``t`` (k,) [s], the arms' tracks, and an optional note per frame (shown with the time)."""
+    """Frame times ``t`` (k,) [s], the arms' tracks, and an optional note per frame (shown with the time).
+
+    ``warnings``: what the view cannot show faithfully (printed by ``iik view``, shown in the panel).
+    """
 
     title: str
     t: np.ndarray
     tracks: tuple[Track, ...]
     notes: tuple[str, ...] = ()
     headline: str = ""
+    warnings: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         t = np.asarray(self.t, float)
@@ -69,6 +73,7 @@ class MotionView:
         self.motion = motion
         self.scene = scene
         self.title = motion.title
+        self.warnings = motion.warnings
 
     def status(self, i: int) -> str:
         m = self.motion
@@ -76,8 +81,8 @@ class MotionView:
 
     def build(self, server: viser.ViserServer) -> Animation | None:
         m = self.motion
-        if m.headline:
-            server.gui.add_markdown(m.headline)
+        if m.headline or m.warnings:
+            server.gui.add_markdown(m.headline + "".join(f"\n\n**Warning:** {w}" for w in m.warnings))
         server.gui.add_html(legend_html())
         arms = []
         for k, tr in enumerate(m.tracks):

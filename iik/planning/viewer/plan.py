@@ -6,7 +6,11 @@ collision shapes) along the timed trajectory, the tool path actually traced
 ellipsoids of Eq 52-53, the IK branch switches (marked on the live time slider
 and at the tool point) and, at every frame, the link nearest the scene with a
 line to the nearest obstacle point and its clearance in mm, coloured when the
-clearance is below the scenario's safety zone. Frame: base frame 0 [m].
+clearance is below the scenario's safety zone. The planner's attempt log
+(:mod:`.attempts`) is a table in the live panel and a label in the scene (so an
+export shows it too). A plan that failed or timed out is shown the same way, with
+its reason and best attempt; without an accepted path the arm stands at the start
+pose and the rejected thesis path's step-points are drawn. Frame: base frame 0 [m].
 """
 
 from __future__ import annotations
@@ -15,12 +19,13 @@ import numpy as np
 import viser
 
 from iik import fk
-from iik.scene import THESIS_SCENE, Scene
 
+from ..robot_model import thesis_model
 from . import style
+from .attempts import attempt_lines, attempt_table
 from .bodies import ArmBody
-from .environment import aim_camera, draw_environment, legend_html
-from .plan_data import FrameClearance, PlanView, frame_clearance
+from .environment import aim_camera, draw_environment, legend_html, view_top
+from .plan_data import PlanView, frame_clearance
 from .session import Animation
 
 __all__ = ["PlanScene"]
@@ -29,13 +34,14 @@ __all__ = ["PlanScene"]
 class PlanScene:
     """A :class:`PlanView` as a viewer view (see :mod:`iik.planning.viewer.session`)."""
 
-    def __init__(self, plan: PlanView, *, scene: Scene = THESIS_SCENE):
+    def __init__(self, plan: PlanView):
         self.plan = plan
-        self.scene = scene
         self.title = f"iik view: scenario {plan.name}"
         self.camera = None  # (eye, target, vertical fov [deg]) once built
-        self.clearance: FrameClearance = frame_clearance(plan.obstacles, plan.q, scene=scene) if len(plan.q) \
-            else FrameClearance(np.zeros(0), (), (), np.zeros((0, 3)), np.zeros((0, 3)))
+        self.clearance = frame_clearance(plan.obstacles, plan.q, arm=plan.arm, scene=plan.scene)
+        #: The scene's caption: units and frame, the verdict and the attempt log (an export has no panel).
+        self.caption = (f"scenario {plan.name}: clearances in mm (zone {plan.safety_zone * 1000:.0f} mm); "
+                        f"base frame 0, m\n{attempt_lines(plan)}")
 
     def label(self, i: int) -> str:
         """Clearance text of frame ``i``: nearest link, object, distance in mm."""
@@ -51,17 +57,22 @@ class PlanScene:
 
     def build(self, server: viser.ViserServer) -> Animation | None:
         p, s = self.plan, server.scene
-        draw_environment(server, p.obstacles, scene=self.scene, safety_zone=p.safety_zone)
+        draw_environment(server, p.obstacles, scene=p.scene, safety_zone=p.safety_zone)
         server.gui.add_markdown(f"{p.headline}\n\nUnits: m, mm for clearances; frame: arm base frame 0 "
-                                "(z up); floor grid 0.1 m.")
+                                f"(z up); floor grid 0.1 m. The arm shows {p.arm_shows}.")
         server.gui.add_html(legend_html())
-        if len(p.q):
-            tool = fk(p.q)[:, :3, 3]
+        with server.gui.add_folder("Attempt log"):
+            server.gui.add_markdown(attempt_table(p))
+        if len(p.step_q) and len(p.q) > 1:
+            tool = fk(p.q, p.arm)[:, :3, 3]
             s.add_line_segments("/plan/tool_path", np.stack([tool[:-1], tool[1:]], axis=1),
                                 colors=style.TOOL_PATH, thickness=0.006)
         if len(p.step_points):
             s.add_point_cloud("/plan/step_points", p.step_points, colors=style.STEP_POINT, point_size=0.018,
                               point_shape="circle")
+            if not len(p.step_q):
+                s.add_label("/plan/step_points/label", "thesis path (step-points), not accepted",
+                            position=tuple(p.step_points[0] + [0.0, 0.0, 0.06]), anchor="bottom-center")
         for k, v in enumerate(p.via_points):
             s.add_icosphere(f"/plan/via_points/{k}", radius=0.02, color=style.VIA_POINT, position=tuple(v))
             s.add_label(f"/plan/via_points/{k}/label", f"via-point {k + 1}", position=(0.0, 0.0, 0.04))
@@ -70,16 +81,12 @@ class PlanScene:
                             position=tuple(p.step_points[i]), opacity=0.8)
             s.add_label(f"/plan/switches/{k}/label", f"IK branch switch, step {i}, t = {t:.2f} s",
                         position=(0.0, 0.0, 0.05))
-        s.add_label("/plan/title", f"scenario {p.name}: {'OK' if p.success else 'FAILED'}; clearance in mm "
-                    f"(safety zone {p.safety_zone * 1000:.0f} mm); base frame 0, m", position=(0.2, 0.0, 1.1),
-                    anchor="bottom-center")
         pts = np.vstack([p.step_points.reshape(-1, 3), np.zeros((1, 3)),
                          np.array([b.center for b in p.obstacles]).reshape(-1, 3)])
         self.camera = aim_camera(server, 0.5 * (pts.min(axis=0) + pts.max(axis=0)))
-        arm = ArmBody(server, "/plan/arm", colour=style.ARM)
-        if not len(p.q):
-            arm.show(np.zeros(6))
-            return None
+        s.add_label("/plan/caption", self.caption, position=tuple(view_top(*self.camera)),
+                    anchor="top-center", font_screen_scale=0.85)
+        arm = ArmBody(server, "/plan/arm", colour=style.ARM, model=thesis_model(p.arm))
         gap = s.add_line_segments("/plan/nearest/line", np.zeros((1, 2, 3)), colors=style.NEAREST,
                                   thickness=0.004)
         tag = s.add_label("/plan/nearest/label", "", anchor="bottom-left")

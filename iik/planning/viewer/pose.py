@@ -22,7 +22,7 @@ from iik import THESIS_ARM, Arm
 from iik.validation import as_joints, as_poses
 
 from . import style
-from .bodies import ArmBody, joints_outside_limits, link_of_joint
+from .bodies import ArmBody, joints_outside_limits, link_of_joint, outside_limits_text
 from .environment import aim_camera, draw_environment, legend_html
 from .session import Animation
 
@@ -54,7 +54,8 @@ class PoseView:
 
     Args:
         T: Tool pose (4, 4) [m]; or
-        q: A configuration (6,) [rad] shown as given (even outside the limits: then red, with a warning).
+        q: A configuration (6,) [rad] shown as given (even outside the limits: then the links its
+            joints outside Table I move are red, and :attr:`warnings` has one line naming them).
         previous: Reference configuration of the effort index (default: ``q``, else zeros).
         interactive: Add a draggable gizmo for the tool pose (live viewer only).
         arm: Arm parameters (limits, FK).
@@ -78,11 +79,9 @@ class PoseView:
         self.live_only = interactive
         self.title = "iik view: interactive IK" if interactive else "iik view: pose"
         self.warnings: tuple[str, ...] = ()
-        if self.given is not None:
-            bad = joints_outside_limits(self.given, arm)
-            self.warnings = tuple(
-                f"q[{j}] = {self.given[j]:.4f} rad ({np.degrees(self.given[j]):.1f} deg) is outside Table I "
-                f"[{arm.q_min[j]:.4f}, {arm.q_max[j]:.4f}] rad; shown in red" for j in bad)
+        outside = "" if self.given is None else outside_limits_text(self.given, arm)
+        if outside:
+            self.warnings = (f"{outside}; shown anyway, the links those joints move in red",)
         self.result = iik.solve(self.T, within_limits=False, arm=arm)
         self.selected = self._default_selection()
         self.solve_time = 0.0

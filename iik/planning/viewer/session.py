@@ -35,8 +35,8 @@ from typing import Protocol
 import numpy as np
 import viser
 
+from ..errors import ExportError, PortInUseError, ViewRequestError
 from .environment import configure_server
-from .errors import ExportError, PortInUseError, ViewerError
 
 __all__ = ["Animation", "View", "ViewOptions", "LiveView", "ExportResult", "open_server", "serve", "record",
            "export", "inline", "present"]
@@ -155,8 +155,8 @@ def open_server(host: str, port: int) -> viser.ViserServer:
     Raises:
         PortInUseError: the port is taken (viser itself would silently move to the next one).
     """
-    if not 0 <= port <= 65535:
-        raise PortInUseError(host, port, "not a TCP port")
+    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
+        raise ViewRequestError("port", f"{port!r} is not a TCP port (0..65535; 0: any free port)")
     _check_port(host, port)
     with contextlib.redirect_stdout(io.StringIO()):  # viser prints its own banner; we print the URL
         server = viser.ViserServer(host=host, port=port, verbose=False)
@@ -268,7 +268,7 @@ def _install(tmp: Path, directory: Path) -> None:
 def record(view: View, *, fps: float = 25.0) -> tuple[str, int]:
     """Build ``view`` on a private loopback server and record it: ``(self-contained HTML page, frames)``."""
     if not np.isfinite(fps) or fps <= 0:
-        raise ViewerError(f"fps must be positive, got {fps}")
+        raise ViewRequestError("fps", f"must be a positive number of frames per second, got {fps!r}")
     server = open_server("127.0.0.1", 0)
     try:
         configure_server(server, view.title)
@@ -318,14 +318,20 @@ def export(view: View, directory: Path | str, *, force: bool = False, fps: float
 
 
 def inline(view: View, *, height: int = 420, fps: float = 25.0):
-    """The recorded view as an ``IPython.display.HTML`` iframe for a notebook (no server stays up)."""
+    """The recorded view as an ``IPython.display.HTML`` iframe for a notebook (no server stays up).
+
+    viser's own messages (its banner, "Server stopped"), which its console shows as notebook
+    displays rather than on stdout, are kept out of the cell.
+    """
     import html
 
     from IPython.display import HTML
+    from IPython.utils.capture import capture_output
 
-    page, _ = record(view, fps=fps)
-    return HTML(f'<iframe srcdoc="{html.escape(page, quote=True)}" width="100%" height="{int(height)}" '
-                'style="border:1px solid #ddd"></iframe>')
+    with capture_output():
+        page, _ = record(view, fps=fps)
+    return HTML(f'<div><iframe srcdoc="{html.escape(page, quote=True)}" width="100%" height="{int(height)}" '
+                'style="border:1px solid #ddd"></iframe></div>')
 
 
 def present(view: View, options: ViewOptions = ViewOptions()) -> LiveView | ExportResult:
@@ -333,5 +339,5 @@ def present(view: View, options: ViewOptions = ViewOptions()) -> LiveView | Expo
     if options.export is not None:
         return export(view, options.export, force=options.force, fps=options.fps)
     if not options.host:
-        raise ViewerError("host: empty")
+        raise ViewRequestError("host", "empty (127.0.0.1: this machine only)")
     return serve(view, host=options.host, port=options.port)

@@ -1,5 +1,6 @@
 """Whole-arm Coal checks (iik.planning.collision)."""
 
+import coal
 import numpy as np
 import pytest
 
@@ -85,3 +86,73 @@ def test_another_arm_gets_its_own_collision_model():
     d_longer = SceneCollision(box, arm=longer, floor=False, platform=False).clearance(q)[0]
     reach = (longer.l3 + longer.l4) - (a.l3 + a.l4)
     assert d_thesis - d_longer == pytest.approx(reach, abs=1e-6)
+
+
+def _coal_nearest(q, boxes, scene=iik.scene.THESIS_SCENE):
+    """The closest (link, object) pair by Coal directly: the URDF loaded by Pinocchio, every
+    arm shape against every box, the platform and the floor (base link not against the platform)."""
+    import pinocchio as pin
+
+    from iik.planning.robot_model import thesis_model
+
+    model, gm = pin.buildModelsFromUrdf(str(thesis_model().path), geometry_types=pin.GeometryType.COLLISION)
+    data, gd = model.createData(), pin.GeometryData(gm)
+    pin.forwardKinematics(model, data, np.asarray(q, float))
+    pin.updateGeometryPlacements(model, data, gm, gd)
+    p = scene.platform
+    env = [(b.name, coal.Box(*b.size), coal.Transform3s(np.eye(3), np.asarray(b.center, float)))
+           for b in boxes]
+    env += [("platform", coal.Box(*p.size), coal.Transform3s(np.eye(3), np.asarray(p.center, float))),
+            ("floor", coal.Halfspace(np.array([0.0, 0.0, 1.0]), scene.floor.z), coal.Transform3s())]
+    best = None
+    for g, placement in zip(gm.geometryObjects, gd.oMg, strict=True):
+        link = model.frames[g.parentFrame].name
+        for name, shape, tf in env:
+            if link == "base_link" and name == "platform":
+                continue
+            arm_tf = coal.Transform3s(placement.rotation, placement.translation)
+            d = coal.distance(g.geometry, arm_tf, shape, tf, coal.DistanceRequest(), coal.DistanceResult())
+            if best is None or d < best[0]:
+                best = (d, link, name, (g.geometry, arm_tf), (shape, tf))
+    return best
+
+
+def _gap(point, shape_tf) -> float:
+    """Coal distance [m] from a point to a placed shape (0 on its surface)."""
+    dot = coal.Sphere(1e-12)
+    shape, tf = shape_tf
+    return coal.distance(dot, coal.Transform3s(np.eye(3), np.asarray(point, float)), shape, tf,
+                         coal.DistanceRequest(), coal.DistanceResult())
+
+
+def test_nearest_is_coals_closest_pair_with_its_points():
+    """Distances and points agree within Coal's GJK tolerance (1e-6 m; it warm-starts from the last call)."""
+    tol = coal.DistanceRequest().gjk_tolerance
+    boxes = [Obstacle((0.55, 0.0, 0.45), (0.1, 0.8, 0.1), name="shelf"),
+             Obstacle((0.0, 0.45, 0.3), (0.3, 0.1, 0.3), name="post")]
+    sc = SceneCollision(boxes)
+    rng = np.random.default_rng(11)
+    lo, hi = iik.THESIS_ARM.q_min, iik.THESIS_ARM.q_max
+    objects = set()
+    for q in rng.uniform(lo, hi, size=(40, 6)):
+        n = sc.nearest(q)
+        d, link, name, on_arm, on_env = _coal_nearest(q, boxes)
+        assert n.distance == pytest.approx(d, abs=tol)
+        assert (n.link, n.object) == (link, name)
+        if n.distance > tol:  # the points (not unique for parallel faces) lie on the two shapes, d apart
+            assert _gap(n.on_link, on_arm) == pytest.approx(0.0, abs=tol)
+            assert _gap(n.on_object, on_env) == pytest.approx(0.0, abs=tol)
+            assert np.linalg.norm(n.on_link - n.on_object) == pytest.approx(n.distance, abs=tol)
+        if n.object in ("shelf", "post") and n.distance > tol:  # and by the box's own distance
+            box = next(b for b in boxes if b.name == n.object)
+            assert box.distance(n.on_object)[0] == pytest.approx(0.0, abs=tol)
+            assert box.distance(n.on_link)[0] == pytest.approx(n.distance, abs=tol)
+        d_c, link_c, object_c = sc.clearance(q)
+        assert (link_c, object_c) == (n.link, n.object) and d_c == pytest.approx(n.distance, abs=tol)
+        objects.add((n.object, n.distance > tol))
+    assert {("shelf", True), ("post", True), ("platform", True), ("floor", True)} <= objects
+
+
+def test_nearest_takes_one_configuration():
+    with pytest.raises(iik.InvalidInputError, match="one configuration"):
+        SceneCollision([]).nearest(np.zeros((2, 6)))

@@ -11,9 +11,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from matplotlib.colors import rgb_to_hsv
 
 import iik
+from iik.planning import PlanOptions
 from iik.planning.viewer import PlanScene, PoseView, export, plan_for_view, serve
+from iik.planning.viewer.environment import view_top
 
 from .conftest import canvas_rect, hue_mask, project, screenshot, wait_for_scene
 
@@ -56,6 +59,15 @@ def _arm_points(q: np.ndarray) -> np.ndarray:
     return iik.joint_frames(np.asarray(q).reshape(-1, 6))[:, :, :3, 3].reshape(-1, 3)
 
 
+def _open_export(browser, view, folder: Path, shot: str) -> tuple[np.ndarray, tuple]:
+    """Export ``view`` into ``folder``, open it from disk, wait for the scene: (screenshot, canvas rect)."""
+    res = export(view, folder)
+    browser.get((res.path / "index.html").resolve().as_uri())
+    img = wait_for_scene(browser)
+    _keep(img, shot)
+    return img, canvas_rect(browser)
+
+
 @pytest.fixture(scope="module")
 def plan_j():
     return plan_for_view("j")
@@ -63,11 +75,7 @@ def plan_j():
 
 def test_exported_plan_opens_from_disk_and_draws_arm_and_obstacle(browser, plan_j, tmp_path):
     view = PlanScene(plan_j)
-    res = export(view, tmp_path / "j")
-    browser.get((res.path / "index.html").resolve().as_uri())
-    img = wait_for_scene(browser)
-    _keep(img, "exported_j_from_disk.png")
-    rect = canvas_rect(browser)
+    img, rect = _open_export(browser, view, tmp_path / "j", "exported_j_from_disk.png")
     eye, target, fov = view.camera
 
     assert img.std() > 0.05, "blank page"
@@ -93,12 +101,52 @@ def test_exported_pose_shows_every_solution(browser, tmp_path):
     T = iik.pose_from_zxz([0.4, 0.3, 0.2], np.pi, np.radians(120), 0.0)
     view = PoseView(T)
     assert view.result.count >= 2
-    res = export(view, tmp_path / "pose")
-    browser.get((res.path / "index.html").resolve().as_uri())
-    img = wait_for_scene(browser)
-    _keep(img, "pose_all_solutions.png")
-    blue = _in_canvas(hue_mask(img, *BLUE, min_sat=0.25), canvas_rect(browser))
+    img, rect = _open_export(browser, view, tmp_path / "pose", "pose_all_solutions.png")
+    blue = _in_canvas(hue_mask(img, *BLUE, min_sat=0.25), rect)
     assert blue.sum() > 300
+
+
+def test_exported_failed_plan_shows_the_arm_and_its_attempt_log(browser, tmp_path):
+    """A failed plan opened from disk: the arm at the start pose and the caption (verdict, attempts)."""
+    plan = plan_for_view("a", PlanOptions(fallbacks=False, timing=False))
+    assert not plan.success and plan.attempts
+    view = PlanScene(plan)
+    img, rect = _open_export(browser, view, tmp_path / "a", "exported_failed_plan_a.png")
+    eye, target, fov = view.camera
+    arm_box = _box(project(_arm_points(plan.q), eye, target, fov_deg=fov, rect=rect), 40)
+    u, v = project(view_top(eye, target, fov), eye, target, fov_deg=fov, rect=rect)[0]
+
+    def arm_and_caption(img: np.ndarray) -> tuple[float, int]:
+        """Share of the arm's colour inside the start pose's box; dark caption pixels below the top centre."""
+        band = img[int(v):int(v) + 12 * len(view.caption.splitlines()), int(u) - 250:int(u) + 250]
+        hsv = rgb_to_hsv(np.clip(band, 0, 1))
+        return _inside(_in_canvas(hue_mask(img, *BLUE), rect), arm_box), int(
+            ((hsv[..., 2] < 0.35) & (hsv[..., 1] < 0.3)).sum())
+
+    # The page plays its recording: wait (15 s at most) until the arm stands at the start pose.
+    seen = arm_and_caption(img)
+    end = time.monotonic() + 15
+    while not (seen[0] > 0.9 and seen[1] > 300) and time.monotonic() < end:
+        time.sleep(0.5)
+        seen = arm_and_caption(screenshot(browser))
+    assert seen[0] > 0.9, f"the arm is not at the start pose ({seen[0]:.2f} of its pixels in its box)"
+    # The caption hangs from the top centre of the view: dark text on the white page above the scene.
+    assert seen[1] > 300, "no caption text below the top centre of the view"
+
+
+def test_a_q_outside_the_limits_is_drawn_red(browser, tmp_path):
+    """The links moved by a joint outside Table I are red; the same pose with that joint inside is not."""
+    counts = {}
+    for name, q4 in (("outside", 2.6), ("inside", 2.0)):
+        view = PoseView(q=[0.3, -0.5, 0.4, q4, 0.2, 0.0])
+        assert bool(view.warnings) == (name == "outside")
+        img, rect = _open_export(browser, view, tmp_path / name, f"pose_q4_{name}_limits.png")
+        counts[name] = 0
+        for _ in range(8):  # the most red over 4 s: the colours arrive after the shapes
+            red = _in_canvas(hue_mask(screenshot(browser), *RED, min_sat=0.6), rect)
+            counts[name] = max(counts[name], int(red.sum()))
+            time.sleep(0.5)
+    assert counts["outside"] > 400 and counts["outside"] > 5 * counts["inside"], counts
 
 
 def _thumb(browser):

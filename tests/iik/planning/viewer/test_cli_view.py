@@ -1,10 +1,12 @@
-"""``iik view``: one-line errors with exit code 2, warnings, the URL, Ctrl-C."""
+"""``iik view``: one-line errors with exit code 2, warnings, failed plans, the URL, Ctrl-C."""
 
 import signal
 import socket
 import subprocess
 import sys
 import urllib.request
+
+import pytest
 
 from iik.cli import main
 
@@ -62,19 +64,59 @@ def test_interactive_ik_is_not_exportable(capsys, tmp_path):
     _one_error(err, "live server")
 
 
-def test_q_outside_the_limits_is_shown_with_a_warning(capsys, tmp_path):
+def test_q_outside_the_limits_is_refused_by_default(capsys, tmp_path):
+    """Bad input: one line naming --q, the joint and the way to show it anyway; exit 2; nothing written."""
     code, out, err = _run(capsys, "--q", "0", "0", "0", "150", "0", "0", "--deg",
                           "--export", str(tmp_path / "o"))
+    assert code == 2 and out == ""
+    _one_error(err, "OutsideLimitsError", "--q:", "q4 = 2.6180 rad (150.0 deg)", "--allow-outside-limits")
+    assert not (tmp_path / "o").exists()
+
+
+def test_q_outside_the_limits_is_shown_when_allowed(capsys, tmp_path):
+    """Shown (exported), with exactly one warning line on stderr naming both joints; exit 0."""
+    code, out, err = _run(capsys, "--q", "0", "0", "0", "150", "0", "200", "--deg", "--allow-outside-limits",
+                          "--export", str(tmp_path / "o"))
     assert code == 0
-    assert err.strip().splitlines() == [line for line in err.strip().splitlines() if "warning" in line]
-    assert "q[3]" in err and "outside Table I" in err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("iik view: warning: q4 = ") and "q6 = " in lines[0]
+    assert "red" in lines[0]
     assert "wrote" in out and (tmp_path / "o" / "index.html").is_file()
+
+
+def test_the_help_documents_the_limit_decision_and_the_exit_status(capsys):
+    with pytest.raises(SystemExit):
+        main(["view", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "--allow-outside-limits" in text and "exit 2, nothing shown or written" in text
+    assert "1 shown, but the plan failed or timed out" in text
+
+
+def test_a_failed_plan_is_shown_with_its_best_attempt(capsys, tmp_path):
+    code, out, err = _run(capsys, "a", "--no-fallbacks", "--export", str(tmp_path / "a"))
+    assert code == 1 and err == ""  # shown; the plan failed (as iik plan: exit 1)
+    head, attempt = out.splitlines()[:2]
+    assert head.startswith("a: FAILED (thesis path rejected (fallbacks off))")
+    assert attempt.startswith("  - thesis path, IK branch") and "rejected: clearance below the 30" in attempt
+    assert (tmp_path / "a" / "index.html").is_file()
+
+
+def test_planning_options_need_a_scenario(capsys, tmp_path):
+    code, _, err = _run(capsys, "--q", "0", "0", "0", "0", "0", "0", "--timeout", "5",
+                        "--export", str(tmp_path / "o"))
+    assert code == 2
+    _one_error(err, "ViewRequestError", "need a SCENARIO")
+    code, _, err = _run(capsys, "j", "--timeout", "nan", "--export", str(tmp_path / "o"))
+    assert code == 2
+    _one_error(err, "--timeout")
+    assert not (tmp_path / "o").exists()
 
 
 def test_shipped_scenario_export(capsys, tmp_path):
     code, out, err = _run(capsys, "j", "--export", str(tmp_path / "j"))
     assert code == 0, err
     assert out.startswith("j: OK") and "index.html" in out
+    assert "\n  - thesis path, IK branch" in out and "accepted" in out  # the attempt log
 
 
 def test_serves_until_ctrl_c():

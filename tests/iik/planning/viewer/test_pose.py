@@ -6,7 +6,7 @@ import pytest
 import iik
 from iik.errors import InvalidInputError
 from iik.planning.viewer import PoseView
-from iik.planning.viewer.bodies import joints_outside_limits
+from iik.planning.viewer.bodies import joints_outside_limits, outside_limits_text
 
 
 def test_every_configuration_reaches_the_pose():
@@ -31,11 +31,24 @@ def test_limit_marks_agree_with_the_one_limit_test(j):
     assert joints_outside_limits(q) == () and arm.within_limits(q)
 
 
-def test_q_outside_the_limits_is_shown_with_a_warning():
-    view = PoseView(q=[0.1, -0.3, 0.4, 3.0, -0.2, 0.7])
-    assert len(view.warnings) == 1 and "q[3]" in view.warnings[0] and "outside Table I" in view.warnings[0]
-    assert np.array_equal(view.configurations()[0], [0.1, -0.3, 0.4, 3.0, -0.2, 0.7])
+def test_q_outside_the_limits_is_shown_with_one_warning_line():
+    view = PoseView(q=[0.1, -0.3, 0.4, 3.0, -0.2, 3.5])
+    assert len(view.warnings) == 1 and "\n" not in view.warnings[0]
+    assert "q4 = 3.0000 rad" in view.warnings[0] and "q6 = 3.5000 rad" in view.warnings[0]
+    assert "q5" not in view.warnings[0] and "outside Table I" in view.warnings[0]
+    assert np.array_equal(view.configurations()[0], [0.1, -0.3, 0.4, 3.0, -0.2, 3.5])
     assert "**OUT**" in view.describe(0) and "OUTSIDE LIMITS" in view.options()[0]
+    assert PoseView(q=[0.1, -0.3, 0.4, 1.0, -0.2, 0.7]).warnings == ()
+
+
+def test_outside_limits_text_names_each_joint_with_its_limits():
+    arm = iik.THESIS_ARM
+    q = 0.5 * (arm.q_min + arm.q_max)
+    assert outside_limits_text(q) == ""
+    q[1] = arm.q_min[1] - 0.25
+    text = outside_limits_text(q)
+    assert text.startswith(f"q2 = {q[1]:.4f} rad ({np.degrees(q[1]):.1f} deg) is outside Table I")
+    assert f"[{arm.q_min[1]:.4f}, {arm.q_max[1]:.4f}] rad" in text
 
 
 def test_bad_pose_arguments_are_typed_errors():

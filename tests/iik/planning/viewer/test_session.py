@@ -7,7 +7,16 @@ import numpy as np
 import pytest
 
 import iik
-from iik.planning.viewer import ExportError, PortInUseError, PoseView, ViewerError, export, serve, show
+from iik.planning.viewer import (
+    ExportError,
+    PortInUseError,
+    PoseView,
+    ViewerError,
+    export,
+    inline,
+    serve,
+    show,
+)
 from iik.planning.viewer.motion import Motion, MotionView, Track
 from iik.planning.viewer.session import ViewOptions
 
@@ -87,3 +96,13 @@ def test_interactive_ik_cannot_be_exported(tmp_path):
     with pytest.raises(ViewerError, match="live server"):
         show(view, ViewOptions(export=tmp_path / "x"))
     assert not (tmp_path / "x").exists()
+
+
+def test_inline_embeds_the_recorded_page_in_an_iframe(pose_view, capsys):
+    import html
+
+    shown = inline(pose_view, height=300)
+    assert shown.data.startswith('<div><iframe srcdoc="') and 'height="300"' in shown.data
+    page = html.unescape(shown.data.split('srcdoc="', 1)[1].split('" width=', 1)[0])
+    assert "__VISER_EMBED_DATA__" in page and page.lstrip().lower().startswith("<!doctype html")
+    assert capsys.readouterr().out == ""  # viser's banner is not printed
