@@ -231,14 +231,14 @@ def test_the_timeout_stops_with_a_typed_result_and_the_best_attempt_so_far(monke
 
 def test_a_long_plan_stops_near_its_timeout_in_real_time(tmp_path):
     p = tmp_path / "fine.toml"
-    # ~17 s of work on an idle machine: well past the 2 s budget
+    # ~17 s of work on an idle machine, its orientation search alone several seconds: well past the budget
     p.write_text((scenarios_dir() / "a.toml").read_text() + "\n[planning]\nmax_step = 0.0002\n")
     said = []
     t0 = time.perf_counter()
-    r = plan(p, PlanOptions(timeout=2.0), progress=said.append)
+    r = plan(p, PlanOptions(timeout=8.0), progress=said.append)
     elapsed = time.perf_counter() - t0
     assert r.timed_out and not r.success
-    assert elapsed < 2.0 + 5.0  # the overrun is one IK chunk or Coal query, not a stage
+    assert elapsed < 8.0 + 5.0  # the overrun is one IK chunk or Coal query, not a stage
     assert any(": " in m and "/" in m and m.endswith(" s)") for m in said)  # progress inside a long loop
 
 
