@@ -7,7 +7,7 @@ Pure NumPy/SciPy; no I/O. Units are SI (m, rad, s) throughout.
 from .arm import THESIS_ARM, Arm
 from .dexterity import Dexterity, dexterity
 from .dh import DHRow, DHTable, dh_chain
-from .errors import DexterityError, IIKError, InvalidInputError, UnreachablePoseError
+from .errors import DexterityError, IIKError, InvalidInputError, NotOrthonormalError, UnreachablePoseError
 from .ik import (
     IKResult,
     follow_path,
@@ -51,6 +51,7 @@ __all__ = [
     "IIKError",
     "InvalidInputError",
     "UnreachablePoseError",
+    "NotOrthonormalError",
     "dexterity",
     "Dexterity",
     "DexterityError",

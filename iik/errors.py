@@ -15,6 +15,7 @@ __all__ = [
     "InvalidInputError",
     "UnreachablePoseError",
     "DexterityError",
+    "NotOrthonormalError",
 ]
 
 
@@ -63,3 +64,20 @@ class DexterityError(InvalidInputError):
             f"[{lo:.6g}, {hi:.6g}] rad ([{math.degrees(lo):.3f}, {math.degrees(hi):.3f}] deg) "
             "at this point",
         )
+
+
+class NotOrthonormalError(InvalidInputError):
+    """A rotation block is too far from a rotation to be one.
+
+    Attributes:
+        deviation: max |R^T R - I| of the offending rotation.
+        tolerance: The tolerance it exceeds.
+        index: Index of the offending pose in a batch, or None.
+    """
+
+    def __init__(self, argument: str, reason: str, deviation: float, tolerance: float,
+                 index: int | None = None):
+        self.deviation = deviation
+        self.tolerance = tolerance
+        self.index = index
+        super().__init__(argument, reason)

@@ -9,26 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import InvalidInputError
+from .errors import InvalidInputError, NotOrthonormalError
 
-__all__ = ["as_float_array", "as_joints", "as_points", "as_poses", "NotOrthonormalError"]
-
-
-class NotOrthonormalError(InvalidInputError):
-    """A rotation block is too far from a rotation to be one.
-
-    Attributes:
-        deviation: max |R^T R - I| of the offending rotation.
-        tolerance: The tolerance it exceeds.
-        index: Index of the offending pose in a batch, or None.
-    """
-
-    def __init__(self, argument: str, reason: str, deviation: float, tolerance: float,
-                 index: int | None = None):
-        self.deviation = deviation
-        self.tolerance = tolerance
-        self.index = index
-        super().__init__(argument, reason)
+__all__ = ["as_float_array", "as_joints", "as_points", "as_poses"]
 
 
 def as_float_array(value, name: str) -> np.ndarray:

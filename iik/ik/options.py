@@ -22,7 +22,7 @@ class IKOptions:
         orthonormal_tol: A rotation block with max |R^T R - I| up to this is projected onto the
             nearest rotation (polar decomposition) and solved; the result reports the distance
             (``rotation_projection``) and the residuals against the pose as given. Beyond it
-            the pose is rejected (:class:`~iik.validation.NotOrthonormalError`). The default
+            the pose is rejected (:class:`~iik.errors.NotOrthonormalError`). The default
             accepts float32 matrices, matrices rounded to 6 decimals and noise of ~1e-5,
             and still rejects a scaled or wrong matrix.
         approximate_tol: When no configuration solves the pose within the tolerances above

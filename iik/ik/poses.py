@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InvalidInputError
-from ..validation import NotOrthonormalError, as_float_array
+from ..errors import InvalidInputError, NotOrthonormalError
+from ..validation import as_float_array
 
 __all__ = ["OK", "NONFINITE", "BOTTOM_ROW", "NOT_ORTHONORMAL", "REFLECTION", "as_pose_batch",
            "check_poses", "pose_error"]

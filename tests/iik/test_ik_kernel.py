@@ -15,9 +15,8 @@ import numpy as np
 import pytest
 
 import iik
-from iik.errors import IIKError, InvalidInputError
+from iik.errors import IIKError, InvalidInputError, NotOrthonormalError
 from iik.ik.compare import contains
-from iik.validation import NotOrthonormalError
 
 ARM = iik.THESIS_ARM
 LO, HI = ARM.q_min, ARM.q_max

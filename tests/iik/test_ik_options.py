@@ -10,10 +10,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import iik
-from iik.errors import InvalidInputError
+from iik.errors import InvalidInputError, NotOrthonormalError
 from iik.ik import DEFAULT_OPTIONS, IKOptions
 from iik.ik.compare import contains
-from iik.validation import NotOrthonormalError
 
 ARM = iik.THESIS_ARM
 LO, HI = ARM.q_min, ARM.q_max
