@@ -25,7 +25,7 @@ from ..errors import IIKError
 __all__ = ["main", "build_parser"]
 
 
-class UsageError(Exception):
+class UsageError(IIKError):
     """A command line that does not parse (instead of argparse's exit)."""
 
 
