@@ -627,19 +627,20 @@ class PowerCubeArm:
 
     def move_vel(self, vel) -> None:
         """Constant velocity [rad/s] on every joint, each within its FMAXVEL (all checked first)."""
-        vs = self._per_joint(vel, "vel")
-        for m, v in zip(self.modules, vs, strict=True):
-            m.check_limit(v, P.Param.FMAXVEL, "velocity", "rad/s")
-        for m, v in zip(self.modules, vs, strict=True):
-            m.move_vel(v)
+        self._move_within(vel, "vel", P.Param.FMAXVEL, "velocity", "rad/s", PowerCubeModule.move_vel)
 
     def move_cur(self, current) -> None:
         """Constant current [A] on every joint, each within its FMAXCUR (all checked first)."""
-        cs = self._per_joint(current, "current")
-        for m, c in zip(self.modules, cs, strict=True):
-            m.check_limit(c, P.Param.FMAXCUR, "current", "A")
-        for m, c in zip(self.modules, cs, strict=True):
-            m.move_cur(c)
+        self._move_within(current, "current", P.Param.FMAXCUR, "current", "A", PowerCubeModule.move_cur)
+
+    def _move_within(self, value, argument: str, param: P.Param, what: str, unit: str, move) -> None:
+        """Check every joint's ``value`` against its module's limit ``param``, then ``move(module, value)``
+        each module (nothing is commanded unless every joint passes)."""
+        values = self._per_joint(value, argument)
+        for m, v in zip(self.modules, values, strict=True):
+            m.check_limit(v, param, what, unit)
+        for m, v in zip(self.modules, values, strict=True):
+            move(m, v)
 
     # -- watchdog
     def start_watchdog(self, period: float = WATCHDOG_PERIOD) -> None:
