@@ -15,15 +15,14 @@ import sys
 
 import numpy as np
 
+from .options import add_pose_arguments
+
 NAME = "solve"
 HELP = "all IK solutions of a pose given as --xyz X Y Z --zxz ALPHA BETA GAMMA (exit 1 if none)"
 
 
 def add_arguments(p) -> None:
-    p.add_argument("--xyz", nargs=3, type=float, required=True, metavar=("X", "Y", "Z"),
-                   help="tool position in the base frame [m]")
-    p.add_argument("--zxz", nargs=3, type=float, required=True, metavar=("A", "B", "G"),
-                   help="Eq 42 Euler angles alpha beta gamma [rad, or deg with --deg]")
+    add_pose_arguments(p, required=True)
     p.add_argument("--deg", action="store_true", help="angles in and out in degrees")
     p.add_argument("--previous", nargs=6, type=float, default=None, metavar="Q",
                    help="previous joint angles (for the Eq 54 effort index)")

@@ -10,6 +10,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from .options import add_pose_arguments
+
 NAME = "view"
 HELP = "3D web viewer: a pose (--q, --xyz/--zxz), interactive IK (no target), a plan (SCENARIO), a run log"
 EPILOG = ("A --q outside the joint limits (Table I) is bad input: one-line error, exit 2, nothing shown or "
@@ -31,10 +33,7 @@ def add_arguments(p) -> None:
                    help="a configuration [rad, deg with --deg]")
     p.add_argument("--allow-outside-limits", action="store_true",
                    help="show a --q outside Table I (those links red, a warning) instead of refusing it")
-    p.add_argument("--xyz", nargs=3, type=float, default=None, metavar=("X", "Y", "Z"),
-                   help="tool position [m]")
-    p.add_argument("--zxz", nargs=3, type=float, default=None, metavar=("A", "B", "G"),
-                   help="Eq 42 Euler angles alpha beta gamma [rad, deg with --deg]")
+    add_pose_arguments(p, required=False)
     p.add_argument("--deg", action="store_true", help="angles in degrees")
     p.add_argument("--previous", nargs=6, type=float, default=None, metavar="Q",
                    help="reference configuration of the Eq 54 effort index (default: --q, else q = 0)")
