@@ -11,7 +11,6 @@ solved by :func:`verification.oracles.ur5.solve_base_tool` are the identity (fro
 
 from __future__ import annotations
 
-import importlib.metadata
 from functools import lru_cache
 from pathlib import Path
 
@@ -20,6 +19,8 @@ import pinocchio as pin
 
 from iik.dh import DHRow, DHTable
 from iik.urdf import TOOL_FRAME, urdf_from_dh
+
+from .example_robots import example_robot_urdf, fk_pair
 
 __all__ = ["PANDA_A", "PANDA_D", "PANDA_ALPHA", "PANDA_FLANGE", "panda_reference_path",
            "panda_models", "panda_fk_pair"]
@@ -34,10 +35,7 @@ REFERENCE_FRAME = "panda_link8"
 
 def panda_reference_path() -> Path:
     """``panda.urdf`` installed by ``example-robot-data``."""
-    for f in importlib.metadata.files("example-robot-data") or ():
-        if str(f).endswith("robots/panda_description/urdf/panda.urdf"):
-            return Path(f.locate())
-    raise FileNotFoundError("panda.urdf not found in the example-robot-data distribution")
+    return example_robot_urdf("panda_description/urdf/panda.urdf")
 
 
 @lru_cache(maxsize=4)
@@ -57,12 +55,5 @@ def panda_models(generator=urdf_from_dh):
 def panda_fk_pair(qs: np.ndarray, generator=urdf_from_dh) -> tuple[np.ndarray, np.ndarray]:
     """Poses (n, 4, 4) of the generated ``tool`` and the reference flange at arm joints ``qs`` (n, 7)
     (the generated model built by ``generator``, :func:`iik.urdf.urdf_from_dh` by default)."""
-    gen, fg, ref, fr = panda_models(generator)
-    dg, dr = gen.createData(), ref.createData()
-    Tg, Tr = np.empty((len(qs), 4, 4)), np.empty((len(qs), 4, 4))
-    fingers = np.zeros(ref.nq - 7)
-    for k, q in enumerate(qs):
-        pin.framesForwardKinematics(gen, dg, q)
-        pin.framesForwardKinematics(ref, dr, np.concatenate([q, fingers]))
-        Tg[k], Tr[k] = dg.oMf[fg].homogeneous, dr.oMf[fr].homogeneous
-    return Tg, Tr
+    models = panda_models(generator)
+    return fk_pair(models, qs, extra=models[2].nq - 7)  # the fingers held at 0

@@ -21,7 +21,6 @@ The joint zero positions agree (no joint offsets needed).
 
 from __future__ import annotations
 
-import importlib.metadata
 from functools import lru_cache
 from pathlib import Path
 
@@ -31,6 +30,8 @@ from scipy.spatial.transform import Rotation
 
 from iik.dh import DHRow, DHTable
 from iik.urdf import TOOL_FRAME, urdf_from_dh
+
+from .example_robots import example_robot_urdf, fk_pair
 
 __all__ = [
     "UR5_D", "UR5_A", "UR5_ALPHA", "UR5_BASE", "UR5_TOOL",
@@ -64,11 +65,8 @@ def ur5_generated_urdf(generator=urdf_from_dh) -> str:
 
 
 def ur5_reference_path() -> Path:
-    """Path of ``ur5_robot.urdf`` installed by ``example-robot-data`` (no Python module exists)."""
-    for f in importlib.metadata.files("example-robot-data") or ():
-        if str(f).endswith("robots/ur_description/urdf/ur5_robot.urdf"):
-            return Path(f.locate())
-    raise FileNotFoundError("ur5_robot.urdf not found in the example-robot-data distribution")
+    """Path of ``ur5_robot.urdf`` installed by ``example-robot-data``."""
+    return example_robot_urdf("ur_description/urdf/ur5_robot.urdf")
 
 
 @lru_cache(maxsize=4)
@@ -81,14 +79,7 @@ def ur5_models(generator=urdf_from_dh):
 
 def ur5_fk_pair(qs: np.ndarray, generator=urdf_from_dh) -> tuple[np.ndarray, np.ndarray]:
     """Poses (n, 4, 4) of the generated ``tool`` and the reference ``tool0`` at ``qs`` (n, 6)."""
-    gen, fg, ref, fr = ur5_models(generator)
-    dg, dr = gen.createData(), ref.createData()
-    Tg, Tr = np.empty((len(qs), 4, 4)), np.empty((len(qs), 4, 4))
-    for k, q in enumerate(qs):
-        pin.framesForwardKinematics(gen, dg, q)
-        pin.framesForwardKinematics(ref, dr, q)
-        Tg[k], Tr[k] = dg.oMf[fg].homogeneous, dr.oMf[fr].homogeneous
-    return Tg, Tr
+    return fk_pair(ur5_models(generator), qs)
 
 
 def solve_base_tool(T_dh: np.ndarray, T_ref: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
