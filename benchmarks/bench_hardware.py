@@ -18,11 +18,9 @@ decimals) against ``numpy.loadtxt`` of the same file.
 
 from __future__ import annotations
 
-import statistics
 import sys
 import tempfile
 import threading
-import time
 import uuid
 from pathlib import Path
 
@@ -32,16 +30,7 @@ import numpy as np
 from hardware import PowerCubeArm, SimulatedArm
 from hardware import protocol as P
 from hardware.sources import csv_trajectory
-
-
-def _median(fn, n: int, reps: int = 5) -> float:
-    times = []
-    for _ in range(reps):
-        t0 = time.perf_counter()
-        for _ in range(n):
-            fn()
-        times.append((time.perf_counter() - t0) / n)
-    return statistics.median(times)
+from verification.testing.timing import median_seconds
 
 
 def _raw_echo_baseline(n: int) -> float:
@@ -64,7 +53,7 @@ def _raw_echo_baseline(n: int) -> float:
         a.recv(1.0)
 
     try:
-        return _median(once, n)
+        return median_seconds(once, 5, calls=n)
     finally:
         stop.set()
         th.join()
@@ -78,14 +67,14 @@ def main(n: int = 500) -> None:
     with SimulatedArm.virtual(ch), can.Bus(interface="virtual", channel=ch) as bus:
         arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0)
         m = arm.modules[0]
-        req = _median(m.get_pos, n)
+        req = median_seconds(m.get_pos, 5, calls=n)
 
         def sample():
             for mod in arm.modules:
                 for par in (P.Param.STATE, P.Param.ACT_FPOS, P.Param.ACT_FVEL, P.Param.ACT_FCUR):
                     mod.get_param(par)
 
-        smp = _median(sample, max(n // 24, 5))
+        smp = median_seconds(sample, 5, calls=max(n // 24, 5))
         flip = [0.0]
 
         def raw_step():
@@ -97,11 +86,11 @@ def main(n: int = 500) -> None:
             flip[0] = 0.01 - flip[0]
             arm.move_step(np.full(6, flip[0]), 0.1)
 
-        raw = _median(raw_step, max(n // 6, 5))
-        checked = _median(checked_step, max(n // 6, 5))
+        raw = median_seconds(raw_step, 5, calls=max(n // 6, 5))
+        checked = median_seconds(checked_step, 5, calls=max(n // 6, 5))
     msg = P.GetParam(1, P.Param.ACT_FPOS)
     reply = P.encode(P.ParamReply(1, P.Param.ACT_FPOS, 0.5))
-    codec = _median(lambda: (P.encode(msg), P.decode(reply)), n * 10)
+    codec = median_seconds(lambda: (P.encode(msg), P.decode(reply)), 5, calls=n * 10)
     print(f"{'what':44s} {'median':>10s} {'x baseline':>10s}")
     for name, t in (("raw echo on virtual (baseline)", base),
                     ("driver request GETPARAM (SimulatedArm)", req),
@@ -120,8 +109,8 @@ def _csv_bench(lines: int = 10_000) -> None:
         q = np.linspace(0, 1, lines)[:, None] * np.full(6, 0.3)
         np.savetxt(path, np.column_stack([np.arange(lines) * 0.01, q]), delimiter=",", fmt="%.9f",
                    header="t,q1,q2,q3,q4,q5,q6", comments="")
-        base = _median(lambda: np.loadtxt(path, delimiter=",", skiprows=1), 1, reps=5)
-        ours = _median(lambda: csv_trajectory(path), 1, reps=5)
+        base = median_seconds(lambda: np.loadtxt(path, delimiter=",", skiprows=1), 5)
+        ours = median_seconds(lambda: csv_trajectory(path), 5)
     print(f"{'CSV ' + str(lines) + ' lines, numpy.loadtxt (baseline)':44s} {base * 1e3:8.1f} ms {1.0:10.2f}")
     print(f"{'CSV ' + str(lines) + ' lines, csv_trajectory':44s} {ours * 1e3:8.1f} ms {ours / base:10.2f}")
 

@@ -8,9 +8,7 @@ the same run.
 
 from __future__ import annotations
 
-import statistics
 import sys
-import time
 
 import numpy as np
 import pinocchio as pin
@@ -18,15 +16,7 @@ import pinocchio as pin
 import iik
 from iik.planning.robot_model import thesis_model
 from verification.testing.strategies import sample_joints
-
-
-def _median_per_q(fn, n: int, reps: int = 7) -> float:
-    times = []
-    for _ in range(reps):
-        t0 = time.perf_counter()
-        fn()
-        times.append((time.perf_counter() - t0) / n)
-    return statistics.median(times)
+from verification.testing.timing import median_seconds
 
 
 def main(n: int = 2000) -> None:
@@ -54,7 +44,7 @@ def main(n: int = 2000) -> None:
     per = {}
     for name, fn in cases.items():
         m = n // 10 if name.endswith("loop") and name.startswith("iik") else n
-        per[name] = _median_per_q(fn, m)
+        per[name] = median_seconds(fn) / m
     base = per["pinocchio FK, loop (baseline)"]
     print(f"n = {n} configurations; median time per configuration")
     for name, t in per.items():

@@ -14,8 +14,6 @@ Run: ``/work/venv/bin/python benchmarks/bench_planning.py [--runs N]``
 from __future__ import annotations
 
 import argparse
-import statistics
-import time
 
 from iik.planning import (
     PlanOptions,
@@ -27,16 +25,7 @@ from iik.planning import (
     track_branches,
 )
 from iik.scene import THESIS_SCENE
-
-
-def _median(fn, runs: int) -> float:
-    fn()  # warm-up (imports, caches)
-    ts = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        fn()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts)
+from verification.testing.timing import median_seconds
 
 
 def main() -> None:
@@ -64,7 +53,7 @@ def main() -> None:
         cp = build_path(sc, scene=THESIS_SCENE)
         track_branches(cp, adapt_orientation=False)
 
-    t_full, t_disc, t_thesis = (_median(f, args.runs) for f in (full, discrete, thesis))
+    t_full, t_disc, t_thesis = (median_seconds(f, args.runs, warmup=True) for f in (full, discrete, thesis))
     print(f"scenario {args.scenario}: median over {args.runs} runs")
     print(f"  full (plan + IK + certified continuous whole-arm check): {t_full * 1e3:8.1f} ms"
           "  (target <= 200 ms)")
