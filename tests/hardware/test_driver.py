@@ -13,15 +13,7 @@ import iik
 from hardware import PowerCubeArm, PowerCubeModule, SimulatedArm, scan
 from hardware import protocol as P
 from hardware.errors import CANTimeoutError, DuplicateModuleError, ModuleHalted, SafetyError
-
-
-def wait_until(pred, timeout=2.0):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if pred():
-            return True
-        time.sleep(0.005)
-    return False
+from verification.testing.polling import wait_until
 
 
 def test_open_close_and_reads(arm, sim):
@@ -284,7 +276,7 @@ def test_watchdog(arm, sim):
     time.sleep(1.5 * timeout)  # longer than the watchdog time, but refreshed: no trip
     assert not any(s & P.State.ERROR for s in arm.states())
     arm.stop_watchdog(disable=False)  # refresh stops, bit stays: the modules must stop
-    assert wait_until(lambda: all(s & P.State.COMM_ERROR for s in sim.states()), 3 * timeout)
+    assert wait_until(lambda: all(s & P.State.COMM_ERROR for s in sim.states()), 3 * timeout, 0.005)
     arm.reset()
     arm.start_watchdog(period=0.02)
     arm.stop_watchdog(disable=True)  # clean stop: bit cleared first

@@ -17,6 +17,7 @@ import iik
 from iik.planning import PlanOptions
 from iik.planning.viewer import PlanScene, PoseView, export, plan_for_view, serve
 from iik.planning.viewer.environment import view_top
+from verification.testing.polling import wait_until
 
 from .conftest import canvas_rect, hue_mask, project, screenshot, wait_for_scene
 
@@ -157,15 +158,6 @@ def _thumb(browser):
     return sliders[0]
 
 
-def _wait(pred, timeout: float = 10.0) -> bool:
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        if pred():
-            return True
-        time.sleep(0.1)
-    return False
-
-
 def test_live_time_slider_moves_the_arm(browser, plan_j):
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.keys import Keys
@@ -184,7 +176,8 @@ def test_live_time_slider_moves_the_arm(browser, plan_j):
         thumb = _thumb(browser)
         thumb.click()
         thumb.send_keys(Keys.END)
-        assert _wait(lambda: abs(slider.value - t_end) < 1e-9), "the server never saw the slider move"
+        moved = wait_until(lambda: abs(slider.value - t_end) < 1e-9, 10.0, 0.1)
+        assert moved, "the server never saw the slider move"
         time.sleep(1.5)
         after = screenshot(browser)
 
@@ -200,7 +193,7 @@ def test_live_time_slider_moves_the_arm(browser, plan_j):
         track = thumb.find_element("xpath", "..")
         drag = ActionChains(browser).click_and_hold(thumb).move_by_offset(-track.size["width"] // 2, 0)
         drag.release().perform()
-        assert _wait(lambda: 0.2 * t_end < slider.value < 0.8 * t_end), slider.value
+        assert wait_until(lambda: 0.2 * t_end < slider.value < 0.8 * t_end, 10.0, 0.1), slider.value
         time.sleep(1.5)
         _keep(screenshot(browser), "live_j_mid_motion.png")
     finally:
