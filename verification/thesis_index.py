@@ -74,182 +74,183 @@ class Item:
             raise ValueError(f"{self.key}: a {self.status!r} item needs its note")
 
 
-def _eq(n, where, title, status="checked", note="", checks=()) -> Item:
-    return Item(f"Eq {n}", "equation", where, title, status, note, tuple(checks))
+def _equations(sections: dict[str, dict[str, str]]) -> tuple[Item, ...]:
+    """Index items of the numbered equations from ``{section: {number: title}}``; an equation listed in
+    :data:`_DEFINITIONS` is a definition (with that note), every other one is checked."""
+    items = []
+    for where, titles in sections.items():
+        for n, title in titles.items():
+            note = _DEFINITIONS.get(n, "")
+            items.append(Item(f"Eq {n}", "equation", where, title, "definition" if note else "checked", note))
+    return tuple(items)
 
 
-_DEF = "definition"
-EQUATIONS: tuple[Item, ...] = (
-    _eq(
-        1, "Sec 2.2", "0_6T = 0_1T 1_2T 2_3T 3_4T 4_5T 5_6T = [R p; 0 1] (pose as product of link transforms)"
-    ),
-    _eq(
-        2,
-        "Sec 2.4.1",
-        "G_theta = [f1 f2 f3](theta_1..theta_n) for a general n-joint arm",
-        _DEF,
-        "the general position vector; this arm's instance is Eq 34 / Eq 55 (checked there)",
-    ),
-    _eq(
-        3,
-        "Sec 2.4.1",
-        "D = J_theta D_theta, J_theta = [df_i/dtheta_j] for a general arm",
-        _DEF,
-        "the definition of the Jacobian; this arm's instance is Eq 35 / Eq 56 (checked there)",
-    ),
-    _eq(4, "Sec 3.2", "0_6T: the twelve entries r11..r33, px, py, pz of the forward kinematics"),
-    _eq(5, "Sec 3.3.1", "[ED x DC] . BC = 0 (B, C, D, E coplanar)"),
-    _eq(6, "Sec 3.3.1", "p_B = [l2 c1, l2 s1, 0] (origin moved up by l1)"),
-    _eq(7, "Sec 3.3.1", "p_C = [l2 c1 + l3 c2 c1, l2 s1 + l3 c2 s1, -l3 s2]"),
-    _eq(8, "Sec 3.3.1", "first simultaneous equation in theta1, theta2"),
-    _eq(9, "Sec 3.3.1", "tan(theta2) = [(r23 zD - r33 yD) c1 + (r33 xD - r13 zD) s1] / +-[...]"),
-    _eq("9a", "Sec 3.3.1", "x_D = p_x - r13 l5"),
-    _eq("9b", "Sec 3.3.1", "y_D = p_y - r23 l5"),
-    _eq("9c", "Sec 3.3.1", "z_D = p_z - l1 - r33 l5"),
-    _eq(10, "Sec 3.3.1", "|BC| + |DC| - l3 - l4 = 0"),
-    _eq(
-        11,
-        "Sec 3.3.1",
-        "||E|| = xD^2 + yD^2 + zD^2 + l2^2 + l3^2 - l4^2 - 2 (l2 + l3 c2)(xD c1 + yD s1) "
-        "+ 2 l3 (zD s2 + l2 c2)",
-    ),
-    _eq(12, "Sec 3.3.1", "the minimum of ||E|| is at theta1 = atan2(py, px)"),
-    _eq(13, "Sec 3.3.1", "the maximum of ||E|| is at theta1 = atan2(py, px) +- pi"),
-    _eq(14, "Sec 3.3.2", "c4 by the law of cosines"),
-    _eq(15, "Sec 3.3.2", "s4 = +-sqrt(1 - c4^2)"),
-    _eq(16, "Sec 3.3.2", "theta4 = atan2(s4, c4)"),
-    _eq(17, "Sec 3.3.3", "0_5T = 0_2T 2_5T"),
-    _eq(18, "Sec 3.3.3", "0_2T^-1 0_5T = 2_5T with 0_2T^-1 and 2_5T printed"),
-    _eq(19, "Sec 3.3.3", "(0_2T^-1 0_5T)_34 = c1 yD - s1 xD = -l4 s3 s4"),
-    _eq(20, "Sec 3.3.3", "s3 = (s1 xD - c1 yD) / (l4 s4)"),
-    _eq(21, "Sec 3.3.3", "c3 = +-sqrt(1 - s3^2)"),
-    _eq(22, "Sec 3.3.3", "theta3 = atan2(s3, c3)"),
-    _eq(23, "Sec 3.3.4", "0_6T = 0_2T 2_6T"),
-    _eq(24, "Sec 3.3.4", "0_2T^-1 0_6T = 2_6T with the used entries of 2_6T printed"),
-    _eq(25, "Sec 3.3.4", "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45"),
-    _eq(26, "Sec 3.3.4", "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45"),
-    _eq(27, "Sec 3.3.4", "s45 = (r13 c1 s2 + r23 s1 s2 + r33 c2) / (-c3)"),
-    _eq(28, "Sec 3.3.4", "theta5 = atan2(s45, c45) - theta4"),
-    _eq(29, "Sec 3.3.5", "0_6T = 0_5T 5_6T"),
-    _eq(30, "Sec 3.3.5", "0_5T^-1 0_6T = 5_6T with row 3 of 0_5T^-1 and 5_6T printed"),
-    _eq(31, "Sec 3.3.5", "r11 (s1 c3 - c1 s2 s3) - r21 (c1 c3 + s1 s2 s3) - r31 c2 s3 = -s6"),
-    _eq(32, "Sec 3.3.5", "r12 (s1 c3 - c1 s2 s3) - r22 (c1 c3 + s1 s2 s3) - r32 c2 s3 = -c6"),
-    _eq(33, "Sec 3.3.5", "theta6 = atan2(s6, c6)"),
-    _eq(34, "Sec 3.4.1", "G_theta = [f1 f2 f3]: theta6 does not move the tool point, f3 is free of theta1"),
-    _eq("34a", "Sec 3.4.1", "f1 = px of Eq 4 (printed without its tag in the extracted text)"),
-    _eq("34b", "Sec 3.4.1", "f2 = py of Eq 4"),
-    _eq("34c", "Sec 3.4.1", "f3 = pz of Eq 4"),
-    _eq(35, "Sec 3.4.1", "D = J_theta D_theta with the 3x5 Jacobian"),
-    _eq(36, "Sec 3.4.4", "phi = atan2(py, px) selects region 1 (|phi| < 160 deg), 2 or 3"),
-    _eq(37, "Sec 3.4.4.1", "joint 2 at [l2 cos(phi), l2 sin(phi), l1]"),
-    _eq(38, "Sec 3.4.4.1", "region 1: outside iff rho1 > l3 + l4 + l5"),
-    _eq(39, "Sec 3.4.4.2", "theta2 = -atan2(pz - l1, sqrt(px^2 + py^2)) for regions 2/3"),
-    _eq(40, "Sec 3.4.4.2", "joint 4 at [(l2 - l3 c2) cos 160, (l2 - l3 c2) sin 160, l1 - l3 s2]"),
-    _eq(41, "Sec 3.4.4.2", "regions 2/3: outside iff rho23 > l4 + l5"),
-    _eq(42, "Sec 3.5.1", "Euler-angle orientation matrix ('Z-X-Z convention of [2]')"),
-    _eq(43, "Sec 3.5.2.1", "beta' = atan((pz - z2) / sqrt((px - x2)^2 + (py - y2)^2))"),
-    _eq(44, "Sec 3.5.2.1", "beta_max/min = beta' +- acos((l5^2 + rho^2 - (l3 + l4)^2) / (2 l5 rho))"),
-    _eq(
-        45,
-        "Sec 3.5.2.2",
-        "beta_max/min = beta' +- acos((l5^2 + rho^2 - d^2) / (2 l5 rho)), joint 4 at 119 deg",
-    ),
-    _eq(46, "Sec 3.5.3.1", "alpha' = atan2(py, px)"),
-    _eq(47, "Sec 3.5.3.1", "h_SLJ = pz - l5 sin(beta)"),
-    _eq(48, "Sec 3.5.3.1", "delta = atan((h_SLJ - l1) / (l3 + l4))"),
-    _eq(
-        49,
-        "Sec 3.5.3.1",
-        "alpha_max/min = alpha' +- acos((rho^2 + (l5 cos b)^2 - ((l3 + l4) cos d + l2)^2) "
-        "/ (2 rho l5 cos b))",
-    ),
-    _eq(50, "Sec 3.5.3.2", "delta = atan((h_SLJ - l1) / phi), phi the contracted length of links 3-4"),
-    _eq(
-        51,
-        "Sec 3.5.3.2",
-        "alpha_max/min = alpha' +- acos((rho^2 + (l5 cos b)^2 - (phi cos d + l2)^2) / (2 rho l5 cos b))",
-    ),
-    _eq(
-        52,
-        "Sec 3.6.2.1",
-        "ellipsoid (x - xc)^2/xr^2 + (y - yc)^2/yr^2 + (z - zc)^2/zr^2 = 1",
-        _DEF,
-        "the ellipsoid equation of [19]; its radii (Eq 53) and the inside/outside test of Sec 3.6.2.2 are "
-        "checked",
-    ),
-    _eq(53, "Sec 3.6.2.1", "x_r = w/(cos b cos a), y_r = d/(cos b sin a), z_r = h/sin a"),
-    _eq(54, "Sec 4.2.1", "effort index E_i = sum_n |theta_n,i - theta_n,i-1| / 6"),
-    _eq(55, "App. C", "G_theta = [f1 f2 f3] (= Eq 34a-c)"),
-    _eq(56, "App. C", "the 15 entries of the 3x5 Jacobian"),
-    _eq(
-        57,
-        "App. E",
-        "eta = a_n - v_t^2 / rho_0",
-        _DEF,
-        "the normal acceleration of Abdel-Malek [10], defined; it is evaluated through Q* (Eq 64-65)",
-    ),
-    _eq(58, "App. E", "q_i(lambda_i) = (qU + qL)/2 + (qU - qL)/2 sin(lambda_i)"),
-    _eq(59, "App. E", "N0^T = null[G_q q_s]^T"),
-    _eq(
-        60,
-        "App. E",
-        "a_n = s'^T H* s'",
-        _DEF,
-        "a quadratic form in the parameter rates; H* (Eq 61) is checked",
-    ),
-    _eq(61, "App. E", "H* = q_s^T [N0^T G]_qq q_s + sum_i d(N0^T G)/dq_i [q_i]_ss"),
-    _eq(62, "App. E", "v_t^2/rho_0 = s'^T q_s^T G_q^T B^T [N0^T f]_uu B G_q q_s s'"),
-    _eq(63, "App. E", "B = [E f_u]^-1 E with E picking two independent rows"),
-    _eq(
-        64,
-        "App. E",
-        "eta = s'^T Q* s'",
-        _DEF,
-        "Eq 60 and Eq 62 substituted into Eq 57; Q* (Eq 65) is checked",
-    ),
-    _eq(65, "App. E", "Q* = H* - q_s^T G_q^T B^T [N0^T f]_uu B G_q q_s; the sign of its eigenvalues"),
-    _eq(66, "App. E", "sigma = N0^T G_qi delta q_i"),
-    _eq(67, "App. E", "delta q_i = +1 at a lower limit, -1 at an upper limit"),
-    _eq(68, "App. E", "K-bar = G_qi^T B^T [N0^T G]_uu B G_qi - [N0^T G]_qiqi"),
-    _eq(69, "App. E", "f(1) at A1: [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; ...; l5 c3 s5 + l1]"),
+#: Equations that define rather than claim: what is checked in their place.
+_DEFINITIONS = {
+    "2": "the general position vector; this arm's instance is Eq 34 / Eq 55 (checked there)",
+    "3": "the definition of the Jacobian; this arm's instance is Eq 35 / Eq 56 (checked there)",
+    "52": "the ellipsoid equation of [19]; its radii (Eq 53) and the inside/outside test of Sec 3.6.2.2 are "
+    "checked",
+    "57": "the normal acceleration of Abdel-Malek [10], defined; it is evaluated through Q* (Eq 64-65)",
+    "60": "a quadratic form in the parameter rates; H* (Eq 61) is checked",
+    "64": "Eq 60 and Eq 62 substituted into Eq 57; Q* (Eq 65) is checked",
+}
+#: The numbered equations by the section that prints them: ``{section: {number: title}}``.
+EQUATIONS: tuple[Item, ...] = _equations(
+    {
+        "Sec 2.2": {
+            "1": "0_6T = 0_1T 1_2T 2_3T 3_4T 4_5T 5_6T = [R p; 0 1] (pose as product of link transforms)",
+        },
+        "Sec 2.4.1": {
+            "2": "G_theta = [f1 f2 f3](theta_1..theta_n) for a general n-joint arm",
+            "3": "D = J_theta D_theta, J_theta = [df_i/dtheta_j] for a general arm",
+        },
+        "Sec 3.2": {"4": "0_6T: the twelve entries r11..r33, px, py, pz of the forward kinematics"},
+        "Sec 3.3.1": {
+            "5": "[ED x DC] . BC = 0 (B, C, D, E coplanar)",
+            "6": "p_B = [l2 c1, l2 s1, 0] (origin moved up by l1)",
+            "7": "p_C = [l2 c1 + l3 c2 c1, l2 s1 + l3 c2 s1, -l3 s2]",
+            "8": "first simultaneous equation in theta1, theta2",
+            "9": "tan(theta2) = [(r23 zD - r33 yD) c1 + (r33 xD - r13 zD) s1] / +-[...]",
+            "9a": "x_D = p_x - r13 l5",
+            "9b": "y_D = p_y - r23 l5",
+            "9c": "z_D = p_z - l1 - r33 l5",
+            "10": "|BC| + |DC| - l3 - l4 = 0",
+            "11": "||E|| = xD^2 + yD^2 + zD^2 + l2^2 + l3^2 - l4^2 - 2 (l2 + l3 c2)(xD c1 + yD s1) + 2 l3 "
+                  "(zD s2 + l2 c2)",
+            "12": "the minimum of ||E|| is at theta1 = atan2(py, px)",
+            "13": "the maximum of ||E|| is at theta1 = atan2(py, px) +- pi",
+        },
+        "Sec 3.3.2": {
+            "14": "c4 by the law of cosines",
+            "15": "s4 = +-sqrt(1 - c4^2)",
+            "16": "theta4 = atan2(s4, c4)",
+        },
+        "Sec 3.3.3": {
+            "17": "0_5T = 0_2T 2_5T",
+            "18": "0_2T^-1 0_5T = 2_5T with 0_2T^-1 and 2_5T printed",
+            "19": "(0_2T^-1 0_5T)_34 = c1 yD - s1 xD = -l4 s3 s4",
+            "20": "s3 = (s1 xD - c1 yD) / (l4 s4)",
+            "21": "c3 = +-sqrt(1 - s3^2)",
+            "22": "theta3 = atan2(s3, c3)",
+        },
+        "Sec 3.3.4": {
+            "23": "0_6T = 0_2T 2_6T",
+            "24": "0_2T^-1 0_6T = 2_6T with the used entries of 2_6T printed",
+            "25": "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45",
+            "26": "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45",
+            "27": "s45 = (r13 c1 s2 + r23 s1 s2 + r33 c2) / (-c3)",
+            "28": "theta5 = atan2(s45, c45) - theta4",
+        },
+        "Sec 3.3.5": {
+            "29": "0_6T = 0_5T 5_6T",
+            "30": "0_5T^-1 0_6T = 5_6T with row 3 of 0_5T^-1 and 5_6T printed",
+            "31": "r11 (s1 c3 - c1 s2 s3) - r21 (c1 c3 + s1 s2 s3) - r31 c2 s3 = -s6",
+            "32": "r12 (s1 c3 - c1 s2 s3) - r22 (c1 c3 + s1 s2 s3) - r32 c2 s3 = -c6",
+            "33": "theta6 = atan2(s6, c6)",
+        },
+        "Sec 3.4.1": {
+            "34": "G_theta = [f1 f2 f3]: theta6 does not move the tool point, f3 is free of theta1",
+            "34a": "f1 = px of Eq 4 (printed without its tag in the extracted text)",
+            "34b": "f2 = py of Eq 4",
+            "34c": "f3 = pz of Eq 4",
+            "35": "D = J_theta D_theta with the 3x5 Jacobian",
+        },
+        "Sec 3.4.4": {"36": "phi = atan2(py, px) selects region 1 (|phi| < 160 deg), 2 or 3"},
+        "Sec 3.4.4.1": {
+            "37": "joint 2 at [l2 cos(phi), l2 sin(phi), l1]",
+            "38": "region 1: outside iff rho1 > l3 + l4 + l5",
+        },
+        "Sec 3.4.4.2": {
+            "39": "theta2 = -atan2(pz - l1, sqrt(px^2 + py^2)) for regions 2/3",
+            "40": "joint 4 at [(l2 - l3 c2) cos 160, (l2 - l3 c2) sin 160, l1 - l3 s2]",
+            "41": "regions 2/3: outside iff rho23 > l4 + l5",
+        },
+        "Sec 3.5.1": {"42": "Euler-angle orientation matrix ('Z-X-Z convention of [2]')"},
+        "Sec 3.5.2.1": {
+            "43": "beta' = atan((pz - z2) / sqrt((px - x2)^2 + (py - y2)^2))",
+            "44": "beta_max/min = beta' +- acos((l5^2 + rho^2 - (l3 + l4)^2) / (2 l5 rho))",
+        },
+        "Sec 3.5.2.2": {
+            "45": "beta_max/min = beta' +- acos((l5^2 + rho^2 - d^2) / (2 l5 rho)), joint 4 at 119 deg",
+        },
+        "Sec 3.5.3.1": {
+            "46": "alpha' = atan2(py, px)",
+            "47": "h_SLJ = pz - l5 sin(beta)",
+            "48": "delta = atan((h_SLJ - l1) / (l3 + l4))",
+            "49": "alpha_max/min = alpha' +- acos((rho^2 + (l5 cos b)^2 - ((l3 + l4) cos d + l2)^2) / (2 rho "
+                  "l5 cos b))",
+        },
+        "Sec 3.5.3.2": {
+            "50": "delta = atan((h_SLJ - l1) / phi), phi the contracted length of links 3-4",
+            "51": "alpha_max/min = alpha' +- acos((rho^2 + (l5 cos b)^2 - (phi cos d + l2)^2) / (2 rho l5 "
+                  "cos b))",
+        },
+        "Sec 3.6.2.1": {
+            "52": "ellipsoid (x - xc)^2/xr^2 + (y - yc)^2/yr^2 + (z - zc)^2/zr^2 = 1",
+            "53": "x_r = w/(cos b cos a), y_r = d/(cos b sin a), z_r = h/sin a",
+        },
+        "Sec 4.2.1": {"54": "effort index E_i = sum_n |theta_n,i - theta_n,i-1| / 6"},
+        "App. C": {
+            "55": "G_theta = [f1 f2 f3] (= Eq 34a-c)",
+            "56": "the 15 entries of the 3x5 Jacobian",
+        },
+        "App. E": {
+            "57": "eta = a_n - v_t^2 / rho_0",
+            "58": "q_i(lambda_i) = (qU + qL)/2 + (qU - qL)/2 sin(lambda_i)",
+            "59": "N0^T = null[G_q q_s]^T",
+            "60": "a_n = s'^T H* s'",
+            "61": "H* = q_s^T [N0^T G]_qq q_s + sum_i d(N0^T G)/dq_i [q_i]_ss",
+            "62": "v_t^2/rho_0 = s'^T q_s^T G_q^T B^T [N0^T f]_uu B G_q q_s s'",
+            "63": "B = [E f_u]^-1 E with E picking two independent rows",
+            "64": "eta = s'^T Q* s'",
+            "65": "Q* = H* - q_s^T G_q^T B^T [N0^T f]_uu B G_q q_s; the sign of its eigenvalues",
+            "66": "sigma = N0^T G_qi delta q_i",
+            "67": "delta q_i = +1 at a lower limit, -1 at an upper limit",
+            "68": "K-bar = G_qi^T B^T [N0^T G]_uu B G_qi - [N0^T G]_qiqi",
+            "69": "f(1) at A1: [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; ...; l5 c3 s5 + l1]",
+        },
+    }
 )
 
+def _table(number: str, where: str, title: str) -> Item:
+    return Item(f"Table {number}", "table", where, title)
+
+
+def _appendix(letter: str, title: str, status="checked", note="", checks=()) -> Item:
+    return Item(f"App. {letter}", "appendix", f"App. {letter}", title, status, note, tuple(checks))
+
+
 TABLES: tuple[Item, ...] = (
-    Item("Table I", "table", "Sec 3.2", "joint limits"),
-    Item("Table II", "table", "Sec 3.2", "Denavit-Hartenberg parameters"),
-    Item("Table III", "table", "Sec 3.6.3", "coordinates of the four via-points"),
-    Item("Table IV", "table", "Sec 3.6.3", "via-points required between regions A-G"),
-    Item("Table V", "table", "App. A", "PowerCube functions used"),
-    Item("Table VI", "table", "App. D", "type I and type II singularity sets s(1)-s(37)"),
-    Item("Table VII", "table", "App. D", "type III singularity sets s(38)-s(117)"),
+    _table("I", "Sec 3.2", "joint limits"),
+    _table("II", "Sec 3.2", "Denavit-Hartenberg parameters"),
+    _table("III", "Sec 3.6.3", "coordinates of the four via-points"),
+    _table("IV", "Sec 3.6.3", "via-points required between regions A-G"),
+    _table("V", "App. A", "PowerCube functions used"),
+    _table("VI", "App. D", "type I and type II singularity sets s(1)-s(37)"),
+    _table("VII", "App. D", "type III singularity sets s(38)-s(117)"),
 )
 
 APPENDICES: tuple[Item, ...] = (
-    Item("App. A", "appendix", "App. A", "operational functions (Table V)"),
-    Item("App. B", "appendix", "App. B", "link transformation matrices"),
-    Item("App. C", "appendix", "App. C", "Jacobian (Eq 55-56)"),
-    Item("App. D", "appendix", "App. D", "singularity sets (Tables VI-VII)"),
-    Item("App. E", "appendix", "App. E", "normal-acceleration test at A1, A2, A6 (Eq 57-69)"),
-    Item(
-        "App. F",
-        "appendix",
-        "App. F",
+    _appendix("A", "operational functions (Table V)"),
+    _appendix("B", "link transformation matrices"),
+    _appendix("C", "Jacobian (Eq 55-56)"),
+    _appendix("D", "singularity sets (Tables VI-VII)"),
+    _appendix("E", "normal-acceleration test at A1, A2, A6 (Eq 57-69)"),
+    _appendix(
+        "F",
         "the RoboWorks simulator",
         "not checkable",
         "a description of third-party software (RoboWorks 3.0) with no claim about the arm",
     ),
-    Item("App. G", "appendix", "App. G", "the C++ program; relocating a point outside the workspace"),
-    Item(
-        "App. H",
-        "appendix",
-        "App. H",
+    _appendix("G", "the C++ program; relocating a point outside the workspace"),
+    _appendix(
+        "H",
         "joint angles and effort of the remaining nine scenarios",
         checks=(f"{_PL}:check_scenarios", f"{_PL}:check_smooth_joints"),
     ),
-    Item(
-        "App. I",
-        "appendix",
-        "App. I",
+    _appendix(
+        "I",
         "experimental errors of the remaining nine scenarios",
         "not checkable",
         "measurements of the real arm (Figs 84-110); the simulated arm cannot reproduce them "
