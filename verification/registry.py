@@ -11,9 +11,11 @@ and a tolerance (:class:`Measure`, :func:`verdict_of`), never from a constant. T
 it, the check declares its :class:`Forms` -- the printed form, a known-good form and a
 deliberately perturbed form -- and takes the form as its second argument::
 
-    @register(SECTION, order=12, forms=Forms(printed=eq4_printed, good=eq4_from_dh,
-              bad=off_by(eq4_printed, 1e-9), good_is="...", bad_is="..."))
+    @SECTION.check(12, forms=Forms(printed=eq4_printed, good=eq4_from_dh,
+                   bad=off_by(eq4_printed, 1e-9), good_is="...", bad_is="..."))
     def eq4_vs_pinocchio(ctx, eq4) -> Row: ...
+
+(``SECTION`` is the module's :class:`Section`; :func:`register` is the general form.)
 
 ``iik verify`` calls it with ``forms.printed``; :func:`verification.self_test` calls it
 again with ``forms.good`` (it must say "holds") and ``forms.bad`` (it must not). A check
@@ -58,6 +60,7 @@ __all__ = [
     "Context",
     "Check",
     "register",
+    "Section",
     "registered_checks",
     "load_checks",
 ]
@@ -426,6 +429,49 @@ def register(
         return func
 
     return deco
+
+
+@dataclass(frozen=True)
+class Section:
+    """A report section and what its checks have in common.
+
+    A check module declares its section once and registers each check through it::
+
+        SECTION = Section("Kinematics (...)", depends_on=("l1", "lengths", "pinocchio"))
+
+        @SECTION.check(12.0, forms=Forms(...))
+        def eq4_vs_pinocchio(ctx, eq4) -> Row: ...
+
+    Attributes:
+        title: The section's heading in the report (:attr:`Check.section`).
+        depends_on: Default assumptions of its checks' rows.
+        prefix: Row-id prefix of its checks; default: each check's module name.
+    """
+
+    title: str
+    depends_on: tuple[str, ...] = ()
+    prefix: str | None = None
+
+    def check(
+        self,
+        order: float,
+        *,
+        forms: Forms | None = None,
+        by_construction: str = "",
+        depends_on: Iterable[str] | None = None,
+        name: str | None = None,
+    ):
+        """Decorator: :func:`register` a check of this section (``depends_on``, if given, replaces the
+        section's default)."""
+        return register(
+            self.title,
+            order,
+            name,
+            forms=forms,
+            by_construction=by_construction,
+            depends_on=self.depends_on if depends_on is None else depends_on,
+            prefix=self.prefix,
+        )
 
 
 def load_checks() -> None:

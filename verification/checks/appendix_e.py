@@ -23,12 +23,12 @@ from ..numbers import fmt_matrix, fmt_vec
 from ..oracles.abdel_malek import normal_acceleration
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Verdict, register, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, verdict_of
 
-SECTION = "Normal-acceleration boundary test (App. E, Eq 57-69)"
 _D = np.pi / 180
 EPS = 2e-3  # [m] probe distance along N0
 _DEP = ("lengths", "pinocchio", "reachability")
+SECTION = Section("Normal-acceleration boundary test (App. E, Eq 57-69)", depends_on=_DEP)
 
 #: App. E as printed (mm, rad; conclusions as printed).
 PRINTED = {
@@ -424,10 +424,8 @@ def _a6(pv, r, side) -> Row:
     )
 
 
-@register(
-    SECTION,
-    order=48.0,
-    depends_on=_DEP,
+@SECTION.check(
+    48.0,
     forms=Forms(
         printed=printed_values,
         good=recomputed_values,
@@ -493,9 +491,8 @@ def eq69_corrected(q):
     return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - L * s2], 1)
 
 
-@register(
-    SECTION,
-    order=48.5,
+@SECTION.check(
+    48.5,
     depends_on=("l1", "lengths", "pinocchio"),
     forms=Forms(
         printed=eq69_printed,

@@ -25,15 +25,15 @@ from iik.errors import UnreachablePoseError
 from ..numbers import fmt_q
 from ..oracles.pinocchio_model import joint_placements
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Scope, Verdict, register, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, verdict_of
 
-SECTION = "Dexterity (Sec 3.5, Eq 42-51)"
 ARM = iik.THESIS_ARM
 _D = np.pi / 180
 L1, L2, L3, L4, L5 = ARM.lengths
 D_IN = np.sqrt(L3**2 + L4**2 - 2 * L3 * L4 * np.cos(np.pi - 119 * _D))  # Eq 45 / Eq 50 (d, phi)
 TOL = 1e-9  # [rad or -]: an exact geometric identity through acos/atan
 _DEP = ("l1", "lengths", "pinocchio")
+SECTION = Section("Dexterity (Sec 3.5, Eq 42-51)", depends_on=_DEP)
 
 
 def _wrap(a):
@@ -180,10 +180,6 @@ def _geometry_row(rid, key, claim, method, err, tol, printed, corrected, q, note
     )
 
 
-def _eq(order, **forms):
-    return register(SECTION, order=order, depends_on=_DEP, forms=Forms(**forms))
-
-
 def _plus(f, eps=1e-6):
     def g(*a):
         return np.asarray(f(*a)) + eps
@@ -203,13 +199,15 @@ def _eq43_asin(p):
     return np.arcsin(v[:, 2] / np.linalg.norm(v, axis=1))
 
 
-@_eq(
+@SECTION.check(
     50.1,
-    printed=eq43_printed,
-    good=_eq43_asin,
-    bad=_plus(eq43_printed),
-    good_is="asin of the rise over |p - J2|",
-    bad_is="the printed beta' + 1 urad",
+    forms=Forms(
+        printed=eq43_printed,
+        good=_eq43_asin,
+        bad=_plus(eq43_printed),
+        good_is="asin of the rise over |p - J2|",
+        bad_is="the printed beta' + 1 urad",
+    ),
 )
 def eq43_nominal_beta(ctx, eq43):
     """Eq 43: beta' is the inclination of the line from joint 2 to the end-effector."""
@@ -249,13 +247,15 @@ def _extreme_direction_error(c: Pose35, delta_form, r) -> np.ndarray:
     )
 
 
-@_eq(
+@SECTION.check(
     50.2,
-    printed=eq44_delta,
-    good=eq44_delta,
-    bad=_delta_slip,
-    good_is="the printed triangle (it is right)",
-    bad_is="delta + 1 urad",
+    forms=Forms(
+        printed=eq44_delta,
+        good=eq44_delta,
+        bad=_delta_slip,
+        good_is="the printed triangle (it is right)",
+        bad_is="delta + 1 urad",
+    ),
 )
 def eq44_beta_outer(ctx, delta):
     """Eq 44: with links 3-4 aligned in one vertical plane, link 5 is inclined at beta' +- delta."""
@@ -278,13 +278,15 @@ def eq44_beta_outer(ctx, delta):
     )
 
 
-@_eq(
+@SECTION.check(
     50.3,
-    printed=eq44_delta,
-    good=eq44_delta,
-    bad=_delta_slip,
-    good_is="the printed triangle (it is right)",
-    bad_is="delta + 1 urad",
+    forms=Forms(
+        printed=eq44_delta,
+        good=eq44_delta,
+        bad=_delta_slip,
+        good_is="the printed triangle (it is right)",
+        bad_is="delta + 1 urad",
+    ),
 )
 def eq45_beta_inner(ctx, delta):
     """Eq 45: links 3-4 contracted (theta4 = +-119 deg) in one vertical plane: link 5 is at beta' +- delta."""
@@ -320,13 +322,17 @@ def _eq46_facing(p, c: Pose35 | None = None):
     return np.where(inward, _wrap(a + np.pi), a)
 
 
-@_eq(
+@SECTION.check(
     50.4,
-    printed=lambda p, c: eq46_printed(p),
-    good=_eq46_facing,
-    bad=lambda p, c: eq46_printed(p) + 1e-3,
-    good_is="atan2(py, px), + pi when link 5 faces the base axis",
-    bad_is="atan2(py, px) + 1 mrad",
+    forms=Forms(
+        printed=lambda p,
+     c: eq46_printed(p),
+        good=_eq46_facing,
+        bad=lambda p,
+     c: eq46_printed(p) + 1e-3,
+        good_is="atan2(py, px), + pi when link 5 faces the base axis",
+        bad_is="atan2(py, px) + 1 mrad",
+    ),
 )
 def eq46_nominal_alpha(ctx, eq46):
     """Eq 46: with the whole arm in one vertical plane, link 5 points at azimuth alpha' = atan2(py, px)."""
@@ -361,13 +367,15 @@ def eq47_printed(pz, beta):
     return pz - L5 * np.sin(beta)
 
 
-@_eq(
+@SECTION.check(
     50.5,
-    printed=eq47_printed,
-    good=eq47_printed,
-    bad=_plus(eq47_printed, 1e-9),
-    good_is="the printed form (it is right)",
-    bad_is="h + 1 nm",
+    forms=Forms(
+        printed=eq47_printed,
+        good=eq47_printed,
+        bad=_plus(eq47_printed, 1e-9),
+        good_is="the printed form (it is right)",
+        bad_is="h + 1 nm",
+    ),
 )
 def eq47_slj_height(ctx, eq47):
     """Eq 47: the SLJ is at height pz - l5 sin(beta)."""
@@ -416,13 +424,15 @@ def _inclination_rows(ctx, form, kind, key, rid, r, printed, corrected) -> Row:
     )
 
 
-@_eq(
+@SECTION.check(
     50.6,
-    printed=eq48_printed,
-    good=eq48_corrected,
-    bad=_plus(eq48_corrected),
-    good_is="delta = asin((h_SLJ - l1) / (l3 + l4))",
-    bad_is="the good delta + 1 urad",
+    forms=Forms(
+        printed=eq48_printed,
+        good=eq48_corrected,
+        bad=_plus(eq48_corrected),
+        good_is="delta = asin((h_SLJ - l1) / (l3 + l4))",
+        bad_is="the good delta + 1 urad",
+    ),
 )
 def eq48_inclination(ctx, form):
     return _inclination_rows(
@@ -437,13 +447,15 @@ def eq48_inclination(ctx, form):
     )
 
 
-@_eq(
+@SECTION.check(
     50.8,
-    printed=eq48_printed,
-    good=eq48_corrected,
-    bad=_plus(eq48_corrected),
-    good_is="delta = asin((h_SLJ - l1) / phi)",
-    bad_is="the good delta + 1 urad",
+    forms=Forms(
+        printed=eq48_printed,
+        good=eq48_corrected,
+        bad=_plus(eq48_corrected),
+        good_is="delta = asin((h_SLJ - l1) / phi)",
+        bad_is="the good delta + 1 urad",
+    ),
 )
 def eq50_inclination(ctx, form):
     return _inclination_rows(
@@ -503,13 +515,15 @@ def _sigma_rows(ctx, form, kind, key, rid, r, claim, corrected) -> Row:
     )
 
 
-@_eq(
+@SECTION.check(
     50.7,
-    printed=eq49_sigma,
-    good=_sigma_true,
-    bad=_sigma_slip,
-    good_is="the law of cosines with the SLJ's true horizontal distance",
-    bad_is="that sigma + 1 urad",
+    forms=Forms(
+        printed=eq49_sigma,
+        good=_sigma_true,
+        bad=_sigma_slip,
+        good_is="the law of cosines with the SLJ's true horizontal distance",
+        bad_is="that sigma + 1 urad",
+    ),
 )
 def eq49_alpha_outer(ctx, sigma):
     return _sigma_rows(
@@ -525,13 +539,15 @@ def eq49_alpha_outer(ctx, sigma):
     )
 
 
-@_eq(
+@SECTION.check(
     50.9,
-    printed=eq49_sigma,
-    good=_sigma_true,
-    bad=_sigma_slip,
-    good_is="the law of cosines with the SLJ's true horizontal distance",
-    bad_is="that sigma + 1 urad",
+    forms=Forms(
+        printed=eq49_sigma,
+        good=_sigma_true,
+        bad=_sigma_slip,
+        good_is="the law of cosines with the SLJ's true horizontal distance",
+        bad_is="that sigma + 1 urad",
+    ),
 )
 def eq51_alpha_inner(ctx, sigma):
     return _sigma_rows(
@@ -565,10 +581,8 @@ def _sec35_half(alpha35, beta35):
     return _wrap(alpha35 + np.pi), beta35 + np.pi / 4
 
 
-@register(
-    SECTION,
-    order=50.0,
-    depends_on=_DEP,
+@SECTION.check(
+    50.0,
     forms=Forms(
         printed=sec35_as_printed,
         good=sec35_to_eq42,
@@ -667,9 +681,8 @@ def _admitted(form, sw, i, p):
 _SOUND = 0.999  # share of admitted orientations that must be solvable ("guarantees convergence")
 
 
-@register(
-    SECTION,
-    order=51.0,
+@SECTION.check(
+    51.0,
     depends_on=("l1", "lengths", "ik-sweep", "sec35-angles"),
     forms=Forms(
         printed=admitted_printed,
@@ -743,9 +756,8 @@ def _iik_admit(p, A, B):
         return np.zeros(A.shape, bool)
 
 
-@register(
-    SECTION,
-    order=51.5,
+@SECTION.check(
+    51.5,
     depends_on=("l1", "lengths", "ik-sweep"),
     forms=Forms(
         printed=_iik_admit,
@@ -813,9 +825,8 @@ def _figure(ctx, sw, adm_iik, adm_pr, cases) -> str:
     return rel
 
 
-@register(
-    SECTION,
-    order=52.0,
+@SECTION.check(
+    52.0,
     depends_on=("l1", "lengths", "complete-solver"),
     forms=Forms(
         printed=(1, 2, 3, 4, 5),

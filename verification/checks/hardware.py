@@ -42,7 +42,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from hardware.executor import EARLY_UPDATE
-from verification.registry import Erratum, Forms, Measure, Row, Verdict, register, verdict_of
+from verification.registry import Erratum, Forms, Measure, Row, Section, Verdict, verdict_of
 
 if TYPE_CHECKING:
     from hardware.analysis import RunAnalysis
@@ -57,7 +57,6 @@ __all__ = [
     "execute_scenario",
 ]
 
-SECTION = "Hardware execution (Sec 4.3, App. A)"
 #: The executor sleeps 1/FAST_FORWARD of each wait; the clock advances by all of it.
 FAST_FORWARD = 20.0
 #: Share of the host's real time (computation, bus round trips) that the graded runs' clock counts.
@@ -80,6 +79,7 @@ _PREDEFINED_QUICK = (("p3", 30),)
 #: Further planned scenarios (Sec 4.2.2) executed for the 30 mm row of Sec 4.3.2 (the short ones).
 _PLANNED_EXTRA = (("b", None), ("h", None))
 _DEP = ("sim-arm", "speed-limits", "scene", "l1", "lengths")
+SECTION = Section("Hardware execution (Sec 4.3, App. A)", depends_on=_DEP)
 
 
 def fast_forward_clock(factor: float = FAST_FORWARD, latency: float = 1.0):
@@ -266,9 +266,8 @@ def _note(lag: float, latency: float = LATENCY_SCALE) -> str:
 
 
 # ----------------------------------------------------------------------------- Table V
-@register(
-    SECTION,
-    order=_ORDER,
+@SECTION.check(
+    _ORDER,
     depends_on=("sim-arm",),
     by_construction="a round trip of our driver against our simulated modules, both written from the same "
     "protocol description (POWERCUBE.md): it tests the software; the thesis's command set has no printed "
@@ -405,10 +404,8 @@ def check_table_v(ctx) -> Row:
 
 
 # ----------------------------------------------------------------------------- Sec 4.3 update
-@register(
-    SECTION,
-    order=_ORDER + 1,
-    depends_on=_DEP,
+@SECTION.check(
+    _ORDER + 1,
     forms=Forms(
         printed=EARLY_UPDATE,
         good=0.90,
@@ -525,7 +522,7 @@ def _zone_row(
     )
 
 
-@register(SECTION, order=_ORDER + 2, depends_on=_DEP, forms=Forms(**_ARM_FORMS))
+@SECTION.check(_ORDER + 2, forms=Forms(**_ARM_FORMS))
 def check_predefined_10mm(ctx, arm: SimArm) -> Row:
     """Sec 4.3.1: max end-effector error on predefined paths 1-3 <= 10 mm (the method, simulated)."""
     from hardware.analysis import SAFETY_ZONE_PREDEFINED
@@ -551,9 +548,7 @@ def check_predefined_10mm(ctx, arm: SimArm) -> Row:
     )
 
 
-@register(
-    SECTION, order=_ORDER + 3, depends_on=_DEP + ("collision-shapes", "platform"), forms=Forms(**_ARM_FORMS)
-)
+@SECTION.check(_ORDER + 3, depends_on=_DEP + ("collision-shapes", "platform"), forms=Forms(**_ARM_FORMS))
 def check_safety_zone_30mm(ctx, arm: SimArm) -> Row:
     """Sec 4.3.2: 30 mm is enough in motion; start and end errors are zero."""
     from iik.planning.obstacles import SAFETY_ZONE
@@ -597,9 +592,8 @@ def check_safety_zone_30mm(ctx, arm: SimArm) -> Row:
     )
 
 
-@register(
-    SECTION,
-    order=_ORDER + 4,
+@SECTION.check(
+    _ORDER + 4,
     depends_on=("sim-arm",),
     by_construction="a statement about the real arm's measurements: always not checkable without it",
 )
@@ -627,9 +621,8 @@ class LimitReading:
     unit: str
 
 
-@register(
-    SECTION,
-    order=_ORDER + 5,
+@SECTION.check(
+    _ORDER + 5,
     depends_on=("sim-arm", "text"),
     forms=Forms(
         printed=LimitReading("velocity", "rad/s"),
@@ -697,9 +690,8 @@ def check_set_max_cur(ctx, reading: LimitReading) -> Row:
     )
 
 
-@register(
-    SECTION,
-    order=_ORDER + 6,
+@SECTION.check(
+    _ORDER + 6,
     depends_on=("sim-arm", "text"),
     by_construction="a reading of the description: deciding it needs the real modules or a dynamics model of "
     "the joint under load (always not checkable here)",

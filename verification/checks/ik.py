@@ -21,12 +21,13 @@ from iik.ik import solve_batch
 from iik.ik.compare import contains, free_joints_of
 from iik.ik.thesis import solve_thesis_arrays, thesis_candidates
 
-from ..registry import Forms, Measure, Row, Verdict, register, verdict_of
+from ..registry import Forms, Measure, Row, Section, Verdict, verdict_of
 from ..testing.ik_cost import ThesisSolver, compare_cost
-from .ik_equations import SECTION
+from . import ik_equations
 
 ARM = iik.THESIS_ARM
 _DEP = ("l1", "lengths", "complete-solver")
+SECTION = Section(ik_equations.SECTION.title, depends_on=_DEP, prefix="ik")
 
 
 def _sample(ctx, salt, full=4000, quick=300):
@@ -50,10 +51,8 @@ def _complete_arrays(T):
 
 
 # ----------------------------------------------------------------------------- Sec 3.3.3
-@register(
-    SECTION,
-    order=27.0,
-    prefix="ik",
+@SECTION.check(
+    27.0,
     depends_on=("l1", "lengths"),
     forms=Forms(
         printed=4,
@@ -151,13 +150,13 @@ def _counts_row(ctx, claim: CountClaim, within: bool) -> Row:
     )
 
 
-@register(SECTION, order=28.0, prefix="ik", depends_on=_DEP, forms=Forms(**_COUNTS))
+@SECTION.check(28.0, forms=Forms(**_COUNTS))
 def solution_counts(ctx, claim):
     """Sec 3.3.5 counts with the joint limits ignored (the IIK of Sec 3.3 does not apply Table I)."""
     return _counts_row(ctx, claim, within=False)
 
 
-@register(SECTION, order=28.1, prefix="ik", depends_on=_DEP, forms=Forms(**_COUNTS))
+@SECTION.check(28.1, forms=Forms(**_COUNTS))
 def solution_counts_table_i(ctx, claim):
     """Sec 3.3.5 counts with Table I applied (what the arm can use)."""
     return _counts_row(ctx, claim, within=True)
@@ -181,11 +180,8 @@ class Solver:
 _RECOVER_TOL = 1e-6  # [rad]: the thesis's bisection tolerance is 1e-6 deg (Sec 4.2.1)
 
 
-@register(
-    SECTION,
-    order=29.0,
-    prefix="ik",
-    depends_on=_DEP,
+@SECTION.check(
+    29.0,
     forms=Forms(
         printed=Solver("thesis IIK (5 deg theta1 grid + Eq 12/13 points, bisection)", "thesis"),
         good=Solver("complete elimination solver", "complete"),
@@ -243,10 +239,8 @@ class Lookup:
         return self.counts * len(Ts)
 
 
-@register(
-    SECTION,
-    order=30.0,
-    prefix="ik",
+@SECTION.check(
+    30.0,
     depends_on=("host-timing", "complete-solver"),
     forms=Forms(
         printed=ThesisSolver(),

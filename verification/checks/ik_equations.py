@@ -20,15 +20,19 @@ from iik.dh import dh_link_transform
 
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements
-from ..registry import Erratum, Forms, Measure, Row, Verdict, register, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, verdict_of
 
-SECTION = "Inverse kinematics (Sec 3.3 IIK, Eq 5-33, solution counts, cost)"
 ARM = iik.THESIS_ARM
 L1, L2, L3, L4, L5 = ARM.lengths
 _EZ = np.array([0.0, 0.0, 1.0])
 TOL = 1e-12  # [m], [m^2], [-]: an identity evaluated in floating point
 TOL_ANGLE = 1e-9  # [rad]: an angle recovered through atan2 / sqrt
 _DEP = ("l1", "lengths", "pinocchio")
+SECTION = Section(
+    "Inverse kinematics (Sec 3.3 IIK, Eq 5-33, solution counts, cost)",
+    depends_on=_DEP,
+    prefix="ik",
+)
 
 
 def _wrap(a):
@@ -140,10 +144,6 @@ def _plus(f, eps=1e-9):
     return g
 
 
-def _equation(order: float, **forms):
-    return register(SECTION, order=order, prefix="ik", depends_on=_DEP, forms=Forms(**forms))
-
-
 def _step(
     order: float,
     name: str,
@@ -175,7 +175,7 @@ def _step(
 
     check.__name__ = check.__qualname__ = name
     check.__doc__ = f"{key}: {claim}"
-    _equation(order, **forms)(check)
+    SECTION.check(order, forms=Forms(**forms))(check)
 
 
 _ATAN2 = dict(
@@ -201,13 +201,15 @@ def _eq5_moved(E, D, C, B):
     return eq5_printed(E + np.array([1e-3, 0, 0]), D, C, B)
 
 
-@_equation(
+@SECTION.check(
     20.0,
-    printed=eq5_printed,
-    good=_eq5_det,
-    bad=_eq5_moved,
-    good_is="det[ED, DC, BC] (numpy)",
-    bad_is="E moved 1 mm off its place",
+    forms=Forms(
+        printed=eq5_printed,
+        good=_eq5_det,
+        bad=_eq5_moved,
+        good_is="det[ED, DC, BC] (numpy)",
+        bad_is="E moved 1 mm off its place",
+    ),
 )
 def eq5_coplanar(ctx, triple):
     """Eq 5: B, C, D, E coplanar; ED along z6 = [r13 r23 r33]."""
@@ -240,13 +242,15 @@ def _eq6_rot(th1):
     return np.einsum("nij,j->ni", iik.zxz_matrix(th1, np.zeros_like(th1), np.zeros_like(th1)), [L2, 0, 0])
 
 
-@_equation(
+@SECTION.check(
     20.1,
-    printed=eq6_printed,
-    good=_eq6_rot,
-    bad=_plus(eq6_printed),
-    good_is="Rz(theta1) [l2 0 0]",
-    bad_is="each coordinate moved by 1 nm",
+    forms=Forms(
+        printed=eq6_printed,
+        good=_eq6_rot,
+        bad=_plus(eq6_printed),
+        good_is="Rz(theta1) [l2 0 0]",
+        bad_is="each coordinate moved by 1 nm",
+    ),
 )
 def eq6_point_b(ctx, p_b):
     s = sample(ctx)
@@ -275,13 +279,15 @@ def _eq7_geom(th1, th2):
     return _eq6_rot(th1) + L3 * u
 
 
-@_equation(
+@SECTION.check(
     20.2,
-    printed=eq7_printed,
-    good=_eq7_geom,
-    bad=_plus(eq7_printed),
-    good_is="p_B + l3 (unit vector of link 3)",
-    bad_is="each coordinate moved by 1 nm",
+    forms=Forms(
+        printed=eq7_printed,
+        good=_eq7_geom,
+        bad=_plus(eq7_printed),
+        good_is="p_B + l3 (unit vector of link 3)",
+        bad_is="each coordinate moved by 1 nm",
+    ),
 )
 def eq7_point_c(ctx, p_c):
     s = sample(ctx)
@@ -323,13 +329,15 @@ def _eq8_slip(R, D, th1, th2):
     return eq8_printed(R, D, th1, th2) - 2 * R[:, 0, 2] * L2 * np.sin(th1) * np.sin(th2)
 
 
-@_equation(
+@SECTION.check(
     20.3,
-    printed=eq8_printed,
-    good=eq8_geometric,
-    bad=_eq8_slip,
-    good_is="z6 . ((D - B) x u) (Eq 5 with Eq 6-7 substituted)",
-    bad_is="the r13 l2 s1 s2 term with its sign flipped",
+    forms=Forms(
+        printed=eq8_printed,
+        good=eq8_geometric,
+        bad=_eq8_slip,
+        good_is="z6 . ((D - B) x u) (Eq 5 with Eq 6-7 substituted)",
+        bad_is="the r13 l2 s1 s2 term with its sign flipped",
+    ),
 )
 def eq8_plane(ctx, eq8):
     """Eq 8: the expansion of Eq 5, as an identity in (theta1, theta2) and zero at the solution."""
@@ -389,13 +397,15 @@ def eq9_corrected(R, D, th1):
     return np.stack([np.arctan2(-P, Q), np.arctan2(P, -Q)])
 
 
-@_equation(
+@SECTION.check(
     21.0,
-    printed=eq9_printed,
-    good=eq9_corrected,
-    bad=_plus(eq9_corrected, 1e-6),
-    good_is="tan(theta2) = -P/Q (both branches)",
-    bad_is="the good branches moved by 1 urad",
+    forms=Forms(
+        printed=eq9_printed,
+        good=eq9_corrected,
+        bad=_plus(eq9_corrected, 1e-6),
+        good_is="tan(theta2) = -P/Q (both branches)",
+        bad_is="the good branches moved by 1 urad",
+    ),
 )
 def eq9_theta2(ctx, eq9):
     s = sample(ctx)
@@ -429,13 +439,15 @@ def eq9abc_corrected(p, z6):
     return p + L5 * z6 - L1 * _EZ
 
 
-@_equation(
+@SECTION.check(
     20.5,
-    printed=eq9abc_printed,
-    good=eq9abc_corrected,
-    bad=_plus(eq9abc_corrected),
-    good_is="D = p + l5 z6 - l1 e_z (Table II: d6 = -l5)",
-    bad_is="each coordinate moved by 1 nm",
+    forms=Forms(
+        printed=eq9abc_printed,
+        good=eq9abc_corrected,
+        bad=_plus(eq9abc_corrected),
+        good_is="D = p + l5 z6 - l1 e_z (Table II: d6 = -l5)",
+        bad_is="each coordinate moved by 1 nm",
+    ),
 )
 def wrist_point(ctx, eq9abc):
     """Eq 9a, 9b, 9c: the wrist point D (joint 5) from the pose, one row per coordinate."""
@@ -475,13 +487,15 @@ def _eq10_lengths(B, C, D):
     return np.maximum(np.abs(np.linalg.norm(C - B, axis=1) - L3), np.abs(np.linalg.norm(D - C, axis=1) - L4))
 
 
-@_equation(
+@SECTION.check(
     21.1,
-    printed=eq10_printed,
-    good=_eq10_lengths,
-    bad=_plus(eq10_printed, 1e-6),
-    good_is="the two length conditions |BC| = l3, |DC| = l4",
-    bad_is="the sum moved by 1 um",
+    forms=Forms(
+        printed=eq10_printed,
+        good=_eq10_lengths,
+        bad=_plus(eq10_printed, 1e-6),
+        good_is="the two length conditions |BC| = l3, |DC| = l4",
+        bad_is="the sum moved by 1 um",
+    ),
 )
 def eq10_lengths(ctx, eq10):
     s = sample(ctx)
@@ -525,13 +539,15 @@ def eq11_geometric(D, th1, th2):
     return np.sum((D - eq7_printed(th1, th2)) ** 2, axis=1) - L4**2
 
 
-@_equation(
+@SECTION.check(
     21.2,
-    printed=eq11_printed,
-    good=eq11_geometric,
-    bad=_plus(eq11_printed),
-    good_is="|D - C|^2 - l4^2 with C of Eq 7",
-    bad_is="the printed value moved by 1e-9 m^2",
+    forms=Forms(
+        printed=eq11_printed,
+        good=eq11_geometric,
+        bad=_plus(eq11_printed),
+        good_is="|D - C|^2 - l4^2 with C of Eq 7",
+        bad_is="the printed value moved by 1e-9 m^2",
+    ),
 )
 def eq11_error(ctx, eq11):
     """Eq 11 as an identity in (theta1, theta2) (|D - C|^2 - l4^2, C from Pinocchio), zero at the solution."""
@@ -730,26 +746,30 @@ def _eq13_bad(p, D):
     return eq13_corrected(p, D) + 1e-3
 
 
-@_equation(
+@SECTION.check(
     21.5,
-    printed=eq12_printed,
-    good=NumericArgmin(1.0),
-    bad=_eq12_bad,
-    good_is="the minimiser found by a 7200-point grid and scipy's bounded Brent search",
-    bad_is="atan2(py, px) + 0.3 rad",
+    forms=Forms(
+        printed=eq12_printed,
+        good=NumericArgmin(1.0),
+        bad=_eq12_bad,
+        good_is="the minimiser found by a 7200-point grid and scipy's bounded Brent search",
+        bad_is="atan2(py, px) + 0.3 rad",
+    ),
 )
 def eq12_minimum(ctx, form):
     """Eq 12: the minimum of ||E|| (not of |E|) over theta1."""
     return _extremum_row(ctx, form, 1.0, "Eq 12", "eq12")
 
 
-@_equation(
+@SECTION.check(
     21.6,
-    printed=eq13_printed,
-    good=eq13_corrected,
-    bad=_eq13_bad,
-    good_is="atan2(yD, xD) + pi (the wrist point's opposite azimuth)",
-    bad_is="the good form + 1 mrad",
+    forms=Forms(
+        printed=eq13_printed,
+        good=eq13_corrected,
+        bad=_eq13_bad,
+        good_is="atan2(yD, xD) + pi (the wrist point's opposite azimuth)",
+        bad_is="the good form + 1 mrad",
+    ),
 )
 def eq13_maximum(ctx, form):
     """Eq 13: the maximum of ||E|| over theta1."""
@@ -769,13 +789,15 @@ def eq14_corrected(D, th1):
     return (x**2 + y**2 + z**2 + L2**2 - L3**2 - L4**2 - 2 * L2 * (x * c1 + y * s1)) / (2 * L3 * L4)
 
 
-@_equation(
+@SECTION.check(
     22.0,
-    printed=eq14_printed,
-    good=eq14_corrected,
-    bad=_plus(eq14_corrected),
-    good_is="the law of cosines on triangle B, C, D: ... - 2 l2 (xD c1 + yD s1)",
-    bad_is="good + 1e-9",
+    forms=Forms(
+        printed=eq14_printed,
+        good=eq14_corrected,
+        bad=_plus(eq14_corrected),
+        good_is="the law of cosines on triangle B, C, D: ... - 2 l2 (xD c1 + yD s1)",
+        bad_is="good + 1e-9",
+    ),
 )
 def eq14_c4(ctx, eq14):
     s = sample(ctx)
@@ -807,13 +829,15 @@ def _branches(form, x, truth):
     return np.min(np.abs(form(x) - truth), axis=0)
 
 
-@_equation(
+@SECTION.check(
     22.1,
-    printed=eq15_printed,
-    good=_eq15_good,
-    bad=_plus(eq15_printed),
-    good_is="+-sin(acos(c4))",
-    bad_is="both branches moved by 1e-9",
+    forms=Forms(
+        printed=eq15_printed,
+        good=_eq15_good,
+        bad=_plus(eq15_printed),
+        good_is="+-sin(acos(c4))",
+        bad_is="both branches moved by 1e-9",
+    ),
 )
 def eq15_s4(ctx, eq15):
     s = sample(ctx)
@@ -882,7 +906,7 @@ def _composition(ctx, form, key, rid, split, upto) -> Row:
     )
 
 
-@_equation(22.5, **_COMPOSE)
+@SECTION.check(22.5, forms=Forms(**_COMPOSE))
 def eq17_composition(ctx, form):
     return _composition(ctx, form, "Eq 17", "eq17", 2, 5)
 
@@ -925,14 +949,16 @@ def _eq18_slip(q):
     return inv + 1e-9, t25 + 1e-9
 
 
-@_equation(
+@SECTION.check(
     23.0,
-    printed=lambda q: (eq18_inverse_printed(q), eq18_t25_printed(q)),
-    good=_eq18_dh,
-    bad=_eq18_slip,
-    good_is="inverse of the Table II product 0_2T, and 2_5T from Table II",
-    bad_is="both moved by 1e-9",
-    rows=("eq18.inverse", "eq18.t25"),
+    forms=Forms(
+        printed=lambda q: (eq18_inverse_printed(q), eq18_t25_printed(q)),
+        good=_eq18_dh,
+        bad=_eq18_slip,
+        good_is="inverse of the Table II product 0_2T, and 2_5T from Table II",
+        bad_is="both moved by 1e-9",
+        rows=("eq18.inverse", "eq18.t25"),
+    ),
 )
 def eq18_matrices(ctx, mats):
     """Eq 18: the printed 0_2T^-1 and 2_5T (base frame) vs Pinocchio."""
@@ -981,13 +1007,15 @@ def _d_base_slip(s: Sample) -> np.ndarray:
     return s.D + L1 * _EZ + 1e-9
 
 
-@_equation(
+@SECTION.check(
     23.1,
-    printed=_d_shifted,
-    good=_d_base,
-    bad=_d_base_slip,
-    good_is="D in the base frame (z = 0 at the mounting plane), the frame of the printed 0_2T^-1",
-    bad_is="the good D moved by 1 nm",
+    forms=Forms(
+        printed=_d_shifted,
+        good=_d_base,
+        bad=_d_base_slip,
+        good_is="D in the base frame (z = 0 at the mounting plane), the frame of the printed 0_2T^-1",
+        bad_is="the good D moved by 1 nm",
+    ),
 )
 def eq18_frame(ctx, wrist):
     """Eq 18 as used: printed 0_2T^-1 times 0_5T (last column: the D of Eq 9, the form) vs printed 2_5T."""
@@ -1026,13 +1054,15 @@ def _eq19_good(q, D):
     return np.stack([np.einsum("ni,ni->n", row3, D), -L4 * np.sin(q[:, 2]) * np.sin(q[:, 3])])
 
 
-@_equation(
+@SECTION.check(
     23.2,
-    printed=eq19_printed,
-    good=_eq19_good,
-    bad=_plus(eq19_printed),
-    good_is="row 3 of 0_2T^-1 times D, and -l4 s3 s4",
-    bad_is="both sides moved by 1 nm",
+    forms=Forms(
+        printed=eq19_printed,
+        good=_eq19_good,
+        bad=_plus(eq19_printed),
+        good_is="row 3 of 0_2T^-1 times D, and -l4 s3 s4",
+        bad_is="both sides moved by 1 nm",
+    ),
 )
 def eq19_element(ctx, eq19):
     s = sample(ctx)
@@ -1057,13 +1087,15 @@ def eq20_printed(q, D):
     return (s1 * D[:, 0] - c1 * D[:, 1]) / (L4 * np.sin(q[:, 3]))
 
 
-@_equation(
+@SECTION.check(
     23.3,
-    printed=eq20_printed,
-    good=eq20_printed,
-    bad=_plus(eq20_printed),
-    good_is="the printed form (it is right)",
-    bad_is="s3 moved by 1e-9",
+    forms=Forms(
+        printed=eq20_printed,
+        good=eq20_printed,
+        bad=_plus(eq20_printed),
+        good_is="the printed form (it is right)",
+        bad_is="s3 moved by 1e-9",
+    ),
 )
 def eq20_s3(ctx, eq20):
     s = sample(ctx)
@@ -1083,13 +1115,15 @@ def eq20_s3(ctx, eq20):
     )
 
 
-@_equation(
+@SECTION.check(
     23.4,
-    printed=eq15_printed,
-    good=_eq15_good,
-    bad=_plus(eq15_printed),
-    good_is="+-sin(acos(s3)) read as cosines",
-    bad_is="both branches moved by 1e-9",
+    forms=Forms(
+        printed=eq15_printed,
+        good=_eq15_good,
+        bad=_plus(eq15_printed),
+        good_is="+-sin(acos(s3)) read as cosines",
+        bad_is="both branches moved by 1e-9",
+    ),
 )
 def eq21_c3(ctx, eq21):
     s = sample(ctx)
@@ -1108,7 +1142,7 @@ def eq21_c3(ctx, eq21):
 
 
 # ----------------------------------------------------------------------------- Eq 23-28
-@_equation(24.0, **_COMPOSE)
+@SECTION.check(24.0, forms=Forms(**_COMPOSE))
 def eq23_composition(ctx, form):
     return _composition(ctx, form, "Eq 23", "eq23", 2, 6)
 
@@ -1118,13 +1152,15 @@ def eq24_printed(q):
     return np.stack([-c3 * s45, -c45], 1)
 
 
-@_equation(
+@SECTION.check(
     24.1,
-    printed=eq24_printed,
-    good=eq24_printed,
-    bad=_plus(eq24_printed),
-    good_is="the printed entries (they are right)",
-    bad_is="both entries moved by 1e-9",
+    forms=Forms(
+        printed=eq24_printed,
+        good=eq24_printed,
+        bad=_plus(eq24_printed),
+        good_is="the printed entries (they are right)",
+        bad_is="both entries moved by 1e-9",
+    ),
 )
 def eq24_entries(ctx, eq24):
     s = sample(ctx)
@@ -1204,7 +1240,7 @@ _EQ27 = dict(
 )
 
 
-@_equation(25.0, **_EQ27)
+@SECTION.check(25.0, forms=Forms(**_EQ27))
 def eq27_s45(ctx, eq27):
     """Eq 27-28 on random q, including |c3| down to 1e-6 (theta3 within 1e-3..1e-6 rad of +-90 deg)."""
     s, near = sample(ctx), _near_c3_zero(ctx)
@@ -1230,7 +1266,7 @@ def eq27_s45(ctx, eq27):
     )
 
 
-@_equation(25.1, **_EQ27)
+@SECTION.check(25.1, forms=Forms(**_EQ27))
 def eq27_c3_zero(ctx, eq27):
     """The exact case c3 = 0 (theta3 = +-90 deg; Eq 21 gives c3 = 0 exactly when s3 = +-1): Eq 27 is 0/0."""
     rng = ctx.rng("eq27-exact")
@@ -1274,13 +1310,15 @@ def _eq28_slip(sn, cs, th4):
     return _atan2_minus(sn, cs, th4) + 1e-6
 
 
-@_equation(
+@SECTION.check(
     25.2,
-    printed=_atan2_minus,
-    good=_eq28_good,
-    bad=_eq28_slip,
-    good_is="arg(c45 + i s45) - theta4",
-    bad_is="the printed form + 1 urad",
+    forms=Forms(
+        printed=_atan2_minus,
+        good=_eq28_good,
+        bad=_eq28_slip,
+        good_is="arg(c45 + i s45) - theta4",
+        bad_is="the printed form + 1 urad",
+    ),
 )
 def eq28_theta5(ctx, eq28):
     s = sample(ctx)
@@ -1300,7 +1338,7 @@ def eq28_theta5(ctx, eq28):
 
 
 # ----------------------------------------------------------------------------- Eq 29-33
-@_equation(26.0, **_COMPOSE)
+@SECTION.check(26.0, forms=Forms(**_COMPOSE))
 def eq29_composition(ctx, form):
     return _composition(ctx, form, "Eq 29", "eq29", 5, 6)
 
@@ -1341,13 +1379,15 @@ def _eq30_slip(q):
     return eq30_row3_printed(q) + 1e-9, eq30_t56_corrected(q) + 1e-9
 
 
-@_equation(
+@SECTION.check(
     26.1,
-    printed=lambda q: (eq30_row3_printed(q), eq30_t56_printed(q)),
-    good=lambda q: (eq30_row3_printed(q), eq30_t56_corrected(q)),
-    bad=_eq30_slip,
-    good_is="row 3 as printed and 5_6T with -l5 in entry (2,4) (Table II: d6 = -l5 along y5)",
-    bad_is="the good matrices moved by 1e-9",
+    forms=Forms(
+        printed=lambda q: (eq30_row3_printed(q), eq30_t56_printed(q)),
+        good=lambda q: (eq30_row3_printed(q), eq30_t56_corrected(q)),
+        bad=_eq30_slip,
+        good_is="row 3 as printed and 5_6T with -l5 in entry (2,4) (Table II: d6 = -l5 along y5)",
+        bad_is="the good matrices moved by 1e-9",
+    ),
 )
 def eq30_matrices(ctx, mats):
     """Eq 30: the printed row 3 of 0_5T^-1 and the printed 5_6T vs Pinocchio."""

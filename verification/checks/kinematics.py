@@ -27,16 +27,16 @@ from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements, thesis_model, tool_jacobians, tool_poses
 from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
 from ..plotting import draw_arm, draw_collision, draw_scene, new_figure
-from ..registry import Erratum, Forms, Measure, Row, Scope, Verdict, register, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, verdict_of
 from ..testing.strategies import BEYOND, sample_joints
 
-SECTION = "Kinematics (Tables I-II, Eq 1, Eq 4, Eq 34-35, App. B, App. C, Eq 42)"
 TOL_EXACT = 1e-12  # [m] and [-]: closed forms vs Pinocchio
 TOL_FD = 1e-7  # [m/rad]: vs central finite differences (h = 1e-6)
 _DEG = np.pi / 180
 #: The joint vector [rad] used as counterexample where any generic q would do.
 Q_COUNTEREXAMPLE = np.array([0.3, -0.4, 0.5, 0.6, -0.7, 0.8])
 _KIN = ("l1", "lengths", "pinocchio")
+SECTION = Section("Kinematics (Tables I-II, Eq 1, Eq 4, Eq 34-35, App. B, App. C, Eq 42)", depends_on=_KIN)
 
 
 def _fmt_q(q) -> str:
@@ -444,9 +444,8 @@ def _hist(ctx, name, series, xlabel, title):
 # ----------------------------------------------------------------------------- checks
 
 
-@register(
-    SECTION,
-    order=10.0,
+@SECTION.check(
+    10.0,
     by_construction="a transcription round trip: the printed Tables I and II "
     "are compared with what the project encodes from them",
     depends_on=("text",),
@@ -492,9 +491,8 @@ def table_ii_encoding(ctx):
     ]
 
 
-@register(
-    SECTION,
-    order=11.0,
+@SECTION.check(
+    11.0,
     by_construction="a byte comparison of the shipped URDF with the generator output",
     depends_on=("collision-shapes",),
 )
@@ -546,10 +544,8 @@ def urdf_is_generated(ctx):
     )
 
 
-@register(
-    SECTION,
-    order=12.0,
-    depends_on=_KIN,
+@SECTION.check(
+    12.0,
     forms=Forms(
         printed=eq4_printed,
         good=eq4_from_table_ii,
@@ -655,10 +651,8 @@ def _table_nudged() -> DHTable:
     )
 
 
-@register(
-    SECTION,
-    order=13.0,
-    depends_on=_KIN,
+@SECTION.check(
+    13.0,
     forms=Forms(
         printed=table_ii_printed(),
         good=THESIS_ARM.dh_table(),
@@ -706,9 +700,8 @@ def _pin_links(qs) -> np.ndarray:
     return np.stack([np.linalg.inv(P[:, i]) @ P[:, i + 1] for i in range(6)], 1)
 
 
-@register(
-    SECTION,
-    order=14.0,
+@SECTION.check(
+    14.0,
     depends_on=_KIN + ("text",),
     forms=Forms(
         printed=appb_modified_printed,
@@ -813,9 +806,8 @@ def appendix_b(ctx, appb):
     return rows
 
 
-@register(
-    SECTION,
-    order=14.5,
+@SECTION.check(
+    14.5,
     depends_on=_KIN + ("text",),
     forms=Forms(
         printed=appb_first_printed,
@@ -884,10 +876,8 @@ def _pos_nudged(q, arm=THESIS_ARM):
     return eq55_printed(q, arm) + 1e-9
 
 
-@register(
-    SECTION,
-    order=14.8,
-    depends_on=_KIN,
+@SECTION.check(
+    14.8,
     forms=Forms(
         printed=eq55_printed,
         good=position_from_table_ii,
@@ -945,9 +935,8 @@ def eq34_position(ctx, g_theta):
     return rows
 
 
-@register(
-    SECTION,
-    order=14.9,
+@SECTION.check(
+    14.9,
     depends_on=("pinocchio",),
     forms=Forms(
         printed=EQ34_ARGUMENTS,
@@ -991,10 +980,8 @@ def eq34_arguments(ctx, arguments):
     )
 
 
-@register(
-    SECTION,
-    order=15.0,
-    depends_on=_KIN,
+@SECTION.check(
+    15.0,
     forms=Forms(
         printed=appc_printed,
         good=appc_from_iik,
@@ -1126,9 +1113,8 @@ def _fk_nudged(q, arm=THESIS_ARM):
     return T
 
 
-@register(
-    SECTION,
-    order=15.5,
+@SECTION.check(
+    15.5,
     depends_on=("pinocchio",),
     forms=Forms(
         printed=(fk, jacobian),
@@ -1185,9 +1171,8 @@ def _eq42_compare(ctx, eq42):
     return (a, b, g), P, dev, {c: int(np.sum(dev[c].max(axis=0) <= TOL_EXACT)) for c in _CONVENTIONS}
 
 
-@register(
-    SECTION,
-    order=16.0,
+@SECTION.check(
+    16.0,
     depends_on=("text",),
     forms=Forms(
         printed=eq42_printed,
@@ -1239,9 +1224,8 @@ def eq42_matrix(ctx, eq42):
     )
 
 
-@register(
-    SECTION,
-    order=16.1,
+@SECTION.check(
+    16.1,
     depends_on=("text",),
     forms=Forms(
         printed=eq42_printed,
@@ -1323,7 +1307,7 @@ _GEN_FORMS = dict(
 )
 
 
-@register(SECTION, order=17.0, forms=Forms(**_GEN_FORMS))
+@SECTION.check(17.0, depends_on=(), forms=Forms(**_GEN_FORMS))
 def ur5_generator_check(ctx, generator):
     """The URDF generator on a robot nobody here wrote: UR5 from its standard DH table."""
     qs = np.random.default_rng([ctx.seed, 5]).uniform(-np.pi, np.pi, (ctx.n(2000, 100), 6))
@@ -1360,7 +1344,7 @@ def ur5_generator_check(ctx, generator):
     )
 
 
-@register(SECTION, order=17.5, forms=Forms(**_GEN_FORMS))
+@SECTION.check(17.5, depends_on=(), forms=Forms(**_GEN_FORMS))
 def panda_generator_check(ctx, generator):
     """The URDF generator in the modified convention on a robot nobody here wrote: Franka Panda."""
     from ..oracles.panda import panda_fk_pair, panda_models
@@ -1416,9 +1400,8 @@ UNSAFE_LIMITS = _limits([-160, -120, -160, -119, -119, -180], [160, 80, 160, 119
 MIN_CLEARANCE = 0.05
 
 
-@register(
-    SECTION,
-    order=18.0,
+@SECTION.check(
+    18.0,
     depends_on=("l1", "lengths", "collision-shapes"),
     forms=Forms(
         printed=TABLE_I_LIMITS,

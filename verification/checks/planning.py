@@ -62,11 +62,10 @@ from iik.planning import (
 from iik.rotations import euler_from_matrix
 from iik.scene import THESIS_SCENE
 
-from ..registry import Erratum, Forms, Measure, Row, Scope, Verdict, register, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, verdict_of
 
 __all__ = ["SECTION", "FIG42", "PathSource", "Clearance", "measure_clearance", "eq53_printed"]
 
-SECTION = "Planning (Sec 3.6, Sec 4.2)"
 #: The ten scenarios of Fig 42 (Sec 4.2.2).
 FIG42 = tuple("abcdefghij")
 #: Scenarios planned in quick mode.
@@ -76,6 +75,7 @@ _VIEWS, _VIEWS_QUICK = ("j", "p1"), ("j",)
 #: Arm motion between two clearance samples [m] (the sampled minimum is within half of it of the true one).
 _SAMPLE_STEP = 0.002
 _DEP = ("scene", "platform", "collision-shapes", "sec36-method", "l1", "lengths")
+SECTION = Section("Planning (Sec 3.6, Sec 4.2)", depends_on=_DEP)
 
 
 # ----------------------------------------------------------------------------- Eq 52-53
@@ -97,9 +97,8 @@ _EQ53_PRINTED = {
 }
 
 
-@register(
-    SECTION,
-    order=500,
+@SECTION.check(
+    500,
     depends_on=("text",),
     forms=Forms(
         printed=_EQ53_PRINTED,
@@ -196,9 +195,8 @@ def _moved_entry() -> dict:
     return t
 
 
-@register(
-    SECTION,
-    order=501,
+@SECTION.check(
+    501,
     depends_on=("text",),
     forms=Forms(
         printed=(TABLE_IV_PRINTED, VIA_POINTS),
@@ -295,9 +293,8 @@ def _unsolved(points, euler) -> int:
     return sum(len(q) == 0 for q in sols)
 
 
-@register(
-    SECTION,
-    order=505,
+@SECTION.check(
+    505,
     depends_on=("scene", "l1", "lengths", "complete-solver"),
     forms=Forms(
         printed=arc_route,
@@ -573,7 +570,7 @@ def _quick_note(ctx, among=None) -> str:
 
 
 # ----------------------------------------------------------------------------- scenarios: the rows
-@register(SECTION, order=510, depends_on=_DEP, forms=Forms(**_PATH_FORMS))
+@SECTION.check(510, forms=Forms(**_PATH_FORMS))
 def check_scenarios(ctx, source: PathSource) -> Row:
     """Sec 4.2.2: in each scenario of Fig 42 the thesis's path keeps its tool outside the padded
     ellipsoids and its arm off the scene (the thesis's own criterion)."""
@@ -647,7 +644,7 @@ def _mm(row: Row) -> str:
     return f"{arm[0].value * 1e3:.1f} mm" if arm else "-"
 
 
-@register(SECTION, order=511, depends_on=_DEP, forms=Forms(**_PATH_FORMS))
+@SECTION.check(511, forms=Forms(**_PATH_FORMS))
 def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
     """Project standard: the thesis's path keeps the whole arm (not only the tool point) a safety zone
     away."""
@@ -696,9 +693,8 @@ _PLANNER = PathSource("iik.planning.plan's path and its TOPP-RA trajectory", "pl
 _HELD = PathSource("the first configuration of iik.planning.plan's path, held (no motion)", "held")
 
 
-@register(
-    SECTION,
-    order=512,
+@SECTION.check(
+    512,
     depends_on=_DEP + ("speed-limits", "accel-limits"),
     forms=Forms(printed=_PLANNER, good=_HELD, bad=UNREPELLED, good_is=_HELD.name, bad_is=UNREPELLED.name),
 )
@@ -778,10 +774,8 @@ def _smooth_path(ctx, form, name: str) -> np.ndarray | None:
     return out
 
 
-@register(
-    SECTION,
-    order=513,
-    depends_on=_DEP,
+@SECTION.check(
+    513,
     forms=Forms(
         printed=THESIS_PATH,
         good=_JointLine(),
@@ -910,9 +904,8 @@ def _toppra_double_limits(q, arm):
     return time_parameterize(q, fast)
 
 
-@register(
-    SECTION,
-    order=520,
+@SECTION.check(
+    520,
     depends_on=("speed-limits", "accel-limits", "scene", "sec36-method"),
     forms=Forms(
         printed=thesis_timing,

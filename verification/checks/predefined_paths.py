@@ -21,14 +21,14 @@ from iik.planning.scenario_io import load_scenario, thesis_scenario_paths
 from iik.scene import THESIS_SCENE
 
 from ..oracles.baselines import newton_pinv
-from ..registry import Forms, Measure, Row, Verdict, register, verdict_of
+from ..registry import Forms, Measure, Row, Section, Verdict, verdict_of
 from .ik import Solver
 
-SECTION = "Predefined paths (Sec 4.2.1)"
 ARM = iik.THESIS_ARM
 PATHS = ("p1", "p2", "p3")
 MAX_STEP = 0.030  # [m] Sec 4.2.1: "to cover a maximum of 30 mm per step-point"
 _DEP = ("l1", "lengths", "scene", "platform")
+SECTION = Section("Predefined paths (Sec 4.2.1)", depends_on=_DEP)
 
 
 def _scenarios(ctx) -> dict:
@@ -54,10 +54,8 @@ def _poses(ctx) -> dict:
     return ctx.cache[key]
 
 
-@register(
-    SECTION,
-    order=60.0,
-    depends_on=_DEP,
+@SECTION.check(
+    60.0,
     forms=Forms(printed=39, good=60, bad=10, good_is="60 steps per segment", bad_is="10 steps per segment"),
 )
 def step_length(ctx, steps):
@@ -97,9 +95,8 @@ def _solutions(solver: Solver, T) -> list[np.ndarray]:
     return [_within(Q, V, i) for i in range(len(T))]
 
 
-@register(
-    SECTION,
-    order=61.0,
+@SECTION.check(
+    61.0,
     depends_on=_DEP + ("complete-solver",),
     forms=Forms(
         printed=Solver("thesis IIK", "thesis"),
@@ -175,10 +172,8 @@ def _pick_newtons(cands: np.ndarray, prev: np.ndarray, T) -> np.ndarray:
 _SAME = 1e-6  # [rad]: both iterate to 1e-6 deg (Sec 4.2.1); "the same values" within this
 
 
-@register(
-    SECTION,
-    order=62.0,
-    depends_on=_DEP,
+@SECTION.check(
+    62.0,
     forms=Forms(
         printed=_pick_min_effort,
         good=_pick_newtons,

@@ -22,13 +22,13 @@ from iik.singularities import ALL_SETS, TABLE_VI, TABLE_VII, at_limit_mask, redu
 
 from ..oracles.pinocchio_model import tool_jacobians
 from ..plotting import new_figure
-from ..registry import Forms, Measure, Row, Verdict, register, verdict_of
+from ..registry import Forms, Measure, Row, Section, Verdict, verdict_of
 
-SECTION = "Singularities (App. D, Tables VI-VII)"
 ARM = iik.THESIS_ARM
 _D = np.pi / 180
 RTOL = 1e-9
 _DEP = ("lengths", "pinocchio")
+SECTION = Section("Singularities (App. D, Tables VI-VII)", depends_on=_DEP)
 
 
 def _set_label(s) -> str:
@@ -75,10 +75,8 @@ def _moved(sets, joint_value: float = 10.0):
     return tuple(out)
 
 
-@register(
-    SECTION,
-    order=45.0,
-    depends_on=_DEP,
+@SECTION.check(
+    45.0,
     forms=Forms(
         printed=TABLE_VI,
         good=TABLE_VI,
@@ -136,10 +134,8 @@ def table_vi(ctx, sets):
     )
 
 
-@register(
-    SECTION,
-    order=46.0,
-    depends_on=_DEP,
+@SECTION.check(
+    46.0,
     forms=Forms(
         printed=TABLE_VII,
         good=TABLE_VII,
@@ -268,10 +264,8 @@ def _found(ctx):
     return ctx.cache[key]
 
 
-@register(
-    SECTION,
-    order=47.0,
-    depends_on=_DEP,
+@SECTION.check(
+    47.0,
     forms=Forms(
         printed=member_of_tables,
         good=member_by_rank,

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..registry import Erratum, Measure, Row, Verdict, register
+from ..registry import Erratum, Measure, Row, Section, Verdict
 
-SECTION = "The text (cross-references)"
+SECTION = Section("The text (cross-references)", depends_on=("text",))
 
 
 @dataclass(frozen=True)
@@ -97,10 +97,8 @@ SLIPS = (
 )
 
 
-@register(
-    SECTION,
-    order=990.0,
-    depends_on=("text",),
+@SECTION.check(
+    990.0,
     by_construction="a reading of each citation against the thesis's own lists of figures and tables, table "
                     "of "
     "contents and equation numbering (quoted in verification/checks/text.py); no computation",

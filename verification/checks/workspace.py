@@ -23,12 +23,12 @@ from ..numbers import fmt_vec
 from ..oracles.pinocchio_model import joint_placements
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Verdict, register, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, verdict_of
 
-SECTION = "Workspace (Sec 3.4.3-3.4.4, Eq 36-41, App. G)"
 _D = np.pi / 180
 ARM = iik.THESIS_ARM
 _DEP = ("l1", "lengths", "reachability")
+SECTION = Section("Workspace (Sec 3.4.3-3.4.4, Eq 36-41, App. G)", depends_on=_DEP)
 #: IK residuals in (1e-6, AMBIGUOUS) m mark the oracle's boundary band: such points are not graded.
 AMBIGUOUS = 1e-4
 
@@ -266,10 +266,8 @@ _COMPOSITE = (
 )
 
 
-@register(
-    SECTION,
-    order=40.0,
-    depends_on=_DEP,
+@SECTION.check(
+    40.0,
     forms=Forms(
         printed=eq36_41_printed,
         good=in_workspace,
@@ -311,9 +309,8 @@ def _joint(q: np.ndarray, frame: int) -> np.ndarray:
     return joint_placements(q)[:, frame, :3, 3]
 
 
-@register(
-    SECTION,
-    order=40.1,
+@SECTION.check(
+    40.1,
     depends_on=("l1", "lengths", "pinocchio"),
     forms=Forms(
         printed=eq37_printed,
@@ -352,10 +349,8 @@ def _region1(margin: float):
     return test
 
 
-@register(
-    SECTION,
-    order=40.2,
-    depends_on=_DEP,
+@SECTION.check(
+    40.2,
     forms=Forms(
         printed=_region1(0.0),
         good=_region1(0.0),
@@ -424,9 +419,8 @@ def _rear_points(ctx) -> tuple[np.ndarray, float]:
     return P[np.arctan2(P[:, 1], P[:, 0]) >= 160 * _D], 160 * _D
 
 
-@register(
-    SECTION,
-    order=40.3,
+@SECTION.check(
+    40.3,
     depends_on=("l1", "lengths"),
     forms=Forms(
         printed=eq39_printed,
@@ -487,9 +481,8 @@ def eq40_corrected(th1, th2):
     )
 
 
-@register(
-    SECTION,
-    order=40.4,
+@SECTION.check(
+    40.4,
     depends_on=("l1", "lengths", "pinocchio"),
     forms=Forms(
         printed=eq40_printed,
@@ -541,10 +534,8 @@ def _region23(margin: float):
     return test
 
 
-@register(
-    SECTION,
-    order=40.5,
-    depends_on=_DEP,
+@SECTION.check(
+    40.5,
     forms=Forms(
         printed=_region23(0.0),
         good=_region23(0.0),
@@ -618,10 +609,8 @@ def _distance_to_surface(B: np.ndarray, spec: tuple, n: int) -> np.ndarray:
     return np.linalg.norm(B - tool_positions(q), axis=1)
 
 
-@register(
-    SECTION,
-    order=41.0,
-    depends_on=_DEP,
+@SECTION.check(
+    41.0,
     forms=Forms(
         printed=BOUNDARY_SURFACES_PRINTED,
         good=BOUNDARY_COVERING,
@@ -725,10 +714,8 @@ def _coverage_figure(ctx, phiB, B, dist) -> str:
     return ctx.save_figure(fig, "workspace_boundary_vs_surfaces.png", dpi=80)
 
 
-@register(
-    SECTION,
-    order=42.0,
-    depends_on=_DEP,
+@SECTION.check(
+    42.0,
     forms=Forms(
         printed=0.02,
         good=0.05,
@@ -832,10 +819,8 @@ def _outside_points(ctx) -> np.ndarray:
     return ctx.cache[key]
 
 
-@register(
-    SECTION,
-    order=43.0,
-    depends_on=_DEP,
+@SECTION.check(
+    43.0,
     forms=Forms(
         printed=radial_projection,
         good=_closest,

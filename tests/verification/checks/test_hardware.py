@@ -9,7 +9,7 @@ from verification.checks import hardware as hw
 def test_hardware_section_quick(tmp_path):
     results = run_checks(Context(out_dir=tmp_path, quick=True), select=["Hardware"])
     assert results, "no hardware checks registered"
-    assert all(r.check.section == hw.SECTION for r in results)
+    assert all(r.check.section == hw.SECTION.title for r in results)
     failed = [(r.check.name, r.error) for r in results if r.error]
     assert not failed, failed
     rows = [row for r in results for row in r.rows]
