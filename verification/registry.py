@@ -214,6 +214,37 @@ class Row:
         """A copy with ``changes`` applied (rows are frozen)."""
         return replace(self, **changes)
 
+    @classmethod
+    def graded(
+        cls,
+        claim: str,
+        reference: str,
+        method: str,
+        numbers: str,
+        measures: Iterable[Measure],
+        *,
+        fail: Verdict = Verdict.ERRATUM,
+        erratum: Erratum | None = None,
+        reason: str = "",
+        **fields,
+    ) -> Row:
+        """A row whose verdict follows its ``measures`` (:func:`verdict_of` with ``fail``); the
+        ``erratum`` and the ``reason`` are recorded only if the verdict is not HOLDS."""
+        measures = tuple(measures)
+        verdict = verdict_of(measures, fail=fail)
+        failed = verdict is not Verdict.HOLDS
+        return cls(
+            claim,
+            reference,
+            method,
+            numbers,
+            verdict,
+            measures=measures,
+            errata=(erratum,) if failed and erratum is not None else (),
+            reason=reason if failed else "",
+            **fields,
+        )
+
 
 @dataclass(frozen=True)
 class Forms:

@@ -23,7 +23,7 @@ from ..numbers import fmt_matrix, fmt_vec
 from ..oracles.abdel_malek import normal_acceleration
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Section, Verdict
 
 _D = np.pi / 180
 EPS = 2e-3  # [m] probe distance along N0
@@ -510,10 +510,9 @@ def eq69_surface(ctx, f1):
     q[:, 3:5] = 0.0  # on s(1)
     err = np.linalg.norm(f1(q) - iik.fk(q)[:, :3, 3], axis=1)
     m = (Measure("max |f(1) - tool point|", err.max(), 1e-12, "m"),)
-    v = verdict_of(m)
     k = int(np.argmax(err))
     q69 = np.array([[-7 * np.pi / 9, 0.3, 0.0, 0.0, 0.0, 0.0]])
-    return Row(
+    return Row.graded(
         "Eq 69: on s(1) the tool point is f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + l5 "
         "s1 c5 "
         "- l5 c1 s3 s5; l5 c3 s5 + l1].",
@@ -521,23 +520,18 @@ def eq69_surface(ctx, f1):
         f"printed f(1) vs the Eq 4 tool point (iik.fk, = Pinocchio) at {len(q)} random q with theta4 = "
         "theta5 = 0",
         f"max |f(1) - tool point| = {err.max():.3g} m",
-        v,
+        m,
         id="eq69",
-        measures=m,
-        errata=()
-        if v is Verdict.HOLDS
-        else (
-            Erratum(
-                "Eq 69",
-                "f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + l5 s1 c5 - l5 c1 s3 s5; "
-                "l5 c3 s5 + l1] (the surface theta2 = theta4 = 0)",
-                "f(1) = [(l2 + (l3+l4+l5) c2) c1; (l2 + (l3+l4+l5) c2) s1; l1 - (l3+l4+l5) s2] (theta4 = "
-                "theta5 = 0, "
-                "free theta1, theta2 as in u(1); the printed H*(2,2) = q_s2^2 (l3+l4+l5) needs this form)",
-                f"at theta1 = -7pi/9, theta2 = 0.3 rad (theta3..5 = 0): Eq 69 gives "
-                f"{fmt_vec(f1(q69)[0] * 1e3, 1)} mm, the arm {fmt_vec(iik.fk(q69)[0, :3, 3] * 1e3, 1)} mm; "
-                "worst "
-                f"sample {fmt_vec(q[k])} rad",
-            ),
+        erratum=Erratum(
+            "Eq 69",
+            "f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + l5 s1 c5 - l5 c1 s3 s5; "
+            "l5 c3 s5 + l1] (the surface theta2 = theta4 = 0)",
+            "f(1) = [(l2 + (l3+l4+l5) c2) c1; (l2 + (l3+l4+l5) c2) s1; l1 - (l3+l4+l5) s2] (theta4 = "
+            "theta5 = 0, "
+            "free theta1, theta2 as in u(1); the printed H*(2,2) = q_s2^2 (l3+l4+l5) needs this form)",
+            f"at theta1 = -7pi/9, theta2 = 0.3 rad (theta3..5 = 0): Eq 69 gives "
+            f"{fmt_vec(f1(q69)[0] * 1e3, 1)} mm, the arm {fmt_vec(iik.fk(q69)[0, :3, 3] * 1e3, 1)} mm; "
+            "worst "
+            f"sample {fmt_vec(q[k])} rad",
         ),
     )

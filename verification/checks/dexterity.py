@@ -22,7 +22,7 @@ import iik
 from iik.dexterity import alpha_admissible, dexterity
 from iik.errors import UnreachablePoseError
 
-from ..numbers import fmt_q
+from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements
 from ..plotting import new_figure
 from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, verdict_of
@@ -161,22 +161,21 @@ def _direction(c: Pose35, incl: np.ndarray) -> np.ndarray:
 
 
 def _geometry_row(rid, key, claim, method, err, tol, printed, corrected, q, note="", unit="rad") -> Row:
-    w = float(np.nanmax(np.where(np.isnan(err), np.inf, err))) if len(err) else 0.0
-    k = int(np.argmax(np.where(np.isnan(err), np.inf, err))) if len(err) else 0
-    m = (Measure("max |form - exact geometry|", w, tol, unit),)
-    v = verdict_of(m)
-    return Row(
+    """A row graded on ``max err <= tol`` (NaN counts as infinite); an erratum at the worst q otherwise."""
+    if not len(err):
+        w, erratum = 0.0, None
+    else:
+        w, k = worst(err)
+        erratum = Erratum(key, printed, corrected, f"{fmt_q(q[k])}: |form - geometry| = {err[k]:.3g} {unit}")
+    return Row.graded(
         claim,
         key,
         method,
         f"max |form - geometry| = {w:.3g} {unit} over {len(err)} configurations"
         + (f"; {note}" if note else ""),
-        v,
+        (Measure("max |form - exact geometry|", w, tol, unit),),
         id=rid,
-        measures=m,
-        errata=()
-        if v is Verdict.HOLDS
-        else (Erratum(key, printed, corrected, f"{fmt_q(q[k])}: |form - geometry| = {err[k]:.3g} {unit}"),),
+        erratum=erratum,
     )
 
 
@@ -600,8 +599,7 @@ def beta_convention(ctx, to_eq42):
     a, b = to_eq42(c.alpha, c.beta)
     err = np.maximum(np.abs(_wrap(a - alpha42)) * (np.sin(beta42) > 1e-6), np.abs(b - beta42))
     m = (Measure("max angle difference", err.max(), TOL, "rad"),)
-    v = verdict_of(m)
-    return Row(
+    return Row.graded(
         "The beta of Sec 3.5 (Eq 43-51) is the beta of the Euler matrix of Eq 42 (r13 = c_a s_b, r23 = s_a "
         "s_b, "
         "r33 = c_b), and alpha likewise.",
@@ -609,21 +607,16 @@ def beta_convention(ctx, to_eq42):
         f"{len(c.q)} configurations (Pinocchio): the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5: azimuth, "
         "inclination) through the form vs the Eq 42 angles of z6 (azimuth, polar angle)",
         f"max difference {err.max():.3g} rad; z6 = -a in every configuration (d6 = -l5)",
-        v,
+        m,
         id="beta_convention",
-        measures=m,
-        errata=()
-        if v is Verdict.HOLDS
-        else (
-            Erratum(
-                "Eq 43-51 vs Eq 42",
-                "beta = atan(rise/run) of link 5 (inclination from the horizontal, Eq 43, 47) and alpha' = "
-                "atan2(py, px) (Eq 46), used as the Eq 42 Euler angles",
-                "beta_42 = beta_35 + 90 deg and alpha_42 = alpha_35 + 180 deg (z6 = -a); iik.dexterity "
-                "returns Eq 42 "
-                "angles",
-                f"{fmt_q(c.q[int(np.argmax(err))])}: angles differ by {err.max():.3f} rad",
-            ),
+        erratum=Erratum(
+            "Eq 43-51 vs Eq 42",
+            "beta = atan(rise/run) of link 5 (inclination from the horizontal, Eq 43, 47) and alpha' = "
+            "atan2(py, px) (Eq 46), used as the Eq 42 Euler angles",
+            "beta_42 = beta_35 + 90 deg and alpha_42 = alpha_35 + 180 deg (z6 = -a); iik.dexterity "
+            "returns Eq 42 "
+            "angles",
+            f"{fmt_q(c.q[int(np.argmax(err))])}: angles differ by {err.max():.3f} rad",
         ),
     )
 
@@ -701,13 +694,12 @@ def printed_admitted_set(ctx, admit):
     s, c, n_adm, n_true = _rates(adm, truth)
     per_point = [int(np.sum(adm[i] & ~truth[i])) for i in range(len(P))]
     m = (Measure("share of admitted orientations that are solvable", s, _SOUND, bound=">="),)
-    v = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
     figs = (
         (_figure(ctx, sw, _iik_admitted(ctx, sw)[0], adm, _iik_admitted(ctx, sw)[1]),)
         if admit is admitted_printed
         else ()
     )
-    return Row(
+    return Row.graded(
         "The orientations Eq 43-51 admit at a point inside the workspace are reachable (at least one IK "
         "solution), "
         "so choosing them guarantees convergence.",
@@ -720,13 +712,11 @@ def printed_admitted_set(ctx, admit):
         f"{s:.1%}, "
         f"completeness (admitted and solvable / solvable) {c:.1%}; unsound orientations per point: "
         f"{per_point}",
-        v,
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="admitted_set",
-        measures=m,
         figures=figs,
-        reason=""
-        if v is Verdict.HOLDS
-        else "the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the "
+        reason="the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the "
         "roll geometry, and Eq 48/50/51 are wrong (rows above): admitted "
         "orientations without an IK solution",
     )

@@ -662,8 +662,7 @@ def check_set_max_cur(ctx, reading: LimitReading) -> Row:
             0.3 * (1 + 1e-3),
         ),
     )
-    verdict = verdict_of(ms)
-    return Row(
+    return Row.graded(
         claim=f"PCube_setMaxCur limits the {reading.quantity}, 'specifying ... the new value in "
         f"{reading.unit}' (Table V)",
         reference="App. A, Table V",
@@ -673,19 +672,14 @@ def check_set_max_cur(ctx, reading: LimitReading) -> Row:
         numbers=f"SETPARAM written: {wrote[0] if wrote else 'none'}; after 1 s: velocity "
         f"{observed['velocity']:.3f} rad/s, current {observed['current']:.3f} A, moved "
         f"{observed['position']:.3f} rad",
-        verdict=verdict,
         measures=ms,
-        errata=()
-        if verdict is Verdict.HOLDS
-        else (
-            Erratum(
-                equation="Table V (PCube_setMaxCur)",
-                printed=f"the new value in {reading.unit}",
-                corrected="the new value in A (parameter FMAXCUR 0x4C, a current; speeds are FMAXVEL 0x48)",
-                counterexample=f"PCube_setMaxCur(0.3) writes {wrote[0] if wrote else 'nothing'}; a 0.6 "
-                f"rad/s velocity command still reaches {observed['velocity']:.2f} rad/s while the current is "
-                f"held at {observed['current']:.2f} A",
-            ),
+        erratum=Erratum(
+            equation="Table V (PCube_setMaxCur)",
+            printed=f"the new value in {reading.unit}",
+            corrected="the new value in A (parameter FMAXCUR 0x4C, a current; speeds are FMAXVEL 0x48)",
+            counterexample=f"PCube_setMaxCur(0.3) writes {wrote[0] if wrote else 'nothing'}; a 0.6 "
+            f"rad/s velocity command still reaches {observed['velocity']:.2f} rad/s while the current is "
+            f"held at {observed['current']:.2f} A",
         ),
     )
 

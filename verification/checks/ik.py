@@ -71,22 +71,18 @@ def four_configurations(ctx, per_root):
     real = valid[valid > 0]
     off = float(np.mean(real != per_root)) if len(real) else 1.0
     m = (Measure(f"share of roots with a valid configuration but not exactly {per_root}", off, 0.0),)
-    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
-    return Row(
+    return Row.graded(
         f"Combining the signs of Eq 15 and Eq 21 gives {per_root} configurations per theta1 root.",
         "Sec 3.3.3 (Eq 15, 21)",
         f"all 4 sign combinations of every bisected (theta1, theta2) root of {len(q)} random poses; valid = "
         "Eq 4 "
         "pose error <= 1e-6 m and rad",
         f"roots with 0/1/2/3/4 valid configurations: {hist[:5].tolist()}",
-        verdict,
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="four_configurations",
-        measures=m,
-        reason=""
-        if verdict is Verdict.HOLDS
-        else "Eq 20 ties the sign of s3 to the sign of s4, so only 2 of the 4 sign pairs are consistent; the "
-             "other 2 "
-        "fail Eq 4 (spurious roots from the +- of Eq 9 give 0)",
+        reason="Eq 20 ties the sign of s3 to the sign of s4, so only 2 of the 4 sign pairs are consistent; "
+        "the other 2 fail Eq 4 (spurious roots from the +- of Eq 9 give 0)",
     )
 
 
@@ -206,22 +202,19 @@ def completeness(ctx, solver):
         Measure("share of poses whose generating q is missed", 1 - hit.mean(), 0.0),
         Measure("share of poses with fewer solutions than the complete solver", np.mean(lost > 0), 0.0),
     )
-    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
-    return Row(
+    return Row.graded(
         "The IIK (theta1 grid with the Eq 12/13 points, bisection) finds all solutions of a pose.",
         "Sec 3.3.1, Sec 5.2",
         f"{solver.name} on {len(q)} poses fk(q), q uniform in Table I: is the generating q returned (within "
         f"{_RECOVER_TOL:g} rad)? solution count vs the complete solver's",
         f"generating q missed on {1 - hit.mean():.2%} of poses; fewer solutions than exist on "
         f"{np.mean(lost > 0):.1%} of poses ({int(lost[lost > 0].sum())} solutions lost)",
-        verdict,
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="completeness",
-        measures=m,
-        reason=""
-        if verdict is Verdict.HOLDS
-        else "two roots in one grid cell (or a tangent root) give no sign change, and c3 = +-sqrt(1 - s3^2) "
-             "(Eq 21) "
-        "loses accuracy near |s3| = 1; the complete solver takes every real root of a degree-8 polynomial",
+        reason="two roots in one grid cell (or a tangent root) give no sign change, and c3 = +-sqrt(1 - "
+        "s3^2) (Eq 21) loses accuracy near |s3| = 1; the complete solver takes every real root of a degree-8 "
+        "polynomial",
     )
 
 

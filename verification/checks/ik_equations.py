@@ -114,24 +114,21 @@ def _row(
     note: str = "",
     fail: Verdict = Verdict.ERRATUM,
 ) -> Row:
-    """A row graded on ``max err <= tol``; an erratum (or ``fail``) with its counterexample otherwise."""
+    """A row graded on ``max |err| <= tol``; otherwise an erratum with its counterexample (or, with
+    ``fail`` DOES_NOT_HOLD, the failing q as the reason)."""
     w, k = worst(np.abs(err))
-    m = (Measure("max |form - truth|", w, tol, unit),)
-    verdict = verdict_of(m, fail=fail)
-    numbers = f"max |form - truth| = {w:.2g} {unit} over {len(err)} q" + (f"; {note}" if note else "")
-    errata = ()
-    if verdict is Verdict.ERRATUM:
-        errata = (Erratum(key, printed, corrected, f"{fmt_q(s.q[k])}: |form - truth| = {err[k]:.3g} {unit}"),)
-    return Row(
+    at = fmt_q(s.q[k])
+    erratum = Erratum(key, printed, corrected, f"{at}: |form - truth| = {err[k]:.3g} {unit}")
+    return Row.graded(
         claim,
         key,
         method,
-        numbers,
-        verdict,
+        f"max |form - truth| = {w:.2g} {unit} over {len(err)} q" + (f"; {note}" if note else ""),
+        (Measure("max |form - truth|", w, tol, unit),),
+        fail=fail,
+        erratum=erratum if fail is Verdict.ERRATUM else None,
+        reason=f"fails at {at}" if fail is Verdict.DOES_NOT_HOLD else "",
         id=rid,
-        measures=m,
-        errata=errata,
-        reason="" if verdict is not Verdict.DOES_NOT_HOLD else f"fails at {fmt_q(s.q[k])}",
     )
 
 
@@ -148,37 +145,52 @@ def _step(
     order: float,
     name: str,
     key: str,
+    *,
     claim: str,
     method: str,
-    measure,
+    error,
     tol: float,
     unit: str,
-    printed_text: str,
-    **forms,
-) -> None:
-    """Register a check of one printed step whose error is ``measure(sample, form)`` (n,)."""
+    printed: str,
+    forms: Forms,
+    corrected: str = "-",
+    note=None,
+    rid: str = "",
+):
+    """Register check ``name`` of the printed step ``key`` (Eq N) on its own: ``error(sample, form)`` is
+    the (n,) error of the form against the truth, graded on ``max |error| <= tol`` [``unit``];
+    ``method`` may name the sample size as ``{n}``; ``note(sample, error)`` adds a remark to the numbers.
+    The row id is ``rid``, default ``key`` in lower case without spaces (``"eq16"``). Returns the check
+    function ``check(ctx, form) -> Row``."""
 
     def check(ctx, form):
         s = sample(ctx)
+        err = error(s, form)
         return _row(
             s,
             key,
-            key.lower().replace(" ", ""),
+            rid or key.lower().replace(" ", ""),
             claim,
-            method,
-            measure(s, form),
+            method.format(n=len(s.q)),
+            err,
             tol,
             unit,
-            printed=printed_text,
-            corrected="-",
+            printed=printed,
+            corrected=corrected,
+            note=note(s, err) if note else "",
         )
 
     check.__name__ = check.__qualname__ = name
     check.__doc__ = f"{key}: {claim}"
-    SECTION.check(order, forms=Forms(**forms))(check)
+    return SECTION.check(order, forms=forms)(check)
 
 
-_ATAN2 = dict(
+def _printed_is_right(form, bad_is: str, good_is: str = "the printed form (it is right)") -> Forms:
+    """Forms of a step printed right: the printed form is also the good one; the bad one is it + 1e-9."""
+    return Forms(printed=form, good=form, bad=_plus(form), good_is=good_is, bad_is=bad_is)
+
+
+_ATAN2 = Forms(
     printed=np.arctan2,
     good=lambda sn, cs: np.angle(cs + 1j * sn),
     bad=lambda sn, cs: np.arctan2(sn, cs) + 1e-6,
@@ -242,8 +254,16 @@ def _eq6_rot(th1):
     return np.einsum("nij,j->ni", iik.zxz_matrix(th1, np.zeros_like(th1), np.zeros_like(th1)), [L2, 0, 0])
 
 
-@SECTION.check(
+eq6_point_b = _step(
     20.1,
+    "eq6_point_b",
+    "Eq 6",
+    claim="p_B = [l2 c1, l2 s1, 0] is joint 2 (Sec 3.3.1 frame).",
+    method="printed p_B vs the origin of frame 2 (Pinocchio) minus l1 e_z",
+    error=lambda s, p_b: np.linalg.norm(p_b(s.q[:, 0]) - s.B, axis=1),
+    tol=TOL,
+    unit="m",
+    printed="p_B = [l2 c1, l2 s1, 0]",
     forms=Forms(
         printed=eq6_printed,
         good=_eq6_rot,
@@ -252,21 +272,6 @@ def _eq6_rot(th1):
         bad_is="each coordinate moved by 1 nm",
     ),
 )
-def eq6_point_b(ctx, p_b):
-    s = sample(ctx)
-    err = np.linalg.norm(p_b(s.q[:, 0]) - s.B, axis=1)
-    return _row(
-        s,
-        "Eq 6",
-        "eq6",
-        "p_B = [l2 c1, l2 s1, 0] is joint 2 (Sec 3.3.1 frame).",
-        "printed p_B vs the origin of frame 2 (Pinocchio) minus l1 e_z",
-        err,
-        TOL,
-        "m",
-        printed="p_B = [l2 c1, l2 s1, 0]",
-        corrected="-",
-    )
 
 
 def eq7_printed(th1, th2):
@@ -279,8 +284,16 @@ def _eq7_geom(th1, th2):
     return _eq6_rot(th1) + L3 * u
 
 
-@SECTION.check(
+eq7_point_c = _step(
     20.2,
+    "eq7_point_c",
+    "Eq 7",
+    claim="p_C = [l2 c1 + l3 c2 c1, l2 s1 + l3 c2 s1, -l3 s2] is joint 4 (C).",
+    method="printed p_C vs the origin of frames 3-4 (Pinocchio) minus l1 e_z",
+    error=lambda s, p_c: np.linalg.norm(p_c(s.q[:, 0], s.q[:, 1]) - s.C, axis=1),
+    tol=TOL,
+    unit="m",
+    printed="p_C as printed",
     forms=Forms(
         printed=eq7_printed,
         good=_eq7_geom,
@@ -289,21 +302,6 @@ def _eq7_geom(th1, th2):
         bad_is="each coordinate moved by 1 nm",
     ),
 )
-def eq7_point_c(ctx, p_c):
-    s = sample(ctx)
-    err = np.linalg.norm(p_c(s.q[:, 0], s.q[:, 1]) - s.C, axis=1)
-    return _row(
-        s,
-        "Eq 7",
-        "eq7",
-        "p_C = [l2 c1 + l3 c2 c1, l2 s1 + l3 c2 s1, -l3 s2] is joint 4 (C).",
-        "printed p_C vs the origin of frames 3-4 (Pinocchio) minus l1 e_z",
-        err,
-        TOL,
-        "m",
-        printed="p_C as printed",
-        corrected="-",
-    )
 
 
 def eq8_printed(R, D, th1, th2):
@@ -350,27 +348,21 @@ def eq8_plane(ctx, eq8):
         Measure("max |Eq 8 - z6.((D-B) x u)| at any (theta1, theta2)", ident.max(), TOL, "m^2"),
         Measure("max |Eq 8| at the generating q", at_q.max(), TOL, "m^2"),
     )
-    verdict = verdict_of(m)
     k = int(np.argmax(ident))
-    return Row(
+    return Row.graded(
         "Substituting Eq 6 and 7 into Eq 5 gives Eq 8, which vanishes at the solution.",
         "Eq 8",
         f"Eq 8 as printed with the true D and z6 of {len(s.q)} random poses: (a) against the triple product "
         "of Eq 5 with Eq 6-7 at random (theta1, theta2), (b) at the generating (theta1, theta2)",
         f"(a) max difference {ident.max():.1e} m^2 (Eq 8 = -[ED x DC].BC / l3); (b) max |Eq 8| = "
         f"{at_q.max():.1e} m^2",
-        verdict,
+        m,
         id="eq8",
-        measures=m,
-        errata=()
-        if verdict is Verdict.HOLDS
-        else (
-            Erratum(
-                "Eq 8",
-                "Eq 8 as printed",
-                "z6 . ((D - B) x u)",
-                f"{fmt_q(s.q[k])}, theta1 = {th1[k]:.4f}, theta2 = {th2[k]:.4f}: difference {ident[k]:.3g}",
-            ),
+        erratum=Erratum(
+            "Eq 8",
+            "Eq 8 as printed",
+            "z6 . ((D - B) x u)",
+            f"{fmt_q(s.q[k])}, theta1 = {th1[k]:.4f}, theta2 = {th2[k]:.4f}: difference {ident[k]:.3g}",
         ),
     )
 
@@ -397,8 +389,26 @@ def eq9_corrected(R, D, th1):
     return np.stack([np.arctan2(-P, Q), np.arctan2(P, -Q)])
 
 
-@SECTION.check(
+def _eq9_miss(s: Sample, eq9) -> np.ndarray:
+    """|theta2 - the nearer of the form's two branches| with the true D and theta1 [rad]."""
+    return np.min(np.abs(_wrap(eq9(s.R, s.D, s.q[:, 0]) - s.q[:, 1])), axis=0)
+
+
+eq9_theta2 = _step(
     21.0,
+    "eq9_theta2",
+    "Eq 9",
+    claim="tan(theta2) = [(r23 zD - r33 yD) c1 + (r33 xD - r13 zD) s1] / +-[(r23 xD - r13 yD) + r13 l2 s1 - "
+    "r23 l2 c1] gives theta2 from theta1.",
+    method="both branches, read as theta2 = atan2(numerator, +-denominator), with the true D and theta1, vs "
+    "the generating theta2; {n} random q",
+    error=_eq9_miss,
+    tol=TOL_ANGLE,
+    unit="rad",
+    printed="tan(theta2) = P / (+-Q)",
+    corrected="tan(theta2) = -P / Q, i.e. (c2, s2) = +-(Q, -P) / sqrt(P^2 + Q^2) (Eq 8 reads "
+    "P c2 + Q s2 = 0); as tangents the printed '-' branch is right and the '+' branch spurious",
+    note=lambda s, err: f"theta2 missed in {np.mean(err > TOL_ANGLE):.1%} of q",
     forms=Forms(
         printed=eq9_printed,
         good=eq9_corrected,
@@ -407,27 +417,6 @@ def eq9_corrected(R, D, th1):
         bad_is="the good branches moved by 1 urad",
     ),
 )
-def eq9_theta2(ctx, eq9):
-    s = sample(ctx)
-    cand = eq9(s.R, s.D, s.q[:, 0])
-    err = np.min(np.abs(_wrap(cand - s.q[:, 1])), axis=0)
-    row = _row(
-        s,
-        "Eq 9",
-        "eq9",
-        "tan(theta2) = [(r23 zD - r33 yD) c1 + (r33 xD - r13 zD) s1] / +-[(r23 xD - "
-        "r13 yD) + r13 l2 s1 - r23 l2 c1] gives theta2 from theta1.",
-        f"both branches, read as theta2 = atan2(numerator, +-denominator), with the true D and theta1, vs "
-        f"the generating theta2; {len(s.q)} random q",
-        err,
-        TOL_ANGLE,
-        "rad",
-        printed="tan(theta2) = P / (+-Q)",
-        corrected="tan(theta2) = -P / Q, i.e. (c2, s2) = +-(Q, -P) / sqrt(P^2 + Q^2) (Eq 8 reads "
-        "P c2 + Q s2 = 0); as tangents the printed '-' branch is right and the '+' branch spurious",
-        note=f"theta2 missed in {np.mean(err > TOL_ANGLE):.1%} of q",
-    )
-    return row
 
 
 def eq9abc_printed(p, z6):
@@ -487,8 +476,28 @@ def _eq10_lengths(B, C, D):
     return np.maximum(np.abs(np.linalg.norm(C - B, axis=1) - L3), np.abs(np.linalg.norm(D - C, axis=1) - L4))
 
 
-@SECTION.check(
+def _eq10_off(s: Sample, err) -> str:
+    """Eq 10 at a wrong theta1 (theta1 + 0.1 rad, theta2 from Eq 9): the condition must notice it."""
+    th1 = s.q[:, 0] + 0.1
+    th2 = eq9_corrected(s.R, s.D, th1)[0]
+    off = np.abs(eq10_printed(eq6_printed(th1), eq7_printed(th1, th2), s.D))
+    return (
+        f"at theta1 + 0.1 rad (theta2 from Eq 9) the median value is {np.median(off):.3f} m: the condition "
+        "discriminates"
+    )
+
+
+eq10_lengths = _step(
     21.1,
+    "eq10_lengths",
+    "Eq 10",
+    claim="|BC| + |DC| - l3 - l4 = 0 at the solution.",
+    method="Eq 10 with the true points B, C, D",
+    error=lambda s, eq10: eq10(s.B, s.C, s.D),
+    tol=TOL,
+    unit="m",
+    printed="|BC| + |DC| - l3 - l4 = 0",
+    note=_eq10_off,
     forms=Forms(
         printed=eq10_printed,
         good=_eq10_lengths,
@@ -497,26 +506,6 @@ def _eq10_lengths(B, C, D):
         bad_is="the sum moved by 1 um",
     ),
 )
-def eq10_lengths(ctx, eq10):
-    s = sample(ctx)
-    err = eq10(s.B, s.C, s.D)
-    th1 = s.q[:, 0] + 0.1  # a wrong theta1: the condition must notice it
-    th2 = eq9_corrected(s.R, s.D, th1)[0]
-    off = np.abs(eq10_printed(eq6_printed(th1), eq7_printed(th1, th2), s.D))
-    return _row(
-        s,
-        "Eq 10",
-        "eq10",
-        "|BC| + |DC| - l3 - l4 = 0 at the solution.",
-        "Eq 10 with the true points B, C, D",
-        err,
-        TOL,
-        "m",
-        printed="|BC| + |DC| - l3 - l4 = 0",
-        corrected="-",
-        note=f"at theta1 + 0.1 rad (theta2 from Eq 9) the median value is "
-        f"{np.median(off):.3f} m: the condition discriminates",
-    )
 
 
 def eq11_printed(D, th1, th2):
@@ -564,28 +553,22 @@ def eq11_error(ctx, eq11):
         Measure("max |Eq 11 - (|D - C|^2 - l4^2)| at any (theta1, theta2)", ident.max(), TOL, "m^2"),
         Measure("max |Eq 11| at the generating q", at_q.max(), TOL, "m^2"),
     )
-    verdict = verdict_of(m)
     k = int(np.argmax(ident))
-    return Row(
+    return Row.graded(
         "||E|| (Eq 11) is the length error |DC|^2 - l4^2 of Eq 10; it vanishes at the solution.",
         "Eq 11",
         f"Eq 11 as printed with the true D of {len(s.q)} random poses: (a) at random (theta1, theta2) "
         "within Table I against |D - C|^2 - l4^2 with C the frame-3 origin from Pinocchio, (b) at the "
         "generating (theta1, theta2)",
         f"(a) max difference {ident.max():.1e} m^2; (b) max |Eq 11| = {at_q.max():.1e} m^2",
-        verdict,
+        m,
         id="eq11",
-        measures=m,
-        errata=()
-        if verdict is Verdict.HOLDS
-        else (
-            Erratum(
-                "Eq 11",
-                "Eq 11 as printed",
-                "|D - C|^2 - l4^2",
-                f"{fmt_q(s.q[k])}: difference {ident[k]:.3g} m^2 at theta1, theta2 = {th[k, 0]:.4f}, "
-                f"{th[k, 1]:.4f}",
-            ),
+        erratum=Erratum(
+            "Eq 11",
+            "Eq 11 as printed",
+            "|D - C|^2 - l4^2",
+            f"{fmt_q(s.q[k])}: difference {ident[k]:.3g} m^2 at theta1, theta2 = {th[k, 0]:.4f}, "
+            f"{th[k, 1]:.4f}",
         ),
     )
 
@@ -701,7 +684,6 @@ def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
             bound=">=",
         ),
     )
-    verdict = verdict_of(m)
     k = int(np.argmax(gap))
     miss = np.abs(_wrap(at_form - found))
     printed = "min = atan2(py, px)" if sign > 0 else "max = atan2(py, px) +- pi"
@@ -711,7 +693,7 @@ def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
         if sign > 0
         else f"max = atan2(yD, xD) +- pi (the wrist point's azimuth; {hit_d:.1%} of random poses)"
     )
-    return Row(
+    return Row.graded(
         f"The {what} of ||E|| (Eq 11) over theta1 lies at {printed.split('= ')[1]}.",
         key,
         f"||E|| over theta1 with theta2 from Eq 9 (corrected, both branches; the {what} over both), true D "
@@ -721,19 +703,14 @@ def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
         f"form hits it if ||E|| there is within {_EXT_TOL:g} m^2 of the {what} (a near-tie counts as a hit)",
         f"the form is at the {what} in {share:.1%} of poses (median angular miss {np.median(miss):.3g} rad); "
         f"atan2(yD, xD){'' if sign > 0 else ' + pi'} is in {hit_d:.1%}",
-        verdict,
+        m,
         id=rid,
-        measures=m,
-        errata=()
-        if verdict is Verdict.HOLDS
-        else (
-            Erratum(
-                key,
-                printed,
-                corrected,
-                f"{fmt_q(s.q[k])}: the {what} of ||E|| is at theta1 = {found[k]:.4f} rad, the form gives "
-                f"{at_form[k]:.4f} rad (||E|| differs by {abs(gap[k]):.3g} m^2)",
-            ),
+        erratum=Erratum(
+            key,
+            printed,
+            corrected,
+            f"{fmt_q(s.q[k])}: the {what} of ||E|| is at theta1 = {found[k]:.4f} rad, the form gives "
+            f"{at_form[k]:.4f} rad (||E|| differs by {abs(gap[k]):.3g} m^2)",
         ),
     )
 
@@ -789,8 +766,17 @@ def eq14_corrected(D, th1):
     return (x**2 + y**2 + z**2 + L2**2 - L3**2 - L4**2 - 2 * L2 * (x * c1 + y * s1)) / (2 * L3 * L4)
 
 
-@SECTION.check(
+eq14_c4 = _step(
     22.0,
+    "eq14_c4",
+    "Eq 14",
+    claim="c4 by the law of cosines (Eq 14).",
+    method="printed c4 with the true D and theta1 vs cos(theta4) of the generating q",
+    error=lambda s, eq14: eq14(s.D, s.q[:, 0]) - s.c(4),
+    tol=TOL,
+    unit="-",
+    printed="c4 = (xD^2 + yD^2 + zD^2 + l2^2 - l3^2 - l4^2 - 2 l2 (xD c1 - yD s1)) / (2 l3 l4)",
+    corrected="... - 2 l2 (xD c1 + yD s1) (|D - B|^2 = |D|^2 + l2^2 - 2 l2 (xD c1 + yD s1))",
     forms=Forms(
         printed=eq14_printed,
         good=eq14_corrected,
@@ -799,20 +785,6 @@ def eq14_corrected(D, th1):
         bad_is="good + 1e-9",
     ),
 )
-def eq14_c4(ctx, eq14):
-    s = sample(ctx)
-    return _row(
-        s,
-        "Eq 14",
-        "eq14",
-        "c4 by the law of cosines (Eq 14).",
-        "printed c4 with the true D and theta1 vs cos(theta4) of the generating q",
-        eq14(s.D, s.q[:, 0]) - s.c(4),
-        TOL,
-        "-",
-        printed="c4 = (xD^2 + yD^2 + zD^2 + l2^2 - l3^2 - l4^2 - 2 l2 (xD c1 - yD s1)) / (2 l3 l4)",
-        corrected="... - 2 l2 (xD c1 + yD s1) (|D - B|^2 = |D|^2 + l2^2 - 2 l2 (xD c1 + yD s1))",
-    )
 
 
 def eq15_printed(c4):
@@ -829,8 +801,16 @@ def _branches(form, x, truth):
     return np.min(np.abs(form(x) - truth), axis=0)
 
 
-@SECTION.check(
+eq15_s4 = _step(
     22.1,
+    "eq15_s4",
+    "Eq 15",
+    claim="s4 = +-sqrt(1 - c4^2): one of the two signs is sin(theta4).",
+    method="both signs with the true c4 vs sin(theta4)",
+    error=lambda s, eq15: _branches(eq15, s.c(4), s.s(4)),
+    tol=TOL_ANGLE,
+    unit="-",
+    printed="s4 = +-sqrt(1 - c4^2)",
     forms=Forms(
         printed=eq15_printed,
         good=_eq15_good,
@@ -839,20 +819,6 @@ def _branches(form, x, truth):
         bad_is="both branches moved by 1e-9",
     ),
 )
-def eq15_s4(ctx, eq15):
-    s = sample(ctx)
-    return _row(
-        s,
-        "Eq 15",
-        "eq15",
-        "s4 = +-sqrt(1 - c4^2): one of the two signs is sin(theta4).",
-        "both signs with the true c4 vs sin(theta4)",
-        _branches(eq15, s.c(4), s.s(4)),
-        TOL_ANGLE,
-        "-",
-        printed="s4 = +-sqrt(1 - c4^2)",
-        corrected="-",
-    )
 
 
 # ----------------------------------------------------------------------------- Eq 17-22
@@ -877,7 +843,7 @@ def _compose_reversed(a, b):
     return b @ a
 
 
-_COMPOSE = dict(
+_COMPOSE = Forms(
     printed=_compose,
     good=_compose_einsum,
     bad=_compose_reversed,
@@ -906,7 +872,7 @@ def _composition(ctx, form, key, rid, split, upto) -> Row:
     )
 
 
-@SECTION.check(22.5, forms=Forms(**_COMPOSE))
+@SECTION.check(22.5, forms=_COMPOSE)
 def eq17_composition(ctx, form):
     return _composition(ctx, form, "Eq 17", "eq17", 2, 5)
 
@@ -1007,8 +973,31 @@ def _d_base_slip(s: Sample) -> np.ndarray:
     return s.D + L1 * _EZ + 1e-9
 
 
-@SECTION.check(
+def _eq18_frame_error(s: Sample, wrist) -> np.ndarray:
+    """Printed 0_2T^-1 times 0_5T (last column: the D of Eq 9, the form) vs the printed 2_5T, per q."""
+    T05 = s.F[:, 5].copy()
+    T05[:, :3, 3] = wrist(s)
+    lhs = eq18_inverse_printed(s.q) @ T05
+    return np.abs(lhs - eq18_t25_printed(s.q)).max(axis=(1, 2))
+
+
+eq18_frame = _step(
     23.1,
+    "eq18_frame",
+    "Eq 18",
+    rid="eq18.frame",
+    claim="Eq 18 holds with 0_5T built from the D of Eq 9 (x_D, y_D, z_D 'known from Equation 9b').",
+    method="printed 0_2T^-1 times 0_5T with the true rotation and D in the frame of Sec 3.3.1 (Eq 9c: "
+    "origin moved up by l1), vs the printed 2_5T",
+    error=_eq18_frame_error,
+    tol=TOL,
+    unit="m",
+    printed="0_2T^-1 with -l1 c2 - l2 s2 and l1 s2 - l2 c2 in column 4, applied to Eq 9's D",
+    corrected="in the frame of Eq 9 the column is [-l2 s2, -l2 c2, 0] (drop the l1 terms), or D must "
+    "keep z_D = p_z + r33 l5; harmless: only the (3,4) entry, which has no l1 term, is used "
+    "(Eq 19)",
+    note=lambda s, err: f"entries (1,4), (2,4) are off by l1 c2, l1 s2 (max {L1 * np.abs(s.c(2)).max():.3f} "
+    "m); the (3,4) entry used by Eq 19 is exact",
     forms=Forms(
         printed=_d_shifted,
         good=_d_base,
@@ -1017,31 +1006,6 @@ def _d_base_slip(s: Sample) -> np.ndarray:
         bad_is="the good D moved by 1 nm",
     ),
 )
-def eq18_frame(ctx, wrist):
-    """Eq 18 as used: printed 0_2T^-1 times 0_5T (last column: the D of Eq 9, the form) vs printed 2_5T."""
-    s = sample(ctx)
-    T05 = s.F[:, 5].copy()
-    T05[:, :3, 3] = wrist(s)
-    lhs = eq18_inverse_printed(s.q) @ T05
-    err = np.abs(lhs - eq18_t25_printed(s.q)).max(axis=(1, 2))
-    c2 = s.c(2)
-    return _row(
-        s,
-        "Eq 18",
-        "eq18.frame",
-        "Eq 18 holds with 0_5T built from the D of Eq 9 (x_D, y_D, z_D 'known from Equation 9b').",
-        "printed 0_2T^-1 times 0_5T with the true rotation and D in the frame of Sec 3.3.1 (Eq 9c: "
-        "origin moved up by l1), vs the printed 2_5T",
-        err,
-        TOL,
-        "m",
-        printed="0_2T^-1 with -l1 c2 - l2 s2 and l1 s2 - l2 c2 in column 4, applied to Eq 9's D",
-        corrected="in the frame of Eq 9 the column is [-l2 s2, -l2 c2, 0] (drop the l1 terms), or D must "
-        "keep z_D = p_z + r33 l5; harmless: only the (3,4) entry, which has no l1 term, is used "
-        "(Eq 19)",
-        note=f"entries (1,4), (2,4) are off by l1 c2, l1 s2 (max {L1 * np.abs(c2).max():.3f} m); "
-        "the (3,4) entry used by Eq 19 is exact",
-    )
 
 
 def eq19_printed(q, D):
@@ -1054,8 +1018,16 @@ def _eq19_good(q, D):
     return np.stack([np.einsum("ni,ni->n", row3, D), -L4 * np.sin(q[:, 2]) * np.sin(q[:, 3])])
 
 
-@SECTION.check(
+eq19_element = _step(
     23.2,
+    "eq19_element",
+    "Eq 19",
+    claim="(0_2T^-1 0_5T)_34 = c1 yD - s1 xD = -l4 s3 s4 = (2_5T)_34.",
+    method="both printed expressions with the true D and q vs the (3,4) entry of 2_5T from Pinocchio",
+    error=lambda s, eq19: np.abs(eq19(s.q, s.D) - s.rel(2, 5)[:, 2, 3]).max(axis=0),
+    tol=TOL,
+    unit="m",
+    printed="c1 yD - s1 xD = -l4 s3 s4",
     forms=Forms(
         printed=eq19_printed,
         good=_eq19_good,
@@ -1064,22 +1036,6 @@ def _eq19_good(q, D):
         bad_is="both sides moved by 1 nm",
     ),
 )
-def eq19_element(ctx, eq19):
-    s = sample(ctx)
-    truth = s.rel(2, 5)[:, 2, 3]
-    err = np.abs(eq19(s.q, s.D) - truth).max(axis=0)
-    return _row(
-        s,
-        "Eq 19",
-        "eq19",
-        "(0_2T^-1 0_5T)_34 = c1 yD - s1 xD = -l4 s3 s4 = (2_5T)_34.",
-        "both printed expressions with the true D and q vs the (3,4) entry of 2_5T from Pinocchio",
-        err,
-        TOL,
-        "m",
-        printed="c1 yD - s1 xD = -l4 s3 s4",
-        corrected="-",
-    )
 
 
 def eq20_printed(q, D):
@@ -1087,36 +1043,32 @@ def eq20_printed(q, D):
     return (s1 * D[:, 0] - c1 * D[:, 1]) / (L4 * np.sin(q[:, 3]))
 
 
-@SECTION.check(
+eq20_s3 = _step(
     23.3,
-    forms=Forms(
-        printed=eq20_printed,
-        good=eq20_printed,
-        bad=_plus(eq20_printed),
-        good_is="the printed form (it is right)",
-        bad_is="s3 moved by 1e-9",
-    ),
+    "eq20_s3",
+    "Eq 20",
+    claim="s3 = (s1 xD - c1 yD) / (l4 s4).",
+    method="with the true D, theta1, theta4 vs sin(theta3)",
+    error=lambda s, eq20: eq20(s.q, s.D) - s.s(3),
+    tol=TOL_ANGLE,
+    unit="-",
+    printed="s3 = (s1 xD - c1 yD) / (l4 s4)",
+    note=lambda s, err: f"smallest |s4| sampled {np.abs(s.s(4)).min():.1e} (s4 = 0, theta4 = 0, is 0/0: the "
+    "wrist on the link-3 axis, singular set s(1))",
+    forms=_printed_is_right(eq20_printed, "s3 moved by 1e-9"),
 )
-def eq20_s3(ctx, eq20):
-    s = sample(ctx)
-    return _row(
-        s,
-        "Eq 20",
-        "eq20",
-        "s3 = (s1 xD - c1 yD) / (l4 s4).",
-        "with the true D, theta1, theta4 vs sin(theta3)",
-        eq20(s.q, s.D) - s.s(3),
-        TOL_ANGLE,
-        "-",
-        printed="s3 = (s1 xD - c1 yD) / (l4 s4)",
-        corrected="-",
-        note=f"smallest |s4| sampled {np.abs(s.s(4)).min():.1e} (s4 = 0, theta4 = 0, is 0/0: the wrist on "
-        "the link-3 axis, singular set s(1))",
-    )
 
 
-@SECTION.check(
+eq21_c3 = _step(
     23.4,
+    "eq21_c3",
+    "Eq 21",
+    claim="c3 = +-sqrt(1 - s3^2): one sign is cos(theta3).",
+    method="both signs with the true s3 vs cos(theta3)",
+    error=lambda s, eq21: _branches(eq21, s.s(3), s.c(3)),
+    tol=TOL_ANGLE,
+    unit="-",
+    printed="c3 = +-sqrt(1 - s3^2)",
     forms=Forms(
         printed=eq15_printed,
         good=_eq15_good,
@@ -1125,24 +1077,10 @@ def eq20_s3(ctx, eq20):
         bad_is="both branches moved by 1e-9",
     ),
 )
-def eq21_c3(ctx, eq21):
-    s = sample(ctx)
-    return _row(
-        s,
-        "Eq 21",
-        "eq21",
-        "c3 = +-sqrt(1 - s3^2): one sign is cos(theta3).",
-        "both signs with the true s3 vs cos(theta3)",
-        _branches(eq21, s.s(3), s.c(3)),
-        TOL_ANGLE,
-        "-",
-        printed="c3 = +-sqrt(1 - s3^2)",
-        corrected="-",
-    )
 
 
 # ----------------------------------------------------------------------------- Eq 23-28
-@SECTION.check(24.0, forms=Forms(**_COMPOSE))
+@SECTION.check(24.0, forms=_COMPOSE)
 def eq23_composition(ctx, form):
     return _composition(ctx, form, "Eq 23", "eq23", 2, 6)
 
@@ -1152,31 +1090,20 @@ def eq24_printed(q):
     return np.stack([-c3 * s45, -c45], 1)
 
 
-@SECTION.check(
+eq24_entries = _step(
     24.1,
-    forms=Forms(
-        printed=eq24_printed,
-        good=eq24_printed,
-        bad=_plus(eq24_printed),
-        good_is="the printed entries (they are right)",
-        bad_is="both entries moved by 1e-9",
+    "eq24_entries",
+    "Eq 24",
+    claim="2_6T has (1,3) = -c3 s45 and (2,3) = -c45 (the entries Eq 25-26 use).",
+    method="printed entries vs (0_2T)^-1 0_6T from Pinocchio",
+    error=lambda s, eq24: np.abs(eq24(s.q) - s.rel(2, 6)[:, :2, 2]).max(axis=1),
+    tol=TOL,
+    unit="-",
+    printed="(2_6T)_13 = -c3 s45, (2_6T)_23 = -c45",
+    forms=_printed_is_right(
+        eq24_printed, "both entries moved by 1e-9", good_is="the printed entries (they are right)"
     ),
 )
-def eq24_entries(ctx, eq24):
-    s = sample(ctx)
-    err = np.abs(eq24(s.q) - s.rel(2, 6)[:, :2, 2]).max(axis=1)
-    return _row(
-        s,
-        "Eq 24",
-        "eq24",
-        "2_6T has (1,3) = -c3 s45 and (2,3) = -c45 (the entries Eq 25-26 use).",
-        "printed entries vs (0_2T)^-1 0_6T from Pinocchio",
-        err,
-        TOL,
-        "-",
-        printed="(2_6T)_13 = -c3 s45, (2_6T)_23 = -c45",
-        corrected="-",
-    )
 
 
 def eq25_lhs(R, q):
@@ -1231,7 +1158,7 @@ def _near_c3_zero(ctx) -> Sample:
     return ctx.cache[key]
 
 
-_EQ27 = dict(
+_EQ27 = Forms(
     printed=eq27_printed,
     good=eq27_companion,
     bad=_eq27_slip,
@@ -1240,7 +1167,7 @@ _EQ27 = dict(
 )
 
 
-@SECTION.check(25.0, forms=Forms(**_EQ27))
+@SECTION.check(25.0, forms=_EQ27)
 def eq27_s45(ctx, eq27):
     """Eq 27-28 on random q, including |c3| down to 1e-6 (theta3 within 1e-3..1e-6 rad of +-90 deg)."""
     s, near = sample(ctx), _near_c3_zero(ctx)
@@ -1266,7 +1193,7 @@ def eq27_s45(ctx, eq27):
     )
 
 
-@SECTION.check(25.1, forms=Forms(**_EQ27))
+@SECTION.check(25.1, forms=_EQ27)
 def eq27_c3_zero(ctx, eq27):
     """The exact case c3 = 0 (theta3 = +-90 deg; Eq 21 gives c3 = 0 exactly when s3 = +-1): Eq 27 is 0/0."""
     rng = ctx.rng("eq27-exact")
@@ -1279,22 +1206,18 @@ def eq27_c3_zero(ctx, eq27):
     err = np.where(np.isnan(err), np.inf, err)
     share = float(np.mean(err <= TOL_ANGLE))
     m = (Measure("share of poses whose theta5 is recovered", share, 1.0, bound=">="),)
-    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
     k = int(np.argmax(err))
-    return Row(
+    return Row.graded(
         "Eq 27-28 give theta5 also at theta3 = +-90 deg (c3 = 0).",
         "Eq 27 (c3 = 0)",
         f"{n} poses with theta3 = +-90 deg; c3 = 0 and s3 = +-1 exactly (what Eq 21 returns there); theta5 "
         "through Eq 27-28 with the true pose and theta1, theta2, theta4",
         f"theta5 recovered (within {TOL_ANGLE:g} rad) on {share:.1%} of the poses; worst at {fmt_q(q[k])}",
-        verdict,
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="eq27.c3_zero",
-        measures=m,
-        reason=""
-        if verdict is Verdict.HOLDS
-        else "Eq 27 divides by c3: at theta3 = +-90 deg it is 0/0 (the numerator is -c3 s45 = 0) and theta5 "
-        "is "
-        "lost; s45 = -c3 (Eq 25 left side) + s3 (-s1 r13 + c1 r23) holds for every theta3",
+        reason="Eq 27 divides by c3: at theta3 = +-90 deg it is 0/0 (the numerator is -c3 s45 = 0) and "
+        "theta5 is lost; s45 = -c3 (Eq 25 left side) + s3 (-s1 r13 + c1 r23) holds for every theta3",
     )
 
 
@@ -1310,8 +1233,21 @@ def _eq28_slip(sn, cs, th4):
     return _atan2_minus(sn, cs, th4) + 1e-6
 
 
-@SECTION.check(
+def _eq28_error(s: Sample, eq28) -> np.ndarray:
+    t45 = s.q[:, 3] + s.q[:, 4]
+    return _wrap(eq28(np.sin(t45), np.cos(t45), s.q[:, 3]) - s.q[:, 4])
+
+
+eq28_theta5 = _step(
     25.2,
+    "eq28_theta5",
+    "Eq 28",
+    claim="theta5 = atan2(s45, c45) - theta4.",
+    method="with the true s45, c45, theta4 vs theta5",
+    error=_eq28_error,
+    tol=TOL,
+    unit="rad",
+    printed="theta5 = atan2(s45, c45) - theta4",
     forms=Forms(
         printed=_atan2_minus,
         good=_eq28_good,
@@ -1320,25 +1256,10 @@ def _eq28_slip(sn, cs, th4):
         bad_is="the printed form + 1 urad",
     ),
 )
-def eq28_theta5(ctx, eq28):
-    s = sample(ctx)
-    t45 = s.q[:, 3] + s.q[:, 4]
-    return _row(
-        s,
-        "Eq 28",
-        "eq28",
-        "theta5 = atan2(s45, c45) - theta4.",
-        "with the true s45, c45, theta4 vs theta5",
-        _wrap(eq28(np.sin(t45), np.cos(t45), s.q[:, 3]) - s.q[:, 4]),
-        TOL,
-        "rad",
-        printed="theta5 = atan2(s45, c45) - theta4",
-        corrected="-",
-    )
 
 
 # ----------------------------------------------------------------------------- Eq 29-33
-@SECTION.check(26.0, forms=Forms(**_COMPOSE))
+@SECTION.check(26.0, forms=_COMPOSE)
 def eq29_composition(ctx, form):
     return _composition(ctx, form, "Eq 29", "eq29", 5, 6)
 
@@ -1435,102 +1356,75 @@ def eq32_lhs(R, q):
 
 
 # ----------------------------------------------------------------------------- one-line steps
-_step(
-    22.2,
-    "eq16_theta4",
-    "Eq 16",
-    "theta4 = atan2(s4, c4).",
-    "with the true s4, c4 vs theta4",
-    lambda s, f: _wrap(f(s.s(4), s.c(4)) - s.q[:, 3]),
-    TOL,
-    "rad",
-    "theta4 = atan2(s4, c4)",
-    **_ATAN2,
-)
-_step(
-    23.5,
-    "eq22_theta3",
-    "Eq 22",
-    "theta3 = atan2(s3, c3).",
-    "with the true s3, c3 vs theta3",
-    lambda s, f: _wrap(f(s.s(3), s.c(3)) - s.q[:, 2]),
-    TOL,
-    "rad",
-    "theta3 = atan2(s3, c3)",
-    **_ATAN2,
-)
-_step(
-    26.4,
-    "eq33_theta6",
-    "Eq 33",
-    "theta6 = atan2(s6, c6).",
-    "with the true s6, c6 vs theta6",
-    lambda s, f: _wrap(f(s.s(6), s.c(6)) - s.q[:, 5]),
-    TOL,
-    "rad",
-    "theta6 = atan2(s6, c6)",
-    **_ATAN2,
-)
+def _atan2_step(order: float, number: int, joint: int):
+    """Eq 16, 22, 33: theta_j = atan2(s_j, c_j) with the true sine and cosine."""
+    j = joint
+    return _step(
+        order,
+        f"eq{number}_theta{j}",
+        f"Eq {number}",
+        claim=f"theta{j} = atan2(s{j}, c{j}).",
+        method=f"with the true s{j}, c{j} vs theta{j}",
+        error=lambda s, f: _wrap(f(s.s(j), s.c(j)) - s.q[:, j - 1]),
+        tol=TOL,
+        unit="rad",
+        printed=f"theta{j} = atan2(s{j}, c{j})",
+        forms=_ATAN2,
+    )
 
-_RIGHT = dict(good_is="the printed left side (it is right)", bad_is="the left side moved by 1e-9")
+
+eq16_theta4 = _atan2_step(22.2, 16, 4)
+eq22_theta3 = _atan2_step(23.5, 22, 3)
+eq33_theta6 = _atan2_step(26.4, 33, 6)
+
+
+_RIGHT_SIDE = dict(good_is="the printed left side (it is right)", bad_is="the left side moved by 1e-9")
 _LHS = "printed left side with the true pose and joint angles vs"
-_step(
+eq25_element = _step(
     24.2,
     "eq25_element",
     "Eq 25",
-    "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45.",
-    f"{_LHS} -c3 s45",
-    lambda s, f: f(s.R, s.q) + s.c(3) * np.sin(s.q[:, 3] + s.q[:, 4]),
-    TOL,
-    "-",
-    "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45",
-    printed=eq25_lhs,
-    good=eq25_lhs,
-    bad=_plus(eq25_lhs),
-    **_RIGHT,
+    claim="r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45.",
+    method=f"{_LHS} -c3 s45",
+    error=lambda s, f: f(s.R, s.q) + s.c(3) * np.sin(s.q[:, 3] + s.q[:, 4]),
+    tol=TOL,
+    unit="-",
+    printed="r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45",
+    forms=_printed_is_right(eq25_lhs, **_RIGHT_SIDE),
 )
-_step(
+eq26_element = _step(
     24.3,
     "eq26_element",
     "Eq 26",
-    "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45.",
-    f"{_LHS} -c45",
-    lambda s, f: f(s.R, s.q) + np.cos(s.q[:, 3] + s.q[:, 4]),
-    TOL,
-    "-",
-    "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45",
-    printed=eq26_lhs,
-    good=eq26_lhs,
-    bad=_plus(eq26_lhs),
-    **_RIGHT,
+    claim="r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45.",
+    method=f"{_LHS} -c45",
+    error=lambda s, f: f(s.R, s.q) + np.cos(s.q[:, 3] + s.q[:, 4]),
+    tol=TOL,
+    unit="-",
+    printed="r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45",
+    forms=_printed_is_right(eq26_lhs, **_RIGHT_SIDE),
 )
-_step(
+eq31_s6 = _step(
     26.2,
     "eq31_s6",
     "Eq 31",
-    "r11 (s1 c3 - c1 s2 s3) - r21 (c1 c3 + s1 s2 s3) - r31 (c2 s3) = -s6.",
-    f"{_LHS} -sin(theta6)",
-    lambda s, f: f(s.R, s.q) + s.s(6),
-    TOL,
-    "-",
-    "... = -s6",
-    printed=eq31_lhs,
-    good=eq31_lhs,
-    bad=_plus(eq31_lhs),
-    **_RIGHT,
+    claim="r11 (s1 c3 - c1 s2 s3) - r21 (c1 c3 + s1 s2 s3) - r31 (c2 s3) = -s6.",
+    method=f"{_LHS} -sin(theta6)",
+    error=lambda s, f: f(s.R, s.q) + s.s(6),
+    tol=TOL,
+    unit="-",
+    printed="... = -s6",
+    forms=_printed_is_right(eq31_lhs, **_RIGHT_SIDE),
 )
-_step(
+eq32_c6 = _step(
     26.3,
     "eq32_c6",
     "Eq 32",
-    "r12 (s1 c3 - c1 s2 s3) - r22 (c1 c3 + s1 s2 s3) - r32 (c2 s3) = -c6.",
-    f"{_LHS} -cos(theta6)",
-    lambda s, f: f(s.R, s.q) + s.c(6),
-    TOL,
-    "-",
-    "... = -c6",
-    printed=eq32_lhs,
-    good=eq32_lhs,
-    bad=_plus(eq32_lhs),
-    **_RIGHT,
+    claim="r12 (s1 c3 - c1 s2 s3) - r22 (c1 c3 + s1 s2 s3) - r32 (c2 s3) = -c6.",
+    method=f"{_LHS} -cos(theta6)",
+    error=lambda s, f: f(s.R, s.q) + s.c(6),
+    tol=TOL,
+    unit="-",
+    printed="... = -c6",
+    forms=_printed_is_right(eq32_lhs, **_RIGHT_SIDE),
 )

@@ -564,7 +564,6 @@ def eq4_vs_pinocchio(ctx, eq4):
         Measure("max |dp| vs Pinocchio", dp.max(), TOL_EXACT, "m"),
         Measure("max |dR_ij| vs Pinocchio", dR.max(), TOL_EXACT),
     )
-    verdict = verdict_of(m)
     dp_w, k = worst(dp)
     figs = (
         _hist(
@@ -576,7 +575,7 @@ def eq4_vs_pinocchio(ctx, eq4):
         ),
         _arm_figure(ctx),
     )
-    return Row(
+    return Row.graded(
         "Eq 4 gives the pose of frame 6 (position of the end-effector point and orientation).",
         "Eq 4 (with Table II, Fig 8)",
         f"Eq 4 transcribed as printed; {len(qs)} q (uniform in Table I widened by {BEYOND} rad, plus the 729 "
@@ -584,19 +583,14 @@ def eq4_vs_pinocchio(ctx, eq4):
         "urdf/thesis_arm.urdf (frame 'tool')",
         f"max |dp| = {dp.max():.1e} m (at {fmt_q(qs[k])}), max |dR_ij| = {dR.max():.1e}; tolerance "
         f"{TOL_EXACT:g}",
-        verdict,
+        m,
         id="eq4",
-        measures=m,
         figures=figs,
-        errata=()
-        if verdict is Verdict.HOLDS
-        else (
-            Erratum(
-                "Eq 4",
-                "the printed entries",
-                "the Table II product (iik.fk)",
-                f"{fmt_q(qs[k])}: position off by {dp_w:.3g} m",
-            ),
+        erratum=Erratum(
+            "Eq 4",
+            "the printed entries",
+            "the Table II product (iik.fk)",
+            f"{fmt_q(qs[k])}: position off by {dp_w:.3g} m",
         ),
     )
 
@@ -1005,7 +999,6 @@ def appendix_c(ctx, appc):
             Measure("max |printed - Pinocchio|", d_pin.max(), TOL_EXACT, "m/rad"),
             Measure("max |printed - FD|", d_fd.max(), TOL_EXACT + TOL_FD, "m/rad"),
         )
-        v = verdict_of(m)
         k = int(np.argmax(d_pin))
         numbers = (
             f"max |printed - Pinocchio| = {d_pin.max():.1e} m/rad; max |printed - FD| = {d_fd.max():.1e}"
@@ -1013,23 +1006,18 @@ def appendix_c(ctx, appc):
         if key == "df3/dth5":
             numbers += "; the text after this entry carries a stray '1/2' (an extraction artifact)"
         details.append(
-            Row(
+            Row.graded(
                 f"{key} = {APPC_TEXT[key]}",
                 f"App. C, Eq 56 {key}",
                 "vs Pinocchio and central differences",
                 numbers,
-                v,
+                m,
                 id=key.replace("/", ""),
-                measures=m,
-                errata=()
-                if v is Verdict.HOLDS
-                else (
-                    Erratum(
-                        f"App. C {key}",
-                        APPC_TEXT[key],
-                        "d/dtheta of Eq 55 (iik.position_jacobian)",
-                        f"{fmt_q(qs[k])}: printed {val[k]:.6f}, true {J_pin[k, i, j]:.6f}",
-                    ),
+                erratum=Erratum(
+                    f"App. C {key}",
+                    APPC_TEXT[key],
+                    "d/dtheta of Eq 55 (iik.position_jacobian)",
+                    f"{fmt_q(qs[k])}: printed {val[k]:.6f}, true {J_pin[k, i, j]:.6f}",
                 ),
             )
         )
@@ -1065,27 +1053,21 @@ def appendix_c(ctx, appc):
     fd = (tool_poses(qs + step)[:, :3, 3] - tool_poses(qs - step)[:, :3, 3]) / (2 * h)
     e35 = np.linalg.norm(np.einsum("nij,nj->ni", J, dq) - fd, axis=1)
     m35 = (Measure("max |J dtheta - dp/dtheta (FD)|", e35.max(), TOL_FD, "m/rad"),)
-    v35 = verdict_of(m35)
     rows.append(
-        Row(
+        Row.graded(
             "Eq 35: D = J_theta D_theta with the 3x5 Jacobian of App. C (first-order change of the tool "
             "point).",
             "Eq 35",
             f"printed App. C matrix times a random unit joint direction vs the central difference "
             f"(h = 1e-6 rad) of the Pinocchio tool point along it, {len(qs)} q",
             f"max |J dtheta - FD| = {e35.max():.1e} m/rad",
-            v35,
+            m35,
             id="eq35",
-            measures=m35,
-            errata=()
-            if v35 is Verdict.HOLDS
-            else (
-                Erratum(
-                    "Eq 35 (with App. C)",
-                    "J_theta of App. C",
-                    "iik.position_jacobian",
-                    f"max error {e35.max():.3g} m/rad",
-                ),
+            erratum=Erratum(
+                "Eq 35 (with App. C)",
+                "J_theta of App. C",
+                "iik.position_jacobian",
+                f"max error {e35.max():.3g} m/rad",
             ),
         )
     )
@@ -1239,30 +1221,24 @@ def eq42_convention(ctx, eq42):
     """Sec 3.5.1 names Eq 42 'the Z-X-Z convention of [2]': how many of the form's entries are Z-X-Z?"""
     (a, b, g), _, _, counts = _eq42_compare(ctx, eq42)
     m = (Measure("entries of Eq 42 that are not Z-X-Z", 9 - counts["ZXZ"], 0),)
-    verdict = verdict_of(m)
     a0, b0, g0 = 0.5, 0.7, 0.3
     P0 = eq42(a0, b0, g0)
-    return Row(
+    return Row.graded(
         "Eq 42 follows 'the Z-X-Z representation convention described in [2]'.",
         "Eq 42, Sec 3.5.1",
         f"each of the 9 entries vs scipy 'ZXZ' and 'ZYZ' (intrinsic) on {len(a)} angle triples",
         f"entries matching Z-X-Z: {counts['ZXZ']} of 9; matching Z-Y-Z: {counts['ZYZ']} of 9",
-        verdict,
+        m,
         id="eq42_convention",
-        measures=m,
-        errata=()
-        if verdict is Verdict.HOLDS
-        else (
-            Erratum(
-                "Eq 42 / Sec 3.5.1 convention",
-                "'Z-X-Z representation convention' (Sec 3.5.1)",
-                "Craig's Z-Y-Z, R = Rz(alpha) Ry(beta) Rz(gamma) (scipy 'ZYZ'): z6 = [r13 r23 r33] = "
-                "[c_a s_b, s_a s_b, c_b], alpha its azimuth, beta its polar angle; iik uses Z-Y-Z (how Sec "
-                "3.5's "
-                "own alpha, beta map to these is checked in the Dexterity section)",
-                f"alpha, beta, gamma = {a0}, {b0}, {g0} rad: printed r13 = {P0[0, 2]:.6f} = Z-Y-Z r13; Z-X-Z "
-                f"r13 = s_a s_b = {Rotation.from_euler('ZXZ', [a0, b0, g0]).as_matrix()[0, 2]:.6f}",
-            ),
+        erratum=Erratum(
+            "Eq 42 / Sec 3.5.1 convention",
+            "'Z-X-Z representation convention' (Sec 3.5.1)",
+            "Craig's Z-Y-Z, R = Rz(alpha) Ry(beta) Rz(gamma) (scipy 'ZYZ'): z6 = [r13 r23 r33] = "
+            "[c_a s_b, s_a s_b, c_b], alpha its azimuth, beta its polar angle; iik uses Z-Y-Z (how Sec "
+            "3.5's "
+            "own alpha, beta map to these is checked in the Dexterity section)",
+            f"alpha, beta, gamma = {a0}, {b0}, {g0} rad: printed r13 = {P0[0, 2]:.6f} = Z-Y-Z r13; Z-X-Z "
+            f"r13 = s_a s_b = {Rotation.from_euler('ZXZ', [a0, b0, g0]).as_matrix()[0, 2]:.6f}",
         ),
     )
 
@@ -1434,8 +1410,7 @@ def table_i_self_collision(ctx, limits):
         Measure("min distance tool point - upper-arm axis", d_star, MIN_CLEARANCE, "m", bound=">="),
         Measure("fraction of sampled q in self-collision (Coal)", hit.mean(), 0.0),
     )
-    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
-    return Row(
+    return Row.graded(
         "The joint limits of Table I keep the arm from hitting itself.",
         "Sec 3.2, Table I",
         "(a) geometry-independent: minimum over q within the limits of the distance from the tool point (Eq "
@@ -1447,12 +1422,9 @@ def table_i_self_collision(ctx, limits):
         f"(a) min distance = {d_star * 1000:.2g} mm at {fmt_q(q_star)} (theta4 + theta5 = "
         f"{np.degrees(q_star[3] + q_star[4]):.0f} deg); (b) {hit.mean() * 100:.1f} % of the sampled "
         "configurations self-collide",
-        verdict,
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="table_i_self_collision",
-        measures=m,
-        reason=""
-        if verdict is Verdict.HOLDS
-        else "the limits bound each joint separately; theta4 + theta5 can reach 238 deg, so the gripper can "
-             "be "
-        "folded into the upper arm (and with theta2 near 95 deg link 3 meets the base module)",
+        reason="the limits bound each joint separately; theta4 + theta5 can reach 238 deg, so the gripper "
+        "can be folded into the upper arm (and with theta2 near 95 deg link 3 meets the base module)",
     )

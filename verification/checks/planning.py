@@ -123,13 +123,12 @@ def check_eq53_ellipsoid(ctx, readings) -> Row:
         worst[name], at_example[name] = float(max(dev)), float(dev[0])
     best = min(worst, key=worst.get)
     m = (Measure("max |Eq 52 at the 8 corners - 1|, best reading", worst[best], 1e-9),)
-    verdict = verdict_of(m)
     example = Obstacle((0.0, 0.0, 0.0), (0.30, 0.20, 0.50))
     values = {
         n: float(ellipsoid_value(example.corners[:1], example.center, r(example.half))[0])
         for n, r in readings.items()
     }
-    return Row(
+    return Row.graded(
         claim="The ellipsoid of Eq 53 touches every corner of the w x d x h box (Sec 3.6.2.1)",
         reference="Eq 52-53",
         method=f"Eq 52 evaluated at the 8 corners of {len(sizes)} boxes (0.30 x 0.20 x 0.50 m and random "
@@ -140,22 +139,17 @@ def check_eq53_ellipsoid(ctx, readings) -> Row:
             f"{worst[n]:.3g}"
             for n in readings
         ),
-        verdict=verdict,
         measures=m,
-        errata=()
-        if verdict is Verdict.HOLDS
-        else (
-            Erratum(
-                equation="Eq 53",
-                printed="x_r = w/(cos b cos a), y_r = d/(cos b sin a), z_r = h/sin(a), a = pi/4, b = "
-                "atan(cos a)",
-                corrected="z_r = h/sin(b), with w, d, h the HALF dimensions: (x_r, y_r, z_r) = sqrt(3)(w, "
-                "d, h)",
-                counterexample="box 0.30 x 0.20 x 0.50 m, Eq 52 at its corners: "
-                + "; ".join(
-                    f"{n}: {v:.4f} ({'inside' if v < 1 else 'outside'}, should be 1)"
-                    for n, v in values.items()
-                ),
+        erratum=Erratum(
+            equation="Eq 53",
+            printed="x_r = w/(cos b cos a), y_r = d/(cos b sin a), z_r = h/sin(a), a = pi/4, b = "
+            "atan(cos a)",
+            corrected="z_r = h/sin(b), with w, d, h the HALF dimensions: (x_r, y_r, z_r) = sqrt(3)(w, "
+            "d, h)",
+            counterexample="box 0.30 x 0.20 x 0.50 m, Eq 52 at its corners: "
+            + "; ".join(
+                f"{n}: {v:.4f} ({'inside' if v < 1 else 'outside'}, should be 1)"
+                for n, v in values.items()
             ),
         ),
     )
@@ -241,8 +235,7 @@ def check_table_iv(ctx, tables) -> Row:
             0,
         ),
     )
-    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
-    return Row(
+    return Row.graded(
         claim="Table III/IV are consistent with a layout of 7 azimuth sectors A..G (Fig 29 missing)",
         reference="Table III, Table IV, Fig 29, Sec 3.6.3",
         method="Table IV (completed by its note: reverse direction, same via-points reversed) checked for "
@@ -250,9 +243,9 @@ def check_table_iv(ctx, tables) -> Row:
         "via-points 2 and 3 classified by the inferred sectors (iik.planning.viapoints)",
         numbers=f"asymmetric Table IV entries: {asym or 'none'}; Table III mirror deviation {via_off:.3g} m; "
         f"via-points 2, 3 fall in sectors {regions}",
-        verdict=verdict,
         measures=m,
-        reason="" if verdict is Verdict.HOLDS else "the inferred layout contradicts Table III/IV",
+        fail=Verdict.DOES_NOT_HOLD,
+        reason="the inferred layout contradicts Table III/IV",
     )
 
 
@@ -952,8 +945,7 @@ def check_thesis_timing(ctx, timing: Callable) -> Row:
         Measure("largest |qd| / v_max", max(p[0] for p in peaks), 1 + 1e-6),
         Measure("largest |qdd| / a_max", max(p[1] for p in peaks), 1 + 1e-6),
     )
-    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
-    return Row(
+    return Row.graded(
         claim="(Project standard) Timing the planned paths as the thesis did -- joint speeds proportional "
         "to the effort index (Eq 54), equal time per step -- respects the joints' speed and acceleration "
         "limits",
@@ -963,12 +955,10 @@ def check_thesis_timing(ctx, timing: Callable) -> Row:
         "stepwise at a step-point needs an unbounded acceleration). The thesis does not claim a feasible "
         "timing: this grades our standard",
         numbers="; ".join(per),
-        verdict=verdict,
         measures=m,
+        fail=Verdict.DOES_NOT_HOLD,
         scope=Scope.PROJECT,
         id="thesis_timing",
-        reason=""
-        if verdict is Verdict.HOLDS
-        else "the per-step constant speeds change instantly at every "
+        reason="the per-step constant speeds change instantly at every "
         "step-point (no acceleration limit; the text reports vibrations, Sec 4.3)",
     )

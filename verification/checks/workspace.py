@@ -327,18 +327,14 @@ def eq37_joint2(ctx, eq37):
     q[:, 0] = phi
     err = np.linalg.norm(eq37(phi) - _joint(q, 2), axis=1)
     m = (Measure("max |printed - joint 2|", err.max(), 1e-12, "m"),)
-    v = verdict_of(m)
-    return Row(
+    return Row.graded(
         "Joint 2 is at [l2 cos(phi), l2 sin(phi), l1] when theta1 = phi.",
         "Eq 37",
         f"printed point vs the origin of frame 2 (Pinocchio) at theta1 = phi, {len(phi)} phi",
         f"max |printed - Pinocchio| = {err.max():.1e} m",
-        v,
+        m,
         id="eq37",
-        measures=m,
-        errata=()
-        if v is Verdict.HOLDS
-        else (Erratum("Eq 37", "as printed", "frame 2 origin", f"error {err.max():.3g} m"),),
+        erratum=Erratum("Eq 37", "as printed", "frame 2 origin", f"error {err.max():.3g} m"),
     )
 
 
@@ -436,31 +432,25 @@ def eq39_theta2(ctx, eq39):
     best = _nearest_joint4_theta2(P, th1)
     err = np.abs(eq39(P, th1) - best)
     m = (Measure("max |theta2 of the form - nearest-joint-4 theta2|", err.max(), 1e-6, "rad"),)
-    v = verdict_of(m)
     k = int(np.argmax(err))
-    return Row(
+    return Row.graded(
         "Regions 2/3: the farthest reach toward the point is at theta2 = -atan2(pz - l1, sqrt(px^2 + py^2)) "
         "(link 3 aimed at the point's height).",
         "Eq 39",
         f"{len(P)} points behind the arm (azimuth 160-200 deg): the theta2 within Table I that puts joint 4 "
         "(joint 1 at 160 deg) nearest to the point, by grid and golden-section search, vs the form",
         f"max |form - nearest| = {err.max():.3g} rad (median {np.median(err):.3g})",
-        v,
+        m,
         id="eq39",
-        measures=m,
-        errata=()
-        if v is Verdict.HOLDS
-        else (
-            Erratum(
-                "Eq 39",
-                "theta2 = -atan2(pz - l1, sqrt(px^2 + py^2)) (link 3 aimed from the base axis)",
-                "theta2 = -atan2(pz - l1, u - l2), u = px cos(th1) + py sin(th1), clipped to Table I (aimed "
-                "from "
-                "joint 2: the nearest joint-4 position)",
-                f"p = {fmt_vec(P[k])} m: Eq 39 gives theta2 = {eq39(P[k : k + 1], th1)[0]:.4f} rad, the "
-                "nearest "
-                f"joint 4 is at theta2 = {best[k]:.4f} rad",
-            ),
+        erratum=Erratum(
+            "Eq 39",
+            "theta2 = -atan2(pz - l1, sqrt(px^2 + py^2)) (link 3 aimed from the base axis)",
+            "theta2 = -atan2(pz - l1, u - l2), u = px cos(th1) + py sin(th1), clipped to Table I (aimed "
+            "from "
+            "joint 2: the nearest joint-4 position)",
+            f"p = {fmt_vec(P[k])} m: Eq 39 gives theta2 = {eq39(P[k : k + 1], th1)[0]:.4f} rad, the "
+            "nearest "
+            f"joint 4 is at theta2 = {best[k]:.4f} rad",
         ),
     )
 
@@ -499,30 +489,24 @@ def eq40_joint4(ctx, eq40):
     q[:, 0], q[:, 1] = 160 * _D, th2
     err = np.linalg.norm(eq40(q[:, 0], th2) - _joint(q, 3), axis=1)
     m = (Measure("max |printed - joint 4|", err.max(), 1e-12, "m"),)
-    v = verdict_of(m)
     k = int(np.argmax(err))
-    return Row(
+    return Row.graded(
         "Joint 4 is at [(l2 - l3 c2) cos 160, (l2 - l3 c2) sin 160, l1 - l3 s2] with joint 1 at 160 deg.",
         "Eq 40",
         f"printed point vs the origin of frames 3-4 (Pinocchio), theta1 = 160 deg, {len(th2)} theta2 "
         "within Table I",
         f"max |printed - Pinocchio| = {err.max():.3g} m (= 2 l3 |c2| at most)",
-        v,
+        m,
         id="eq40",
-        measures=m,
-        errata=()
-        if v is Verdict.HOLDS
-        else (
-            Erratum(
-                "Eq 40",
-                "x4 = (l2 - l3 c2) cos(160 deg), y4 = (l2 - l3 c2) sin(160 deg)",
-                "x4 = (l2 + l3 c2) cos(th1), y4 = (l2 + l3 c2) sin(th1) (joint 4 is l3 beyond joint 2 along "
-                "link 3, "
-                "Table II / Eq 4; th1 = -160 deg in region 3)",
-                f"theta1 = 160 deg, theta2 = {th2[k]:.4f} rad: printed joint 4 is {err[k] * 1e3:.0f} mm from "
-                "the "
-                "true one",
-            ),
+        erratum=Erratum(
+            "Eq 40",
+            "x4 = (l2 - l3 c2) cos(160 deg), y4 = (l2 - l3 c2) sin(160 deg)",
+            "x4 = (l2 + l3 c2) cos(th1), y4 = (l2 + l3 c2) sin(th1) (joint 4 is l3 beyond joint 2 along "
+            "link 3, "
+            "Table II / Eq 4; th1 = -160 deg in region 3)",
+            f"theta1 = 160 deg, theta2 = {th2[k]:.4f} rad: printed joint 4 is {err[k] * 1e3:.0f} mm from "
+            "the "
+            "true one",
         ),
     )
 
@@ -642,7 +626,6 @@ def three_surface_boundary(ctx, surfaces):
             0.01,
         ),
     )
-    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
     lines = [
         f"{len(B)} exterior-boundary points (farthest of the oracle's samples in each of {na}x{ne} "
         "equal-area "
@@ -657,7 +640,7 @@ def three_surface_boundary(ctx, surfaces):
     if surfaces is BOUNDARY_SURFACES_PRINTED:
         lines += _side_test(ctx)
     fig = _coverage_figure(ctx, phiB, B, dist) if surfaces is BOUNDARY_SURFACES_PRINTED else None
-    return Row(
+    return Row.graded(
         "The exterior workspace boundary consists of f(1) (s(1), th1 in [-160,160], th2 in [-120,95]), f(2) "
         "(th1=160, th3=90, th5=0; th2 in [-100,95], th4 in [0,41]) and f(3) (th1=-160, same, th4 in "
         "[-41,0]).",
@@ -667,13 +650,11 @@ def three_surface_boundary(ctx, surfaces):
         "\n".join(lines)
         + "\nNote: Sec 3.4.3 lists s(2) with th1 = +160 deg, while Table VI and App. E list s(2) with "
         "th1 = -160 deg (and s(3) with +160).",
-        verdict,
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="three_surfaces",
-        measures=m,
         figures=(fig,) if fig else (),
-        reason=""
-        if verdict is Verdict.HOLDS
-        else "f(1) is the exterior boundary for |azimuth| < 160 deg; behind the arm the boundary is the "
+        reason="f(1) is the exterior boundary for |azimuth| < 160 deg; behind the arm the boundary is the "
              "corrected Eq 39-41 "
         "surface (joint 1 at its limit, wrist stretched, |p - joint 4| = l4 + l5 with th3, th4 varying), not "
         "f(2)/f(3) "
