@@ -57,6 +57,7 @@ __all__ = [
     "verdict_of",
     "Row",
     "Forms",
+    "off_by",
     "Context",
     "Check",
     "register",
@@ -265,6 +266,15 @@ class Forms:
     good_is: str
     bad_is: str
     rows: tuple[str, ...] = ()
+
+
+def off_by(form: Callable, eps: float) -> Callable:
+    """``form`` with its output moved by ``eps`` (a deliberate slip, for :attr:`Forms.bad`)."""
+
+    def slipped(*args, **kwargs):
+        return np.asarray(form(*args, **kwargs)) + eps
+
+    return slipped
 
 
 @dataclass

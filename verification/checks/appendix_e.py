@@ -23,7 +23,8 @@ from ..numbers import fmt_matrix, fmt_vec
 from ..oracles.abdel_malek import normal_acceleration
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Section, Verdict
+from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, off_by
+from ..shorthand import cos_sin
 
 _D = np.pi / 180
 EPS = 2e-3  # [m] probe distance along N0
@@ -465,14 +466,7 @@ def _eig_figure(ctx, results, pv) -> str:
 def eq69_printed(q):
     """Eq 69 as printed: f(1) at A1 -> (n, 3) [m]."""
     l1, l2, l3, l4, l5 = iik.THESIS_ARM.lengths
-    c1, s1, c3, s3, c5, s5 = (
-        np.cos(q[:, 0]),
-        np.sin(q[:, 0]),
-        np.cos(q[:, 2]),
-        np.sin(q[:, 2]),
-        np.cos(q[:, 4]),
-        np.sin(q[:, 4]),
-    )
+    c1, s1, c3, s3, c5, s5 = cos_sin(q[:, 0], q[:, 2], q[:, 4])
     return np.stack(
         [
             (l2 + l3 + l4) * c1 + l5 * c1 * c5 + l5 * s1 * s3 * s5,
@@ -487,7 +481,7 @@ def eq69_corrected(q):
     """f(1) on s(1) (theta4 = theta5 = 0): [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5."""
     l1, l2, l3, l4, l5 = iik.THESIS_ARM.lengths
     L = l3 + l4 + l5
-    c1, s1, c2, s2 = np.cos(q[:, 0]), np.sin(q[:, 0]), np.cos(q[:, 1]), np.sin(q[:, 1])
+    c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
     return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - L * s2], 1)
 
 
@@ -497,7 +491,7 @@ def eq69_corrected(q):
     forms=Forms(
         printed=eq69_printed,
         good=eq69_corrected,
-        bad=lambda q: eq69_corrected(q) + 1e-9,
+        bad=off_by(eq69_corrected, 1e-9),
         good_is="f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
         bad_is="the good point + 1 nm",
     ),

@@ -25,7 +25,7 @@ from iik.errors import UnreachablePoseError
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, off_by, verdict_of
 
 ARM = iik.THESIS_ARM
 _D = np.pi / 180
@@ -179,13 +179,6 @@ def _geometry_row(rid, key, claim, method, err, tol, printed, corrected, q, note
     )
 
 
-def _plus(f, eps=1e-6):
-    def g(*a):
-        return np.asarray(f(*a)) + eps
-
-    return g
-
-
 def eq43_printed(p):
     phi = np.arctan2(p[:, 1], p[:, 0])
     x2, y2, z2 = L2 * np.cos(phi), L2 * np.sin(phi), L1  # Eq 37
@@ -203,7 +196,7 @@ def _eq43_asin(p):
     forms=Forms(
         printed=eq43_printed,
         good=_eq43_asin,
-        bad=_plus(eq43_printed),
+        bad=off_by(eq43_printed, 1e-6),
         good_is="asin of the rise over |p - J2|",
         bad_is="the printed beta' + 1 urad",
     ),
@@ -232,8 +225,14 @@ def eq44_delta(rho, r):
     return np.arccos(np.clip((L5**2 + rho**2 - r**2) / (2 * L5 * rho), -1, 1))
 
 
-def _delta_slip(rho, r):
-    return eq44_delta(rho, r) + 1e-6
+#: Eq 44 and Eq 45 share the printed triangle.
+_DELTA = Forms(
+    printed=eq44_delta,
+    good=eq44_delta,
+    bad=off_by(eq44_delta, 1e-6),
+    good_is="the printed triangle (it is right)",
+    bad_is="delta + 1 urad",
+)
 
 
 def _extreme_direction_error(c: Pose35, delta_form, r) -> np.ndarray:
@@ -246,16 +245,7 @@ def _extreme_direction_error(c: Pose35, delta_form, r) -> np.ndarray:
     )
 
 
-@SECTION.check(
-    50.2,
-    forms=Forms(
-        printed=eq44_delta,
-        good=eq44_delta,
-        bad=_delta_slip,
-        good_is="the printed triangle (it is right)",
-        bad_is="delta + 1 urad",
-    ),
-)
+@SECTION.check(50.2, forms=_DELTA)
 def eq44_beta_outer(ctx, delta):
     """Eq 44: with links 3-4 aligned in one vertical plane, link 5 is inclined at beta' +- delta."""
     c = configurations(ctx, "aligned-planar")
@@ -277,16 +267,7 @@ def eq44_beta_outer(ctx, delta):
     )
 
 
-@SECTION.check(
-    50.3,
-    forms=Forms(
-        printed=eq44_delta,
-        good=eq44_delta,
-        bad=_delta_slip,
-        good_is="the printed triangle (it is right)",
-        bad_is="delta + 1 urad",
-    ),
-)
+@SECTION.check(50.3, forms=_DELTA)
 def eq45_beta_inner(ctx, delta):
     """Eq 45: links 3-4 contracted (theta4 = +-119 deg) in one vertical plane: link 5 is at beta' +- delta."""
     c = configurations(ctx, "contracted-planar")
@@ -324,11 +305,9 @@ def _eq46_facing(p, c: Pose35 | None = None):
 @SECTION.check(
     50.4,
     forms=Forms(
-        printed=lambda p,
-     c: eq46_printed(p),
+        printed=lambda p, c: eq46_printed(p),
         good=_eq46_facing,
-        bad=lambda p,
-     c: eq46_printed(p) + 1e-3,
+        bad=lambda p, c: eq46_printed(p) + 1e-3,
         good_is="atan2(py, px), + pi when link 5 faces the base axis",
         bad_is="atan2(py, px) + 1 mrad",
     ),
@@ -371,7 +350,7 @@ def eq47_printed(pz, beta):
     forms=Forms(
         printed=eq47_printed,
         good=eq47_printed,
-        bad=_plus(eq47_printed, 1e-9),
+        bad=off_by(eq47_printed, 1e-9),
         good_is="the printed form (it is right)",
         bad_is="h + 1 nm",
     ),
@@ -403,6 +382,17 @@ def eq48_corrected(h, r):
     return np.arcsin(np.clip((h - L1) / r, -1, 1))
 
 
+def _inclination_forms(good_is: str) -> Forms:
+    """Eq 48 and Eq 50: the printed atan, the corrected asin (described by ``good_is``), asin + 1 urad."""
+    return Forms(
+        printed=eq48_printed,
+        good=eq48_corrected,
+        bad=off_by(eq48_corrected, 1e-6),
+        good_is=good_is,
+        bad_is="the good delta + 1 urad",
+    )
+
+
 def _inclination_rows(ctx, form, kind, key, rid, r, printed, corrected) -> Row:
     c = configurations(ctx, kind)
     v = c.S - c.J2
@@ -423,16 +413,7 @@ def _inclination_rows(ctx, form, kind, key, rid, r, printed, corrected) -> Row:
     )
 
 
-@SECTION.check(
-    50.6,
-    forms=Forms(
-        printed=eq48_printed,
-        good=eq48_corrected,
-        bad=_plus(eq48_corrected),
-        good_is="delta = asin((h_SLJ - l1) / (l3 + l4))",
-        bad_is="the good delta + 1 urad",
-    ),
-)
+@SECTION.check(50.6, forms=_inclination_forms("delta = asin((h_SLJ - l1) / (l3 + l4))"))
 def eq48_inclination(ctx, form):
     return _inclination_rows(
         ctx,
@@ -446,16 +427,7 @@ def eq48_inclination(ctx, form):
     )
 
 
-@SECTION.check(
-    50.8,
-    forms=Forms(
-        printed=eq48_printed,
-        good=eq48_corrected,
-        bad=_plus(eq48_corrected),
-        good_is="delta = asin((h_SLJ - l1) / phi)",
-        bad_is="the good delta + 1 urad",
-    ),
-)
+@SECTION.check(50.8, forms=_inclination_forms("delta = asin((h_SLJ - l1) / phi)"))
 def eq50_inclination(ctx, form):
     return _inclination_rows(
         ctx,
@@ -484,8 +456,14 @@ def _sigma_true(rho, beta, delta, r, reach):
     return np.arccos(np.clip((rho**2 + lb**2 - reach**2) / (2 * rho * lb), -1, 1))
 
 
-def _sigma_slip(rho, beta, delta, r, reach):
-    return _sigma_true(rho, beta, delta, r, reach) + 1e-6
+#: Eq 49 and Eq 51 share the printed law of cosines.
+_SIGMA = Forms(
+    printed=eq49_sigma,
+    good=_sigma_true,
+    bad=off_by(_sigma_true, 1e-6),
+    good_is="the law of cosines with the SLJ's true horizontal distance",
+    bad_is="that sigma + 1 urad",
+)
 
 
 def _sigma_rows(ctx, form, kind, key, rid, r, claim, corrected) -> Row:
@@ -514,16 +492,7 @@ def _sigma_rows(ctx, form, kind, key, rid, r, claim, corrected) -> Row:
     )
 
 
-@SECTION.check(
-    50.7,
-    forms=Forms(
-        printed=eq49_sigma,
-        good=_sigma_true,
-        bad=_sigma_slip,
-        good_is="the law of cosines with the SLJ's true horizontal distance",
-        bad_is="that sigma + 1 urad",
-    ),
-)
+@SECTION.check(50.7, forms=_SIGMA)
 def eq49_alpha_outer(ctx, sigma):
     return _sigma_rows(
         ctx,
@@ -538,16 +507,7 @@ def eq49_alpha_outer(ctx, sigma):
     )
 
 
-@SECTION.check(
-    50.9,
-    forms=Forms(
-        printed=eq49_sigma,
-        good=_sigma_true,
-        bad=_sigma_slip,
-        good_is="the law of cosines with the SLJ's true horizontal distance",
-        bad_is="that sigma + 1 urad",
-    ),
-)
+@SECTION.check(50.9, forms=_SIGMA)
 def eq51_alpha_inner(ctx, sigma):
     return _sigma_rows(
         ctx,

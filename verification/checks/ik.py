@@ -173,18 +173,23 @@ class Solver:
         return solve_thesis_arrays(T, ARM, n_grid=self.n_grid)
 
 
-_RECOVER_TOL = 1e-6  # [rad]: the thesis's bisection tolerance is 1e-6 deg (Sec 4.2.1)
-
-
-@SECTION.check(
-    29.0,
-    forms=Forms(
-        printed=Solver("thesis IIK (5 deg theta1 grid + Eq 12/13 points, bisection)", "thesis"),
+def solver_forms(thesis: Solver) -> Forms:
+    """The forms of a completeness claim about the thesis IIK: ``thesis`` (printed), the complete
+    elimination solver (good) and the thesis IIK on a coarse 30 deg theta1 grid (bad)."""
+    return Forms(
+        printed=thesis,
         good=Solver("complete elimination solver", "complete"),
         bad=Solver("thesis IIK on a 30 deg grid", "thesis", n_grid=12),
         good_is="the complete elimination solver",
         bad_is="the thesis IIK with a 30 deg theta1 grid",
-    ),
+    )
+
+
+_RECOVER_TOL = 1e-6  # [rad]: the thesis's bisection tolerance is 1e-6 deg (Sec 4.2.1)
+
+
+@SECTION.check(
+    29.0, forms=solver_forms(Solver("thesis IIK (5 deg theta1 grid + Eq 12/13 points, bisection)", "thesis"))
 )
 def completeness(ctx, solver):
     """Sec 3.3.1 / 5.2: the IIK finds every solution of a pose (the generating q among them)."""

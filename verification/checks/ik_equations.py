@@ -20,7 +20,8 @@ from iik.dh import dh_link_transform
 
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements
-from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, off_by, verdict_of
+from ..shorthand import cos_sin
 
 ARM = iik.THESIS_ARM
 L1, L2, L3, L4, L5 = ARM.lengths
@@ -132,15 +133,6 @@ def _row(
     )
 
 
-def _plus(f, eps=1e-9):
-    """``f`` with its output moved by ``eps`` (a deliberate slip)."""
-
-    def g(*args):
-        return np.asarray(f(*args)) + eps
-
-    return g
-
-
 def _step(
     order: float,
     name: str,
@@ -187,7 +179,7 @@ def _step(
 
 def _printed_is_right(form, bad_is: str, good_is: str = "the printed form (it is right)") -> Forms:
     """Forms of a step printed right: the printed form is also the good one; the bad one is it + 1e-9."""
-    return Forms(printed=form, good=form, bad=_plus(form), good_is=good_is, bad_is=bad_is)
+    return Forms(printed=form, good=form, bad=off_by(form, 1e-9), good_is=good_is, bad_is=bad_is)
 
 
 _ATAN2 = Forms(
@@ -267,7 +259,7 @@ eq6_point_b = _step(
     forms=Forms(
         printed=eq6_printed,
         good=_eq6_rot,
-        bad=_plus(eq6_printed),
+        bad=off_by(eq6_printed, 1e-9),
         good_is="Rz(theta1) [l2 0 0]",
         bad_is="each coordinate moved by 1 nm",
     ),
@@ -275,7 +267,7 @@ eq6_point_b = _step(
 
 
 def eq7_printed(th1, th2):
-    c1, s1, c2, s2 = np.cos(th1), np.sin(th1), np.cos(th2), np.sin(th2)
+    c1, s1, c2, s2 = cos_sin(th1, th2)
     return np.stack([L2 * c1 + L3 * c2 * c1, L2 * s1 + L3 * c2 * s1, -L3 * s2], 1)
 
 
@@ -297,7 +289,7 @@ eq7_point_c = _step(
     forms=Forms(
         printed=eq7_printed,
         good=_eq7_geom,
-        bad=_plus(eq7_printed),
+        bad=off_by(eq7_printed, 1e-9),
         good_is="p_B + l3 (unit vector of link 3)",
         bad_is="each coordinate moved by 1 nm",
     ),
@@ -307,7 +299,7 @@ eq7_point_c = _step(
 def eq8_printed(R, D, th1, th2):
     r13, r23, r33 = R[:, 0, 2], R[:, 1, 2], R[:, 2, 2]
     x, y, z = D.T
-    c1, s1, c2, s2 = np.cos(th1), np.sin(th1), np.cos(th2), np.sin(th2)
+    c1, s1, c2, s2 = cos_sin(th1, th2)
     return (
         (r23 * z - r33 * y) * c2 * c1
         + (r33 * x - r13 * z) * c2 * s1
@@ -371,7 +363,7 @@ def eq8_plane(ctx, eq8):
 def _pq(R, D, th1):
     r13, r23, r33 = R[:, 0, 2], R[:, 1, 2], R[:, 2, 2]
     x, y, z = D.T
-    c1, s1 = np.cos(th1), np.sin(th1)
+    c1, s1 = cos_sin(th1)
     P = (r23 * z - r33 * y) * c1 + (r33 * x - r13 * z) * s1
     Q = (r23 * x - r13 * y) + r13 * L2 * s1 - r23 * L2 * c1
     return P, Q
@@ -412,7 +404,7 @@ eq9_theta2 = _step(
     forms=Forms(
         printed=eq9_printed,
         good=eq9_corrected,
-        bad=_plus(eq9_corrected, 1e-6),
+        bad=off_by(eq9_corrected, 1e-6),
         good_is="tan(theta2) = -P/Q (both branches)",
         bad_is="the good branches moved by 1 urad",
     ),
@@ -433,7 +425,7 @@ def eq9abc_corrected(p, z6):
     forms=Forms(
         printed=eq9abc_printed,
         good=eq9abc_corrected,
-        bad=_plus(eq9abc_corrected),
+        bad=off_by(eq9abc_corrected, 1e-9),
         good_is="D = p + l5 z6 - l1 e_z (Table II: d6 = -l5)",
         bad_is="each coordinate moved by 1 nm",
     ),
@@ -501,7 +493,7 @@ eq10_lengths = _step(
     forms=Forms(
         printed=eq10_printed,
         good=_eq10_lengths,
-        bad=_plus(eq10_printed, 1e-6),
+        bad=off_by(eq10_printed, 1e-6),
         good_is="the two length conditions |BC| = l3, |DC| = l4",
         bad_is="the sum moved by 1 um",
     ),
@@ -510,7 +502,7 @@ eq10_lengths = _step(
 
 def eq11_printed(D, th1, th2):
     x, y, z = D.T
-    c1, s1, c2, s2 = np.cos(th1), np.sin(th1), np.cos(th2), np.sin(th2)
+    c1, s1, c2, s2 = cos_sin(th1, th2)
     return (
         x**2
         + y**2
@@ -533,7 +525,7 @@ def eq11_geometric(D, th1, th2):
     forms=Forms(
         printed=eq11_printed,
         good=eq11_geometric,
-        bad=_plus(eq11_printed),
+        bad=off_by(eq11_printed, 1e-9),
         good_is="|D - C|^2 - l4^2 with C of Eq 7",
         bad_is="the printed value moved by 1e-9 m^2",
     ),
@@ -715,20 +707,12 @@ def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
     )
 
 
-def _eq12_bad(p, D):
-    return eq12_printed(p, D) + 0.3
-
-
-def _eq13_bad(p, D):
-    return eq13_corrected(p, D) + 1e-3
-
-
 @SECTION.check(
     21.5,
     forms=Forms(
         printed=eq12_printed,
         good=NumericArgmin(1.0),
-        bad=_eq12_bad,
+        bad=off_by(eq12_printed, 0.3),
         good_is="the minimiser found by a 7200-point grid and scipy's bounded Brent search",
         bad_is="atan2(py, px) + 0.3 rad",
     ),
@@ -743,7 +727,7 @@ def eq12_minimum(ctx, form):
     forms=Forms(
         printed=eq13_printed,
         good=eq13_corrected,
-        bad=_eq13_bad,
+        bad=off_by(eq13_corrected, 1e-3),
         good_is="atan2(yD, xD) + pi (the wrist point's opposite azimuth)",
         bad_is="the good form + 1 mrad",
     ),
@@ -756,13 +740,13 @@ def eq13_maximum(ctx, form):
 # ----------------------------------------------------------------------------- Eq 14-16
 def eq14_printed(D, th1):
     x, y, z = D.T
-    c1, s1 = np.cos(th1), np.sin(th1)
+    c1, s1 = cos_sin(th1)
     return (x**2 + y**2 + z**2 + L2**2 - L3**2 - L4**2 - 2 * L2 * (x * c1 - y * s1)) / (2 * L3 * L4)
 
 
 def eq14_corrected(D, th1):
     x, y, z = D.T
-    c1, s1 = np.cos(th1), np.sin(th1)
+    c1, s1 = cos_sin(th1)
     return (x**2 + y**2 + z**2 + L2**2 - L3**2 - L4**2 - 2 * L2 * (x * c1 + y * s1)) / (2 * L3 * L4)
 
 
@@ -780,7 +764,7 @@ eq14_c4 = _step(
     forms=Forms(
         printed=eq14_printed,
         good=eq14_corrected,
-        bad=_plus(eq14_corrected),
+        bad=off_by(eq14_corrected, 1e-9),
         good_is="the law of cosines on triangle B, C, D: ... - 2 l2 (xD c1 + yD s1)",
         bad_is="good + 1e-9",
     ),
@@ -814,7 +798,7 @@ eq15_s4 = _step(
     forms=Forms(
         printed=eq15_printed,
         good=_eq15_good,
-        bad=_plus(eq15_printed),
+        bad=off_by(eq15_printed, 1e-9),
         good_is="+-sin(acos(c4))",
         bad_is="both branches moved by 1e-9",
     ),
@@ -878,7 +862,7 @@ def eq17_composition(ctx, form):
 
 
 def eq18_inverse_printed(q):
-    c1, s1, c2, s2 = np.cos(q[:, 0]), np.sin(q[:, 0]), np.cos(q[:, 1]), np.sin(q[:, 1])
+    c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
     z, o = np.zeros_like(c1), np.ones_like(c1)
     return np.stack(
         [
@@ -892,8 +876,8 @@ def eq18_inverse_printed(q):
 
 
 def eq18_t25_printed(q):
-    c3, s3, c4, s4 = np.cos(q[:, 2]), np.sin(q[:, 2]), np.cos(q[:, 3]), np.sin(q[:, 3])
-    c45, s45 = np.cos(q[:, 3] + q[:, 4]), np.sin(q[:, 3] + q[:, 4])
+    c3, s3, c4, s4 = cos_sin(q[:, 2], q[:, 3])
+    c45, s45 = cos_sin(q[:, 3] + q[:, 4])
     z, o = np.zeros_like(c3), np.ones_like(c3)
     return np.stack(
         [
@@ -1009,7 +993,7 @@ eq18_frame = _step(
 
 
 def eq19_printed(q, D):
-    c1, s1 = np.cos(q[:, 0]), np.sin(q[:, 0])
+    c1, s1 = cos_sin(q[:, 0])
     return np.stack([c1 * D[:, 1] - s1 * D[:, 0], -L4 * np.sin(q[:, 2]) * np.sin(q[:, 3])])
 
 
@@ -1031,7 +1015,7 @@ eq19_element = _step(
     forms=Forms(
         printed=eq19_printed,
         good=_eq19_good,
-        bad=_plus(eq19_printed),
+        bad=off_by(eq19_printed, 1e-9),
         good_is="row 3 of 0_2T^-1 times D, and -l4 s3 s4",
         bad_is="both sides moved by 1 nm",
     ),
@@ -1039,7 +1023,7 @@ eq19_element = _step(
 
 
 def eq20_printed(q, D):
-    c1, s1 = np.cos(q[:, 0]), np.sin(q[:, 0])
+    c1, s1 = cos_sin(q[:, 0])
     return (s1 * D[:, 0] - c1 * D[:, 1]) / (L4 * np.sin(q[:, 3]))
 
 
@@ -1072,7 +1056,7 @@ eq21_c3 = _step(
     forms=Forms(
         printed=eq15_printed,
         good=_eq15_good,
-        bad=_plus(eq15_printed),
+        bad=off_by(eq15_printed, 1e-9),
         good_is="+-sin(acos(s3)) read as cosines",
         bad_is="both branches moved by 1e-9",
     ),
@@ -1108,13 +1092,13 @@ eq24_entries = _step(
 
 def eq25_lhs(R, q):
     r13, r23, r33 = R[:, 0, 2], R[:, 1, 2], R[:, 2, 2]
-    c1, s1, c2, s2 = np.cos(q[:, 0]), np.sin(q[:, 0]), np.cos(q[:, 1]), np.sin(q[:, 1])
+    c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
     return r13 * c1 * s2 + r23 * s1 * s2 + r33 * c2
 
 
 def eq26_lhs(R, q):
     r13, r23, r33 = R[:, 0, 2], R[:, 1, 2], R[:, 2, 2]
-    c1, s1, c2, s2 = np.cos(q[:, 0]), np.sin(q[:, 0]), np.cos(q[:, 1]), np.sin(q[:, 1])
+    c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
     return r13 * c1 * c2 + r23 * s1 * c2 - r33 * s2
 
 
@@ -1132,10 +1116,6 @@ def eq27_printed(a13, a33, c3, s3):
 def eq27_companion(a13, a33, c3, s3):
     """s45 = -c3 a13 + s3 a33 (Eq 25 and its row-3 companion s3 s45): valid for every theta3."""
     return -c3 * a13 + s3 * a33
-
-
-def _eq27_slip(a13, a33, c3, s3):
-    return eq27_companion(a13, a33, c3, s3) + 1e-6
 
 
 def _theta5(s45_form, R, q, c3, s3):
@@ -1161,7 +1141,7 @@ def _near_c3_zero(ctx) -> Sample:
 _EQ27 = Forms(
     printed=eq27_printed,
     good=eq27_companion,
-    bad=_eq27_slip,
+    bad=off_by(eq27_companion, 1e-6),
     good_is="s45 = -c3 (Eq 25 left side) + s3 (its row-3 companion)",
     bad_is="the good s45 + 1e-6",
 )
@@ -1229,10 +1209,6 @@ def _eq28_good(sn, cs, th4):
     return np.angle(cs + 1j * sn) - th4
 
 
-def _eq28_slip(sn, cs, th4):
-    return _atan2_minus(sn, cs, th4) + 1e-6
-
-
 def _eq28_error(s: Sample, eq28) -> np.ndarray:
     t45 = s.q[:, 3] + s.q[:, 4]
     return _wrap(eq28(np.sin(t45), np.cos(t45), s.q[:, 3]) - s.q[:, 4])
@@ -1251,7 +1227,7 @@ eq28_theta5 = _step(
     forms=Forms(
         printed=_atan2_minus,
         good=_eq28_good,
-        bad=_eq28_slip,
+        bad=off_by(_atan2_minus, 1e-6),
         good_is="arg(c45 + i s45) - theta4",
         bad_is="the printed form + 1 urad",
     ),
@@ -1265,19 +1241,12 @@ def eq29_composition(ctx, form):
 
 
 def eq30_row3_printed(q):
-    c1, s1, c2, s2, c3, s3 = (
-        np.cos(q[:, 0]),
-        np.sin(q[:, 0]),
-        np.cos(q[:, 1]),
-        np.sin(q[:, 1]),
-        np.cos(q[:, 2]),
-        np.sin(q[:, 2]),
-    )
+    c1, s1, c2, s2, c3, s3 = cos_sin(q[:, 0], q[:, 1], q[:, 2])
     return np.stack([s1 * c3 - c1 * s2 * s3, -c1 * c3 - s1 * s2 * s3, -c2 * s3], 1)
 
 
 def eq30_t56_printed(q):
-    c6, s6 = np.cos(q[:, 5]), np.sin(q[:, 5])
+    c6, s6 = cos_sin(q[:, 5])
     z, o = np.zeros_like(c6), np.ones_like(c6)
     return np.stack(
         [

@@ -27,7 +27,8 @@ from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements, thesis_model, tool_jacobians, tool_poses
 from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
 from ..plotting import draw_arm, draw_collision, draw_scene, new_figure
-from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, off_by, verdict_of
+from ..shorthand import cos_sin
 from ..testing.strategies import BEYOND, sample_joints
 
 TOL_EXACT = 1e-12  # [m] and [-]: closed forms vs Pinocchio
@@ -47,7 +48,7 @@ def _trig(q):
     q = np.asarray(q, float)
     c = {i + 1: np.cos(q[..., i]) for i in range(6)}
     s = {i + 1: np.sin(q[..., i]) for i in range(6)}
-    c45, s45 = np.cos(q[..., 3] + q[..., 4]), np.sin(q[..., 3] + q[..., 4])
+    c45, s45 = cos_sin(q[..., 3] + q[..., 4])
     return c, s, c45, s45
 
 
@@ -232,14 +233,7 @@ APPB_CORRECTED = (
 
 def eq42_printed(alpha, beta, gamma) -> np.ndarray:
     """Eq 42 exactly as printed -> (3, 3) (or (n, 3, 3) for arrays)."""
-    ca, sa, cb, sb, cg, sg = (
-        np.cos(alpha),
-        np.sin(alpha),
-        np.cos(beta),
-        np.sin(beta),
-        np.cos(gamma),
-        np.sin(gamma),
-    )
+    ca, sa, cb, sb, cg, sg = cos_sin(alpha, beta, gamma)
     R = np.stack(
         [
             np.stack([ca * cb * cg - sa * sg, -ca * cb * sg - sa * cg, ca * sb], -1),
@@ -286,7 +280,7 @@ def _appb_nudged(q, arm=THESIS_ARM) -> list[np.ndarray]:
 def appb_first_printed(qs, arm=THESIS_ARM) -> tuple[np.ndarray, np.ndarray]:
     """The legible part of App. B's first set as printed: 0_1T (n, 4, 4) and rows 1-2 of the
     rotation of 1_2T ('c2 -s2 0', '0 0 1') (n, 2, 3)."""
-    c1, s1, c2, s2 = np.cos(qs[:, 0]), np.sin(qs[:, 0]), np.cos(qs[:, 1]), np.sin(qs[:, 1])
+    c1, s1, c2, s2 = cos_sin(qs[:, 0], qs[:, 1])
     one, zero = np.ones(len(qs)), np.zeros(len(qs))
     T01 = np.stack(
         [
@@ -343,14 +337,7 @@ EQ34_ARGUMENTS = {"f1": (1, 2, 3, 4, 5), "f2": (1, 2, 3, 4, 5), "f3": (2, 3, 4, 
 
 def eq42_zyz(alpha, beta, gamma) -> np.ndarray:
     """Known-good Eq 42: Craig's Z-Y-Z matrix, closed form (the printed one with r21 fixed)."""
-    ca, sa, cb, sb, cg, sg = (
-        np.cos(alpha),
-        np.sin(alpha),
-        np.cos(beta),
-        np.sin(beta),
-        np.cos(gamma),
-        np.sin(gamma),
-    )
+    ca, sa, cb, sb, cg, sg = cos_sin(alpha, beta, gamma)
     return np.stack(
         [
             np.stack([ca * cb * cg - sa * sg, -ca * cb * sg - sa * cg, ca * sb], -1),
@@ -363,14 +350,7 @@ def eq42_zyz(alpha, beta, gamma) -> np.ndarray:
 
 def eq42_zxz(alpha, beta, gamma) -> np.ndarray:
     """The Z-X-Z matrix R = Rz(alpha) Rx(beta) Rz(gamma), closed form."""
-    ca, sa, cb, sb, cg, sg = (
-        np.cos(alpha),
-        np.sin(alpha),
-        np.cos(beta),
-        np.sin(beta),
-        np.cos(gamma),
-        np.sin(gamma),
-    )
+    ca, sa, cb, sb, cg, sg = cos_sin(alpha, beta, gamma)
     return np.stack(
         [
             np.stack([ca * cg - sa * cb * sg, -ca * sg - sa * cb * cg, sa * sb], -1),
@@ -860,14 +840,10 @@ def _first_r12_truth(qs) -> np.ndarray:
     rot_x = np.array(
         [[1, 0, 0], [0, np.cos(row.alpha), -np.sin(row.alpha)], [0, np.sin(row.alpha), np.cos(row.alpha)]]
     )
-    c, s = np.cos(qs[:, 1]), np.sin(qs[:, 1])
+    c, s = cos_sin(qs[:, 1])
     rz = np.zeros((len(qs), 3, 3))
     rz[:, 0, 0], rz[:, 0, 1], rz[:, 1, 0], rz[:, 1, 1], rz[:, 2, 2] = c, -s, s, c, 1.0
     return (rot_x @ rz)[:, :2, :]
-
-
-def _pos_nudged(q, arm=THESIS_ARM):
-    return eq55_printed(q, arm) + 1e-9
 
 
 @SECTION.check(
@@ -875,7 +851,7 @@ def _pos_nudged(q, arm=THESIS_ARM):
     forms=Forms(
         printed=eq55_printed,
         good=position_from_table_ii,
-        bad=_pos_nudged,
+        bad=off_by(eq55_printed, 1e-9),
         good_is="the position column of the Table II product",
         bad_is="each coordinate moved by 1 nm",
     ),

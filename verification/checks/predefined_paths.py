@@ -22,7 +22,7 @@ from iik.scene import THESIS_SCENE
 
 from ..oracles.baselines import newton_pinv
 from ..registry import Forms, Measure, Row, Section, Verdict, verdict_of
-from .ik import Solver
+from .ik import Solver, solver_forms
 
 ARM = iik.THESIS_ARM
 PATHS = ("p1", "p2", "p3")
@@ -98,13 +98,7 @@ def _solutions(solver: Solver, T) -> list[np.ndarray]:
 @SECTION.check(
     61.0,
     depends_on=_DEP + ("complete-solver",),
-    forms=Forms(
-        printed=Solver("thesis IIK", "thesis"),
-        good=Solver("complete elimination solver", "complete"),
-        bad=Solver("thesis IIK on a 30 deg grid", "thesis", n_grid=12),
-        good_is="the complete elimination solver",
-        bad_is="the thesis IIK with a 30 deg theta1 grid",
-    ),
+    forms=solver_forms(Solver("thesis IIK", "thesis")),
 )
 def iik_along_paths(ctx, solver):
     """Sec 4.2.1 / 5.2: the IIK computed the joint angles at every position of the predefined paths."""

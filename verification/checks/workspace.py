@@ -23,7 +23,8 @@ from ..numbers import fmt_vec
 from ..oracles.pinocchio_model import joint_placements
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, off_by, verdict_of
+from ..shorthand import cos_sin
 
 _D = np.pi / 180
 ARM = iik.THESIS_ARM
@@ -56,7 +57,7 @@ def eq36_41_test(
         else:
             u = px * np.cos(th1) + py * np.sin(th1)
             th2 = np.clip(-np.arctan2(pz - l1, u - l2), arm.lower[1], arm.upper[1])
-        c2, s2 = np.cos(th2), np.sin(th2)
+        c2, s2 = cos_sin(th2)
         x4 = (l2 + eq40_sign * l3 * c2) * np.cos(th1)  # Eq 40 (printed: l2 - l3 c2)
         y4 = (l2 + eq40_sign * l3 * c2) * np.sin(th1)
         z4 = l1 - l3 * s2
@@ -301,10 +302,6 @@ def eq37_printed(phi):
     return np.stack([ARM.l2 * np.cos(phi), ARM.l2 * np.sin(phi), np.full_like(phi, ARM.l1)], 1)
 
 
-def _eq37_slip(phi):
-    return eq37_printed(phi) + 1e-9
-
-
 def _joint(q: np.ndarray, frame: int) -> np.ndarray:
     return joint_placements(q)[:, frame, :3, 3]
 
@@ -315,7 +312,7 @@ def _joint(q: np.ndarray, frame: int) -> np.ndarray:
     forms=Forms(
         printed=eq37_printed,
         good=eq37_printed,
-        bad=_eq37_slip,
+        bad=off_by(eq37_printed, 1e-9),
         good_is="the printed form (it is right)",
         bad_is="each coordinate moved by 1 nm",
     ),
@@ -338,22 +335,21 @@ def eq37_joint2(ctx, eq37):
     )
 
 
-def _region1(margin: float):
-    def test(P):
-        return eq36_41_test(P, margin=margin)
-
-    return test
+def _region_forms(good_is: str, bad_is: str, **test) -> Forms:
+    """Forms of one region's test (:func:`eq36_41_test` with ``test``): right as printed; the bad form has
+    its reach 5 mm short."""
+    right = partial(eq36_41_test, **test)
+    return Forms(
+        printed=right,
+        good=right,
+        bad=partial(eq36_41_test, margin=-0.005, **test),
+        good_is=good_is,
+        bad_is=bad_is,
+    )
 
 
 @SECTION.check(
-    40.2,
-    forms=Forms(
-        printed=_region1(0.0),
-        good=_region1(0.0),
-        bad=_region1(-0.005),
-        good_is="the printed test (it is right)",
-        bad_is="the reach l3 + l4 + l5 shortened by 5 mm",
-    ),
+    40.2, forms=_region_forms("the printed test (it is right)", "the reach l3 + l4 + l5 shortened by 5 mm")
 )
 def eq38_region1(ctx, test):
     """Eq 38: in region 1 (|phi| < 160 deg) the point is outside iff rho1 > l3 + l4 + l5."""
@@ -377,10 +373,6 @@ def eq39_printed(P, th1):
 def eq39_corrected(P, th1):
     u = P[:, 0] * np.cos(th1) + P[:, 1] * np.sin(th1)
     return np.clip(-np.arctan2(P[:, 2] - ARM.l1, u - ARM.l2), ARM.lower[1], ARM.upper[1])
-
-
-def _eq39_slip(P, th1):
-    return eq39_corrected(P, th1) + 1e-3
 
 
 def _nearest_joint4_theta2(P, th1) -> np.ndarray:
@@ -421,7 +413,7 @@ def _rear_points(ctx) -> tuple[np.ndarray, float]:
     forms=Forms(
         printed=eq39_printed,
         good=eq39_corrected,
-        bad=_eq39_slip,
+        bad=off_by(eq39_corrected, 1e-3),
         good_is="theta2 = -atan2(pz - l1, u - l2), u along the joint-1 limit direction, clipped to Table I",
         bad_is="the good theta2 + 1 mrad",
     ),
@@ -477,7 +469,7 @@ def eq40_corrected(th1, th2):
     forms=Forms(
         printed=eq40_printed,
         good=eq40_corrected,
-        bad=lambda a, b: eq40_corrected(a, b) + 1e-9,
+        bad=off_by(eq40_corrected, 1e-9),
         good_is="(l2 + l3 c2) (cos th1, sin th1), l1 - l3 s2",
         bad_is="the good point moved by 1 nm",
     ),
@@ -511,21 +503,13 @@ def eq40_joint4(ctx, eq40):
     )
 
 
-def _region23(margin: float):
-    def test(P):
-        return eq36_41_test(P, eq39="corrected", eq40_sign=1.0, margin=margin)
-
-    return test
-
-
 @SECTION.check(
     40.5,
-    forms=Forms(
-        printed=_region23(0.0),
-        good=_region23(0.0),
-        bad=_region23(-0.005),
-        good_is="the printed test (with Eq 39-40 corrected it is right)",
-        bad_is="the reach l4 + l5 shortened by 5 mm",
+    forms=_region_forms(
+        "the printed test (with Eq 39-40 corrected it is right)",
+        "the reach l4 + l5 shortened by 5 mm",
+        eq39="corrected",
+        eq40_sign=1.0,
     ),
 )
 def eq41_regions23(ctx, test):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 import pytest
 
@@ -40,9 +42,10 @@ def test_printed_eq40_rejects_a_reachable_point():
 def test_cartesian_test_verdicts_follow_the_form(ctx):
     assert W.eq36_41(ctx, W.eq36_41_printed).verdict is Verdict.ERRATUM
     assert W.eq36_41(ctx, iik.in_workspace).verdict is Verdict.HOLDS
-    assert W.eq38_region1(ctx, W._region1(0.0)).verdict is Verdict.HOLDS
-    assert W.eq41_regions23(ctx, W._region23(0.0)).verdict is Verdict.HOLDS
-    assert W.eq41_regions23(ctx, W._region23(-0.005)).verdict is Verdict.ERRATUM
+    assert W.eq38_region1(ctx, W.eq36_41_test).verdict is Verdict.HOLDS
+    regions23 = partial(W.eq36_41_test, eq39="corrected", eq40_sign=1.0)
+    assert W.eq41_regions23(ctx, regions23).verdict is Verdict.HOLDS
+    assert W.eq41_regions23(ctx, partial(regions23, margin=-0.005)).verdict is Verdict.ERRATUM
 
 
 def test_eq39_eq40_errata_against_exact_geometry(ctx):
