@@ -484,8 +484,7 @@ def decode(frame: can.Message) -> Message:
         if len(data) < 2:
             raise ProtocolError(f"{where}: command 0x{cmd_code:02x} needs a second byte")
         if cmd_code == Cmd.SETPARAM:
-            par = _param(data[1], WRITABLE, where)
-            return SetParam(module, par, _unpack(PARAM_TYPES[par], data[2:], f"{where} {par.name}"))
+            return _decode_param(SetParam, module, data, where)
         if cmd_code == Cmd.SETMOVE:
             mode = _mode(data[1], where)
             if mode.plain is Mode.FSTEP:
@@ -501,10 +500,9 @@ def decode(frame: can.Message) -> Message:
     if len(data) < 2:
         raise ProtocolError(f"{where}: reply to 0x{cmd_code:02x} needs a second byte")
     if cmd_code == Cmd.GETPARAM:
-        par = _param(data[1], READABLE, where)
-        return ParamReply(module, par, _unpack(PARAM_TYPES[par], data[2:], f"{where} {par.name}"))
+        return _decode_param(ParamReply, module, data, where)
     if cmd_code == Cmd.SETPARAM:
-        return SetParamAck(module, _param(data[1], WRITABLE, where))
+        return _decode_param(SetParamAck, module, data, where)
     if cmd_code == Cmd.SETMOVE:
         mode = _mode(data[1], where)
         if mode.extended:
@@ -512,6 +510,15 @@ def decode(frame: can.Message) -> Message:
             return MoveAck(module, mode, pos, short, dio)
         return MoveAck(module, mode)  # B: a third byte 0x64 may follow; ignored
     raise ProtocolError(f"{where}: unknown reply command 0x{cmd_code:02x}")
+
+
+def _decode_param(kind, module: int, data: bytes, where: str):
+    """A parameter message ``kind`` (a key of :data:`_PARAM_FRAMES`) from ``[cmd, par, value...]``."""
+    _, _, allowed, carries_value, _ = _PARAM_FRAMES[kind]
+    par = _param(data[1], allowed, where)
+    if not carries_value:
+        return kind(module, par)
+    return kind(module, par, _unpack(PARAM_TYPES[par], data[2:], f"{where} {par.name}"))
 
 
 def _decode_broadcast(data: bytes) -> Broadcast:

@@ -447,16 +447,16 @@ def table_ii_encoding(ctx):
     m_rows = Measure("max |printed - encoded| DH field", d_rows, 0.0, "rad or m")
     m_lim = Measure("max |printed - URDF| limit", d_lim, 1e-15, "rad")
     return [
-        Row(
+        Row.graded(
             "The DH parameters of the arm are those of Table II (modified DH, offsets -90, -90, +90 deg on "
             "joints 2, 4, 5; d6 = -l5).",
             "Table II",
             "Printed table transcribed symbolically, lengths substituted, compared field by field with "
             "iik.THESIS_ARM.dh_table()",
             f"max |difference| = {d_rows:.1e} (rad or m)",
-            verdict_of([m_rows], fail=Verdict.DOES_NOT_HOLD),
+            (m_rows,),
+            fail=Verdict.DOES_NOT_HOLD,
             id="table_ii",
-            measures=(m_rows,),
         ),
         Row(
             "Joint limits are those of Table I.",
@@ -939,14 +939,14 @@ def eq34_arguments(ctx, arguments):
     m = (
         Measure("max coordinate change from a joint not in the argument list", worst_missing, TOL_EXACT, "m"),
     )
-    return Row(
+    return Row.graded(
         "Eq 34: joint 6 does not move the end-effector point, and f3 does not depend on theta1.",
         "Eq 34",
         f"Pinocchio tool position at {len(qs)} random q in Table I; each joint resampled in turn",
         "; ".join(lines),
-        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="eq34",
-        measures=m,
     )
 
 
@@ -1099,14 +1099,14 @@ def iik_kinematics(ctx, impl):
         Measure("max rotation angle", dr, TOL_EXACT, "rad"),
         Measure("max |dJ|", dj, TOL_EXACT, "m/rad or -"),
     )
-    return Row(
+    return Row.graded(
         "(Project) iik.fk and the 6x6 iik.jacobian agree with Pinocchio.",
         "iik.kinematics (Eq 4, Eq 56)",
         f"Pinocchio framesForwardKinematics and computeFrameJacobian (LOCAL_WORLD_ALIGNED), {len(qs)} q",
         f"max |dp| = {dp:.1e} m, max rotation angle {dr:.1e} rad, max |dJ| = {dj:.1e}",
-        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="iik_kinematics",
-        measures=m,
         scope=Scope.PROJECT,
     )
 
@@ -1277,7 +1277,7 @@ def ur5_generator_check(ctx, generator):
         "log10 error, generated UR5 vs ur5_robot.urdf",
         f"UR5 from its DH table, {len(qs)} q",
     )
-    return Row(
+    return Row.graded(
         "(Project) The DH -> URDF generator is right: the UR5 built from its published standard DH table "
         "matches example-robot-data's ur5_robot.urdf.",
         "iik.urdf (Sec 3.2 method: DH description)",
@@ -1288,10 +1288,10 @@ def ur5_generator_check(ctx, generator):
         f"max |dp| = {dp.max():.1e} m, max rotation angle = {dr.max():.1e} rad (tolerance 1e-9; the "
         "reference "
         f"file rounds pi/2 to 1.57079632679); solved B, E differ from the frozen ones by {d_solved:.1e}",
-        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         figures=(rel,),
         id="ur5",
-        measures=m,
         scope=Scope.PROJECT,
     )
 
@@ -1310,7 +1310,7 @@ def panda_generator_check(ctx, generator):
     dp = np.linalg.norm(Tg[:, :3, 3] - Tr[:, :3, 3], axis=1)
     dr = rotation_angle(Tg[:, :3, :3], Tr[:, :3, :3])
     m = (Measure("max |dp|", dp.max(), 1e-9, "m"), Measure("max rotation angle", dr.max(), 1e-9, "rad"))
-    return Row(
+    return Row.graded(
         "(Project) The DH -> URDF generator maps Craig's modified DH (Table II's convention) right: the "
         "Franka "
         "Panda built from its published modified DH table matches example-robot-data's panda.urdf.",
@@ -1321,9 +1321,9 @@ def panda_generator_check(ctx, generator):
         "closed form from 50 q",
         f"max |dp| = {dp.max():.1e} m, max rotation angle = {dr.max():.1e} rad (tolerance 1e-9); solved "
         f"base/tool transforms differ from the identity by {d_id:.1e}",
-        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="panda",
-        measures=m,
         scope=Scope.PROJECT,
     )
 

@@ -597,15 +597,15 @@ def check_scenarios(ctx, source: PathSource) -> Row:
         )
         touched = ", ".join(f"{t.value * 1e3:.1f}" for t in ch.tried[: ch.index])
         details.append(
-            Row(
+            Row.graded(
                 claim=sc.title,
                 reference=sc.reference or "Sec 4.2.2",
                 method=source.name,
                 numbers=f"IK branch {ch.index + 1} of {len(source.paths(ctx, name))}"
                 + (f" (earlier branches touch the scene: {touched} mm)" if touched else "")
                 + f"; {tool}; whole arm: min {c.mm()}; {len(branch_switches(ch.q))} branch switches",
-                verdict=verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
                 measures=m,
+                fail=Verdict.DOES_NOT_HOLD,
                 id=name,
             )
         )
@@ -652,15 +652,15 @@ def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
         c = measure_clearance(_checker(ctx, name), ch.q, sc.safety_zone)
         m = (Measure("whole-arm clearance", c.value, sc.safety_zone, "m", bound=">="),)
         details.append(
-            Row(
+            Row.graded(
                 claim=f"{sc.title}: whole arm >= {sc.safety_zone * 1e3:.0f} mm",
                 reference=sc.reference or "Sec 4.2",
                 method=source.name,
                 numbers=f"whole arm: min {c.mm()} (certified >= {c.lower * 1e3:.1f} mm); for comparison "
                 f"iik.planning.plan: {'OK' if res.success else 'FAILED'} via '{res.method}', "
                 f"{res.min_clearance * 1e3:.1f} mm",
-                verdict=verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
                 measures=m,
+                fail=Verdict.DOES_NOT_HOLD,
                 id=name,
                 scope=Scope.PROJECT,
             )
@@ -710,7 +710,7 @@ def check_planner(ctx, source: PathSource) -> Row:
             for k, c in enumerate(cs)
         )
         details.append(
-            Row(
+            Row.graded(
                 claim=f"{sc.title}: iik.planning.plan",
                 reference=sc.reference or "Sec 4.2",
                 method=source.name,
@@ -718,8 +718,8 @@ def check_planner(ctx, source: PathSource) -> Row:
                 + "; ".join(f"{labels[min(k, 1)]}: min {c.mm()}" for k, c in enumerate(cs))
                 + (f"; {res.trajectory.duration:.2f} s" if res.trajectory is not None else "")
                 + f"; planned in {wall:.2f} s",
-                verdict=verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
                 measures=m,
+                fail=Verdict.DOES_NOT_HOLD,
                 id=name,
                 scope=Scope.PROJECT,
             )
@@ -798,15 +798,15 @@ def check_smooth_joints(ctx, form) -> Row:
             ),
         )
         details.append(
-            Row(
+            Row.graded(
                 sc.title,
                 sc.reference or "Sec 4.2.2",
                 "thesis path",
                 f"largest joint change {math.degrees(step.max()):.1f} deg (joint {int(dq[k].argmax()) + 1} "
                 f"of 1-6) between step-points {k} and {k + 1} of 0-{len(q) - 1}; median "
                 f"{math.degrees(float(np.median(step))):.2f} deg",
-                verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
-                measures=m,
+                m,
+                fail=Verdict.DOES_NOT_HOLD,
                 id=name,
             )
         )

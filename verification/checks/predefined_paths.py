@@ -71,7 +71,7 @@ def step_length(ctx, steps):
             f"{len(cp.points) - 1} steps, longest {d.max() * 1e3:.1f} mm"
         )
     m = (Measure("longest step", worst, MAX_STEP, "m"),)
-    return Row(
+    return Row.graded(
         f"The segments of the predefined paths divided into {steps} steps each cover at most 30 mm per "
         "step-point.",
         "Sec 4.2.1",
@@ -79,9 +79,9 @@ def step_length(ctx, steps):
         "segment by iik.planning.build_path (arcs where the scenario says so; repulsion and platform/floor "
         "lift included); every step length measured",
         "; ".join(lines),
-        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="step_length",
-        measures=m,
     )
 
 
@@ -229,15 +229,15 @@ def iik_vs_newton(ctx, pick):
             else "on some steps Newton reaches a solution the thesis IIK missed (theta3 "
             "near +-90 deg, Eq 21), leaves Table I, or jumps to another branch",
         ),
-        Row(
+        Row.graded(
             "Hence the effort index (Eq 54) of both is identical (Figs 32, 36, 40).",
             "Sec 4.2.1.1, Eq 54",
             method + "; Eq 54 from the previous configuration to each answer",
             f"effort index differs (> {_SAME:g} rad) on {np.mean(de > _SAME):.1%} of {len(de)} steps; "
             "largest "
             f"difference {np.max(de):.2g} rad",
-            verdict_of(me, fail=Verdict.DOES_NOT_HOLD),
+            me,
+            fail=Verdict.DOES_NOT_HOLD,
             id="iik_vs_newton.effort",
-            measures=me,
         ),
     ]

@@ -107,19 +107,19 @@ def table_vi(ctx, sets):
             numbers += f". Note: {s.note}"
         m = (Measure("share of samples with full rank", 1 - frac, 0.0),)
         details.append(
-            Row(
+            Row.graded(
                 f"{s.name} = {_set_label(s)} is a type {s.kind} singularity set.",
                 f"App. D, Table VI, {s.name}",
                 "",
                 numbers,
-                verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+                m,
+                fail=Verdict.DOES_NOT_HOLD,
                 id=f"s{s.index}",
-                measures=m,
             )
         )
     bad = [d for d in details if d.verdict is not Verdict.HOLDS]
     m = (Measure("sets that are not singular", len(bad), 0),)
-    return Row(
+    return Row.graded(
         f"The {len(sets)} sets of Table VI (type I and II) are singularity sets of the arm.",
         "Table VI (App. D)",
         f"Pinocchio position Jacobian (reduced: columns of joints at a limit dropped) on {n} random samples "
@@ -127,9 +127,9 @@ def table_vi(ctx, sets):
         "each set's free joints within Table I; singular = rank < 3",
         f"{len(sets) - len(bad)} of {len(sets)} sets singular on every sample"
         + (f"; not: {', '.join(d.id for d in bad)}" if bad else ""),
-        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="table_vi",
-        measures=m,
         details=tuple(details),
     )
 
@@ -156,7 +156,7 @@ def table_vii(ctx, sets):
         joints = [j for j, _ in s0.fixed]
         m = (Measure("share of samples with full rank (worst set)", 1 - min(fr), 0.0),)
         details.append(
-            Row(
+            Row.graded(
                 f"s({s0.index})-s({group[-1].index}): joints {joints} at their limits (8 combinations), "
                 "joints "
                 f"{list(s0.free)} free, are constraint (type III) singularity sets.",
@@ -164,22 +164,22 @@ def table_vii(ctx, sets):
                 "",
                 f"rank < 3 on {min(fr):.0%}-{max(fr):.0%} of samples"
                 + (f". Note: {s0.note}" if s0.note else ""),
-                verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+                m,
+                fail=Verdict.DOES_NOT_HOLD,
                 id=f"s{s0.index}-{group[-1].index}",
-                measures=m,
             )
         )
     bad = [d for d in details if d.verdict is not Verdict.HOLDS]
     m = (Measure("groups with a set that is not singular", len(bad), 0),)
-    return Row(
+    return Row.graded(
         f"The {len(sets)} sets of Table VII (type III: three joints at limits) are singularity sets.",
         "Table VII (App. D)",
         f"Pinocchio reduced Jacobian (columns of the joints at limits dropped) on {n} samples per set",
         f"{len(details) - len(bad)} of {len(details)} groups singular on every sample (with three columns "
         "dropped the reduced Jacobian is 3x2, so rank <= 2: these sets are singular by their construction)",
-        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="table_vii",
-        measures=m,
         details=tuple(details),
     )
 

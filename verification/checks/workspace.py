@@ -700,7 +700,7 @@ def no_interior_boundary(ctx, margin):
     core = _cached_core(ctx)
     n_void = int(np.sum(deep & ~truth)) + int((~core).sum())
     m = (Measure("unreachable points inside the tested region", n_void, 0),)
-    return Row(
+    return Row.graded(
         "The workspace has no interior boundary (no unreachable void inside the exterior boundary).",
         "Sec 3.4.3",
         f"ground-truth reachability of the test points at least {margin * 1e3:.0f} mm inside the f(1) sphere "
@@ -708,9 +708,9 @@ def no_interior_boundary(ctx, margin):
         "many singular surfaces",
         f"{int(deep.sum())} test points in the region: {int(np.sum(deep & ~truth))} "
         f"unreachable; {len(core)} points in the core cube: {int((~core).sum())} unreachable",
-        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="no_interior_boundary",
-        measures=m,
     )
 
 
