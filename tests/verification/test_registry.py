@@ -8,7 +8,7 @@ import pytest
 
 from iik.errors import IIKError
 from verification import Check, Erratum, Forms, Measure, RegistrationError, Row, RowError, Verdict, register
-from verification.registry import registered_checks, verdict_of
+from verification.registry import Section, off_by, registered_checks, verdict_of
 from verification.thesis_index import parse_refs
 
 
@@ -98,3 +98,37 @@ def test_parse_refs():
 def test_erratum_is_plain_data():
     e = Erratum("Eq 1", "p", "c", "x")
     assert _row(verdict=Verdict.ERRATUM, errata=(e,)).errata == (e,)
+
+
+def test_graded_rows_keep_erratum_and_reason_only_when_failing():
+    e = Erratum("Eq 1", "p", "c", "x")
+    ok = Row.graded("c", "Eq 4", "m", "1", [Measure("x", 0.5, 1.0)], erratum=e, reason="why", id="a")
+    assert (ok.verdict, ok.errata, ok.reason, ok.id) == (Verdict.HOLDS, (), "", "a")
+    bad = Row.graded("c", "Eq 4", "m", "1", [Measure("x", 2.0, 1.0)], erratum=e, reason="why")
+    assert (bad.verdict, bad.errata, bad.reason) == (Verdict.ERRATUM, (e,), "why")
+    too_far = [Measure("x", 2.0, 1.0)]
+    refuted = Row.graded("c", "Eq 4", "m", "1", too_far, fail=Verdict.DOES_NOT_HOLD, reason="why")
+    assert (refuted.verdict, refuted.errata, refuted.reason) == (Verdict.DOES_NOT_HOLD, (), "why")
+    with pytest.raises(RowError, match="errata"):  # an erratum without its record is still refused
+        Row.graded("c", "Eq 4", "m", "1", [Measure("x", 2.0, 1.0)])
+
+
+def test_section_defaults_reach_its_checks():
+    from verification.checks import ik_equations
+
+    checks = {c.name: c for c in registered_checks()}
+    step = checks["verification.checks.ik_equations.eq6_point_b"]
+    assert (step.section, step.prefix, step.depends_on) == (
+        ik_equations.SECTION.title,
+        "ik",
+        ik_equations.SECTION.depends_on,
+    )
+    assert step.where == "verification.checks.ik_equations:eq6_point_b"
+    assert checks["verification.checks.ik.four_configurations"].depends_on == ("l1", "lengths")  # its own
+    with pytest.raises(RegistrationError, match="assumption"):  # the section's default is checked too
+        Section("S", depends_on=("nope",)).check(1.0)(lambda ctx: _row())
+
+
+def test_off_by_moves_the_output_only():
+    slipped = off_by(lambda x, scale=1.0: scale * x, 1e-3)
+    assert slipped(2.0, scale=3.0) == pytest.approx(6.001)
