@@ -537,6 +537,24 @@ def _no_path(sc, method: str, why: str, scope: Scope = Scope.THESIS) -> Row:
     )
 
 
+def _scenario_row(
+    sc, method: str, numbers: str, measures, *, claim: str = "", section: str = "Sec 4.2", scope=Scope.THESIS
+) -> Row:
+    """The detail row of scenario ``sc`` in a claim over the scenarios, graded on ``measures``
+    (DOES_NOT_HOLD if one fails): its claim is ``sc.title`` unless given, its reference the scenario's
+    own, else ``section``."""
+    return Row.graded(
+        claim or sc.title,
+        sc.reference or section,
+        method,
+        numbers,
+        measures,
+        fail=Verdict.DOES_NOT_HOLD,
+        id=sc.name,
+        scope=scope,
+    )
+
+
 def _grouped(details: list[Row], what: str, failing: Callable[[list[Row]], str], **fields) -> Row:
     """A claim over the scenarios, counted once with one detail per scenario: it holds if every detail
     holds; ``failing(rows)`` words the reason from the failing details."""
@@ -596,19 +614,12 @@ def check_scenarios(ctx, source: PathSource) -> Row:
             else "no obstacle to repel from (supports only)"
         )
         touched = ", ".join(f"{t.value * 1e3:.1f}" for t in ch.tried[: ch.index])
-        details.append(
-            Row.graded(
-                claim=sc.title,
-                reference=sc.reference or "Sec 4.2.2",
-                method=source.name,
-                numbers=f"IK branch {ch.index + 1} of {len(source.paths(ctx, name))}"
-                + (f" (earlier branches touch the scene: {touched} mm)" if touched else "")
-                + f"; {tool}; whole arm: min {c.mm()}; {len(branch_switches(ch.q))} branch switches",
-                measures=m,
-                fail=Verdict.DOES_NOT_HOLD,
-                id=name,
-            )
+        numbers = (
+            f"IK branch {ch.index + 1} of {len(source.paths(ctx, name))}"
+            + (f" (earlier branches touch the scene: {touched} mm)" if touched else "")
+            + f"; {tool}; whole arm: min {c.mm()}; {len(branch_switches(ch.q))} branch switches"
         )
+        details.append(_scenario_row(sc, source.name, numbers, m, section="Sec 4.2.2"))
     figs, views = _illustrations(ctx)
     return _grouped(
         details,
@@ -651,20 +662,13 @@ def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
             continue
         c = measure_clearance(_checker(ctx, name), ch.q, sc.safety_zone)
         m = (Measure("whole-arm clearance", c.value, sc.safety_zone, "m", bound=">="),)
-        details.append(
-            Row.graded(
-                claim=f"{sc.title}: whole arm >= {sc.safety_zone * 1e3:.0f} mm",
-                reference=sc.reference or "Sec 4.2",
-                method=source.name,
-                numbers=f"whole arm: min {c.mm()} (certified >= {c.lower * 1e3:.1f} mm); for comparison "
-                f"iik.planning.plan: {'OK' if res.success else 'FAILED'} via '{res.method}', "
-                f"{res.min_clearance * 1e3:.1f} mm",
-                measures=m,
-                fail=Verdict.DOES_NOT_HOLD,
-                id=name,
-                scope=Scope.PROJECT,
-            )
+        numbers = (
+            f"whole arm: min {c.mm()} (certified >= {c.lower * 1e3:.1f} mm); for comparison "
+            f"iik.planning.plan: {'OK' if res.success else 'FAILED'} via '{res.method}', "
+            f"{res.min_clearance * 1e3:.1f} mm"
         )
+        claim = f"{sc.title}: whole arm >= {sc.safety_zone * 1e3:.0f} mm"
+        details.append(_scenario_row(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT))
     return _grouped(
         details,
         "the whole-arm 30 mm standard",
@@ -709,21 +713,14 @@ def check_planner(ctx, source: PathSource) -> Row:
             Measure(f"whole-arm clearance, {labels[min(k, 1)]}", c.value, sc.safety_zone, "m", bound=">=")
             for k, c in enumerate(cs)
         )
-        details.append(
-            Row.graded(
-                claim=f"{sc.title}: iik.planning.plan",
-                reference=sc.reference or "Sec 4.2",
-                method=source.name,
-                numbers=f"'{res.method}', {len(res.q)} step-points; "
-                + "; ".join(f"{labels[min(k, 1)]}: min {c.mm()}" for k, c in enumerate(cs))
-                + (f"; {res.trajectory.duration:.2f} s" if res.trajectory is not None else "")
-                + f"; planned in {wall:.2f} s",
-                measures=m,
-                fail=Verdict.DOES_NOT_HOLD,
-                id=name,
-                scope=Scope.PROJECT,
-            )
+        numbers = (
+            f"'{res.method}', {len(res.q)} step-points; "
+            + "; ".join(f"{labels[min(k, 1)]}: min {c.mm()}" for k, c in enumerate(cs))
+            + (f"; {res.trajectory.duration:.2f} s" if res.trajectory is not None else "")
+            + f"; planned in {wall:.2f} s"
         )
+        claim = f"{sc.title}: iik.planning.plan"
+        details.append(_scenario_row(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT))
     return _grouped(
         details,
         "the planner's 30 mm standard",
@@ -797,19 +794,12 @@ def check_smooth_joints(ctx, form) -> Row:
                 "rad",
             ),
         )
-        details.append(
-            Row.graded(
-                sc.title,
-                sc.reference or "Sec 4.2.2",
-                "thesis path",
-                f"largest joint change {math.degrees(step.max()):.1f} deg (joint {int(dq[k].argmax()) + 1} "
-                f"of 1-6) between step-points {k} and {k + 1} of 0-{len(q) - 1}; median "
-                f"{math.degrees(float(np.median(step))):.2f} deg",
-                m,
-                fail=Verdict.DOES_NOT_HOLD,
-                id=name,
-            )
+        numbers = (
+            f"largest joint change {math.degrees(step.max()):.1f} deg (joint {int(dq[k].argmax()) + 1} "
+            f"of 1-6) between step-points {k} and {k + 1} of 0-{len(q) - 1}; median "
+            f"{math.degrees(float(np.median(step))):.2f} deg"
         )
+        details.append(_scenario_row(sc, "thesis path", numbers, m, section="Sec 4.2.2"))
     return _grouped(
         details,
         "smoothness",
