@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Assumption", "ASSUMPTIONS", "assumption"]
+__all__ = ["Assumption", "ASSUMPTIONS", "EXACT_GEOMETRY", "assumption"]
 
 
 @dataclass(frozen=True)
@@ -123,6 +123,11 @@ _ALL = (
 
 #: Every assumption by id.
 ASSUMPTIONS: dict[str, Assumption] = {a.id: a for a in _ALL}
+
+
+#: What a comparison with exact geometry rests on: Pinocchio on the shipped URDF, built with the
+#: recovered lengths and the assumed l1.
+EXACT_GEOMETRY = ("l1", "lengths", "pinocchio")
 
 
 def assumption(key: str) -> Assumption:

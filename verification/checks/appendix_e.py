@@ -19,6 +19,7 @@ import numpy as np
 
 import iik
 
+from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_matrix, fmt_vec
 from ..oracles.abdel_malek import normal_acceleration
 from ..oracles.reachability import oracle_for
@@ -487,7 +488,7 @@ def eq69_corrected(q):
 
 @SECTION.check(
     48.5,
-    depends_on=("l1", "lengths", "pinocchio"),
+    depends_on=EXACT_GEOMETRY,
     forms=Forms(
         printed=eq69_printed,
         good=eq69_corrected,

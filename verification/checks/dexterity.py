@@ -22,6 +22,7 @@ import iik
 from iik.dexterity import alpha_admissible, dexterity
 from iik.errors import UnreachablePoseError
 
+from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements
 from ..plotting import new_figure
@@ -32,8 +33,7 @@ _D = np.pi / 180
 L1, L2, L3, L4, L5 = ARM.lengths
 D_IN = np.sqrt(L3**2 + L4**2 - 2 * L3 * L4 * np.cos(np.pi - 119 * _D))  # Eq 45 / Eq 50 (d, phi)
 TOL = 1e-9  # [rad or -]: an exact geometric identity through acos/atan
-_DEP = ("l1", "lengths", "pinocchio")
-SECTION = Section("Dexterity (Sec 3.5, Eq 42-51)", depends_on=_DEP)
+SECTION = Section("Dexterity (Sec 3.5, Eq 42-51)", depends_on=EXACT_GEOMETRY)
 
 
 def _wrap(a):

@@ -18,6 +18,7 @@ import numpy as np
 import iik
 from iik.dh import dh_link_transform
 
+from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements
 from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, off_by, verdict_of
@@ -28,10 +29,9 @@ L1, L2, L3, L4, L5 = ARM.lengths
 _EZ = np.array([0.0, 0.0, 1.0])
 TOL = 1e-12  # [m], [m^2], [-]: an identity evaluated in floating point
 TOL_ANGLE = 1e-9  # [rad]: an angle recovered through atan2 / sqrt
-_DEP = ("l1", "lengths", "pinocchio")
 SECTION = Section(
     "Inverse kinematics (Sec 3.3 IIK, Eq 5-33, solution counts, cost)",
-    depends_on=_DEP,
+    depends_on=EXACT_GEOMETRY,
     prefix="ik",
 )
 

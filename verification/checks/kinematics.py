@@ -23,6 +23,7 @@ from iik.resources import urdf_path
 from iik.rotations import rotation_angle
 from iik.urdf import thesis_urdf, urdf_from_dh
 
+from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements, thesis_model, tool_jacobians, tool_poses
 from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
@@ -36,8 +37,9 @@ TOL_FD = 1e-7  # [m/rad]: vs central finite differences (h = 1e-6)
 _DEG = np.pi / 180
 #: The joint vector [rad] used as counterexample where any generic q would do.
 Q_COUNTEREXAMPLE = np.array([0.3, -0.4, 0.5, 0.6, -0.7, 0.8])
-_KIN = ("l1", "lengths", "pinocchio")
-SECTION = Section("Kinematics (Tables I-II, Eq 1, Eq 4, Eq 34-35, App. B, App. C, Eq 42)", depends_on=_KIN)
+SECTION = Section(
+    "Kinematics (Tables I-II, Eq 1, Eq 4, Eq 34-35, App. B, App. C, Eq 42)", depends_on=EXACT_GEOMETRY
+)
 
 
 def _fmt_q(q) -> str:
@@ -676,7 +678,7 @@ def _pin_links(qs) -> np.ndarray:
 
 @SECTION.check(
     14.0,
-    depends_on=_KIN + ("text",),
+    depends_on=EXACT_GEOMETRY + ("text",),
     forms=Forms(
         printed=appb_modified_printed,
         good=appb_from_table_ii,
@@ -782,7 +784,7 @@ def appendix_b(ctx, appb):
 
 @SECTION.check(
     14.5,
-    depends_on=_KIN + ("text",),
+    depends_on=EXACT_GEOMETRY + ("text",),
     forms=Forms(
         printed=appb_first_printed,
         good=appb_first_from_dh,

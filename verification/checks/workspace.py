@@ -19,6 +19,7 @@ from scipy.spatial import cKDTree
 import iik
 from iik.workspace import in_workspace, tool_positions
 
+from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_vec
 from ..oracles.pinocchio_model import joint_placements
 from ..oracles.reachability import oracle_for
@@ -308,7 +309,7 @@ def _joint(q: np.ndarray, frame: int) -> np.ndarray:
 
 @SECTION.check(
     40.1,
-    depends_on=("l1", "lengths", "pinocchio"),
+    depends_on=EXACT_GEOMETRY,
     forms=Forms(
         printed=eq37_printed,
         good=eq37_printed,
@@ -465,7 +466,7 @@ def eq40_corrected(th1, th2):
 
 @SECTION.check(
     40.4,
-    depends_on=("l1", "lengths", "pinocchio"),
+    depends_on=EXACT_GEOMETRY,
     forms=Forms(
         printed=eq40_printed,
         good=eq40_corrected,
