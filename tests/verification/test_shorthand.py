@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from verification.shorthand import cos_sin
+from verification.shorthand import cos_sin, wrap
 
 
 def test_cos_sin_pairs_each_angle_in_order():
@@ -13,3 +13,10 @@ def test_cos_sin_pairs_each_angle_in_order():
     assert (c1, s1) == (np.cos(0.3), np.sin(0.3))
     assert np.array_equal(c2, np.cos(q)) and np.array_equal(s2, np.sin(q))
     assert cos_sin() == ()
+
+
+def test_wrap_keeps_angles_within_one_turn():
+    a = np.array([-np.pi, 0.5, np.pi, 3 * np.pi + 0.25, -7.0])
+    w = wrap(a)
+    assert np.all((w >= -np.pi) & (w < np.pi))
+    assert np.allclose(np.cos(w), np.cos(a)) and np.allclose(np.sin(w), np.sin(a))

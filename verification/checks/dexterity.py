@@ -27,6 +27,7 @@ from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements
 from ..plotting import new_figure
 from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, off_by, verdict_of
+from ..shorthand import wrap
 
 ARM = iik.THESIS_ARM
 _D = np.pi / 180
@@ -34,10 +35,6 @@ L1, L2, L3, L4, L5 = ARM.lengths
 D_IN = np.sqrt(L3**2 + L4**2 - 2 * L3 * L4 * np.cos(np.pi - 119 * _D))  # Eq 45 / Eq 50 (d, phi)
 TOL = 1e-9  # [rad or -]: an exact geometric identity through acos/atan
 SECTION = Section("Dexterity (Sec 3.5, Eq 42-51)", depends_on=EXACT_GEOMETRY)
-
-
-def _wrap(a):
-    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
 
 
 # ----------------------------------------------------------------------------- printed forms
@@ -147,7 +144,7 @@ def configurations(ctx, kind: str) -> Pose35:
         q[:, 2] = 0.0
     c = _pose35(q)
     if kind.endswith("planar"):
-        c = c.keep(np.abs(_wrap(c.phi - q[:, 0])) < 1e-9)
+        c = c.keep(np.abs(wrap(c.phi - q[:, 0])) < 1e-9)
     ctx.cache[key] = c
     return c
 
@@ -299,7 +296,7 @@ def _eq46_facing(p, c: Pose35 | None = None):
     if c is None:
         return a
     inward = np.einsum("ni,ni->n", c.a[:, :2], c.p[:, :2]) < 0
-    return np.where(inward, _wrap(a + np.pi), a)
+    return np.where(inward, wrap(a + np.pi), a)
 
 
 @SECTION.check(
@@ -322,7 +319,7 @@ def eq46_nominal_alpha(ctx, eq46):
         np.concatenate([c.S, c2.S]),
         np.concatenate([c.J2, c2.J2]),
     )
-    err = np.abs(_wrap(eq46(both.p, both) - both.alpha))
+    err = np.abs(wrap(eq46(both.p, both) - both.alpha))
     inward = np.einsum("ni,ni->n", both.a[:, :2], both.p[:, :2]) < 0
     return _geometry_row(
         "eq46",
@@ -473,8 +470,8 @@ def _sigma_rows(ctx, form, kind, key, rid, r, claim, corrected) -> Row:
     rho = np.hypot(c.p[:, 0], c.p[:, 1])
     reach = np.hypot(c.S[:, 0], c.S[:, 1])
     sig = form(rho, c.beta, delta, r, reach)
-    err = np.abs(np.abs(_wrap(c.alpha - c.phi)) - sig)
-    chained = np.abs(np.abs(_wrap(c.alpha - c.phi)) - eq49_sigma(rho, c.beta, eq48_printed(c.S[:, 2], r), r))
+    err = np.abs(np.abs(wrap(c.alpha - c.phi)) - sig)
+    chained = np.abs(np.abs(wrap(c.alpha - c.phi)) - eq49_sigma(rho, c.beta, eq48_printed(c.S[:, 2], r), r))
     return _geometry_row(
         rid,
         key,
@@ -533,11 +530,11 @@ def sec35_as_printed(alpha35, beta35):
 
 def sec35_to_eq42(alpha35, beta35):
     """z6 = -a (Table II: d6 = -l5): alpha_42 = alpha_35 + 180 deg, beta_42 = beta_35 + 90 deg."""
-    return _wrap(alpha35 + np.pi), beta35 + np.pi / 2
+    return wrap(alpha35 + np.pi), beta35 + np.pi / 2
 
 
 def _sec35_half(alpha35, beta35):
-    return _wrap(alpha35 + np.pi), beta35 + np.pi / 4
+    return wrap(alpha35 + np.pi), beta35 + np.pi / 4
 
 
 @SECTION.check(
@@ -557,7 +554,7 @@ def beta_convention(ctx, to_eq42):
     beta42 = np.arccos(np.clip(z6[:, 2], -1, 1))
     alpha42 = np.arctan2(z6[:, 1], z6[:, 0])
     a, b = to_eq42(c.alpha, c.beta)
-    err = np.maximum(np.abs(_wrap(a - alpha42)) * (np.sin(beta42) > 1e-6), np.abs(b - beta42))
+    err = np.maximum(np.abs(wrap(a - alpha42)) * (np.sin(beta42) > 1e-6), np.abs(b - beta42))
     m = (Measure("max angle difference", err.max(), TOL, "rad"),)
     return Row.graded(
         "The beta of Sec 3.5 (Eq 43-51) is the beta of the Euler matrix of Eq 42 (r13 = c_a s_b, r23 = s_a "
@@ -803,7 +800,7 @@ def gamma_free(ctx, unaffected):
         base = res[0].q[:, cols] if len(res[0].q) else None
         for r in res[1:]:
             if base is not None and len(r.q) == len(base):
-                d = np.abs(_wrap(np.sort(r.q[:, cols], axis=0) - np.sort(base, axis=0))).max()
+                d = np.abs(wrap(np.sort(r.q[:, cols], axis=0) - np.sort(base, axis=0))).max()
                 moved = max(moved, float(d))
     m = (
         Measure("poses without a solution when gamma changes", total - ok, 0),

@@ -22,7 +22,7 @@ from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements
 from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, off_by, verdict_of
-from ..shorthand import cos_sin
+from ..shorthand import cos_sin, wrap
 
 ARM = iik.THESIS_ARM
 L1, L2, L3, L4, L5 = ARM.lengths
@@ -34,10 +34,6 @@ SECTION = Section(
     depends_on=EXACT_GEOMETRY,
     prefix="ik",
 )
-
-
-def _wrap(a):
-    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
 
 
 @dataclass(frozen=True)
@@ -185,7 +181,7 @@ def _printed_is_right(form, bad_is: str, good_is: str = "the printed form (it is
 _ATAN2 = Forms(
     printed=np.arctan2,
     good=lambda sn, cs: np.angle(cs + 1j * sn),
-    bad=lambda sn, cs: np.arctan2(sn, cs) + 1e-6,
+    bad=off_by(np.arctan2, 1e-6),
     good_is="the argument of c + i s",
     bad_is="atan2 + 1 urad",
 )
@@ -383,7 +379,7 @@ def eq9_corrected(R, D, th1):
 
 def _eq9_miss(s: Sample, eq9) -> np.ndarray:
     """|theta2 - the nearer of the form's two branches| with the true D and theta1 [rad]."""
-    return np.min(np.abs(_wrap(eq9(s.R, s.D, s.q[:, 0]) - s.q[:, 1])), axis=0)
+    return np.min(np.abs(wrap(eq9(s.R, s.D, s.q[:, 0]) - s.q[:, 1])), axis=0)
 
 
 eq9_theta2 = _step(
@@ -603,7 +599,7 @@ def _extremum(R, D, sign: float, n_grid: int = 721, iters: int = 40) -> np.ndarr
         a = np.where(left, a, c)
         c, d = np.where(left, b - g * (b - a), d), np.where(left, c, a + g * (b - a))
         fc, fd = np.where(left, f(c), fd), np.where(left, fc, f(d))
-    return _wrap((a + b) / 2)
+    return wrap((a + b) / 2)
 
 
 def eq12_printed(p, D):
@@ -611,11 +607,11 @@ def eq12_printed(p, D):
 
 
 def eq13_printed(p, D):
-    return _wrap(np.arctan2(p[:, 1], p[:, 0]) + np.pi)
+    return wrap(np.arctan2(p[:, 1], p[:, 0]) + np.pi)
 
 
 def eq13_corrected(p, D):
-    return _wrap(np.arctan2(D[:, 1], D[:, 0]) + np.pi)
+    return wrap(np.arctan2(D[:, 1], D[:, 0]) + np.pi)
 
 
 @dataclass(frozen=True)
@@ -661,11 +657,11 @@ def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
     R, D = s.R[rows], s.D[rows]
     found = _extremum(R, D, sign)
     best = _signed_e(R, D, found, sign)
-    at_form = _wrap(_call_extremum_form(form, s, rows))
+    at_form = wrap(_call_extremum_form(form, s, rows))
     gap = _signed_e(R, D, at_form, sign) - best  # >= 0 unless the form beats the search
-    phi_d = _wrap(np.arctan2(D[:, 1], D[:, 0]) + (0.0 if sign > 0 else np.pi))
+    phi_d = wrap(np.arctan2(D[:, 1], D[:, 0]) + (0.0 if sign > 0 else np.pi))
     hit_d = np.mean(_signed_e(R, D, phi_d, sign) - best <= _EXT_TOL)
-    hit_d_pi = np.mean(_signed_e(R, D, _wrap(phi_d + np.pi), sign) - best <= _EXT_TOL)
+    hit_d_pi = np.mean(_signed_e(R, D, wrap(phi_d + np.pi), sign) - best <= _EXT_TOL)
     share = float(np.mean(gap <= _EXT_TOL))
     what = "minimum" if sign > 0 else "maximum"
     m = (
@@ -677,7 +673,7 @@ def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
         ),
     )
     k = int(np.argmax(gap))
-    miss = np.abs(_wrap(at_form - found))
+    miss = np.abs(wrap(at_form - found))
     printed = "min = atan2(py, px)" if sign > 0 else "max = atan2(py, px) +- pi"
     corrected = (
         "min at atan2(yD, xD), the wrist point's azimuth (|D - B| is smallest there): the global minimum "
@@ -1153,7 +1149,7 @@ def eq27_s45(ctx, eq27):
     s, near = sample(ctx), _near_c3_zero(ctx)
     q = np.concatenate([s.q, near.q])
     R = np.concatenate([s.R, near.R])
-    err = np.abs(_wrap(_theta5(eq27, R, q, np.cos(q[:, 2]), np.sin(q[:, 2])) - q[:, 4]))
+    err = np.abs(wrap(_theta5(eq27, R, q, np.cos(q[:, 2]), np.sin(q[:, 2])) - q[:, 4]))
     err = np.where(np.isnan(err), np.inf, err)
     both = Sample(q, np.concatenate([s.F, near.F]), s.B, s.C, s.D, s.E)
     return _row(
@@ -1182,7 +1178,7 @@ def eq27_c3_zero(ctx, eq27):
     sgn = rng.choice([-1.0, 1.0], n)
     q[:, 2] = sgn * np.pi / 2
     s = make_sample(q)
-    err = np.abs(_wrap(_theta5(eq27, s.R, q, np.zeros(n), sgn) - q[:, 4]))
+    err = np.abs(wrap(_theta5(eq27, s.R, q, np.zeros(n), sgn) - q[:, 4]))
     err = np.where(np.isnan(err), np.inf, err)
     share = float(np.mean(err <= TOL_ANGLE))
     m = (Measure("share of poses whose theta5 is recovered", share, 1.0, bound=">="),)
@@ -1211,7 +1207,7 @@ def _eq28_good(sn, cs, th4):
 
 def _eq28_error(s: Sample, eq28) -> np.ndarray:
     t45 = s.q[:, 3] + s.q[:, 4]
-    return _wrap(eq28(np.sin(t45), np.cos(t45), s.q[:, 3]) - s.q[:, 4])
+    return wrap(eq28(np.sin(t45), np.cos(t45), s.q[:, 3]) - s.q[:, 4])
 
 
 eq28_theta5 = _step(
@@ -1334,7 +1330,7 @@ def _atan2_step(order: float, number: int, joint: int):
         f"Eq {number}",
         claim=f"theta{j} = atan2(s{j}, c{j}).",
         method=f"with the true s{j}, c{j} vs theta{j}",
-        error=lambda s, f: _wrap(f(s.s(j), s.c(j)) - s.q[:, j - 1]),
+        error=lambda s, f: wrap(f(s.s(j), s.c(j)) - s.q[:, j - 1]),
         tol=TOL,
         unit="rad",
         printed=f"theta{j} = atan2(s{j}, c{j})",

@@ -22,6 +22,7 @@ from iik.scene import THESIS_SCENE
 
 from ..oracles.baselines import newton_pinv
 from ..registry import Forms, Measure, Row, Section, Verdict, verdict_of
+from ..shorthand import wrap
 from .ik import Solver, solver_forms
 
 ARM = iik.THESIS_ARM
@@ -138,14 +139,10 @@ def iik_along_paths(ctx, solver):
     )
 
 
-def _wrap(a):
-    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
-
-
 def _newton(T, prev):
     """Newton from ``prev``; its answer wrapped to (-pi, pi] (it does not wrap while iterating)."""
     r = newton_pinv(T, prev)
-    return _wrap(r.q) if r.converged else None
+    return wrap(r.q) if r.converged else None
 
 
 def _pick_min_effort(cands: np.ndarray, prev: np.ndarray, T) -> np.ndarray:
@@ -194,7 +191,7 @@ def iik_vs_newton(ctx, pick):
                 continue
             q_iik = pick(sols[i], prev, T[i])
             qn = _newton(T[i], prev)
-            dq.append(float(np.max(np.abs(_wrap(q_iik - qn)))) if qn is not None else np.inf)
+            dq.append(float(np.max(np.abs(wrap(q_iik - qn)))) if qn is not None else np.inf)
             de.append(abs(effort_index(prev, q_iik) - effort_index(prev, qn)) if qn is not None else np.inf)
             prev = q_iik
         dq, de = np.array(dq), np.array(de)
