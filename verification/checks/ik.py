@@ -224,6 +224,18 @@ def completeness(ctx, solver):
 
 
 # ----------------------------------------------------------------------------- cost
+#: Cost ratios within this factor of 1 are a tie: the IIK/Newton single-call ratio varied
+#: from 0.75 to 1.2 between runs on the 2-core development machine under load.
+TIE_FACTOR = 1.5
+
+
+def _cheaper(low: float, high: float) -> str:
+    """'less' if the ratio range [low, high] lies clearly below 1, 'more' if clearly above, else 'a tie'."""
+    if high < 1.0 / TIE_FACTOR:
+        return "less"
+    return "more" if low > TIE_FACTOR else "a tie"
+
+
 @dataclass(frozen=True)
 class Lookup:
     """A "solver" that returns precomputed solution counts: the cheapest possible IIK (self-test only)."""
@@ -255,21 +267,21 @@ def benchmark(ctx, solver):
     s_med = float(np.median(c.single_ratio))
     b_max, b_min = max(c.batch_ratio), min(c.batch_ratio)
     m = (
-        Measure("median single-call ratio IIK/Newton per solution", s_med, 1.0),
-        Measure("largest batch ratio IIK/Newton per solution", b_max, 1.0),
+        Measure("median single-call ratio IIK/Newton per solution", s_med, 1.0 / TIE_FACTOR),
+        Measure("largest batch ratio IIK/Newton per solution", b_max, 1.0 / TIE_FACTOR),
     )
-    if s_med < 1.0 and b_max < 1.0:
+    single, batch = _cheaper(s_med, s_med), _cheaper(b_min, b_max)
+    if single == batch == "less":
         verdict, reason = Verdict.HOLDS, ""
-    elif s_med > 1.0 and b_min > 1.0:
-        verdict, reason = (
-            Verdict.DOES_NOT_HOLD,
-            "the IIK costs more per solution in single calls and in batches",
-        )
+    elif single == batch == "more":
+        verdict = Verdict.DOES_NOT_HOLD
+        reason = "the IIK costs more per solution in single calls and in batches"
     else:
         verdict = Verdict.NOT_CHECKABLE
         reason = (
-            "the answer depends on the execution mode (single calls vs vectorised batches): the thesis's C++ "
-            "timings cannot be reproduced here"
+            f"single calls: IIK {single}, batches: IIK {batch} (a ratio within a factor {TIE_FACTOR:g} of 1 "
+            "is a tie: its spread between runs on a shared machine); the thesis's C++ timings cannot be "
+            "reproduced here"
         )
     return Row(
         "The IIK needs less computation per solution than pseudo-inverse Newton.",
@@ -280,9 +292,9 @@ def benchmark(ctx, solver):
         "order "
         f"alternating; Newton on Pinocchio) and one vectorised batch of {c.n_batch} poses each (Newton "
         "vectorised "
-        "with NumPy). Holds if the IIK is cheaper per solution in both modes (median single-call ratio < 1 "
-        "and "
-        "every batch ratio < 1)",
+        "with NumPy). Holds if the IIK is clearly cheaper per solution in both modes (median single-call "
+        f"ratio and every batch ratio below 1/{TIE_FACTOR:g}); does not hold if clearly dearer in both "
+        f"(above {TIE_FACTOR:g}); otherwise a tie or a split, not checkable",
         f"IIK/Newton per solution: single calls {', '.join(f'{r:.2f}' for r in c.single_ratio)} "
         f"(median {c.single_us[0]:.0f} vs {c.single_us[1]:.0f} us); batches "
         f"{', '.join(f'{r:.3f}' for r in c.batch_ratio)} ({c.batch_us[0]:.1f} vs {c.batch_us[1]:.1f} us); "
