@@ -8,7 +8,7 @@ Scenario ``j`` (Fig 42j). Three variants measured in the same run:
                   without the continuous check between steps);
 * ``thesis``   -- the thesis planner alone (step-points + IK, no collision check).
 
-Run: ``/work/venv/bin/python benchmarks/bench_planning.py [--runs N]``
+Run: ``python benchmarks/bench_planning.py [--runs N]``
 """
 
 from __future__ import annotations
