@@ -69,7 +69,7 @@ from ..arm import Arm
 from . import elimination as _elim
 
 __all__ = ["ArmData", "arm_data", "fk_many", "position_jacobian_many", "jacobian_many", "solve_many",
-           "solve_many_parallel", "scratch", "SOURCES"]
+           "solve_many_parallel", "scratch", "work_counts", "STATS", "SOURCES"]
 
 # ----------------------------------------------------------------------------- cache
 #: Every source file whose code the kernel compiles (the cache key hashes them all).
@@ -322,17 +322,30 @@ N_HDR = 9
 _C_PRES, _C_RRES, _C_CLASS, _C_FREE = 6, 7, 8, 9
 _C_S1, _C_LO1, _C_HI1, _C_S3, _C_LO3, _C_HI3, _C_PRIO = 10, 11, 12, 13, 14, 15, 16
 N_CAND = 17
-_MAX_T1 = 40  # theta1 candidates per pose
-MAX_CAND = 4 * _MAX_T1  # configurations per pose (x 2 theta2 options x 2 wrist branches)
+_MAX_T1 = 64  # theta1 candidates per pose
+MAX_CAND = 192  # configurations per pose (x 2 theta2 options x 2 wrist branches)
+_MAX_RST = 8  # restart sweeps per pose (one per valley)
 
-# Scratch layout (one float64 buffer per serial loop, carved into views; no allocation per pose).
-# vectors: coefficients (16), theta1 candidates and their kinds (40 + 40), q, theta2 options, a
-# second q, p (9), roots and kinds (16 + 16), derivative roots (10 + 10), quadratics (12),
-# products (15), Newton / LM vectors (5 x 6)
-_W_CO, _W_TH1, _W_CAREFUL, _W_Q, _W_TH2, _W_Q2 = 0, 16, 56, 96, 102, 106
-_W_P, _W_ROOTS, _W_KINDS, _W_CRIT, _W_NEW, _W_QUAD, _W_PROD = 112, 121, 137, 153, 163, 173, 185
-_W_E, _W_DQ, _W_G, _W_ET, _W_QT = 200, 206, 212, 218, 224
-N_WORK = 230
+
+def _layout(*sizes):
+    """Offsets of consecutive regions of the given sizes, and the total."""
+    out, o = [], 0
+    for n in sizes:
+        out.append(o)
+        o += n
+    return (*out, o)
+
+
+# Scratch layout (one float64 buffer per serial loop, carved into views; no allocation per pose):
+# coefficients, theta1 candidates and their kinds, q, theta2 options, a second q, p, roots and
+# kinds of p, derivative roots, quadratics, products, Newton / LM vectors, work counters, a
+# reordering buffer, restart sweeps (count and (theta1, theta2) pairs)
+(_W_CO, _W_TH1, _W_CAREFUL, _W_Q, _W_TH2, _W_Q2, _W_P, _W_ROOTS, _W_KINDS, _W_CRIT, _W_NEW, _W_QUAD,
+ _W_PROD, _W_E, _W_DQ, _W_G, _W_ET, _W_QT, _W_STATS, _W_TMP, _W_RST, N_WORK) = _layout(
+    16, _MAX_T1, _MAX_T1, 6, 4, 6, 9, 16, 16, 10, 10, 12, 15, 6, 6, 6, 6, 6, 8, 2 * _MAX_T1, 1 + 2 * _MAX_RST)
+#: Work counters (cumulative, in the scratch buffer; :func:`work_counts`): what a profile reads.
+STATS = ("poses", "theta1 candidates", "configurations", "polishes", "polish iterations",
+         "polish FK evaluations", "polish Jacobians", "continuum restarts")
 # matrix scratch (N_MATS, 9, 9): projected rotation, a pose, a Jacobian, normal equations, derivatives
 _M_RU, _M_T4, _M_J, _M_A, _M_D = 0, 1, 2, 3, 4
 N_MATS = 5
@@ -367,6 +380,19 @@ ROUNDING_REL = 1e-14
 #: theta1 roots closer than this [rad] are both treated as candidate double roots (F's roots
 #: lose accuracy like eps / separation there).
 CROWDED = 1e-5
+#: Largest Newton step when a simple root of p is refined on f_sigma [rad] (such a root is
+#: inaccurate only where F is nearly flat; the step bound keeps the refinement at that root).
+REFINE_STEP = 1e-3
+#: A cluster of double-root candidates is scanned for sign changes of f_sigma within this [rad] ...
+SCAN_HALF = 1e-3
+#: ... in this many steps.
+SCAN_STEPS = 24
+#: Stalled polishes near the theta3/theta6 continuum whose (theta1, theta2) are this close [rad]
+#: lie in one valley: one restart sweep around its theta3 circle serves them all.
+VALLEY = 1e-3
+#: A simple root of p whose rounding uncertainty (8 eps sum |c_i| |t|^i / |p'(t)|) exceeds this
+#: [t units, ~rad] is treated as a double-root candidate.
+UNCERTAIN_ROOT = 1e-9
 #: Candidates farther than this from the pose after the closed forms are dropped unpolished [m], [rad].
 NEAR_POSITION = 1e-3
 NEAR_ROTATION = 1e-2
@@ -585,15 +611,20 @@ def _polish(q, L, dh, Ru, T, ws, wm, cols, n, iters):
     T4, J, A = wm[_M_T4, :4, :4], wm[_M_J, :6, :6], wm[_M_A, :6, :6]
     e, dq, g = ws[_W_E:_W_E + 6], ws[_W_DQ:_W_DQ + 6], ws[_W_G:_W_G + 6]
     et, qt = ws[_W_ET:_W_ET + 6], ws[_W_QT:_W_QT + 6]
+    st = ws[_W_STATS:_W_STATS + 8]
+    st[3] += 1.0
     _pose_error(q, L, Ru, T, T4, e)
+    st[5] += 1.0
     err = _sq(e)
     lam = 0.0
     fresh = False
     for _ in range(iters):
         if err == 0.0:
             break
+        st[4] += 1.0
         if not fresh:
             _jacobian_into(q, dh, J)
+            st[6] += 1.0
         fresh = True
         if lam > 0.0 or n < 6 or not _newton_step(J, e, dq, A, g):
             _least_squares_step(J, e, cols, n, dq, A, g, lam)
@@ -604,6 +635,7 @@ def _polish(q, L, dh, Ru, T, ws, wm, cols, n, iters):
             qt[cols[a]] += dq[a]
             big = max(big, abs(dq[a]))
         _pose_error(qt, L, Ru, T, T4, et)
+        st[5] += 1.0
         errt = _sq(et)
         if errt <= err:
             for j in range(6):
@@ -864,7 +896,14 @@ def _theta1_candidates(co, L, opt, ws, wm):
         if n >= _MAX_T1:
             break
         t = wrap(thr + 2.0 * math.atan(roots[i]))
-        if kinds[i] == 1.0:
+        kind = kinds[i]
+        if kind == 0.0:
+            # a simple root where p is flat at its rounding level is uncertain by more than
+            # UNCERTAIN_ROOT: treated like a double-root candidate (f_sigma refined and scanned)
+            _, dp, m = _horner(p, 8, roots[i])
+            if 8.0 * _EPS * m > UNCERTAIN_ROOT * abs(dp):
+                kind = 1.0
+        elif kind == 1.0:
             # keep a double-root candidate only if Eq 11 can (nearly) hold there:
             # |E| = |a N +- g| / N is 2 l4 times the length error; unknown where N = 0
             a, b, P, Q = _abPQ(co, math.cos(t), math.sin(t))
@@ -872,7 +911,7 @@ def _theta1_candidates(co, L, opt, ws, wm):
             g = b * Q - co[12] * P
             if N > weak and min(abs(a * N + g), abs(a * N - g)) / N > 2.0 * L[3] * reach:
                 continue
-        th1[n], careful[n] = t, kinds[i]
+        th1[n], careful[n] = t, kind
         n += 1
     # roots closer than CROWDED: F's roots are inaccurate there, refine and polish both
     for i in range(n):
@@ -919,6 +958,113 @@ def _newton_f(co, th, sigma, order):
         if abs(step) <= 1e-15:
             break
     return wrap(th)
+
+
+@_inner
+def _raw_last(th1, careful, n, tmp):
+    """Move the unrefined double-root candidates (kind 1) behind the others (stable): the roots
+    of f_sigma found from them are tried first, so that a pose whose eliminant is flat at
+    rounding level (many kind-1 roots of noise) cannot fill the candidate table with them."""
+    m = 0
+    for i in range(n):
+        if careful[i] != 1.0:
+            tmp[m], tmp[_MAX_T1 + m] = th1[i], careful[i]
+            m += 1
+    for i in range(n):
+        if careful[i] == 1.0:
+            tmp[m], tmp[_MAX_T1 + m] = th1[i], careful[i]
+            m += 1
+    for i in range(n):
+        th1[i], careful[i] = tmp[i], tmp[_MAX_T1 + i]
+
+
+@_inner
+def _refine_root(co, th, sigma):
+    """A root of f_sigma near the eliminant root th [rad] by Newton (steps clipped to
+    REFINE_STEP); th itself when the first step is at rounding level (the usual case)."""
+    for _ in range(8):
+        f, f1, _ = _f_sigma(co, th, sigma)
+        if f1 == 0.0 or not math.isfinite(f / f1):
+            break
+        step = min(max(f / f1, -REFINE_STEP), REFINE_STEP)
+        if abs(step) <= 1e-15:
+            break
+        th -= step
+    return wrap(th)
+
+
+@_inner
+def _push(th1, careful, n, t, kind):
+    """Append theta1 candidate t of ``kind`` unless the table is full or holds it (1e-8 rad,
+    same kind: refinements of one cluster land alike, up to the ~1e-9 rad to which a flat
+    f_sigma fixes its root); the new count."""
+    if n >= _MAX_T1:
+        return n
+    for j in range(n):
+        if careful[j] == kind and abs(wrap(th1[j] - t)) <= 1e-8:
+            return n
+    th1[n], careful[n] = t, kind
+    return n + 1
+
+
+@_inner
+def _scan_roots(co, c, sigma, kind, th1, careful, n):
+    """Append (as ``kind``) every sign change of f_sigma on SCAN_STEPS steps within SCAN_HALF
+    rad of c, refined by :func:`_bracketed_f`; the new count.
+
+    Where F is flat at its rounding level (a cluster of double-root candidates near the
+    theta3/theta6 continuum, |F| ~ 1e-20) p cannot place a root, but f_sigma, evaluated
+    directly, still changes sign at it: a simple root of f_sigma whose slope is ~1e-11 lies
+    up to ~2e-4 rad from the cluster and has no extremum nearby.
+    """
+    h = 2.0 * SCAN_HALF / SCAN_STEPS
+    xa = c - SCAN_HALF
+    fa, _, _ = _f_sigma(co, xa, sigma)
+    for k in range(1, SCAN_STEPS + 1):
+        xb = c - SCAN_HALF + k * h
+        fb, _, _ = _f_sigma(co, xb, sigma)
+        if (fa < 0.0 and fb > 0.0) or (fa > 0.0 and fb < 0.0):
+            n = _push(th1, careful, n, wrap(_bracketed_f(co, sigma, xa, xb, fa, fb)), kind)
+        xa, fa = xb, fb
+    return n
+
+
+@_inner
+def _root_beside(co, tb, fb, d, sigma):
+    """The root of f_sigma on the side ``d`` of its extremum tb (value fb), about |d| away: the
+    first sign change at tb + d, tb + 2 d, tb + 4 d, ... (6 tries) is bracketed and refined by
+    safeguarded Newton (near a point where P = Q = 0, f_sigma curves too sharply for plain
+    Newton); plain Newton from tb + d if no sign change is found."""
+    xa, fa = tb, fb
+    for k in range(6):
+        xb = tb + d * (1 << k)
+        f1, _, _ = _f_sigma(co, xb, sigma)
+        if (f1 < 0.0) != (fb < 0.0):
+            return wrap(_bracketed_f(co, sigma, xa, xb, fa, f1))
+        xa, fa = xb, f1
+    return _newton_f(co, tb + d, sigma, 0)
+
+
+@_inner
+def _bracketed_f(co, sigma, x0, x1, f0, f1):
+    """The root of f_sigma between x0 and x1 (f0, f1 of opposite signs): Newton kept inside the
+    shrinking bracket, bisection where it would leave it; to 1e-15 rad."""
+    x = x0 - f0 * (x1 - x0) / (f1 - f0)
+    for _ in range(100):
+        f, df, _ = _f_sigma(co, x, sigma)
+        if f == 0.0:
+            return x
+        if (f < 0.0) == (f0 < 0.0):
+            x0, f0 = x, f
+        else:
+            x1, f1 = x, f
+        xn = x - f / df if df != 0.0 else 0.5 * (x0 + x1)
+        if not (min(x0, x1) < xn < max(x0, x1)):
+            xn = 0.5 * (x0 + x1)
+        if abs(xn - x) <= 1e-15 or abs(x1 - x0) <= 1e-15:
+            return xn
+        x = xn
+    return x
 
 
 @_inner
@@ -1090,6 +1236,7 @@ def _add_candidate(q, careful, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
     root): of duplicates it is kept (:func:`_distinct_sorted`).
     """
     T4 = wm[_M_T4, :4, :4]
+    ws[_W_STATS + 2] += 1.0
     _theta6(q, L, Ru, T4)
     pres = _position_error(T4, T)
     if pres > NEAR_POSITION:
@@ -1111,10 +1258,11 @@ def _add_candidate(q, careful, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
     iters = 20 if careful else 12
     nc = _finish(q, pres, rres, polish, iters, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best)
     if careful and polish and (nc == n0 or _unfinished(cand, nc - 1, opt)) and nc + 8 <= MAX_CAND \
-            and abs(math.sin(q[3])) <= 1e-2 and abs(math.sin(q[3] + q[4])) <= 1e-2:
+            and abs(math.sin(q[3])) <= 1e-2 and abs(math.sin(q[3] + q[4])) <= 1e-2 and _new_valley(q, ws):
         # stalled near the theta3/theta6 continuum, where the residual is a long flat valley in
-        # theta3 (with theta6): start again from 7 more theta3 around the circle
+        # theta3 (with theta6): start again from 7 more theta3 around the circle (once per valley)
         qs = ws[_W_Q2:_W_Q2 + 6]
+        ws[_W_STATS + 7] += 1.0
         s = _coupling_sign(q, L, Ru, T, ws, wm, 2)
         for k in range(1, 8):
             for j in range(6):
@@ -1123,6 +1271,21 @@ def _add_candidate(q, careful, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
             qs[5] = wrap(q[5] + s * k * _TWO_PI / 8)
             nc = _finish(qs, 0.0, 0.0, True, 20, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best)
     return nc
+
+
+@_inner
+def _new_valley(q, ws):
+    """Is q's (theta1, theta2) more than VALLEY rad from every restart sweep of this pose so far
+    (then it is recorded)? One sweep samples the whole theta3 circle of a valley."""
+    rst = ws[_W_RST:_W_RST + 1 + 2 * _MAX_RST]
+    n = int(rst[0])
+    for k in range(n):
+        if abs(wrap(q[0] - rst[1 + 2 * k])) <= VALLEY and abs(wrap(q[1] - rst[2 + 2 * k])) <= VALLEY:
+            return False
+    if n >= _MAX_RST:
+        return False
+    rst[1 + 2 * n], rst[2 + 2 * n], rst[0] = q[0], q[1], n + 1
+    return True
 
 
 @_inner
@@ -1208,7 +1371,8 @@ def _before(cand, ia, ib):
 def _distinct_sorted(cand, nc, cls, L, Ru, T, ws, wm, opt, idx):
     """Indices (into idx) of the distinct rows of class ``cls``, lexicographically sorted; count.
 
-    Of a group of duplicates the first by :func:`_order_key` is kept. At most :data:`MAX_SOLUTIONS`.
+    Of a group of duplicates the first by :func:`_order_key` is kept. At most :data:`MAX_SOLUTIONS`:
+    the first by :func:`_order_key` (converged rows before unfinished ones), then sorted.
     """
     m = 0
     for i in range(nc):
@@ -1233,6 +1397,8 @@ def _distinct_sorted(cand, nc, cls, L, Ru, T, ws, wm, opt, idx):
         if not dup:
             idx[k] = idx[i]
             k += 1
+            if k == MAX_SOLUTIONS:
+                break
     for i in range(1, k):  # lexicographic
         v = int(idx[i])
         j = i - 1
@@ -1240,7 +1406,7 @@ def _distinct_sorted(cand, nc, cls, L, Ru, T, ws, wm, opt, idx):
             idx[j + 1] = idx[j]
             j -= 1
         idx[j + 1] = v
-    return min(k, MAX_SOLUTIONS)
+    return k
 
 
 # ----------------------------------------------------------------------------- one pose
@@ -1253,37 +1419,44 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
     th1, careful = ws[_W_TH1:_W_TH1 + _MAX_T1], ws[_W_CAREFUL:_W_CAREFUL + _MAX_T1]
     scale = math.sqrt(co[13] ** 2 + co[14] ** 2 + co[15] ** 2) + L[1] + L[2]
     nc = 0
+    ws[_W_RST] = 0.0  # no restart sweep yet
+    ws[_W_STATS] += 1.0
     n1_roots = n1
     for i in range(n1_roots):
         # a careful candidate also gets, for both signs, the root and the extremum of the
-        # unsquared f_sigma by Newton (accurate where F has a double root, unlike F's roots)
-        # and the two roots near the extremum (two roots closer than F's arithmetic resolves)
+        # unsquared f_sigma by Newton (accurate where F has a double root, unlike F's roots),
+        # the two roots near the extremum (two roots closer than F's arithmetic resolves) and
+        # the sign changes of f_sigma around it (roots where F is flat at rounding level)
         clustered = False  # one refinement per cluster of careful roots (Newton lands alike)
+        scanned = False  # one scan per SCAN_HALF
         for j in range(i):
-            if careful[j] == 1.0 and abs(wrap(th1[j] - th1[i])) <= CROWDED:
-                clustered = True
-        if careful[i] == 1.0 and not clustered and n1 + 8 <= _MAX_T1:
+            if careful[j] == 1.0:
+                dj = abs(wrap(th1[j] - th1[i]))
+                clustered |= dj <= CROWDED
+                scanned |= dj <= 0.5 * SCAN_HALF
+        if careful[i] == 1.0 and not clustered:
             C, S = math.cos(th1[i]), math.sin(th1[i])
             a, b, P, Q = _abPQ(co, C, S)
             if math.hypot(P, Q) <= 1e-6 * scale:
                 # Eq 8 vanishes near here: the theta1 where P = Q = 0 (minimum of P^2 + Q^2)
-                th1[n1], careful[n1] = _min_pq(co, th1[i]), 1.0
-                n1 += 1
+                n1 = _push(th1, careful, n1, _min_pq(co, th1[i]), 1.0)
             else:
                 for sg in (1.0, -1.0):
                     known = 2.0 if sg > 0 else 3.0  # careful, with this sign of Eq 8
-                    th1[n1], careful[n1] = _newton_f(co, th1[i], sg, 0), known
+                    n1 = _push(th1, careful, n1, _newton_f(co, th1[i], sg, 0), known)
                     tb = _newton_f(co, th1[i], sg, 1)
-                    th1[n1 + 1], careful[n1 + 1] = tb, known + 2.0  # 4, 5: the extremum
-                    n1 += 2
+                    n1 = _push(th1, careful, n1, tb, known + 2.0)  # 4, 5: the extremum
                     # the two roots of the local quadratic model around the extremum
                     f, _, f2 = _f_sigma(co, tb, sg)
                     d2 = -2.0 * f / f2
-                    if 0.0 < d2 <= 1e-6:
+                    if 0.0 < d2 <= 1e-4:
                         d = math.sqrt(d2)
-                        th1[n1], careful[n1] = _newton_f(co, tb + d, sg, 0), known
-                        th1[n1 + 1], careful[n1 + 1] = _newton_f(co, tb - d, sg, 0), known
-                        n1 += 2
+                        n1 = _push(th1, careful, n1, _root_beside(co, tb, f, d, sg), known)
+                        n1 = _push(th1, careful, n1, _root_beside(co, tb, f, -d, sg), known)
+                    if not scanned:
+                        n1 = _scan_roots(co, th1[i], sg, known, th1, careful, n1)
+    ws[_W_STATS + 1] += n1
+    _raw_last(th1, careful, n1, ws[_W_TMP:_W_TMP + 2 * _MAX_T1])
     for i in range(n1):
         # refinements often land on the same theta1: one try per value and sign of Eq 8
         repeat = False
@@ -1299,6 +1472,16 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
         N = math.hypot(P, Q)
         g = b * Q - co[12] * P
         weak = N <= 1e-6 * scale
+        if careful[i] == 0.0 and not weak:
+            # a simple root of p is only as accurate as p is steep there: refine it on the
+            # unsquared f_sigma of its sign (where F = f_+ f_- is flat, f_sigma is not)
+            t = _refine_root(co, th1[i], 1.0 if abs(a * N + g) <= abs(a * N - g) else -1.0)
+            if t != th1[i]:
+                th1[i] = t
+                C, S = math.cos(t), math.sin(t)
+                a, b, P, Q = _abPQ(co, C, S)
+                N = math.hypot(P, Q)
+                g = b * Q - co[12] * P
         # Eq 8 (corrected Eq 9): (c2, s2) = sigma (Q, -P) / N, sigma where |a N + sigma g| is least
         if careful[i] == 1.0:
             th2s[0], th2s[1] = math.atan2(-P, Q), math.atan2(P, -Q)
@@ -1443,6 +1626,16 @@ def solve_many(Ts, armv, opt, within_only, scratch, outq, info, flags, hdr):
 
 
 _SCRATCH = None
+
+
+def work_counts(reset: bool = False) -> dict[str, int]:
+    """The work counters of :func:`scratch` (:data:`STATS`, cumulative over the serial calls of
+    this process; ``reset`` zeroes them after reading): what a profile of the kernel reads."""
+    w = scratch()[_W_STATS:_W_STATS + len(STATS)]
+    out = {k: int(v) for k, v in zip(STATS, w, strict=True)}
+    if reset:
+        w[:] = 0.0
+    return out
 
 
 def scratch() -> np.ndarray:
