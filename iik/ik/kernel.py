@@ -146,7 +146,8 @@ class ArmData:
         lengths: ``[l1, l2, l3, l4, l5]`` [m].
         dh: Table II rows ``[alpha, a, d, offset]`` (6, 4) (modified DH) [rad, m].
         lower, upper: Joint limits (6,) [rad] (Table I).
-        vector: ``[lengths, lower, upper, dh.ravel()]`` (41,), the IK kernel's argument.
+        vector: ``[lengths, lower, upper, dh.ravel(), reach bound]`` (42,), the IK kernel's
+            argument (the reach bound of :func:`iik.kinematics.reach_bound` at :data:`REACH`).
     """
 
     lengths: np.ndarray
@@ -156,6 +157,8 @@ class ArmData:
     vector: np.ndarray
 
 
+#: Index in :attr:`ArmData.vector` of :func:`iik.kinematics.reach_bound` [m].
+REACH = 41
 _ARM_DATA: dict[int, tuple[Arm, ArmData]] = {}
 
 
@@ -172,7 +175,7 @@ def arm_data(arm: Arm) -> ArmData:
         return hit[1]
     table = arm.dh_table()
     dh = [[r.alpha, r.a, r.d, r.offset] for r in table.rows]
-    vec = np.concatenate([arm.lengths, arm.q_min, arm.q_max, np.ravel(dh)])
+    vec = np.concatenate([arm.lengths, arm.q_min, arm.q_max, np.ravel(dh), [_kin.reach_bound(arm)]])
     data = ArmData(_ro(arm.lengths), _ro(dh), _ro(arm.q_min), _ro(arm.q_max), _ro(vec))
     if len(_ARM_DATA) > 64:
         _ARM_DATA.clear()
@@ -1561,7 +1564,16 @@ def _continua(T, L, dh, lo, hi, opt, ws, wm, cand, nc):
 
 
 @_inner
-def _solve_pose(T, L, dh, lo, hi, opt, within_only, ws, wm, cand, idx, outq, info, flags, hdr):
+def _beyond(T, reach):
+    """Is the position of T farther than ``reach`` from the base origin (no overflow)?"""
+    x, y, z = abs(T[0, 3]), abs(T[1, 3]), abs(T[2, 3])
+    if max(x, y, z) > reach:
+        return True
+    return x * x + y * y + z * z > reach * reach
+
+
+@_inner
+def _solve_pose(T, L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, outq, info, flags, hdr):
     """Every IK solution of one pose into outq (k, 6), info (k, N_INFO) and flags (k, 2)
     (within the limits, approximate); header into hdr."""
     for i in range(N_HDR):
@@ -1570,8 +1582,8 @@ def _solve_pose(T, L, dh, lo, hi, opt, within_only, ws, wm, cand, idx, outq, inf
     status, measure, dist = _check_pose(T, opt[OPT_ORTHONORMAL_TOL], Ru)
     hdr[H_STATUS], hdr[H_MEASURE], hdr[H_PROJECTION] = status, measure, dist
     hdr[H_BEST_P], hdr[H_BEST_R] = np.inf, np.inf
-    if status != OK:
-        return 0
+    if status != OK or _beyond(T, reach + opt[OPT_APPROX_TOL]):
+        return 0  # (beyond the reach bound: unreachable, without arithmetic on huge numbers)
     nc = _configurations(T, L, dh, opt, ws, wm, cand, hdr[H_BEST_P:H_BEST_R + 1])
     _continua(T, L, dh, lo, hi, opt, ws, wm, cand, nc)
     k = _distinct_sorted(cand, nc, 1.0, L, Ru, T, ws, wm, opt, idx)
@@ -1614,15 +1626,15 @@ def solve_many(Ts, armv, opt, within_only, scratch, outq, info, flags, hdr):
     (N_SCRATCH,) float64 is working memory, allocated by the caller: the kernel runs without
     Numba's reference counting, which would cost more than the arithmetic.
     """
-    L, lo, hi, dh = armv[0:5], armv[5:11], armv[11:17], armv[17:41].reshape((6, 4))
+    L, lo, hi, dh, reach = armv[0:5], armv[5:11], armv[11:17], armv[17:41].reshape((6, 4)), armv[REACH]
     ws = scratch[0:N_WORK]
     wm = scratch[N_WORK:N_WORK + N_MATS * 81].reshape((N_MATS, 9, 9))
     o = N_WORK + N_MATS * 81
     cand = scratch[o:o + MAX_CAND * N_CAND].reshape((MAX_CAND, N_CAND))
     idx = scratch[o + MAX_CAND * N_CAND:N_SCRATCH]
     for i in range(Ts.shape[0]):
-        _solve_pose(Ts[i], L, dh, lo, hi, opt, within_only, ws, wm, cand, idx, outq[i], info[i], flags[i],
-                    hdr[i])
+        _solve_pose(Ts[i], L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, outq[i], info[i],
+                    flags[i], hdr[i])
 
 
 _SCRATCH = None
@@ -1649,7 +1661,7 @@ def scratch() -> np.ndarray:
 @_entry(parallel=True)
 def solve_many_parallel(Ts, armv, opt, within_only, outq, info, flags, hdr):
     """:func:`solve_many` on all cores (``numba.prange`` over chunks of 64 poses)."""
-    L, lo, hi, dh = armv[0:5], armv[5:11], armv[11:17], armv[17:41].reshape((6, 4))
+    L, lo, hi, dh, reach = armv[0:5], armv[5:11], armv[11:17], armv[17:41].reshape((6, 4)), armv[REACH]
     n = Ts.shape[0]
     chunk = 64
     for c in numba.prange((n + chunk - 1) // chunk):
@@ -1658,5 +1670,5 @@ def solve_many_parallel(Ts, armv, opt, within_only, outq, info, flags, hdr):
         cand = np.zeros((MAX_CAND, N_CAND))
         idx = np.zeros(MAX_CAND)
         for i in range(c * chunk, min(n, (c + 1) * chunk)):
-            _solve_pose(Ts[i], L, dh, lo, hi, opt, within_only, ws, wm, cand, idx, outq[i], info[i],
+            _solve_pose(Ts[i], L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, outq[i], info[i],
                         flags[i], hdr[i])

@@ -25,6 +25,7 @@ import numpy as np
 
 from ..arm import LIMIT_TOL, THESIS_ARM, Arm
 from ..errors import InvalidInputError
+from ..kinematics import reach_bound
 from . import poses as _poses
 from .options import DEFAULT_OPTIONS, IKOptions
 from .result import Continuum, IKBatch, IKResult
@@ -91,6 +92,17 @@ def _complete(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool):
     return q, info, flags, hdr
 
 
+def _beyond_reach(Tb: np.ndarray, arm: Arm) -> np.ndarray:
+    """Poses (n, 4, 4) whose position is farther than :func:`iik.kinematics.reach_bound` from the
+    base origin (compared without squaring huge numbers: no overflow)."""
+    with np.errstate(invalid="ignore"):  # (NaN positions are rejected by the pose check)
+        p = np.abs(Tb[:, :3, 3])
+        r = reach_bound(arm)
+        big = p.max(axis=1) > r
+        p = np.where(big[:, None], 0.0, p)
+        return big | (np.einsum("ni,ni->n", p, p) > r * r)
+
+
 def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, method: str):
     """The reference or thesis method in the kernel's output layout."""
     from .compare import pose_residuals
@@ -104,7 +116,7 @@ def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, metho
     q = np.full((n, k.MAX_SOLUTIONS, 6), np.nan)
     info = np.full((n, k.MAX_SOLUTIONS, k.N_INFO), np.nan)
     flags = np.zeros((n, k.MAX_SOLUTIONS, 2), dtype=bool)
-    good = np.flatnonzero(status == _poses.OK)
+    good = np.flatnonzero((status == _poses.OK) & ~_beyond_reach(Tb, arm))  # far: unreachable, no arithmetic
     if len(good) == 0:
         return q, info, flags, hdr
     Tu = Tb[good].copy()
