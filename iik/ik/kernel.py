@@ -1456,8 +1456,9 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
                         d = math.sqrt(d2)
                         n1 = _push(th1, careful, n1, _root_beside(co, tb, f, d, sg), known)
                         n1 = _push(th1, careful, n1, _root_beside(co, tb, f, -d, sg), known)
-                    if not scanned:
-                        n1 = _scan_roots(co, th1[i], sg, known, th1, careful, n1)
+            if not scanned:  # (also where Eq 8 vanishes: f_sigma is continuous through it)
+                n1 = _scan_roots(co, th1[i], 1.0, 2.0, th1, careful, n1)
+                n1 = _scan_roots(co, th1[i], -1.0, 3.0, th1, careful, n1)
     ws[_W_STATS + 1] += n1
     _raw_last(th1, careful, n1, ws[_W_TMP:_W_TMP + 2 * _MAX_T1])
     for i in range(n1):
