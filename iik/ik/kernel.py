@@ -390,6 +390,8 @@ REFINE_STEP = 1e-3
 SCAN_HALF = 1e-3
 #: ... in this many steps.
 SCAN_STEPS = 24
+#: ... when a closed-form configuration there has |sin theta4|, |sin(theta4 + theta5)| below this.
+SCAN_NEAR = 1e-2
 #: Stalled polishes near the theta3/theta6 continuum whose (theta1, theta2) are this close [rad]
 #: lie in one valley: one restart sweep around its theta3 circle serves them all.
 VALLEY = 1e-3
@@ -883,11 +885,12 @@ def _theta1_candidates(co, L, opt, ws, wm):
     mag = sa * sa * (sp * sp + sq * sq) + (sb * sq + abs(co[12]) * sp) ** 2
     n = 0
     if scale <= 1e-12 * mag or abs(p[8]) <= 1e-14 * scale:
-        # every theta1 solves the eliminant (wrist point on the joint-1 axis): representatives
-        # a quarter turn apart, so one lies on every half circle of a family
+        # every theta1 solves the eliminant (wrist point on the joint-1 axis): the solutions lie
+        # where Eq 8 vanishes identically (P = Q = 0: z6 in the arm's plane), reached by
+        # _min_pq from representatives a quarter turn apart (one lies on every half circle;
+        # where P = Q = 0 for every theta1, z6 vertical, they stay: the theta1/theta6 continuum)
         for k in range(4):
-            th1[n], careful[n] = wrap(k * 0.5 * math.pi), 1.0
-            n += 1
+            n = _push(th1, careful, n, _min_pq(co, k * 0.5 * math.pi), 1.0)
         return n
     for i in range(9):
         p[i] /= scale
@@ -964,19 +967,19 @@ def _newton_f(co, th, sigma, order):
 
 
 @_inner
-def _raw_last(th1, careful, n, tmp):
-    """Move the unrefined double-root candidates (kind 1) behind the others (stable): the roots
-    of f_sigma found from them are tried first, so that a pose whose eliminant is flat at
-    rounding level (many kind-1 roots of noise) cannot fill the candidate table with them."""
+def _raw_last(th1, careful, n, n_raw, tmp):
+    """Order the theta1 candidates (stable): refined and simple ones, then the kind-1 ones found
+    by refinement (index >= n_raw: where Eq 8 vanishes), then the unrefined double-root
+    candidates (kind 1, index < n_raw). The roots of f_sigma found from a cluster are tried
+    before the cluster itself, so that a pose whose eliminant is flat at rounding level (many
+    kind-1 roots of noise) cannot fill the candidate table with them."""
     m = 0
-    for i in range(n):
-        if careful[i] != 1.0:
-            tmp[m], tmp[_MAX_T1 + m] = th1[i], careful[i]
-            m += 1
-    for i in range(n):
-        if careful[i] == 1.0:
-            tmp[m], tmp[_MAX_T1 + m] = th1[i], careful[i]
-            m += 1
+    for rank in range(3):
+        for i in range(n):
+            r = 0 if careful[i] != 1.0 else (1 if i >= n_raw else 2)
+            if r == rank:
+                tmp[m], tmp[_MAX_T1 + m] = th1[i], careful[i]
+                m += 1
     for i in range(n):
         th1[i], careful[i] = tmp[i], tmp[_MAX_T1 + i]
 
@@ -994,6 +997,29 @@ def _refine_root(co, th, sigma):
             break
         th -= step
     return wrap(th)
+
+
+@_inner
+def _near_continuum_at(co, Ru, L, th, scale, ws):
+    """Does a closed-form configuration at theta1 = th (theta2 from Eq 8 with the better sign, or
+    from Eq 11 where Eq 8 vanishes) lie near the theta3/theta6 continuum (|sin theta4| and
+    |sin(theta4 + theta5)| <= SCAN_NEAR)? There F is flat at its rounding level over ~1e-3 rad."""
+    q, t2 = ws[_W_Q2:_W_Q2 + 6], ws[_W_TH2:_W_TH2 + 4]
+    C, S = math.cos(th), math.sin(th)
+    a, b, P, Q = _abPQ(co, C, S)
+    N = math.hypot(P, Q)
+    g = b * Q - co[12] * P
+    if N > 1e-6 * scale:
+        t2[0], n2 = (math.atan2(-P, Q) if abs(a * N + g) <= abs(a * N - g) else math.atan2(P, -Q)), 1
+    else:
+        r, phi = math.hypot(b, co[12]), math.atan2(co[12], b)
+        acs = math.acos(min(max(-a / r if r > 0 else 0.0, -1.0), 1.0))
+        t2[0], t2[1], n2 = phi + acs, phi - acs, 2
+    for k in range(n2):
+        _wrist(Ru, co, L, C, S, math.cos(t2[k]), math.sin(t2[k]), 0, q)
+        if abs(math.sin(q[3])) <= SCAN_NEAR and abs(math.sin(q[3] + q[4])) <= SCAN_NEAR:
+            return True
+    return False
 
 
 @_inner
@@ -1456,18 +1482,24 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
                         d = math.sqrt(d2)
                         n1 = _push(th1, careful, n1, _root_beside(co, tb, f, d, sg), known)
                         n1 = _push(th1, careful, n1, _root_beside(co, tb, f, -d, sg), known)
-            if not scanned:  # (also where Eq 8 vanishes: f_sigma is continuous through it)
+            if not scanned and _near_continuum_at(co, Ru, L, th1[i], scale, ws):
+                # (also where Eq 8 vanishes: f_sigma is continuous through it)
                 n1 = _scan_roots(co, th1[i], 1.0, 2.0, th1, careful, n1)
                 n1 = _scan_roots(co, th1[i], -1.0, 3.0, th1, careful, n1)
     ws[_W_STATS + 1] += n1
-    _raw_last(th1, careful, n1, ws[_W_TMP:_W_TMP + 2 * _MAX_T1])
+    _raw_last(th1, careful, n1, n1_roots, ws[_W_TMP:_W_TMP + 2 * _MAX_T1])
     for i in range(n1):
-        # refinements often land on the same theta1: one try per value and sign of Eq 8
+        # refinements often land on the same theta1: one try per value and sign of Eq 8; of a
+        # cluster of kind-1 candidates (within CROWDED) only the first is tried (they are tried
+        # last, the refined one first: the rest lie within F's rounding of it)
         repeat = False
         for j in range(i):
             if careful[i] < 4.0 and abs(th1[j] - th1[i]) <= 1e-13 and (
                     careful[j] == 1.0 or _sign_group(careful[j]) == _sign_group(careful[i])):
                 repeat = True  # (an extremum, kinds 4 and 5, is always tried: it has priority)
+                break
+            if careful[i] == 1.0 and careful[j] == 1.0 and abs(wrap(th1[j] - th1[i])) <= CROWDED:
+                repeat = True
                 break
         if repeat:
             continue
@@ -1618,10 +1650,23 @@ def _solve_pose(T, L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, ou
     return m
 
 
+@_inner
+def _pad(outq, info, flags, m):
+    """Rows m.. of one pose's outputs: NaN, free kind 0, flags False (the padding of :class:`IKBatch`)."""
+    for r in range(m, outq.shape[0]):
+        for j in range(6):
+            outq[r, j] = np.nan
+        for j in range(N_INFO):
+            info[r, j] = np.nan
+        info[r, I_FREE] = 0.0
+        flags[r, 0], flags[r, 1] = False, False
+
+
 @_entry(_nrt=False)
 def solve_many(Ts, armv, opt, within_only, scratch, outq, info, flags, hdr):
     """:func:`_solve_pose` for poses Ts (n, 4, 4) into padded outq (n, 16, 6), info
     (n, 16, N_INFO), flags (n, 16, 2) bool and hdr (n, N_HDR): a serial loop (one pose: n = 1).
+    Rows past a pose's count are padding (NaN, free kind 0, False).
 
     ``armv``: :attr:`ArmData.vector`; ``opt``: the option vector (OPT_*); ``scratch``
     (N_SCRATCH,) float64 is working memory, allocated by the caller: the kernel runs without
@@ -1636,6 +1681,7 @@ def solve_many(Ts, armv, opt, within_only, scratch, outq, info, flags, hdr):
     for i in range(Ts.shape[0]):
         _solve_pose(Ts[i], L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, outq[i], info[i],
                     flags[i], hdr[i])
+        _pad(outq[i], info[i], flags[i], int(hdr[i, H_COUNT]))
 
 
 _SCRATCH = None
@@ -1673,3 +1719,4 @@ def solve_many_parallel(Ts, armv, opt, within_only, outq, info, flags, hdr):
         for i in range(c * chunk, min(n, (c + 1) * chunk)):
             _solve_pose(Ts[i], L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, outq[i], info[i],
                         flags[i], hdr[i])
+            _pad(outq[i], info[i], flags[i], int(hdr[i, H_COUNT]))
