@@ -1000,6 +1000,21 @@ def _refine_root(co, th, sigma):
 
 
 @_inner
+def _small_f(co, th, sigma):
+    """Is |f_sigma(th)| below TANGENT_REL of the size f_sigma has without cancellation (from the
+    magnitudes of the coefficients)? A double-root candidate of F = f_+ f_- is a near root of
+    one factor; the other factor, if not small there, has no root nearby to refine."""
+    a, b, P, Q = _abPQ(co, math.cos(th), math.sin(th))
+    N = math.hypot(P, Q)
+    g = b * Q - co[12] * P
+    sa = abs(co[0]) + abs(co[1]) + abs(co[2])
+    sb = abs(co[3]) + abs(co[4]) + abs(co[5])
+    sp = abs(co[6]) + abs(co[7]) + abs(co[8])
+    sq = abs(co[9]) + abs(co[10]) + abs(co[11])
+    return abs(a * N + sigma * g) <= TANGENT_REL * (sa * math.hypot(sp, sq) + sb * sq + abs(co[12]) * sp)
+
+
+@_inner
 def _near_continuum_at(co, Ru, L, th, scale, ws):
     """Does a closed-form configuration at theta1 = th (theta2 from Eq 8 with the better sign, or
     from Eq 11 where Eq 8 vanishes) lie near the theta3/theta6 continuum (|sin theta4| and
@@ -1472,6 +1487,8 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
             else:
                 for sg in (1.0, -1.0):
                     known = 2.0 if sg > 0 else 3.0  # careful, with this sign of Eq 8
+                    if not _small_f(co, th1[i], sg):
+                        continue  # F is small here through the other sign's factor
                     n1 = _push(th1, careful, n1, _newton_f(co, th1[i], sg, 0), known)
                     tb = _newton_f(co, th1[i], sg, 1)
                     n1 = _push(th1, careful, n1, tb, known + 2.0)  # 4, 5: the extremum
@@ -1512,12 +1529,13 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
             # a simple root of p is only as accurate as p is steep there: refine it on the
             # unsquared f_sigma of its sign (where F = f_+ f_- is flat, f_sigma is not)
             t = _refine_root(co, th1[i], 1.0 if abs(a * N + g) <= abs(a * N - g) else -1.0)
-            if t != th1[i]:
+            if t != th1[i]:  # (it may land where Eq 8 vanishes: weak again)
                 th1[i] = t
                 C, S = math.cos(t), math.sin(t)
                 a, b, P, Q = _abPQ(co, C, S)
                 N = math.hypot(P, Q)
                 g = b * Q - co[12] * P
+                weak = N <= 1e-6 * scale
         # Eq 8 (corrected Eq 9): (c2, s2) = sigma (Q, -P) / N, sigma where |a N + sigma g| is least
         if careful[i] == 1.0:
             th2s[0], th2s[1] = math.atan2(-P, Q), math.atan2(P, -Q)

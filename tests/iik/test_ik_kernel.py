@@ -122,6 +122,24 @@ def test_near_continuum_poses_are_recovered_thorough():
     assert recovered(q, T) == []
 
 
+#: The wrist point on the joint-1 axis to 1e-16 m: the eliminant's double roots (where Eq 8
+#: vanishes) come out as pairs of simple roots 2.4e-5 rad apart; refined on f_sigma both land
+#: where Eq 8 vanishes, and there theta2 has the two Eq 11 options (one was lost once).
+ON_AXIS = np.array([1.9807956984317099, -1.8113215801070661, 0.0, -0.002596077066196578, 1.4226199670433592,
+                    -2.6792027325122807])
+
+
+def test_wrist_point_on_the_joint1_axis():
+    from verification.testing.ik_benchmark import family_joints
+
+    q = np.concatenate([ON_AXIS[None], family_joints("wrist point on joint-1 axis", 300,
+                                                       np.random.default_rng(108), ARM)])
+    T = iik.fk(q)
+    assert recovered(q, T) == []
+    _n, bad = agreement(T)
+    assert bad == []
+
+
 def test_solve_many_and_solve_batch_match_solve():
     q, T = family_poses(20, seed=103)
     many = iik.solve_many(T, within_limits=False)
