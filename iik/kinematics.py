@@ -23,7 +23,7 @@ from .arm import THESIS_ARM, Arm
 from .dh import dh_chain
 from .validation import as_joints
 
-__all__ = ["fk", "fk_chain", "position_jacobian", "jacobian", "joint_frames", "eq4_terms",
+__all__ = ["fk", "fk_chain", "reach_bound", "position_jacobian", "jacobian", "joint_frames", "eq4_terms",
            "eq4_position", "eq4_wrist_axes", "eq4_rotation", "app_c_position_jacobian"]
 
 
@@ -182,3 +182,13 @@ def jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
     """
     k = _kernel()
     return _apply(q, k.jacobian_many, k.arm_data(arm).dh, (6, 6))
+
+
+def reach_bound(arm: Arm = THESIS_ARM) -> float:
+    """An upper bound on the distance of the tool point from the base origin [m].
+
+    The sum of ``|a| + |d|`` over the rows of Table II (each link moves the next frame's
+    origin by at most that much, whatever the joint angles): a pose whose position is
+    farther than this is out of reach without any further arithmetic.
+    """
+    return float(sum(abs(r.a) + abs(r.d) for r in arm.dh_table().rows))

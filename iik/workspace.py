@@ -59,6 +59,11 @@ def tool_positions(q5: np.ndarray, arm: Arm = THESIS_ARM) -> np.ndarray:
     return out
 
 
+def _norm3(x, y, z):
+    """sqrt(x^2 + y^2 + z^2) without overflow for points far out (hypot scales)."""
+    return np.hypot(np.hypot(x, y), z)
+
+
 def _regions(p: np.ndarray, arm: Arm):
     phi = np.arctan2(p[:, 1], p[:, 0])  # Eq 36
     r2 = phi >= arm.upper[0]  # region 2: phi >= theta1 upper limit (160 deg)
@@ -76,7 +81,7 @@ def joint4_distance(p: np.ndarray, th1: float, arm: Arm) -> np.ndarray:
     x4 = (l2 + l3 * c2) * np.cos(th1)  # Eq 40 (corrected sign)
     y4 = (l2 + l3 * c2) * np.sin(th1)  # Eq 40 (corrected sign)
     z4 = l1 - l3 * s2  # Eq 40
-    return np.sqrt((p[:, 0] - x4) ** 2 + (p[:, 1] - y4) ** 2 + (p[:, 2] - z4) ** 2)  # Eq 41
+    return _norm3(p[:, 0] - x4, p[:, 1] - y4, p[:, 2] - z4)  # Eq 41
 
 
 def in_workspace(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-9) -> np.ndarray | bool:
@@ -98,8 +103,7 @@ def in_workspace(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-9) -> np.ndarray |
     l1, l2, l3, l4, l5 = arm.lengths
     phi, r2, r3 = _regions(pb, arm)
     # Region 1 (Eq 37-38): joint 2 at l2 (cos phi, sin phi, l1), reach l3 + l4 + l5.
-    rho1 = np.sqrt((pb[:, 0] - l2 * np.cos(phi)) ** 2 + (pb[:, 1] - l2 * np.sin(phi)) ** 2
-                   + (pb[:, 2] - l1) ** 2)  # Eq 38
+    rho1 = _norm3(pb[:, 0] - l2 * np.cos(phi), pb[:, 1] - l2 * np.sin(phi), pb[:, 2] - l1)  # Eq 38
     inside = rho1 <= l3 + l4 + l5 + tol  # Eq 38
     for region, th1 in ((r2, arm.upper[0]), (r3, arm.lower[0])):
         if np.any(region):
@@ -208,6 +212,22 @@ def _seeds(pb: np.ndarray, arm: Arm, k_near: int = 8) -> np.ndarray:
     return np.concatenate([first, rest, near], axis=1)
 
 
+#: Points farther than this from the base origin [m] are searched for on their ray at this
+#: distance (see :func:`closest_reachable`).
+FAR = 1e7
+
+
+def _near_proxy(pb: np.ndarray) -> np.ndarray:
+    """Points farther than :data:`FAR` moved along their ray from the base origin to FAR."""
+    r = _norm3(*pb.T)
+    far = r > FAR
+    if not np.any(far):
+        return pb
+    out = pb.copy()
+    out[far] = pb[far] / r[far, None] * FAR
+    return out
+
+
 def closest_reachable(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-7) -> ClosestReachable:
     """The reachable tool position nearest to ``p`` (App. G's relocation suggestion).
 
@@ -218,6 +238,11 @@ def closest_reachable(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-7) -> Closest
     is reachable by construction (``q`` is returned). It is a local search with
     many starts: the global minimum is not guaranteed (``iik verify`` measures
     the gap). A point that is already reachable is returned unchanged.
+
+    A point farther than :data:`FAR` (10^7 m) is searched for on its ray at FAR (the
+    arithmetic stays finite however far it is): the nearest reachable point moves by
+    less than ~R^2 / FAR (~1e-7 m, R the arm's reach) between FAR and infinity;
+    ``distance`` is measured to the point as given.
 
     Args:
         p: Point(s) [m], (3,) or (n, 3), base frame 0.
@@ -230,6 +255,7 @@ def closest_reachable(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-7) -> Closest
     pb, batched = as_points(p, "p")
     if not (np.isfinite(tol) and tol > 0):
         raise InvalidInputError("tol", "must be a positive finite number of metres")
+    given, pb = pb, _near_proxy(pb)
     seeds = _seeds(pb, arm)
     n, k, _ = seeds.shape
     q, res = position_lm(np.repeat(pb, k, axis=0), seeds.reshape(n * k, 5), arm, iters=80,
@@ -255,7 +281,7 @@ def closest_reachable(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-7) -> Closest
         point[i] = tool_positions(qbest[i:i + 1, :5], arm)[0]
         dist[i] = float(np.linalg.norm(point[i] - pb[i]))
     point = np.where(moved[:, None], point, pb)
-    dist = np.where(moved, dist, 0.0)
+    dist = np.where(moved, _norm3(*(point - given).T), 0.0)  # (to the point as given)
     if not batched:
         return ClosestReachable(point[0], qbest[0], float(dist[0]), bool(moved[0]))
     return ClosestReachable(point, qbest, dist, moved)

@@ -69,7 +69,7 @@ from ..arm import Arm
 from . import elimination as _elim
 
 __all__ = ["ArmData", "arm_data", "fk_many", "position_jacobian_many", "jacobian_many", "solve_many",
-           "solve_many_parallel", "scratch", "SOURCES"]
+           "solve_many_parallel", "scratch", "work_counts", "STATS", "SOURCES"]
 
 # ----------------------------------------------------------------------------- cache
 #: Every source file whose code the kernel compiles (the cache key hashes them all).
@@ -146,7 +146,8 @@ class ArmData:
         lengths: ``[l1, l2, l3, l4, l5]`` [m].
         dh: Table II rows ``[alpha, a, d, offset]`` (6, 4) (modified DH) [rad, m].
         lower, upper: Joint limits (6,) [rad] (Table I).
-        vector: ``[lengths, lower, upper, dh.ravel()]`` (41,), the IK kernel's argument.
+        vector: ``[lengths, lower, upper, dh.ravel(), reach bound]`` (42,), the IK kernel's
+            argument (the reach bound of :func:`iik.kinematics.reach_bound` at :data:`REACH`).
     """
 
     lengths: np.ndarray
@@ -156,6 +157,8 @@ class ArmData:
     vector: np.ndarray
 
 
+#: Index in :attr:`ArmData.vector` of :func:`iik.kinematics.reach_bound` [m].
+REACH = 41
 _ARM_DATA: dict[int, tuple[Arm, ArmData]] = {}
 
 
@@ -172,7 +175,7 @@ def arm_data(arm: Arm) -> ArmData:
         return hit[1]
     table = arm.dh_table()
     dh = [[r.alpha, r.a, r.d, r.offset] for r in table.rows]
-    vec = np.concatenate([arm.lengths, arm.q_min, arm.q_max, np.ravel(dh)])
+    vec = np.concatenate([arm.lengths, arm.q_min, arm.q_max, np.ravel(dh), [_kin.reach_bound(arm)]])
     data = ArmData(_ro(arm.lengths), _ro(dh), _ro(arm.q_min), _ro(arm.q_max), _ro(vec))
     if len(_ARM_DATA) > 64:
         _ARM_DATA.clear()
@@ -322,17 +325,30 @@ N_HDR = 9
 _C_PRES, _C_RRES, _C_CLASS, _C_FREE = 6, 7, 8, 9
 _C_S1, _C_LO1, _C_HI1, _C_S3, _C_LO3, _C_HI3, _C_PRIO = 10, 11, 12, 13, 14, 15, 16
 N_CAND = 17
-_MAX_T1 = 40  # theta1 candidates per pose
-MAX_CAND = 4 * _MAX_T1  # configurations per pose (x 2 theta2 options x 2 wrist branches)
+_MAX_T1 = 64  # theta1 candidates per pose
+MAX_CAND = 192  # configurations per pose (x 2 theta2 options x 2 wrist branches)
+_MAX_RST = 8  # restart sweeps per pose (one per valley)
 
-# Scratch layout (one float64 buffer per serial loop, carved into views; no allocation per pose).
-# vectors: coefficients (16), theta1 candidates and their kinds (40 + 40), q, theta2 options, a
-# second q, p (9), roots and kinds (16 + 16), derivative roots (10 + 10), quadratics (12),
-# products (15), Newton / LM vectors (5 x 6)
-_W_CO, _W_TH1, _W_CAREFUL, _W_Q, _W_TH2, _W_Q2 = 0, 16, 56, 96, 102, 106
-_W_P, _W_ROOTS, _W_KINDS, _W_CRIT, _W_NEW, _W_QUAD, _W_PROD = 112, 121, 137, 153, 163, 173, 185
-_W_E, _W_DQ, _W_G, _W_ET, _W_QT = 200, 206, 212, 218, 224
-N_WORK = 230
+
+def _layout(*sizes):
+    """Offsets of consecutive regions of the given sizes, and the total."""
+    out, o = [], 0
+    for n in sizes:
+        out.append(o)
+        o += n
+    return (*out, o)
+
+
+# Scratch layout (one float64 buffer per serial loop, carved into views; no allocation per pose):
+# coefficients, theta1 candidates and their kinds, q, theta2 options, a second q, p, roots and
+# kinds of p, derivative roots, quadratics, products, Newton / LM vectors, work counters, a
+# reordering buffer, restart sweeps (count and (theta1, theta2) pairs)
+(_W_CO, _W_TH1, _W_CAREFUL, _W_Q, _W_TH2, _W_Q2, _W_P, _W_ROOTS, _W_KINDS, _W_CRIT, _W_NEW, _W_QUAD,
+ _W_PROD, _W_E, _W_DQ, _W_G, _W_ET, _W_QT, _W_STATS, _W_TMP, _W_RST, N_WORK) = _layout(
+    16, _MAX_T1, _MAX_T1, 6, 4, 6, 9, 16, 16, 10, 10, 12, 15, 6, 6, 6, 6, 6, 8, 2 * _MAX_T1, 1 + 2 * _MAX_RST)
+#: Work counters (cumulative, in the scratch buffer; :func:`work_counts`): what a profile reads.
+STATS = ("poses", "theta1 candidates", "configurations", "polishes", "polish iterations",
+         "polish FK evaluations", "polish Jacobians", "continuum restarts")
 # matrix scratch (N_MATS, 9, 9): projected rotation, a pose, a Jacobian, normal equations, derivatives
 _M_RU, _M_T4, _M_J, _M_A, _M_D = 0, 1, 2, 3, 4
 N_MATS = 5
@@ -367,6 +383,21 @@ ROUNDING_REL = 1e-14
 #: theta1 roots closer than this [rad] are both treated as candidate double roots (F's roots
 #: lose accuracy like eps / separation there).
 CROWDED = 1e-5
+#: Largest Newton step when a simple root of p is refined on f_sigma [rad] (such a root is
+#: inaccurate only where F is nearly flat; the step bound keeps the refinement at that root).
+REFINE_STEP = 1e-3
+#: A cluster of double-root candidates is scanned for sign changes of f_sigma within this [rad] ...
+SCAN_HALF = 1e-3
+#: ... in this many steps.
+SCAN_STEPS = 24
+#: ... when a closed-form configuration there has |sin theta4|, |sin(theta4 + theta5)| below this.
+SCAN_NEAR = 1e-2
+#: Stalled polishes near the theta3/theta6 continuum whose (theta1, theta2) are this close [rad]
+#: lie in one valley: one restart sweep around its theta3 circle serves them all.
+VALLEY = 1e-3
+#: A simple root of p whose rounding uncertainty (8 eps sum |c_i| |t|^i / |p'(t)|) exceeds this
+#: [t units, ~rad] is treated as a double-root candidate.
+UNCERTAIN_ROOT = 1e-9
 #: Candidates farther than this from the pose after the closed forms are dropped unpolished [m], [rad].
 NEAR_POSITION = 1e-3
 NEAR_ROTATION = 1e-2
@@ -585,15 +616,20 @@ def _polish(q, L, dh, Ru, T, ws, wm, cols, n, iters):
     T4, J, A = wm[_M_T4, :4, :4], wm[_M_J, :6, :6], wm[_M_A, :6, :6]
     e, dq, g = ws[_W_E:_W_E + 6], ws[_W_DQ:_W_DQ + 6], ws[_W_G:_W_G + 6]
     et, qt = ws[_W_ET:_W_ET + 6], ws[_W_QT:_W_QT + 6]
+    st = ws[_W_STATS:_W_STATS + 8]
+    st[3] += 1.0
     _pose_error(q, L, Ru, T, T4, e)
+    st[5] += 1.0
     err = _sq(e)
     lam = 0.0
     fresh = False
     for _ in range(iters):
         if err == 0.0:
             break
+        st[4] += 1.0
         if not fresh:
             _jacobian_into(q, dh, J)
+            st[6] += 1.0
         fresh = True
         if lam > 0.0 or n < 6 or not _newton_step(J, e, dq, A, g):
             _least_squares_step(J, e, cols, n, dq, A, g, lam)
@@ -604,6 +640,7 @@ def _polish(q, L, dh, Ru, T, ws, wm, cols, n, iters):
             qt[cols[a]] += dq[a]
             big = max(big, abs(dq[a]))
         _pose_error(qt, L, Ru, T, T4, et)
+        st[5] += 1.0
         errt = _sq(et)
         if errt <= err:
             for j in range(6):
@@ -691,12 +728,13 @@ def _horner(c, deg, x):
 
 
 @_inner
-def _bracketed_root(c, deg, x0, x1, f0, f1, flat0, flat1, rtol):
+def _bracketed_root(c, deg, x0, x1, f0, f1, flat0, flat1, rtol, guess):
     """The root of a polynomial in [x0, x1] where it changes sign (f0, f1: values at the ends).
 
     Newton's method safeguarded by bisection (every iterate stays in the shrinking
-    bracket); it starts where the cubic with the end values and zero end slopes (``flat0``,
-    ``flat1``: the ends are critical points) crosses zero. Stops when the step is below
+    bracket); it starts at ``guess`` if that lies inside, else where the cubic with the end
+    values and zero end slopes (``flat0``, ``flat1``: the ends are critical points) crosses
+    zero. Stops when the step is below
     ``rtol`` (1 + |x|), the bracket is at rounding level, or |p(x)| is below the rounding
     error of its evaluation (8 eps sum |c_i| |x|^i).
     """
@@ -709,7 +747,7 @@ def _bracketed_root(c, deg, x0, x1, f0, f1, flat0, flat1, rtol):
         s = 1.0 - math.sqrt(1.0 - r)
     else:
         s = r
-    x = x0 + s * (x1 - x0)
+    x = guess if x0 < guess < x1 else x0 + s * (x1 - x0)
     if not (x0 < x < x1):
         x = 0.5 * (x0 + x1)
     step_old = x1 - x0
@@ -783,8 +821,16 @@ def _real_roots(p, ws, wm):
             if zero:
                 fb = 0.0
             if (fa < 0.0 and fb > 0.0) or (fa > 0.0 and fb < 0.0):
+                guess = np.nan
+                if ncrit > 0 and (j == 0 or j == ncrit):
+                    # an outer piece (from -B or to B): start from the root of the quadratic
+                    # model at its critical end (the cubic start lies near that end there)
+                    xc, fc = (xb, fb) if j == 0 else (xa, fa)
+                    f2 = _horner(D[k + 2], deg - 2, xc)[0]
+                    if -2.0 * fc / f2 > 0.0:
+                        guess = xc + (-1.0 if j == 0 else 1.0) * math.sqrt(-2.0 * fc / f2)
                 new[nnew] = _bracketed_root(ck, deg, xa, xb, fa, fb, j > 0, j < ncrit,
-                                            1e-15 if k == 0 else 1e-9)
+                                            1e-15 if k == 0 else 1e-9, guess)
                 nnew += 1
             if zero and k > 0:
                 new[nnew] = xb
@@ -848,11 +894,12 @@ def _theta1_candidates(co, L, opt, ws, wm):
     mag = sa * sa * (sp * sp + sq * sq) + (sb * sq + abs(co[12]) * sp) ** 2
     n = 0
     if scale <= 1e-12 * mag or abs(p[8]) <= 1e-14 * scale:
-        # every theta1 solves the eliminant (wrist point on the joint-1 axis): representatives
-        # a quarter turn apart, so one lies on every half circle of a family
+        # every theta1 solves the eliminant (wrist point on the joint-1 axis): the solutions lie
+        # where Eq 8 vanishes identically (P = Q = 0: z6 in the arm's plane), reached by
+        # _min_pq from representatives a quarter turn apart (one lies on every half circle;
+        # where P = Q = 0 for every theta1, z6 vertical, they stay: the theta1/theta6 continuum)
         for k in range(4):
-            th1[n], careful[n] = wrap(k * 0.5 * math.pi), 1.0
-            n += 1
+            n = _push(th1, careful, n, _min_pq(co, k * 0.5 * math.pi), 1.0)
         return n
     for i in range(9):
         p[i] /= scale
@@ -864,7 +911,14 @@ def _theta1_candidates(co, L, opt, ws, wm):
         if n >= _MAX_T1:
             break
         t = wrap(thr + 2.0 * math.atan(roots[i]))
-        if kinds[i] == 1.0:
+        kind = kinds[i]
+        if kind == 0.0:
+            # a simple root where p is flat at its rounding level is uncertain by more than
+            # UNCERTAIN_ROOT: treated like a double-root candidate (f_sigma refined and scanned)
+            _, dp, m = _horner(p, 8, roots[i])
+            if 8.0 * _EPS * m > UNCERTAIN_ROOT * abs(dp):
+                kind = 1.0
+        elif kind == 1.0:
             # keep a double-root candidate only if Eq 11 can (nearly) hold there:
             # |E| = |a N +- g| / N is 2 l4 times the length error; unknown where N = 0
             a, b, P, Q = _abPQ(co, math.cos(t), math.sin(t))
@@ -872,7 +926,7 @@ def _theta1_candidates(co, L, opt, ws, wm):
             g = b * Q - co[12] * P
             if N > weak and min(abs(a * N + g), abs(a * N - g)) / N > 2.0 * L[3] * reach:
                 continue
-        th1[n], careful[n] = t, kinds[i]
+        th1[n], careful[n] = t, kind
         n += 1
     # roots closer than CROWDED: F's roots are inaccurate there, refine and polish both
     for i in range(n):
@@ -919,6 +973,151 @@ def _newton_f(co, th, sigma, order):
         if abs(step) <= 1e-15:
             break
     return wrap(th)
+
+
+@_inner
+def _raw_last(th1, careful, n, n_raw, tmp):
+    """Order the theta1 candidates (stable): refined and simple ones, then the kind-1 ones found
+    by refinement (index >= n_raw: where Eq 8 vanishes), then the unrefined double-root
+    candidates (kind 1, index < n_raw). The roots of f_sigma found from a cluster are tried
+    before the cluster itself, so that a pose whose eliminant is flat at rounding level (many
+    kind-1 roots of noise) cannot fill the candidate table with them."""
+    m = 0
+    for rank in range(3):
+        for i in range(n):
+            r = 0 if careful[i] != 1.0 else (1 if i >= n_raw else 2)
+            if r == rank:
+                tmp[m], tmp[_MAX_T1 + m] = th1[i], careful[i]
+                m += 1
+    for i in range(n):
+        th1[i], careful[i] = tmp[i], tmp[_MAX_T1 + i]
+
+
+@_inner
+def _refine_root(co, th, sigma):
+    """A root of f_sigma near the eliminant root th [rad] by Newton (steps clipped to
+    REFINE_STEP); th itself when the first step is at rounding level (the usual case)."""
+    for _ in range(8):
+        f, f1, _ = _f_sigma(co, th, sigma)
+        if f1 == 0.0 or not math.isfinite(f / f1):
+            break
+        step = min(max(f / f1, -REFINE_STEP), REFINE_STEP)
+        if abs(step) <= 1e-15:
+            break
+        th -= step
+    return wrap(th)
+
+
+@_inner
+def _small_f(co, th, sigma):
+    """Is |f_sigma(th)| below TANGENT_REL of the size f_sigma has without cancellation (from the
+    magnitudes of the coefficients)? A double-root candidate of F = f_+ f_- is a near root of
+    one factor; the other factor, if not small there, has no root nearby to refine."""
+    a, b, P, Q = _abPQ(co, math.cos(th), math.sin(th))
+    N = math.hypot(P, Q)
+    g = b * Q - co[12] * P
+    sa = abs(co[0]) + abs(co[1]) + abs(co[2])
+    sb = abs(co[3]) + abs(co[4]) + abs(co[5])
+    sp = abs(co[6]) + abs(co[7]) + abs(co[8])
+    sq = abs(co[9]) + abs(co[10]) + abs(co[11])
+    return abs(a * N + sigma * g) <= TANGENT_REL * (sa * math.hypot(sp, sq) + sb * sq + abs(co[12]) * sp)
+
+
+@_inner
+def _near_continuum_at(co, Ru, L, th, scale, ws):
+    """Does a closed-form configuration at theta1 = th (theta2 from Eq 8 with the better sign, or
+    from Eq 11 where Eq 8 vanishes) lie near the theta3/theta6 continuum (|sin theta4| and
+    |sin(theta4 + theta5)| <= SCAN_NEAR)? There F is flat at its rounding level over ~1e-3 rad."""
+    q, t2 = ws[_W_Q2:_W_Q2 + 6], ws[_W_TH2:_W_TH2 + 4]
+    C, S = math.cos(th), math.sin(th)
+    a, b, P, Q = _abPQ(co, C, S)
+    N = math.hypot(P, Q)
+    g = b * Q - co[12] * P
+    if N > 1e-6 * scale:
+        t2[0], n2 = (math.atan2(-P, Q) if abs(a * N + g) <= abs(a * N - g) else math.atan2(P, -Q)), 1
+    else:
+        r, phi = math.hypot(b, co[12]), math.atan2(co[12], b)
+        acs = math.acos(min(max(-a / r if r > 0 else 0.0, -1.0), 1.0))
+        t2[0], t2[1], n2 = phi + acs, phi - acs, 2
+    for k in range(n2):
+        _wrist(Ru, co, L, C, S, math.cos(t2[k]), math.sin(t2[k]), 0, q)
+        if abs(math.sin(q[3])) <= SCAN_NEAR and abs(math.sin(q[3] + q[4])) <= SCAN_NEAR:
+            return True
+    return False
+
+
+@_inner
+def _push(th1, careful, n, t, kind):
+    """Append theta1 candidate t of ``kind`` unless the table is full or holds it (1e-8 rad,
+    same kind: refinements of one cluster land alike, up to the ~1e-9 rad to which a flat
+    f_sigma fixes its root); the new count."""
+    if n >= _MAX_T1:
+        return n
+    for j in range(n):
+        if careful[j] == kind and abs(wrap(th1[j] - t)) <= 1e-8:
+            return n
+    th1[n], careful[n] = t, kind
+    return n + 1
+
+
+@_inner
+def _scan_roots(co, c, sigma, kind, th1, careful, n):
+    """Append (as ``kind``) every sign change of f_sigma on SCAN_STEPS steps within SCAN_HALF
+    rad of c, refined by :func:`_bracketed_f`; the new count.
+
+    Where F is flat at its rounding level (a cluster of double-root candidates near the
+    theta3/theta6 continuum, |F| ~ 1e-20) p cannot place a root, but f_sigma, evaluated
+    directly, still changes sign at it: a simple root of f_sigma whose slope is ~1e-11 lies
+    up to ~2e-4 rad from the cluster and has no extremum nearby.
+    """
+    h = 2.0 * SCAN_HALF / SCAN_STEPS
+    xa = c - SCAN_HALF
+    fa, _, _ = _f_sigma(co, xa, sigma)
+    for k in range(1, SCAN_STEPS + 1):
+        xb = c - SCAN_HALF + k * h
+        fb, _, _ = _f_sigma(co, xb, sigma)
+        if (fa < 0.0 and fb > 0.0) or (fa > 0.0 and fb < 0.0):
+            n = _push(th1, careful, n, wrap(_bracketed_f(co, sigma, xa, xb, fa, fb)), kind)
+        xa, fa = xb, fb
+    return n
+
+
+@_inner
+def _root_beside(co, tb, fb, d, sigma):
+    """The root of f_sigma on the side ``d`` of its extremum tb (value fb), about |d| away: the
+    first sign change at tb + d, tb + 2 d, tb + 4 d, ... (6 tries) is bracketed and refined by
+    safeguarded Newton (near a point where P = Q = 0, f_sigma curves too sharply for plain
+    Newton); plain Newton from tb + d if no sign change is found."""
+    xa, fa = tb, fb
+    for k in range(6):
+        xb = tb + d * (1 << k)
+        f1, _, _ = _f_sigma(co, xb, sigma)
+        if (f1 < 0.0) != (fb < 0.0):
+            return wrap(_bracketed_f(co, sigma, xa, xb, fa, f1))
+        xa, fa = xb, f1
+    return _newton_f(co, tb + d, sigma, 0)
+
+
+@_inner
+def _bracketed_f(co, sigma, x0, x1, f0, f1):
+    """The root of f_sigma between x0 and x1 (f0, f1 of opposite signs): Newton kept inside the
+    shrinking bracket, bisection where it would leave it; to 1e-15 rad."""
+    x = x0 - f0 * (x1 - x0) / (f1 - f0)
+    for _ in range(100):
+        f, df, _ = _f_sigma(co, x, sigma)
+        if f == 0.0:
+            return x
+        if (f < 0.0) == (f0 < 0.0):
+            x0, f0 = x, f
+        else:
+            x1, f1 = x, f
+        xn = x - f / df if df != 0.0 else 0.5 * (x0 + x1)
+        if not (min(x0, x1) < xn < max(x0, x1)):
+            xn = 0.5 * (x0 + x1)
+        if abs(xn - x) <= 1e-15 or abs(x1 - x0) <= 1e-15:
+            return xn
+        x = xn
+    return x
 
 
 @_inner
@@ -1090,6 +1289,7 @@ def _add_candidate(q, careful, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
     root): of duplicates it is kept (:func:`_distinct_sorted`).
     """
     T4 = wm[_M_T4, :4, :4]
+    ws[_W_STATS + 2] += 1.0
     _theta6(q, L, Ru, T4)
     pres = _position_error(T4, T)
     if pres > NEAR_POSITION:
@@ -1111,10 +1311,11 @@ def _add_candidate(q, careful, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
     iters = 20 if careful else 12
     nc = _finish(q, pres, rres, polish, iters, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best)
     if careful and polish and (nc == n0 or _unfinished(cand, nc - 1, opt)) and nc + 8 <= MAX_CAND \
-            and abs(math.sin(q[3])) <= 1e-2 and abs(math.sin(q[3] + q[4])) <= 1e-2:
+            and abs(math.sin(q[3])) <= 1e-2 and abs(math.sin(q[3] + q[4])) <= 1e-2 and _new_valley(q, ws):
         # stalled near the theta3/theta6 continuum, where the residual is a long flat valley in
-        # theta3 (with theta6): start again from 7 more theta3 around the circle
+        # theta3 (with theta6): start again from 7 more theta3 around the circle (once per valley)
         qs = ws[_W_Q2:_W_Q2 + 6]
+        ws[_W_STATS + 7] += 1.0
         s = _coupling_sign(q, L, Ru, T, ws, wm, 2)
         for k in range(1, 8):
             for j in range(6):
@@ -1123,6 +1324,21 @@ def _add_candidate(q, careful, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
             qs[5] = wrap(q[5] + s * k * _TWO_PI / 8)
             nc = _finish(qs, 0.0, 0.0, True, 20, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best)
     return nc
+
+
+@_inner
+def _new_valley(q, ws):
+    """Is q's (theta1, theta2) more than VALLEY rad from every restart sweep of this pose so far
+    (then it is recorded)? One sweep samples the whole theta3 circle of a valley."""
+    rst = ws[_W_RST:_W_RST + 1 + 2 * _MAX_RST]
+    n = int(rst[0])
+    for k in range(n):
+        if abs(wrap(q[0] - rst[1 + 2 * k])) <= VALLEY and abs(wrap(q[1] - rst[2 + 2 * k])) <= VALLEY:
+            return False
+    if n >= _MAX_RST:
+        return False
+    rst[1 + 2 * n], rst[2 + 2 * n], rst[0] = q[0], q[1], n + 1
+    return True
 
 
 @_inner
@@ -1208,7 +1424,8 @@ def _before(cand, ia, ib):
 def _distinct_sorted(cand, nc, cls, L, Ru, T, ws, wm, opt, idx):
     """Indices (into idx) of the distinct rows of class ``cls``, lexicographically sorted; count.
 
-    Of a group of duplicates the first by :func:`_order_key` is kept. At most :data:`MAX_SOLUTIONS`.
+    Of a group of duplicates the first by :func:`_order_key` is kept. At most :data:`MAX_SOLUTIONS`:
+    the first by :func:`_order_key` (converged rows before unfinished ones), then sorted.
     """
     m = 0
     for i in range(nc):
@@ -1233,6 +1450,8 @@ def _distinct_sorted(cand, nc, cls, L, Ru, T, ws, wm, opt, idx):
         if not dup:
             idx[k] = idx[i]
             k += 1
+            if k == MAX_SOLUTIONS:
+                break
     for i in range(1, k):  # lexicographic
         v = int(idx[i])
         j = i - 1
@@ -1240,7 +1459,7 @@ def _distinct_sorted(cand, nc, cls, L, Ru, T, ws, wm, opt, idx):
             idx[j + 1] = idx[j]
             j -= 1
         idx[j + 1] = v
-    return min(k, MAX_SOLUTIONS)
+    return k
 
 
 # ----------------------------------------------------------------------------- one pose
@@ -1253,44 +1472,60 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
     th1, careful = ws[_W_TH1:_W_TH1 + _MAX_T1], ws[_W_CAREFUL:_W_CAREFUL + _MAX_T1]
     scale = math.sqrt(co[13] ** 2 + co[14] ** 2 + co[15] ** 2) + L[1] + L[2]
     nc = 0
+    ws[_W_RST] = 0.0  # no restart sweep yet
+    ws[_W_STATS] += 1.0
     n1_roots = n1
     for i in range(n1_roots):
         # a careful candidate also gets, for both signs, the root and the extremum of the
-        # unsquared f_sigma by Newton (accurate where F has a double root, unlike F's roots)
-        # and the two roots near the extremum (two roots closer than F's arithmetic resolves)
+        # unsquared f_sigma by Newton (accurate where F has a double root, unlike F's roots),
+        # the two roots near the extremum (two roots closer than F's arithmetic resolves) and
+        # the sign changes of f_sigma around it (roots where F is flat at rounding level)
         clustered = False  # one refinement per cluster of careful roots (Newton lands alike)
+        scanned = False  # one scan per SCAN_HALF
         for j in range(i):
-            if careful[j] == 1.0 and abs(wrap(th1[j] - th1[i])) <= CROWDED:
-                clustered = True
-        if careful[i] == 1.0 and not clustered and n1 + 8 <= _MAX_T1:
+            if careful[j] == 1.0:
+                dj = abs(wrap(th1[j] - th1[i]))
+                clustered |= dj <= CROWDED
+                scanned |= dj <= 0.5 * SCAN_HALF
+        if careful[i] == 1.0 and not clustered:
             C, S = math.cos(th1[i]), math.sin(th1[i])
             a, b, P, Q = _abPQ(co, C, S)
             if math.hypot(P, Q) <= 1e-6 * scale:
                 # Eq 8 vanishes near here: the theta1 where P = Q = 0 (minimum of P^2 + Q^2)
-                th1[n1], careful[n1] = _min_pq(co, th1[i]), 1.0
-                n1 += 1
+                n1 = _push(th1, careful, n1, _min_pq(co, th1[i]), 1.0)
             else:
                 for sg in (1.0, -1.0):
                     known = 2.0 if sg > 0 else 3.0  # careful, with this sign of Eq 8
-                    th1[n1], careful[n1] = _newton_f(co, th1[i], sg, 0), known
+                    if not _small_f(co, th1[i], sg):
+                        continue  # F is small here through the other sign's factor
+                    n1 = _push(th1, careful, n1, _newton_f(co, th1[i], sg, 0), known)
                     tb = _newton_f(co, th1[i], sg, 1)
-                    th1[n1 + 1], careful[n1 + 1] = tb, known + 2.0  # 4, 5: the extremum
-                    n1 += 2
+                    n1 = _push(th1, careful, n1, tb, known + 2.0)  # 4, 5: the extremum
                     # the two roots of the local quadratic model around the extremum
                     f, _, f2 = _f_sigma(co, tb, sg)
                     d2 = -2.0 * f / f2
-                    if 0.0 < d2 <= 1e-6:
+                    if 0.0 < d2 <= 1e-4:
                         d = math.sqrt(d2)
-                        th1[n1], careful[n1] = _newton_f(co, tb + d, sg, 0), known
-                        th1[n1 + 1], careful[n1 + 1] = _newton_f(co, tb - d, sg, 0), known
-                        n1 += 2
+                        n1 = _push(th1, careful, n1, _root_beside(co, tb, f, d, sg), known)
+                        n1 = _push(th1, careful, n1, _root_beside(co, tb, f, -d, sg), known)
+            if not scanned and _near_continuum_at(co, Ru, L, th1[i], scale, ws):
+                # (also where Eq 8 vanishes: f_sigma is continuous through it)
+                n1 = _scan_roots(co, th1[i], 1.0, 2.0, th1, careful, n1)
+                n1 = _scan_roots(co, th1[i], -1.0, 3.0, th1, careful, n1)
+    ws[_W_STATS + 1] += n1
+    _raw_last(th1, careful, n1, n1_roots, ws[_W_TMP:_W_TMP + 2 * _MAX_T1])
     for i in range(n1):
-        # refinements often land on the same theta1: one try per value and sign of Eq 8
+        # refinements often land on the same theta1: one try per value and sign of Eq 8; of a
+        # cluster of kind-1 candidates (within CROWDED) only the first is tried (they are tried
+        # last, the refined one first: the rest lie within F's rounding of it)
         repeat = False
         for j in range(i):
             if careful[i] < 4.0 and abs(th1[j] - th1[i]) <= 1e-13 and (
                     careful[j] == 1.0 or _sign_group(careful[j]) == _sign_group(careful[i])):
                 repeat = True  # (an extremum, kinds 4 and 5, is always tried: it has priority)
+                break
+            if careful[i] == 1.0 and careful[j] == 1.0 and abs(wrap(th1[j] - th1[i])) <= CROWDED:
+                repeat = True
                 break
         if repeat:
             continue
@@ -1299,6 +1534,17 @@ def _configurations(T, L, dh, opt, ws, wm, cand, best):
         N = math.hypot(P, Q)
         g = b * Q - co[12] * P
         weak = N <= 1e-6 * scale
+        if careful[i] == 0.0 and not weak:
+            # a simple root of p is only as accurate as p is steep there: refine it on the
+            # unsquared f_sigma of its sign (where F = f_+ f_- is flat, f_sigma is not)
+            t = _refine_root(co, th1[i], 1.0 if abs(a * N + g) <= abs(a * N - g) else -1.0)
+            if t != th1[i]:  # (it may land where Eq 8 vanishes: weak again)
+                th1[i] = t
+                C, S = math.cos(t), math.sin(t)
+                a, b, P, Q = _abPQ(co, C, S)
+                N = math.hypot(P, Q)
+                g = b * Q - co[12] * P
+                weak = N <= 1e-6 * scale
         # Eq 8 (corrected Eq 9): (c2, s2) = sigma (Q, -P) / N, sigma where |a N + sigma g| is least
         if careful[i] == 1.0:
             th2s[0], th2s[1] = math.atan2(-P, Q), math.atan2(P, -Q)
@@ -1378,7 +1624,16 @@ def _continua(T, L, dh, lo, hi, opt, ws, wm, cand, nc):
 
 
 @_inner
-def _solve_pose(T, L, dh, lo, hi, opt, within_only, ws, wm, cand, idx, outq, info, flags, hdr):
+def _beyond(T, reach):
+    """Is the position of T farther than ``reach`` from the base origin (no overflow)?"""
+    x, y, z = abs(T[0, 3]), abs(T[1, 3]), abs(T[2, 3])
+    if max(x, y, z) > reach:
+        return True
+    return x * x + y * y + z * z > reach * reach
+
+
+@_inner
+def _solve_pose(T, L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, outq, info, flags, hdr):
     """Every IK solution of one pose into outq (k, 6), info (k, N_INFO) and flags (k, 2)
     (within the limits, approximate); header into hdr."""
     for i in range(N_HDR):
@@ -1387,8 +1642,8 @@ def _solve_pose(T, L, dh, lo, hi, opt, within_only, ws, wm, cand, idx, outq, inf
     status, measure, dist = _check_pose(T, opt[OPT_ORTHONORMAL_TOL], Ru)
     hdr[H_STATUS], hdr[H_MEASURE], hdr[H_PROJECTION] = status, measure, dist
     hdr[H_BEST_P], hdr[H_BEST_R] = np.inf, np.inf
-    if status != OK:
-        return 0
+    if status != OK or _beyond(T, reach + opt[OPT_APPROX_TOL]):
+        return 0  # (beyond the reach bound: unreachable, without arithmetic on huge numbers)
     nc = _configurations(T, L, dh, opt, ws, wm, cand, hdr[H_BEST_P:H_BEST_R + 1])
     _continua(T, L, dh, lo, hi, opt, ws, wm, cand, nc)
     k = _distinct_sorted(cand, nc, 1.0, L, Ru, T, ws, wm, opt, idx)
@@ -1422,27 +1677,51 @@ def _solve_pose(T, L, dh, lo, hi, opt, within_only, ws, wm, cand, idx, outq, inf
     return m
 
 
+@_inner
+def _pad(outq, info, flags, m):
+    """Rows m.. of one pose's outputs: NaN, free kind 0, flags False (the padding of :class:`IKBatch`)."""
+    for r in range(m, outq.shape[0]):
+        for j in range(6):
+            outq[r, j] = np.nan
+        for j in range(N_INFO):
+            info[r, j] = np.nan
+        info[r, I_FREE] = 0.0
+        flags[r, 0], flags[r, 1] = False, False
+
+
 @_entry(_nrt=False)
 def solve_many(Ts, armv, opt, within_only, scratch, outq, info, flags, hdr):
     """:func:`_solve_pose` for poses Ts (n, 4, 4) into padded outq (n, 16, 6), info
     (n, 16, N_INFO), flags (n, 16, 2) bool and hdr (n, N_HDR): a serial loop (one pose: n = 1).
+    Rows past a pose's count are padding (NaN, free kind 0, False).
 
     ``armv``: :attr:`ArmData.vector`; ``opt``: the option vector (OPT_*); ``scratch``
     (N_SCRATCH,) float64 is working memory, allocated by the caller: the kernel runs without
     Numba's reference counting, which would cost more than the arithmetic.
     """
-    L, lo, hi, dh = armv[0:5], armv[5:11], armv[11:17], armv[17:41].reshape((6, 4))
+    L, lo, hi, dh, reach = armv[0:5], armv[5:11], armv[11:17], armv[17:41].reshape((6, 4)), armv[REACH]
     ws = scratch[0:N_WORK]
     wm = scratch[N_WORK:N_WORK + N_MATS * 81].reshape((N_MATS, 9, 9))
     o = N_WORK + N_MATS * 81
     cand = scratch[o:o + MAX_CAND * N_CAND].reshape((MAX_CAND, N_CAND))
     idx = scratch[o + MAX_CAND * N_CAND:N_SCRATCH]
     for i in range(Ts.shape[0]):
-        _solve_pose(Ts[i], L, dh, lo, hi, opt, within_only, ws, wm, cand, idx, outq[i], info[i], flags[i],
-                    hdr[i])
+        _solve_pose(Ts[i], L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, outq[i], info[i],
+                    flags[i], hdr[i])
+        _pad(outq[i], info[i], flags[i], int(hdr[i, H_COUNT]))
 
 
 _SCRATCH = None
+
+
+def work_counts(reset: bool = False) -> dict[str, int]:
+    """The work counters of :func:`scratch` (:data:`STATS`, cumulative over the serial calls of
+    this process; ``reset`` zeroes them after reading): what a profile of the kernel reads."""
+    w = scratch()[_W_STATS:_W_STATS + len(STATS)]
+    out = {k: int(v) for k, v in zip(STATS, w, strict=True)}
+    if reset:
+        w[:] = 0.0
+    return out
 
 
 def scratch() -> np.ndarray:
@@ -1456,7 +1735,7 @@ def scratch() -> np.ndarray:
 @_entry(parallel=True)
 def solve_many_parallel(Ts, armv, opt, within_only, outq, info, flags, hdr):
     """:func:`solve_many` on all cores (``numba.prange`` over chunks of 64 poses)."""
-    L, lo, hi, dh = armv[0:5], armv[5:11], armv[11:17], armv[17:41].reshape((6, 4))
+    L, lo, hi, dh, reach = armv[0:5], armv[5:11], armv[11:17], armv[17:41].reshape((6, 4)), armv[REACH]
     n = Ts.shape[0]
     chunk = 64
     for c in numba.prange((n + chunk - 1) // chunk):
@@ -1465,5 +1744,6 @@ def solve_many_parallel(Ts, armv, opt, within_only, outq, info, flags, hdr):
         cand = np.zeros((MAX_CAND, N_CAND))
         idx = np.zeros(MAX_CAND)
         for i in range(c * chunk, min(n, (c + 1) * chunk)):
-            _solve_pose(Ts[i], L, dh, lo, hi, opt, within_only, ws, wm, cand, idx, outq[i], info[i],
+            _solve_pose(Ts[i], L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, outq[i], info[i],
                         flags[i], hdr[i])
+            _pad(outq[i], info[i], flags[i], int(hdr[i, H_COUNT]))

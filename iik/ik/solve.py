@@ -25,6 +25,7 @@ import numpy as np
 
 from ..arm import LIMIT_TOL, THESIS_ARM, Arm
 from ..errors import InvalidInputError
+from ..kinematics import reach_bound
 from . import poses as _poses
 from .options import DEFAULT_OPTIONS, IKOptions
 from .result import Continuum, IKBatch, IKResult
@@ -78,7 +79,7 @@ def _complete(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool):
     """Kernel outputs (q, info, flags, hdr) for validated-shape poses (n, 4, 4)."""
     k = _kernel()
     n = Tb.shape[0]
-    q = np.empty((n, k.MAX_SOLUTIONS, 6))  # rows past the count are not written
+    q = np.empty((n, k.MAX_SOLUTIONS, 6))  # the kernel writes the padding too
     info = np.empty((n, k.MAX_SOLUTIONS, k.N_INFO))
     flags = np.empty((n, k.MAX_SOLUTIONS, 2), dtype=bool)
     hdr = np.empty((n, k.N_HDR))
@@ -89,6 +90,17 @@ def _complete(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool):
         k.solve_many(Tc, k.arm_data(arm).vector, _option_vector(opts), within, k.scratch(), q, info,
                      flags, hdr)
     return q, info, flags, hdr
+
+
+def _beyond_reach(Tb: np.ndarray, arm: Arm) -> np.ndarray:
+    """Poses (n, 4, 4) whose position is farther than :func:`iik.kinematics.reach_bound` from the
+    base origin (compared without squaring huge numbers: no overflow)."""
+    with np.errstate(invalid="ignore"):  # (NaN positions are rejected by the pose check)
+        p = np.abs(Tb[:, :3, 3])
+        r = reach_bound(arm)
+        big = p.max(axis=1) > r
+        p = np.where(big[:, None], 0.0, p)
+        return big | (np.einsum("ni,ni->n", p, p) > r * r)
 
 
 def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, method: str):
@@ -103,8 +115,9 @@ def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, metho
     hdr[:, k.H_BEST_P], hdr[:, k.H_BEST_R] = np.inf, np.inf
     q = np.full((n, k.MAX_SOLUTIONS, 6), np.nan)
     info = np.full((n, k.MAX_SOLUTIONS, k.N_INFO), np.nan)
+    info[:, :, k.I_FREE] = 0.0  # padding as the kernel writes it
     flags = np.zeros((n, k.MAX_SOLUTIONS, 2), dtype=bool)
-    good = np.flatnonzero(status == _poses.OK)
+    good = np.flatnonzero((status == _poses.OK) & ~_beyond_reach(Tb, arm))  # far: unreachable, no arithmetic
     if len(good) == 0:
         return q, info, flags, hdr
     Tu = Tb[good].copy()
@@ -263,10 +276,7 @@ def solve_batch(Ts, *, method: str = "complete", within_limits: bool = True, arm
     Tb, batched = _poses.as_pose_batch(Ts, "Ts")
     q, info, flags, hdr = _run(Tb, arm, opts, within_limits, method)
     _raise_first_bad(hdr, "Ts", batched, opts)
-    count = hdr[:, 4].astype(int)
-    pad = np.arange(q.shape[1])[None, :] >= count[:, None]
-    q[pad], info[pad], flags[pad] = np.nan, np.nan, False  # the kernel leaves padding unwritten
-    info[:, :, 4][pad] = 0.0
+    count = hdr[:, 4].astype(int)  # (rows past the count are padding: NaN / free 0 / False)
     for a in (q, info, flags):
         a.setflags(write=False)
     out = [count, hdr[:, 3].astype(int), hdr[:, 2].copy(), hdr[:, 5:7].copy(), info[:, :, 4].astype(int)]

@@ -1,6 +1,7 @@
 """Tests of iik.solve / iik.solve_many (complete method) and its degenerate cases."""
 
 import dataclasses
+import warnings
 
 import numpy as np
 import pytest
@@ -359,3 +360,27 @@ def test_theta1_theta6_continuum_is_resolved():
         assert c.fixed in ("theta1 - theta6", "theta1 + theta6")
         for th in (-1.0, 0.5, 2.0):
             assert np.allclose(iik.fk(c.member(th)), T, atol=1e-9)
+
+
+@pytest.mark.parametrize("method", ["complete", "reference", "thesis"])
+@pytest.mark.parametrize("position", [[1e308, 0.0, 0.0], [-1e308, 1e308, 1e308], [0.0, 0.0, 1e200],
+                                      [1.3, 0.0, 0.3]])
+def test_pose_beyond_any_reach_is_unreachable_without_warnings(method, position):
+    T = np.eye(4)
+    T[:3, 3] = position
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # an overflow inside would raise here
+        r = iik.solve(T, method=method)
+        reachable = iik.fk(np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0]))
+        many = iik.solve_many(np.stack([T, reachable]), method=method)
+    assert r.count == 0 and r.reason.startswith("unreachable")
+    assert many[0].count == 0 and many[1].count > 0
+
+
+def test_reach_bound_bounds_the_tool_point():
+    """The guard's bound: no q (not even outside Table I) puts the tool point beyond it, and it is
+    not loose by more than the link offsets that cannot line up (here 9 %)."""
+    q = np.random.default_rng(7).uniform(-np.pi, np.pi, size=(200_000, 6))
+    far = np.max(np.linalg.norm(iik.fk(q)[:, :3, 3], axis=1))
+    bound = iik.kinematics.reach_bound()
+    assert far <= bound <= 1.1 * far

@@ -16,7 +16,7 @@ import pytest
 
 import iik
 from iik.errors import IIKError, InvalidInputError, NotOrthonormalError
-from iik.ik.compare import contains
+from iik.ik.compare import contains, free_joints_of
 
 ARM = iik.THESIS_ARM
 LO, HI = ARM.q_min, ARM.q_max
@@ -70,6 +70,73 @@ def test_kernel_agrees_with_reference_on_1e5_poses():
     _q, T = family_poses(15_000, seed=102)  # 105 000 poses
     n, bad = agreement(T)
     assert n >= 100_000 and bad == [], (len(bad), bad[:5])
+
+
+#: The pose the recovery sweep missed (theta5 ~ 0 family, seed 20120101, index 37445): theta4 ~ -4e-4
+#: and theta5 ~ -8e-10 put it near the theta3/theta6 continuum (sigma_min(J) ~ 5e-9), where F is
+#: flat at its rounding level and the degree-8 root was 2.4e-5 rad off; its polish stalled in the
+#: valley 4e-3 rad from q at residual 3e-11 (a curved path within the tolerance joins the two,
+#: but the exact root itself was missing).
+SWEEP_MISS = np.array([1.8089656803384133, -1.949406613634231, 1.3741108543885727, -0.00038877210366772275,
+                       -8.382657476354402e-10, 2.5880086775654725])
+
+
+def test_pose_missed_by_the_recovery_sweep_is_recovered_exactly():
+    T = iik.fk(SWEEP_MISS)
+    r = iik.solve(T, within_limits=False)
+    d = np.max(np.abs((r.q - SWEEP_MISS + np.pi) % (2 * np.pi) - np.pi), axis=1)
+    i = int(np.argmin(d))
+    assert d[i] <= 1e-6 and r.position_residual[i] <= 1e-13 and r.rotation_residual[i] <= 1e-13
+    assert contains(r.q, SWEEP_MISS, T, ARM, free_joints=r.free_joints)
+    n, bad = agreement(T[None])
+    assert bad == []
+
+
+def near_continuum_poses(n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
+    """Poses of the sweep miss's kind: |theta4| in 10^[-4.5, -2.5], |theta5| in 10^[-12, -6] (the
+    near theta3/theta6 continuum, where the eliminant is flat at rounding level)."""
+    rng = np.random.default_rng(seed)
+    q = rng.uniform(LO, HI, size=(n, 6))
+    q[:, 3] = rng.choice([-1.0, 1.0], n) * 10 ** rng.uniform(-4.5, -2.5, n)
+    q[:, 4] = rng.choice([-1.0, 1.0], n) * 10 ** rng.uniform(-12, -6, n)
+    return q, iik.fk(q)
+
+
+def recovered(q: np.ndarray, T: np.ndarray) -> list[int]:
+    """Indices whose generating q is not among the kernel's solutions."""
+    b = iik.ik.solve_batch(T, within_limits=False)
+    return [i for i in range(len(q)) if not contains(b.q[i, :b.count[i]], q[i], T[i], ARM,
+                                                      free_joints=free_joints_of(b.free[i, :b.count[i]]))]
+
+
+def test_near_continuum_poses_are_recovered():
+    """The sweep miss's kind, 5000 poses (the kernel before the fix missed ~2 per 1000 of them)."""
+    q, T = near_continuum_poses(5000, seed=106)
+    assert recovered(q, T) == []
+
+
+@pytest.mark.slow
+def test_near_continuum_poses_are_recovered_thorough():
+    q, T = near_continuum_poses(100_000, seed=107)
+    assert recovered(q, T) == []
+
+
+#: The wrist point on the joint-1 axis to 1e-16 m: the eliminant's double roots (where Eq 8
+#: vanishes) come out as pairs of simple roots 2.4e-5 rad apart; refined on f_sigma both land
+#: where Eq 8 vanishes, and there theta2 has the two Eq 11 options (one was lost once).
+ON_AXIS = np.array([1.9807956984317099, -1.8113215801070661, 0.0, -0.002596077066196578, 1.4226199670433592,
+                    -2.6792027325122807])
+
+
+def test_wrist_point_on_the_joint1_axis():
+    from verification.testing.ik_benchmark import family_joints
+
+    q = np.concatenate([ON_AXIS[None], family_joints("wrist point on joint-1 axis", 300,
+                                                       np.random.default_rng(108), ARM)])
+    T = iik.fk(q)
+    assert recovered(q, T) == []
+    _n, bad = agreement(T)
+    assert bad == []
 
 
 def test_solve_many_and_solve_batch_match_solve():

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -107,3 +109,21 @@ def test_position_lm_converges():
     q0 = np.clip(q + rng.normal(0, 0.05, q.shape), ARM.q_min[:5], ARM.q_max[:5])
     _, res = position_lm(P, q0)
     assert res.max() < 1e-8
+
+
+@pytest.mark.parametrize("p", [[1e300, 0.0, 0.0], [1e308, 1e308, -1e308], [-1e200, 1.0, 1.0],
+                               [0.0, 0.0, -1e250]])
+def test_closest_reachable_far_away_points(p):
+    """Points beyond any reach, up to the largest floats: no error and no warning; the answer is
+    reachable (fk of the returned q), the same as for the point on its ray at 10^6 m (computed
+    without the far-point proxy) to 1e-6 m, and the distance is measured to the point as given."""
+    p = np.array(p)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = iik.closest_reachable(p)
+        assert not iik.in_workspace(p)
+    assert r.moved and np.allclose(iik.fk(r.q)[:3, 3], r.point, atol=1e-12)
+    ray = p / np.hypot(np.hypot(p[0], p[1]), p[2]) * 1e6
+    assert np.max(np.abs(iik.closest_reachable(ray).point - r.point)) <= 1e-6
+    d = (r.point - p) / np.max(np.abs(p))
+    assert r.distance == pytest.approx(np.max(np.abs(p)) * np.sqrt(np.sum(d * d)), rel=1e-12)
