@@ -728,13 +728,12 @@ def _horner(c, deg, x):
 
 
 @_inner
-def _bracketed_root(c, deg, x0, x1, f0, f1, flat0, flat1, rtol, guess):
+def _bracketed_root(c, deg, x0, x1, f0, f1, flat0, flat1, rtol):
     """The root of a polynomial in [x0, x1] where it changes sign (f0, f1: values at the ends).
 
     Newton's method safeguarded by bisection (every iterate stays in the shrinking
-    bracket); it starts at ``guess`` if that lies inside, else where the cubic with the end
-    values and zero end slopes (``flat0``, ``flat1``: the ends are critical points) crosses
-    zero. Stops when the step is below
+    bracket); it starts where the cubic with the end values and zero end slopes (``flat0``,
+    ``flat1``: the ends are critical points) crosses zero. Stops when the step is below
     ``rtol`` (1 + |x|), the bracket is at rounding level, or |p(x)| is below the rounding
     error of its evaluation (8 eps sum |c_i| |x|^i).
     """
@@ -747,7 +746,7 @@ def _bracketed_root(c, deg, x0, x1, f0, f1, flat0, flat1, rtol, guess):
         s = 1.0 - math.sqrt(1.0 - r)
     else:
         s = r
-    x = guess if x0 < guess < x1 else x0 + s * (x1 - x0)
+    x = x0 + s * (x1 - x0)
     if not (x0 < x < x1):
         x = 0.5 * (x0 + x1)
     step_old = x1 - x0
@@ -821,16 +820,8 @@ def _real_roots(p, ws, wm):
             if zero:
                 fb = 0.0
             if (fa < 0.0 and fb > 0.0) or (fa > 0.0 and fb < 0.0):
-                guess = np.nan
-                if ncrit > 0 and (j == 0 or j == ncrit):
-                    # an outer piece (from -B or to B): start from the root of the quadratic
-                    # model at its critical end (the cubic start lies near that end there)
-                    xc, fc = (xb, fb) if j == 0 else (xa, fa)
-                    f2 = _horner(D[k + 2], deg - 2, xc)[0]
-                    if -2.0 * fc / f2 > 0.0:
-                        guess = xc + (-1.0 if j == 0 else 1.0) * math.sqrt(-2.0 * fc / f2)
                 new[nnew] = _bracketed_root(ck, deg, xa, xb, fa, fb, j > 0, j < ncrit,
-                                            1e-15 if k == 0 else 1e-9, guess)
+                                            1e-15 if k == 0 else 1e-9)
                 nnew += 1
             if zero and k > 0:
                 new[nnew] = xb
