@@ -118,10 +118,13 @@ class _FunctionCache(_nb_caching.FunctionCache):
 def _entry(**options):
     """``numba.njit(**options)`` with the on-disk cache described in the module docstring.
 
-    IEEE arithmetic (``error_model="numpy"``): x / 0 is inf or nan, never an exception.
+    IEEE arithmetic (``error_model="numpy"``): x / 0 is inf or nan, never an exception. Under
+    ``NUMBA_DISABLE_JIT=1`` (debugging) the plain Python function, uncached.
     """
     def wrap(fn):
         disp = numba.njit(error_model="numpy", **options)(fn)
+        if numba.config.DISABLE_JIT:
+            return disp
         disp._cache = _FunctionCache(disp.py_func)  # what njit(cache=True) does, with our key
         return disp
     return wrap

@@ -262,3 +262,15 @@ def test_cache_in_user_folder_when_package_is_read_only_and_keyed_on_all_sources
     with open(pkg / "kinematics.py", "a") as f:
         f.write("\n# edited\n")
     assert once() == (0, 1)  # the formulas changed: compiled again, not a stale kernel
+
+
+def test_kernel_runs_as_python_under_numba_disable_jit():
+    """NUMBA_DISABLE_JIT=1 (how one steps through the kernel in a debugger) gives plain Python
+    functions: same solutions, no cache machinery (which needs a compiled dispatcher)."""
+    code = ("import numpy as np, iik; q = np.array([0.3, -0.5, 0.7, 0.4, -0.6, 0.2]); "
+            "r = iik.solve(iik.fk(q)); "
+            "print(min(np.max(np.abs(np.angle(np.exp(1j * (row - q))))) for row in r.q))")
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert float(out.stdout) < 1e-9
