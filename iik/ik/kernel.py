@@ -196,15 +196,23 @@ def _finite6(q) -> bool:
 
 
 @_inner
-def _fk_into(q, L, T) -> None:
-    """Eq 4 for one q into T (4, 4)."""
+def _eq4_common(q, L):
+    """The cosines and sines of joints 1-4 and of theta4 + theta5, and Eq 4's recurring terms
+    A, B, W, V (:func:`iik.kinematics.eq4_terms`), of one q: what FK and the Jacobians share."""
     c1, s1 = math.cos(q[0]), math.sin(q[0])
     c2, s2 = math.cos(q[1]), math.sin(q[1])
     c3, s3 = math.cos(q[2]), math.sin(q[2])
     c4, s4 = math.cos(q[3]), math.sin(q[3])
-    c6, s6 = math.cos(q[5]), math.sin(q[5])
     c45, s45 = math.cos(q[3] + q[4]), math.sin(q[3] + q[4])
     A, B, W, V = _terms(c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, L[3], L[4])
+    return c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, A, B, W, V
+
+
+@_inner
+def _fk_into(q, L, T) -> None:
+    """Eq 4 for one q into T (4, 4)."""
+    c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, A, B, W, V = _eq4_common(q, L)
+    c6, s6 = math.cos(q[5]), math.sin(q[5])
     X1, X2, X3, Y1, Y2, Y3, Z1, Z2, Z3 = _wrist_axes(c1, s1, c2, s2, c3, s3, c45, s45, A, B)
     r11, r21, r31, r12, r22, r32 = _rotation(c6, s6, X1, X2, X3, Y1, Y2, Y3)
     px, py, pz = _position(c1, s1, c2, s2, c3, A, B, W, V, L[0], L[1], L[2])
@@ -234,12 +242,7 @@ def fk_many(Q, L, T) -> bool:
 
 @_inner
 def _position_jacobian_into(q, L, J) -> None:
-    c1, s1 = math.cos(q[0]), math.sin(q[0])
-    c2, s2 = math.cos(q[1]), math.sin(q[1])
-    c3, s3 = math.cos(q[2]), math.sin(q[2])
-    c4, s4 = math.cos(q[3]), math.sin(q[3])
-    c45, s45 = math.cos(q[3] + q[4]), math.sin(q[3] + q[4])
-    A, B, W, V = _terms(c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, L[3], L[4])
+    c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, A, B, W, V = _eq4_common(q, L)
     e = _app_c(c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, A, B, W, V, L[1], L[2], L[3], L[4])
     for k in range(15):
         J[k // 5, k % 5] = e[k]
