@@ -10,12 +10,10 @@ Exit 0 if a solution was found, 1 if none (unreachable, or none inside Table I).
 from __future__ import annotations
 
 import json
-import math
-import sys
 
 import numpy as np
 
-from .options import add_pose_arguments
+from .options import add_pose_arguments, warn_degrees
 
 NAME = "solve"
 HELP = "all IK solutions of a pose given as --xyz X Y Z --zxz ALPHA BETA GAMMA (exit 1 if none)"
@@ -29,23 +27,14 @@ def add_arguments(p) -> None:
     p.add_argument("--method", choices=("complete", "thesis"), default="complete")
     p.add_argument("--all", action="store_true", help="also list solutions outside the joint limits")
     p.add_argument("--json", action="store_true", help="machine-readable output")
-    p.spelling.update(p="--xyz", T="--xyz/--zxz", alpha="--zxz", beta="--zxz", gamma="--zxz",
-                      q_prev="--previous", previous_q="--previous")  # the library's names as typed
-
-
-def _warn_degrees(args) -> None:
-    """Angles beyond one turn read as radians are almost surely degrees typed without --deg."""
-    for flag, values in (("--zxz", args.zxz), ("--previous", args.previous or ())):
-        if not args.deg and any(abs(v) > 2 * math.pi for v in values if math.isfinite(v)):
-            print(f"iik solve: warning: {flag} {' '.join(f'{v:g}' for v in values)} look like degrees "
-                  "(beyond 2 pi); they are read as radians: add --deg", file=sys.stderr)
+    p.spelling.update(q_prev="--previous", previous_q="--previous")  # the library's names as typed
 
 
 def run(args) -> int:
     import iik
     from iik.ik import select_index
 
-    _warn_degrees(args)
+    warn_degrees(NAME, args, ("--zxz", "--previous"))
     conv_in = np.radians if args.deg else np.asarray
     prev = None if args.previous is None else conv_in(args.previous)
     with np.errstate(all="ignore"):  # absurd inputs (--xyz 1e308) are unreachable, not warnings

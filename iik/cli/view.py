@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from .options import add_pose_arguments
+from .options import add_pose_arguments, warn_degrees
 
 NAME = "view"
 HELP = "3D web viewer: a pose (--q, --xyz/--zxz), interactive IK (no target), a plan (SCENARIO), a run log"
@@ -68,6 +68,7 @@ def run(args) -> int:
     from iik.errors import InvalidInputError
     from iik.planning.viewer import ExportResult, ViewOptions, view
 
+    warn_degrees(NAME, args, ("--q", "--zxz", "--previous"))
     opts = ViewOptions(host=args.host, port=args.port, export=args.export, force=args.force)
     if args.run is not None:
         if args.scenario or args.q or args.xyz or args.zxz:

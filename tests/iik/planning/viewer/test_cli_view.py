@@ -40,6 +40,33 @@ def test_run_log_that_does_not_parse(capsys, tmp_path):
     _one_error(err, "RunLogError")
 
 
+@pytest.mark.parametrize(("flags", "typed"), [
+    (("--xyz", "nan", "0", "0", "--zxz", "0", "0", "0"), "--xyz:"),
+    (("--xyz", "0.4", "0", "0.3", "--zxz", "0", "inf", "0"), "--zxz:"),
+])
+def test_bad_pose_names_the_flag_as_typed(capsys, tmp_path, flags, typed):
+    code, _, err = _run(capsys, *flags, "--export", str(tmp_path / "out"))
+    assert code == 2
+    _one_error(err, "InvalidInputError", typed, "NaN or inf")
+    assert not (tmp_path / "out").exists()
+
+
+def test_far_pose_is_shown_unreachable_without_internal_warnings(capfd, tmp_path):
+    argv = ["view", "--xyz", "1e308", "0", "0", "--zxz", "0", "0", "0", "--export", str(tmp_path / "out")]
+    code = main(argv)
+    out, err = capfd.readouterr()
+    assert code == 0 and "0 IK solution(s)" in out and "unreachable" in out
+    assert "Warning" not in err and "warning" not in err and "inf" not in out
+
+
+def test_angles_that_look_like_degrees_get_a_warning(capsys, tmp_path):
+    argv = ("--xyz", "0.4", "0.3", "0.2", "--zxz", "180", "120", "0", "--export", str(tmp_path / "a"))
+    code, _, err = _run(capsys, *argv)
+    assert code == 0 and "iik view: warning: --zxz 180 120 0 look like degrees" in err
+    code, _, err = _run(capsys, *argv[:-1], str(tmp_path / "b"), "--deg")
+    assert code == 0 and "warning" not in err
+
+
 def test_port_in_use(capsys):
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
