@@ -8,7 +8,7 @@ Units: metres, radians, seconds.
 
 Sources:
     * l2..l5 are recovered from Appendix E (point A1, the diagonal of H*),
-      see ``shared/ARM.md``.
+      see ``docs/ARM.md``.
     * **l1 = 0.300 m is an assumption.** It is a pure z offset that cancels from
       every derivative in Appendix E, so nothing in the text fixes it.
     * Joint limits: Table I.

@@ -22,3 +22,29 @@ def test_readme_has_exactly_two_setup_commands():
 def test_ci_runs_the_readme_test_command_verbatim():
     ci_lines = (ROOT / ".ci" / "run").read_text(encoding="utf-8").splitlines()
     assert _setup_commands()[1] in ci_lines
+
+
+def test_readme_documents_the_limit_filter_of_solve():
+    """`iik.solve(T)` drops solutions outside Table I by default: the README says so where it shows it."""
+    text = (ROOT / "README.md").read_text()
+    default = [ln for ln in text.splitlines() if re.search(r"iik\.solve\(T\)\s+#", ln)]
+    assert default and all("within the joint limits" in ln for ln in default), default
+    assert re.search(r"iik\.solve\(T, within_limits=False\)", text)
+
+
+def test_files_the_docs_point_to_are_in_the_repository():
+    """Every `docs/*.md` the README or the code names exists, and nothing points into `../shared`
+    at run time (the project copies what it needs from there, naming the source)."""
+    code = (p for d in ("iik", "hardware", "verification") for p in ROOT.glob(f"{d}/**/*.py"))
+    sources = [ROOT / "README.md", *code]
+    named = {m for p in sources for m in re.findall(r"docs/[A-Za-z_]+\.md", p.read_text())}
+    assert {"docs/POWERCUBE.md", "docs/ARM.md"} <= named
+    assert all((ROOT / n).is_file() for n in named), sorted(n for n in named if not (ROOT / n).is_file())
+
+
+def test_slow_marker_selects_the_long_sweeps():
+    """The README's `pytest -m slow` runs something: the marker is registered and used."""
+    text = (ROOT / "pyproject.toml").read_text()
+    assert re.search(r'"slow:', text)
+    marked = [p for p in ROOT.glob("tests/**/*.py") if "@pytest.mark.slow" in p.read_text()]
+    assert marked

@@ -39,7 +39,7 @@ _ALL = (
     Assumption(
         "lengths",
         "l2..l5 = 0.122, 0.339, 0.175, 0.265 m are not printed: they were recovered "
-        "from the diagonal of H* at App. E point A1 (shared/ARM.md); iik.THESIS_ARM",
+        "from the diagonal of H* at App. E point A1 (docs/ARM.md); iik.THESIS_ARM",
     ),
     Assumption(
         "lengths-circular",

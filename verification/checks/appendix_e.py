@@ -8,7 +8,7 @@ with ground truth: reachability of ``p +- 2 mm N0`` by the oracle. The printed n
 numbers (must hold) and the same numbers 5 % off with flipped conclusions (must not).
 
 Circularity: the link lengths l2..l5 were recovered from the diagonal of A1's H*
-(``shared/ARM.md``), so H*(1,1), (2,2), (4,4), (5,5) at A1 agree by construction; that
+(``docs/ARM.md``), so H*(1,1), (2,2), (4,4), (5,5) at A1 agree by construction; that
 entry is marked ``lengths-circular``. The off-diagonal terms, B, Q*, eig(Q*) and A2's
 sigma are independent confirmations.
 """
