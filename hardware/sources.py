@@ -257,5 +257,6 @@ def scenario_trajectory(name: str | Path, speed: float = 1.0) -> StepTargets:
         poses = fk(q)
     times = np.asarray(res.trajectory.step_t, dtype=float)
     notes.append(f"{res.scenario.name}: planned via {res.method} ({len(q)} step-points, {times[-1]:.3f} s "
-                 f"as iik plan times them, min whole-arm clearance {res.min_clearance * 1e3:.1f} mm)")
+                 f"as iik plan times them, whole-arm clearance certified >= "
+                 f"{res.min_clearance * 1e3:.1f} mm)")
     return StepTargets(res.scenario.name, times, q, poses, free, "\n".join(notes)).slowed(speed)

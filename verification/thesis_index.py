@@ -287,7 +287,7 @@ CLAIMS: tuple[Item, ...] = (
         "Claim 3.4",
         "Sec 3.3.5",
         "up to 8 solutions, 16 in special cases; at least two (theta1, theta2) sets",
-        (f"{_IK}:solution_counts",),
+        (f"{_IK}:solution_counts", f"{_IK}:solution_counts_table_i"),
     ),
     _claim(
         "Claim 3.5",
@@ -343,7 +343,7 @@ CLAIMS: tuple[Item, ...] = (
         "Claim 4.5",
         "Sec 4.2.1.1",
         "the IIK finds up to 8 solutions per position, Newton one",
-        (f"{_IK}:solution_counts",),
+        (f"{_IK}:solution_counts", f"{_IK}:solution_counts_table_i"),
     ),
     _claim(
         "Claim 4.6",

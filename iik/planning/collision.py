@@ -87,7 +87,8 @@ class PathClearance:
 
     @property
     def minimum(self) -> float:
-        """Smallest clearance over the steps and the motions between them [m]."""
+        """Smallest clearance over the steps and the motions between them [m]: a certified lower
+        bound (a motion's bound is refined only until it clears the required distance)."""
         return float(min(self.step.min(), self.motion.min() if len(self.motion) else np.inf))
 
     @property

@@ -174,7 +174,9 @@ class PlanResult:
         points: (n, 3) tool points [m] (forward kinematics of ``q``).
         effort: (n,) effort index of Eq 54 [rad].
         clearance: Whole-arm clearance (:class:`PathClearance`) of ``q``.
-        min_clearance: Smallest certified clearance [m].
+        min_clearance: A certified lower bound on the whole-arm clearance along ``q`` [m]: the exact
+            distance at the steps and, between them, motion bounds refined only until the safety zone
+            is proven (so it can lie well below the true minimum; ``clearance.step`` has the steps).
         path_length: Tool path length [m] (FK of the joint path, fine sampling).
         branch_switches: Step indices where the IK branch jumped.
         failed_steps: Steps of the thesis path without IK solution at the nominal orientation.
@@ -239,7 +241,7 @@ class PlanResult:
             head += f" -- {self.reason}"
         tr = self.trajectory
         return (f"{head}\n  steps {len(self.q)}, tool path {self.path_length:.3f} m, "
-                f"min whole-arm clearance {self.min_clearance * 1000:.1f} mm "
+                f"whole-arm clearance certified >= {self.min_clearance * 1000:.1f} mm "
                 f"(safety zone {s.safety_zone * 1000:.0f} mm), branch switches {len(self.branch_switches)}, "
                 f"beta/alpha/gamma+pi changed at {len(self.beta_changed_steps)}/"
                 f"{len(self.alpha_changed_steps)}/{len(self.gamma_changed_steps)} "

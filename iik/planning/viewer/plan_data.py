@@ -117,7 +117,7 @@ def _headline(result: PlanResult, n_steps: int, switches: int) -> str:
     if not result.success:
         return f"{sc.name}: FAILED ({result.reason})"
     dur = f", {traj.duration:.2f} s (TOPP-RA)" if traj is not None else ""
-    return (f"{sc.name}: OK via {result.method}; min whole-arm clearance "
+    return (f"{sc.name}: OK via {result.method}; whole-arm clearance certified >= "
             f"{result.min_clearance * 1000:.1f} mm (safety zone {sc.safety_zone * 1000:.0f} mm), "
             f"{n_steps} step-points, {switches} IK branch switch(es){dur}")
 
