@@ -136,7 +136,7 @@ class Attempt:
     Attributes:
         label: What was tried, e.g. ``"thesis path, IK branch 2 (0 switches)"``.
         accepted: The path kept the safety zone and became the plan.
-        clearance: Certified whole-arm clearance of the path [m] (steps and motions);
+        clearance: Certified lower bound of the whole-arm clearance along the path [m] (steps, motions);
             NaN when no path was checked.
         self_clearance: Smallest distance between non-adjacent links at the steps [m] (NaN: none).
         closest_link, closest_object: The pair at the step of smallest clearance.
@@ -155,8 +155,9 @@ class Attempt:
     def __str__(self) -> str:
         if math.isnan(self.clearance):
             return f"{self.label}: {self.reason}"
-        return (f"{self.label}: min clearance {self.clearance * 1000:.1f} mm ({self.closest_link} to "
-                f"{self.closest_object}), self {self.self_clearance * 1000:.1f} mm"
+        return (f"{self.label}: clearance certified >= {self.clearance * 1000:.1f} mm "
+                f"(nearest: {self.closest_link} to {self.closest_object}), "
+                f"self {self.self_clearance * 1000:.1f} mm"
                 + (f" -- {self.reason}" if self.reason else "") + (" -> accepted" if self.accepted else ""))
 
 
