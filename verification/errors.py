@@ -19,7 +19,23 @@ class VerificationError(IIKError):
     """Root of the errors the verification layer raises on purpose."""
 
 
-class RegistrationError(VerificationError, ValueError):
+class _AboutError(VerificationError, ValueError):
+    """An error about one thing (a check, a row field, a file) and what is wrong with it.
+
+    A subclass names the attribute that holds the thing (``about``) and how the message
+    leads with it (``lead``, formatted with the thing); ``reason`` holds what is wrong.
+    """
+
+    about = ""
+    lead = "{}"
+
+    def __init__(self, subject: str, reason: str):
+        setattr(self, self.about, subject)
+        self.reason = reason
+        super().__init__(f"{self.lead.format(subject)}: {reason}")
+
+
+class RegistrationError(_AboutError):
     """A check registration is malformed.
 
     Attributes:
@@ -27,13 +43,11 @@ class RegistrationError(VerificationError, ValueError):
         reason: What is wrong with it.
     """
 
-    def __init__(self, check: str, reason: str):
-        self.check = check
-        self.reason = reason
-        super().__init__(f"check {check!r}: {reason}")
+    about, lead = "check", "check {!r}"
+    check: str
 
 
-class RowError(VerificationError, ValueError):
+class RowError(_AboutError):
     """A report row is inconsistent.
 
     Attributes:
@@ -41,13 +55,11 @@ class RowError(VerificationError, ValueError):
         reason: What is wrong with it.
     """
 
-    def __init__(self, field: str, reason: str):
-        self.field = field
-        self.reason = reason
-        super().__init__(f"row {field}: {reason}")
+    about, lead = "field", "row {}"
+    field: str
 
 
-class ReportError(VerificationError, ValueError):
+class ReportError(_AboutError):
     """A machine-readable report cannot be read.
 
     Attributes:
@@ -55,7 +67,5 @@ class ReportError(VerificationError, ValueError):
         reason: What is wrong with it (for a schema mismatch: the JSON path and the rule).
     """
 
-    def __init__(self, path: str, reason: str):
-        self.path = path
-        self.reason = reason
-        super().__init__(f"{path}: {reason}")
+    about = "path"
+    path: str
