@@ -247,6 +247,9 @@ class Row:
         )
 
 
+_RIGHT = "the printed form (it is right)"
+
+
 @dataclass(frozen=True)
 class Forms:
     """The forms a falsifiable check measures (see the module docstring).
@@ -266,6 +269,17 @@ class Forms:
     good_is: str
     bad_is: str
     rows: tuple[str, ...] = ()
+
+    @classmethod
+    def slipped(cls, printed, good, slip: Callable, eps: float, *, good_is: str, bad_is: str, rows=()):
+        """Forms whose bad form is ``slip`` (the printed or the good form) moved by ``eps``
+        (:func:`off_by`)."""
+        return cls(printed, good, off_by(slip, eps), good_is=good_is, bad_is=bad_is, rows=rows)
+
+    @classmethod
+    def right(cls, form: Callable, eps: float, *, bad_is: str, good_is: str = _RIGHT):
+        """Forms of a form printed right: it is also the good one; the bad one is it moved by ``eps``."""
+        return cls.slipped(form, form, form, eps, good_is=good_is, bad_is=bad_is)
 
 
 def off_by(form: Callable, eps: float) -> Callable:

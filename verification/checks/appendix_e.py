@@ -24,7 +24,7 @@ from ..numbers import fmt_matrix, fmt_vec
 from ..oracles.abdel_malek import normal_acceleration
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, off_by
+from ..registry import Erratum, Forms, Measure, Row, Section, Verdict
 from ..shorthand import cos_sin
 
 _D = np.pi / 180
@@ -489,13 +489,9 @@ def eq69_corrected(q):
 @SECTION.check(
     48.5,
     depends_on=EXACT_GEOMETRY,
-    forms=Forms(
-        printed=eq69_printed,
-        good=eq69_corrected,
-        bad=off_by(eq69_corrected, 1e-9),
-        good_is="f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
-        bad_is="the good point + 1 nm",
-    ),
+    forms=Forms.slipped(eq69_printed, eq69_corrected, eq69_corrected, 1e-9,
+                        good_is="f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
+                        bad_is="the good point + 1 nm"),
 )
 def eq69_surface(ctx, f1):
     """Eq 69: the parametric surface f(1) of s(1) = [theta4 = 0, theta5 = 0] vs the arm (Eq 4)."""

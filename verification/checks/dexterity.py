@@ -190,13 +190,8 @@ def _eq43_asin(p):
 
 @SECTION.check(
     50.1,
-    forms=Forms(
-        printed=eq43_printed,
-        good=_eq43_asin,
-        bad=off_by(eq43_printed, 1e-6),
-        good_is="asin of the rise over |p - J2|",
-        bad_is="the printed beta' + 1 urad",
-    ),
+    forms=Forms.slipped(eq43_printed, _eq43_asin, eq43_printed, 1e-6,
+                        good_is="asin of the rise over |p - J2|", bad_is="the printed beta' + 1 urad"),
 )
 def eq43_nominal_beta(ctx, eq43):
     """Eq 43: beta' is the inclination of the line from joint 2 to the end-effector."""
@@ -223,13 +218,7 @@ def eq44_delta(rho, r):
 
 
 #: Eq 44 and Eq 45 share the printed triangle.
-_DELTA = Forms(
-    printed=eq44_delta,
-    good=eq44_delta,
-    bad=off_by(eq44_delta, 1e-6),
-    good_is="the printed triangle (it is right)",
-    bad_is="delta + 1 urad",
-)
+_DELTA = Forms.right(eq44_delta, 1e-6, bad_is="delta + 1 urad", good_is="the printed triangle (it is right)")
 
 
 def _extreme_direction_error(c: Pose35, delta_form, r) -> np.ndarray:
@@ -344,13 +333,7 @@ def eq47_printed(pz, beta):
 
 @SECTION.check(
     50.5,
-    forms=Forms(
-        printed=eq47_printed,
-        good=eq47_printed,
-        bad=off_by(eq47_printed, 1e-9),
-        good_is="the printed form (it is right)",
-        bad_is="h + 1 nm",
-    ),
+    forms=Forms.right(eq47_printed, 1e-9, bad_is="h + 1 nm"),
 )
 def eq47_slj_height(ctx, eq47):
     """Eq 47: the SLJ is at height pz - l5 sin(beta)."""
@@ -454,13 +437,9 @@ def _sigma_true(rho, beta, delta, r, reach):
 
 
 #: Eq 49 and Eq 51 share the printed law of cosines.
-_SIGMA = Forms(
-    printed=eq49_sigma,
-    good=_sigma_true,
-    bad=off_by(_sigma_true, 1e-6),
-    good_is="the law of cosines with the SLJ's true horizontal distance",
-    bad_is="that sigma + 1 urad",
-)
+_SIGMA = Forms.slipped(eq49_sigma, _sigma_true, _sigma_true, 1e-6,
+                       good_is="the law of cosines with the SLJ's true horizontal distance",
+                       bad_is="that sigma + 1 urad")
 
 
 def _sigma_rows(ctx, form, kind, key, rid, r, claim, corrected) -> Row:

@@ -21,7 +21,7 @@ from iik.dh import dh_link_transform
 from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements
-from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, off_by, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Section, Verdict, verdict_of
 from ..shorthand import cos_sin, wrap
 
 ARM = iik.THESIS_ARM
@@ -175,16 +175,11 @@ def _step(
 
 def _printed_is_right(form, bad_is: str, good_is: str = "the printed form (it is right)") -> Forms:
     """Forms of a step printed right: the printed form is also the good one; the bad one is it + 1e-9."""
-    return Forms(printed=form, good=form, bad=off_by(form, 1e-9), good_is=good_is, bad_is=bad_is)
+    return Forms.right(form, 1e-9, bad_is=bad_is, good_is=good_is)
 
 
-_ATAN2 = Forms(
-    printed=np.arctan2,
-    good=lambda sn, cs: np.angle(cs + 1j * sn),
-    bad=off_by(np.arctan2, 1e-6),
-    good_is="the argument of c + i s",
-    bad_is="atan2 + 1 urad",
-)
+_ATAN2 = Forms.slipped(np.arctan2, lambda sn, cs: np.angle(cs + 1j * sn), np.arctan2, 1e-6,
+                       good_is="the argument of c + i s", bad_is="atan2 + 1 urad")
 
 
 # ----------------------------------------------------------------------------- Eq 5-8
@@ -252,13 +247,8 @@ eq6_point_b = _step(
     tol=TOL,
     unit="m",
     printed="p_B = [l2 c1, l2 s1, 0]",
-    forms=Forms(
-        printed=eq6_printed,
-        good=_eq6_rot,
-        bad=off_by(eq6_printed, 1e-9),
-        good_is="Rz(theta1) [l2 0 0]",
-        bad_is="each coordinate moved by 1 nm",
-    ),
+    forms=Forms.slipped(eq6_printed, _eq6_rot, eq6_printed, 1e-9,
+                        good_is="Rz(theta1) [l2 0 0]", bad_is="each coordinate moved by 1 nm"),
 )
 
 
@@ -282,13 +272,8 @@ eq7_point_c = _step(
     tol=TOL,
     unit="m",
     printed="p_C as printed",
-    forms=Forms(
-        printed=eq7_printed,
-        good=_eq7_geom,
-        bad=off_by(eq7_printed, 1e-9),
-        good_is="p_B + l3 (unit vector of link 3)",
-        bad_is="each coordinate moved by 1 nm",
-    ),
+    forms=Forms.slipped(eq7_printed, _eq7_geom, eq7_printed, 1e-9,
+                        good_is="p_B + l3 (unit vector of link 3)", bad_is="each coordinate moved by 1 nm"),
 )
 
 
@@ -397,13 +382,9 @@ eq9_theta2 = _step(
     corrected="tan(theta2) = -P / Q, i.e. (c2, s2) = +-(Q, -P) / sqrt(P^2 + Q^2) (Eq 8 reads "
     "P c2 + Q s2 = 0); as tangents the printed '-' branch is right and the '+' branch spurious",
     note=lambda s, err: f"theta2 missed in {np.mean(err > TOL_ANGLE):.1%} of q",
-    forms=Forms(
-        printed=eq9_printed,
-        good=eq9_corrected,
-        bad=off_by(eq9_corrected, 1e-6),
-        good_is="tan(theta2) = -P/Q (both branches)",
-        bad_is="the good branches moved by 1 urad",
-    ),
+    forms=Forms.slipped(eq9_printed, eq9_corrected, eq9_corrected, 1e-6,
+                        good_is="tan(theta2) = -P/Q (both branches)",
+                        bad_is="the good branches moved by 1 urad"),
 )
 
 
@@ -418,13 +399,9 @@ def eq9abc_corrected(p, z6):
 
 @SECTION.check(
     20.5,
-    forms=Forms(
-        printed=eq9abc_printed,
-        good=eq9abc_corrected,
-        bad=off_by(eq9abc_corrected, 1e-9),
-        good_is="D = p + l5 z6 - l1 e_z (Table II: d6 = -l5)",
-        bad_is="each coordinate moved by 1 nm",
-    ),
+    forms=Forms.slipped(eq9abc_printed, eq9abc_corrected, eq9abc_corrected, 1e-9,
+                        good_is="D = p + l5 z6 - l1 e_z (Table II: d6 = -l5)",
+                        bad_is="each coordinate moved by 1 nm"),
 )
 def wrist_point(ctx, eq9abc):
     """Eq 9a, 9b, 9c: the wrist point D (joint 5) from the pose, one row per coordinate."""
@@ -486,13 +463,9 @@ eq10_lengths = _step(
     unit="m",
     printed="|BC| + |DC| - l3 - l4 = 0",
     note=_eq10_off,
-    forms=Forms(
-        printed=eq10_printed,
-        good=_eq10_lengths,
-        bad=off_by(eq10_printed, 1e-6),
-        good_is="the two length conditions |BC| = l3, |DC| = l4",
-        bad_is="the sum moved by 1 um",
-    ),
+    forms=Forms.slipped(eq10_printed, _eq10_lengths, eq10_printed, 1e-6,
+                        good_is="the two length conditions |BC| = l3, |DC| = l4",
+                        bad_is="the sum moved by 1 um"),
 )
 
 
@@ -518,13 +491,9 @@ def eq11_geometric(D, th1, th2):
 
 @SECTION.check(
     21.2,
-    forms=Forms(
-        printed=eq11_printed,
-        good=eq11_geometric,
-        bad=off_by(eq11_printed, 1e-9),
-        good_is="|D - C|^2 - l4^2 with C of Eq 7",
-        bad_is="the printed value moved by 1e-9 m^2",
-    ),
+    forms=Forms.slipped(eq11_printed, eq11_geometric, eq11_printed, 1e-9,
+                        good_is="|D - C|^2 - l4^2 with C of Eq 7",
+                        bad_is="the printed value moved by 1e-9 m^2"),
 )
 def eq11_error(ctx, eq11):
     """Eq 11 as an identity in (theta1, theta2) (|D - C|^2 - l4^2, C from Pinocchio), zero at the solution."""
@@ -705,13 +674,9 @@ def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
 
 @SECTION.check(
     21.5,
-    forms=Forms(
-        printed=eq12_printed,
-        good=NumericArgmin(1.0),
-        bad=off_by(eq12_printed, 0.3),
-        good_is="the minimiser found by a 7200-point grid and scipy's bounded Brent search",
-        bad_is="atan2(py, px) + 0.3 rad",
-    ),
+    forms=Forms.slipped(eq12_printed, NumericArgmin(1.0), eq12_printed, 0.3,
+                        good_is="the minimiser found by a 7200-point grid and scipy's bounded Brent search",
+                        bad_is="atan2(py, px) + 0.3 rad"),
 )
 def eq12_minimum(ctx, form):
     """Eq 12: the minimum of ||E|| (not of |E|) over theta1."""
@@ -720,13 +685,9 @@ def eq12_minimum(ctx, form):
 
 @SECTION.check(
     21.6,
-    forms=Forms(
-        printed=eq13_printed,
-        good=eq13_corrected,
-        bad=off_by(eq13_corrected, 1e-3),
-        good_is="atan2(yD, xD) + pi (the wrist point's opposite azimuth)",
-        bad_is="the good form + 1 mrad",
-    ),
+    forms=Forms.slipped(eq13_printed, eq13_corrected, eq13_corrected, 1e-3,
+                        good_is="atan2(yD, xD) + pi (the wrist point's opposite azimuth)",
+                        bad_is="the good form + 1 mrad"),
 )
 def eq13_maximum(ctx, form):
     """Eq 13: the maximum of ||E|| over theta1."""
@@ -757,13 +718,9 @@ eq14_c4 = _step(
     unit="-",
     printed="c4 = (xD^2 + yD^2 + zD^2 + l2^2 - l3^2 - l4^2 - 2 l2 (xD c1 - yD s1)) / (2 l3 l4)",
     corrected="... - 2 l2 (xD c1 + yD s1) (|D - B|^2 = |D|^2 + l2^2 - 2 l2 (xD c1 + yD s1))",
-    forms=Forms(
-        printed=eq14_printed,
-        good=eq14_corrected,
-        bad=off_by(eq14_corrected, 1e-9),
-        good_is="the law of cosines on triangle B, C, D: ... - 2 l2 (xD c1 + yD s1)",
-        bad_is="good + 1e-9",
-    ),
+    forms=Forms.slipped(eq14_printed, eq14_corrected, eq14_corrected, 1e-9,
+                        good_is="the law of cosines on triangle B, C, D: ... - 2 l2 (xD c1 + yD s1)",
+                        bad_is="good + 1e-9"),
 )
 
 
@@ -791,13 +748,8 @@ eq15_s4 = _step(
     tol=TOL_ANGLE,
     unit="-",
     printed="s4 = +-sqrt(1 - c4^2)",
-    forms=Forms(
-        printed=eq15_printed,
-        good=_eq15_good,
-        bad=off_by(eq15_printed, 1e-9),
-        good_is="+-sin(acos(c4))",
-        bad_is="both branches moved by 1e-9",
-    ),
+    forms=Forms.slipped(eq15_printed, _eq15_good, eq15_printed, 1e-9,
+                        good_is="+-sin(acos(c4))", bad_is="both branches moved by 1e-9"),
 )
 
 
@@ -1008,13 +960,8 @@ eq19_element = _step(
     tol=TOL,
     unit="m",
     printed="c1 yD - s1 xD = -l4 s3 s4",
-    forms=Forms(
-        printed=eq19_printed,
-        good=_eq19_good,
-        bad=off_by(eq19_printed, 1e-9),
-        good_is="row 3 of 0_2T^-1 times D, and -l4 s3 s4",
-        bad_is="both sides moved by 1 nm",
-    ),
+    forms=Forms.slipped(eq19_printed, _eq19_good, eq19_printed, 1e-9,
+                        good_is="row 3 of 0_2T^-1 times D, and -l4 s3 s4", bad_is="both sides moved by 1 nm"),
 )
 
 
@@ -1049,13 +996,8 @@ eq21_c3 = _step(
     tol=TOL_ANGLE,
     unit="-",
     printed="c3 = +-sqrt(1 - s3^2)",
-    forms=Forms(
-        printed=eq15_printed,
-        good=_eq15_good,
-        bad=off_by(eq15_printed, 1e-9),
-        good_is="+-sin(acos(s3)) read as cosines",
-        bad_is="both branches moved by 1e-9",
-    ),
+    forms=Forms.slipped(eq15_printed, _eq15_good, eq15_printed, 1e-9,
+                        good_is="+-sin(acos(s3)) read as cosines", bad_is="both branches moved by 1e-9"),
 )
 
 
@@ -1134,13 +1076,9 @@ def _near_c3_zero(ctx) -> Sample:
     return ctx.cache[key]
 
 
-_EQ27 = Forms(
-    printed=eq27_printed,
-    good=eq27_companion,
-    bad=off_by(eq27_companion, 1e-6),
-    good_is="s45 = -c3 (Eq 25 left side) + s3 (its row-3 companion)",
-    bad_is="the good s45 + 1e-6",
-)
+_EQ27 = Forms.slipped(eq27_printed, eq27_companion, eq27_companion, 1e-6,
+                      good_is="s45 = -c3 (Eq 25 left side) + s3 (its row-3 companion)",
+                      bad_is="the good s45 + 1e-6")
 
 
 @SECTION.check(25.0, forms=_EQ27)
@@ -1220,13 +1158,8 @@ eq28_theta5 = _step(
     tol=TOL,
     unit="rad",
     printed="theta5 = atan2(s45, c45) - theta4",
-    forms=Forms(
-        printed=_atan2_minus,
-        good=_eq28_good,
-        bad=off_by(_atan2_minus, 1e-6),
-        good_is="arg(c45 + i s45) - theta4",
-        bad_is="the printed form + 1 urad",
-    ),
+    forms=Forms.slipped(_atan2_minus, _eq28_good, _atan2_minus, 1e-6,
+                        good_is="arg(c45 + i s45) - theta4", bad_is="the printed form + 1 urad"),
 )
 
 

@@ -28,7 +28,7 @@ from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements, thesis_model, tool_jacobians, tool_poses
 from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
 from ..plotting import draw_arm, draw_collision, draw_scene, new_figure
-from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, off_by, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, verdict_of
 from ..shorthand import cos_sin
 from ..testing.strategies import BEYOND, sample_joints
 
@@ -850,13 +850,9 @@ def _first_r12_truth(qs) -> np.ndarray:
 
 @SECTION.check(
     14.8,
-    forms=Forms(
-        printed=eq55_printed,
-        good=position_from_table_ii,
-        bad=off_by(eq55_printed, 1e-9),
-        good_is="the position column of the Table II product",
-        bad_is="each coordinate moved by 1 nm",
-    ),
+    forms=Forms.slipped(eq55_printed, position_from_table_ii, eq55_printed, 1e-9,
+                        good_is="the position column of the Table II product",
+                        bad_is="each coordinate moved by 1 nm"),
 )
 def eq34_position(ctx, g_theta):
     """Eq 34a-c and Eq 55 (printed identically): the coordinate functions f1, f2, f3 vs Pinocchio."""

@@ -310,13 +310,7 @@ def _joint(q: np.ndarray, frame: int) -> np.ndarray:
 @SECTION.check(
     40.1,
     depends_on=EXACT_GEOMETRY,
-    forms=Forms(
-        printed=eq37_printed,
-        good=eq37_printed,
-        bad=off_by(eq37_printed, 1e-9),
-        good_is="the printed form (it is right)",
-        bad_is="each coordinate moved by 1 nm",
-    ),
+    forms=Forms.right(eq37_printed, 1e-9, bad_is="each coordinate moved by 1 nm"),
 )
 def eq37_joint2(ctx, eq37):
     """Eq 37: joint 2 when theta1 = phi, vs Pinocchio."""
@@ -467,13 +461,9 @@ def eq40_corrected(th1, th2):
 @SECTION.check(
     40.4,
     depends_on=EXACT_GEOMETRY,
-    forms=Forms(
-        printed=eq40_printed,
-        good=eq40_corrected,
-        bad=off_by(eq40_corrected, 1e-9),
-        good_is="(l2 + l3 c2) (cos th1, sin th1), l1 - l3 s2",
-        bad_is="the good point moved by 1 nm",
-    ),
+    forms=Forms.slipped(eq40_printed, eq40_corrected, eq40_corrected, 1e-9,
+                        good_is="(l2 + l3 c2) (cos th1, sin th1), l1 - l3 s2",
+                        bad_is="the good point moved by 1 nm"),
 )
 def eq40_joint4(ctx, eq40):
     """Eq 40: joint 4 with joint 1 at 160 deg, vs Pinocchio."""
