@@ -62,21 +62,10 @@ class EliminantCoefficients:
     c: np.ndarray
     D: np.ndarray
 
-    @property
-    def a(self) -> np.ndarray:
-        return self.abPQ[:, 0]
-
-    @property
-    def b(self) -> np.ndarray:
-        return self.abPQ[:, 1]
-
-    @property
-    def P(self) -> np.ndarray:
-        return self.abPQ[:, 2]
-
-    @property
-    def Q(self) -> np.ndarray:
-        return self.abPQ[:, 3]
+    a = property(lambda self: self.abPQ[:, 0], doc="(n, 3) coefficients of a [m^2] (a view of abPQ).")
+    b = property(lambda self: self.abPQ[:, 1], doc="(n, 3) coefficients of b [m^2] (a view of abPQ).")
+    P = property(lambda self: self.abPQ[:, 2], doc="(n, 3) coefficients of P [m] (a view of abPQ).")
+    Q = property(lambda self: self.abPQ[:, 3], doc="(n, 3) coefficients of Q [m] (a view of abPQ).")
 
 
 def eliminant_coefficients(R: np.ndarray, p: np.ndarray, arm: Arm) -> EliminantCoefficients:
