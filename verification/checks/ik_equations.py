@@ -1278,51 +1278,45 @@ eq33_theta6 = _atan2_step(26.4, 33, 6)
 
 _RIGHT_SIDE = dict(good_is="the printed left side (it is right)", bad_is="the left side moved by 1e-9")
 _LHS = "printed left side with the true pose and joint angles vs"
-eq25_element = _step(
-    24.2,
-    "eq25_element",
-    "Eq 25",
-    claim="r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45.",
-    method=f"{_LHS} -c3 s45",
-    error=lambda s, f: f(s.R, s.q) + s.c(3) * np.sin(s.q[:, 3] + s.q[:, 4]),
-    tol=TOL,
-    unit="-",
-    printed="r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45",
-    forms=_printed_is_right(eq25_lhs, **_RIGHT_SIDE),
-)
-eq26_element = _step(
-    24.3,
-    "eq26_element",
-    "Eq 26",
-    claim="r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45.",
-    method=f"{_LHS} -c45",
-    error=lambda s, f: f(s.R, s.q) + np.cos(s.q[:, 3] + s.q[:, 4]),
-    tol=TOL,
-    unit="-",
-    printed="r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45",
-    forms=_printed_is_right(eq26_lhs, **_RIGHT_SIDE),
-)
-eq31_s6 = _step(
-    26.2,
-    "eq31_s6",
-    "Eq 31",
-    claim="r11 (s1 c3 - c1 s2 s3) - r21 (c1 c3 + s1 s2 s3) - r31 (c2 s3) = -s6.",
-    method=f"{_LHS} -sin(theta6)",
-    error=lambda s, f: f(s.R, s.q) + s.s(6),
-    tol=TOL,
-    unit="-",
-    printed="... = -s6",
-    forms=_printed_is_right(eq31_lhs, **_RIGHT_SIDE),
-)
-eq32_c6 = _step(
-    26.3,
-    "eq32_c6",
-    "Eq 32",
-    claim="r12 (s1 c3 - c1 s2 s3) - r22 (c1 c3 + s1 s2 s3) - r32 (c2 s3) = -c6.",
-    method=f"{_LHS} -cos(theta6)",
-    error=lambda s, f: f(s.R, s.q) + s.c(6),
-    tol=TOL,
-    unit="-",
-    printed="... = -c6",
-    forms=_printed_is_right(eq32_lhs, **_RIGHT_SIDE),
-)
+
+
+def _element_step(order: float, number: int, name: str, claim: str, printed: str, rhs_is: str, rhs, lhs):
+    """Eq 25, 26, 31, 32: an element of the rotation printed as ``left side = right side``, the printed
+    left side ``lhs(R, q)`` right; graded on max |lhs(R, q) - rhs(sample)| <= TOL."""
+    return _step(
+        order,
+        name,
+        f"Eq {number}",
+        claim=claim,
+        method=f"{_LHS} {rhs_is}",
+        error=lambda s, f: f(s.R, s.q) - rhs(s),
+        tol=TOL,
+        unit="-",
+        printed=printed,
+        forms=_printed_is_right(lhs, **_RIGHT_SIDE),
+    )
+
+
+def _s45(s):
+    return np.sin(s.q[:, 3] + s.q[:, 4])
+
+
+def _c45(s):
+    return np.cos(s.q[:, 3] + s.q[:, 4])
+
+
+# Eq 25: r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45
+eq25_element = _element_step(24.2, 25, "eq25_element", "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45.",
+                             "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45", "-c3 s45",
+                             lambda s: -s.c(3) * _s45(s), eq25_lhs)
+# Eq 26: r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45
+eq26_element = _element_step(24.3, 26, "eq26_element", "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45.",
+                             "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45", "-c45", lambda s: -_c45(s), eq26_lhs)
+# Eq 31: r11 (s1 c3 - c1 s2 s3) - r21 (c1 c3 + s1 s2 s3) - r31 (c2 s3) = -s6
+eq31_s6 = _element_step(26.2, 31, "eq31_s6",
+                        "r11 (s1 c3 - c1 s2 s3) - r21 (c1 c3 + s1 s2 s3) - r31 (c2 s3) = -s6.",
+                        "... = -s6", "-sin(theta6)", lambda s: -s.s(6), eq31_lhs)
+# Eq 32: r12 (s1 c3 - c1 s2 s3) - r22 (c1 c3 + s1 s2 s3) - r32 (c2 s3) = -c6
+eq32_c6 = _element_step(26.3, 32, "eq32_c6",
+                        "r12 (s1 c3 - c1 s2 s3) - r22 (c1 c3 + s1 s2 s3) - r32 (c2 s3) = -c6.",
+                        "... = -c6", "-cos(theta6)", lambda s: -s.c(6), eq32_lhs)
