@@ -75,6 +75,21 @@ def _moved(sets, joint_value: float = 10.0):
     return tuple(out)
 
 
+def _entry(claim: str, source: str, numbers: str, measure: Measure, rid: str) -> Row:
+    """One entry of Table VI or VII (a set, or a group of sets): holds when singular on every sample."""
+    return Row.graded(claim, source, "", numbers, (measure,), fail=Verdict.DOES_NOT_HOLD, id=rid)
+
+
+def _table(rid: str, claim: str, source: str, method: str, bad_is: str, details: list[Row], numbers) -> Row:
+    """The grouped row of Table VI or VII over its ``details``; ``numbers(bad)`` words the result, ``bad``
+    the entries that do not hold (counted by the measure ``bad_is``)."""
+    bad = [d for d in details if d.verdict is not Verdict.HOLDS]
+    m = (Measure(bad_is, len(bad), 0),)
+    return Row.graded(
+        claim, source, method, numbers(bad), m, fail=Verdict.DOES_NOT_HOLD, id=rid, details=tuple(details)
+    )
+
+
 @SECTION.check(
     45.0,
     forms=Forms(
@@ -105,32 +120,26 @@ def table_vi(ctx, sets):
             )
         if s.note:
             numbers += f". Note: {s.note}"
-        m = (Measure("share of samples with full rank", 1 - frac, 0.0),)
         details.append(
-            Row.graded(
+            _entry(
                 f"{s.name} = {_set_label(s)} is a type {s.kind} singularity set.",
                 f"App. D, Table VI, {s.name}",
-                "",
                 numbers,
-                m,
-                fail=Verdict.DOES_NOT_HOLD,
-                id=f"s{s.index}",
+                Measure("share of samples with full rank", 1 - frac, 0.0),
+                f"s{s.index}",
             )
         )
-    bad = [d for d in details if d.verdict is not Verdict.HOLDS]
-    m = (Measure("sets that are not singular", len(bad), 0),)
-    return Row.graded(
+    return _table(
+        "table_vi",
         f"The {len(sets)} sets of Table VI (type I and II) are singularity sets of the arm.",
         "Table VI (App. D)",
         f"Pinocchio position Jacobian (reduced: columns of joints at a limit dropped) on {n} random samples "
         "of "
         "each set's free joints within Table I; singular = rank < 3",
-        f"{len(sets) - len(bad)} of {len(sets)} sets singular on every sample"
+        "sets that are not singular",
+        details,
+        lambda bad: f"{len(sets) - len(bad)} of {len(sets)} sets singular on every sample"
         + (f"; not: {', '.join(d.id for d in bad)}" if bad else ""),
-        m,
-        fail=Verdict.DOES_NOT_HOLD,
-        id="table_vi",
-        details=tuple(details),
     )
 
 
@@ -154,33 +163,28 @@ def table_vii(ctx, sets):
         fr = [_singular_share(s, n, rng)[0] for s in group]
         s0 = group[0]
         joints = [j for j, _ in s0.fixed]
-        m = (Measure("share of samples with full rank (worst set)", 1 - min(fr), 0.0),)
         details.append(
-            Row.graded(
+            _entry(
                 f"s({s0.index})-s({group[-1].index}): joints {joints} at their limits (8 combinations), "
                 "joints "
                 f"{list(s0.free)} free, are constraint (type III) singularity sets.",
                 f"App. D, Table VII, s({s0.index})-s({group[-1].index})",
-                "",
                 f"rank < 3 on {min(fr):.0%}-{max(fr):.0%} of samples"
                 + (f". Note: {s0.note}" if s0.note else ""),
-                m,
-                fail=Verdict.DOES_NOT_HOLD,
-                id=f"s{s0.index}-{group[-1].index}",
+                Measure("share of samples with full rank (worst set)", 1 - min(fr), 0.0),
+                f"s{s0.index}-{group[-1].index}",
             )
         )
-    bad = [d for d in details if d.verdict is not Verdict.HOLDS]
-    m = (Measure("groups with a set that is not singular", len(bad), 0),)
-    return Row.graded(
+    return _table(
+        "table_vii",
         f"The {len(sets)} sets of Table VII (type III: three joints at limits) are singularity sets.",
         "Table VII (App. D)",
         f"Pinocchio reduced Jacobian (columns of the joints at limits dropped) on {n} samples per set",
-        f"{len(details) - len(bad)} of {len(details)} groups singular on every sample (with three columns "
-        "dropped the reduced Jacobian is 3x2, so rank <= 2: these sets are singular by their construction)",
-        m,
-        fail=Verdict.DOES_NOT_HOLD,
-        id="table_vii",
-        details=tuple(details),
+        "groups with a set that is not singular",
+        details,
+        lambda bad: f"{len(details) - len(bad)} of {len(details)} groups singular on every sample (with "
+        "three columns dropped the reduced Jacobian is 3x2, so rank <= 2: these sets are singular by "
+        "their construction)",
     )
 
 
