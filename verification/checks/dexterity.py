@@ -610,26 +610,37 @@ def _admitted(form, sw, i, p):
 _SOUND = 0.999  # share of admitted orientations that must be solvable ("guarantees convergence")
 
 
-@SECTION.check(
-    51.0,
-    depends_on=("l1", "lengths", "ik-sweep", "sec35-angles"),
-    forms=Forms(
-        printed=admitted_printed,
+def _sweep_forms(printed) -> Forms:
+    """Forms of an admitted set graded on the sweep: good admits exactly the solved orientations, bad all."""
+    return Forms(
+        printed=printed,
         good=SolvableOnly(),
         bad=_admit_all,
         good_is="exactly the orientations the sweep solves",
         bad_is="every orientation",
-    ),
+    )
+
+
+def _graded_sweep(ctx, admit):
+    """The sweep, the set ``admit`` admits on it, its rates (:func:`_rates`) and the soundness measure."""
+    sw = _sweep(ctx)
+    adm = np.array([_admitted(admit, sw, i, p) for i, p in enumerate(sw["P"])])
+    rates = _rates(adm, sw["truth"])
+    m = (Measure("share of admitted orientations that are solvable", rates[0], _SOUND, bound=">="),)
+    return sw, adm, rates, m
+
+
+@SECTION.check(
+    51.0,
+    depends_on=("l1", "lengths", "ik-sweep", "sec35-angles"),
+    forms=_sweep_forms(admitted_printed),
 )
 def printed_admitted_set(ctx, admit):
     """Sec 3.5 / Sec 5.2: the orientations Eq 43-51 admit at a point can be reached ('at least one solution
     ... when suitable orientations were chosen ... guarantees the convergence of the inverse kinematics')."""
-    sw = _sweep(ctx)
+    sw, adm, (s, c, n_adm, n_true), m = _graded_sweep(ctx, admit)
     P, truth = sw["P"], sw["truth"]
-    adm = np.array([_admitted(admit, sw, i, p) for i, p in enumerate(P)])
-    s, c, n_adm, n_true = _rates(adm, truth)
     per_point = [int(np.sum(adm[i] & ~truth[i])) for i in range(len(P))]
-    m = (Measure("share of admitted orientations that are solvable", s, _SOUND, bound=">="),)
     figs = (
         (_figure(ctx, sw, _iik_admitted(ctx, sw)[0], adm, _iik_admitted(ctx, sw)[1]),)
         if admit is admitted_printed
@@ -685,21 +696,11 @@ def _iik_admit(p, A, B):
 @SECTION.check(
     51.5,
     depends_on=("l1", "lengths", "ik-sweep"),
-    forms=Forms(
-        printed=_iik_admit,
-        good=SolvableOnly(),
-        bad=_admit_all,
-        good_is="exactly the orientations the sweep solves",
-        bad_is="every orientation",
-    ),
+    forms=_sweep_forms(_iik_admit),
 )
 def iik_dexterity(ctx, admit):
     """(Project) iik.dexterity (the thesis's SLJ-shell model, exact cone) vs the same sweep."""
-    sw = _sweep(ctx)
-    P, truth = sw["P"], sw["truth"]
-    adm = np.array([_admitted(admit, sw, i, p) for i, p in enumerate(P)])
-    s, c, n_adm, _ = _rates(adm, truth)
-    m = (Measure("share of admitted orientations that are solvable", s, _SOUND, bound=">="),)
+    _, _, (s, c, n_adm, _), m = _graded_sweep(ctx, admit)
     return Row(
         "(Project) iik.dexterity admits only reachable orientations.",
         "iik.dexterity (Sec 3.5 model)",
