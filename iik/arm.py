@@ -1,37 +1,41 @@
-"""The thesis arm as data: link lengths, Table I limits and Table II rows.
+"""Arms as data: a six-joint revolute chain (modified DH, base and tool transforms, limits).
 
-This module is the single source of truth for the arm's parameters. Nothing
-else in the project copies these numbers; everything reads :data:`THESIS_ARM`
-(or another :class:`Arm` built the same way).
+This module is the single source of truth for an arm's parameters. The thesis arm
+(:data:`THESIS_ARM`) is built here from Table I and Table II; other arms come from a URDF
+(:meth:`Arm.from_urdf`) or a DH table (:class:`Arm` itself). Every arm is checked against the
+kinematic class the complete IK solves (:mod:`iik.kinematic_class`); outside it the
+constructor raises :class:`~iik.kinematic_class.NotInClassError` with a near-miss report.
 
-Units: metres, radians, seconds.
+Units: metres, radians, seconds, newton metres.
 
-Sources:
-    * l2..l5 are recovered from Appendix E (point A1, the diagonal of H*),
-      see ``docs/ARM.md``.
-    * **l1 = 0.300 m is an assumption.** It is a pure z offset that cancels from
-      every derivative in Appendix E, so nothing in the text fixes it.
-    * Joint limits: Table I.
-    * DH rows: Table II (Craig's modified convention; offsets -90, -90, +90 deg
-      on joints 2, 4, 5 make the home pose q = 0; d6 = -l5).
-    * Speeds: Section 3.2 gives 8.2 rad/s (square modules) and 1.2 rad/s
-      (cylindrical modules) without saying which joint is which. The default,
-      :data:`CONSERVATIVE_VELOCITY`, assumes the slower kind on every joint.
-    * Accelerations are not given in the thesis; :data:`ASSUMED_ACCELERATION`
-      is an assumption, kept as configuration.
+Sources of the thesis arm:
+    * l2..l5 are recovered from Appendix E (point A1, the diagonal of H*), see ``docs/ARM.md``.
+    * **l1 = 0.300 m is an assumption.** It is a pure z offset that cancels from every
+      derivative in Appendix E, so nothing in the text fixes it.
+    * Joint limits: Table I. DH rows: Table II (Craig's modified convention; offsets -90, -90,
+      +90 deg on joints 2, 4, 5 make the home pose q = 0; d6 = -l5).
+    * Speeds: Section 3.2 gives 8.2 rad/s (square modules) and 1.2 rad/s (cylindrical modules)
+      without saying which joint is which. The default, :data:`CONSERVATIVE_VELOCITY`, assumes
+      the slower kind on every joint.
+    * Accelerations are not given in the thesis; :data:`ASSUMED_ACCELERATION` is an assumption.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from .dh import DHRow, DHTable
 from .errors import InvalidInputError
+from .kinematic_class import ANGLE_TOL, LENGTH_TOL, SolverChain, axis_lines, chain_from_lines, solver_chain
 
 __all__ = [
     "Arm",
+    "ThesisLengths",
+    "thesis_arm",
     "THESIS_ARM",
     "SQUARE_MODULE_SPEED",
     "CYLINDRICAL_MODULE_SPEED",
@@ -68,80 +72,241 @@ CONSERVATIVE_EFFORT = (CYLINDRICAL_MODULE_TORQUE,) * 6
 LIMIT_TOL = 1e-7
 
 #: Table I, in degrees (display units; converted to rad below).
-_TABLE_I_DEG = ((-160.0, 160.0), (-120.0, 95.0), (-160.0, 160.0),
-                (-119.0, 119.0), (-119.0, 119.0), (-180.0, 180.0))
+_TABLE_I_DEG = (
+    (-160.0, 160.0),
+    (-120.0, 95.0),
+    (-160.0, 160.0),
+    (-119.0, 119.0),
+    (-119.0, 119.0),
+    (-180.0, 180.0),
+)
+
+_IDENTITY = tuple(tuple(float(x) for x in row) for row in np.eye(4))
+
+
+def _transform(T, name: str) -> tuple:
+    """A rigid transform (4, 4) as nested tuples, validated."""
+    try:
+        A = np.asarray(T, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidInputError(name, "is not a 4x4 array of numbers") from None
+    if A.shape != (4, 4) or not np.all(np.isfinite(A)):
+        raise InvalidInputError(name, f"expected a finite (4, 4) transform, got shape {A.shape}")
+    if (
+        np.max(np.abs(A[3] - [0, 0, 0, 1])) > 1e-12
+        or np.max(np.abs(A[:3, :3].T @ A[:3, :3] - np.eye(3))) > 1e-9
+        or np.linalg.det(A[:3, :3]) < 0
+    ):
+        raise InvalidInputError(name, "is not a rigid transform (rotation block and bottom row [0, 0, 0, 1])")
+    return tuple(tuple(float(x) for x in row) for row in A)
+
+
+def _cos_sin(x: float) -> tuple[float, float]:
+    k = round(x / (math.pi / 2))
+    if abs(x - k * (math.pi / 2)) <= ANGLE_TOL:
+        return ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[k % 4]
+    return math.cos(x), math.sin(x)
 
 
 @dataclass(frozen=True)
-class Arm:
-    """A six-joint arm with the thesis's structure (Table II) and given lengths.
-
-    Attributes:
-        l1..l5: Link lengths [m] (Table II symbols).
-        lower, upper: Joint limits [rad] (Table I for the thesis arm).
-        velocity: Joint speed limits [rad/s].
-        acceleration: Joint acceleration limits [rad/s^2].
-        name: Display name.
-        assumptions: Human-readable notes on which numbers are assumed.
-        effort: Joint torque limits [N m] (Sec 3.2; written into the URDF).
-    """
+class ThesisLengths:
+    """The link lengths l1..l5 [m] of an arm of the thesis's Table II form."""
 
     l1: float
     l2: float
     l3: float
     l4: float
     l5: float
-    lower: tuple[float, ...]
-    upper: tuple[float, ...]
-    velocity: tuple[float, ...] = CONSERVATIVE_VELOCITY
+
+
+@dataclass(frozen=True)
+class Arm:
+    """A six-joint revolute arm of the IK's class: ``tool pose = base . links(q) . tool``.
+
+    Attributes:
+        dh: The chain as a modified-DH table (Craig): rows, joint limits [rad] and speed
+            limits [rad/s] (for the thesis arm: Table II, Table I, Sec 3.2).
+        base: Fixed transform (4, 4) from the arm's base frame to DH frame 0 [m].
+        tool: Fixed transform (4, 4) from the last DH frame to the tool frame [m].
+        acceleration: Joint acceleration limits [rad/s^2].
+        effort: Joint torque limits [N m].
+        name: Display name (the registry name for shipped arms, :mod:`iik.arms`).
+        joint_names: The joints' names (a URDF's, or ``joint1``..``joint6``).
+        source: Where the numbers come from (a file and its origin).
+        assumptions: Human-readable notes on which numbers are assumed.
+        solver: The canonical member of the class the IK solves in (derived; read from the
+            base or from the flange), with the class report.
+    """
+
+    dh: DHTable
+    base: tuple = _IDENTITY
+    tool: tuple = _IDENTITY
     acceleration: tuple[float, ...] = ASSUMED_ACCELERATION
-    name: str = "arm"
-    assumptions: tuple[str, ...] = field(default=())
     effort: tuple[float, ...] = CONSERVATIVE_EFFORT
+    name: str = "arm"
+    joint_names: tuple[str, ...] = tuple(f"joint{i}" for i in range(1, 7))
+    source: str = ""
+    assumptions: tuple[str, ...] = field(default=())
+    solver: SolverChain = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        for k in ("l1", "l2", "l3", "l4", "l5"):
-            v = getattr(self, k)
-            if not np.isfinite(v):
-                raise InvalidInputError(k, "must be finite")
-        for k in ("l3", "l4", "l5"):
-            if getattr(self, k) <= 0:
-                raise InvalidInputError(k, "must be positive")
+        if not isinstance(self.dh, DHTable) or self.dh.convention != "modified" or self.dh.dof != 6:
+            raise InvalidInputError("dh", "expected a modified-DH DHTable of 6 rows")
+        object.__setattr__(self, "base", _transform(self.base, "base"))
+        object.__setattr__(self, "tool", _transform(self.tool, "tool"))
         for k in ("acceleration", "effort"):
-            vals = getattr(self, k)
-            if len(vals) != 6 or any(not np.isfinite(v) or v <= 0 for v in vals):
+            vals = tuple(float(v) for v in getattr(self, k))
+            if len(vals) != 6 or any(not math.isfinite(v) or v <= 0 for v in vals):
                 raise InvalidInputError(k, "needs six positive finite values")
-        # Validates lower/upper/velocity lengths, order and finiteness.
-        self.dh_table()
+            object.__setattr__(self, k, vals)
+        if len(self.joint_names) != 6:
+            raise InvalidInputError("joint_names", "needs six names")
+        rows = [(r.alpha, r.a, r.d, r.offset) for r in self.dh.rows]
+        object.__setattr__(
+            self, "solver", solver_chain(rows, np.array(self.base), np.array(self.tool), argument=self.name)
+        )
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def from_urdf(
+        cls,
+        path,
+        base_link: str | None = None,
+        tip_link: str | None = None,
+        *,
+        tool=None,
+        name: str | None = None,
+        acceleration=None,
+    ) -> Arm:
+        """The arm of a URDF's revolute chain (:func:`iik.urdf_read.read_urdf_chain`).
+
+        Args:
+            path: URDF file (or URDF text).
+            base_link, tip_link: The chain's ends (defaults: the root link; the single leaf below
+                the last revolute joint). Fixed joints in between are folded in.
+            tool: An extra fixed transform after the tip link (4, 4) [m].
+            name: Display name (default: the robot's name).
+            acceleration: Joint acceleration limits [rad/s^2] (URDFs carry none; default 2.0).
+
+        Raises:
+            InvalidInputError: the file or chain is unusable (names the file and why).
+            NotInClassError: the arm is outside the class (with the near-miss report).
+        """
+        from .urdf_read import read_urdf_chain
+
+        ch = read_urdf_chain(path, base_link, tip_link)
+        F = np.eye(4)
+        pts, dirs = [], []
+        for j in ch.joints:
+            F = F @ j.origin
+            pts.append(F[:3, 3].copy())
+            dirs.append(F[:3, :3] @ j.axis)
+        # a URDF joint at 0 is at its q = 0 frame, where the lines were taken: DH angle =
+        # URDF angle + the row's offset (the angle between consecutive common normals there)
+        end = F @ ch.tip @ (np.eye(4) if tool is None else np.asarray(_transform(tool, "tool")))
+        size = float(sum(np.linalg.norm(j.origin[:3, 3]) for j in ch.joints) + np.linalg.norm(ch.tip[:3, 3]))
+        rows, base, tl, _raw = chain_from_lines(
+            np.array(pts), np.array(dirs), np.eye(4), end, size, LENGTH_TOL, ANGLE_TOL
+        )
+        missing = [j.name for j in ch.joints if j.velocity <= 0]
+        if missing:
+            raise InvalidInputError(ch.source, f"joints {missing} have no positive velocity limit")
+        table = DHTable(
+            rows=tuple(DHRow(alpha=a, a=aa, d=d, offset=o) for a, aa, d, o in rows),
+            convention="modified",
+            lower=tuple(j.lower for j in ch.joints),
+            upper=tuple(j.upper for j in ch.joints),
+            velocity=tuple(j.velocity for j in ch.joints),
+        )
+        notes = (
+            ("Acceleration limits of 2.0 rad/s^2 are assumed (a URDF carries none).",)
+            if acceleration is None
+            else ()
+        )
+        effort = tuple(j.effort if j.effort > 0 else 1.0 for j in ch.joints)
+        return cls(
+            dh=table,
+            base=base,
+            tool=tl,
+            acceleration=ASSUMED_ACCELERATION if acceleration is None else tuple(acceleration),
+            effort=effort,
+            name=name or ch.robot,
+            joint_names=tuple(j.name for j in ch.joints),
+            source=f"{ch.source} ({ch.base_link} -> {ch.tip_link})",
+            assumptions=notes,
+        )
+
+    # ------------------------------------------------------------------ variants
+    def with_limits(
+        self,
+        *,
+        lower=None,
+        upper=None,
+        velocity=None,
+        acceleration=None,
+        effort=None,
+        name: str | None = None,
+    ) -> Arm:
+        """This arm with other joint limits [rad, rad/s, rad/s^2, N m] (None: unchanged)."""
+        dh = dataclasses.replace(
+            self.dh,
+            lower=tuple(self.dh.lower if lower is None else lower),
+            upper=tuple(self.dh.upper if upper is None else upper),
+            velocity=tuple(self.dh.velocity if velocity is None else velocity),
+        )
+        return dataclasses.replace(
+            self,
+            dh=dh,
+            acceleration=self.acceleration if acceleration is None else tuple(acceleration),
+            effort=self.effort if effort is None else tuple(effort),
+            name=self.name if name is None else name,
+        )
+
+    def scaled(self, factor: float, name: str | None = None) -> Arm:
+        """This arm with every length (DH a, d and the base and tool translations) times ``factor``."""
+        if not (isinstance(factor, (int, float)) and math.isfinite(factor) and factor > 0):
+            raise InvalidInputError("factor", f"must be a positive finite number, got {factor!r}")
+        rows = tuple(dataclasses.replace(r, a=r.a * factor, d=r.d * factor) for r in self.dh.rows)
+        base, tool = np.array(self.base), np.array(self.tool)
+        base[:3, 3] *= factor
+        tool[:3, 3] *= factor
+        return dataclasses.replace(
+            self,
+            dh=dataclasses.replace(self.dh, rows=rows),
+            base=base,
+            tool=tool,
+            name=name or f"{self.name} x{factor:g}",
+        )
+
+    # ------------------------------------------------------------------ limits
+    @property
+    def lower(self) -> tuple[float, ...]:
+        """Lower joint limits [rad]."""
+        return self.dh.lower
 
     @property
-    def lengths(self) -> np.ndarray:
-        """``[l1, l2, l3, l4, l5]`` [m]."""
-        return np.array([self.l1, self.l2, self.l3, self.l4, self.l5])
+    def upper(self) -> tuple[float, ...]:
+        """Upper joint limits [rad]."""
+        return self.dh.upper
+
+    @property
+    def velocity(self) -> tuple[float, ...]:
+        """Joint speed limits [rad/s]."""
+        return self.dh.velocity
 
     @property
     def q_min(self) -> np.ndarray:
         """Lower joint limits [rad], shape (6,)."""
-        return np.array(self.lower)
+        return np.array(self.dh.lower)
 
     @property
     def q_max(self) -> np.ndarray:
         """Upper joint limits [rad], shape (6,)."""
-        return np.array(self.upper)
+        return np.array(self.dh.upper)
 
     def dh_table(self) -> DHTable:
-        """Table II as a modified-DH :class:`~iik.dh.DHTable`."""
-        h = np.pi / 2
-        rows = (
-            DHRow(alpha=0.0, a=0.0, d=self.l1, offset=0.0),  # Table II row 1
-            DHRow(alpha=-h, a=self.l2, d=0.0, offset=-h),  # row 2: theta2 - 90 deg
-            DHRow(alpha=-h, a=0.0, d=self.l3, offset=0.0),  # row 3
-            DHRow(alpha=-h, a=0.0, d=0.0, offset=-h),  # row 4: theta4 - 90 deg
-            DHRow(alpha=0.0, a=self.l4, d=0.0, offset=+h),  # row 5: theta5 + 90 deg
-            DHRow(alpha=-h, a=0.0, d=-self.l5, offset=0.0),  # row 6: d6 = -l5
-        )
-        return DHTable(rows=rows, convention="modified", lower=tuple(self.lower),
-                       upper=tuple(self.upper), velocity=tuple(self.velocity))
+        """The chain's modified-DH table (Table II for the thesis arm): a new object each call."""
+        return dataclasses.replace(self.dh)
 
     def within_limits(self, q, tol: float = LIMIT_TOL) -> np.ndarray:
         """Boolean (n,) or scalar: is each ``q`` [rad] inside the limits (Table I)?
@@ -156,15 +321,152 @@ class Arm:
         ok = np.all((qb >= self.q_min - tol) & (qb <= self.q_max + tol), axis=1)
         return ok if batched else bool(ok[0])
 
+    # ------------------------------------------------------------------ geometry
+    @property
+    def reach(self) -> float:
+        """An upper bound on the distance of the tool point from the base origin [m]: each
+        link moves the next frame's origin by at most |a| + |d|, whatever the angles."""
+        return float(
+            np.linalg.norm(np.array(self.base)[:3, 3])
+            + sum(abs(r.a) + abs(r.d) for r in self.dh.rows)
+            + np.linalg.norm(np.array(self.tool)[:3, 3])
+        )
 
-THESIS_ARM = Arm(
+    @property
+    def thesis_lengths(self) -> ThesisLengths:
+        """l1..l5 [m] of an arm of the thesis's Table II form (identity base and tool).
+
+        Raises:
+            InvalidInputError: the arm is not of that form (the thesis's formulas of Sec 3.4,
+                3.5 and App. D are written for it).
+        """
+        h = math.pi / 2
+        pattern = (
+            (0.0, 0.0, None, 0.0),
+            (-h, None, 0.0, -h),
+            (-h, 0.0, None, 0.0),
+            (-h, 0.0, 0.0, -h),
+            (0.0, None, 0.0, h),
+            (-h, 0.0, None, 0.0),
+        )
+        ok = np.allclose(np.array(self.base), np.eye(4)) and np.allclose(np.array(self.tool), np.eye(4))
+        for r, pat in zip(self.dh.rows, pattern, strict=True):
+            for v, p in zip((r.alpha, r.a, r.d, r.offset), pat, strict=True):
+                ok = ok and (p is None or abs(v - p) <= 1e-12)
+        if not ok:
+            raise InvalidInputError("arm", f"{self.name!r} is not of the thesis's Table II form")
+        r = self.dh.rows
+        return ThesisLengths(r[0].d, r[1].a, r[2].d, r[4].a, -r[5].d)
+
+    @property
+    def l1(self) -> float:
+        return self.thesis_lengths.l1
+
+    @property
+    def l2(self) -> float:
+        return self.thesis_lengths.l2
+
+    @property
+    def l3(self) -> float:
+        return self.thesis_lengths.l3
+
+    @property
+    def l4(self) -> float:
+        return self.thesis_lengths.l4
+
+    @property
+    def l5(self) -> float:
+        return self.thesis_lengths.l5
+
+    @property
+    def lengths(self) -> np.ndarray:
+        """``[l1, l2, l3, l4, l5]`` [m] (thesis form only, :attr:`thesis_lengths`)."""
+        t = self.thesis_lengths
+        return np.array([t.l1, t.l2, t.l3, t.l4, t.l5])
+
+    def kernel_vector(self) -> np.ndarray:
+        """The arm as the IK kernel's float vector (:mod:`iik.ik.layout`, ``A_*``)."""
+        from .ik import layout as L
+        from .ik.elimination import arm_constants
+
+        v = np.zeros(L.N_ARM)
+        for i, r in enumerate(self.dh.rows):
+            v[L.A_USER_DH + 5 * i : L.A_USER_DH + 5 * i + 5] = (*_cos_sin(r.alpha), r.a, r.d, r.offset)
+        v[L.A_USER_BASE : L.A_USER_BASE + 12] = np.array(self.base)[:3].ravel()
+        v[L.A_USER_TOOL : L.A_USER_TOOL + 12] = np.array(self.tool)[:3].ravel()
+        s = self.solver
+        for i, r in enumerate(s.rows):
+            v[L.A_SOLVER_DH + 5 * i : L.A_SOLVER_DH + 5 * i + 5] = r
+        v[L.A_SOLVER_BASE_INV : L.A_SOLVER_BASE_INV + 12] = np.linalg.inv(s.base)[:3].ravel()
+        v[L.A_SOLVER_TOOL_INV : L.A_SOLVER_TOOL_INV + 12] = np.linalg.inv(s.tool)[:3].ravel()
+        v[L.A_REVERSED] = 1.0 if s.reversed else 0.0
+        v[L.A_LOWER : L.A_LOWER + 6], v[L.A_UPPER : L.A_UPPER + 6] = self.q_min, self.q_max
+        v[L.A_REACH] = self.reach
+        v[L.A_SCALE] = self.reach
+        (ca1, sa1, a1, d2, _), (ca2, sa2, _, d3, _), r5 = s.rows[1], s.rows[2], s.rows[4]
+        k = arm_constants(ca1, sa1, a1, d2, ca2, sa2, d3, r5[2]).vector
+        v[L.A_CONST : L.A_CONST + L.N_CONST] = k
+        v[L.A_CONST_ABS : L.A_CONST_ABS + L.N_CONST] = np.abs(k)
+        return v
+
+    def joint_axes(self, q=None):
+        """Joint axis lines at q (default 0): points (6, 3) [m] and unit directions (6, 3) in
+        the base frame."""
+        rows = [(*_cos_sin(r.alpha), r.a, r.d, r.offset) for r in self.dh.rows]
+        pts, dirs, _ = axis_lines(rows, np.array(self.base), np.array(self.tool), q)
+        return pts, dirs
+
+
+def thesis_arm(
+    l1: float,
+    l2: float,
+    l3: float,
+    l4: float,
+    l5: float,
+    *,
+    lower=None,
+    upper=None,
+    velocity=CONSERVATIVE_VELOCITY,
+    acceleration=ASSUMED_ACCELERATION,
+    effort=CONSERVATIVE_EFFORT,
+    name: str = "arm of the thesis's form",
+    assumptions: tuple[str, ...] = (),
+) -> Arm:
+    """An arm of the thesis's Table II form with link lengths l1..l5 [m] (Table I limits by default)."""
+    for k, val in (("l1", l1), ("l2", l2), ("l3", l3), ("l4", l4), ("l5", l5)):
+        if not isinstance(val, (int, float)) or not math.isfinite(val):
+            raise InvalidInputError(k, "must be finite")
+    for k, val in (("l3", l3), ("l4", l4), ("l5", l5)):
+        if val <= 0:
+            raise InvalidInputError(k, "must be positive")
+    lower = tuple(lo * _DEG for lo, _ in _TABLE_I_DEG) if lower is None else tuple(lower)
+    upper = tuple(hi * _DEG for _, hi in _TABLE_I_DEG) if upper is None else tuple(upper)
+    h = np.pi / 2
+    rows = (
+        DHRow(alpha=0.0, a=0.0, d=l1, offset=0.0),  # Table II row 1
+        DHRow(alpha=-h, a=l2, d=0.0, offset=-h),  # row 2: theta2 - 90 deg
+        DHRow(alpha=-h, a=0.0, d=l3, offset=0.0),  # row 3
+        DHRow(alpha=-h, a=0.0, d=0.0, offset=-h),  # row 4: theta4 - 90 deg
+        DHRow(alpha=0.0, a=l4, d=0.0, offset=+h),  # row 5: theta5 + 90 deg
+        DHRow(alpha=-h, a=0.0, d=-l5, offset=0.0),  # row 6: d6 = -l5
+    )
+    table = DHTable(rows=rows, convention="modified", lower=lower, upper=upper, velocity=tuple(velocity))
+    return Arm(
+        dh=table,
+        acceleration=tuple(acceleration),
+        effort=tuple(effort),
+        name=name,
+        source="Mondragon Sanchez 2012, Table I and Table II",
+        assumptions=assumptions,
+    )
+
+
+THESIS_ARM = thesis_arm(
     l1=0.300,  # ASSUMED: not fixed by the text (cancels in App. E); see ARM.md
     l2=0.122,  # App. E, A1: H*(1,1) = 1646.8
     l3=0.339,  # App. E, A1: H*(2,2) = 2705.2
     l4=0.175,  # App. E, A1: H*(4,4) = 1898
     l5=0.265,  # App. E, A1: H*(5,5) = 1143.1
-    lower=tuple(lo * _DEG for lo, _ in _TABLE_I_DEG),  # Table I
-    upper=tuple(hi * _DEG for _, hi in _TABLE_I_DEG),  # Table I
     name="thesis PowerCube arm (Mondragon Sanchez 2012)",
     assumptions=(
         "l1 = 0.300 m is assumed (a z offset the text never fixes).",

@@ -1,18 +1,19 @@
-"""Forward kinematics and Jacobians of the thesis arm.
+"""Forward kinematics and Jacobians of an arm (:class:`~iik.arm.Arm`), and Eq 4 as printed.
 
 All functions take joint angles ``q`` [rad] of shape (6,) or (n, 6) and an
-optional :class:`~iik.arm.Arm` (default :data:`~iik.arm.THESIS_ARM`).
-Positions are in metres in the base frame 0 of Table II (z up along joint 1,
-origin on the joint-1 axis at the mounting plane, i.e. ``l1`` below joint 2).
-The tool point is the origin of frame 6 (the end-effector point ``p`` of Eq 4).
+:class:`~iik.arm.Arm`. Positions are in metres in the arm's base frame (for the thesis arm
+the base frame 0 of Table II: z up along joint 1, origin on the joint-1 axis at the
+mounting plane, i.e. ``l1`` below joint 2). The tool point is the origin of the tool frame
+(for the thesis arm the end-effector point ``p`` of Eq 4, the origin of frame 6).
 
-The closed forms are written once, as plain arithmetic on cosines and sines
-(:func:`eq4_terms`, :func:`eq4_position`, :func:`eq4_wrist_axes`,
-:func:`eq4_rotation`, :func:`app_c_position_jacobian`). They work on floats and
-on NumPy arrays alike; :mod:`iik.ik.kernel` compiles the very same functions
-with Numba, and :func:`fk`, :func:`position_jacobian` and :func:`jacobian` run
-that compiled code, for one ``q`` and for a batch (so a batch is bit-for-bit a
-loop of single calls).
+:func:`fk` and :func:`jacobian` run the compiled modified-DH chain (:mod:`iik.ik.chain`) for
+one ``q`` and for a batch (a batch is bit-for-bit a loop of single calls).
+
+The thesis's closed forms of Eq 4 and App. C are kept as printed (with the errata fixed) for
+the thesis arm (:func:`eq4_terms`, :func:`eq4_position`, :func:`eq4_wrist_axes`,
+:func:`eq4_rotation`, :func:`app_c_position_jacobian`): plain arithmetic on cosines and
+sines that works on floats and arrays; ``iik verify`` checks them against :func:`fk` and
+Pinocchio.
 """
 
 from __future__ import annotations
@@ -132,63 +133,53 @@ def _apply(q, compiled, data, shape: tuple[int, ...]) -> np.ndarray:
 
 
 def fk(q, arm: Arm = THESIS_ARM) -> np.ndarray:
-    """End-effector pose ``0_6 T`` by the closed form of Eq 4.
+    """Tool pose ``base . links(q) . tool`` of the arm (Eq 4 for the thesis arm).
 
     Args:
-        q: Joint angles [rad], shape (6,) or (n, 6), measured from the home
-            pose of Fig 8 (q = 0, arm stretched along +x).
-        arm: Arm parameters.
+        q: Joint angles [rad], shape (6,) or (n, 6) (for the thesis arm measured from the home
+            pose of Fig 8: q = 0, arm stretched along +x).
+        arm: The arm.
 
     Returns:
-        Homogeneous transform(s) (4, 4) or (n, 4, 4): rotation of frame 6 and
-        position of its origin [m], both in base frame 0.
+        Homogeneous transform(s) (4, 4) or (n, 4, 4): rotation of the tool frame (frame 6 of
+        Table II for the thesis arm) and position of its origin [m], in the arm's base frame.
     """
     k = _kernel()
-    return _apply(q, k.fk_many, k.arm_data(arm).lengths, (4, 4))
+    return _apply(q, k.fk_many, k.arm_data(arm).vector, (4, 4))
 
 
 def fk_chain(q, arm: Arm = THESIS_ARM) -> np.ndarray:
-    """End-effector pose by the generic modified-DH product of Table II.
-
-    Independent of :func:`fk` (which uses the printed closed form); the two
-    are checked against each other and against Pinocchio by ``iik verify``.
-    """
-    return dh_chain(arm.dh_table(), q)
+    """Tool pose by the NumPy modified-DH product (:func:`iik.dh.dh_chain`) with the base and
+    tool transforms: independent of the compiled :func:`fk` (checked against each other and
+    against Pinocchio)."""
+    T = dh_chain(arm.dh_table(), q)
+    return np.array(arm.base) @ T @ np.array(arm.tool)
 
 
 def joint_frames(q, arm: Arm = THESIS_ARM) -> np.ndarray:
-    """Frames ``0_T_i``, i = 1..6, shape (6, 4, 4) or (n, 6, 4, 4) [m]."""
-    return dh_chain(arm.dh_table(), q, all_frames=True)
+    """Link frames ``base . 0_T_i``, i = 1..6, shape (6, 4, 4) or (n, 6, 4, 4) [m]."""
+    return np.array(arm.base) @ dh_chain(arm.dh_table(), q, all_frames=True)
 
 
 def position_jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
-    """Appendix C: the 3x5 Jacobian ``d(px, py, pz) / d(theta1..theta5)`` [m/rad].
-
-    Rows are x, y, z of the tool point in the base frame; columns are joints
-    1..5 (joint 6 does not move the tool point, Eq 34). Shape (3, 5) or (n, 3, 5).
-    """
-    k = _kernel()
-    return _apply(q, k.position_jacobian_many, k.arm_data(arm).lengths, (3, 5))
+    """The position rows of :func:`jacobian`: ``d(px, py, pz) / d(q1..q6)`` [m/rad], shape
+    (3, 6) or (n, 3, 6) (Appendix C for the thesis arm, whose joint 6 column is zero)."""
+    return jacobian(q, arm)[..., :3, :]
 
 
 def jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
-    """Full 6x6 geometric Jacobian at the tool point (origin of frame 6).
+    """Full 6x6 geometric Jacobian at the tool point.
 
-    Rows 0-2 are the linear velocity [m/s per rad/s], rows 3-5 the angular
-    velocity [rad/s per rad/s], all expressed in the axes of base frame 0
-    (Pinocchio's ``LOCAL_WORLD_ALIGNED``). Column i is ``[z_i x (p - o_i); z_i]``
-    with ``z_i``, ``o_i`` the axis and origin of joint frame i (modified DH,
-    Table II). Shape (6, 6) or (n, 6, 6).
+    Rows 0-2 are the linear velocity [m/s per rad/s], rows 3-5 the angular velocity
+    [rad/s per rad/s], all expressed in the axes of the arm's base frame (Pinocchio's
+    ``LOCAL_WORLD_ALIGNED``). Column i is ``[z_i x (p - o_i); z_i]`` with ``z_i``, ``o_i`` the
+    axis and origin of joint i. Shape (6, 6) or (n, 6, 6).
     """
     k = _kernel()
-    return _apply(q, k.jacobian_many, k.arm_data(arm).dh, (6, 6))
+    return _apply(q, k.jacobian_many, k.arm_data(arm).vector, (6, 6))
 
 
 def reach_bound(arm: Arm = THESIS_ARM) -> float:
-    """An upper bound on the distance of the tool point from the base origin [m].
-
-    The sum of ``|a| + |d|`` over the rows of Table II (each link moves the next frame's
-    origin by at most that much, whatever the joint angles): a pose whose position is
-    farther than this is out of reach without any further arithmetic.
-    """
-    return float(sum(abs(r.a) + abs(r.d) for r in arm.dh_table().rows))
+    """An upper bound on the distance of the tool point from the base origin [m]
+    (:attr:`iik.arm.Arm.reach`): a pose farther than this is out of reach."""
+    return arm.reach

@@ -143,7 +143,7 @@ def position_lm(p: np.ndarray, q0: np.ndarray, arm: Arm = THESIS_ARM, iters: int
             break
         ia = np.nonzero(act)[0]
         q6[ia, :5] = q[ia]
-        J = position_jacobian(q6[ia], arm)
+        J = position_jacobian(q6[ia], arm)[..., :5]
         A = np.einsum("nij,nik->njk", J, J) + lam[ia, None, None] * eye
         g = np.einsum("nij,ni->nj", J, r[ia])
         step = -np.linalg.solve(A, g[..., None])[..., 0]
@@ -272,7 +272,7 @@ def closest_reachable(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-7) -> Closest
         for j in order:
             sol = least_squares(
                 lambda x, i=i: tool_positions(x[None], arm)[0] - pb[i], q[i, j],
-                jac=lambda x: position_jacobian(np.r_[x, 0.0], arm),
+                jac=lambda x: position_jacobian(np.r_[x, 0.0], arm)[:, :5],
                 bounds=(arm.q_min[:5], arm.q_max[:5]), method="trf", xtol=1e-12, ftol=1e-12, gtol=1e-12,
                 max_nfev=200)
             d = float(np.linalg.norm(sol.fun))

@@ -1,57 +1,41 @@
-"""The compiled kernel (Numba): forward kinematics, Jacobians and the complete IK.
+"""The compiled kernel (Numba): forward kinematics, Jacobians and the complete IK of any arm of
+the class (``docs/IK_CLASS.md``).
 
 Everything here is scalar code compiled with ``numba.njit``; the public functions live in
 :mod:`iik.kinematics` and :mod:`iik.ik.solve`, which call this module (imported on first
-use, so ``import iik`` does not load Numba). Units: metres and radians; frames as in
-:mod:`iik.kinematics`.
+use, so ``import iik`` does not load Numba). Units: metres and radians. Names of outputs,
+codes and the arm vector: :mod:`iik.ik.layout`.
 
-The complete IK of one pose (:func:`solve_many`, a serial loop; :func:`solve_many_parallel`
-on all cores):
+The complete IK of one pose (:func:`solve_many`; :func:`solve_many_parallel` on all cores):
 
-1. The pose is checked (finite, bottom row, rotation orthonormal to ``orthonormal_tol``,
-   det > 0) and its rotation replaced by the nearest rotation (polar factor).
-2. theta2 is eliminated from Eq 8 and Eq 11 (:mod:`iik.ik.elimination`):
-   ``F(theta1) = a^2 (P^2 + Q^2) - (b Q - c P)^2``, a trigonometric polynomial of degree 4,
-   becomes with ``t = tan((theta1 - theta_r) / 2)`` a real polynomial ``p`` of degree 8
-   (``theta_r`` of a 12-point grid with the largest |F(theta_r + pi)|: no root near t = inf).
-3. **Root isolation** (:func:`_real_roots`). The real roots of p^(7), p^(6), ..., p' are found
-   from the linear one up; consecutive roots of p^(k+1) bound intervals on which p^(k) is
-   monotone, so each holds at most one root of p^(k), bracketed by a sign change and found
-   by safeguarded Newton. Cauchy's bound B on the roots of p also bounds those of its
-   derivatives (Gauss-Lucas), so [-B, B] holds them all. *Guarantee:* in exact arithmetic
-   every real root of p is found, a root of odd multiplicity by its sign change and one of
-   even multiplicity (a tangent root) as a critical point where p = 0. *Numerical limits:*
-   p's coefficients carry rounding errors of ~1e-16 relative, so a root is only defined to
-   ~eps^(1/m) for multiplicity m (1e-8 for a double root); where a value of a derivative is
-   at rounding level its sign is unknown and the point is taken as a root of it; every
-   critical point where |p| is below 1e-3 of the size of its terms becomes a candidate
-   (kind 1: a tangent root, two roots closer than the arithmetic separates, or a pose just
-   out of reach); a root nearer than ~1e-12 to another may come out as one candidate. Roots
-   closer than 1e-5 rad and candidates of kind 1 are refined on the unsquared
-   ``f_sigma = a N + sigma (b Q - c P)`` (its roots, its extremum, the roots of its local
-   quadratic model), where a double root of F is a simple root of f_sigma' (full accuracy).
-4. theta2 from Eq 8 (Eq 11 alone where P = Q = 0), theta3..theta5 by the corrected Eq 14-28
-   (both wrist branches), theta6 from the remaining rotation (Eq 31-33).
-5. Candidates that miss the tolerance by a little get Levenberg-Marquardt steps (Newton
-   first) on the full FK before they are judged: within the tolerances (``position_tol``,
-   ``rotation_tol``) a solution; within ``approximate_tol`` an approximate one (returned
-   only if there is no solution); else dropped.
-6. Continua: theta4 = theta4 + theta5 = 0 (mod pi) makes joints 3 and 6 collinear (theta3 -
-   sign theta6 fixed), the tool point on the joint-1 axis with z6 vertical joints 1 and 6;
-   the representative is moved inside the joint limits if any member is, and the feasible
-   interval of the free joint is reported. Near such a continuum (|sin theta4|,
-   |sin(theta4 + theta5)| <= 1e-4) the configurations within the tolerance form a thin
-   family in which theta3 is loosely fixed: such rows are flagged as numerical continua.
-7. Duplicates (1e-7 rad, one continuum, unfinished polish, or joined within the tolerance)
-   are merged; rows sorted lexicographically; the joint-limit filter (LIMIT_TOL) applied.
+1. **Pose** (:func:`_check_pose`): finite, bottom row, rotation orthonormal to
+   ``orthonormal_tol`` and proper; replaced by the nearest rotation. The solver chain's pose
+   (the tool pose, or its inverse for an arm read from the flange, between the solver
+   chain's fixed base and tool transforms) gives the wrist point D and the axis z6.
+2. **Eliminant** (:mod:`iik.ik.elimination`, :mod:`iik.ik.eliminant`): 18 first-degree
+   coefficients; on each half circle theta_r + [-pi/2, pi/2] (theta_r = PSI, PSI + pi) F is
+   a degree-8 Bernstein polynomial with a rounding-error bound.
+3. **Certified isolation** (:mod:`iik.ik.bernstein`): every real root in a root leaf (one
+   each, refined) or a cluster; every place where |F| comes within the tolerance-derived
+   near threshold in a leaf. Clusters are re-expanded in double-double arithmetic
+   (:mod:`iik.ik.ddarith`) and isolated again there (``PATH_EXTENDED``); a cluster still
+   unresolved is a multiple root to ~1e-15 (``PATH_MULTIPLE``), tried as one candidate.
+4. **Closed forms** (:func:`_closed_form`): theta2 from the two linear conditions (Cramer;
+   where they are nearly parallel, each line's intersections with the circle too), theta3
+   from z4 (both signs: the two wrist branches), theta4, theta5, theta6 from the frames.
+5. **Verification**: every configuration's forward kinematics (the user's chain) against the
+   pose as given; a configuration that misses by a little is polished by Newton /
+   Levenberg-Marquardt steps on the full FK. Within (position_tol, rotation_tol): a
+   solution; within approximate_tol: approximate (returned only when nothing is exact).
+6. **Certificate**: every certified simple root gave a solution (else the root is refined in
+   double-double and tried again; ``H_CERT`` says if it still failed). No cluster rule drops
+   a root: rows are merged only when they agree to DISTINCT_TOL.
+7. **Continua**: joints 3 and 6 collinear (D on axis 3 and z6 along it): theta3 free, theta6
+   following; the eliminant vanishing identically (``PATH_DEGENERATE``): theta1 free.
 
-**Compilation and cache.** Each entry point compiles on its first call (so a program that
-only calls :func:`iik.fk` compiles only the FK) and is cached on disk: next to this file
-when that folder is writable, else in the user cache folder (``~/.cache/numba``, or
-``$NUMBA_CACHE_DIR`` when set), which is Numba's own fallback. The closed forms of
-:mod:`iik.kinematics` and :mod:`iik.ik.elimination` are compiled into these entry points,
-so the cache key covers those source files too (Numba alone keys a cache on the defining
-file only and would keep a stale kernel after an edit of ``kinematics.py``).
+**Compilation and cache.** Each entry point compiles on its first call and is cached on disk:
+next to this file when that folder is writable, else in the user cache folder. The cache key
+hashes every source file compiled into the entry points (:data:`SOURCES`).
 """
 
 from __future__ import annotations
@@ -64,16 +48,30 @@ import numba
 import numpy as np
 from numba.core import caching as _nb_caching
 
-from .. import kinematics as _kin
-from ..arm import Arm
-from . import elimination as _elim
+from . import bernstein as _bz
+from . import chain as _ch
+from . import ddarith as _dd
+from . import eliminant as _em
+from . import elimination as _el
+from . import layout as L
 
-__all__ = ["ArmData", "arm_data", "fk_many", "position_jacobian_many", "jacobian_many", "solve_many",
-           "solve_many_parallel", "scratch", "work_counts", "STATS", "SOURCES"]
+__all__ = [
+    "ArmData",
+    "arm_data",
+    "fk_many",
+    "jacobian_many",
+    "solve_many",
+    "solve_many_parallel",
+    "continuum_members",
+    "scratch",
+    "work_counts",
+    "STATS",
+    "SOURCES",
+]
 
 # ----------------------------------------------------------------------------- cache
 #: Every source file whose code the kernel compiles (the cache key hashes them all).
-SOURCES = (__file__, _kin.__file__, _elim.__file__)
+SOURCES = (__file__, _bz.__file__, _ch.__file__, _dd.__file__, _em.__file__, _el.__file__, L.__file__)
 
 
 def _digest() -> str:
@@ -121,65 +119,46 @@ def _entry(**options):
     IEEE arithmetic (``error_model="numpy"``): x / 0 is inf or nan, never an exception. Under
     ``NUMBA_DISABLE_JIT=1`` (debugging) the plain Python function, uncached.
     """
+
     def wrap(fn):
         disp = numba.njit(error_model="numpy", **options)(fn)
         if numba.config.DISABLE_JIT:
             return disp
         disp._cache = _FunctionCache(disp.py_func)  # what njit(cache=True) does, with our key
         return disp
+
     return wrap
 
 
 _inner = numba.njit(error_model="numpy")  # helpers: compiled into the entry points that call them
 
-_terms = _inner(_kin.eq4_terms)
-_position = _inner(_kin.eq4_position)
-_wrist_axes = _inner(_kin.eq4_wrist_axes)
-_rotation = _inner(_kin.eq4_rotation)
-_app_c = _inner(_kin.app_c_position_jacobian)
-_eq8_eq11 = _inner(_elim.eq8_eq11_terms)
-
 
 # ----------------------------------------------------------------------------- arm data
 @dataclass(frozen=True)
 class ArmData:
-    """An :class:`~iik.arm.Arm` as read-only float arrays for the kernel.
+    """An arm as the kernel's read-only float vector (layout: :mod:`iik.ik.layout`, ``A_*``).
 
     Attributes:
-        lengths: ``[l1, l2, l3, l4, l5]`` [m].
-        dh: Table II rows ``[alpha, a, d, offset]`` (6, 4) (modified DH) [rad, m].
-        lower, upper: Joint limits (6,) [rad] (Table I).
-        vector: ``[lengths, lower, upper, dh.ravel(), reach bound]`` (42,), the IK kernel's
-            argument (the reach bound of :func:`iik.kinematics.reach_bound` at :data:`REACH`).
+        vector: (N_ARM,) the user chain, the solver chain, limits, reach and the eliminant's
+            arm constants.
     """
 
-    lengths: np.ndarray
-    dh: np.ndarray
-    lower: np.ndarray
-    upper: np.ndarray
     vector: np.ndarray
 
 
-#: Index in :attr:`ArmData.vector` of :func:`iik.kinematics.reach_bound` [m].
-REACH = 41
-_ARM_DATA: dict[int, tuple[Arm, ArmData]] = {}
+_ARM_DATA: dict[int, tuple[object, ArmData]] = {}
 
 
-def _ro(a) -> np.ndarray:
-    a = np.ascontiguousarray(a, dtype=np.float64).copy()
-    a.setflags(write=False)
-    return a
-
-
-def arm_data(arm: Arm) -> ArmData:
-    """The kernel's view of ``arm`` (built once per arm object)."""
+def arm_data(arm) -> ArmData:
+    """The kernel's view of ``arm`` (an :class:`iik.arm.Arm`; built once per arm object)."""
     hit = _ARM_DATA.get(id(arm))
     if hit is not None and hit[0] is arm:
         return hit[1]
-    table = arm.dh_table()
-    dh = [[r.alpha, r.a, r.d, r.offset] for r in table.rows]
-    vec = np.concatenate([arm.lengths, arm.q_min, arm.q_max, np.ravel(dh), [_kin.reach_bound(arm)]])
-    data = ArmData(_ro(arm.lengths), _ro(dh), _ro(arm.q_min), _ro(arm.q_max), _ro(vec))
+    v = np.ascontiguousarray(arm.kernel_vector(), dtype=np.float64).copy()
+    if v.shape != (L.N_ARM,):
+        raise ValueError(f"arm vector has shape {v.shape}, expected ({L.N_ARM},)")
+    v.setflags(write=False)
+    data = ArmData(v)
     if len(_ARM_DATA) > 64:
         _ARM_DATA.clear()
     _ARM_DATA[id(arm)] = (arm, data)
@@ -188,152 +167,47 @@ def arm_data(arm: Arm) -> ArmData:
 
 # ----------------------------------------------------------------------------- FK, Jacobians
 @_inner
-def _finite6(q) -> bool:
-    for j in range(6):
-        if not math.isfinite(q[j]):
-            return False
-    return True
-
-
-@_inner
-def _eq4_common(q, L):
-    """The cosines and sines of joints 1-4 and of theta4 + theta5, and Eq 4's recurring terms
-    A, B, W, V (:func:`iik.kinematics.eq4_terms`), of one q: what FK and the Jacobians share."""
-    c1, s1 = math.cos(q[0]), math.sin(q[0])
-    c2, s2 = math.cos(q[1]), math.sin(q[1])
-    c3, s3 = math.cos(q[2]), math.sin(q[2])
-    c4, s4 = math.cos(q[3]), math.sin(q[3])
-    c45, s45 = math.cos(q[3] + q[4]), math.sin(q[3] + q[4])
-    A, B, W, V = _terms(c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, L[3], L[4])
-    return c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, A, B, W, V
-
-
-@_inner
-def _fk_into(q, L, T) -> None:
-    """Eq 4 for one q into T (4, 4)."""
-    c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, A, B, W, V = _eq4_common(q, L)
-    c6, s6 = math.cos(q[5]), math.sin(q[5])
-    X1, X2, X3, Y1, Y2, Y3, Z1, Z2, Z3 = _wrist_axes(c1, s1, c2, s2, c3, s3, c45, s45, A, B)
-    r11, r21, r31, r12, r22, r32 = _rotation(c6, s6, X1, X2, X3, Y1, Y2, Y3)
-    px, py, pz = _position(c1, s1, c2, s2, c3, A, B, W, V, L[0], L[1], L[2])
-    T[0, 0], T[0, 1], T[0, 2], T[0, 3] = r11, r12, Z1, px
-    T[1, 0], T[1, 1], T[1, 2], T[1, 3] = r21, r22, Z2, py
-    T[2, 0], T[2, 1], T[2, 2], T[2, 3] = r31, r32, Z3, pz
-    T[3, 0], T[3, 1], T[3, 2], T[3, 3] = 0.0, 0.0, 0.0, 1.0
-
-
-@_inner
 def _finite_rows(Q) -> bool:
     for i in range(Q.shape[0]):
-        if not _finite6(Q[i]):
-            return False
+        for j in range(6):
+            if not math.isfinite(Q[i, j]):
+                return False
     return True
 
 
 @_entry()
-def fk_many(Q, L, T) -> bool:
-    """Eq 4 of q (n, 6) into T (n, 4, 4); False (T untouched) if some q is not finite."""
+def fk_many(Q, v, T) -> bool:
+    """Forward kinematics of q (n, 6) [rad] into T (n, 4, 4) [m] for the user chain of the arm
+    vector v; False (T untouched) if some q is not finite."""
     if not _finite_rows(Q):
         return False
     for i in range(Q.shape[0]):
-        _fk_into(Q[i], L, T[i])
+        _ch.pose_into(_ch.chain_pose(Q[i], v, L.A_USER_DH, L.A_USER_BASE, L.A_USER_TOOL), T[i])
     return True
 
 
-@_inner
-def _position_jacobian_into(q, L, J) -> None:
-    c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, A, B, W, V = _eq4_common(q, L)
-    e = _app_c(c1, s1, c2, s2, c3, s3, c4, s4, c45, s45, A, B, W, V, L[1], L[2], L[3], L[4])
-    for k in range(15):
-        J[k // 5, k % 5] = e[k]
-
-
 @_entry()
-def position_jacobian_many(Q, L, J) -> bool:
-    """App. C of q (n, 6) into J (n, 3, 5); False if some q is not finite."""
+def jacobian_many(Q, v, J) -> bool:
+    """Geometric Jacobians of q (n, 6) into J (n, 6, 6) (rows [v; w], base-frame axes, at the
+    tool point); False if some q is not finite."""
     if not _finite_rows(Q):
         return False
     for i in range(Q.shape[0]):
-        _position_jacobian_into(Q[i], L, J[i])
-    return True
-
-
-@_inner
-def _jacobian_into(q, dh, J) -> None:
-    """Geometric Jacobian (6, 6) at the tool point from the modified-DH chain of Table II."""
-    r00, r01, r02, r10, r11, r12, r20, r21, r22 = 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0
-    o0, o1, o2 = 0.0, 0.0, 0.0
-    for i in range(6):
-        ca, sa = math.cos(dh[i, 0]), math.sin(dh[i, 0])
-        a, d = dh[i, 1], dh[i, 2]
-        th = q[i] + dh[i, 3]
-        ct, st = math.cos(th), math.sin(th)
-        # link: RotX(alpha) TransX(a) RotZ(theta) TransZ(d)  (Craig, Table II)
-        t0, t1, t2 = a, -sa * d, ca * d
-        o0 += r00 * t0 + r01 * t1 + r02 * t2
-        o1 += r10 * t0 + r11 * t1 + r12 * t2
-        o2 += r20 * t0 + r21 * t1 + r22 * t2
-        r00, r01, r02 = (r00 * ct + r01 * st * ca + r02 * st * sa,
-                         -r00 * st + r01 * ct * ca + r02 * ct * sa, -r01 * sa + r02 * ca)
-        r10, r11, r12 = (r10 * ct + r11 * st * ca + r12 * st * sa,
-                         -r10 * st + r11 * ct * ca + r12 * ct * sa, -r11 * sa + r12 * ca)
-        r20, r21, r22 = (r20 * ct + r21 * st * ca + r22 * st * sa,
-                         -r20 * st + r21 * ct * ca + r22 * ct * sa, -r21 * sa + r22 * ca)
-        J[0, i], J[1, i], J[2, i] = o0, o1, o2  # joint origin, replaced below
-        J[3, i], J[4, i], J[5, i] = r02, r12, r22  # joint axis z_i
-    for i in range(6):
-        dx, dy, dz = o0 - J[0, i], o1 - J[1, i], o2 - J[2, i]
-        zx, zy, zz = J[3, i], J[4, i], J[5, i]
-        J[0, i] = zy * dz - zz * dy
-        J[1, i] = zz * dx - zx * dz
-        J[2, i] = zx * dy - zy * dx
-
-
-@_entry()
-def jacobian_many(Q, dh, J) -> bool:
-    """Geometric Jacobians of q (n, 6) into J (n, 6, 6); False if some q is not finite."""
-    if not _finite_rows(Q):
-        return False
-    for i in range(Q.shape[0]):
-        _jacobian_into(Q[i], dh, J[i])
+        _ch.jacobian_into(Q[i], v, L.A_USER_DH, L.A_USER_BASE, L.A_USER_TOOL, J[i])
     return True
 
 
 # ============================================================================= complete IK
-# Layout of the option vector ``opt`` passed by iik.ik.solve (see IKOptions).
-OPT_POSITION_TOL, OPT_ROTATION_TOL, OPT_APPROX_TOL, OPT_ORTHONORMAL_TOL, OPT_LIMIT_TOL = 0, 1, 2, 3, 4
-N_OPT = 5
-
-# Pose status codes (validation inside the kernel; iik.ik.solve turns them into typed errors).
-OK, NONFINITE, BOTTOM_ROW, NOT_ORTHONORMAL, REFLECTION = 0, 1, 2, 3, 4
-
-#: Upper bound on the number of distinct solutions returned (8 roots x 2 wrist branches).
-MAX_SOLUTIONS = 16
-#: Free-joint kinds (bit set): theta1/theta6 and theta3/theta6 continua; 4: a numerical
-#: theta3/theta6 continuum (|sin theta4|, |sin(theta4 + theta5)| <= CONTINUUM_SIN but not exactly
-#: singular: the pose fixes theta3 only loosely; no continuum data).
-FREE_Q1_Q6, FREE_Q3_Q6, NUMERICAL_Q3_Q6 = 1, 2, 4
-
-# Columns of a row of ``info`` (float64): residuals against the pose as given, flags and
-# the continuum data (sign and feasible interval of the free joint, for theta1 then theta3).
-I_PRES, I_RRES, I_WITHIN, I_APPROX, I_FREE = 0, 1, 2, 3, 4
-I_S1, I_LO1, I_HI1, I_S3, I_LO3, I_HI3 = 5, 6, 7, 8, 9, 10
-N_INFO = 11
-
-# Header of a solved pose (float64, N_HDR): status, measure, projection distance, number of
-# exact solutions before the limit filter, rows returned, the least residuals seen, rows on a
-# continuum, and whether the rows are approximate.
-H_STATUS, H_MEASURE, H_PROJECTION, H_TOTAL, H_COUNT, H_BEST_P, H_BEST_R, H_FREE, H_APPROX = range(9)
-N_HDR = 9
-
-# Columns of the candidate table (internal): q, residuals against the projected pose,
-# class (1 exact, 2 approximate), free kind, continuum data as in ``info``.
-_C_PRES, _C_RRES, _C_CLASS, _C_FREE = 6, 7, 8, 9
-_C_S1, _C_LO1, _C_HI1, _C_S3, _C_LO3, _C_HI3, _C_PRIO = 10, 11, 12, 13, 14, 15, 16
-N_CAND = 17
-_MAX_T1 = 64  # theta1 candidates per pose
-MAX_CAND = 192  # configurations per pose (x 2 theta2 options x 2 wrist branches)
-_MAX_RST = 8  # restart sweeps per pose (one per valley)
+#: Most theta1 candidates per pose.
+_MAX_T1 = 48
+#: Most configurations per pose (theta1 candidates x theta2 options x 2 wrist branches).
+MAX_CAND = 160
+# Columns of the candidate table: q, residuals against the pose as given, class (1 exact,
+# 2 approximate), continuum kind, candidate kind, smallest singular value, continuum sign,
+# interval of the free joint, the theta1 candidate it came from.
+_C_PRES, _C_RRES, _C_CLASS, _C_FREE, _C_KIND, _C_H3 = 6, 7, 8, 9, 10, 11
+_C_SIGN, _C_LO, _C_HI, _C_ROOT = 12, 13, 14, 15
+N_CAND = 16
 
 
 def _layout(*sizes):
@@ -345,68 +219,104 @@ def _layout(*sizes):
     return (*out, o)
 
 
-# Scratch layout (one float64 buffer per serial loop, carved into views; no allocation per pose):
-# coefficients, theta1 candidates and their kinds, q, theta2 options, a second q, p, roots and
-# kinds of p, derivative roots, quadratics, products, Newton / LM vectors, work counters, a
-# reordering buffer, restart sweeps (count and (theta1, theta2) pairs)
-(_W_CO, _W_TH1, _W_CAREFUL, _W_Q, _W_TH2, _W_Q2, _W_P, _W_ROOTS, _W_KINDS, _W_CRIT, _W_NEW, _W_QUAD,
- _W_PROD, _W_E, _W_DQ, _W_G, _W_ET, _W_QT, _W_STATS, _W_TMP, _W_RST, N_WORK) = _layout(
-    16, _MAX_T1, _MAX_T1, 6, 4, 6, 9, 16, 16, 10, 10, 12, 15, 6, 6, 6, 6, 6, 8, 2 * _MAX_T1, 1 + 2 * _MAX_RST)
+# Scratch layout (one float64 buffer per serial loop, carved into views): pose terms and
+# magnitudes, theta1 candidates and kinds, theta2 options, q work vectors, Bernstein work,
+# leaves, stacks, Newton / LM vectors, work counters, an index buffer.
+(
+    _W_TERMS,
+    _W_MAGS,
+    _W_TH1,
+    _W_KIND,
+    _W_TH2,
+    _W_Q,
+    _W_Q2,
+    _W_BW,
+    _W_B,
+    _W_M,
+    _W_BL,
+    _W_LEAF,
+    _W_LEAF2,
+    _W_STACK,
+    _W_DD,
+    _W_E,
+    _W_DQ,
+    _W_G,
+    _W_ET,
+    _W_QT,
+    _W_STATS,
+    _W_IDX,
+    _W_CAND,
+    N_SCRATCH,
+) = _layout(
+    18,
+    18,
+    _MAX_T1,
+    _MAX_T1,
+    8,
+    6,
+    6,
+    60,
+    9,
+    9,
+    9,
+    _bz.N_LEAF * _bz.LEAF_WIDTH,
+    _bz.N_LEAF * _bz.LEAF_WIDTH,
+    96 * 12,
+    60 * 2,
+    6,
+    6,
+    6,
+    6,
+    6,
+    12,
+    MAX_CAND,
+    MAX_CAND * N_CAND,
+)
 #: Work counters (cumulative, in the scratch buffer; :func:`work_counts`): what a profile reads.
-STATS = ("poses", "theta1 candidates", "configurations", "polishes", "polish iterations",
-         "polish FK evaluations", "polish Jacobians", "continuum restarts")
-# matrix scratch (N_MATS, 9, 9): projected rotation, a pose, a Jacobian, normal equations, derivatives
-_M_RU, _M_T4, _M_J, _M_A, _M_D = 0, 1, 2, 3, 4
+STATS = (
+    "poses",
+    "theta1 candidates",
+    "configurations",
+    "polishes",
+    "polish iterations",
+    "extended clusters",
+    "multiple roots",
+    "near candidates",
+    "degenerate poses",
+    "certificate retries",
+    "certificate failures",
+    "poses on the extended path",
+)
+# matrix scratch (5, 6, 6): projected rotation, solver pose, Jacobian, normal equations, spare
+_M_RU, _M_RC, _M_J, _M_A, _M_X = 0, 1, 2, 3, 4
 N_MATS = 5
-#: Size of the scratch buffer of :func:`solve_many`.
-N_SCRATCH = N_WORK + N_MATS * 81 + MAX_CAND * N_CAND + MAX_CAND
-
 
 _TWO_PI = 2.0 * math.pi
-_SQRT8 = math.sqrt(8.0)
 _EPS = 2.220446049250313e-16
-_GRID = np.arange(12) * (_TWO_PI / 12)  # reference angles for the t-substitution
-_GRID_C, _GRID_S = np.cos(_GRID + np.pi), np.sin(_GRID + np.pi)
-_ALL6 = np.arange(6)
-_COLS_126 = np.array([0, 1, 5])
+#: Reference angle of the first half circle (the second is PSI + pi): boundaries at
+#: PSI +- pi/2, away from round angles a user is likely to type.
+PSI = 0.3
+_CPSI, _SPSI = math.cos(PSI), math.sin(PSI)
+_PSI = math.atan2(_SPSI, _CPSI)
 
-#: |h| (the s3, c3 direction scaled by s4 or s45) below this: theta3 is free at the candidate.
-FREE_TOL = 1e-7
-#: |sin theta4|, |sin(theta4 + theta5)| of a solution below this: tried as a theta3/theta6 continuum.
-CONTINUUM_SIN = 1e-5
-#: ... and below this (but not exactly singular): a numerical theta3/theta6 continuum. Near it
-#: the configurations within the tolerance of the pose form a thin family in which theta3
-#: (with theta6, theta4, theta5) varies a lot: the row is one of them, flagged (3, 6).
-NUMERICAL_SIN = 1e-4
-#: A critical point of the eliminant with |F| below this (relative to sum |c_i| |t|^i) may be a
-#: double root (a tangent root, or two roots closer than the arithmetic separates) ...
-TANGENT_REL = 1e-3
-#: ... it becomes a candidate if the length error of Eq 11 there, |E| / (2 l4) [m], is below
-#: this many times ``approximate_tol`` (an approximate solution can lie there).
-TANGENT_REACH = 10.0
-#: |p^(k)(x)| below this (relative to sum |c_i| |x|^i) is rounding noise: no sign (a root there).
-ROUNDING_REL = 1e-14
-#: theta1 roots closer than this [rad] are both treated as candidate double roots (F's roots
-#: lose accuracy like eps / separation there).
-CROWDED = 1e-5
-#: Largest Newton step when a simple root of p is refined on f_sigma [rad] (such a root is
-#: inaccurate only where F is nearly flat; the step bound keeps the refinement at that root).
-REFINE_STEP = 1e-3
-#: A cluster of double-root candidates is scanned for sign changes of f_sigma within this [rad] ...
-SCAN_HALF = 1e-3
-#: ... in this many steps.
-SCAN_STEPS = 24
-#: ... when a closed-form configuration there has |sin theta4|, |sin(theta4 + theta5)| below this.
-SCAN_NEAR = 1e-2
-#: Stalled polishes near the theta3/theta6 continuum whose (theta1, theta2) are this close [rad]
-#: lie in one valley: one restart sweep around its theta3 circle serves them all.
-VALLEY = 1e-3
-#: A simple root of p whose rounding uncertainty (8 eps sum |c_i| |t|^i / |p'(t)|) exceeds this
-#: [t units, ~rad] is treated as a double-root candidate.
-UNCERTAIN_ROOT = 1e-9
-#: Candidates farther than this from the pose after the closed forms are dropped unpolished [m], [rad].
+#: |h| (z6 or (D - C) / a4 across z3) below this: theta3 is free at the configuration [1].
+FREE_TOL = 1e-9
+#: ... below this many times sqrt(tolerance / reach) (but not free): near the continuum, where
+#: the configurations within the tolerance form a tube around the broken circle (its residual
+#: grows like reach x h^2 along it): tried as a continuum (snapped and verified) or flagged
+#: numerical [1].
+CONTINUUM_NEAR = 30.0
+#: The two conditions on theta2 are nearly parallel below this sine of their angle: each
+#: condition's intersections with the unit circle are tried too.
+PARALLEL = 1e-3
+#: Configurations farther than this from the pose after the closed forms are not polished
+#: [m per m of reach, rad].
 NEAR_POSITION = 1e-3
 NEAR_ROTATION = 1e-2
+#: Rows closer than this [rad] joined by a segment within the tolerance are one solution.
+CONNECTED = 1e-3
+#: Near threshold of the isolation: |F| within this many (tolerance / reach) of its magnitude.
+NEAR_FACTOR = 64.0
 
 
 @_inner
@@ -435,27 +345,29 @@ def _check_pose(T, tol, Ru):
     for i in range(4):
         for j in range(4):
             if not math.isfinite(T[i, j]):
-                return NONFINITE, 0.0, 0.0
+                return L.NONFINITE, 0.0, 0.0
     bot = max(abs(T[3, 0]), abs(T[3, 1]), abs(T[3, 2]), abs(T[3, 3] - 1.0))
     if bot > tol:
-        return BOTTOM_ROW, bot, 0.0
+        return L.BOTTOM_ROW, bot, 0.0
     err = 0.0
     for i in range(3):
         for j in range(3):
             g = T[0, i] * T[0, j] + T[1, i] * T[1, j] + T[2, i] * T[2, j] - (1.0 if i == j else 0.0)
             err = max(err, abs(g))
     if err > tol:
-        return NOT_ORTHONORMAL, err, 0.0
-    det = (T[0, 0] * (T[1, 1] * T[2, 2] - T[1, 2] * T[2, 1])
-           - T[0, 1] * (T[1, 0] * T[2, 2] - T[1, 2] * T[2, 0])
-           + T[0, 2] * (T[1, 0] * T[2, 1] - T[1, 1] * T[2, 0]))
+        return L.NOT_ORTHONORMAL, err, 0.0
+    det = (
+        T[0, 0] * (T[1, 1] * T[2, 2] - T[1, 2] * T[2, 1])
+        - T[0, 1] * (T[1, 0] * T[2, 2] - T[1, 2] * T[2, 0])
+        + T[0, 2] * (T[1, 0] * T[2, 1] - T[1, 1] * T[2, 0])
+    )
     if det < 0.0:
-        return REFLECTION, err, 0.0
+        return L.REFLECTION, err, 0.0
     for i in range(3):
         for j in range(3):
             Ru[i, j] = T[i, j]
     if err <= 64 * _EPS:
-        return OK, err, 0.0
+        return L.OK, err, 0.0
     for _ in range(20):
         a, b, c = Ru[0, 0], Ru[0, 1], Ru[0, 2]
         d, e, f = Ru[1, 0], Ru[1, 1], Ru[1, 2]
@@ -468,56 +380,27 @@ def _check_pose(T, tol, Ru):
         Ru[0, 0], Ru[0, 1], Ru[0, 2] = 0.5 * (a + c00 / det), 0.5 * (b + c01 / det), 0.5 * (c + c02 / det)
         Ru[1, 0], Ru[1, 1], Ru[1, 2] = 0.5 * (d + c10 / det), 0.5 * (e + c11 / det), 0.5 * (f + c12 / det)
         Ru[2, 0], Ru[2, 1], Ru[2, 2] = 0.5 * (g + c20 / det), 0.5 * (h + c21 / det), 0.5 * (k + c22 / det)
-        step = max(abs(Ru[0, 0] - a), abs(Ru[0, 1] - b), abs(Ru[0, 2] - c), abs(Ru[1, 0] - d),
-                   abs(Ru[1, 1] - e), abs(Ru[1, 2] - f), abs(Ru[2, 0] - g), abs(Ru[2, 1] - h),
-                   abs(Ru[2, 2] - k))
+        step = max(
+            abs(Ru[0, 0] - a),
+            abs(Ru[0, 1] - b),
+            abs(Ru[0, 2] - c),
+            abs(Ru[1, 0] - d),
+            abs(Ru[1, 1] - e),
+            abs(Ru[1, 2] - f),
+            abs(Ru[2, 0] - g),
+            abs(Ru[2, 1] - h),
+            abs(Ru[2, 2] - k),
+        )
         if step <= 4 * _EPS:
             break
     dist = 0.0
     for i in range(3):
         for j in range(3):
             dist += (T[i, j] - Ru[i, j]) ** 2
-    return OK, err, math.sqrt(dist)
+    return L.OK, err, math.sqrt(dist)
 
 
-# ----------------------------------------------------------------------------- residuals
-@_inner
-def _rotation_angle(T4, R):
-    """Angle between the rotation of T4 and R: the formula of :func:`iik.rotations.rotation_angle`."""
-    d = 0.0
-    for i in range(3):
-        for j in range(3):
-            d += (T4[i, j] - R[i, j]) ** 2
-    return 2.0 * math.asin(min(math.sqrt(d) / _SQRT8, 1.0))
-
-
-@_inner
-def _position_error(T4, T):
-    return math.sqrt((T4[0, 3] - T[0, 3]) ** 2 + (T4[1, 3] - T[1, 3]) ** 2 + (T4[2, 3] - T[2, 3]) ** 2)
-
-
-@_inner
-def _residuals(q, L, Ru, T, T4):
-    """(position [m], rotation [rad]) residuals of fk(q) (into T4) against (Ru, p)."""
-    _fk_into(q, L, T4)
-    return _position_error(T4, T), _rotation_angle(T4, Ru)
-
-
-@_inner
-def _pose_error(q, L, Ru, T, T4, e):
-    """e = [p* - p(q); vee(Re - Re^T) / 2 with Re = R* R(q)^T], the vector Newton drives to 0."""
-    _fk_into(q, L, T4)
-    for i in range(3):
-        e[i] = T[i, 3] - T4[i, 3]
-    re01 = Ru[0, 0] * T4[1, 0] + Ru[0, 1] * T4[1, 1] + Ru[0, 2] * T4[1, 2]
-    re02 = Ru[0, 0] * T4[2, 0] + Ru[0, 1] * T4[2, 1] + Ru[0, 2] * T4[2, 2]
-    re10 = Ru[1, 0] * T4[0, 0] + Ru[1, 1] * T4[0, 1] + Ru[1, 2] * T4[0, 2]
-    re12 = Ru[1, 0] * T4[2, 0] + Ru[1, 1] * T4[2, 1] + Ru[1, 2] * T4[2, 2]
-    re20 = Ru[2, 0] * T4[0, 0] + Ru[2, 1] * T4[0, 1] + Ru[2, 2] * T4[0, 2]
-    re21 = Ru[2, 0] * T4[1, 0] + Ru[2, 1] * T4[1, 1] + Ru[2, 2] * T4[1, 2]
-    e[3], e[4], e[5] = 0.5 * (re21 - re12), 0.5 * (re02 - re20), 0.5 * (re10 - re01)
-
-
+# ----------------------------------------------------------------------------- linear algebra
 @_inner
 def _least_squares_step(J, e, cols, n, dq, A, g, lam):
     """dq = (J_c^T J_c + mu I)^-1 J_c^T e over the columns ``cols[:n]`` (Cholesky); A, g scratch.
@@ -609,33 +492,45 @@ def _sq(e):
     return e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3] + e[4] * e[4] + e[5] * e[5]
 
 
+# ----------------------------------------------------------------------------- residuals, polish
 @_inner
-def _polish(q, L, dh, Ru, T, ws, wm, cols, n, iters):
-    """Levenberg-Marquardt on the full FK over joints ``cols[:n]``; q in place, wrapped at the end.
+def _residuals(q, v, Ru, T):
+    """(position [m], rotation [rad]) residuals of the user chain's fk(q) against (Ru, p of T)."""
+    r = _ch.chain_pose(q, v, L.A_USER_DH, L.A_USER_BASE, L.A_USER_TOOL)
+    return _ch.position_error_12(r, T), _ch.rotation_angle_12(r, Ru)
 
-    The first try of every iteration is the Newton step (6 joints, J^-1 e; least squares
-    for fewer joints or a singular J); a step that does not reduce the pose error is
-    rejected and retried with more damping (so a near-singular valley is not jumped
-    across). Stops when a step is below 1e-14 rad or the damping has grown without
-    progress: then q is a least-squares configuration (approximate if the error is not 0).
+
+@_inner
+def _pose_error(q, v, Ru, T, e):
+    _ch.pose_error_vector(_ch.chain_pose(q, v, L.A_USER_DH, L.A_USER_BASE, L.A_USER_TOOL), Ru, T, e)
+
+
+@_inner
+def _polish(q, v, Ru, T, ws, wm, cols, n, iters, target):
+    """Levenberg-Marquardt on the user chain's FK over joints ``cols[:n]``; q in place, wrapped.
+
+    The first try of every iteration is the Newton step (J^-1 e; least squares for fewer
+    joints or a singular J); a step that does not reduce the pose error is rejected and
+    retried with more damping (so a near-singular valley is not jumped across). Stops when
+    the error vector is below ``target`` [m, rad], a step is below 1e-14 rad, or the damping
+    has grown without progress.
     """
-    T4, J, A = wm[_M_T4, :4, :4], wm[_M_J, :6, :6], wm[_M_A, :6, :6]
-    e, dq, g = ws[_W_E:_W_E + 6], ws[_W_DQ:_W_DQ + 6], ws[_W_G:_W_G + 6]
-    et, qt = ws[_W_ET:_W_ET + 6], ws[_W_QT:_W_QT + 6]
-    st = ws[_W_STATS:_W_STATS + 8]
+    J, A = wm[_M_J], wm[_M_A]
+    e, dq, g = ws[_W_E : _W_E + 6], ws[_W_DQ : _W_DQ + 6], ws[_W_G : _W_G + 6]
+    et, qt = ws[_W_ET : _W_ET + 6], ws[_W_QT : _W_QT + 6]
+    st = ws[_W_STATS : _W_STATS + 12]
     st[3] += 1.0
-    _pose_error(q, L, Ru, T, T4, e)
-    st[5] += 1.0
+    _pose_error(q, v, Ru, T, e)
     err = _sq(e)
     lam = 0.0
     fresh = False
+    goal = target * target
     for _ in range(iters):
-        if err == 0.0:
+        if err <= goal:
             break
         st[4] += 1.0
         if not fresh:
-            _jacobian_into(q, dh, J)
-            st[6] += 1.0
+            _ch.jacobian_into(q, v, L.A_USER_DH, L.A_USER_BASE, L.A_USER_TOOL, J)
         fresh = True
         if lam > 0.0 or n < 6 or not _newton_step(J, e, dq, A, g):
             _least_squares_step(J, e, cols, n, dq, A, g, lam)
@@ -645,8 +540,7 @@ def _polish(q, L, dh, Ru, T, ws, wm, cols, n, iters):
         for a in range(n):
             qt[cols[a]] += dq[a]
             big = max(big, abs(dq[a]))
-        _pose_error(qt, L, Ru, T, T4, et)
-        st[5] += 1.0
+        _pose_error(qt, v, Ru, T, et)
         errt = _sq(et)
         if errt <= err:
             for j in range(6):
@@ -656,6 +550,8 @@ def _polish(q, L, dh, Ru, T, ws, wm, cols, n, iters):
             if big <= 1e-14:
                 break
         else:
+            if big <= 1e-14:
+                break
             lam = 1e-10 if lam == 0.0 else 10.0 * lam
             if lam > 1e4:
                 break
@@ -663,563 +559,490 @@ def _polish(q, L, dh, Ru, T, ws, wm, cols, n, iters):
         q[j] = wrap(q[j])
 
 
-# ----------------------------------------------------------------------------- the eliminant
+# ----------------------------------------------------------------------------- solver pose
 @_inner
-def _coefficients(Ru, T, L, co):
-    """The eliminant's coefficients (:func:`iik.ik.elimination.eq8_eq11_terms`) into co (16,):
-    ``a, b, P, Q`` as ``[const, cos, sin]`` (0-11), ``c`` (12), the wrist point D (13-15)."""
-    v = _eq8_eq11(Ru[0, 2], Ru[1, 2], Ru[2, 2], T[0, 3], T[1, 3], T[2, 3], L[0], L[1], L[2], L[3], L[4])
-    for i in range(16):
-        co[i] = v[i]
-
-
-@_inner
-def _abPQ(co, C, S):
-    a = co[0] + co[1] * C + co[2] * S
-    b = co[3] + co[4] * C + co[5] * S
-    P = co[6] + co[7] * C + co[8] * S
-    Q = co[9] + co[10] * C + co[11] * S
-    return a, b, P, Q
-
-
-@_inner
-def _F(co, C, S):
-    """F = a^2 (P^2 + Q^2) - (b Q - c P)^2 (theta2 eliminated from Eq 8 and Eq 11)."""
-    a, b, P, Q = _abPQ(co, C, S)
-    g = b * Q - co[12] * P
-    return a * a * (P * P + Q * Q) - g * g
+def _inverse(r):
+    """Inverse of the rigid transform r (12-tuple)."""
+    r00, r01, r02, r10, r11, r12, r20, r21, r22, px, py, pz = r
+    return (
+        r00,
+        r10,
+        r20,
+        r01,
+        r11,
+        r21,
+        r02,
+        r12,
+        r22,
+        -(r00 * px + r10 * py + r20 * pz),
+        -(r01 * px + r11 * py + r21 * pz),
+        -(r02 * px + r12 * py + r22 * pz),
+    )
 
 
 @_inner
-def _eliminant(co, cr, sr, p, ws, wm):
-    """Ascending coefficients p (9,) of (1 + t^2)^4 F(theta_r + 2 atan t), a degree-8 polynomial.
-
-    Each trig polynomial x becomes the quadratic (1 + t^2) x = (x0 + x_c') + 2 x_s' t + (x0 - x_c') t^2
-    (x_c', x_s' its cos/sin coefficients turned by theta_r).
-    """
-    q = ws[_W_QUAD:_W_QUAD + 12]
-    for k in range(4):
-        x0, xc, xs = co[3 * k], co[3 * k + 1], co[3 * k + 2]
-        c = xc * cr + xs * sr
-        s = -xc * sr + xs * cr
-        q[3 * k], q[3 * k + 1], q[3 * k + 2] = x0 + c, 2.0 * s, x0 - c
-    c = co[12]
-    A2, PQ, G = ws[_W_PROD:_W_PROD + 5], ws[_W_PROD + 5:_W_PROD + 10], ws[_W_PROD + 10:_W_PROD + 15]
-    for i in range(5):
-        A2[i], PQ[i], G[i] = 0.0, 0.0, 0.0
-    for i in range(3):
-        for j in range(3):
-            A2[i + j] += q[i] * q[j]
-            PQ[i + j] += q[6 + i] * q[6 + j] + q[9 + i] * q[9 + j]
-            G[i + j] += q[3 + i] * q[9 + j] - c * q[6 + i] * (1.0 if j != 1 else 0.0)
-    for k in range(9):
-        p[k] = 0.0
-    for i in range(5):
-        for j in range(5):
-            p[i + j] += A2[i] * PQ[j] - G[i] * G[j]
+def _solver_pose(T, Ru, v):
+    """The solver chain's frame-6 pose in its frame 0 (12-tuple) for the pose (Ru, p of T):
+    ``B_s^-1 X T_s^-1`` with X the pose, or its inverse for an arm solved from the flange."""
+    x = (
+        Ru[0, 0],
+        Ru[0, 1],
+        Ru[0, 2],
+        Ru[1, 0],
+        Ru[1, 1],
+        Ru[1, 2],
+        Ru[2, 0],
+        Ru[2, 1],
+        Ru[2, 2],
+        T[0, 3],
+        T[1, 3],
+        T[2, 3],
+    )
+    if v[L.A_REVERSED] != 0.0:
+        x = _inverse(x)
+    x = _ch.compose_fixed(_ch.load_fixed(v, L.A_SOLVER_BASE_INV), x)
+    return _ch.compose_fixed(x, _ch.load_fixed(v, L.A_SOLVER_TOOL_INV))
 
 
 @_inner
-def _horner(c, deg, x):
-    """p(x), p'(x) and sum |c_i| |x|^i (the scale of the rounding error of p(x))."""
-    f = c[deg]
-    df = 0.0
-    m = abs(f)
-    ax = abs(x)
-    for i in range(deg - 1, -1, -1):
-        df = df * x + f
-        f = f * x + c[i]
-        m = m * ax + abs(c[i])
-    return f, df, m
-
-
-@_inner
-def _bracketed_root(c, deg, x0, x1, f0, f1, flat0, flat1, rtol):
-    """The root of a polynomial in [x0, x1] where it changes sign (f0, f1: values at the ends).
-
-    Newton's method safeguarded by bisection (every iterate stays in the shrinking
-    bracket); it starts where the cubic with the end values and zero end slopes (``flat0``,
-    ``flat1``: the ends are critical points) crosses zero. Stops when the step is below
-    ``rtol`` (1 + |x|), the bracket is at rounding level, or |p(x)| is below the rounding
-    error of its evaluation (8 eps sum |c_i| |x|^i).
-    """
-    r = f0 / (f0 - f1)  # in (0, 1)
-    if flat0 and flat1:  # inverse of 3 s^2 - 2 s^3
-        s = 0.5 - math.sin(math.asin(1.0 - 2.0 * r) / 3.0)
-    elif flat0:  # inverse of s^2
-        s = math.sqrt(r)
-    elif flat1:  # inverse of 1 - (1 - s)^2
-        s = 1.0 - math.sqrt(1.0 - r)
+def _to_user(qc, q, v) -> None:
+    """User joint angles q (6,) from the solver chain's joint angles qc (6,) (wrapped)."""
+    if v[L.A_REVERSED] != 0.0:
+        for j in range(6):
+            q[j] = wrap(qc[5 - j])
     else:
-        s = r
-    x = x0 + s * (x1 - x0)
-    if not (x0 < x < x1):
-        x = 0.5 * (x0 + x1)
-    step_old = x1 - x0
-    for _ in range(200):
-        f, df, m = _horner(c, deg, x)
-        if abs(f) <= 8 * _EPS * m:
-            return x
-        if (f < 0.0) == (f0 < 0.0):
-            x0, f0 = x, f
-        else:
-            x1 = x
-        xn = x - f / df if df != 0.0 else x0 - 1.0
-        if not (x0 < xn < x1) or abs(xn - x) > 0.5 * step_old:
-            xn = 0.5 * (x0 + x1)
-        step_old = abs(xn - x)
-        if step_old <= rtol * (1.0 + abs(x)) or x1 - x0 <= 4 * _EPS * (1.0 + abs(x)):
-            return xn
-        x = xn
-    return x
+        for j in range(6):
+            q[j] = wrap(qc[j])
 
 
 @_inner
-def _real_roots(p, ws, wm):
-    """Every real root of the degree-8 polynomial ``p``, by isolation on monotone pieces.
-
-    The derivatives p^(7), ..., p' are treated from the linear one up (the linear and
-    quadratic ones in closed form): the (sorted) real roots of p^(k+1) cut [-B, B] (B:
-    Cauchy's bound, which by Gauss-Lucas also holds for the derivatives) into pieces on
-    which p^(k) is monotone, so each piece holds at most one root of p^(k), found by
-    :func:`_bracketed_root` where p^(k) changes sign. For p itself, a critical point
-    where |p| is below :data:`TANGENT_REL` of the magnitude of its terms is reported as
-    a candidate double root (kind 1). Roots go to ws[_W_ROOTS:], kinds to
-    ws[_W_KINDS:], sorted; returns how many.
-    """
-    roots, kinds = ws[_W_ROOTS:_W_ROOTS + 16], ws[_W_KINDS:_W_KINDS + 16]
-    lead = abs(p[8])
-    bound = 0.0
-    for i in range(8):
-        bound = max(bound, abs(p[i]))
-    bound = 1.0 + bound / lead
-    D = wm[_M_D]  # D[k] = coefficients of p^(k)
-    for i in range(9):
-        D[0, i] = p[i]
-    for k in range(1, 9):
-        for i in range(9 - k):
-            D[k, i] = D[k - 1, i + 1] * (i + 1)
-    crit, new = ws[_W_CRIT:_W_CRIT + 10], ws[_W_NEW:_W_NEW + 10]
-    crit[0] = -D[7, 0] / D[7, 1]  # p^(7) is linear
-    ncrit = 1
-    c0, c1, c2 = D[6, 0], D[6, 1], D[6, 2]  # p^(6) is quadratic
-    disc = c1 * c1 - 4.0 * c0 * c2
-    if disc > 0.0:
-        qq = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
-        ra, rb = qq / c2, c0 / qq
-        crit[0], crit[1] = min(ra, rb), max(ra, rb)
-        ncrit = 2
+def _to_solver(q, qc, v) -> None:
+    if v[L.A_REVERSED] != 0.0:
+        for j in range(6):
+            qc[j] = q[5 - j]
     else:
-        ncrit = 0
-    nk = 0
-    for k in range(5, -1, -1):
-        deg = 8 - k
-        ck = D[k]
-        nnew = 0
-        xa = -bound
-        fa, _, _ = _horner(ck, deg, xa)
-        for j in range(ncrit + 1):
-            xb = crit[j] if j < ncrit else bound
-            fb, _, mb = _horner(ck, deg, xb)
-            # a value at rounding level has no sign: the end point counts as a root itself
-            zero = k > 0 and j < ncrit and abs(fb) <= ROUNDING_REL * mb
-            if zero:
-                fb = 0.0
-            if (fa < 0.0 and fb > 0.0) or (fa > 0.0 and fb < 0.0):
-                new[nnew] = _bracketed_root(ck, deg, xa, xb, fa, fb, j > 0, j < ncrit,
-                                            1e-15 if k == 0 else 1e-9)
-                nnew += 1
-            if zero and k > 0:
-                new[nnew] = xb
-                nnew += 1
-            xa, fa = xb, fb
-        if k > 0:
-            for j in range(nnew):
-                crit[j] = new[j]
-            ncrit = nnew
-            continue
-        i_new = 0  # p itself: merge simple roots and candidate double roots, in order
-        for j in range(ncrit):
-            x = crit[j]
-            before = i_new < nnew and new[i_new] < x and (j == 0 or new[i_new] > crit[j - 1])
-            while i_new < nnew and new[i_new] < x:
-                roots[nk], kinds[nk] = new[i_new], 0.0
-                nk += 1
-                i_new += 1
-            after = i_new < nnew and (j + 1 >= ncrit or new[i_new] < crit[j + 1])
-            f, _, m = _horner(ck, deg, x)
-            size = _horner(ck, deg, max(1.0, abs(x)))[2]  # sum |c_i| max(1, |x|)^i: p's scale there
-            # an extremum between two roots found on both sides adds nothing, unless it is
-            # at rounding level (then the two roots may be one double root)
-            if abs(f) <= TANGENT_REL * size and not (before and after and abs(f) > 1e3 * ROUNDING_REL * m):
-                roots[nk], kinds[nk] = x, 1.0
-                nk += 1
-        while i_new < nnew:
-            roots[nk], kinds[nk] = new[i_new], 0.0
-            nk += 1
-            i_new += 1
-    return nk
+        for j in range(6):
+            qc[j] = q[j]
 
 
-# ----------------------------------------------------------------------------- candidates
 @_inner
-def _theta1_candidates(co, L, opt, ws, wm):
-    """theta1 candidates [rad] from the real roots of the eliminant (into ws[_W_TH1:]).
+def _user_col(v, j):
+    """The user joint index of solver joint j (0-based)."""
+    return 5 - j if v[L.A_REVERSED] != 0.0 else j
 
-    ws[_W_CAREFUL:] marks candidates from double-root candidates, crowded roots and a
-    degenerate eliminant (every theta1 a root): they are always polished and tried with
-    both signs of Eq 8. Returns how many.
-    """
-    th1, careful = ws[_W_TH1:_W_TH1 + _MAX_T1], ws[_W_CAREFUL:_W_CAREFUL + _MAX_T1]
-    # theta_r: the grid angle whose opposite (t = infinity) is farthest from a root
-    best, ir = -1.0, 0
-    for i in range(12):
-        v = abs(_F(co, _GRID_C[i], _GRID_S[i]))
-        if v > best:
-            best, ir = v, i
-    thr = _GRID[ir]
-    p = ws[_W_P:_W_P + 9]
-    _eliminant(co, math.cos(thr), math.sin(thr), p, ws, wm)
-    scale = 0.0
-    for i in range(9):
-        scale = max(scale, abs(p[i]))
-    # the size F would have without cancellation: F = 0 identically below ~1e-12 of it
-    sa = abs(co[0]) + abs(co[1]) + abs(co[2])
-    sb = abs(co[3]) + abs(co[4]) + abs(co[5])
-    sp = abs(co[6]) + abs(co[7]) + abs(co[8])
-    sq = abs(co[9]) + abs(co[10]) + abs(co[11])
-    mag = sa * sa * (sp * sp + sq * sq) + (sb * sq + abs(co[12]) * sp) ** 2
-    n = 0
-    if scale <= 1e-12 * mag or abs(p[8]) <= 1e-14 * scale:
-        # every theta1 solves the eliminant (wrist point on the joint-1 axis): the solutions lie
-        # where Eq 8 vanishes identically (P = Q = 0: z6 in the arm's plane), reached by
-        # _min_pq from representatives a quarter turn apart (one lies on every half circle;
-        # where P = Q = 0 for every theta1, z6 vertical, they stay: the theta1/theta6 continuum)
-        for k in range(4):
-            n = _push(th1, careful, n, _min_pq(co, k * 0.5 * math.pi), 1.0)
+
+# ----------------------------------------------------------------------------- closed forms
+@_inner
+def _row(v, i):
+    o = L.A_SOLVER_DH + 5 * i
+    return v[o], v[o + 1], v[o + 2], v[o + 3], v[o + 4]
+
+
+@_inner
+def _in_plane(r, wx, wy, wz, s):
+    """(cos, sin, angle) of the joint angle that turns the link frame r (at angle 0) so that the
+    next axis, ``(s sin, -s cos, 0)`` in r for a 90-deg twist of sign s, points along w."""
+    x = s * (r[0] * wx + r[3] * wy + r[6] * wz)
+    y = -s * (r[1] * wx + r[4] * wy + r[7] * wz)
+    n = math.hypot(x, y)
+    if n == 0.0:
+        return 1.0, 0.0, 0.0
+    return y / n, x / n, math.atan2(x, y)
+
+
+@_inner
+def _upper_arm(C1, S1, c2, s2, P, v):
+    """Frames 2 and 3 (at joint 3's angle 0) of the solver chain for joints 1 and 2 at DH angles
+    with (cos, sin) (C1, S1), (c2, s2), and the wrist point's offset across axis 3:
+    ``(r2, r30, D - C, h, |h|)`` with h the larger of z6 and (D - C) / a4 across z3 [1]."""
+    ca, sa, a, d, _ = _row(v, 0)
+    r = _ch.compose_link(_ch.IDENTITY, ca, sa, a, d, C1, S1)
+    ca, sa, a, d, _ = _row(v, 1)
+    r2 = _ch.compose_link(r, ca, sa, a, d, c2, s2)
+    ca, sa, a, d, _ = _row(v, 2)
+    r30 = _ch.compose_link(r2, ca, sa, a, d, 1.0, 0.0)
+    z3x, z3y, z3z = r30[2], r30[5], r30[8]
+    zx, zy, zz = P[2], P[5], P[8]
+    ex, ey, ez = P[9] - r30[9], P[10] - r30[10], P[11] - r30[11]  # D - C
+    a4 = v[L.A_SOLVER_DH + 5 * 4 + 2]
+    k6 = zx * z3x + zy * z3y + zz * z3z
+    h6x, h6y, h6z = zx - k6 * z3x, zy - k6 * z3y, zz - k6 * z3z
+    kD = ex * z3x + ey * z3y + ez * z3z
+    hDx, hDy, hDz = (ex - kD * z3x) / a4, (ey - kD * z3y) / a4, (ez - kD * z3z) / a4
+    n6 = math.sqrt(h6x * h6x + h6y * h6y + h6z * h6z)
+    nD = math.sqrt(hDx * hDx + hDy * hDy + hDz * hDz)
+    h = (h6x, h6y, h6z) if n6 >= nD else (hDx, hDy, hDz)
+    return r2, r30, (ex, ey, ez), h, max(n6, nD)
+
+
+@_inner
+def _wrist(r30, e, h, hmax, branch, P, v, qc) -> None:
+    """Solver joints 3-6 into qc[2:6] for one wrist branch (the sign of z4 = +-(z3 x h) / |h|),
+    from the frames of :func:`_upper_arm`; joint 3 at its offset (angle 0) where it is free."""
+    z3x, z3y, z3z = r30[2], r30[5], r30[8]
+    hx, hy, hz = h
+    ex, ey, ez = e
+    ca4, sa4, a4_, d4, o4 = _row(v, 3)
+    o3 = v[L.A_SOLVER_DH + 14]
+    if hmax <= FREE_TOL:  # theta3 free: the representative has joint 3 at 0
+        c3, s3, t3 = math.cos(o3), math.sin(o3), o3
+    else:
+        sg = 1.0 if branch == 0 else -1.0
+        c3, s3, t3 = _in_plane(
+            r30, sg * (z3y * hz - z3z * hy), sg * (z3z * hx - z3x * hz), sg * (z3x * hy - z3y * hx), sa4
+        )
+    r3 = _ch.turn(r30, c3, s3)
+    r40 = _ch.compose_link(r3, ca4, sa4, a4_, d4, 1.0, 0.0)
+    a4 = v[L.A_SOLVER_DH + 5 * 4 + 2]
+    x = (r40[0] * ex + r40[3] * ey + r40[6] * ez) / a4  # x4 along (D - C) / a4
+    y = (r40[1] * ex + r40[4] * ey + r40[7] * ez) / a4
+    nn = math.hypot(x, y)
+    c4, s4 = (x / nn, y / nn) if nn > 0.0 else (1.0, 0.0)
+    r4 = _ch.turn(r40, c4, s4)
+    ca5, sa5, a5, d5, o5 = _row(v, 4)
+    r50 = _ch.compose_link(r4, ca5, sa5, a5, d5, 1.0, 0.0)
+    ca6, sa6, a6, d6, o6 = _row(v, 5)
+    c5, s5, t5 = _in_plane(r50, P[2], P[5], P[8], sa6)
+    r60 = _ch.compose_link(_ch.turn(r50, c5, s5), ca6, sa6, a6, d6, 1.0, 0.0)
+    m00 = r60[0] * P[0] + r60[3] * P[3] + r60[6] * P[6]
+    m10 = r60[1] * P[0] + r60[4] * P[3] + r60[7] * P[6]
+    qc[2], qc[3] = t3 - o3, math.atan2(y, x) - o4
+    qc[4], qc[5] = t5 - o5, math.atan2(m10, m00) - o6
+
+
+@_inner
+def _closed_form(t1, c2, s2, branch, P, v, qc):
+    """Solver joint angles qc (6,) of one configuration: joint 1 at DH angle t1, joint 2 at the
+    DH angle with (cos, sin) (c2, s2), wrist branch ``branch``; returns how far joint 3 is from
+    free (:func:`_upper_arm`)."""
+    r2, r30, e, h, hmax = _upper_arm(math.cos(t1), math.sin(t1), c2, s2, P, v)
+    _wrist(r30, e, h, hmax, branch, P, v, qc)
+    qc[0], qc[1] = t1 - v[L.A_SOLVER_DH + 4], math.atan2(s2, c2) - v[L.A_SOLVER_DH + 9]
+    return hmax
+
+
+# ----------------------------------------------------------------------------- theta2 options
+@_inner
+def _line_circle(al, be, ga, out, n):
+    """Points of the unit circle on the line al x + be y = ga (or the closest one) as angles
+    appended to out; the new count."""
+    nn = math.hypot(al, be)
+    if nn == 0.0 or not math.isfinite(nn):
         return n
-    for i in range(9):
-        p[i] /= scale
-    nr = _real_roots(p, ws, wm)
-    roots, kinds = ws[_W_ROOTS:_W_ROOTS + 16], ws[_W_KINDS:_W_KINDS + 16]
-    reach = max(TANGENT_REACH * opt[OPT_APPROX_TOL], 1e-9)
-    weak = 1e-6 * (math.sqrt(co[13] ** 2 + co[14] ** 2 + co[15] ** 2) + L[1] + L[2])
-    for i in range(nr):
-        if n >= _MAX_T1:
+    d = ga / nn
+    fx, fy = d * al / nn, d * be / nn
+    if abs(d) >= 1.0:
+        out[n] = math.atan2(fy, fx)
+        return n + 1
+    hh = math.sqrt((1.0 - d) * (1.0 + d))
+    tx, ty = -be / nn, al / nn
+    out[n] = math.atan2(fy + hh * ty, fx + hh * tx)
+    out[n + 1] = math.atan2(fy - hh * ty, fx - hh * tx)
+    return n + 2
+
+
+@_inner
+def _conditions_at(terms, t1, t2):
+    """The two conditions on (theta1, theta2) (DH angles) and their partial derivatives:
+    ``(G1, G1_1, G1_2, G2, G2_1, G2_2)`` with G1 = R + P c2 + Q s2 (coplanarity, the general
+    Eq 8) and G2 = a + b c2 + c s2 (length, the general Eq 11)."""
+    C, S, c2, s2 = math.cos(t1), math.sin(t1), math.cos(t2), math.sin(t2)
+    v = terms
+    a, b, c = v[0] + v[1] * C + v[2] * S, v[3] + v[4] * C + v[5] * S, v[6] + v[7] * C + v[8] * S
+    P, Q, R = v[9] + v[10] * C + v[11] * S, v[12] + v[13] * C + v[14] * S, v[15] + v[16] * C + v[17] * S
+    a1, b1, c1 = -v[1] * S + v[2] * C, -v[4] * S + v[5] * C, -v[7] * S + v[8] * C
+    P1, Q1, R1 = -v[10] * S + v[11] * C, -v[13] * S + v[14] * C, -v[16] * S + v[17] * C
+    return (
+        R + P * c2 + Q * s2,
+        R1 + P1 * c2 + Q1 * s2,
+        -P * s2 + Q * c2,
+        a + b * c2 + c * s2,
+        a1 + b1 * c2 + c1 * s2,
+        -b * s2 + c * c2,
+    )
+
+
+@_inner
+def _refine_12(terms, t1, t2):
+    """(theta1, theta2) refined by Newton's method on the two unsquared conditions (at most 4
+    steps, each kept only if it reduces them): a root of the eliminant is only as accurate as
+    the squared F is steep; the pair of first-degree conditions is not squared."""
+    g1, a11, a12, g2, a21, a22 = _conditions_at(terms, t1, t2)
+    err = abs(g1) + abs(g2)
+    for _ in range(4):
+        det = a11 * a22 - a12 * a21
+        if det == 0.0 or err == 0.0:
             break
-        t = wrap(thr + 2.0 * math.atan(roots[i]))
-        kind = kinds[i]
-        if kind == 0.0:
-            # a simple root where p is flat at its rounding level is uncertain by more than
-            # UNCERTAIN_ROOT: treated like a double-root candidate (f_sigma refined and scanned)
-            _, dp, m = _horner(p, 8, roots[i])
-            if 8.0 * _EPS * m > UNCERTAIN_ROOT * abs(dp):
-                kind = 1.0
-        elif kind == 1.0:
-            # keep a double-root candidate only if Eq 11 can (nearly) hold there:
-            # |E| = |a N +- g| / N is 2 l4 times the length error; unknown where N = 0
-            a, b, P, Q = _abPQ(co, math.cos(t), math.sin(t))
-            N = math.hypot(P, Q)
-            g = b * Q - co[12] * P
-            if N > weak and min(abs(a * N + g), abs(a * N - g)) / N > 2.0 * L[3] * reach:
-                continue
-        th1[n], careful[n] = t, kind
-        n += 1
-    # roots closer than CROWDED: F's roots are inaccurate there, refine and polish both
-    for i in range(n):
-        for j in range(i + 1, n):
-            if abs(wrap(th1[i] - th1[j])) <= CROWDED:
-                careful[i], careful[j] = 1.0, 1.0
+        d1 = (g1 * a22 - g2 * a12) / det
+        d2 = (a11 * g2 - a21 * g1) / det
+        if not (abs(d1) <= 1e-3 and abs(d2) <= 1e-3):
+            break
+        n1, n2 = t1 - d1, t2 - d2
+        h1, b11, b12, h2, b21, b22 = _conditions_at(terms, n1, n2)
+        e = abs(h1) + abs(h2)
+        if e >= err:
+            break
+        t1, t2, g1, a11, a12, g2, a21, a22, err = n1, n2, h1, b11, b12, h2, b21, b22, e
+        if abs(d1) + abs(d2) <= 1e-15:
+            break
+    return t1, t2
+
+
+@_inner
+def _theta2_options(terms, th, kind, out):
+    """DH angles of joint 2 to try at joint 1's DH angle th (into out (8,)); the count.
+
+    Cramer's rule on the two conditions ``P c2 + Q s2 = -R`` and ``b c2 + c s2 = -a``; where
+    they are nearly parallel (or for a candidate that is not a certified simple root) each
+    condition's points on the unit circle as well."""
+    C, S = math.cos(th), math.sin(th)
+    a = _el.first_degree_at(terms[0], terms[1], terms[2], C, S)
+    b = _el.first_degree_at(terms[3], terms[4], terms[5], C, S)
+    c = _el.first_degree_at(terms[6], terms[7], terms[8], C, S)
+    P = _el.first_degree_at(terms[9], terms[10], terms[11], C, S)
+    Q = _el.first_degree_at(terms[12], terms[13], terms[14], C, S)
+    R = _el.first_degree_at(terms[15], terms[16], terms[17], C, S)
+    det = P * c - Q * b
+    x, y = Q * a - R * c, R * b - P * a  # (c2, s2) det
+    n = 0
+    if det != 0.0 and (x != 0.0 or y != 0.0):
+        out[0] = math.atan2(y, x) if det > 0.0 else math.atan2(-y, -x)
+        n = 1
+    if kind != L.KIND_ROOT or abs(det) <= PARALLEL * math.hypot(P, Q) * math.hypot(b, c) or n == 0:
+        n = _line_circle(P, Q, -R, out, n)
+        n = _line_circle(b, c, -a, out, n)
+    if n == 0 or (_vanishes(P, Q, R, terms, 9, C, S) and _vanishes(a, b, c, terms, 0, C, S)):
+        return -1  # both conditions vanish: every theta2 (docs/IK_CLASS.md section 5 C)
     return n
 
 
 @_inner
-def _f_sigma(co, th, sigma):
-    """The unsquared eliminant f = a N + sigma (b Q - c P), N = |(P, Q)|, and its first two
-    derivatives in theta1 (F = f_+ f_-)."""
-    C, S = math.cos(th), math.sin(th)
-    a, b, P, Q = _abPQ(co, C, S)
-    a1, b1 = -co[1] * S + co[2] * C, -co[4] * S + co[5] * C
-    P1, Q1 = -co[7] * S + co[8] * C, -co[10] * S + co[11] * C
-    a2, b2, P2, Q2 = co[0] - a, co[3] - b, co[6] - P, co[9] - Q  # x'' = x0 - x
-    c = co[12]
-    N = math.hypot(P, Q)
-    u = P * P1 + Q * Q1
-    N1 = u / N
-    N2 = (P1 * P1 + P * P2 + Q1 * Q1 + Q * Q2) / N - u * u / (N * N * N)
-    g = b * Q - c * P
-    g1 = b1 * Q + b * Q1 - c * P1
-    g2 = b2 * Q + 2.0 * b1 * Q1 + b * Q2 - c * P2
-    f = a * N + sigma * g
-    f1 = a1 * N + a * N1 + sigma * g1
-    f2 = a2 * N + 2.0 * a1 * N1 + a * N2 + sigma * g2
-    return f, f1, f2
+def _vanishes(x, y, z, terms, o, C, S):
+    """Do three first-degree values (at theta1) vanish to 1e-9 of their coefficients' size?"""
+    m = 0.0
+    for k in range(9):
+        m = max(m, abs(terms[o + k]))
+    return abs(x) + abs(y) + abs(z) <= 1e-9 * m
 
 
+# ----------------------------------------------------------------------------- theta1 candidates
 @_inner
-def _newton_f(co, th, sigma, order):
-    """Newton on f_sigma (order 0: a root) or on its derivative (order 1: the extremum, where a
-    double root of F is a simple root), from th; steps clipped to 0.05 rad."""
-    for _ in range(12):
-        f, f1, f2 = _f_sigma(co, th, sigma)
-        num, den = (f, f1) if order == 0 else (f1, f2)
-        if den == 0.0 or not math.isfinite(num / den):
-            break
-        step = min(max(num / den, -0.05), 0.05)
-        th -= step
-        if abs(step) <= 1e-15:
-            break
-    return wrap(th)
-
-
-@_inner
-def _raw_last(th1, careful, n, n_raw, tmp):
-    """Order the theta1 candidates (stable): refined and simple ones, then the kind-1 ones found
-    by refinement (index >= n_raw: where Eq 8 vanishes), then the unrefined double-root
-    candidates (kind 1, index < n_raw). The roots of f_sigma found from a cluster are tried
-    before the cluster itself, so that a pose whose eliminant is flat at rounding level (many
-    kind-1 roots of noise) cannot fill the candidate table with them."""
-    m = 0
-    for rank in range(3):
-        for i in range(n):
-            r = 0 if careful[i] != 1.0 else (1 if i >= n_raw else 2)
-            if r == rank:
-                tmp[m], tmp[_MAX_T1 + m] = th1[i], careful[i]
-                m += 1
-    for i in range(n):
-        th1[i], careful[i] = tmp[i], tmp[_MAX_T1 + i]
-
-
-@_inner
-def _refine_root(co, th, sigma):
-    """A root of f_sigma near the eliminant root th [rad] by Newton (steps clipped to
-    REFINE_STEP); th itself when the first step is at rounding level (the usual case)."""
-    for _ in range(8):
-        f, f1, _ = _f_sigma(co, th, sigma)
-        if f1 == 0.0 or not math.isfinite(f / f1):
-            break
-        step = min(max(f / f1, -REFINE_STEP), REFINE_STEP)
-        if abs(step) <= 1e-15:
-            break
-        th -= step
-    return wrap(th)
-
-
-@_inner
-def _small_f(co, th, sigma):
-    """Is |f_sigma(th)| below TANGENT_REL of the size f_sigma has without cancellation (from the
-    magnitudes of the coefficients)? A double-root candidate of F = f_+ f_- is a near root of
-    one factor; the other factor, if not small there, has no root nearby to refine."""
-    a, b, P, Q = _abPQ(co, math.cos(th), math.sin(th))
-    N = math.hypot(P, Q)
-    g = b * Q - co[12] * P
-    sa = abs(co[0]) + abs(co[1]) + abs(co[2])
-    sb = abs(co[3]) + abs(co[4]) + abs(co[5])
-    sp = abs(co[6]) + abs(co[7]) + abs(co[8])
-    sq = abs(co[9]) + abs(co[10]) + abs(co[11])
-    return abs(a * N + sigma * g) <= TANGENT_REL * (sa * math.hypot(sp, sq) + sb * sq + abs(co[12]) * sp)
-
-
-@_inner
-def _near_continuum_at(co, Ru, L, th, scale, ws):
-    """Does a closed-form configuration at theta1 = th (theta2 from Eq 8 with the better sign, or
-    from Eq 11 where Eq 8 vanishes) lie near the theta3/theta6 continuum (|sin theta4| and
-    |sin(theta4 + theta5)| <= SCAN_NEAR)? There F is flat at its rounding level over ~1e-3 rad."""
-    q, t2 = ws[_W_Q2:_W_Q2 + 6], ws[_W_TH2:_W_TH2 + 4]
-    C, S = math.cos(th), math.sin(th)
-    a, b, P, Q = _abPQ(co, C, S)
-    N = math.hypot(P, Q)
-    g = b * Q - co[12] * P
-    if N > 1e-6 * scale:
-        t2[0], n2 = (math.atan2(-P, Q) if abs(a * N + g) <= abs(a * N - g) else math.atan2(P, -Q)), 1
-    else:
-        r, phi = math.hypot(b, co[12]), math.atan2(co[12], b)
-        acs = math.acos(min(max(-a / r if r > 0 else 0.0, -1.0), 1.0))
-        t2[0], t2[1], n2 = phi + acs, phi - acs, 2
-    for k in range(n2):
-        _wrist(Ru, co, L, C, S, math.cos(t2[k]), math.sin(t2[k]), 0, q)
-        if abs(math.sin(q[3])) <= SCAN_NEAR and abs(math.sin(q[3] + q[4])) <= SCAN_NEAR:
-            return True
-    return False
-
-
-@_inner
-def _push(th1, careful, n, t, kind):
-    """Append theta1 candidate t of ``kind`` unless the table is full or holds it (1e-8 rad,
-    same kind: refinements of one cluster land alike, up to the ~1e-9 rad to which a flat
-    f_sigma fixes its root); the new count."""
+def _push(th1, kinds, n, t, kind):
+    """Append candidate t (DH angle of joint 1) of ``kind`` unless the table is full or holds it
+    (within 1e-14 rad: the two halves share their end points); the new count."""
     if n >= _MAX_T1:
         return n
     for j in range(n):
-        if careful[j] == kind and abs(wrap(th1[j] - t)) <= 1e-8:
+        if abs(wrap(th1[j] - t)) <= 1e-14:
+            if kind < kinds[j]:
+                kinds[j] = kind
             return n
-    th1[n], careful[n] = t, kind
+    th1[n], kinds[n] = wrap(t), kind
     return n + 1
 
 
 @_inner
-def _scan_roots(co, c, sigma, kind, th1, careful, n):
-    """Append (as ``kind``) every sign change of f_sigma on SCAN_STEPS steps within SCAN_HALF
-    rad of c, refined by :func:`_bracketed_f`; the new count.
-
-    Where F is flat at its rounding level (a cluster of double-root candidates near the
-    theta3/theta6 continuum, |F| ~ 1e-20) p cannot place a root, but f_sigma, evaluated
-    directly, still changes sign at it: a simple root of f_sigma whose slope is ~1e-11 lies
-    up to ~2e-4 rad from the cluster and has no extremum nearby.
-    """
-    h = 2.0 * SCAN_HALF / SCAN_STEPS
-    xa = c - SCAN_HALF
-    fa, _, _ = _f_sigma(co, xa, sigma)
-    for k in range(1, SCAN_STEPS + 1):
-        xb = c - SCAN_HALF + k * h
-        fb, _, _ = _f_sigma(co, xb, sigma)
-        if (fa < 0.0 and fb > 0.0) or (fa > 0.0 and fb < 0.0):
-            n = _push(th1, careful, n, wrap(_bracketed_f(co, sigma, xa, xb, fa, fb)), kind)
-        xa, fa = xb, fb
+def _leaves_to_candidates(leaves, nl, u0, w, theta_r, th1, kinds, n, multiple_kind, st):
+    """theta1 candidates from isolation leaves of the piece [u0, u0 + w] of a half circle with
+    reference angle theta_r; a cluster leaf becomes one ``multiple_kind`` candidate (or -1)."""
+    for i in range(nl):
+        kind, a, b, e = leaves[i, 0], leaves[i, 1], leaves[i, 2], leaves[i, 3]
+        co = leaves[i, 4:13]
+        if kind == _bz.LEAF_ROOT:
+            s = a + _bz.refine_root(co, e) * (b - a)
+            k = L.KIND_ROOT
+        elif kind == _bz.LEAF_NEAR:
+            s = a + _bz.near_minimum(co) * (b - a)
+            k = L.KIND_NEAR
+            st[7] += 1.0
+        else:
+            if multiple_kind < 0:
+                continue
+            s = 0.5 * (a + b)
+            k = multiple_kind
+            st[6] += 1.0
+        t = 2.0 * (u0 + s * w) - 1.0
+        n = _push(th1, kinds, n, theta_r + 2.0 * math.atan(t), k)
     return n
 
 
 @_inner
-def _root_beside(co, tb, fb, d, sigma):
-    """The root of f_sigma on the side ``d`` of its extremum tb (value fb), about |d| away: the
-    first sign change at tb + d, tb + 2 d, tb + 4 d, ... (6 tries) is bracketed and refined by
-    safeguarded Newton (near a point where P = Q = 0, f_sigma curves too sharply for plain
-    Newton); plain Newton from tb + d if no sign change is found."""
-    xa, fa = tb, fb
-    for k in range(6):
-        xb = tb + d * (1 << k)
-        f1, _, _ = _f_sigma(co, xb, sigma)
-        if (f1 < 0.0) != (fb < 0.0):
-            return wrap(_bracketed_f(co, sigma, xa, xb, fa, f1))
-        xa, fa = xb, f1
-    return _newton_f(co, tb + d, sigma, 0)
+def _extended(terms, sgn, u0, u1, mag, thr, theta_r, ws, th1, kinds, n):
+    """Re-expand the cluster [u0, u1] of a half circle in double-double and isolate it again;
+    its theta1 candidates appended (an unresolved cluster as one multiple root)."""
+    st = ws[_W_STATS : _W_STATS + 12]
+    st[5] += 1.0
+    dd = ws[_W_DD : _W_DD + 120].reshape((60, 2))
+    full, tmp, work = dd[0:9], dd[9:18], dd[18:51]
+    _em.half_bernstein_dd(terms, _CPSI, _SPSI, sgn, work, full)
+    bl = ws[_W_BL : _W_BL + 9]
+    u1r, err = _em.dd_piece(full, u0, u1, tmp, bl)
+    leaves = ws[_W_LEAF2 : _W_LEAF2 + _bz.N_LEAF * _bz.LEAF_WIDTH].reshape((_bz.N_LEAF, _bz.LEAF_WIDTH))
+    stack = ws[_W_STACK : _W_STACK + 96 * 12].reshape((96, 12))
+    nl = _bz.isolate(bl, err + _em.DD_GAMMA * mag, thr, leaves, stack)
+    if nl < 0:  # too many pieces: the cluster's middle as one multiple root
+        st[6] += 1.0
+        t = 2.0 * (0.5 * (u0 + u1)) - 1.0
+        return _push(th1, kinds, n, theta_r + 2.0 * math.atan(t), L.KIND_MULTIPLE)
+    return _leaves_to_candidates(leaves, nl, u0, u1r - u0, theta_r, th1, kinds, n, L.KIND_MULTIPLE, st)
 
 
 @_inner
-def _bracketed_f(co, sigma, x0, x1, f0, f1):
-    """The root of f_sigma between x0 and x1 (f0, f1 of opposite signs): Newton kept inside the
-    shrinking bracket, bisection where it would leave it; to 1e-15 rad."""
-    x = x0 - f0 * (x1 - x0) / (f1 - f0)
-    for _ in range(100):
-        f, df, _ = _f_sigma(co, x, sigma)
-        if f == 0.0:
-            return x
-        if (f < 0.0) == (f0 < 0.0):
-            x0, f0 = x, f
-        else:
-            x1, f1 = x, f
-        xn = x - f / df if df != 0.0 else 0.5 * (x0 + x1)
-        if not (min(x0, x1) < xn < max(x0, x1)):
-            xn = 0.5 * (x0 + x1)
-        if abs(xn - x) <= 1e-15 or abs(x1 - x0) <= 1e-15:
-            return xn
-        x = xn
-    return x
+def _half_magnitude(mags, half, ws):
+    """The largest magnitude coefficient of F on one half circle (its rounding-error scale)."""
+    bw, m = ws[_W_BW : _W_BW + 60], ws[_W_M : _W_M + 9]
+    _em.half_bernstein(mags, abs(_CPSI), abs(_SPSI), 1.0, 1.0, bw, m)
+    out = 0.0
+    for i in range(9):
+        out = max(out, m[i])
+    return out
 
 
 @_inner
-def _sign_group(kind):
-    """The sign of Eq 8 a theta1 candidate is tried with: 0 both (kinds 0, 1), 1 (+: 2, 4), 2 (-: 3, 5)."""
-    return 0 if kind < 2.0 else (1 if kind == 2.0 or kind == 4.0 else 2)
+def _theta1_candidates(terms, mags, thr_rel, natural, ws, hdr):
+    """Every theta1 candidate (DH angle of joint 1) of one pose into ws[_W_TH1:], kinds into
+    ws[_W_KIND:]; returns the count, or -1 when F vanishes within the near threshold on the
+    whole circle (the degenerate case: below the threshold relative to the larger of its own
+    magnitude and ``natural``, the size F has for a pose whose coefficients are of the arm's
+    size: a pose where every coefficient of Eq 8 is itself tiny makes F the square of small
+    numbers). Header counters: roots, clusters, near candidates."""
+    th1, kinds = ws[_W_TH1 : _W_TH1 + _MAX_T1], ws[_W_KIND : _W_KIND + _MAX_T1]
+    bw, b, m = ws[_W_BW : _W_BW + 60], ws[_W_B : _W_B + 9], ws[_W_M : _W_M + 9]
+    leaves = ws[_W_LEAF : _W_LEAF + _bz.N_LEAF * _bz.LEAF_WIDTH].reshape((_bz.N_LEAF, _bz.LEAF_WIDTH))
+    stack = ws[_W_STACK : _W_STACK + 96 * 12].reshape((96, 12))
+    st = ws[_W_STATS : _W_STATS + 12]
+    n, flat = 0, 0
+    for half in range(2):
+        sgn = 1.0 if half == 0 else -1.0
+        theta_r = _PSI if half == 0 else _PSI + math.pi
+        _em.half_bernstein(terms, _CPSI, _SPSI, sgn, -1.0, bw, b)
+        _em.half_bernstein(mags, abs(_CPSI), abs(_SPSI), 1.0, 1.0, bw, m)
+        mag = 0.0
+        big = 0.0
+        for i in range(9):
+            mag = max(mag, m[i])
+            big = max(big, abs(b[i]))
+        thr = thr_rel * mag
+        if big <= thr_rel * max(mag, natural):
+            flat += 1
+        nl = _bz.isolate(b, _em.GAMMA * mag, thr, leaves, stack)
+        if nl < 0:  # too many pieces: the whole half in double-double
+            hdr[L.H_CLUSTERS] += 1.0
+            n = _extended(terms, sgn, 0.0, 1.0, mag, thr, theta_r, ws, th1, kinds, n)
+            continue
+        n = _leaves_to_candidates(leaves, nl, 0.0, 1.0, theta_r, th1, kinds, n, -1, st)
+        for i in range(nl):
+            if leaves[i, 0] == _bz.LEAF_CLUSTER:
+                hdr[L.H_CLUSTERS] += 1.0
+                n = _extended(terms, sgn, leaves[i, 1], leaves[i, 2], mag, thr, theta_r, ws, th1, kinds, n)
+    if flat == 2:
+        return -1
+    for i in range(n):
+        if kinds[i] == L.KIND_ROOT:
+            hdr[L.H_ROOTS] += 1.0
+        elif kinds[i] == L.KIND_NEAR:
+            hdr[L.H_NEAR] += 1.0
+    return n
+
+
+# ----------------------------------------------------------------------------- configurations
+@_inner
+def _classify(q, pres, rres, h, kind, root, opt, scale, cand, nc, best):
+    """Store configuration q (user joints) in row nc of the candidate table if it solves the
+    pose (class 1) or comes within approximate_tol (class 2); the new count."""
+    if pres + rres < best[0] + best[1]:
+        best[0], best[1] = pres, rres
+    if pres <= opt[L.OPT_POSITION_TOL] and rres <= opt[L.OPT_ROTATION_TOL]:
+        cls = 1.0
+    elif pres <= opt[L.OPT_APPROX_TOL] and rres <= opt[L.OPT_APPROX_TOL]:
+        cls = 2.0
+    else:
+        return nc
+    if nc >= MAX_CAND:
+        return nc
+    for j in range(6):
+        cand[nc, j] = q[j]
+    cand[nc, _C_PRES], cand[nc, _C_RRES], cand[nc, _C_CLASS] = pres, rres, cls
+    near = CONTINUUM_NEAR * math.sqrt(max(opt[L.OPT_POSITION_TOL] / scale, opt[L.OPT_ROTATION_TOL]))
+    cand[nc, _C_FREE] = L.FREE_NUMERICAL if h <= near else L.FREE_NONE
+    cand[nc, _C_KIND], cand[nc, _C_H3] = kind, h
+    cand[nc, _C_SIGN], cand[nc, _C_LO], cand[nc, _C_HI], cand[nc, _C_ROOT] = 0.0, np.nan, np.nan, root
+    return nc + 1
 
 
 @_inner
-def _min_pq(co, th):
-    """Newton on d(P^2 + Q^2)/2 = P P' + Q Q' from th: where Eq 8 vanishes identically."""
-    for _ in range(12):
-        C, S = math.cos(th), math.sin(th)
-        P, Q = co[6] + co[7] * C + co[8] * S, co[9] + co[10] * C + co[11] * S
-        P1, Q1 = -co[7] * S + co[8] * C, -co[10] * S + co[11] * C
-        P2, Q2 = co[6] - P, co[9] - Q
-        num, den = P * P1 + Q * Q1, P1 * P1 + P * P2 + Q1 * Q1 + Q * Q2
-        if den == 0.0 or not math.isfinite(num / den):
-            break
-        step = min(max(num / den, -0.05), 0.05)
-        th -= step
-        if abs(step) <= 1e-15:
-            break
-    return wrap(th)
+def _h3_of(q, P, v):
+    """How far joint 3 is from free at the user configuration q (:func:`_upper_arm`)."""
+    i0, i1 = _user_col(v, 0), _user_col(v, 1)
+    t1 = q[i0] + v[L.A_SOLVER_DH + 4]
+    t2 = q[i1] + v[L.A_SOLVER_DH + 9]
+    return _upper_arm(math.cos(t1), math.sin(t1), math.cos(t2), math.sin(t2), P, v)[4]
 
 
 @_inner
-def _wrist(Ru, co, L, c1, s1, c2, s2, branch, out):
-    """theta3, theta4, theta5 of one wrist branch for (theta1, theta2) (corrected Eq 14-28).
+def _configurations(t1, kind, root, P, terms, v, Ru, T, opt, ws, wm, cand, nc, best):
+    """Every configuration of one theta1 candidate (both wrist branches of every theta2 option),
+    verified against the pose (and polished when it misses by a little) into cand."""
+    th2, qc, q = ws[_W_TH2 : _W_TH2 + 8], ws[_W_Q2 : _W_Q2 + 6], ws[_W_Q : _W_Q + 6]
+    st = ws[_W_STATS : _W_STATS + 12]
+    n2 = _theta2_options(terms, t1, kind, th2)
+    free2 = n2 < 0
+    if free2:  # theta2 free: the member with joint 2 at 0
+        th2[0], n2 = v[L.A_SOLVER_DH + 9], 1
+    tp, tr = opt[L.OPT_POSITION_TOL], opt[L.OPT_ROTATION_TOL]
+    far_p = NEAR_POSITION * v[L.A_SCALE]
+    iters = 12 if kind == L.KIND_ROOT else 30
+    for k in range(n2):
+        u1, u2 = _refine_12(terms, t1, th2[k])
+        c2, s2 = math.cos(u2), math.sin(u2)
+        r2, r30, e, hv, h = _upper_arm(math.cos(u1), math.sin(u1), c2, s2, P, v)
+        qc[0], qc[1] = u1 - v[L.A_SOLVER_DH + 4], u2 - v[L.A_SOLVER_DH + 9]
+        for branch in range(2 if h > FREE_TOL else 1):
+            st[2] += 1.0
+            _wrist(r30, e, hv, h, branch, P, v, qc)
+            _to_user(qc, q, v)
+            pres, rres = _residuals(q, v, Ru, T)
+            if pres > far_p or rres > NEAR_ROTATION:
+                if pres + rres < best[0] + best[1]:
+                    best[0], best[1] = pres, rres
+                continue
+            hq = h
+            if pres > 1e-3 * tp or rres > 1e-3 * tr:
+                _polish(q, v, Ru, T, ws, wm, _ALL6, 6, iters, 1e-3 * min(tp, tr))
+                pres, rres = _residuals(q, v, Ru, T)
+                hq = _h3_of(q, P, v)  # the polish may have moved joints 1 and 2
+            n0 = nc
+            nc = _classify(q, pres, rres, hq, kind, root, opt, v[L.A_SCALE], cand, nc, best)
+            if free2 and nc > n0:
+                cand[nc - 1, _C_FREE] = L.FREE_Q2
+    return nc
 
-    The wrist point and the tool axis are expressed in frame 2 (rotation of Eq 18):
-    ``D_2 = (l4 c3 s4, l3 + l4 c4, -l4 s3 s4)`` and ``z6_2 = (-c3 s45, -c45, s3 s45)``
-    (Eq 18, 25, 26). Returns True if theta3 is free at this candidate (s4 = s45 = 0 to
-    :data:`FREE_TOL`; then theta3 = 0 is the representative).
-    """
-    l2, l3, l4 = L[1], L[2], L[3]
-    wx, wy, wz = co[13] - l2 * c1, co[14] - l2 * s1, co[15]  # D - B
-    zx0, zy0, zz0 = Ru[0, 2], Ru[1, 2], Ru[2, 2]
-    # rows of the frame-2 rotation (Eq 18): D and z6 in frame 2
-    dx = c1 * s2 * wx + s1 * s2 * wy + c2 * wz
-    dy = c1 * c2 * wx + s1 * c2 * wy - s2 * wz
-    dz = -s1 * wx + c1 * wy
-    zx = c1 * s2 * zx0 + s1 * s2 * zy0 + c2 * zz0
-    zy = c1 * c2 * zx0 + s1 * c2 * zy0 - s2 * zz0
-    zz = -s1 * zx0 + c1 * zy0
-    hp0, hp1 = -dz / l4, dx / l4  # = s4 (s3, c3)
-    ho0, ho1 = zz, -zx  # = s45 (s3, c3)
-    npos, nori = math.hypot(hp0, hp1), math.hypot(ho0, ho1)
-    h0, h1 = (hp0, hp1) if npos >= nori else (ho0, ho1)
-    free = max(npos, nori) <= FREE_TOL
-    if free:
-        h0, h1 = 0.0, 1.0
-    th3 = math.atan2(h0, h1)
-    if branch == 1:
-        th3 = wrap(th3 + math.pi)
-    c3, s3 = math.cos(th3), math.sin(th3)
-    th4 = math.atan2((c3 * dx - s3 * dz) / l4, (dy - l3) / l4)  # Eq 14-16
-    th5 = wrap(math.atan2(-c3 * zx + s3 * zz, -zy) - th4)  # Eq 25-28
-    out[2], out[3], out[4] = th3, th4, th5
-    return free
 
-
-@_inner
-def _theta6(q, L, Ru, T4):
-    """theta6 from R(q with theta6 = 0)^T R = Rz(theta6) (Eq 31-33 equivalently); T4 = fk(q).
-
-    The pose at theta6 = 0 is computed once; turning its x and y axes by theta6 (Eq 4,
-    :func:`iik.kinematics.eq4_rotation`) gives fk(q) to rounding (cos and sin of theta6
-    are taken from the normalised (m00, m10) whose atan2 is theta6).
-    """
-    q[5] = 0.0
-    _fk_into(q, L, T4)
-    m10 = T4[0, 1] * Ru[0, 0] + T4[1, 1] * Ru[1, 0] + T4[2, 1] * Ru[2, 0]
-    m00 = T4[0, 0] * Ru[0, 0] + T4[1, 0] * Ru[1, 0] + T4[2, 0] * Ru[2, 0]
-    q[5] = math.atan2(m10, m00)
-    h = math.hypot(m00, m10)
-    c6, s6 = (m00 / h, m10 / h) if h > 0.0 else (1.0, 0.0)
-    r11, r21, r31, r12, r22, r32 = _rotation(c6, s6, T4[0, 0], T4[1, 0], T4[2, 0],
-                                             -T4[0, 1], -T4[1, 1], -T4[2, 1])
-    T4[0, 0], T4[1, 0], T4[2, 0], T4[0, 1], T4[1, 1], T4[2, 1] = r11, r21, r31, r12, r22, r32
+_ALL6 = np.arange(6)
+_COLS_FWD = np.array([0, 1, 5])  # solver joints 1, 2, 6 as user columns
+_COLS_REV = np.array([5, 4, 0])
+_COLS_NO3_FWD = np.array([0, 1, 3, 4, 5])  # every joint but solver joint 3, as user columns
+_COLS_NO3_REV = np.array([5, 4, 2, 1, 0])
 
 
 @_inner
-def _coupling_sign(q, L, Ru, T, ws, wm, j):
-    """+1 if moving joint j and joint 6 by the same angle keeps the pose, else -1 (j = 0 or 2)."""
-    T4, qa = wm[_M_T4, :4, :4], ws[_W_Q2:_W_Q2 + 6]
-    for k in range(6):
-        qa[k] = q[k]
-    qa[j] += 1.0
-    qa[5] += 1.0
-    pa, ra = _residuals(qa, L, Ru, T, T4)
-    qa[5] -= 2.0
-    pb, rb = _residuals(qa, L, Ru, T, T4)
-    return 1.0 if pa + ra <= pb + rb else -1.0
+def _exact_from(cand, nc, root):
+    for i in range(nc):
+        if cand[i, _C_ROOT] == root and cand[i, _C_CLASS] == 1.0:
+            return True
+    return False
 
 
+# ----------------------------------------------------------------------------- continua
 @_inner
 def _free_interval(x, x6, s, lo, hi, lo6, hi6):
-    """Feasible interval of a free joint x in [lo, hi] with theta6 = x6 + s (x' - x) in [lo6, hi6]
-    (modulo 2 pi); the piece containing x, else the nearest. (nan, nan) if empty."""
+    """Feasible interval of a free joint x in [lo, hi] with the coupled joint x6 + s (x' - x) in
+    [lo6, hi6] (modulo 2 pi); the piece containing x, else the nearest. (nan, nan) if empty."""
     if hi6 - lo6 >= _TWO_PI - 1e-12:
         return lo, hi
     best_a, best_b, best_d = np.nan, np.nan, np.inf
     for k in range(-3, 4):
-        u0, u1 = lo6 + k * _TWO_PI, hi6 + k * _TWO_PI  # allowed unwrapped theta6
+        u0, u1 = lo6 + k * _TWO_PI, hi6 + k * _TWO_PI  # allowed unwrapped coupled joint
         a, b = x + s * (u0 - x6), x + s * (u1 - x6)
         a, b = max(min(a, b), lo), min(max(a, b), hi)
         if a > b:
@@ -1231,180 +1054,196 @@ def _free_interval(x, x6, s, lo, hi, lo6, hi6):
 
 
 @_inner
-def _resolve_continuum(c, L, Ru, T, ws, wm, lo, hi, j, col, ltol):
-    """Sign, feasible interval and an in-limit representative of a joint-j/joint-6 continuum.
-
-    The representative moves along the continuum (joint j and joint 6 together) only if it
-    is outside the limits; then to the nearest feasible value of joint j.
-    """
-    s = _coupling_sign(c, L, Ru, T, ws, wm, j)
-    a, b = _free_interval(c[j], c[5], s, lo[j], hi[j], lo[5], hi[5])
-    c[col], c[col + 1], c[col + 2] = s, a, b
-    if math.isfinite(a) and not (a - ltol <= c[j] <= b + ltol):
-        x = min(max(c[j], a), b)
-        c[5] = wrap(c[5] + s * (x - c[j]))
-        c[j] = x
+def _nearest_mod_pi(phi, t):
+    """phi or phi + pi, whichever is nearer to t (mod 2 pi)."""
+    a = wrap(phi)
+    b = wrap(phi + math.pi)
+    return a if abs(wrap(a - t)) <= abs(wrap(b - t)) else b
 
 
 @_inner
-def _within(q, lo, hi, tol):
-    """The joint-limit test of :meth:`iik.arm.Arm.within_limits` (``tol``: LIMIT_TOL)."""
-    for j in range(6):
-        if q[j] < lo[j] - tol or q[j] > hi[j] + tol:
-            return False
-    return True
+def _snapped(qc, v):
+    """Solver joints 4 and 5 of qc moved (in place) to where D is on axis 3 and z6 along it, the
+    nearest such angles: the theta3/theta6 continuum through qc's joints 1-3."""
+    t = (qc[0] + v[L.A_SOLVER_DH + 4], qc[1] + v[L.A_SOLVER_DH + 9], qc[2] + v[L.A_SOLVER_DH + 14])
+    r = _ch.IDENTITY
+    for i in range(3):
+        ca, sa, a, d, o = _row(v, i)
+        r = _ch.compose_link(r, ca, sa, a, d, math.cos(t[i]), math.sin(t[i]))
+    z3x, z3y, z3z = r[2], r[5], r[8]
+    ca, sa, a, d, o4 = _row(v, 3)
+    r40 = _ch.compose_link(r, ca, sa, a, d, 1.0, 0.0)
+    x = r40[0] * z3x + r40[3] * z3y + r40[6] * z3z
+    y = r40[1] * z3x + r40[4] * z3y + r40[7] * z3z
+    t4 = _nearest_mod_pi(math.atan2(y, x), qc[3] + o4)
+    r4 = _ch.compose_link(r, ca, sa, a, d, math.cos(t4), math.sin(t4))
+    ca, sa, a, d, o5 = _row(v, 4)
+    r50 = _ch.compose_link(r4, ca, sa, a, d, 1.0, 0.0)
+    sa6 = v[L.A_SOLVER_DH + 5 * 5 + 1]
+    t5 = _nearest_mod_pi(_in_plane(r50, z3x, z3y, z3z, sa6)[2], qc[4] + o5)
+    qc[3], qc[4] = wrap(t4 - o4), wrap(t5 - o5)
 
 
 @_inner
-def _finish(q, pres, rres, polish, iters, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
-    """Polish (if asked) and classify configuration q into row nc of cand; the new count."""
-    if polish:
-        _polish(q, L, dh, Ru, T, ws, wm, _ALL6, 6, iters)
-        pres, rres = _residuals(q, L, Ru, T, wm[_M_T4, :4, :4])
-    if pres + rres < best[0] + best[1]:
-        best[0], best[1] = pres, rres
-    if pres <= opt[OPT_POSITION_TOL] and rres <= opt[OPT_ROTATION_TOL]:
-        cls = 1.0
-    elif pres <= opt[OPT_APPROX_TOL] and rres <= opt[OPT_APPROX_TOL]:
-        cls = 2.0
-    else:
-        return nc
-    for j in range(6):
-        cand[nc, j] = q[j]
-    cand[nc, _C_PRES], cand[nc, _C_RRES], cand[nc, _C_CLASS], cand[nc, _C_FREE] = pres, rres, cls, 0.0
-    for j in range(_C_S1, _C_HI3 + 1):
-        cand[nc, j] = np.nan
-    cand[nc, _C_PRIO] = prio
-    return nc + 1
+def _coupling_sign(q, j, j6, v, Ru, T, ws):
+    """+1 if moving joints j and j6 by the same angle keeps the pose, else -1."""
+    qa = ws[_W_QT : _W_QT + 6]
+    for k in range(6):
+        qa[k] = q[k]
+    qa[j] += 1.0
+    qa[j6] += 1.0
+    pa, ra = _residuals(qa, v, Ru, T)
+    qa[j6] -= 2.0
+    pb, rb = _residuals(qa, v, Ru, T)
+    return 1.0 if pa + ra <= pb + rb else -1.0
 
 
 @_inner
-def _add_candidate(q, careful, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best):
-    """Finish one closed-form configuration (theta6, polish, classify) into row nc of cand.
-
-    ``prio`` 0 marks a configuration from the extremum of f_sigma (the exact place of a double
-    root): of duplicates it is kept (:func:`_distinct_sorted`).
-    """
-    T4 = wm[_M_T4, :4, :4]
-    ws[_W_STATS + 2] += 1.0
-    _theta6(q, L, Ru, T4)
-    pres = _position_error(T4, T)
-    if pres > NEAR_POSITION:
-        return nc
-    rres = _rotation_angle(T4, Ru)
-    if rres > NEAR_ROTATION:
-        return nc
-    polish = pres > 1e-3 * opt[OPT_POSITION_TOL] or rres > 1e-3 * opt[OPT_ROTATION_TOL]
-    if polish and careful:
-        # candidates near a double root crowd: skip one already found and finished (1e-9 rad)
-        for i in range(nc):
-            if cand[i, _C_CLASS] == 1.0 and not _unfinished(cand, i, opt):
-                d = 0.0
-                for j in range(6):
-                    d = max(d, abs(wrap(cand[i, j] - q[j])))
-                if d <= 1e-9:
-                    return nc
-    n0 = nc
-    iters = 20 if careful else 12
-    nc = _finish(q, pres, rres, polish, iters, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best)
-    if careful and polish and (nc == n0 or _unfinished(cand, nc - 1, opt)) and nc + 8 <= MAX_CAND \
-            and abs(math.sin(q[3])) <= 1e-2 and abs(math.sin(q[3] + q[4])) <= 1e-2 and _new_valley(q, ws):
-        # stalled near the theta3/theta6 continuum, where the residual is a long flat valley in
-        # theta3 (with theta6): start again from 7 more theta3 around the circle (once per valley)
-        qs = ws[_W_Q2:_W_Q2 + 6]
-        ws[_W_STATS + 7] += 1.0
-        s = _coupling_sign(q, L, Ru, T, ws, wm, 2)
-        for k in range(1, 8):
-            for j in range(6):
-                qs[j] = q[j]
-            qs[2] = wrap(q[2] + k * _TWO_PI / 8)
-            qs[5] = wrap(q[5] + s * k * _TWO_PI / 8)
-            nc = _finish(qs, 0.0, 0.0, True, 20, prio, L, dh, Ru, T, opt, cand, nc, ws, wm, best)
-    return nc
+def _theta3_continuum(c, v, Ru, T, opt, ws, wm, lo, hi):
+    """Row c near the theta3/theta6 continuum: snap it onto the continuum and refit joints 1, 2
+    and 6 (solver numbering); if that reaches the pose, every member does (moving joints 3 and
+    6 together along their common axis changes nothing): flag it, with the coupling sign, the
+    feasible interval of the free joint and a representative inside it."""
+    qc, q = ws[_W_Q2 : _W_Q2 + 6], ws[_W_Q : _W_Q + 6]
+    _to_solver(c, qc, v)
+    _snapped(qc, v)
+    _to_user(qc, q, v)
+    _polish(
+        q,
+        v,
+        Ru,
+        T,
+        ws,
+        wm,
+        _COLS_REV if v[L.A_REVERSED] != 0.0 else _COLS_FWD,
+        3,
+        8,
+        1e-3 * min(opt[L.OPT_POSITION_TOL], opt[L.OPT_ROTATION_TOL]),
+    )
+    pres, rres = _residuals(q, v, Ru, T)
+    if pres > opt[L.OPT_POSITION_TOL] or rres > opt[L.OPT_ROTATION_TOL]:
+        return  # a numerical continuum: flagged, no exact members
+    j, j6 = _user_col(v, 2), _user_col(v, 5)
+    s = _coupling_sign(q, j, j6, v, Ru, T, ws)
+    a, b = _free_interval(q[j], q[j6], s, lo[j], hi[j], lo[j6], hi[j6])
+    if math.isfinite(a) and not (a - opt[L.OPT_LIMIT_TOL] <= q[j] <= b + opt[L.OPT_LIMIT_TOL]):
+        x = min(max(q[j], a), b)
+        q[j6] = wrap(q[j6] + s * (x - q[j]))
+        q[j] = x
+    pres, rres = _residuals(q, v, Ru, T)
+    for k in range(6):
+        c[k] = q[k]
+    c[_C_PRES], c[_C_RRES], c[_C_FREE] = pres, rres, L.FREE_Q3
+    c[_C_SIGN], c[_C_LO], c[_C_HI] = s, a, b
 
 
 @_inner
-def _new_valley(q, ws):
-    """Is q's (theta1, theta2) more than VALLEY rad from every restart sweep of this pose so far
-    (then it is recorded)? One sweep samples the whole theta3 circle of a valley."""
-    rst = ws[_W_RST:_W_RST + 1 + 2 * _MAX_RST]
-    n = int(rst[0])
-    for k in range(n):
-        if abs(wrap(q[0] - rst[1 + 2 * k])) <= VALLEY and abs(wrap(q[1] - rst[2 + 2 * k])) <= VALLEY:
-            return False
-    if n >= _MAX_RST:
-        return False
-    rst[1 + 2 * n], rst[2 + 2 * n], rst[0] = q[0], q[1], n + 1
-    return True
+def _continua(cand, nc, v, Ru, T, opt, ws, wm, lo, hi) -> None:
+    """Resolve every exact row flagged near the theta3/theta6 continuum (:func:`_theta3_continuum`)."""
+    for i in range(nc):
+        if cand[i, _C_CLASS] == 1.0 and cand[i, _C_FREE] == L.FREE_NUMERICAL:
+            _theta3_continuum(cand[i], v, Ru, T, opt, ws, wm, lo, hi)
 
 
+# ----------------------------------------------------------------------------- distinct rows
 @_inner
-def _connected(cand, ia, ib, L, Ru, T, ws, wm, tol_p, tol_r):
-    """Does the joint-space segment between rows ia and ib stay within (tol_p, tol_r) of the
-    pose (3 inner points)?"""
-    T4, q = wm[_M_T4, :4, :4], ws[_W_Q2:_W_Q2 + 6]
-    for s in (0.25, 0.5, 0.75):
-        for j in range(6):
-            q[j] = cand[ia, j] + s * wrap(cand[ib, j] - cand[ia, j])
-        pr, rr = _residuals(q, L, Ru, T, T4)
-        if pr > tol_p or rr > tol_r:
-            return False
-    return True
-
-
-@_inner
-def _unfinished(cand, i, opt):
-    """Has row i not converged (residual above 1/1000 of the tolerance)?"""
-    return cand[i, _C_PRES] > 1e-3 * opt[OPT_POSITION_TOL] or cand[i, _C_RRES] > 1e-3 * opt[OPT_ROTATION_TOL]
-
-
-@_inner
-def _order_key(cand, i, opt):
-    """Of duplicates keep the finished row, then the extremum one (priority 0), then the least residual."""
-    return (2.0 * _unfinished(cand, i, opt) + cand[i, _C_PRIO]
-            + 0.25 * (cand[i, _C_PRES] / opt[OPT_POSITION_TOL] + cand[i, _C_RRES] / opt[OPT_ROTATION_TOL]))
-
-
-@_inner
-def _same(cand, ia, ib, L, Ru, T, ws, wm, opt):
-    """Are candidate rows ia and ib one solution? (to 1e-7 rad; one continuum; within 0.1 rad of
-    each other when one has converged and the other not; joined within 1e-4 rad by a segment
-    inside 1/100 of the tolerance (near a singularity a pose fixes q only to ~sqrt(eps)); or,
-    near the theta3/theta6 continuum, joined within 0.1 rad by a segment inside the tolerance).
-    Rows are tried by priority and residual (:func:`_distinct_sorted`), so the converged one of
-    such a pair is kept."""
+def _same(cand, ia, ib, v, Ru, T, opt, ws, wm):
+    """Are rows ia and ib one solution? Equal to DISTINCT_TOL in every joint; or one exact
+    theta3/theta6 continuum (its fixed joints and its coupling equal); or joined, within
+    CONNECTED rad, by a segment that stays within the tolerance of the pose (7 points): near a
+    singularity the configurations within the tolerance form a thin valley in which the
+    rounded pose's eliminant has several roots, one solution at the tolerance."""
     dmax = 0.0
     for j in range(6):
         dmax = max(dmax, abs(wrap(cand[ia, j] - cand[ib, j])))
-    if dmax <= 1e-7:
+    if dmax <= L.DISTINCT_TOL:
         return True
-    fa, fb = int(cand[ia, _C_FREE]), int(cand[ib, _C_FREE])
-    if fa != 0 and fa == fb and fa != NUMERICAL_Q3_Q6:  # one exact continuum
-        fixed = 0.0
-        for j in range(5):
-            if (j == 0 and fa & FREE_Q1_Q6) or (j == 2 and fa & FREE_Q3_Q6):
-                continue
-            fixed = max(fixed, abs(wrap(cand[ia, j] - cand[ib, j])))
-        if fixed <= 1e-6:
+    if (
+        cand[ia, _C_FREE] == L.FREE_Q3
+        and cand[ib, _C_FREE] == L.FREE_Q3
+        and cand[ia, _C_SIGN] == cand[ib, _C_SIGN]
+    ):
+        j, j6 = _user_col(v, 2), _user_col(v, 5)
+        fixed = abs(
+            wrap(
+                (cand[ia, j] - cand[ia, _C_SIGN] * cand[ia, j6])
+                - (cand[ib, j] - cand[ib, _C_SIGN] * cand[ib, j6])
+            )
+        )
+        for k in range(6):
+            if k != j and k != j6:
+                fixed = max(fixed, abs(wrap(cand[ia, k] - cand[ib, k])))
+        if fixed <= 1e-7:
             return True
-    # near a fold or a continuum the polish converges slowly or stalls in a shallow valley of
-    # the residual: a row that has not converged (residual above 1/1000 of the tolerance)
-    # within 0.1 rad of one that has is that one, approached along the valley
-    if dmax <= 0.1 and _unfinished(cand, ia, opt) != _unfinished(cand, ib, opt):
+    if cand[ia, _C_FREE] == L.FREE_NUMERICAL and cand[ib, _C_FREE] == L.FREE_NUMERICAL:
+        if _one_tube(cand[ia], cand[ib], v, Ru, T, opt, ws, wm):
+            return True
+    if dmax <= CONNECTED:
+        q = ws[_W_QT : _W_QT + 6]
+        for s in (0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875):
+            for k in range(6):
+                q[k] = cand[ia, k] + s * wrap(cand[ib, k] - cand[ia, k])
+            pr, rr = _residuals(q, v, Ru, T)
+            if pr > opt[L.OPT_POSITION_TOL] or rr > opt[L.OPT_ROTATION_TOL]:
+                return False
         return True
-    # near the theta3/theta6 continuum the rows within the tolerance form a long valley: two of
-    # its rows up to 0.1 rad apart are one if the segment between them stays in it
-    if dmax <= 1e-4:
-        return _connected(cand, ia, ib, L, Ru, T, ws, wm, 1e-2 * opt[OPT_POSITION_TOL],
-                          1e-2 * opt[OPT_ROTATION_TOL])
-    if dmax <= 0.1 and _near_q3_q6(cand, ia) and _near_q3_q6(cand, ib):
-        return _connected(cand, ia, ib, L, Ru, T, ws, wm, opt[OPT_POSITION_TOL], opt[OPT_ROTATION_TOL])
     return False
 
 
 @_inner
-def _near_q3_q6(cand, i):
-    return abs(math.sin(cand[i, 3])) <= 1e-3 and abs(math.sin(cand[i, 3] + cand[i, 4])) <= 1e-3
+def _tube_member(qa, phi, v, Ru, T, opt, ws, wm, out):
+    """The configuration of the near-continuum tube through qa with joint 3 (solver numbering) at
+    phi: joint 6 moved with it by the coupling, the other four joints refit by Levenberg-
+    Marquardt with joint 3 held. Returns its residuals (position, rotation)."""
+    j, j6 = _user_col(v, 2), _user_col(v, 5)
+    s = _coupling_sign(qa, j, j6, v, Ru, T, ws)
+    for k in range(6):
+        out[k] = qa[k]
+    out[j6] = wrap(qa[j6] + s * (phi - qa[j]))
+    out[j] = phi
+    _polish(
+        out,
+        v,
+        Ru,
+        T,
+        ws,
+        wm,
+        _COLS_NO3_REV if v[L.A_REVERSED] != 0.0 else _COLS_NO3_FWD,
+        5,
+        8,
+        1e-3 * min(opt[L.OPT_POSITION_TOL], opt[L.OPT_ROTATION_TOL]),
+    )
+    return _residuals(out, v, Ru, T)
+
+
+@_inner
+def _one_tube(a, b, v, Ru, T, opt, ws, wm):
+    """Are the near-continuum rows a and b on one tube of configurations within the tolerance
+    (the continuum broken by the pose's distance from it)? Joints 1 and 2 (solver numbering)
+    agree to CONNECTED, and the tube's members at a quarter, half and three quarters of the
+    arc of joint 3 between them reach the pose."""
+    for jj in (0, 1):
+        k = _user_col(v, jj)
+        if abs(wrap(a[k] - b[k])) > CONNECTED:
+            return False
+    j = _user_col(v, 2)
+    d = wrap(b[j] - a[j])
+    q = ws[_W_Q2 : _W_Q2 + 6]
+    for f in (0.5, 0.25, 0.75):
+        pr, rr = _tube_member(a, wrap(a[j] + f * d), v, Ru, T, opt, ws, wm, q)
+        if pr > opt[L.OPT_POSITION_TOL] or rr > opt[L.OPT_ROTATION_TOL]:
+            return False
+    return True
+
+
+@_inner
+def _key(cand, i, opt):
+    """Of duplicates keep: a continuum, then a certified root's row, then the least residual."""
+    return (
+        (0.0 if cand[i, _C_FREE] == L.FREE_Q3 else 4.0)
+        + (0.0 if cand[i, _C_KIND] == L.KIND_ROOT else 2.0)
+        + 0.25 * (cand[i, _C_PRES] / opt[L.OPT_POSITION_TOL] + cand[i, _C_RRES] / opt[L.OPT_ROTATION_TOL])
+    )
 
 
 @_inner
@@ -1418,206 +1257,210 @@ def _before(cand, ia, ib):
 
 
 @_inner
-def _distinct_sorted(cand, nc, cls, L, Ru, T, ws, wm, opt, idx):
+def _distinct_sorted(cand, nc, cls, v, Ru, T, opt, ws, wm, idx):
     """Indices (into idx) of the distinct rows of class ``cls``, lexicographically sorted; count.
-
-    Of a group of duplicates the first by :func:`_order_key` is kept. At most :data:`MAX_SOLUTIONS`:
-    the first by :func:`_order_key` (converged rows before unfinished ones), then sorted.
-    """
+    Of a group of duplicates the first by :func:`_key` is kept; at most MAX_SOLUTIONS."""
     m = 0
     for i in range(nc):
         if cand[i, _C_CLASS] == cls:
             idx[m] = i
             m += 1
-    for i in range(1, m):  # by _order_key (insertion sort; m is small)
-        v = int(idx[i])
-        key = _order_key(cand, v, opt)
+    for i in range(1, m):  # by _key (insertion sort; m is small)
+        u = int(idx[i])
+        key = _key(cand, u, opt)
         j = i - 1
-        while j >= 0 and _order_key(cand, int(idx[j]), opt) > key:
+        while j >= 0 and _key(cand, int(idx[j]), opt) > key:
             idx[j + 1] = idx[j]
             j -= 1
-        idx[j + 1] = v
+        idx[j + 1] = u
     k = 0
     for i in range(m):
         dup = False
         for j in range(k):
-            if _same(cand, int(idx[i]), int(idx[j]), L, Ru, T, ws, wm, opt):
+            if _same(cand, int(idx[i]), int(idx[j]), v, Ru, T, opt, ws, wm):
                 dup = True
                 break
         if not dup:
             idx[k] = idx[i]
             k += 1
-            if k == MAX_SOLUTIONS:
+            if k == L.MAX_SOLUTIONS:
                 break
     for i in range(1, k):  # lexicographic
-        v = int(idx[i])
+        u = int(idx[i])
         j = i - 1
-        while j >= 0 and _before(cand, v, int(idx[j])):
+        while j >= 0 and _before(cand, u, int(idx[j])):
             idx[j + 1] = idx[j]
             j -= 1
-        idx[j + 1] = v
+        idx[j + 1] = u
     return k
+
+
+# ----------------------------------------------------------------------------- degenerate case
+@_inner
+def _zeros_first_degree(x0, xc, xs, th1, kinds, n):
+    """theta1 (DH angles) where x0 + xc cos + xs sin = 0, appended as special candidates."""
+    r = math.hypot(xc, xs)
+    if r == 0.0 or abs(x0) > r:
+        return n
+    base, w = math.atan2(xs, xc), math.acos(max(-1.0, min(1.0, -x0 / r)))
+    n = _push(th1, kinds, n, base + w, L.KIND_SPECIAL)
+    return _push(th1, kinds, n, base - w, L.KIND_SPECIAL)
+
+
+@_inner
+def _degenerate_candidates(terms, ws):
+    """theta1 candidates when F vanishes on the whole circle: two members of every branch of
+    the theta1 continuum (theta_r and theta_r + pi), and the theta1 where one of the two
+    conditions on theta2 vanishes identically (there the other gives two theta2: isolated
+    solutions beside the continuum)."""
+    th1, kinds = ws[_W_TH1 : _W_TH1 + _MAX_T1], ws[_W_KIND : _W_KIND + _MAX_T1]
+    n = _push(th1, kinds, 0, _PSI, L.KIND_SPECIAL)
+    n = _push(th1, kinds, n, _PSI + math.pi, L.KIND_SPECIAL)
+    n = _zeros_first_degree(terms[9], terms[10], terms[11], th1, kinds, n)  # P = 0
+    n = _zeros_first_degree(terms[12], terms[13], terms[14], th1, kinds, n)  # Q = 0
+    n = _zeros_first_degree(terms[3], terms[4], terms[5], th1, kinds, n)  # b = 0
+    n = _zeros_first_degree(terms[6], terms[7], terms[8], th1, kinds, n)  # c = 0
+    return n
 
 
 # ----------------------------------------------------------------------------- one pose
 @_inner
-def _configurations(T, L, dh, opt, ws, wm, cand, best):
-    """Every candidate configuration of one (validated, projected) pose into cand; count."""
-    Ru, co, q, th2s = wm[_M_RU, :3, :3], ws[_W_CO:_W_CO + 16], ws[_W_Q:_W_Q + 6], ws[_W_TH2:_W_TH2 + 4]
-    _coefficients(Ru, T, L, co)
-    n1 = _theta1_candidates(co, L, opt, ws, wm)
-    th1, careful = ws[_W_TH1:_W_TH1 + _MAX_T1], ws[_W_CAREFUL:_W_CAREFUL + _MAX_T1]
-    scale = math.sqrt(co[13] ** 2 + co[14] ** 2 + co[15] ** 2) + L[1] + L[2]
+def _all_candidates(P, terms, mags, v, Ru, T, opt, ws, wm, cand, hdr, best, thr_rel):
+    """Candidates of every theta1 candidate into cand; the count. Sets the path and certificate."""
+    st = ws[_W_STATS : _W_STATS + 12]
+    th1, kinds = ws[_W_TH1 : _W_TH1 + _MAX_T1], ws[_W_KIND : _W_KIND + _MAX_T1]
+    mabc = 0.0  # the size F has when Eq 8's coefficients are as large as Eq 11's allow
+    for k in range(9):
+        mabc = max(mabc, mags[k])
+    n1 = _theta1_candidates(terms, mags, thr_rel, mabc * mabc * mabc, ws, hdr)
+    degenerate = n1 < 0
+    if degenerate:
+        st[8] += 1.0
+        n1 = _degenerate_candidates(terms, ws)
+        for half in range(2):  # and the roots of F, separated in double-double (isolated rows)
+            n1 = _extended(
+                terms,
+                1.0 if half == 0 else -1.0,
+                0.0,
+                1.0,
+                _half_magnitude(mags, half, ws),
+                0.0,
+                _PSI if half == 0 else _PSI + math.pi,
+                ws,
+                th1,
+                kinds,
+                n1,
+            )
+    st[1] += n1
     nc = 0
-    ws[_W_RST] = 0.0  # no restart sweep yet
-    ws[_W_STATS] += 1.0
-    n1_roots = n1
-    for i in range(n1_roots):
-        # a careful candidate also gets, for both signs, the root and the extremum of the
-        # unsquared f_sigma by Newton (accurate where F has a double root, unlike F's roots),
-        # the two roots near the extremum (two roots closer than F's arithmetic resolves) and
-        # the sign changes of f_sigma around it (roots where F is flat at rounding level)
-        clustered = False  # one refinement per cluster of careful roots (Newton lands alike)
-        scanned = False  # one scan per SCAN_HALF
-        for j in range(i):
-            if careful[j] == 1.0:
-                dj = abs(wrap(th1[j] - th1[i]))
-                clustered |= dj <= CROWDED
-                scanned |= dj <= 0.5 * SCAN_HALF
-        if careful[i] == 1.0 and not clustered:
-            C, S = math.cos(th1[i]), math.sin(th1[i])
-            a, b, P, Q = _abPQ(co, C, S)
-            if math.hypot(P, Q) <= 1e-6 * scale:
-                # Eq 8 vanishes near here: the theta1 where P = Q = 0 (minimum of P^2 + Q^2)
-                n1 = _push(th1, careful, n1, _min_pq(co, th1[i]), 1.0)
-            else:
-                for sg in (1.0, -1.0):
-                    known = 2.0 if sg > 0 else 3.0  # careful, with this sign of Eq 8
-                    if not _small_f(co, th1[i], sg):
-                        continue  # F is small here through the other sign's factor
-                    n1 = _push(th1, careful, n1, _newton_f(co, th1[i], sg, 0), known)
-                    tb = _newton_f(co, th1[i], sg, 1)
-                    n1 = _push(th1, careful, n1, tb, known + 2.0)  # 4, 5: the extremum
-                    # the two roots of the local quadratic model around the extremum
-                    f, _, f2 = _f_sigma(co, tb, sg)
-                    d2 = -2.0 * f / f2
-                    if 0.0 < d2 <= 1e-4:
-                        d = math.sqrt(d2)
-                        n1 = _push(th1, careful, n1, _root_beside(co, tb, f, d, sg), known)
-                        n1 = _push(th1, careful, n1, _root_beside(co, tb, f, -d, sg), known)
-            if not scanned and _near_continuum_at(co, Ru, L, th1[i], scale, ws):
-                # (also where Eq 8 vanishes: f_sigma is continuous through it)
-                n1 = _scan_roots(co, th1[i], 1.0, 2.0, th1, careful, n1)
-                n1 = _scan_roots(co, th1[i], -1.0, 3.0, th1, careful, n1)
-    ws[_W_STATS + 1] += n1
-    _raw_last(th1, careful, n1, n1_roots, ws[_W_TMP:_W_TMP + 2 * _MAX_T1])
     for i in range(n1):
-        # refinements often land on the same theta1: one try per value and sign of Eq 8; of a
-        # cluster of kind-1 candidates (within CROWDED) only the first is tried (they are tried
-        # last, the refined one first: the rest lie within F's rounding of it)
-        repeat = False
-        for j in range(i):
-            if careful[i] < 4.0 and abs(th1[j] - th1[i]) <= 1e-13 and (
-                    careful[j] == 1.0 or _sign_group(careful[j]) == _sign_group(careful[i])):
-                repeat = True  # (an extremum, kinds 4 and 5, is always tried: it has priority)
-                break
-            if careful[i] == 1.0 and careful[j] == 1.0 and abs(wrap(th1[j] - th1[i])) <= CROWDED:
-                repeat = True
-                break
-        if repeat:
-            continue
-        C, S = math.cos(th1[i]), math.sin(th1[i])
-        a, b, P, Q = _abPQ(co, C, S)
-        N = math.hypot(P, Q)
-        g = b * Q - co[12] * P
-        weak = N <= 1e-6 * scale
-        if careful[i] == 0.0 and not weak:
-            # a simple root of p is only as accurate as p is steep there: refine it on the
-            # unsquared f_sigma of its sign (where F = f_+ f_- is flat, f_sigma is not)
-            t = _refine_root(co, th1[i], 1.0 if abs(a * N + g) <= abs(a * N - g) else -1.0)
-            if t != th1[i]:  # (it may land where Eq 8 vanishes: weak again)
-                th1[i] = t
-                C, S = math.cos(t), math.sin(t)
-                a, b, P, Q = _abPQ(co, C, S)
-                N = math.hypot(P, Q)
-                g = b * Q - co[12] * P
-                weak = N <= 1e-6 * scale
-        # Eq 8 (corrected Eq 9): (c2, s2) = sigma (Q, -P) / N, sigma where |a N + sigma g| is least
-        if careful[i] == 1.0:
-            th2s[0], th2s[1] = math.atan2(-P, Q), math.atan2(P, -Q)
-            n2 = 2
-        elif careful[i] == 2.0 or careful[i] == 4.0:
-            th2s[0], n2 = math.atan2(-P, Q), 1
-        elif careful[i] == 3.0 or careful[i] == 5.0:
-            th2s[0], n2 = math.atan2(P, -Q), 1
-        else:
-            th2s[0] = math.atan2(-P, Q) if abs(a * N + g) <= abs(a * N - g) else math.atan2(P, -Q)
-            n2 = 1
-        if weak:
-            # Eq 8 vanishes (P = Q = 0): theta2 from Eq 11 alone, a + b c2 + c s2 = 0
-            r = math.hypot(b, co[12])
-            phi = math.atan2(co[12], b)
-            acs = math.acos(min(max(-a / r if r > 0 else 0.0, -1.0), 1.0))
-            th2s[n2], th2s[n2 + 1] = phi + acs, phi - acs
-            n2 += 2
-        for k in range(n2):
-            t2 = wrap(th2s[k])
-            c2, s2 = math.cos(t2), math.sin(t2)
-            for branch in range(2):
-                if nc >= MAX_CAND:
-                    return nc
-                q[0], q[1] = th1[i], t2
-                _wrist(Ru, co, L, C, S, c2, s2, branch, q)  # (both branches: near a continuum
-                # they are distinct solutions; on it they merge as one continuum)
-                prio = 0.0 if careful[i] >= 4.0 else 1.0
-                nc = _add_candidate(q, careful[i] != 0.0 or weak, prio, L, dh, Ru, T, opt, cand, nc, ws, wm,
-                                    best)
+        nc = _configurations(th1[i], kinds[i], float(i), P, terms, v, Ru, T, opt, ws, wm, cand, nc, best)
+    hdr[L.H_CERT] = L.CERT_OK
+    if degenerate:
+        hdr[L.H_PATH] = L.PATH_DEGENERATE
+        for i in range(nc):  # candidates for the theta1 continuum: iik.ik.solve sorts them into
+            if cand[i, _C_CLASS] == 1.0:  # branches and isolated rows (iik.ik.members)
+                cand[i, _C_FREE] = L.FREE_Q1
+        return nc
+    for i in range(n1):
+        if kinds[i] == L.KIND_MULTIPLE:
+            hdr[L.H_PATH] = L.PATH_MULTIPLE
+        elif hdr[L.H_PATH] == L.PATH_DOUBLE and hdr[L.H_CLUSTERS] > 0:
+            hdr[L.H_PATH] = L.PATH_EXTENDED
+    for i in range(n1):  # the certificate: every certified root gave a solution
+        if kinds[i] == L.KIND_ROOT and not _exact_from(cand, nc, float(i)):
+            st[9] += 1.0
+            nc = _configurations(
+                th1[i], L.KIND_NEAR, float(i), P, terms, v, Ru, T, opt, ws, wm, cand, nc, best
+            )
+            if not _exact_from(cand, nc, float(i)):
+                st[10] += 1.0
+                hdr[L.H_CERT] = L.CERT_ROOT_WITHOUT_CONFIGURATION
+    if nc >= MAX_CAND:
+        hdr[L.H_CERT] = L.CERT_TABLE_FULL
     return nc
 
 
 @_inner
-def _continua(T, L, dh, lo, hi, opt, ws, wm, cand, nc):
-    """Flag and resolve the continua among the exact candidates.
+def _write_rows(cand, idx, k, within_only, approx, v, lo, hi, opt, outq, info, flags, m0):
+    """Rows idx[:k] of cand into the outputs from row m0 (the limit filter applied); new count."""
+    m = m0
+    for ii in range(k):
+        c = int(idx[ii])
+        inside = True
+        for j in range(6):
+            if cand[c, j] < lo[j] - opt[L.OPT_LIMIT_TOL] or cand[c, j] > hi[j] + opt[L.OPT_LIMIT_TOL]:
+                inside = False
+        if within_only and not inside and cand[c, _C_FREE] != L.FREE_Q1:
+            continue  # (a theta1 continuum may have members inside: iik.ik.solve moves it there)
+        for j in range(6):
+            outq[m, j] = cand[c, j]
+        info[m, L.I_PRES], info[m, L.I_RRES], info[m, L.I_FREE] = (
+            cand[c, _C_PRES],
+            cand[c, _C_RRES],
+            cand[c, _C_FREE],
+        )
+        info[m, L.I_KIND], info[m, L.I_H3] = cand[c, _C_KIND], cand[c, _C_H3]
+        info[m, L.I_CSIGN], info[m, L.I_CLO], info[m, L.I_CHI] = (
+            cand[c, _C_SIGN],
+            cand[c, _C_LO],
+            cand[c, _C_HI],
+        )
+        flags[m, 0], flags[m, 1] = inside, approx
+        m += 1
+    return m
 
-    theta3/theta6: theta4 = 0 and theta4 + theta5 = 0 (mod pi), joints 3 and 6 collinear; kept
-    as a continuum only if the snapped representative reaches the pose (then every member
-    does). theta1/theta6: the tool point on the joint-1 axis and z6 vertical, to within half
-    the tolerance (then every member is within it).
-    """
-    Ru, q, T4 = wm[_M_RU, :3, :3], ws[_W_Q:_W_Q + 6], wm[_M_T4, :4, :4]
-    tp, tr, ltol = opt[OPT_POSITION_TOL], opt[OPT_ROTATION_TOL], opt[OPT_LIMIT_TOL]
-    pxy = math.hypot(T[0, 3], T[1, 3])
-    tilt = math.hypot(Ru[0, 2], Ru[1, 2])
-    for i in range(nc):
-        c = cand[i]
-        if c[_C_CLASS] != 1.0:
-            continue
-        s4, s45 = abs(math.sin(c[3])), abs(math.sin(c[3] + c[4]))
-        if s4 <= NUMERICAL_SIN and s45 <= NUMERICAL_SIN and (s4 > CONTINUUM_SIN or s45 > CONTINUUM_SIN):
-            c[_C_FREE] = NUMERICAL_Q3_Q6
-        elif s4 <= CONTINUUM_SIN and s45 <= CONTINUUM_SIN:
-            for j in range(6):
-                q[j] = c[j]
-            s4 = round(q[3] / math.pi) * math.pi
-            s45 = round((q[3] + q[4]) / math.pi) * math.pi
-            q[3], q[4] = s4, s45 - s4
-            _polish(q, L, dh, Ru, T, ws, wm, _COLS_126, 3, 6)  # refit theta1, theta2, theta6
-            pres, rres = _residuals(q, L, Ru, T, T4)
-            if pres <= tp and rres <= tr:
-                for j in range(6):
-                    c[j] = q[j]
-                c[_C_PRES], c[_C_RRES], c[_C_FREE] = pres, rres, FREE_Q3_Q6
-            else:  # a numerical continuum: flagged, not resolved (no exact members)
-                c[_C_FREE] = NUMERICAL_Q3_Q6
-        if 2 * pxy + c[_C_PRES] <= tp and 2 * tilt + c[_C_RRES] <= tr and c[_C_FREE] != NUMERICAL_Q3_Q6:
-            c[_C_FREE] = int(c[_C_FREE]) | FREE_Q1_Q6
-        f = int(c[_C_FREE])
-        if f != 0 and f != NUMERICAL_Q3_Q6:
-            if f & FREE_Q1_Q6:
-                _resolve_continuum(c, L, Ru, T, ws, wm, lo, hi, 0, _C_S1, ltol)
-            if f & FREE_Q3_Q6:
-                _resolve_continuum(c, L, Ru, T, ws, wm, lo, hi, 2, _C_S3, ltol)
-            c[_C_PRES], c[_C_RRES] = _residuals(c, L, Ru, T, T4)
+
+@_inner
+def _solve_pose(T, v, opt, within_only, ws, wm, cand, outq, info, flags, hdr):
+    """Every IK solution of one pose into outq (k, 6), info (k, N_INFO), flags (k, 2) (within
+    the limits, approximate); the header into hdr."""
+    for i in range(L.N_HDR):
+        hdr[i] = 0.0
+    Ru = wm[_M_RU, :3, :3]
+    status, measure, dist = _check_pose(T, opt[L.OPT_ORTHONORMAL_TOL], Ru)
+    hdr[L.H_STATUS], hdr[L.H_MEASURE], hdr[L.H_PROJECTION] = status, measure, dist
+    hdr[L.H_BEST_P], hdr[L.H_BEST_R] = np.inf, np.inf
+    st = ws[_W_STATS : _W_STATS + 12]
+    st[0] += 1.0
+    if status != L.OK or _beyond(T, v[L.A_REACH] + opt[L.OPT_APPROX_TOL]):
+        return 0
+    P = _solver_pose(T, Ru, v)
+    terms, mags = ws[_W_TERMS : _W_TERMS + 18], ws[_W_MAGS : _W_MAGS + 18]
+    t = _el.pose_terms(P[2], P[5], P[8], P[9], P[10], P[11], v, L.A_CONST, -1.0)
+    tm = _el.pose_terms(
+        abs(P[2]), abs(P[5]), abs(P[8]), abs(P[9]), abs(P[10]), abs(P[11]), v, L.A_CONST_ABS, 1.0
+    )
+    for i in range(18):
+        terms[i], mags[i] = t[i], tm[i]
+    best = hdr[L.H_BEST_P : L.H_BEST_R + 1]
+    scale = v[L.A_SCALE]
+    thr = NEAR_FACTOR * (opt[L.OPT_POSITION_TOL] / scale + opt[L.OPT_ROTATION_TOL])
+    nc = _all_candidates(P, terms, mags, v, Ru, T, opt, ws, wm, cand, hdr, best, thr)
+    lo, hi = v[L.A_LOWER : L.A_LOWER + 6], v[L.A_UPPER : L.A_UPPER + 6]
+    _continua(cand, nc, v, Ru, T, opt, ws, wm, lo, hi)
+    idx = ws[_W_IDX : _W_IDX + MAX_CAND]
+    k = _distinct_sorted(cand, nc, 1.0, v, Ru, T, opt, ws, wm, idx)
+    hdr[L.H_TOTAL] = k
+    m = _write_rows(cand, idx, k, within_only, False, v, lo, hi, opt, outq, info, flags, 0)
+    approx = False
+    if m == 0:  # nothing exact (within the limits if asked): near roots for approximate_tol too
+        if k == 0 and hdr[L.H_PATH] != L.PATH_DEGENERATE:
+            thr_a = NEAR_FACTOR * (opt[L.OPT_APPROX_TOL] / scale + opt[L.OPT_APPROX_TOL])
+            nc = _all_candidates(P, terms, mags, v, Ru, T, opt, ws, wm, cand, hdr, best, thr_a)
+        k = _distinct_sorted(cand, nc, 2.0, v, Ru, T, opt, ws, wm, idx)
+        m = _write_rows(cand, idx, k, within_only, True, v, lo, hi, opt, outq, info, flags, 0)
+        approx = m > 0
+    nfree = 0
+    for r in range(m):
+        nfree += info[r, L.I_FREE] != L.FREE_NONE
+        if dist != 0.0:  # the rotation was projected: residuals against the pose as given
+            pose = _ch.chain_pose(outq[r], v, L.A_USER_DH, L.A_USER_BASE, L.A_USER_TOOL)
+            info[r, L.I_RRES] = _ch.rotation_angle_12(pose, T[:3, :3])
+    hdr[L.H_COUNT], hdr[L.H_FREE], hdr[L.H_APPROX] = m, nfree, 1.0 if approx else 0.0
+    if hdr[L.H_PATH] != L.PATH_DOUBLE:
+        st[11] += 1.0
+    return m
 
 
 @_inner
@@ -1630,117 +1473,141 @@ def _beyond(T, reach):
 
 
 @_inner
-def _solve_pose(T, L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, outq, info, flags, hdr):
-    """Every IK solution of one pose into outq (k, 6), info (k, N_INFO) and flags (k, 2)
-    (within the limits, approximate); header into hdr."""
-    for i in range(N_HDR):
-        hdr[i] = 0.0
-    Ru, T4 = wm[_M_RU, :3, :3], wm[_M_T4, :4, :4]
-    status, measure, dist = _check_pose(T, opt[OPT_ORTHONORMAL_TOL], Ru)
-    hdr[H_STATUS], hdr[H_MEASURE], hdr[H_PROJECTION] = status, measure, dist
-    hdr[H_BEST_P], hdr[H_BEST_R] = np.inf, np.inf
-    if status != OK or _beyond(T, reach + opt[OPT_APPROX_TOL]):
-        return 0  # (beyond the reach bound: unreachable, without arithmetic on huge numbers)
-    nc = _configurations(T, L, dh, opt, ws, wm, cand, hdr[H_BEST_P:H_BEST_R + 1])
-    _continua(T, L, dh, lo, hi, opt, ws, wm, cand, nc)
-    k = _distinct_sorted(cand, nc, 1.0, L, Ru, T, ws, wm, opt, idx)
-    hdr[H_TOTAL] = k
-    approx, m, ltol, nfree = False, 0, opt[OPT_LIMIT_TOL], 0
-    for r in range(2):
-        for ii in range(k):
-            c = int(idx[ii])
-            inside = _within(cand[c], lo, hi, ltol)
-            if within_only and not inside:
-                continue
-            for j in range(6):
-                outq[m, j] = cand[c, j]
-            if dist == 0.0:  # the rotation was used as given: the residuals are the candidate's
-                info[m, I_PRES], info[m, I_RRES] = cand[c, _C_PRES], cand[c, _C_RRES]
-            else:  # residuals against the pose as given
-                _fk_into(outq[m], L, T4)
-                info[m, I_PRES], info[m, I_RRES] = _position_error(T4, T), _rotation_angle(T4, T[:3, :3])
-            info[m, I_FREE] = cand[c, _C_FREE]
-            nfree += cand[c, _C_FREE] != 0.0
-            for j in range(6):
-                info[m, I_S1 + j] = cand[c, _C_S1 + j]
-            flags[m, 0], flags[m, 1] = inside, approx
-            m += 1
-        if m > 0 or r == 1:
-            break
-        # nothing exact (within the limits if asked): the least-residual configurations, flagged
-        k = _distinct_sorted(cand, nc, 2.0, L, Ru, T, ws, wm, opt, idx)
-        approx = True
-    hdr[H_COUNT], hdr[H_FREE], hdr[H_APPROX] = m, nfree, 1.0 if approx and m > 0 else 0.0
-    return m
-
-
-@_inner
 def _pad(outq, info, flags, m):
-    """Rows m.. of one pose's outputs: NaN, free kind 0, flags False (the padding of :class:`IKBatch`)."""
+    """Rows m.. of one pose's outputs: NaN, free kind 0, flags False (the padding of IKBatch)."""
     for r in range(m, outq.shape[0]):
         for j in range(6):
             outq[r, j] = np.nan
-        for j in range(N_INFO):
+        for j in range(L.N_INFO):
             info[r, j] = np.nan
-        info[r, I_FREE] = 0.0
+        info[r, L.I_FREE] = 0.0
         flags[r, 0], flags[r, 1] = False, False
 
 
+@_inner
+def _views(buf):
+    """The scratch buffer carved into (ws, wm, cand)."""
+    ws = buf[0:N_SCRATCH]
+    wm = buf[N_SCRATCH : N_SCRATCH + N_MATS * 36].reshape((N_MATS, 6, 6))
+    cand = ws[_W_CAND : _W_CAND + MAX_CAND * N_CAND].reshape((MAX_CAND, N_CAND))
+    return ws, wm, cand
+
+
+#: Size of the scratch buffer of :func:`solve_many`.
+N_BUFFER = N_SCRATCH + N_MATS * 36
+
+
 @_entry(_nrt=False)
-def solve_many(Ts, armv, opt, within_only, scratch, outq, info, flags, hdr):
+def solve_many(Ts, v, opt, within_only, buf, outq, info, flags, hdr):
     """:func:`_solve_pose` for poses Ts (n, 4, 4) into padded outq (n, 16, 6), info
-    (n, 16, N_INFO), flags (n, 16, 2) bool and hdr (n, N_HDR): a serial loop (one pose: n = 1).
-    Rows past a pose's count are padding (NaN, free kind 0, False).
+    (n, 16, N_INFO), flags (n, 16, 2) bool and hdr (n, N_HDR): a serial loop.
 
-    ``armv``: :attr:`ArmData.vector`; ``opt``: the option vector (OPT_*); ``scratch``
-    (N_SCRATCH,) float64 is working memory, allocated by the caller: the kernel runs without
-    Numba's reference counting, which would cost more than the arithmetic.
+    ``v``: the arm vector; ``opt``: the option vector (OPT_*); ``buf`` (N_BUFFER,) float64 is
+    working memory allocated by the caller (the kernel runs without Numba's reference counting).
     """
-    L, lo, hi, dh, reach = armv[0:5], armv[5:11], armv[11:17], armv[17:41].reshape((6, 4)), armv[REACH]
-    ws = scratch[0:N_WORK]
-    wm = scratch[N_WORK:N_WORK + N_MATS * 81].reshape((N_MATS, 9, 9))
-    o = N_WORK + N_MATS * 81
-    cand = scratch[o:o + MAX_CAND * N_CAND].reshape((MAX_CAND, N_CAND))
-    idx = scratch[o + MAX_CAND * N_CAND:N_SCRATCH]
+    ws, wm, cand = _views(buf)
     for i in range(Ts.shape[0]):
-        _solve_pose(Ts[i], L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, outq[i], info[i],
-                    flags[i], hdr[i])
-        _pad(outq[i], info[i], flags[i], int(hdr[i, H_COUNT]))
+        _solve_pose(Ts[i], v, opt, within_only, ws, wm, cand, outq[i], info[i], flags[i], hdr[i])
+        _pad(outq[i], info[i], flags[i], int(hdr[i, L.H_COUNT]))
 
 
-_SCRATCH = None
+@_entry(parallel=True, _nrt=False)
+def solve_many_parallel(Ts, v, opt, within_only, bufs, outq, info, flags, hdr):
+    """:func:`solve_many` on all cores: ``numba.prange`` over ``len(bufs)`` chunks of poses, each
+    with its own working memory ``bufs[c]`` (N_BUFFER,) allocated by the caller (no allocation
+    or reference counting inside the parallel loop)."""
+    n = Ts.shape[0]
+    m = bufs.shape[0]
+    chunk = (n + m - 1) // m
+    for c in numba.prange(m):
+        ws, wm, cand = _views(bufs[c])
+        for i in range(c * chunk, min(n, (c + 1) * chunk)):
+            _solve_pose(Ts[i], v, opt, within_only, ws, wm, cand, outq[i], info[i], flags[i], hdr[i])
+            _pad(outq[i], info[i], flags[i], int(hdr[i, L.H_COUNT]))
+
+
+_BUFFER = None
+
+
+def scratch() -> np.ndarray:
+    """The working memory of :func:`solve_many` (one buffer: the kernel holds the GIL)."""
+    global _BUFFER
+    if _BUFFER is None:
+        _BUFFER = np.zeros(N_BUFFER)
+    return _BUFFER
 
 
 def work_counts(reset: bool = False) -> dict[str, int]:
     """The work counters of :func:`scratch` (:data:`STATS`, cumulative over the serial calls of
     this process; ``reset`` zeroes them after reading): what a profile of the kernel reads."""
-    w = scratch()[_W_STATS:_W_STATS + len(STATS)]
-    out = {k: int(v) for k, v in zip(STATS, w, strict=True)}
+    w = scratch()[_W_STATS : _W_STATS + len(STATS)]
+    out = {k: int(x) for k, x in zip(STATS, w, strict=True)}
     if reset:
         w[:] = 0.0
     return out
 
 
-def scratch() -> np.ndarray:
-    """The working memory of :func:`solve_many` (one buffer: the kernel holds the GIL)."""
-    global _SCRATCH
-    if _SCRATCH is None:
-        _SCRATCH = np.zeros(N_SCRATCH)
-    return _SCRATCH
+# ----------------------------------------------------------------------------- continuum members
+@_entry(_nrt=False)
+def continuum_members(T, v, opt, q0, cols, col, coupled, sign, thetas, buf, out_q, out_res) -> bool:
+    """Members of a continuum through q0 (6,), in order: user joint ``col`` at each of ``thetas``
+    (n,), the ``coupled`` joint (>= 0) moved by ``sign`` times the step, the other joints
+    (``cols`` (5,): every joint but ``col``) refit by Levenberg-Marquardt from the previous
+    member. Into out_q (n, 6) and out_res (n, 2) (position [m], rotation [rad] residuals).
+    False if the pose does not pass the pose check."""
+    ws, wm, _ = _views(buf)
+    Ru = wm[_M_RU, :3, :3]
+    status, _, _ = _check_pose(T, opt[L.OPT_ORTHONORMAL_TOL], Ru)
+    if status != L.OK:
+        return False
+    q = ws[_W_Q : _W_Q + 6]
+    for k in range(6):
+        q[k] = q0[k]
+    target = 1e-3 * min(opt[L.OPT_POSITION_TOL], opt[L.OPT_ROTATION_TOL])
+    for i in range(thetas.shape[0]):
+        if coupled >= 0:
+            q[coupled] = wrap(q[coupled] + sign * (thetas[i] - q[col]))
+        q[col] = thetas[i]
+        _polish(q, v, Ru, T, ws, wm, cols, 5, 12, target)
+        q[col] = thetas[i]  # (the polish wraps; keep the value asked for)
+        pres, rres = _residuals(q, v, Ru, T)
+        for k in range(6):
+            out_q[i, k] = q[k]
+        out_res[i, 0], out_res[i, 1] = pres, rres
+    return True
 
 
-@_entry(parallel=True)
-def solve_many_parallel(Ts, armv, opt, within_only, outq, info, flags, hdr):
-    """:func:`solve_many` on all cores (``numba.prange`` over chunks of 64 poses)."""
-    L, lo, hi, dh, reach = armv[0:5], armv[5:11], armv[11:17], armv[17:41].reshape((6, 4)), armv[REACH]
-    n = Ts.shape[0]
-    chunk = 64
-    for c in numba.prange((n + chunk - 1) // chunk):
-        ws = np.zeros(N_WORK)
-        wm = np.zeros((N_MATS, 9, 9))
-        cand = np.zeros((MAX_CAND, N_CAND))
-        idx = np.zeros(MAX_CAND)
-        for i in range(c * chunk, min(n, (c + 1) * chunk)):
-            _solve_pose(Ts[i], L, dh, lo, hi, reach, opt, within_only, ws, wm, cand, idx, outq[i], info[i],
-                        flags[i], hdr[i])
-            _pad(outq[i], info[i], flags[i], int(hdr[i, H_COUNT]))
+@_entry(_nrt=False)
+def closed_forms_at(T, v, opt, joint1, buf, out_q, out_res, counts) -> bool:
+    """Every closed-form configuration with solver joint 1 at each value of ``joint1`` (n,)
+    [rad] (every theta2 option, both wrist branches), unpolished: into out_q (n, 16, 6) (user
+    joints), out_res (n, 16, 2) and counts (n,). What a theta1 continuum's members are made of.
+    False if the pose does not pass the pose check."""
+    ws, wm, _ = _views(buf)
+    Ru = wm[_M_RU, :3, :3]
+    status, _, _ = _check_pose(T, opt[L.OPT_ORTHONORMAL_TOL], Ru)
+    if status != L.OK:
+        return False
+    P = _solver_pose(T, Ru, v)
+    terms = ws[_W_TERMS : _W_TERMS + 18]
+    t = _el.pose_terms(P[2], P[5], P[8], P[9], P[10], P[11], v, L.A_CONST, -1.0)
+    for k in range(18):
+        terms[k] = t[k]
+    th2, qc, q = ws[_W_TH2 : _W_TH2 + 8], ws[_W_Q2 : _W_Q2 + 6], ws[_W_Q : _W_Q + 6]
+    for i in range(joint1.shape[0]):
+        t1 = joint1[i] + v[L.A_SOLVER_DH + 4]
+        n2 = max(_theta2_options(terms, t1, L.KIND_SPECIAL, th2), 0)
+        m = 0
+        for k in range(n2):
+            for branch in range(2):
+                if m >= out_q.shape[1]:
+                    break
+                _closed_form(t1, math.cos(th2[k]), math.sin(th2[k]), branch, P, v, qc)
+                _to_user(qc, q, v)
+                pres, rres = _residuals(q, v, Ru, T)
+                for j in range(6):
+                    out_q[i, m, j] = q[j]
+                out_res[i, m, 0], out_res[i, m, 1] = pres, rres
+                m += 1
+        counts[i] = m
+    return True

@@ -1,38 +1,25 @@
-"""The complete inverse kinematics, vectorised in NumPy (``method="reference"``).
+"""The complete inverse kinematics of the arm class in NumPy (``method="reference"``): an
+independent path to the answer of the compiled kernel (:mod:`iik.ik.kernel`).
 
-The compiled kernel (:mod:`iik.ik.kernel`, ``method="complete"``, the default) and
-this module solve the same elimination; this one is kept as an independent
-reference (tests show the two agree) and for its batched LAPACK root finding.
+The two share the equations (:func:`iik.ik.elimination.pose_terms`: the general Eq 8 and
+Eq 11, ``docs/IK_CLASS.md``) and nothing of how they are solved:
 
-The thesis (Sec 3.3) reduces the problem to two equations in (theta1, theta2):
-the coplanarity condition Eq 8 and the length error Eq 11 (:mod:`iik.ik.elimination`).
-For a fixed theta1, Eq 8 is linear in (c2, s2)::
+* **theta1**: every root of the degree-8 polynomial, as the eigenvalues of its companion
+  matrix (batched LAPACK), with a per-pose reference angle chosen so that no root is near
+  t = infinity; roots with an imaginary part up to :data:`IMAG_TOL` are kept (a near-double
+  root loses its real pair to rounding), where the kernel isolates with certified signs and
+  re-expands clusters in double-double;
+* **theta2**: every point of the unit circle on each of the two conditions (and Cramer's
+  point), where the kernel takes Cramer's point unless the conditions are nearly parallel;
+* **the wrist**: generic frames of the solver chain written here in NumPy;
+* **verification**: every candidate is polished by batched Levenberg-Marquardt on the
+  NumPy chain product (:func:`iik.dh.dh_chain`), kept if it reaches the pose within the
+  tolerances, and merged with the rows it is connected to within the tolerance;
+* **continua**: a row whose joint 3 is (nearly) free is snapped onto the collinear continuum
+  and kept as one if that reaches the pose, else flagged numerical; an eliminant vanishing on
+  the whole circle gives a theta1 continuum.
 
-    P(theta1) c2 + Q(theta1) s2 = 0   =>   (c2, s2) = sigma (Q, -P) / N,  N = sqrt(P^2 + Q^2)
-
-and Eq 11 reads ``E = a + b c2 + c s2``. Substituting and multiplying the two
-signs sigma = +-1 together eliminates theta2::
-
-    F(theta1) = a^2 (P^2 + Q^2) - (b Q - c P)^2 = 0,
-
-a trigonometric polynomial of degree 4. With a pose-dependent reference angle
-``theta_r`` and ``t = tan((theta1 - theta_r)/2)`` it becomes a real polynomial of
-degree 8 in ``t``; here its roots are the eigenvalues of the companion matrix
-(batched LAPACK). ``theta_r`` is chosen per pose so that ``theta1 = theta_r + pi``
-(``t = infinity``, where the degree drops) is far from every root.
-
-Each real root is refined by Newton's method on the *unsquared* equation
-``f_sigma = a N + sigma (b Q - c P)``; spurious roots (introduced by squaring
-or by accepting nearly-real eigenvalues of near-double roots) are removed by
-the final forward-kinematics check. theta2 follows from Eq 8; theta3, theta4
-and theta5 from the wrist point and the tool axis expressed in frame 2
-(the corrected Eq 14-28); theta6 from the remaining rotation about z6
-(Eq 31-33). Every candidate is finished by Newton steps on the full 6x6
-Jacobian and kept only if its forward-kinematics residual is within the
-tolerances.
-
-Frames and units: base frame 0 of Table II, metres and radians. The wrist
-point is ``D = p + l5 z6`` (frame 6 sits at ``d6 = -l5`` along z6, Table II).
+Frames and units: the arm's base frame, metres and radians.
 """
 
 from __future__ import annotations
@@ -40,569 +27,393 @@ from __future__ import annotations
 import numpy as np
 
 from ..arm import Arm
-from ..kinematics import fk, jacobian
-from ..rotations import rotation_angle
-from .angles import wrap_angle as _wrap
-from .compare import pose_residuals
-from .elimination import EliminantCoefficients, eliminant_coefficients
+from ..dh import dh_chain
+from . import layout as L
+from .elimination import pose_terms
 
-__all__ = ["solve_arrays", "dedupe", "FREE_NONE", "FREE_Q1_Q6", "FREE_Q3_Q6", "MAX_SOLUTIONS",
-           "POSITION_TOL", "ROTATION_TOL", "CONTINUUM_SIN"]
+__all__ = ["solve_arrays", "IMAG_TOL", "POSITION_TOL", "ROTATION_TOL"]
 
-#: Upper bound on the number of distinct solutions (8 roots x 2 wrist branches).
-MAX_SOLUTIONS = 16
 #: Accept a solution only if |p_fk - p| <= POSITION_TOL [m] ...
 POSITION_TOL = 1e-10
 #: ... and the rotation angle between R_fk and R is <= ROTATION_TOL [rad].
 ROTATION_TOL = 1e-10
-
-#: Free-joint flags (bit set) for continua of solutions.
-FREE_NONE = 0
-#: theta1 and theta6 axes collinear (wrist point on the joint-1 axis, z6 vertical).
-FREE_Q1_Q6 = 1
-#: theta3 and theta6 axes collinear (theta4 = theta5 = 0 or pi: wrist stretched along the upper arm).
-FREE_Q3_Q6 = 2
-
-#: |sin theta4| and |sin(theta4 + theta5)| below this: theta3/theta6 continuum (a pose fixes
-#: q only to ~sqrt(machine eps) there, so the threshold sits well above 1e-8).
-FREE_TOL = 1e-7
-
-#: |sin theta4| and |sin(theta4 + theta5)| of a final solution below this: flagged as a
-#: theta3/theta6 continuum (sigma_min(J) < ~1e-10 there: the pose fixes theta3 to ~1e-3 rad).
-CONTINUUM_SIN = 1e-5
-
+#: Eigenvalues with |imag| up to this (relative to 1 + |t|) are theta1 candidates.
+IMAG_TOL = 1e-3
+#: Candidates whose joint 3 is this close to free (|z6| or |D - C| / a4 across z3) are also
+#: started from 8 angles of joint 3 around the circle.
+RESTART_H = 1e-2
 _TWO_PI = 2.0 * np.pi
-_N_REF = 12  # candidate reference angles for the t-substitution
+_GRID = np.arange(12) * (_TWO_PI / 12)
 
 
-def _norm(x):
-    """Euclidean norm over the last axis; the same arithmetic as ``np.linalg.norm(x, axis=-1)``."""
-    return np.sqrt(np.add.reduce(x * x, axis=-1))
+def _wrap(x):
+    return np.pi - np.mod(np.pi - x, _TWO_PI)
 
 
-# --------------------------------------------------------------------------- #
-# First-degree trigonometric polynomials x0 + xc cos(th) + xs sin(th), as (..., 3)
-# --------------------------------------------------------------------------- #
-
-def _trig1(x, c, s):
-    """x0 + xc cos + xs sin for coefficient rows x (..., 3)."""
-    return x[..., 0] + x[..., 1] * c + x[..., 2] * s
-
-
-def _F_cs(co: EliminantCoefficients, C, S):
-    """F = a^2 (P^2+Q^2) - (bQ - cP)^2 from cos/sin of theta1 (broadcast to (n, m))."""
-    X = co.abPQ[:, None]  # (n, 1, 4, 3)
-    v = X[..., 0] + X[..., 1] * C[..., None] + X[..., 2] * S[..., None]
-    a, b, P, Q = v[..., 0], v[..., 1], v[..., 2], v[..., 3]
-    g = b * Q - co.c[:, None] * P
-    return a * a * (P * P + Q * Q) - g * g
+# ----------------------------------------------------------------------------- chain (NumPy)
+def _fk_jac(arm: Arm, q: np.ndarray):
+    """Tool poses (n, 4, 4) and geometric Jacobians (n, 6, 6) of the user chain."""
+    F = np.array(arm.base) @ dh_chain(arm.dh_table(), q, all_frames=True)
+    T = F[:, -1] @ np.array(arm.tool)
+    z, o, p = F[:, :, :3, 2], F[:, :, :3, 3], T[:, None, :3, 3]
+    J = np.concatenate([np.cross(z, p - o), z], axis=2).transpose(0, 2, 1)
+    return T, J
 
 
-def _F_at(co, th):
-    """F(theta1) = a^2 (P^2+Q^2) - (bQ - cP)^2 at angles th (n, m)."""
-    return _F_cs(co, np.cos(th), np.sin(th))
+def _errors(Tq, T):
+    """Newton error vectors (n, 6) and residuals (position, rotation angle) against T (n, 4, 4)."""
+    e = np.empty((len(Tq), 6))
+    e[:, :3] = T[:, :3, 3] - Tq[:, :3, 3]
+    M = T[:, :3, :3] @ np.transpose(Tq[:, :3, :3], (0, 2, 1))
+    e[:, 3], e[:, 4], e[:, 5] = (
+        0.5 * (M[:, 2, 1] - M[:, 1, 2]),
+        0.5 * (M[:, 0, 2] - M[:, 2, 0]),
+        0.5 * (M[:, 1, 0] - M[:, 0, 1]),
+    )
+    d = np.linalg.norm(Tq[:, :3, :3] - T[:, :3, :3], axis=(1, 2))
+    return e, np.linalg.norm(e[:, :3], axis=1), 2.0 * np.arcsin(np.minimum(d / np.sqrt(8.0), 1.0))
 
 
-def _quad_in_t(x, cr, sr):
-    """Numerator of x0 + xc cos(th) + xs sin(th), th = th_r + phi, t = tan(phi/2).
+def _polish(arm: Arm, q, T, iters: int = 30, cols=None):
+    """Batched Levenberg-Marquardt (over ``cols``, default all joints) of q (n, 6) towards T (n, 4, 4)."""
+    q = q.copy()
+    mask = np.ones(6) if cols is None else np.isin(np.arange(6), cols).astype(float)
+    lam = np.full(len(q), 1e-9)
+    Tq, J = _fk_jac(arm, q)
+    e, pres, rres = _errors(Tq, T)
+    err = np.einsum("ni,ni->n", e, e)
+    eye = np.eye(6)
+    for _ in range(iters):
+        act = err > 1e-32
+        if not act.any():
+            break
+        Jm = J * mask
+        A = np.einsum("nri,nrj->nij", Jm, Jm)
+        tr = np.trace(A, axis1=1, axis2=2)[:, None, None] / mask.sum()
+        A = A + (lam[:, None, None] + 1e-14) * tr * eye + (1.0 - mask)[None, :, None] * eye
+        dq = np.linalg.solve(A, np.einsum("nri,nr->ni", Jm, e)[..., None])[..., 0] * mask
+        qn = q + np.where(act[:, None], dq, 0.0)
+        Tn, Jn = _fk_jac(arm, qn)
+        en, pn, rn = _errors(Tn, T)
+        errn = np.einsum("ni,ni->n", en, en)
+        ok = (errn <= err) & act
+        q, e, J = (
+            np.where(ok[:, None], qn, q),
+            np.where(ok[:, None], en, e),
+            np.where(ok[:, None, None], Jn, J),
+        )
+        pres, rres, err = np.where(ok, pn, pres), np.where(ok, rn, rres), np.where(ok, errn, err)
+        lam = np.where(ok, np.maximum(0.1 * lam, 1e-12), np.minimum(10.0 * lam, 1e6))
+    return _wrap(q), pres, rres
 
-    ``x`` (n, ..., 3), ``cr``/``sr`` broadcastable to ``x[..., 0]``. Returns ascending
-    coefficients (n, ..., 3) of ``(1 + t^2) * x``.
-    """
-    x0 = x[..., 0]
-    xc = x[..., 1] * cr + x[..., 2] * sr
-    xs = -x[..., 1] * sr + x[..., 2] * cr
-    out = np.empty(xc.shape + (3,))
-    out[..., 0], out[..., 1], out[..., 2] = x0 + xc, 2 * xs, x0 - xc
+
+# ----------------------------------------------------------------------------- solver chain
+def _solver_poses(T: np.ndarray, arm: Arm) -> np.ndarray:
+    """The solver chain's frame-6 poses (n, 4, 4) for the tool poses T (n, 4, 4)."""
+    s = arm.solver
+    X = np.linalg.inv(T) if s.reversed else T
+    return np.linalg.inv(s.base) @ X @ np.linalg.inv(s.tool)
+
+
+def _link(row, th):
+    ca, sa, a, d, off = row
+    ct, st = np.cos(th + off), np.sin(th + off)
+    Lk = np.zeros(th.shape + (4, 4))
+    Lk[..., 0, 0], Lk[..., 0, 1], Lk[..., 0, 3] = ct, -st, a
+    Lk[..., 1, 0], Lk[..., 1, 1], Lk[..., 1, 2], Lk[..., 1, 3] = ca * st, ca * ct, -sa, -sa * d
+    Lk[..., 2, 0], Lk[..., 2, 1], Lk[..., 2, 2], Lk[..., 2, 3] = sa * st, sa * ct, ca, ca * d
+    Lk[..., 3, 3] = 1.0
+    return Lk
+
+
+def _in_plane(F, w, s):
+    """Joint angle (without offset handling) turning link frame F (at angle 0) so that the next
+    axis, (s sin, -s cos, 0) in F for a 90-deg twist of sign s, lies along w (.., 3)."""
+    x = s * np.einsum("...i,...i->...", F[..., :3, 0], w)
+    y = -s * np.einsum("...i,...i->...", F[..., :3, 1], w)
+    return np.arctan2(x, y)
+
+
+def _wrist(arm: Arm, P, th1, th2, branch):
+    """Solver joints 3-6 (m, 4) of joint 1, 2 angles (m,) [solver joint values], both in rad,
+    for solver poses P (m, 4, 4) and branch signs (m,) (+1, -1); and h (m,)."""
+    rows = arm.solver.rows
+    F = _link(rows[0], th1) @ _link(rows[1], th2)
+    F30 = F @ _link(rows[2], np.full(th1.shape, -rows[2][4]))
+    z3 = F30[:, :3, 2]
+    z6, D = P[:, :3, 2], P[:, :3, 3]
+    e = D - F30[:, :3, 3]
+    a4 = rows[4][2]
+    h6 = z6 - np.einsum("ni,ni->n", z6, z3)[:, None] * z3
+    hD = (e - np.einsum("ni,ni->n", e, z3)[:, None] * z3) / a4
+    n6, nD = np.linalg.norm(h6, axis=1), np.linalg.norm(hD, axis=1)
+    h = np.where((n6 >= nD)[:, None], h6, hD)
+    z4 = branch[:, None] * np.cross(z3, h)
+    t3 = _in_plane(F30, z4, rows[3][1])  # DH angle of joint 3
+    q3 = np.where(np.maximum(n6, nD) <= 1e-12, 0.0, _wrap(t3 - rows[2][4]))  # free: joint 3 at 0
+    F3 = F @ _link(rows[2], q3)
+    F40 = F3 @ _link(rows[3], np.full(th1.shape, -rows[3][4]))
+    x = np.einsum("ni,ni->n", F40[:, :3, 0], e) / a4
+    y = np.einsum("ni,ni->n", F40[:, :3, 1], e) / a4
+    q4 = _wrap(np.arctan2(y, x) - rows[3][4])
+    F4 = F3 @ _link(rows[3], q4)
+    F50 = F4 @ _link(rows[4], np.full(th1.shape, -rows[4][4]))
+    q5 = _wrap(_in_plane(F50, z6, rows[5][1]) - rows[4][4])
+    F60 = F4 @ _link(rows[4], q5) @ _link(rows[5], np.full(th1.shape, -rows[5][4]))
+    m00 = np.einsum("ni,ni->n", F60[:, :3, 0], P[:, :3, 0])
+    m10 = np.einsum("ni,ni->n", F60[:, :3, 1], P[:, :3, 0])
+    q6 = _wrap(np.arctan2(m10, m00) - rows[5][4])
+    return np.stack([q3, q4, q5, q6], axis=1), np.maximum(n6, nD)
+
+
+# ----------------------------------------------------------------------------- eliminant
+def _terms(P: np.ndarray, arm: Arm) -> np.ndarray:
+    """The 18 first-degree coefficients (n, 6, 3) of a, b, c, P, Q, R."""
+    k = arm.kernel_vector()
+    t = pose_terms(P[:, 0, 2], P[:, 1, 2], P[:, 2, 2], P[:, 0, 3], P[:, 1, 3], P[:, 2, 3], k, L.A_CONST, -1.0)
+    return np.stack([np.broadcast_to(x, (len(P),)) for x in t], axis=1).reshape(-1, 6, 3)
+
+
+def _at(x, th):
+    """First-degree polynomials x (n, ..., 3) at angles th (n, m) -> (n, m, ...)."""
+    c, s = np.cos(th), np.sin(th)
+    return x[:, None, ..., 0] + x[:, None, ..., 1] * c[..., None] + x[:, None, ..., 2] * s[..., None]
+
+
+def _F(x, th):
+    a, b, c, P, Q, R = (_at(x, th)[..., i] for i in range(6))
+    return (Q * a - R * c) ** 2 + (R * b - P * a) ** 2 - (P * c - Q * b) ** 2
+
+
+def _poly_t(x, thr):
+    """Ascending coefficients (n, 9) of (1 + t^2)^4 F(thr + 2 atan t)."""
+    cr, sr = np.cos(thr)[:, None], np.sin(thr)[:, None]
+    c = x[..., 1] * cr + x[..., 2] * sr
+    s = -x[..., 1] * sr + x[..., 2] * cr
+    quad = np.stack([x[..., 0] + c, 2.0 * s, x[..., 0] - c], axis=-1)  # (n, 6, 3)
+
+    def mul(u, v):
+        out = np.zeros(u.shape[:-1] + (u.shape[-1] + v.shape[-1] - 1,))
+        for i in range(u.shape[-1]):
+            out[..., i : i + v.shape[-1]] += u[..., i : i + 1] * v
+        return out
+
+    a, b, cc, P, Q, R = (quad[:, i] for i in range(6))
+    G1, G2, G3 = mul(Q, a) - mul(R, cc), mul(R, b) - mul(P, a), mul(P, cc) - mul(Q, b)
+    return mul(G1, G1) + mul(G2, G2) - mul(G3, G3)
+
+
+def _theta1(x):
+    """theta1 candidates (n, 8) of the solver chain [DH angle] (NaN where none), and whether F
+    vanishes on the whole circle (n,)."""
+    n = len(x)
+    Fg = np.abs(_F(x, np.broadcast_to(_GRID + np.pi, (n, 12))))
+    scale = Fg.max(axis=1)
+    thr = _GRID[np.argmax(Fg, axis=1)]
+    p = _poly_t(x, thr)
+    mag = np.abs(p).max(axis=1)
+    flat = mag <= 1e-12 * np.maximum(np.abs(x).max(axis=(1, 2)) ** 4, 1e-300)
+    out = np.full((n, 8), np.nan)
+    ok = ~flat & (np.abs(p[:, 8]) > 1e-14 * mag) & (scale > 0)
+    if ok.any():
+        comp = np.zeros((ok.sum(), 8, 8))
+        comp[:, 0, :] = -p[ok, 7::-1] / p[ok, 8:9]
+        comp[:, np.arange(1, 8), np.arange(7)] = 1.0
+        t = np.linalg.eigvals(comp)
+        real = np.abs(t.imag) <= IMAG_TOL * (1.0 + np.abs(t))
+        out[ok] = np.where(real, thr[ok, None] + 2.0 * np.arctan(t.real), np.nan)
+    return out, flat
+
+
+def _theta2(x, own, th1):
+    """theta2 options [DH angle] (m, 5) at (own, th1): Cramer's point and each condition's points
+    on the unit circle (or the nearest point when the line misses it); NaN where none."""
+    c, s = np.cos(th1), np.sin(th1)
+    v = x[own, :, 0] + x[own, :, 1] * c[:, None] + x[own, :, 2] * s[:, None]
+    a, b, cc, P, Q, R = v.T
+    out = np.full((len(th1), 5), np.nan)
+    det = P * cc - Q * b
+    with np.errstate(invalid="ignore", divide="ignore"):
+        out[:, 0] = np.where(
+            det != 0, np.arctan2((R * b - P * a) * np.sign(det), (Q * a - R * cc) * np.sign(det)), np.nan
+        )
+    for k, (al, be, ga) in enumerate(((P, Q, -R), (b, cc, -a))):
+        nn = np.hypot(al, be)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            d = ga / nn
+            fx, fy = d * al / nn, d * be / nn
+            hh = np.sqrt(np.maximum(1.0 - d * d, 0.0))
+            tx, ty = -be / nn, al / nn
+        out[:, 1 + 2 * k] = np.arctan2(fy + hh * ty, fx + hh * tx)
+        out[:, 2 + 2 * k] = np.arctan2(fy - hh * ty, fx - hh * tx)
     return out
 
 
-def _pmul(a, b):
-    """Batched product of ascending-coefficient polynomials (..., da) x (..., db) (same batch shape)."""
-    da, db = a.shape[-1], b.shape[-1]
-    out = np.zeros(a.shape[:-1] + (da + db - 1,))
-    for i in range(da):
-        out[..., i:i + db] += a[..., i:i + 1] * b
-    return out
+# ----------------------------------------------------------------------------- the solver
+def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL, tol_r: float = ROTATION_TOL):
+    """Every solution of each pose T (n, 4, 4) (validated, rotations proper).
 
-
-_GRID = np.arange(_N_REF) * (_TWO_PI / _N_REF)
-_GRID_C, _GRID_S = np.cos(_GRID + np.pi), np.sin(_GRID + np.pi)
-_ONE_T2 = np.array([1.0, 0.0, 1.0])
-_DIAG8 = np.arange(8)
-_SUB8 = (np.arange(1, 8), np.arange(7))  # companion-matrix subdiagonal
-
-
-def _theta1_candidates(co, imag_tol: float = 1e-3):
-    """All theta1 candidates (n, 8) [rad] (NaN where none) from the degree-8 polynomial."""
-    n = co.a.shape[0]
-    # Pick theta_r so that theta_r + pi (t = inf) is far from the roots:
-    # the leading coefficient of the t-polynomial is F(theta_r + pi).
-    Fg = np.abs(_F_cs(co, _GRID_C[None], _GRID_S[None]))
-    th_r = _GRID[np.argmax(Fg, axis=1)]
-    cr, sr = np.cos(th_r)[:, None], np.sin(th_r)[:, None]
-    X = _quad_in_t(co.abPQ, cr, sr)  # (n, 4, 3): a, b, P, Q
-    # five products at once: B Q, A A, P P, Q Q, (1 + t^2) P
-    L = np.empty((n, 5, 3))
-    L[:, :4] = X[:, [1, 0, 2, 3]]
-    L[:, 4] = _ONE_T2
-    BQ, A2, PP, QQ, P1 = _pmul(L, X[:, [3, 0, 2, 3, 2]]).transpose(1, 0, 2)
-    G = BQ - co.c[:, None] * P1
-    L2, R2 = np.empty((n, 2, 5)), np.empty((n, 2, 5))
-    L2[:, 0], L2[:, 1], R2[:, 0], R2[:, 1] = A2, G, PP + QQ, G
-    F2 = _pmul(L2, R2)
-    F = F2[:, 0] - F2[:, 1]  # (n, 9) ascending
-    lead = F[:, 8]
-    scale = np.max(np.abs(F), axis=1)
-    degenerate = scale <= 1e-300
-    ok = (np.abs(lead) > 1e-14 * scale) & ~degenerate
-    cand = np.full((n, 8), np.nan)
-    imag = np.full((n, 8), np.nan)
-    if ok.any():
-        Fk = F[ok]
-        comp = np.zeros((Fk.shape[0], 8, 8))
-        comp[:, 0, :] = -Fk[:, 7::-1] / Fk[:, 8:9]
-        comp[:, _SUB8[0], _SUB8[1]] = 1.0
-        t = np.linalg.eigvals(comp)  # Companion-matrix eigenvalues: all 8 roots
-        near_real = np.abs(t.imag) <= imag_tol * (1.0 + np.abs(t))
-        th = th_r[ok, None] + 2.0 * np.arctan(t.real)
-        cand[ok] = np.where(near_real, th, np.nan)
-        imag[ok] = np.abs(t.imag) / (1.0 + np.abs(t))
-    return cand, imag, th_r, ~ok & ~degenerate, degenerate
-
-
-def _f_derivs(co, own, th, sigma, second: bool = True):
-    """f_sigma = a N + sigma (b Q - c P) and its first two derivatives (flat arrays).
-
-    With ``second=False`` the second derivative is not computed (returned as None).
+    Returns ``(Q, V, F, P, R)``: configurations (n, MAX_SOLUTIONS, 6) [rad], valid mask
+    (n, MAX_SOLUTIONS), continuum kinds (:mod:`iik.ik.layout` ``FREE_*``), position and
+    rotation residuals [m, rad]; rows sorted valid-first and lexicographically.
     """
-    C, S = np.cos(th)[:, None], np.sin(th)[:, None]
-    x = co.abPQ[own]  # (m, 4, 3)
-    v = x[..., 0] + x[..., 1] * C + x[..., 2] * S
-    d1 = -x[..., 1] * S + x[..., 2] * C
-    a, b, P, Q = v.T
-    a1, b1, P1, Q1 = d1.T
-    c = co.c[own]
-    N = np.hypot(P, Q)
-    Ns = np.where(N > 1e-150, N, 1.0)
-    u = P * P1 + Q * Q1
-    N1 = u / Ns
-    g = b * Q - c * P
-    g1 = b1 * Q + b * Q1 - c * P1
-    f = a * N + sigma * g
-    f1 = a1 * N + a * N1 + sigma * g1
-    if not second:
-        return f, f1, None
-    d2 = x[..., 0] - v  # second derivative of a first-degree trig polynomial
-    a2, b2, P2, Q2 = d2.T
-    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        N2 = (P1 * P1 + P * P2 + Q1 * Q1 + Q * Q2) / Ns - u * u / Ns**3
-    N2 = np.where(np.isfinite(N2), N2, 0.0)
-    g2 = b2 * Q + 2 * b1 * Q1 + b * Q2 - c * P2
-    f2 = a2 * N + 2 * a1 * N1 + a * N2 + sigma * g2
-    return f, f1, f2
-
-
-def _newton(co, own, th, sigma, order: int, iters: int = 8):
-    """Newton on f_sigma (order 0) or on its derivative (order 1, the extremum)."""
-    th = th.copy()
-    act = np.arange(len(th))  # rows still moving (per row, so batches match single calls)
-    for _ in range(iters):
-        if len(act) == 0:
-            break
-        d = _f_derivs(co, own[act], th[act], sigma[act], second=order > 0)
-        num, den = d[order], d[order + 1]
-        nz = den != 0
-        step = np.clip(np.where(nz, num / np.where(nz, den, 1.0), 0.0), -0.05, 0.05)
-        th[act] -= step
-        act = act[np.abs(step) > 1e-15]
-    return th
-
-
-def _theta1_list(co, cand, imag, cluster_tol: float = 1e-3):
-    """Flat theta1 candidates: (owner, theta1, sigma, priority).
-
-    Every near-real eigenvalue gives a Newton-refined root of the unsquared
-    f_sigma (sigma chosen where |f_sigma| is smaller). Suspicious roots (complex
-    pairs, clusters within ``cluster_tol``) also get, for both signs, the
-    extremum of f_sigma (the exact location of a double root, priority 0) and
-    the two roots of the local quadratic model around it (priority 2).
-    """
-    valid = ~np.isnan(cand)
-    own0, col = np.nonzero(valid)
-    th0 = cand[own0, col]
-    C, S = np.cos(th0)[:, None], np.sin(th0)[:, None]
-    x = co.abPQ[own0]
-    a, b, P, Q = (x[..., 0] + x[..., 1] * C + x[..., 2] * S).T
-    aN, g = a * np.hypot(P, Q), b * Q - co.c[own0] * P
-    s0 = np.where(np.abs(aN + g) <= np.abs(aN - g), 1.0, -1.0)  # |f_+| <= |f_-|
-    thA = _newton(co, own0, th0, s0, 0)
-    d = np.abs(cand[:, :, None] - cand[:, None, :])
-    d = np.minimum(d, _TWO_PI - d)
-    d[:, _DIAG8, _DIAG8] = np.inf
-    crowded = np.where(np.isnan(d), np.inf, d).min(axis=2) <= cluster_tol
-    susp = (imag[own0, col] > 1e-12) | crowded[own0, col]
-    owns, ths, sigs, prios = [own0], [thA], [s0], [np.where(susp, 1.0, 1.5)]
-    if susp.any():
-        o, t = own0[susp], th0[susp]
-        for sg in (1.0, -1.0):
-            sv = np.full(len(o), sg)
-            tA = _newton(co, o, t, sv, 0)
-            tB = _newton(co, o, t, sv, 1)
-            f, _f1, f2 = _f_derivs(co, o, tB, sv)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                delta = np.sqrt(-2.0 * f / f2)
-            pair = np.isfinite(delta) & (delta <= cluster_tol)
-            op, sp = o[pair], sv[pair]
-            tC = _newton(co, op, tB[pair] + delta[pair], sp, 0)
-            tD = _newton(co, op, tB[pair] - delta[pair], sp, 0)
-            owns += [o, o, op, op]
-            ths += [tA, tB, tC, tD]
-            sigs += [sv, sv, sv[pair], sv[pair]]
-            prios += [np.ones(len(o)), np.zeros(len(o)), np.full(pair.sum(), 2.0),
-                      np.full(pair.sum(), 2.0)]
-    if len(owns) == 1:
-        return own0, _wrap(thA), s0, prios[0]
-    return (np.concatenate(owns), _wrap(np.concatenate(ths)), np.concatenate(sigs),
-            np.concatenate(prios))
-
-
-def _theta2_eq8(co, own, th1, sig):
-    """theta2 from Eq 8 for the sign ``sig`` of each flat (own, th1), and N = |(P, Q)|."""
-    C, S = np.cos(th1)[:, None], np.sin(th1)[:, None]
-    x = co.abPQ[own][:, 2:]
-    v = x[..., 0] + x[..., 1] * C + x[..., 2] * S
-    P, Q = v[:, 0], v[:, 1]
-    # Eq 9 corrected: tan(theta2) = -P / Q; sigma = -1 is the opposite direction
-    t2 = np.where(sig > 0, np.arctan2(-P, Q), np.arctan2(P, -Q))
-    return t2, np.hypot(P, Q)
-
-
-def _theta2_eq11(co, own, th1):
-    """The two theta2 roots of Eq 11 alone (m, 2), for rows where Eq 8 vanishes (P = Q = 0).
-
-    Elsewhere they are spurious and removed by the FK check.
-    """
-    C, S = np.cos(th1), np.sin(th1)
-    a = _trig1(co.a[own], C, S)
-    b = _trig1(co.b[own], C, S)
-    c = co.c[own]
-    # Eq 11 alone: a + b c2 + c s2 = 0  ->  theta2 = atan2(c, b) +- acos(-a / |(b, c)|)
-    r = np.sqrt(b * b + c * c)
-    phi = np.arctan2(c, b)
-    ratio = np.clip(-a / np.where(r > 0, r, 1.0), -1.0, 1.0)
-    acs = np.arccos(ratio)
-    return np.stack([phi + acs, phi - acs], axis=-1)
-
-
-def _wrist(R, D, th1, th2, arm: Arm, free_tol: float):
-    """theta3..theta5 for (theta1, theta2) (shape (n, m)); two branches -> (n, m, 2, 3)."""
-    l1, l2, l3, l4, l5 = arm.lengths
-    c1, s1, c2, s2 = np.cos(th1), np.sin(th1), np.cos(th2), np.sin(th2)
-    # Rows of 2_0 R (Eq 18, rotation part): frame-2 axes in base coordinates.
-    R2 = np.zeros(c1.shape + (3, 3))
-    R2[..., 0, 0], R2[..., 0, 1], R2[..., 0, 2] = c1 * s2, s1 * s2, c2
-    R2[..., 1, 0], R2[..., 1, 1], R2[..., 1, 2] = c1 * c2, s1 * c2, -s2
-    R2[..., 2, 0], R2[..., 2, 1] = -s1, c1
-    B = np.zeros(c1.shape + (3,))
-    B[..., 0], B[..., 1] = l2 * c1, l2 * s1
-    w = D[:, None, :] - B  # D - B
-    z = R[:, None, :, 2]
-    d2 = np.sum(R2 * w[..., None, :], axis=-1)  # D in frame 2
-    z2 = np.sum(R2 * z[..., None, :], axis=-1)  # z6 in frame 2
-    dx, dy, dz, zx, zy, zz = d2[..., 0], d2[..., 1], d2[..., 2], z2[..., 0], z2[..., 1], z2[..., 2]
-    # Eq 18 last column: D_2 = (l4 c3 s4, l3 + l4 c4, -l4 s3 s4); Eq 25/26: z6_2 = (-c3 s45, -c45, s3 s45)
-    hp = np.empty(dx.shape + (2,))
-    hp[..., 0], hp[..., 1] = -dz, dx
-    hp /= l4  # = s4 (s3, c3)
-    ho = np.empty(dx.shape + (2,))
-    ho[..., 0], ho[..., 1] = zz, -zx  # = s45 (s3, c3)
-    npos = _norm(hp)
-    nori = _norm(ho)
-    h = np.where((npos >= nori)[..., None], hp, ho)
-    free = np.maximum(npos, nori) <= free_tol
-    h = np.where(free[..., None], np.array([0.0, 1.0]), h)  # representative theta3 = 0
-    th3a = np.arctan2(h[..., 0], h[..., 1])
-    th3 = np.empty(th3a.shape + (2,))
-    th3[..., 0], th3[..., 1] = th3a, _wrap(th3a + np.pi)  # the two wrist branches
-    c3, s3 = np.cos(th3), np.sin(th3)
-    s4 = (c3 * dx[..., None] - s3 * dz[..., None]) / l4
-    c4 = np.broadcast_to(((dy - l3) / l4)[..., None], s4.shape)
-    th4 = np.arctan2(s4, c4)  # Eq 16
-    s45 = -c3 * zx[..., None] + s3 * zz[..., None]  # Eq 25 and its (3,3) companion
-    c45 = np.broadcast_to(-zy[..., None], s45.shape)  # Eq 26
-    th5 = _wrap(np.arctan2(s45, c45) - th4)  # Eq 28
-    out = np.empty(th3.shape + (3,))
-    out[..., 0], out[..., 1], out[..., 2] = th3, th4, th5
-    return out, free
-
-
-def _pose_error(q, T, arm: Arm):
-    Tq = fk(q, arm)
-    ep = T[:, :3, 3] - Tq[:, :3, 3]
-    Re = T[:, :3, :3] @ np.swapaxes(Tq[:, :3, :3], 1, 2)
-    er = 0.5 * np.stack([Re[:, 2, 1] - Re[:, 1, 2], Re[:, 0, 2] - Re[:, 2, 0],
-                         Re[:, 1, 0] - Re[:, 0, 1]], axis=1)
-    return np.concatenate([ep, er], axis=1)
-
-
-def _solve6(J, e):
-    """Solve J dq = e for a stack of 6x6 systems; pseudo-inverse where J is (near) singular."""
-    det = np.abs(np.linalg.det(J))
-    ok = det > 1e-12
-    dq = np.empty_like(e)
-    if ok.any():
-        dq[ok] = np.linalg.solve(J[ok], e[ok, :, None])[..., 0]
-    if not ok.all():
-        dq[~ok] = np.einsum("nij,nj->ni", np.linalg.pinv(J[~ok], rcond=1e-13), e[~ok])
-    return dq
-
-
-def _snap_continuum(q, T, arm: Arm, iters: int = 6):
-    """Continuum representatives with theta4, theta4 + theta5 snapped to exact multiples of pi.
-
-    theta3 is kept; theta1, theta2 and theta6 are re-fitted by Gauss-Newton on
-    the 6x3 Jacobian columns (the pose is consistent on the continuum).
-    """
-    q = q.copy()
-    s4 = np.round(q[:, 3] / np.pi) * np.pi
-    s45 = np.round((q[:, 3] + q[:, 4]) / np.pi) * np.pi
-    q[:, 3], q[:, 4] = s4, s45 - s4
-    cols = [0, 1, 5]
-    for _ in range(iters):
-        e = _pose_error(q, T, arm)
-        J = jacobian(q, arm)[:, :, cols]
-        dq = np.einsum("nij,nj->ni", np.linalg.pinv(J, rcond=1e-12), e)
-        q[:, cols] += dq
-    return _wrap(q)
-
-
-def _newton_polish(q, T, arm: Arm, iters: int = 12, step_tol: float = 1e-14):
-    """Newton steps on the full 6x6 Jacobian towards poses T (q (m, 6), T (m, 4, 4)).
-
-    At least one step for every row; rows stop once their step is below ``step_tol``.
-    Singular Jacobians are handled by the pseudo-inverse.
-    """
-    q = q.copy()
-    active = np.arange(len(q))
-    for _ in range(iters):
-        if len(active) == 0:
-            break
-        qa = q[active]
-        e = _pose_error(qa, T[active], arm)
-        J = jacobian(qa, arm)
-        dq = _solve6(J, e)
-        q[active] = qa + dq
-        active = active[np.max(np.abs(dq), axis=1) > step_tol]
-    return q
-
-
-def _residuals_theta6(T0, th6, T):
-    """:func:`pose_residuals` of q from ``T0 = fk(q with theta6 = 0)`` without a second FK.
-
-    The tool point does not move with theta6 and ``R(q) = R0 Rz(theta6)``; written
-    as below, every entry is bit-for-bit the Eq 4 expression :func:`fk` evaluates.
-    """
-    c6, s6 = np.cos(th6)[:, None], np.sin(th6)[:, None]
-    R0 = T0[:, :3, :3]
-    R = np.empty_like(R0)
-    R[:, :, 0] = c6 * R0[:, :, 0] + s6 * R0[:, :, 1]
-    R[:, :, 1] = -s6 * R0[:, :, 0] + c6 * R0[:, :, 1]
-    R[:, :, 2] = R0[:, :, 2]
-    return (_norm(T0[:, :3, 3] - T[:, :3, 3]),
-            rotation_angle(R, T[:, :3, :3]))
-
-
-def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL,
-                 tol_r: float = ROTATION_TOL):
-    """All IK solutions of a batch of poses, as padded arrays (the vectorised core).
-
-    Args:
-        T: Validated poses (n, 4, 4) [m], base frame 0.
-        arm: Arm parameters.
-
-    Returns:
-        ``(q, valid, free, pres, rres)``: ``q`` (n, 16, 6) [rad], wrapped to
-        (-pi, pi] and sorted (valid rows first, lexicographic); ``valid`` (n, 16)
-        bool; ``free`` (n, 16) int flags (:data:`FREE_Q1_Q6`, :data:`FREE_Q3_Q6`);
-        ``pres`` (n, 16) [m] and ``rres`` (n, 16) [rad] FK residuals.
-    """
-    n = T.shape[0]
-    R, p = T[:, :3, :3], T[:, :3, 3]
-    co = eliminant_coefficients(R, p, arm)
-    cand, imag, _thr, _lowdeg, degenerate = _theta1_candidates(co)
-    own, t1, sig, prio = _theta1_list(co, cand, imag)
-    careful = prio != 1.5  # from a suspicious (clustered / complex) root: always polish
-    prio = np.where(careful, prio, 1.0)
-    fr1 = np.zeros(len(own), dtype=bool)
-    if degenerate.any():
-        # F identically zero: theta1 is free (continuum); representatives 0 and pi.
-        dg = np.flatnonzero(degenerate)
-        own = np.concatenate([own, dg, dg])
-        t1 = np.concatenate([t1, np.zeros(len(dg)), np.full(len(dg), np.pi)])
-        sig = np.concatenate([sig, np.ones(2 * len(dg))])
-        prio = np.concatenate([prio, np.ones(2 * len(dg))])
-        careful = np.concatenate([careful, np.ones(2 * len(dg), dtype=bool)])
-        fr1 = np.concatenate([fr1, np.ones(2 * len(dg), dtype=bool)])
-    t2, N = _theta2_eq8(co, own, t1, sig)
-    # Where Eq 8 vanishes identically (P = Q = 0) theta2 comes from Eq 11 alone.
-    scale = _norm(co.D)[own] + arm.l2 + arm.l3
-    weak = (N <= 1e-6 * scale) | fr1
-    if weak.any():
-        opts = _theta2_eq11(co, own[weak], t1[weak])
-        own = np.concatenate([own, own[weak], own[weak]])
-        t1 = np.concatenate([t1, t1[weak], t1[weak]])
-        t2 = np.concatenate([t2, opts[:, 0], opts[:, 1]])
-        prio = np.concatenate([prio, prio[weak], prio[weak]])
-        careful = np.concatenate([careful | weak, np.ones(2 * int(weak.sum()), dtype=bool)])
-        fr1 = np.concatenate([fr1, fr1[weak], fr1[weak]])
-    wr, free3 = _wrist(R[own], co.D[own], t1[:, None], t2[:, None], arm, FREE_TOL)
-    k = len(t1)
-    q = np.empty((k, 2, 6))
-    q[..., 0] = t1[:, None]
-    q[..., 1] = _wrap(t2)[:, None]
-    q[..., 2:5] = wr[:, 0]
-    q[..., 5] = 0.0
-    flf = np.repeat(fr1 * FREE_Q1_Q6 + free3[:, 0] * FREE_Q3_Q6, 2)
-    # On a theta3/theta6 continuum both wrist branches are the same continuum: keep one.
-    keep_branch = np.ones((k, 2), dtype=bool)
-    keep_branch[:, 1] = ~free3[:, 0]
-    qf = q.reshape(-1, 6)[keep_branch.reshape(-1)]
-    flf = flf[keep_branch.reshape(-1)]
-    owner = np.repeat(own, 2)[keep_branch.reshape(-1)]
-    prio = np.repeat(prio, 2)[keep_branch.reshape(-1)]
-    careful = np.repeat(careful, 2)[keep_branch.reshape(-1)]
-    Tq = fk(qf, arm)
-    Tt = T[owner]
-    near = _norm(Tq[:, :3, 3] - Tt[:, :3, 3]) <= 1e-3
-    qf, flf, owner, Tt, prio, careful, Tq = (x[near] for x in (qf, flf, owner, Tt, prio, careful, Tq))
-    # theta6: R_fk(theta6 = 0)^T R = Rz(theta6) (Eq 31-33 equivalently)
-    M = np.einsum("nji,njk->nik", Tq[:, :3, :3], Tt[:, :3, :3])
-    qf[:, 5] = np.arctan2(M[:, 1, 0], M[:, 0, 0])
-    pres, rres = _residuals_theta6(Tq, qf[:, 5], Tt)
-    polish = (pres <= 1e-3) & (rres <= 1e-2) & (careful | (pres > 1e-14) | (rres > 1e-14))
-    if polish.any():
-        qf[polish] = _newton_polish(qf[polish], Tt[polish], arm)
-        pres[polish], rres[polish] = pose_residuals(qf[polish], Tt[polish], arm)
-    qf = _wrap(qf)
-    # Continuum flags from the final q.
-    s4, s45 = np.abs(np.sin(qf[:, 3])), np.abs(np.sin(qf[:, 3] + qf[:, 4]))
-    flf = np.where((s4 <= CONTINUUM_SIN) & (s45 <= CONTINUUM_SIN), flf | FREE_Q3_Q6, flf & ~FREE_Q3_Q6)
-    c36 = (flf & FREE_Q3_Q6) > 0
-    if c36.any():
-        qs = _snap_continuum(qf[c36], Tt[c36], arm)
-        ps, rs = pose_residuals(qs, Tt[c36], arm)
-        better = (ps <= tol_p) & (rs <= tol_r)
-        idx = np.flatnonzero(c36)[better]
-        qf[idx], pres[idx], rres[idx] = qs[better], ps[better], rs[better]
+    n = len(T)
+    P = _solver_poses(T, arm)
+    x = _terms(P, arm)
+    th1, flat = _theta1(x)
+    grid = np.array([0.3, 0.3 + np.pi])
+    th1 = np.where(flat[:, None], np.concatenate([grid, np.full(6, np.nan)])[None], th1)
+    own, col = np.nonzero(~np.isnan(th1))
+    t1 = th1[own, col]
+    t2 = _theta2(x, own, t1)
+    o2, k2 = np.nonzero(~np.isnan(t2))
+    own2, t1f, t2f = own[o2], t1[o2], t2[o2, k2]
+    rows = arm.solver.rows
+    own3 = np.repeat(own2, 2)
+    q1s, q2s = np.repeat(t1f - rows[0][4], 2), np.repeat(t2f - rows[1][4], 2)
+    branch = np.tile([1.0, -1.0], len(own2))
+    wr, hval = _wrist(arm, P[own3], q1s, q2s, branch)
+    qs = np.column_stack([q1s, q2s, wr])
+    qs, own3, hval = _restarts(qs, own3, hval, RESTART_H)
+    q = qs[:, ::-1] if arm.solver.reversed else qs
+    q, pres, rres = _polish(arm, _wrap(q), T[own3])
     keep = (pres <= tol_p) & (rres <= tol_r)
-    qf, flf, owner, pres, rres, prio = (x[keep] for x in (qf, flf, owner, pres, rres, prio))
-    return dedupe(n, qf, flf, owner, pres, rres, prio=prio, T=T, arm=arm,
-                   near=1e-4 if tol_p <= POSITION_TOL else 0.0)
+    return _collect(n, q[keep], own3[keep], pres[keep], rres[keep], hval[keep], flat, T, arm, tol_p, tol_r)
 
 
-def _connected(qa, qb, T, arm: Arm, tol_p: float = POSITION_TOL, tol_r: float = ROTATION_TOL):
-    """Does the joint-space segment qa -> qb stay within the FK tolerance of T (3 interior points)?"""
-    d = _wrap(qb - qa)
-    ok = np.ones(len(qa), dtype=bool)
-    for s in (0.25, 0.5, 0.75):
-        pr, rr = pose_residuals(qa + s * d, T, arm)
-        ok &= (pr <= tol_p) & (rr <= tol_r)
-    return ok
+def _restarts(qs, own, hval, near):
+    """Near the collinear continuum joint 3 is fixed only loosely by the pose and the closed
+    forms place it poorly: each such candidate (solver joints) is also started from 8 angles
+    of joint 3 around the circle, joint 6 turned with it (both ways)."""
+    idx = np.flatnonzero(hval <= near)
+    if len(idx) == 0:
+        return qs, own, hval
+    extra = []
+    for k in range(1, 8):
+        for sg in (1.0, -1.0):
+            e = qs[idx].copy()
+            e[:, 2] += k * np.pi / 4
+            e[:, 5] += sg * k * np.pi / 4
+            extra.append(e)
+    reps = len(extra)
+    return (
+        np.concatenate([qs] + extra),
+        np.concatenate([own] + [own[idx]] * reps),
+        np.concatenate([hval] + [hval[idx]] * reps),
+    )
 
 
-def _canonical_order(qf, owner):
-    """Order of rows by (owner, round(q, 9) lexicographically): the deterministic order.
-
-    Same permutation as ``np.lexsort`` on the seven keys (``np.round(x, 9)`` is
-    ``rint(x 1e9) / 1e9``, so the integers ``rint(x 1e9)`` order and tie alike), but
-    sorts (owner, theta1) packed in one int64 plus theta2, theta3 first and falls back
-    to all keys only if rows still tie.
-    """
-    key = np.rint(qf * 1e9).astype(np.int64)  # |q| <= pi: |key| < 2**32
-    head = owner.astype(np.int64) * (1 << 33) + (key[:, 0] + (1 << 32))
-    order = np.lexsort((key[:, 2], key[:, 1], head))
-    k = key[order]
-    h = head[order]
-    tie = (h[1:] == h[:-1]) & np.all(k[1:, 1:3] == k[:-1, 1:3], axis=1)
-    if tie.any():  # sort each run of tied rows by theta4..theta6 (stable, in place)
-        member = np.zeros(len(order), dtype=bool)
-        member[1:] |= tie
-        member[:-1] |= tie
-        gid = np.cumsum(np.concatenate([[True], ~tie]))
-        idx = np.flatnonzero(member)
-        ks = k[idx]
-        order[idx] = order[idx][np.lexsort((ks[:, 5], ks[:, 4], ks[:, 3], gid[idx]))]
-    return order
+def _connected(a, b, T, arm: Arm, tol_p, tol_r) -> bool:
+    d = _wrap(b - a)
+    if np.max(np.abs(d)) > 1e-3:
+        return False
+    pts = a + np.linspace(0.1, 0.9, 9)[:, None] * d
+    Tq, _ = _fk_jac(arm, pts)
+    _, pr, rr = _errors(Tq, np.broadcast_to(T, (9, 4, 4)))
+    return bool(np.all(pr <= tol_p) and np.all(rr <= tol_r))
 
 
-def dedupe(n, qf, flf, owner, pres, rres, tol: float = 1e-7, prio=None, T=None, arm=None,
-            near: float = 1e-4):
-    """Distinct solutions per pose, sorted lexicographically; padded to MAX_SOLUTIONS.
+def _snap(arm: Arm, q, T, tol_p, tol_r):
+    """The collinear continuum through q (joint 3 free), if it reaches the pose: the row with
+    solver joints 4 and 5 moved onto it and joints 1, 2, 6 refit; else None."""
+    rev = arm.solver.reversed
+    qs = q[::-1].copy() if rev else q.copy()
+    rows = arm.solver.rows
+    F = np.eye(4)
+    for i in range(3):
+        F = F @ _link(rows[i], np.array(qs[i]))
+    z3 = F[:3, 2]
+    F40 = F @ _link(rows[3], np.array(-rows[3][4]))
+    phi = np.arctan2(F40[:3, 1] @ z3, F40[:3, 0] @ z3)
+    t4 = min((phi, phi + np.pi), key=lambda t: abs(_wrap(t - qs[3] - rows[3][4])))
+    qs[3] = _wrap(t4 - rows[3][4])
+    F50 = F @ _link(rows[3], np.array(qs[3])) @ _link(rows[4], np.array(-rows[4][4]))
+    s6 = rows[5][1]
+    phi = np.arctan2(s6 * (F50[:3, 0] @ z3), -s6 * (F50[:3, 1] @ z3))
+    t5 = min((phi, phi + np.pi), key=lambda t: abs(_wrap(t - qs[4] - rows[4][4])))
+    qs[4] = _wrap(t5 - rows[4][4])
+    qn = qs[::-1].copy() if rev else qs
+    cols = [5, 4, 0] if rev else [0, 1, 5]
+    qn, pr, rr = _polish(arm, qn[None], T[None], iters=20, cols=cols)
+    return qn[0] if pr[0] <= tol_p and rr[0] <= tol_r else None
 
-    Two solutions are the same if every wrapped joint difference is <= ``tol`` rad;
-    Near a singularity a pose fixes q only to ~sqrt(machine eps); rows within
-    ``near`` rad whose connecting segment stays inside 1/100 of the FK
-    tolerance of ``T`` are the same solution too. Of a group of duplicates the one with the lowest
-    ``prio`` (then the first in lexicographic order) is kept.
-    """
-    if prio is None:
-        prio = np.zeros(len(qf))
-    out_q = np.zeros((n, MAX_SOLUTIONS, 6))
-    out_v = np.zeros((n, MAX_SOLUTIONS), dtype=bool)
-    out_f = np.zeros((n, MAX_SOLUTIONS), dtype=int)
-    out_p = np.full((n, MAX_SOLUTIONS), np.nan)
-    out_r = np.full((n, MAX_SOLUTIONS), np.nan)
-    if len(qf) == 0:
-        return out_q, out_v, out_f, out_p, out_r
-    order = _canonical_order(qf, owner)
-    qf, flf, owner, pres, rres, prio = (x[order] for x in (qf, flf, owner, pres, rres, prio))
-    starts = np.searchsorted(owner, np.arange(n))
-    rank = np.arange(len(owner)) - starts[owner]
-    K = int(rank.max()) + 1
-    # Duplicates share theta1; compare each row with the following rows in theta1
-    # order while they are within `near` (theta1 near -pi is compared as theta1 + 2 pi).
-    t1 = np.where(qf[:, 0] < -np.pi + 1e-6, qf[:, 0] + _TWO_PI, qf[:, 0])
-    o2 = np.lexsort((t1, owner))
-    dup_flat = np.zeros(len(qf), dtype=bool)
-    # pos: positions i in o2 whose pair (i, i + sft) may still be a candidate. Sorted by
-    # (owner, theta1), a pair that fails at shift sft fails at every larger shift, so
-    # each row is only carried while it has a near neighbour (linear, not N x K).
-    pos = np.arange(len(o2))
-    for sft in range(1, K):
-        pos = pos[pos + sft < len(o2)]
-        a, b = o2[pos], o2[pos + sft]
-        cand = (owner[a] == owner[b]) & (np.abs(t1[a] - t1[b]) <= max(near, tol))
-        if not cand.any():
-            break  # sorted by theta1: larger shifts are farther apart
-        pos = pos[cand]
-        a, b = a[cand], b[cand]
-        d = np.abs(qf[a] - qf[b])
-        dmax = np.max(np.minimum(d, _TWO_PI - d), axis=1)
-        same = dmax <= tol
-        # two representatives of one theta3/theta6 continuum
-        c36 = ((flf[a] & flf[b] & FREE_Q3_Q6) > 0) & (dmax <= np.pi)
-        if c36.any():
-            dfix = np.abs(_wrap(qf[a][:, [0, 1, 3, 4]] - qf[b][:, [0, 1, 3, 4]]))
-            same |= c36 & (np.max(dfix, axis=1) <= 1e-6)
-        maybe = ~same & (dmax <= near)
-        if T is not None and maybe.any():
-            same[maybe] = _connected(qf[a[maybe]], qf[b[maybe]], T[owner[a[maybe]]], arm,
-                                     1e-2 * POSITION_TOL, 1e-2 * ROTATION_TOL)
-        a, b = a[same], b[same]
-        # of a duplicate pair drop the higher priority value, ties: the later row
-        drop_b = prio[b] > prio[a]
-        drop_b |= (prio[b] == prio[a]) & (b > a)
-        dup_flat[np.where(drop_b, b, a)] = True
-    present = np.zeros((n, K), dtype=bool)
-    present[owner, rank] = True
-    dup = np.zeros((n, K), dtype=bool)
-    dup[owner, rank] = dup_flat
-    keep = present & ~dup
-    slot = np.cumsum(keep, axis=1) - 1
-    slot_r = slot[owner, rank]
-    sel = keep[owner, rank] & (slot_r < MAX_SOLUTIONS)
-    o, s = owner[sel], slot_r[sel]
-    out_q[o, s], out_v[o, s], out_f[o, s] = qf[sel], True, flf[sel]
-    out_p[o, s], out_r[o, s] = pres[sel], rres[sel]
-    return out_q, out_v, out_f, out_p, out_r
+
+def _collect(n, q, own, pres, rres, hval, flat, T, arm, tol_p, tol_r):
+    """Distinct rows per pose, continua flagged, in the kernel's layout."""
+    M = L.MAX_SOLUTIONS
+    Q, V, F = np.full((n, M, 6), np.nan), np.zeros((n, M), bool), np.zeros((n, M), int)
+    Pr, Rr = np.full((n, M), np.nan), np.full((n, M), np.nan)
+    near = 30.0 * np.sqrt(max(tol_p / arm.reach, tol_r))
+    for i in range(n):
+        idx = np.flatnonzero(own == i)
+        idx = idx[np.argsort(pres[idx] + rres[idx], kind="stable")]
+        idx = _coarse_distinct(q, idx)
+        kept, kinds = [], []
+        for j in idx:
+            row, kind = q[j], L.FREE_NONE
+            if flat[i]:
+                kind = L.FREE_Q1
+            elif hval[j] <= near:
+                snapped = _snap(arm, row, T[i], tol_p, tol_r)
+                kind = L.FREE_NUMERICAL if snapped is None else L.FREE_Q3
+                row = row if snapped is None else snapped
+            if any(_same(row, q_k, k_k, kind, T[i], arm, tol_p, tol_r) for q_k, k_k in zip(kept, kinds, strict=True)):
+                continue
+            kept.append(row)
+            kinds.append(kind)
+        order = sorted(range(len(kept)), key=lambda k: tuple(np.round(kept[k], 9)))[:M]
+        for m, k in enumerate(order):
+            Q[i, m], V[i, m], F[i, m] = kept[k], True, kinds[k]
+        if order:
+            Tq, _ = _fk_jac(arm, Q[i, : len(order)])
+            _, Pr[i, : len(order)], Rr[i, : len(order)] = _errors(
+                Tq, np.broadcast_to(T[i], (len(order), 4, 4))
+            )
+    return Q, V, F, Pr, Rr
+
+
+def _coarse_distinct(q, idx, radius: float = 1e-6):
+    """The rows of idx (best first) farther than ``radius`` from every earlier one."""
+    out = []
+    for j in idx:
+        if not out or np.min(np.max(np.abs(_wrap(q[out] - q[j])), axis=1)) > radius:
+            out.append(j)
+    return np.array(out, dtype=int)
+
+
+def _same(a, b, kb, ka, T, arm, tol_p, tol_r) -> bool:
+    """One solution: equal to DISTINCT_TOL, connected within the tolerance, or on one continuum
+    (collinear: joint 3 and its coupling; numerical and theta1: joints 1 and 2 of the solver
+    chain agree to 1e-3, the tube or curve between them checked by the kernel's rules)."""
+    if np.max(np.abs(_wrap(a - b))) <= L.DISTINCT_TOL:
+        return True
+    if ka == kb and ka in (L.FREE_Q3, L.FREE_NUMERICAL, L.FREE_Q1):
+        rev = arm.solver.reversed
+        fixed = [5, 4] if rev else [0, 1]
+        if ka == L.FREE_Q1:
+            return _connected(a, b, T, arm, tol_p, tol_r)
+        if np.max(np.abs(_wrap(a[fixed] - b[fixed]))) > 1e-3:
+            return False
+        return ka == L.FREE_Q3 or _one_tube(a, b, T, arm, tol_p, tol_r)
+    return _connected(a, b, T, arm, tol_p, tol_r)
+
+
+def _one_tube(a, b, T, arm: Arm, tol_p, tol_r) -> bool:
+    """Near-continuum rows a and b on one tube within the tolerance: the members at 1/4, 1/2 and
+    3/4 of the arc of joint 3 between them (joint 6 moved with it, the other joints refit
+    with joint 3 held) reach the pose."""
+    rev = arm.solver.reversed
+    j, j6 = (3, 0) if rev else (2, 5)
+    s = (
+        1.0
+        if abs(_wrap(b[j6] - a[j6] - (b[j] - a[j]))) <= abs(_wrap(b[j6] - a[j6] + (b[j] - a[j])))
+        else -1.0
+    )
+    d = _wrap(b[j] - a[j])
+    f = np.array([0.25, 0.5, 0.75])
+    pts = np.repeat(a[None], 3, axis=0)
+    pts[:, j] = a[j] + f * d
+    pts[:, j6] = a[j6] + s * f * d
+    cols = [k for k in range(6) if k != j]
+    _, pr, rr = _polish(arm, pts, np.broadcast_to(T, (3, 4, 4)), iters=12, cols=cols)
+    return bool(np.all(pr <= tol_p) and np.all(rr <= tol_r))

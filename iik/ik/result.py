@@ -10,7 +10,7 @@ import numpy as np
 
 from ..errors import UnreachablePoseError
 
-__all__ = ["IKResult", "IKBatch", "Continuum"]
+__all__ = ["IKResult", "IKBatch", "Continuum", "Certificate"]
 
 
 def _ro(a, dtype=float) -> np.ndarray:
@@ -21,42 +21,120 @@ def _ro(a, dtype=float) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Continuum:
-    """A row of an :class:`IKResult` that stands for a one-parameter family of solutions.
+    """A row of an :class:`IKResult` that stands for a one-parameter family of configurations
+    reaching the pose (within the tolerances).
 
-    Moving the free joint by an angle and joint 6 by ``sign`` times that angle leaves the
-    pose unchanged, so ``theta_free - sign * theta6`` is fixed (:attr:`fixed`).
+    Kinds (``docs/IK_CLASS.md`` derives them):
+
+    * ``"collinear"``: two joint axes are collinear (for the thesis arm joints 3 and 6 when
+      theta4 = 0 and theta4 + theta5 = 0, mod pi): moving the free joint by an angle and the
+      coupled joint by ``sign`` times it leaves the pose unchanged, so
+      ``theta_free - sign * theta_coupled`` is fixed (:attr:`value`). Every member is exact.
+    * ``"theta1"``: the eliminant vanishes identically (e.g. the wrist centre on the joint-1
+      axis with theta4 = 0): every angle of the free joint has a configuration; the others
+      follow it along a curve (:meth:`member` follows it).
+    * ``"theta2"``: both conditions on theta2 vanish at one theta1 (the wrist point on axis 2;
+      impossible for the thesis arm): joint 2 is free, the others follow it.
+    * ``"numerical"``: the pose is within about (tolerance / reach)^(1/2) of a collinear
+      continuum: the configurations within the tolerance form a thin tube around the broken
+      circle, in which the pose fixes the free joint only loosely. :meth:`member` refits the
+      other joints with the free one held; :attr:`interval` is where that stays within the
+      tolerance.
 
     Attributes:
-        free_joint: The joint (1-based) that moves freely: 3 when joints 3 and 6 are
-            collinear (theta4 = 0 and theta4 + theta5 = 0, mod pi), 1 when the tool point
-            is on the joint-1 axis and z6 is vertical (joints 1 and 6 collinear).
-        sign: +1 (``theta_free - theta6`` fixed) or -1 (``theta_free + theta6`` fixed).
-        value: The fixed combination [rad], wrapped to (-pi, pi].
-        interval: ``(lo, hi)`` [rad]: the values of the free joint for which the member of
-            the family (joint 6 following, wrapped) is inside the joint limits (Table I),
-            the piece containing the representative; ``(nan, nan)`` if there is none.
+        kind: ``"collinear"``, ``"theta1"``, ``"theta2"`` or ``"numerical"``.
+        free_joint: The joint (1-based) that moves freely.
+        coupled_joint: The joint (1-based) that follows it with ``sign`` (collinear and
+            numerical kinds), else None.
+        sign: +1 or -1 (or 0 for the theta1 kind).
         representative: The row of the result (6,) [rad]; inside the limits whenever any
-            member is.
+            member found is.
+        limits_interval: The feasible interval of the free joint inside the joint limits
+            (``(lo, hi)`` [rad], the piece containing the representative; ``(nan, nan)`` if
+            there is none), when the kernel computed it (collinear kind); else None and
+            :attr:`interval` computes it on first use.
+        arm, pose, tolerance: What :meth:`member` solves (the arm, the pose as given (4, 4) and
+            (position_tol, rotation_tol)).
     """
 
+    kind: str
     free_joint: int
+    coupled_joint: int | None
     sign: int
-    value: float
-    interval: tuple[float, float]
     representative: np.ndarray
+    limits_interval: tuple[float, float] | None = None
+    arm: object = field(default=None, compare=False, repr=False)
+    pose: np.ndarray | None = field(default=None, compare=False, repr=False)
+    tolerance: tuple[float, float] = (1e-10, 1e-10)
 
     @property
     def fixed(self) -> str:
-        """The fixed combination as text, e.g. ``"theta3 - theta6"``."""
-        return f"theta{self.free_joint} {'-' if self.sign > 0 else '+'} theta6"
+        """The fixed combination as text, e.g. ``"theta3 - theta6"`` (collinear kind)."""
+        if self.coupled_joint is None:
+            return f"theta{self.free_joint} free"
+        return f"theta{self.free_joint} {'-' if self.sign > 0 else '+'} theta{self.coupled_joint}"
+
+    @property
+    def value(self) -> float:
+        """``theta_free - sign * theta_coupled`` [rad], wrapped (the collinear kind's invariant)."""
+        if self.coupled_joint is None:
+            return math.nan
+        r = self.representative
+        x = float(r[self.free_joint - 1] - self.sign * r[self.coupled_joint - 1])
+        return float(math.pi - (math.pi - x) % (2 * math.pi))
 
     def member(self, theta: float) -> np.ndarray:
-        """The member of the family with the free joint at ``theta`` [rad] (joint 6 wrapped)."""
-        q = np.array(self.representative, dtype=float)
-        j = self.free_joint - 1
-        q[5] = math.pi - (math.pi - (q[5] + self.sign * (theta - q[j]))) % (2 * math.pi)
-        q[j] = theta
-        return q
+        """The member with the free joint at ``theta`` [rad] (6,) (angles wrapped)."""
+        theta = float(theta)
+        if self.kind == "collinear":
+            q = np.array(self.representative, dtype=float)
+            j, k = self.free_joint - 1, self.coupled_joint - 1
+            q[k] = math.pi - (math.pi - (q[k] + self.sign * (theta - q[j]))) % (2 * math.pi)
+            q[j] = theta
+            return q
+        from .members import follow
+
+        return follow(self, np.array([theta]))[0][0]
+
+    @property
+    def interval(self) -> tuple[float, float]:
+        """The values of the free joint (``(lo, hi)`` [rad]) whose members reach the pose and
+        lie inside the joint limits: the piece containing the representative (``(nan, nan)``
+        if none)."""
+        if self.limits_interval is not None:
+            return self.limits_interval
+        cached = self.__dict__.get("_interval")
+        if cached is None:
+            from .members import feasible_interval
+
+            cached = feasible_interval(self)
+            self.__dict__["_interval"] = cached
+        return cached
+
+
+@dataclass(frozen=True)
+class Certificate:
+    """How the complete IK solved a pose and what it proved (:mod:`iik.ik.kernel`).
+
+    Attributes:
+        path: ``"double"`` (every real root of the eliminant isolated with certified signs in
+            double precision), ``"extended"`` (clusters of roots re-expanded and separated in
+            double-double), ``"multiple-root"`` (a cluster unresolved even there: roots that
+            coincide to ~1e-15, returned as one), ``"degenerate"`` (the eliminant vanishes: a
+            theta1 continuum), or ``"numpy"`` for the NumPy methods.
+        certified: Every certified root of the eliminant gave a configuration within the
+            tolerances (else ``reason`` says what failed).
+        roots: Real roots of the eliminant found; ``clusters``: clusters re-expanded;
+            ``near``: near roots tried (minima of |F| within the tolerance-derived bound).
+        reason: Empty when certified.
+    """
+
+    path: str = "numpy"
+    certified: bool = False
+    roots: int = 0
+    clusters: int = 0
+    near: int = 0
+    reason: str = ""
 
 
 @dataclass(frozen=True)
@@ -89,6 +167,7 @@ class IKResult:
             isolated solutions).
         rotation_projection: Frobenius distance from the given rotation block to the
             rotation that was solved (its nearest rotation); 0 for an orthonormal input.
+        certificate: Which path the pose took and what the kernel proved (:class:`Certificate`).
     """
 
     q: np.ndarray
@@ -102,6 +181,7 @@ class IKResult:
     approximate: np.ndarray | None = None
     continua: tuple[tuple[Continuum, ...], ...] = ()
     rotation_projection: float = 0.0
+    certificate: Certificate = field(default_factory=Certificate)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "q", _ro(np.reshape(self.q, (-1, 6))))
@@ -117,16 +197,37 @@ class IKResult:
         object.__setattr__(self, "rotation_projection", float(self.rotation_projection))
 
     @classmethod
-    def trusted(cls, q, position_residual, rotation_residual, within_limits, free_joints, reason,
-                method, approximate, continua, rotation_projection) -> IKResult:
+    def trusted(
+        cls,
+        q,
+        position_residual,
+        rotation_residual,
+        within_limits,
+        free_joints,
+        reason,
+        method,
+        approximate,
+        continua,
+        rotation_projection,
+        certificate=None,
+    ) -> IKResult:
         """Build without copying or checking, for the solvers: read-only arrays ((k, 6), (k,),
         (k,), (k,) bool, (k,) bool) and per-row ``free_joints`` / ``continua`` tuples."""
         self = object.__new__(cls)
-        self.__dict__.update(q=q, position_residual=position_residual,
-                             rotation_residual=rotation_residual, within_limits=within_limits,
-                             free_joints=free_joints, reason=reason, method=method, info={},
-                             approximate=approximate, continua=continua,
-                             rotation_projection=rotation_projection)
+        self.__dict__.update(
+            q=q,
+            position_residual=position_residual,
+            rotation_residual=rotation_residual,
+            within_limits=within_limits,
+            free_joints=free_joints,
+            reason=reason,
+            method=method,
+            info={},
+            approximate=approximate,
+            continua=continua,
+            rotation_projection=rotation_projection,
+            certificate=certificate if certificate is not None else Certificate(),
+        )
         return self
 
     def __len__(self) -> int:
@@ -163,8 +264,14 @@ class IKResult:
         conv = math.degrees if degrees else float
 
         def cont(c: Continuum) -> dict:
-            return {"free_joint": c.free_joint, "fixed": c.fixed, "value": conv(c.value),
-                    "interval": [conv(v) for v in c.interval]}
+            return {
+                "kind": c.kind,
+                "free_joint": c.free_joint,
+                "coupled_joint": c.coupled_joint,
+                "fixed": c.fixed,
+                "value": None if math.isnan(c.value) else conv(c.value),
+                "interval": [conv(v) for v in c.interval],
+            }
 
         return {
             "method": self.method,
@@ -172,6 +279,8 @@ class IKResult:
             "reason": self.reason,
             "angle_unit": "deg" if degrees else "rad",
             "rotation_projection": self.rotation_projection,
+            "path": self.certificate.path,
+            "certified": self.certificate.certified,
             "solutions": [
                 {
                     "q": [conv(v) for v in self.q[i].tolist()],
@@ -199,13 +308,13 @@ class IKBatch:
         count: (n,) rows returned per pose.
         position_residual, rotation_residual: (n, 16) against the poses as given [m], [rad].
         within_limits, approximate: (n, 16) bool, as in :class:`IKResult`.
-        free: (n, 16) int bit set: 1 theta1/theta6 continuum, 2 theta3/theta6 continuum.
-        continuum: (n, 16, 6) sign, interval low, interval high for the theta1 continuum, then
-            for the theta3 continuum [-, rad, rad] (NaN where there is none).
+        free: (n, 16) int continuum kind (:mod:`iik.ik.layout` ``FREE_*``; 0 for isolated rows).
+        info: (n, 16, N_INFO) the kernel's row data (:mod:`iik.ik.layout` ``I_*``).
         total: (n,) solutions that reach the pose exactly, before the joint-limit filter.
         rotation_projection: (n,) as in :class:`IKResult`.
         closest: (n, 2) least position [m] and rotation [rad] residuals of the candidates
             examined (inf if none): how far an unreachable pose is from the nearest one found.
+        path, certified: (n,) the path code (``PATH_*``) and whether the certificate holds.
         method: The method used.
     """
 
@@ -216,10 +325,12 @@ class IKBatch:
     within_limits: np.ndarray
     approximate: np.ndarray
     free: np.ndarray
-    continuum: np.ndarray
+    info: np.ndarray
     total: np.ndarray
     rotation_projection: np.ndarray
     closest: np.ndarray
+    path: np.ndarray
+    certified: np.ndarray
     method: str = "complete"
 
     def __len__(self) -> int:

@@ -25,18 +25,16 @@ import numpy as np
 
 from ..arm import LIMIT_TOL, THESIS_ARM, Arm
 from ..errors import InvalidInputError
-from ..kinematics import reach_bound
+from . import layout as L
 from . import poses as _poses
 from .options import DEFAULT_OPTIONS, IKOptions
-from .result import Continuum, IKBatch, IKResult
+from .result import Certificate, Continuum, IKBatch, IKResult
 
 __all__ = ["solve", "solve_many", "solve_batch", "METHODS", "compile_notice", "COMPILE_MESSAGE"]
 
 METHODS = ("complete", "reference", "thesis")
 
 _F64 = np.dtype(np.float64)
-_FREE = {0: (), 1: (1, 6), 2: (3, 6), 3: (1, 3, 6), 4: (3, 6)}  # 4: numerical (kernel)
-_NO_FREE: dict[int, tuple] = {}
 _KERNEL = None
 _OPT_VECTORS: dict[int, tuple[IKOptions, np.ndarray]] = {}
 
@@ -51,9 +49,11 @@ def _kernel():
     return _KERNEL
 
 
-def _check_args(method, options) -> IKOptions:
+def _check_args(method, options, arm) -> IKOptions:
     if method not in METHODS:
         raise InvalidInputError("method", f"expected one of {METHODS}, got {method!r}")
+    if not isinstance(arm, Arm):
+        raise InvalidInputError("arm", f"expected an iik.Arm, got {type(arm).__name__}")
     if options is None:
         return DEFAULT_OPTIONS
     if not isinstance(options, IKOptions):
@@ -65,8 +65,13 @@ def _option_vector(opts: IKOptions) -> np.ndarray:
     hit = _OPT_VECTORS.get(id(opts))
     if hit is not None and hit[0] is opts:
         return hit[1]
-    v = np.array([opts.position_tol, opts.rotation_tol, opts.approximate_tol, opts.orthonormal_tol,
-                  LIMIT_TOL])  # the kernel's OPT_* layout
+    v = np.zeros(L.N_OPT)
+    v[L.OPT_POSITION_TOL], v[L.OPT_ROTATION_TOL] = opts.position_tol, opts.rotation_tol
+    v[L.OPT_APPROX_TOL], v[L.OPT_ORTHONORMAL_TOL], v[L.OPT_LIMIT_TOL] = (
+        opts.approximate_tol,
+        opts.orthonormal_tol,
+        LIMIT_TOL,
+    )
     v.setflags(write=False)
     if len(_OPT_VECTORS) > 64:
         _OPT_VECTORS.clear()
@@ -75,29 +80,39 @@ def _option_vector(opts: IKOptions) -> np.ndarray:
 
 
 # ----------------------------------------------------------------------------- the methods
+def _outputs(n: int):
+    return (
+        np.empty((n, L.MAX_SOLUTIONS, 6)),
+        np.empty((n, L.MAX_SOLUTIONS, L.N_INFO)),
+        np.empty((n, L.MAX_SOLUTIONS, 2), dtype=bool),
+        np.empty((n, L.N_HDR)),
+    )
+
+
 def _complete(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool):
     """Kernel outputs (q, info, flags, hdr) for validated-shape poses (n, 4, 4)."""
     k = _kernel()
-    n = Tb.shape[0]
-    q = np.empty((n, k.MAX_SOLUTIONS, 6))  # the kernel writes the padding too
-    info = np.empty((n, k.MAX_SOLUTIONS, k.N_INFO))
-    flags = np.empty((n, k.MAX_SOLUTIONS, 2), dtype=bool)
-    hdr = np.empty((n, k.N_HDR))
+    q, info, flags, hdr = _outputs(Tb.shape[0])  # the kernel writes the padding too
     Tc = Tb if Tb.flags.c_contiguous else np.ascontiguousarray(Tb)
-    if opts.parallel and n > 1:
-        k.solve_many_parallel(Tc, k.arm_data(arm).vector, _option_vector(opts), within, q, info, flags, hdr)
+    v = k.arm_data(arm).vector
+    if opts.parallel and Tb.shape[0] > 1:
+        import numba
+
+        chunks = min(Tb.shape[0], 8 * numba.get_num_threads())
+        k.solve_many_parallel(
+            Tc, v, _option_vector(opts), within, np.zeros((chunks, k.N_BUFFER)), q, info, flags, hdr
+        )
     else:
-        k.solve_many(Tc, k.arm_data(arm).vector, _option_vector(opts), within, k.scratch(), q, info,
-                     flags, hdr)
+        k.solve_many(Tc, v, _option_vector(opts), within, k.scratch(), q, info, flags, hdr)
     return q, info, flags, hdr
 
 
 def _beyond_reach(Tb: np.ndarray, arm: Arm) -> np.ndarray:
-    """Poses (n, 4, 4) whose position is farther than :func:`iik.kinematics.reach_bound` from the
-    base origin (compared without squaring huge numbers: no overflow)."""
+    """Poses (n, 4, 4) whose position is farther than the arm's reach bound from the base
+    origin (compared without squaring huge numbers: no overflow)."""
     with np.errstate(invalid="ignore"):  # (NaN positions are rejected by the pose check)
         p = np.abs(Tb[:, :3, 3])
-        r = reach_bound(arm)
+        r = arm.reach
         big = p.max(axis=1) > r
         p = np.where(big[:, None], 0.0, p)
         return big | (np.einsum("ni,ni->n", p, p) > r * r)
@@ -107,17 +122,18 @@ def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, metho
     """The reference or thesis method in the kernel's output layout."""
     from .compare import pose_residuals
 
-    k = _kernel()  # (for its output layout)
     n = Tb.shape[0]
     status, measure, Ru, dist = _poses.check_poses(Tb, opts.orthonormal_tol)
-    hdr = np.zeros((n, k.N_HDR))
-    hdr[:, k.H_STATUS], hdr[:, k.H_MEASURE], hdr[:, k.H_PROJECTION] = status, measure, dist
-    hdr[:, k.H_BEST_P], hdr[:, k.H_BEST_R] = np.inf, np.inf
-    q = np.full((n, k.MAX_SOLUTIONS, 6), np.nan)
-    info = np.full((n, k.MAX_SOLUTIONS, k.N_INFO), np.nan)
-    info[:, :, k.I_FREE] = 0.0  # padding as the kernel writes it
-    flags = np.zeros((n, k.MAX_SOLUTIONS, 2), dtype=bool)
-    good = np.flatnonzero((status == _poses.OK) & ~_beyond_reach(Tb, arm))  # far: unreachable, no arithmetic
+    q, info, flags, hdr = _outputs(n)
+    q[:] = np.nan
+    info[:] = np.nan
+    info[:, :, L.I_FREE] = 0.0
+    flags[:] = False
+    hdr[:] = 0.0
+    hdr[:, L.H_STATUS], hdr[:, L.H_MEASURE], hdr[:, L.H_PROJECTION] = status, measure, dist
+    hdr[:, L.H_BEST_P], hdr[:, L.H_BEST_R] = np.inf, np.inf
+    hdr[:, L.H_PATH] = -1.0
+    good = np.flatnonzero((status == _poses.OK) & ~_beyond_reach(Tb, arm))  # far: unreachable
     if len(good) == 0:
         return q, info, flags, hdr
     Tu = Tb[good].copy()
@@ -130,20 +146,21 @@ def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, metho
         from .reference import solve_arrays
 
         Q, V, F, _P, _R = solve_arrays(Tu, arm, tol_p=opts.position_tol, tol_r=opts.rotation_tol)
-    inside = arm.within_limits(Q.reshape(-1, 6)).reshape(Q.shape[:2]) & V
+    with np.errstate(invalid="ignore"):  # (NaN padding is outside)
+        inside = np.all((Q >= arm.q_min - LIMIT_TOL) & (Q <= arm.q_max + LIMIT_TOL), axis=2) & V
     keep = inside if within else V
-    hdr[good, k.H_TOTAL] = V.sum(axis=1)
+    hdr[good, L.H_TOTAL] = V.sum(axis=1)
     for gi, i in enumerate(good):  # rows are sorted valid-first: keep them in order
         rows = np.flatnonzero(keep[gi])
         m = len(rows)
-        hdr[i, k.H_COUNT] = m
+        hdr[i, L.H_COUNT] = m
         if m == 0:
             continue
         q[i, :m] = Q[gi, rows]
         pres, rres = pose_residuals(Q[gi, rows], np.broadcast_to(Tb[i], (m, 4, 4)), arm)
-        info[i, :m, k.I_PRES], info[i, :m, k.I_RRES], info[i, :m, k.I_FREE] = pres, rres, F[gi, rows]
+        info[i, :m, L.I_PRES], info[i, :m, L.I_RRES], info[i, :m, L.I_FREE] = pres, rres, F[gi, rows]
         flags[i, :m, 0] = inside[gi, rows]
-        hdr[i, k.H_FREE] = np.count_nonzero(F[gi, rows])
+        hdr[i, L.H_FREE] = np.count_nonzero(F[gi, rows])
     return q, info, flags, hdr
 
 
@@ -154,11 +171,16 @@ def _run(Tb, arm, opts, within, method):
 
 
 def _raise_first_bad(hdr, name: str, batched: bool, opts: IKOptions) -> None:
-    bad = np.flatnonzero(hdr[:, 0] != _poses.OK)
+    bad = np.flatnonzero(hdr[:, L.H_STATUS] != _poses.OK)
     if len(bad):
         i = int(bad[0])
-        raise _poses.pose_error(int(hdr[i, 0]), float(hdr[i, 1]), name, i if batched else None,
-                                opts.orthonormal_tol)
+        raise _poses.pose_error(
+            int(hdr[i, L.H_STATUS]),
+            float(hdr[i, L.H_MEASURE]),
+            name,
+            i if batched else None,
+            opts.orthonormal_tol,
+        )
 
 
 # ----------------------------------------------------------------------------- results
@@ -166,83 +188,235 @@ def _reason(count: int, total: int, approx: bool, closest_p: float, closest_r: f
     if count and not approx:
         return ""
     if count:
-        return (f"approximate: no configuration reaches the pose within the tolerances "
-                f"({opts.position_tol:g} m, {opts.rotation_tol:g} rad); the {count} configuration(s) "
-                f"returned are within IKOptions.approximate_tol = {opts.approximate_tol:g} of it "
-                "(least-residual configurations, flagged approximate)")
+        return (
+            f"approximate: no configuration reaches the pose within the tolerances "
+            f"({opts.position_tol:g} m, {opts.rotation_tol:g} rad); the {count} configuration(s) "
+            f"returned are within IKOptions.approximate_tol = {opts.approximate_tol:g} of it "
+            "(least-residual configurations, flagged approximate)"
+        )
     if total:
-        return f"{total} solution(s) exist but none within the joint limits (Table I)"
+        return f"{total} solution(s) exist but none within the joint limits"
     if closest_p <= opts.approximate_tol and closest_r <= opts.approximate_tol:
-        return ("unreachable within the joint limits: configurations within IKOptions.approximate_tol = "
-                f"{opts.approximate_tol:g} of the pose exist, but none within the joint limits (Table I)")
+        return (
+            "unreachable within the joint limits: configurations within IKOptions.approximate_tol = "
+            f"{opts.approximate_tol:g} of the pose exist, but none within the joint limits"
+        )
     text = "unreachable: no joint configuration reaches this pose"
     if np.isfinite(closest_p):
-        text += (f" (the closest configuration found misses it by {closest_p:.3g} m / {closest_r:.3g} rad, "
-                 f"more than IKOptions.approximate_tol = {opts.approximate_tol:g})")
+        text += (
+            f" (the closest configuration found misses it by {closest_p:.3g} m / {closest_r:.3g} rad, "
+            f"more than IKOptions.approximate_tol = {opts.approximate_tol:g})"
+        )
     return text
 
 
-def _continua(qrow: np.ndarray, free: int, cont: np.ndarray) -> tuple[Continuum, ...]:
-    out = []
-    for bit, j, base in ((1, 1, 0), (2, 3, 3)):
-        s, lo, hi = cont[base], cont[base + 1], cont[base + 2]
-        if free & bit and not np.isnan(s):  # no data: a numerical continuum (or a NumPy method)
-            rep = qrow.copy()
-            rep.setflags(write=False)
-            val = float(qrow[j - 1] - s * qrow[5])
-            val = float(np.pi - (np.pi - val) % (2 * np.pi))
-            out.append(Continuum(free_joint=j, sign=int(s), value=val, interval=(float(lo), float(hi)),
-                                 representative=rep))
-    return tuple(out)
+def _continua(qrow: np.ndarray, irow: np.ndarray, arm: Arm, T: np.ndarray, opts: IKOptions) -> tuple:
+    """The :class:`Continuum` of one row (empty for an isolated row)."""
+    kind = int(irow[L.I_FREE])
+    if kind == L.FREE_NONE:
+        return ()
+    rep = qrow.copy()
+    rep.setflags(write=False)
+    rev = arm.solver.reversed
+    j3, j6 = (4, 1) if rev else (3, 6)  # solver joints 3 and 6 as user joints (1-based)
+    tol = (opts.position_tol, opts.rotation_tol)
+    Tc = np.array(T, dtype=float)
+    Tc.setflags(write=False)
+    if kind == L.FREE_Q3:
+        if np.isnan(irow[L.I_CSIGN]):  # (a NumPy method: no interval from the kernel)
+            return (
+                Continuum("collinear", j3, j6, _numerical_sign(rep, arm, j3, j6), rep, None, arm, Tc, tol),
+            )
+        return (
+            Continuum(
+                "collinear",
+                j3,
+                j6,
+                int(irow[L.I_CSIGN]),
+                rep,
+                (float(irow[L.I_CLO]), float(irow[L.I_CHI])),
+                arm,
+                Tc,
+                tol,
+            ),
+        )
+    if kind == L.FREE_NUMERICAL:
+        return (Continuum("numerical", j3, j6, _numerical_sign(rep, arm, j3, j6), rep, None, arm, Tc, tol),)
+    if kind == L.FREE_Q2:
+        return (Continuum("theta2", 5 if rev else 2, None, 0, rep, None, arm, Tc, tol),)
+    j1 = 6 if rev else 1
+    return (Continuum("theta1", j1, None, 0, rep, None, arm, Tc, tol),)
 
 
-def _results(q, info, flags, hdr, method: str, opts: IKOptions) -> list[IKResult]:
+def _numerical_sign(q: np.ndarray, arm: Arm, j: int, k: int) -> int:
+    """+1 if moving joints j and k (1-based) by the same angle changes the pose least."""
+    from ..kinematics import fk
+
+    a, b = q.copy(), q.copy()
+    a[j - 1] += 0.1
+    a[k - 1] += 0.1
+    b[j - 1] += 0.1
+    b[k - 1] -= 0.1
+    T0, Ta, Tb = fk(np.array([q, a, b]), arm)
+    return 1 if np.abs(Ta - T0).sum() <= np.abs(Tb - T0).sum() else -1
+
+
+_FREE_JOINTS = {
+    L.FREE_NONE: lambda r: (),
+    L.FREE_Q3: lambda r: (4, 1) if r else (3, 6),
+    L.FREE_NUMERICAL: lambda r: (4, 1) if r else (3, 6),
+    L.FREE_Q1: lambda r: (6,) if r else (1,),
+    L.FREE_Q2: lambda r: (5,) if r else (2,),
+}
+
+
+def _certificate(h: np.ndarray) -> Certificate:
+    path = int(h[L.H_PATH])
+    cert = int(h[L.H_CERT])
+    if path < 0:
+        return Certificate()
+    return Certificate(
+        path=L.PATH_NAMES[path],
+        certified=cert == L.CERT_OK,
+        roots=int(h[L.H_ROOTS]),
+        clusters=int(h[L.H_CLUSTERS]),
+        near=int(h[L.H_NEAR]),
+        reason="" if cert == L.CERT_OK else L.CERT_NAMES[cert],
+    )
+
+
+def _results(
+    Tb, q, info, flags, hdr, method: str, opts: IKOptions, arm: Arm, within_only: bool
+) -> list[IKResult]:
     """One :class:`IKResult` per pose: read-only views of the padded arrays."""
     for a in (q, info, flags):
         a.setflags(write=False)
-    pres, rres = info[:, :, 0], info[:, :, 1]
+    pres, rres = info[:, :, L.I_PRES], info[:, :, L.I_RRES]
     within, approx = flags[:, :, 0], flags[:, :, 1]
+    rev = arm.solver.reversed
     out = []
     make = IKResult.trusted
-    for i, (_st, _m, proj, total, count, cp, cr, nfree, isapprox) in enumerate(hdr.tolist()):
-        k = int(count)
-        if nfree:
-            kinds = info[i, :k, 4].astype(int).tolist()
-            free = tuple(_FREE[f] for f in kinds)
-            cont = tuple(_continua(q[i, r], f, info[i, r, 5:11]) for r, f in enumerate(kinds))
+    for i, h in enumerate(hdr):
+        k = int(h[L.H_COUNT])
+        if h[L.H_FREE]:
+            kinds = info[i, :k, L.I_FREE].astype(int).tolist()
+            free = tuple(_FREE_JOINTS[f](rev) for f in kinds)
+            cont = tuple(_continua(q[i, r], info[i, r], arm, Tb[i], opts) for r in range(k))
         else:
             free = cont = ((),) * k
-        reason = "" if (k and not isapprox) else _reason(k, int(total), bool(isapprox), cp, cr, opts)
-        out.append(make(q[i, :k], pres[i, :k], rres[i, :k], within[i, :k], free, reason, method,
-                        approx[i, :k], cont, proj))
+        if h[L.H_PATH] == L.PATH_DEGENERATE and k:
+            out.append(
+                _degenerate_result(Tb[i], q[i, :k], within[i, :k], cont, h, arm, opts, method, within_only)
+            )
+            continue
+        isapprox = bool(h[L.H_APPROX])
+        reason = (
+            ""
+            if (k and not isapprox)
+            else _reason(k, int(h[L.H_TOTAL]), isapprox, h[L.H_BEST_P], h[L.H_BEST_R], opts)
+        )
+        out.append(
+            make(
+                q[i, :k],
+                pres[i, :k],
+                rres[i, :k],
+                within[i, :k],
+                free,
+                reason,
+                method,
+                approx[i, :k],
+                cont,
+                float(h[L.H_PROJECTION]),
+                _certificate(h),
+            )
+        )
     return out
 
 
+def _ro(a: np.ndarray) -> np.ndarray:
+    a = np.array(a)
+    a.setflags(write=False)
+    return a
+
+
+def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method: str, within_only: bool):
+    """A degenerate pose's result: one row per branch of the theta1 continuum (its representative
+    inside the limits when a member is) and the isolated solutions beside it."""
+    import dataclasses
+
+    from .compare import pose_residuals
+    from .members import inside_member, theta1_branches
+
+    flagged = [r for r, c in enumerate(cont) if c]
+    owner: list = [None] * len(cont)
+    for r, o in zip(flagged, theta1_branches([cont[r][0] for r in flagged]), strict=True):
+        owner[r] = None if o is None else flagged[o]
+    rows, conts = [], []
+    for r, o in enumerate(owner):
+        if o is None:
+            if within[r] or not within_only:
+                rows.append(q[r])
+                conts.append(())
+        elif o == r:
+            c = cont[r][0]
+            rep = inside_member(c) if within_only else c.representative
+            if rep is not None:
+                rep = np.array(rep)
+                rep.setflags(write=False)
+                rows.append(rep)
+                conts.append((dataclasses.replace(c, representative=rep),))
+    Q = np.array(rows).reshape(-1, 6)
+    pres, rres = pose_residuals(Q, np.broadcast_to(T, (len(Q), 4, 4)), arm) if len(Q) else (np.zeros(0),) * 2
+    free = tuple(_FREE_JOINTS[L.FREE_Q1](arm.solver.reversed) if c else () for c in conts)
+    inside = arm.within_limits(Q) if len(Q) else np.zeros(0, bool)
+    reason = "" if len(Q) else _reason(0, int(h[L.H_TOTAL]), False, h[L.H_BEST_P], h[L.H_BEST_R], opts)
+    return IKResult.trusted(
+        _ro(Q),
+        _ro(pres),
+        _ro(rres),
+        _ro(np.atleast_1d(inside)),
+        free,
+        reason,
+        method,
+        _ro(np.zeros(len(Q), bool)),
+        tuple(conts),
+        float(h[L.H_PROJECTION]),
+        _certificate(h),
+    )
+
+
 # ----------------------------------------------------------------------------- public API
-def solve(T, *, method: str = "complete", within_limits: bool = True, arm: Arm = THESIS_ARM,
-          options: IKOptions | None = None) -> IKResult:
-    """All inverse-kinematics solutions of one end-effector pose.
+def solve(
+    T,
+    arm: Arm = THESIS_ARM,
+    *,
+    method: str = "complete",
+    within_limits: bool = True,
+    options: IKOptions | None = None,
+) -> IKResult:
+    """All inverse-kinematics solutions of one tool pose.
 
     Args:
-        T: Pose of frame 6 in base frame 0, (4, 4) homogeneous, position in m.
-        method: ``"complete"`` (compiled elimination; every solution), ``"reference"`` (the
-            same in NumPy) or ``"thesis"`` (Sec 3.3 as printed, with the errata corrected).
+        T: Tool pose in the arm's base frame, (4, 4) homogeneous, position in m.
+        arm: The arm (:class:`iik.Arm`; :mod:`iik.arms` lists the shipped ones).
+        method: ``"complete"`` (compiled elimination; every solution, with a certificate),
+            ``"reference"`` (an independent NumPy solver of the same class) or ``"thesis"``
+            (Sec 3.3 as printed, with the errata corrected; arms of the thesis's form).
         within_limits: Keep only solutions inside the joint limits (Table I).
-        arm: Arm parameters.
         options: Tolerances (:class:`~iik.ik.options.IKOptions`; defaults documented there).
 
     Returns:
         :class:`IKResult`. An unreachable pose gives an empty result with ``reason``
         (``result.raise_if_unreachable()`` raises instead); a pose just out of reach (within
         ``options.approximate_tol``) gives its least-residual configurations, flagged
-        ``approximate``.
+        ``approximate``. ``result.certificate`` says which path the pose took.
 
     Raises:
         InvalidInputError: wrong shape, NaN/inf, bad bottom row, a reflection, unknown method.
         NotOrthonormalError: a rotation block farther than ``options.orthonormal_tol`` from
             orthonormal (says how far, and which option to change).
     """
-    opts = _check_args(method, options)
+    opts = _check_args(method, options, arm)
     if type(T) is np.ndarray and T.dtype is _F64 and T.shape == (4, 4):
         Tb, batched = T.reshape(1, 4, 4), False  # fast path: no copy
     else:
@@ -250,42 +424,74 @@ def solve(T, *, method: str = "complete", within_limits: bool = True, arm: Arm =
         if batched:
             raise InvalidInputError("T", f"expected one (4, 4) pose, got shape {Tb.shape}; use solve_many")
     q, info, flags, hdr = _run(Tb, arm, opts, within_limits, method)
-    if hdr[0, 0] != _poses.OK:
+    if hdr[0, L.H_STATUS] != _poses.OK:
         _raise_first_bad(hdr, "T", False, opts)
-    return _results(q, info, flags, hdr, method, opts)[0]
+    return _results(Tb, q, info, flags, hdr, method, opts, arm, within_limits)[0]
 
 
-def solve_many(Ts, *, method: str = "complete", within_limits: bool = True, arm: Arm = THESIS_ARM,
-               options: IKOptions | None = None) -> list[IKResult]:
+def solve_many(
+    Ts,
+    arm: Arm = THESIS_ARM,
+    *,
+    method: str = "complete",
+    within_limits: bool = True,
+    options: IKOptions | None = None,
+) -> list[IKResult]:
     """:func:`solve` for a batch (n, 4, 4) of poses; identical answers, one result per pose.
 
     The compiled kernel runs once over the batch (on all cores with
     ``IKOptions(parallel=True)``).
     """
-    opts = _check_args(method, options)
+    opts = _check_args(method, options, arm)
     Tb, batched = _poses.as_pose_batch(Ts, "Ts")
     q, info, flags, hdr = _run(Tb, arm, opts, within_limits, method)
     _raise_first_bad(hdr, "Ts", batched, opts)
-    return _results(q, info, flags, hdr, method, opts)
+    return _results(Tb, q, info, flags, hdr, method, opts, arm, within_limits)
 
 
-def solve_batch(Ts, *, method: str = "complete", within_limits: bool = True, arm: Arm = THESIS_ARM,
-                options: IKOptions | None = None) -> IKBatch:
+def solve_batch(
+    Ts,
+    arm: Arm = THESIS_ARM,
+    *,
+    method: str = "complete",
+    within_limits: bool = True,
+    options: IKOptions | None = None,
+) -> IKBatch:
     """:func:`solve_many` as padded arrays (:class:`IKBatch`): no Python object per pose."""
-    opts = _check_args(method, options)
+    opts = _check_args(method, options, arm)
     Tb, batched = _poses.as_pose_batch(Ts, "Ts")
     q, info, flags, hdr = _run(Tb, arm, opts, within_limits, method)
     _raise_first_bad(hdr, "Ts", batched, opts)
-    count = hdr[:, 4].astype(int)  # (rows past the count are padding: NaN / free 0 / False)
+    count = hdr[:, L.H_COUNT].astype(int)  # (rows past the count are padding: NaN / free 0 / False)
     for a in (q, info, flags):
         a.setflags(write=False)
-    out = [count, hdr[:, 3].astype(int), hdr[:, 2].copy(), hdr[:, 5:7].copy(), info[:, :, 4].astype(int)]
+    out = [
+        count,
+        hdr[:, L.H_TOTAL].astype(int),
+        hdr[:, L.H_PROJECTION].copy(),
+        hdr[:, L.H_BEST_P : L.H_BEST_R + 1].copy(),
+        info[:, :, L.I_FREE].astype(int),
+        hdr[:, L.H_PATH].astype(int),
+        hdr[:, L.H_CERT] == L.CERT_OK,
+    ]
     for a in out:
         a.setflags(write=False)
-    return IKBatch(q=q, count=out[0], position_residual=info[:, :, 0], rotation_residual=info[:, :, 1],
-                   within_limits=flags[:, :, 0], approximate=flags[:, :, 1], free=out[4],
-                   continuum=info[:, :, 5:11], total=out[1], rotation_projection=out[2], closest=out[3],
-                   method=method)
+    return IKBatch(
+        q=q,
+        count=out[0],
+        position_residual=info[:, :, L.I_PRES],
+        rotation_residual=info[:, :, L.I_RRES],
+        within_limits=flags[:, :, 0],
+        approximate=flags[:, :, 1],
+        free=out[4],
+        info=info,
+        total=out[1],
+        rotation_projection=out[2],
+        closest=out[3],
+        path=out[5],
+        certified=out[6],
+        method=method,
+    )
 
 
 #: What :func:`compile_notice` says.
@@ -305,8 +511,9 @@ def compile_notice(emit: Callable[[str], None] | None = None, after: float = 1.0
     if _KERNEL is not None and _KERNEL.solve_many.signatures:
         yield
         return
-    timer = threading.Timer(after, emit or (lambda m: print(m, file=sys.stderr, flush=True)),
-                            args=(COMPILE_MESSAGE,))
+    timer = threading.Timer(
+        after, emit or (lambda m: print(m, file=sys.stderr, flush=True)), args=(COMPILE_MESSAGE,)
+    )
     timer.daemon = True
     timer.start()
     try:

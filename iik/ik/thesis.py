@@ -28,8 +28,8 @@ import numpy as np
 from ..arm import Arm
 from .angles import wrap_angle as _wrap
 from .compare import pose_residuals
-from .elimination import EliminantCoefficients, eliminant_coefficients
-from .reference import dedupe
+from .layout import MAX_SOLUTIONS
+from .thesis_eliminant import EliminantCoefficients, eliminant_coefficients
 
 __all__ = ["solve_thesis_arrays", "thesis_candidates", "ThesisCandidates", "eq11_error",
            "DEFAULT_GRID", "THESIS_TOL_DEG", "ACCEPT_TOL"]
@@ -98,7 +98,7 @@ def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
     """Run Sec 3.3 on validated poses ``T`` (n, 4, 4); every configuration it tries."""
     n = T.shape[0]
     R, p = T[:, :3, :3], T[:, :3, 3]
-    l1, l2, l3, l4, l5 = arm.lengths
+    l1, l2, l3, l4, l5 = arm.lengths  # (an arm of the thesis's Table II form)
     co = eliminant_coefficients(R, p, arm)
     # Sec 3.3.1 grid plus Eq 12 (min) and Eq 13 (max) points.
     base = -np.pi + np.arange(n_grid) * (2 * np.pi / n_grid)
@@ -173,8 +173,20 @@ def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
 
 
 def solve_thesis_arrays(T: np.ndarray, arm: Arm, **kw):
-    """Sec 3.3 solutions in the padded-array format of :func:`iik.ik.reference.solve_arrays`."""
+    """Sec 3.3 solutions in the padded-array format of :func:`iik.ik.reference.solve_arrays`:
+    ``(Q, V, F, P, R)``, distinct to 1e-5 rad (the thesis's bisection resolution), sorted."""
     d = thesis_candidates(T, arm, **kw)
-    k = d.ok
-    return dedupe(T.shape[0], _wrap(d.q[k]), np.zeros(int(k.sum()), dtype=int),
-                  d.owner[k], d.position_residual[k], d.rotation_residual[k], tol=1e-5)
+    n, M = T.shape[0], MAX_SOLUTIONS
+    Q, V, F = np.full((n, M, 6), np.nan), np.zeros((n, M), bool), np.zeros((n, M), int)
+    P, R = np.full((n, M), np.nan), np.full((n, M), np.nan)
+    q = _wrap(d.q)
+    for i in range(n):
+        kept = []
+        for j in np.flatnonzero(d.ok & (d.owner == i)):
+            if all(np.max(np.abs(_wrap(q[j] - q[k]))) > 1e-5 for k in kept):
+                kept.append(j)
+        kept = sorted(kept, key=lambda j: tuple(np.round(q[j], 9)))[:M]
+        m = len(kept)
+        Q[i, :m], V[i, :m] = q[kept], True
+        P[i, :m], R[i, :m] = d.position_residual[kept], d.rotation_residual[kept]
+    return Q, V, F, P, R

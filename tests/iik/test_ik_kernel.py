@@ -1,6 +1,7 @@
-"""The compiled IK kernel (method "complete") against the NumPy reference, its input
-checks against the reference path's, solve / solve_many / solve_batch consistency, and the
-on-disk cache (read-only package folder, invalidation by an edit of the formulas)."""
+"""The compiled IK kernel: the certified root isolation (Bernstein subdivision, double-double
+arithmetic) on polynomials with known roots, solve / solve_many / solve_batch consistency, the
+kernel's input checks against the NumPy methods', and the on-disk cache (read-only package
+folder, invalidation by an edit of the compiled sources)."""
 
 from __future__ import annotations
 
@@ -9,22 +10,26 @@ import shutil
 import subprocess
 import sys
 import textwrap
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 import iik
 from iik.errors import IIKError, InvalidInputError, NotOrthonormalError
-from iik.ik.compare import contains, free_joints_of
+from iik.ik import bernstein as bz
+from iik.ik import ddarith as dd
 
 ARM = iik.THESIS_ARM
 LO, HI = ARM.q_min, ARM.q_max
 
 
 def family_poses(n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
-    """q (7 n, 6) and fk(q): random, and the singular families of the recovery sweep
-    (theta4 ~ 0, theta5 ~ 0, theta3 ~ +-90 deg, theta1 at +-160 deg), offsets 0 or 10^U(-12, -2)."""
+    """q (7 n, 6) and fk(q): random, and near the easy singular values (theta4 ~ 0, theta5 ~ 0,
+    theta3 ~ +-90 deg, theta1 at +-160 deg), offsets 0 or 10^U(-12, -2)."""
     rng = np.random.default_rng(seed)
     blocks = []
     families = ((None, 0.0), (3, 0.0), (4, 0.0), (2, np.pi / 2), (2, -np.pi / 2), (0, HI[0]), (0, LO[0]))
@@ -39,106 +44,81 @@ def family_poses(n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
     return q, iik.fk(q)
 
 
-def agreement(T: np.ndarray) -> tuple[int, list[int]]:
-    """Compare the kernel with the reference on poses T: (poses compared, indices that differ).
+# ----------------------------------------------------------------------------- certified isolation
+def _bernstein_of_roots(roots, lead):
+    """Bernstein coefficients (9,) on [0, 1] of lead * prod (u - r) * (u^2 + 1)^(8 - len)/2... exactly:
+    the power coefficients by Fractions, then the exact power-to-Bernstein map."""
+    from math import comb
 
-    Two solution sets agree if every solution of each is among the other's
-    (:func:`iik.ik.compare.contains`: to 1e-9 rad, or the accuracy the pose carries near a
-    singularity, or on a flagged continuum), i.e. the same sets after wrapping.
-    """
-    kern = iik.solve_many(T, within_limits=False)
-    ref = iik.solve_many(T, within_limits=False, method="reference")
-    bad = []
-    for i, (a, b) in enumerate(zip(kern, ref, strict=True)):
-        ok = all(contains(b.q, row, T[i], ARM, free_joints=b.free_joints) for row in a.q)
-        ok &= all(contains(a.q, row, T[i], ARM, free_joints=a.free_joints) for row in b.q)
-        if not ok:
-            bad.append(i)
-    return len(T), bad
-
-
-def test_kernel_agrees_with_reference():
-    """Always-run version of the 10^5-pose agreement: 7 x 300 poses (random and singular families)."""
-    _q, T = family_poses(300, seed=101)
-    n, bad = agreement(T)
-    assert n == 2100 and bad == [], bad[:5]
+    poly = [Fraction(lead)]
+    for r in roots:
+        fr = Fraction(r)
+        poly = [(poly[i - 1] if i > 0 else 0) - fr * (poly[i] if i < len(poly) else 0)
+                for i in range(len(poly) + 1)]
+    while len(poly) < 9:  # times (u^2 + 1): no real root
+        poly = [(poly[i - 2] if i >= 2 else 0) + (poly[i] if i < len(poly) else 0)
+                for i in range(len(poly) + 2)]
+    b = [sum(Fraction(comb(j, i), comb(8, i)) * poly[i] for i in range(j + 1)) for j in range(9)]
+    return np.array([float(x) for x in b])
 
 
-@pytest.mark.slow
-def test_kernel_agrees_with_reference_on_1e5_poses():
-    """Issue 10 item 6: the kernel and the NumPy reference give the same solution sets on >= 10^5 poses."""
-    _q, T = family_poses(15_000, seed=102)  # 105 000 poses
-    n, bad = agreement(T)
-    assert n >= 100_000 and bad == [], (len(bad), bad[:5])
+@given(st.lists(st.floats(0.01, 0.99), min_size=0, max_size=8, unique=True), st.sampled_from([1.0, -3.0]))
+def test_every_simple_root_is_in_its_own_root_leaf(roots, lead):
+    """Random polynomials with known simple roots in (0, 1): each root lies in a root leaf or a
+    cluster (never in an excluded piece); a root leaf holds exactly one of them and its refined
+    root is within 1e-6 of it (clustered roots are only as accurate as their separation allows)."""
+    roots = sorted(roots)
+    if len(roots) % 2 == 1 and len(roots) < 8:  # degree 8 with a quadratic factor of no real root
+        roots = roots[:-1]
+    b = _bernstein_of_roots(roots, lead)
+    out = np.zeros((bz.N_LEAF, bz.LEAF_WIDTH))
+    n = bz.isolate(b, 1e-15 * np.abs(b).max(), 0.0, out, np.zeros((96, 12)))
+    assert n >= 0
+    leaves = out[:n]
+    for r in roots:
+        holding = [lf for lf in leaves if lf[1] <= r <= lf[2] and lf[0] != bz.LEAF_NEAR]
+        assert holding, (r, leaves[:, :3])
+    for lf in leaves[leaves[:, 0] == bz.LEAF_ROOT]:
+        assert sum(lf[1] < r < lf[2] for r in roots) == 1
+        s = lf[1] + bz.refine_root(lf[4:], lf[3]) * (lf[2] - lf[1])
+        assert min(abs(s - r) for r in roots) <= 1e-6
+    assert sum(lf[0] == bz.LEAF_ROOT for lf in leaves) <= len(roots)
 
 
-#: The pose the recovery sweep missed (theta5 ~ 0 family, seed 20120101, index 37445): theta4 ~ -4e-4
-#: and theta5 ~ -8e-10 put it near the theta3/theta6 continuum (sigma_min(J) ~ 5e-9), where F is
-#: flat at its rounding level and the degree-8 root was 2.4e-5 rad off; its polish stalled in the
-#: valley 4e-3 rad from q at residual 3e-11 (a curved path within the tolerance joins the two,
-#: but the exact root itself was missing).
-SWEEP_MISS = np.array([1.8089656803384133, -1.949406613634231, 1.3741108543885727, -0.00038877210366772275,
-                       -8.382657476354402e-10, 2.5880086775654725])
+def test_two_roots_closer_than_double_precision_separates_are_a_cluster_not_a_loss():
+    """Roots 1e-13 apart: double precision cannot tell them apart; the piece holding them is a
+    cluster (sent to the extended path), never excluded."""
+    r = 0.3
+    b = _bernstein_of_roots([r, r + 1e-13, 0.7, 0.8], 1.0)
+    out = np.zeros((bz.N_LEAF, bz.LEAF_WIDTH))
+    n = bz.isolate(b, 64 * 2.2e-16 * np.abs(b).max(), 0.0, out, np.zeros((96, 12)))
+    kinds = {int(lf[0]) for lf in out[:n] if lf[1] <= r <= lf[2]}
+    assert kinds == {bz.LEAF_CLUSTER}
 
 
-def test_pose_missed_by_the_recovery_sweep_is_recovered_exactly():
-    T = iik.fk(SWEEP_MISS)
-    r = iik.solve(T, within_limits=False)
-    d = np.max(np.abs((r.q - SWEEP_MISS + np.pi) % (2 * np.pi) - np.pi), axis=1)
-    i = int(np.argmin(d))
-    assert d[i] <= 1e-6 and r.position_residual[i] <= 1e-13 and r.rotation_residual[i] <= 1e-13
-    assert contains(r.q, SWEEP_MISS, T, ARM, free_joints=r.free_joints)
-    n, bad = agreement(T[None])
-    assert bad == []
+_NORMAL = st.one_of(st.just(0.0), st.floats(1e-140, 1e10), st.floats(-1e10, -1e-140))
 
 
-def near_continuum_poses(n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
-    """Poses of the sweep miss's kind: |theta4| in 10^[-4.5, -2.5], |theta5| in 10^[-12, -6] (the
-    near theta3/theta6 continuum, where the eliminant is flat at rounding level)."""
-    rng = np.random.default_rng(seed)
-    q = rng.uniform(LO, HI, size=(n, 6))
-    q[:, 3] = rng.choice([-1.0, 1.0], n) * 10 ** rng.uniform(-4.5, -2.5, n)
-    q[:, 4] = rng.choice([-1.0, 1.0], n) * 10 ** rng.uniform(-12, -6, n)
-    return q, iik.fk(q)
+@given(_NORMAL, _NORMAL)
+def test_double_double_products_and_sums_are_exact(a, b):
+    """two_prod and two_sum are error-free (compared with exact rationals), away from underflow."""
+    p, e = dd.two_prod(a, b)
+    assert Fraction(p) + Fraction(e) == Fraction(a) * Fraction(b)
+    s, e = dd.two_sum(a, b)
+    assert Fraction(s) + Fraction(e) == Fraction(a) + Fraction(b)
 
 
-def recovered(q: np.ndarray, T: np.ndarray) -> list[int]:
-    """Indices whose generating q is not among the kernel's solutions."""
-    b = iik.ik.solve_batch(T, within_limits=False)
-    return [i for i in range(len(q)) if not contains(b.q[i, :b.count[i]], q[i], T[i], ARM,
-                                                      free_joints=free_joints_of(b.free[i, :b.count[i]]))]
+def test_double_double_resolves_what_double_cannot():
+    """(1 + 2^-30)^2 - 1 - 2^-29 = 2^-60: 0 in double precision, exact in double-double."""
+    x = 1.0 + 2.0 ** -30
+    h, lo = dd.dd_mul(x, 0.0, x, 0.0)
+    h, lo = dd.dd_add(h, lo, -1.0, 0.0)
+    h, lo = dd.dd_add(h, lo, -(2.0 ** -29), 0.0)
+    assert x * x - 1.0 - 2.0 ** -29 == 0.0
+    assert h + lo == 2.0 ** -60
 
 
-def test_near_continuum_poses_are_recovered():
-    """The sweep miss's kind, 5000 poses (the kernel before the fix missed ~2 per 1000 of them)."""
-    q, T = near_continuum_poses(5000, seed=106)
-    assert recovered(q, T) == []
-
-
-@pytest.mark.slow
-def test_near_continuum_poses_are_recovered_thorough():
-    q, T = near_continuum_poses(100_000, seed=107)
-    assert recovered(q, T) == []
-
-
-#: The wrist point on the joint-1 axis to 1e-16 m: the eliminant's double roots (where Eq 8
-#: vanishes) come out as pairs of simple roots 2.4e-5 rad apart; refined on f_sigma both land
-#: where Eq 8 vanishes, and there theta2 has the two Eq 11 options (one was lost once).
-ON_AXIS = np.array([1.9807956984317099, -1.8113215801070661, 0.0, -0.002596077066196578, 1.4226199670433592,
-                    -2.6792027325122807])
-
-
-def test_wrist_point_on_the_joint1_axis():
-    from verification.testing.ik_benchmark import family_joints
-
-    q = np.concatenate([ON_AXIS[None], family_joints("wrist point on joint-1 axis", 300,
-                                                       np.random.default_rng(108), ARM)])
-    T = iik.fk(q)
-    assert recovered(q, T) == []
-    _n, bad = agreement(T)
-    assert bad == []
-
-
+# ----------------------------------------------------------------------------- consistency
 def test_solve_many_and_solve_batch_match_solve():
     q, T = family_poses(20, seed=103)
     many = iik.solve_many(T, within_limits=False)
@@ -235,7 +215,7 @@ def _read_only_runner(pkg: Path):
 def test_cache_in_user_folder_when_package_is_read_only_and_keyed_on_all_sources(tmp_path):
     """Issue 10 item 7: with the installed package read-only the compiled kernel is cached in
     the user cache folder and loaded from there by the next process; an edit of
-    iik/kinematics.py (compiled into the kernel) invalidates it."""
+    iik/ik/chain.py (compiled into the kernel) invalidates it."""
     src = Path(iik.__file__).parent
     pkg = tmp_path / "site" / "iik"
     shutil.copytree(src, pkg, ignore=shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc"))
@@ -258,8 +238,8 @@ def test_cache_in_user_folder_when_package_is_read_only_and_keyed_on_all_sources
     assert not list(pkg.rglob("*.nbi")), "wrote into the read-only package"
     assert once() == (1, 0)  # ... the next one loads it
     if os.geteuid() != 0:
-        (pkg / "kinematics.py").chmod(0o644)
-    with open(pkg / "kinematics.py", "a") as f:
+        (pkg / "ik" / "chain.py").chmod(0o644)
+    with open(pkg / "ik" / "chain.py", "a") as f:
         f.write("\n# edited\n")
     assert once() == (0, 1)  # the formulas changed: compiled again, not a stale kernel
 

@@ -75,8 +75,8 @@ def _fd(f, q, h=1e-6):
 def test_position_jacobian_matches_finite_differences(q):
     J_fd = _fd(lambda x: table_ii_fk(x)[:3, 3], q)
     J = iik.position_jacobian(q)
-    assert J.shape == (3, 5)
-    np.testing.assert_allclose(J, J_fd[:, :5], atol=1e-8, rtol=0)
+    assert J.shape == (3, 6)
+    np.testing.assert_allclose(J, J_fd, atol=1e-8, rtol=0)
     np.testing.assert_allclose(J_fd[:, 5], 0.0, atol=1e-8)  # Eq 34: joint 6 does not move p
 
 

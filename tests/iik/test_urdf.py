@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 
 import iik
 from iik import InvalidInputError
+from iik.arm import thesis_arm
 from iik.cli import main
 from iik.dh import DHRow, DHTable, dh_chain
 from iik.planning.robot_model import load_model, thesis_model
@@ -158,13 +159,13 @@ def test_generator_rejects_inconsistent_input(kwargs, arg):
 
 
 def test_geometry_rejects_arm_too_short_for_modules():
-    short = iik.Arm(l1=0.1, l2=0.05, l3=0.1, l4=0.05, l5=0.1, lower=ARM.lower, upper=ARM.upper)
+    short = thesis_arm(l1=0.1, l2=0.05, l3=0.1, l4=0.05, l5=0.1, lower=ARM.lower, upper=ARM.upper)
     with pytest.raises(InvalidInputError, match="too short"):
         thesis_geometry(short)
 
 
 def test_geometry_follows_other_arm_lengths(tmp_path):
-    longer = iik.Arm(l1=0.35, l2=0.15, l3=0.45, l4=0.25, l5=0.3, lower=ARM.lower, upper=ARM.upper)
+    longer = thesis_arm(l1=0.35, l2=0.15, l3=0.45, l4=0.25, l5=0.3, lower=ARM.lower, upper=ARM.upper)
     path = tmp_path / "long.urdf"
     path.write_text(thesis_urdf(longer))
     tm = load_model(path)

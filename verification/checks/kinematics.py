@@ -325,7 +325,7 @@ def position_from_table_ii(q, arm=THESIS_ARM) -> np.ndarray:
 
 def appc_from_iik(q, arm=THESIS_ARM) -> dict[str, np.ndarray]:
     """Known-good App. C entries: iik.position_jacobian (the corrected analytic Jacobian)."""
-    J = position_jacobian(np.atleast_2d(q), arm)
+    J = position_jacobian(np.atleast_2d(q), arm)[..., :5]
     return {f"df{i + 1}/dth{j + 1}": J[:, i, j] for i in range(3) for j in range(5)}
 
 

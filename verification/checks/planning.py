@@ -880,11 +880,8 @@ def _peak(traj, arm) -> tuple[float, float]:
 
 
 def _toppra_double_limits(q, arm):
-    fast = dataclasses.replace(
-        arm,
-        velocity=tuple(2 * np.asarray(arm.velocity)),
-        acceleration=tuple(2 * np.asarray(arm.acceleration)),
-    )
+    fast = arm.with_limits(velocity=tuple(2 * np.asarray(arm.velocity)),
+                           acceleration=tuple(2 * np.asarray(arm.acceleration)))
     return time_parameterize(q, fast)
 
 

@@ -562,7 +562,7 @@ def _distance_to_surface(B: np.ndarray, spec: tuple, n: int) -> np.ndarray:
     hi = np.array([b for _, b in spec[1].values()]) * _D
     for _ in range(25):
         G = tool_positions(q)
-        J = iik.position_jacobian(np.column_stack([q, np.zeros(len(q))]))[:, :, free]
+        J = iik.position_jacobian(np.column_stack([q, np.zeros(len(q))]))[:, :, :5][:, :, free]
         dq = np.einsum("nij,nj->ni", np.linalg.pinv(J, rcond=1e-9), B - G)
         q[:, free] = np.clip(q[:, free] + dq, lo, hi)
     return np.linalg.norm(B - tool_positions(q), axis=1)
@@ -645,7 +645,7 @@ def _side_test(ctx) -> list[str]:
     for name in ("f(2)", "f(3)"):
         pts, q = surface_points(name, ctx.n(390, 100), ctx.n(82, 21))
         k = rng.choice(len(pts), size=min(len(pts), ctx.n(300, 40)), replace=False)
-        J = iik.position_jacobian(np.column_stack([q[k], np.zeros(len(k))]))
+        J = iik.position_jacobian(np.column_stack([q[k], np.zeros(len(k))]))[:, :, :5]
         n0 = np.cross(J[:, :, 1], J[:, :, 3])
         n0 /= np.linalg.norm(n0, axis=1, keepdims=True)
         both = oracle.classify(pts[k] + 2e-3 * n0).reachable & oracle.classify(pts[k] - 2e-3 * n0).reachable

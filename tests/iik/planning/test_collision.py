@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 import iik
+from iik.arm import thesis_arm
 from iik.planning import Obstacle
 from iik.planning.collision import SceneCollision
 
@@ -76,10 +77,9 @@ def test_path_clearance_acceptance_and_closest_pair(checker):
 
 
 def test_another_arm_gets_its_own_collision_model():
-    import dataclasses
 
     a = iik.THESIS_ARM
-    longer = dataclasses.replace(a, l3=a.l3 * 1.2, l4=a.l4 * 1.2)
+    longer = thesis_arm(a.l1, a.l2, a.l3 * 1.2, a.l4 * 1.2, a.l5)
     q = np.zeros(6)  # stretched along +x: the longer arm's gripper is further out
     box = [Obstacle((1.3, 0.0, 0.3), (0.1, 0.4, 0.4), name="far")]
     d_thesis = SceneCollision(box, floor=False, platform=False).clearance(q)[0]

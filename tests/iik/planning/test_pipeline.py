@@ -1,7 +1,6 @@
 """End to end: ``iik.planning.plan`` and ``iik plan`` (iik.planning.pipeline)."""
 
 import csv
-import dataclasses
 import time
 
 import coal
@@ -253,8 +252,7 @@ def test_progress_names_each_stage_and_candidate(repo_result):
 
 
 def _scaled(arm, f):
-    return dataclasses.replace(arm, l1=arm.l1 * f, l2=arm.l2 * f, l3=arm.l3 * f, l4=arm.l4 * f, l5=arm.l5 * f,
-                               name=f"thesis arm x{f}")
+    return arm.scaled(f, name=f"thesis arm x{f}")
 
 
 class _CoalArm:

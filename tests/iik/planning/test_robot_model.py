@@ -4,6 +4,7 @@ import numpy as np
 from hypothesis import given
 
 import iik
+from iik.arm import thesis_arm
 from iik.planning.robot_model import thesis_model
 from iik.resources import urdf_path
 from verification.oracles.pinocchio_model import tool_frame_id
@@ -20,12 +21,11 @@ def test_thesis_model_is_cached_and_unpacks():
 
 
 def test_another_arm_is_built_from_its_generated_urdf():
-    import dataclasses
 
     import pinocchio as pin
 
     a = iik.THESIS_ARM
-    arm = dataclasses.replace(a, l2=a.l2 * 1.3, l5=a.l5 * 0.9, lower=(-1.0,) + a.lower[1:])
+    arm = thesis_arm(a.l1, a.l2 * 1.3, a.l3, a.l4, a.l5 * 0.9, lower=(-1.0,) + a.lower[1:], upper=a.upper)
     tm = thesis_model(arm)
     assert tm.path is None and thesis_model(arm) is tm
     assert tm.model.lowerPositionLimit[0] == -1.0

@@ -1,6 +1,5 @@
 """TOPP-RA timing within an arm's limits and the thesis's timing (iik.planning.timing)."""
 
-import dataclasses
 
 import numpy as np
 import pytest
@@ -17,8 +16,8 @@ PATH = np.array([[0.0, 0.0, 0.0, 0.0, 0.0, 0.0], [0.6, -0.3, 0.2, 0.1, 0.4, -0.5
 
 @pytest.mark.parametrize("scale", [1.0, 0.25])
 def test_every_sample_respects_the_arms_limits(scale):
-    arm = dataclasses.replace(THESIS_ARM, velocity=tuple(v * scale for v in THESIS_ARM.velocity),
-                              acceleration=tuple(a * scale for a in THESIS_ARM.acceleration))
+    arm = THESIS_ARM.with_limits(velocity=tuple(v * scale for v in THESIS_ARM.velocity),
+                                 acceleration=tuple(a * scale for a in THESIS_ARM.acceleration))
     tr = time_parameterize(PATH, arm)
     assert not tr.violations
     assert np.all(np.abs(tr.qd) <= np.asarray(arm.velocity) * (1 + 1e-9))
@@ -28,8 +27,8 @@ def test_every_sample_respects_the_arms_limits(scale):
 
 
 def test_slower_limits_take_longer():
-    slow = dataclasses.replace(THESIS_ARM, velocity=tuple(v / 4 for v in THESIS_ARM.velocity),
-                               acceleration=tuple(a / 4 for a in THESIS_ARM.acceleration))
+    slow = THESIS_ARM.with_limits(velocity=tuple(v / 4 for v in THESIS_ARM.velocity),
+                                  acceleration=tuple(a / 4 for a in THESIS_ARM.acceleration))
     assert time_parameterize(PATH, slow).duration > 2 * time_parameterize(PATH).duration
     assert thesis_timing(PATH, slow).duration == pytest.approx(4 * thesis_timing(PATH).duration)
 

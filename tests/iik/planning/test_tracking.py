@@ -1,11 +1,11 @@
 """IK along the path by the effort index (Eq 54) and the orientation search (iik.planning.tracking)."""
 
-import dataclasses
 
 import numpy as np
 import pytest
 
 import iik
+from iik.arm import thesis_arm
 from iik.planning import (
     LIMIT_MARGIN,
     Scenario,
@@ -69,13 +69,13 @@ def test_the_arm_sets_the_ik_and_the_joint_limits(line):
     lo, hi = np.array(a.lower), np.array(a.upper)
     free = track_branches(line, adapt_orientation=False)
     q1 = np.concatenate([b.q[:, 0] for b in free.complete])
-    narrow = dataclasses.replace(a, lower=tuple(np.r_[q1.min() + 0.05, lo[1:]]), upper=tuple(hi))
+    narrow = a.with_limits(lower=tuple(np.r_[q1.min() + 0.05, lo[1:]]), upper=tuple(hi))
     assert not all(np.all(narrow.within_limits(b.q, tol=-LIMIT_MARGIN)) for b in free.complete)
     tr = track_branches(line, arm=narrow, adapt_orientation=False)
     assert tr.branches
     for b in tr.branches:  # only the narrower arm's usable solutions are offered
         assert np.all(narrow.within_limits(b.q[b.ok], tol=-LIMIT_MARGIN))
-    longer = dataclasses.replace(a, l3=a.l3 * 1.1, l4=a.l4 * 1.1)
+    longer = thesis_arm(a.l1, a.l2, a.l3 * 1.1, a.l4 * 1.1, a.l5)
     b = track_branches(line, arm=longer, adapt_orientation=False).complete[0]
     assert np.abs(iik.fk(b.q, longer)[:, :3, 3] - line.points).max() < 1e-8
     assert np.abs(iik.fk(b.q)[:, :3, 3] - line.points).max() > 0.01  # a different arm's solutions

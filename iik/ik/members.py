@@ -1,0 +1,220 @@
+"""Members and feasible intervals of the continua that are not linear (:class:`~iik.ik.result.Continuum`
+of kind ``"theta1"`` and ``"numerical"``).
+
+A member with the free joint at theta is found by continuation from the representative: the
+free joint is stepped towards theta (steps of at most :data:`STEP` rad), and at each step the
+other joints are refit by Levenberg-Marquardt with the free joint held (the compiled
+:func:`iik.ik.kernel.continuum_members`). The feasible interval is where the members reach the
+pose within the tolerance and lie inside the joint limits, found by marching from the
+representative in both directions and bisecting the first failure (to :data:`RESOLUTION` rad).
+
+Units: radians.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = [
+    "follow",
+    "feasible_interval",
+    "on_continuum",
+    "theta1_branches",
+    "inside_member",
+    "STEP",
+    "RESOLUTION",
+]
+
+#: Largest continuation step of the free joint [rad].
+STEP = 0.05
+#: Resolution of the ends of a feasible interval [rad].
+RESOLUTION = 1e-6
+_JUMP = 0.5  # a member more than this from the previous one [rad]: the continuation lost the curve
+
+
+def _kernel():
+    from . import kernel
+
+    return kernel
+
+
+def _march(c, thetas: np.ndarray):
+    """Members (n, 6) and residuals (n, 2) along the free-joint values ``thetas`` (in order,
+    starting next to the representative)."""
+    k = _kernel()
+    j = c.free_joint - 1
+    cols = np.array([i for i in range(6) if i != j], dtype=np.int64)
+    coupled = -1 if c.coupled_joint is None else c.coupled_joint - 1
+    out_q = np.empty((len(thetas), 6))
+    out_r = np.empty((len(thetas), 2))
+    opt = np.array([c.tolerance[0], c.tolerance[1], 1e-5, 1e-4, 1e-7])
+    data = k.arm_data(c.arm).vector
+    ok = k.continuum_members(
+        np.ascontiguousarray(c.pose, dtype=float),
+        data,
+        opt,
+        np.array(c.representative, dtype=float),
+        cols,
+        j,
+        coupled,
+        float(c.sign),
+        np.ascontiguousarray(thetas, dtype=float),
+        k.scratch(),
+        out_q,
+        out_r,
+    )
+    if not ok:  # pragma: no cover (the pose passed the IK's check)
+        raise ValueError("the continuum's pose does not pass the pose check")
+    return out_q, out_r
+
+
+def _path(start: float, end: float) -> np.ndarray:
+    n = max(1, math.ceil(abs(end - start) / STEP))
+    return start + (end - start) * np.arange(1, n + 1) / n
+
+
+def _march_closed(c, thetas: np.ndarray):
+    """theta1 continua: the exact closed-form configurations at each value, the one nearest the
+    previous member taken (continuation without a polish: the members are exact)."""
+    k = _kernel()
+    n = len(thetas)
+    out_q, out_r = np.empty((n, 16, 6)), np.empty((n, 16, 2))
+    counts = np.zeros(n, dtype=np.int64)
+    opt = np.array([c.tolerance[0], c.tolerance[1], 1e-5, 1e-3, 1e-7])
+    ok = k.closed_forms_at(
+        np.ascontiguousarray(c.pose, dtype=float),
+        k.arm_data(c.arm).vector,
+        opt,
+        np.ascontiguousarray(thetas, dtype=float),
+        k.scratch(),
+        out_q,
+        out_r,
+        counts,
+    )
+    if not ok:  # pragma: no cover (the pose passed the IK's check)
+        raise ValueError("the continuum's pose does not pass the pose check")
+    prev = np.array(c.representative, dtype=float)
+    qs, rs = np.empty((n, 6)), np.full((n, 2), np.inf)
+    for i in range(n):
+        m = counts[i]
+        if m == 0:
+            qs[i] = prev
+            continue
+        d = np.max(np.abs(np.mod(out_q[i, :m] - prev + np.pi, 2 * np.pi) - np.pi), axis=1)
+        good = (out_r[i, :m, 0] <= c.tolerance[0]) & (out_r[i, :m, 1] <= c.tolerance[1])
+        b = int(np.argmin(np.where(good, d, d + 10.0)))
+        qs[i], rs[i], prev = out_q[i, b], out_r[i, b], out_q[i, b]
+    return qs, rs
+
+
+def follow(c, thetas) -> tuple[np.ndarray, np.ndarray]:
+    """Members (n, 6) of continuum ``c`` at the free-joint values ``thetas`` [rad] and their
+    residuals (n, 2) [m, rad], each by continuation from the representative."""
+    j = c.free_joint - 1
+    start = float(c.representative[j])
+    march = _march_closed if c.kind == "theta1" else _march
+    qs, rs = [], []
+    for th in np.atleast_1d(np.asarray(thetas, dtype=float)):
+        path = _path(start, float(th))
+        q, r = march(c, path)
+        qs.append(q[-1])
+        rs.append(r[-1])
+    return np.array(qs), np.array(rs)
+
+
+def _good(c, q, r, prev) -> bool:
+    arm = c.arm
+    inside = bool(arm.within_limits(q))
+    tp, tr = c.tolerance
+    near = float(np.max(np.abs(np.mod(q - prev + np.pi, 2 * np.pi) - np.pi))) <= _JUMP
+    return inside and r[0] <= tp and r[1] <= tr and near
+
+
+def _edge(c, start: float, limit: float) -> float:
+    """How far from the representative the feasible members reach towards ``limit``."""
+    if abs(limit - start) <= RESOLUTION:
+        return start
+    path = _path(start, limit)
+    q, r = (_march_closed if c.kind == "theta1" else _march)(c, path)
+    prev = np.array(c.representative, dtype=float)
+    last = start
+    for i, th in enumerate(path):
+        if not _good(c, q[i], r[i], prev):
+            lo, hi = last, th  # bisect between the last good value and the first bad one
+            q_lo = prev
+            while abs(hi - lo) > RESOLUTION:
+                mid = 0.5 * (lo + hi)
+                qm, rm = (_march_closed if c.kind == "theta1" else _march)(c, _path(start, mid))
+                if _good(
+                    c, qm[-1], rm[-1], q_lo if abs(mid - lo) <= STEP else qm[-2] if len(qm) > 1 else q_lo
+                ):
+                    lo, q_lo = mid, qm[-1]
+                else:
+                    hi = mid
+            return lo
+        prev, last = q[i], th
+    return limit
+
+
+def feasible_interval(c) -> tuple[float, float]:
+    """The feasible interval of continuum ``c``'s free joint (the piece containing the
+    representative), or (nan, nan) if the representative itself is not feasible."""
+    j = c.free_joint - 1
+    start = float(c.representative[j])
+    if not c.arm.within_limits(c.representative):
+        return (math.nan, math.nan)
+    lo, hi = float(c.arm.q_min[j]), float(c.arm.q_max[j])
+    return (_edge(c, start, lo), _edge(c, start, hi))
+
+
+def on_continuum(c, q, tol: float = 1e-7) -> bool:
+    """Is the configuration q (6,) a member of continuum c (its member at q's free joint)?"""
+    m, r = follow(c, [float(q[c.free_joint - 1])])
+    return bool(
+        np.max(np.abs(np.mod(m[0] - q + np.pi, 2 * np.pi) - np.pi)) <= tol
+        and r[0, 0] <= c.tolerance[0]
+        and r[0, 1] <= c.tolerance[1]
+    )
+
+
+def _continues(c) -> bool:
+    """Do c's members continue on both sides of the representative (a curve, not a point)?"""
+    j = c.free_joint - 1
+    x = float(c.representative[j])
+    for th in (x - STEP, x + STEP):
+        m, r = follow(c, [th])
+        jump = float(np.max(np.abs(np.mod(m[0] - c.representative + np.pi, 2 * np.pi) - np.pi)))
+        if not (r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1] and jump <= 2.0):
+            return False
+    return True
+
+
+def theta1_branches(continua) -> list[int | None]:
+    """For the candidate rows of a degenerate pose (one theta1 :class:`Continuum` each, in the
+    result's order): the index of the row whose branch each row lies on (itself for the first
+    of a branch), or None for a row that is an isolated solution (no curve through it)."""
+    out: list[int | None] = []
+    for i, c in enumerate(continua):
+        owner = next(
+            (k for k in range(i) if out[k] == k and on_continuum(continua[k], c.representative)), None
+        )
+        out.append(owner if owner is not None else (i if _continues(c) else None))
+    return out
+
+
+def inside_member(c, samples: int = 73):
+    """A member of continuum c inside the joint limits, nearest the representative along the free
+    joint (``samples`` values across its limits), or None if none is found."""
+    arm = c.arm
+    if arm.within_limits(c.representative):
+        return np.array(c.representative, dtype=float)
+    j = c.free_joint - 1
+    grid = np.linspace(arm.q_min[j], arm.q_max[j], samples)
+    grid = grid[np.argsort(np.abs(grid - c.representative[j]))]
+    for th in grid:
+        m, r = follow(c, [th])
+        if arm.within_limits(m[0]) and r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1]:
+            return m[0]
+    return None

@@ -1,0 +1,101 @@
+"""Is a configuration among an IK answer, and does the answer cover what the oracle finds?
+
+A configuration q that reaches the pose counts as found by an :class:`~iik.IKResult` when
+
+* a row is within :data:`SAME` rad of it in every joint (angles wrapped); or
+* a row is *connected* to it: within :data:`NEAR` rad, by a straight joint-space segment whose
+  points all reach the pose within the tolerances (near a singularity the configurations
+  within the tolerance form a thin valley; the pose does not tell its points apart); or
+* q lies on a continuum row: the member at q's value of the free joint is the same or
+  connected (collinear continua: the exact member; the others: followed by continuation).
+
+:func:`coverage` compares an answer with the oracle (:mod:`verification.oracles.multistart`):
+oracle solutions the answer does not contain (missed), and rows of the answer that do not reach
+the pose by the oracle's independent forward kinematics (wrong).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from iik.arm import Arm
+from verification.oracles.multistart import OracleSolutions, pose_residuals_np, project
+
+__all__ = ["SAME", "NEAR", "contains", "Coverage", "coverage"]
+
+#: Rows within this of q [rad] are q.
+SAME = 1e-7
+#: Rows within this [rad] joined to q by a segment within the tolerance are q.
+NEAR = 1e-2
+_SEGMENT = np.linspace(0.0, 1.0, 17)[1:-1]
+
+
+def _wrap(x):
+    return np.pi - np.mod(np.pi - x, 2 * np.pi)
+
+
+def _connected(a, b, T, arm: Arm, tol) -> bool:
+    """Are a and b joined by a path within the tolerance? The points of the straight segment,
+    each moved onto the pose by a few damped least-squares steps (a curved valley), must reach
+    the pose and stay within the segment's length of where they started."""
+    d = _wrap(b - a)
+    size = float(np.max(np.abs(d)))
+    if size > NEAR:
+        return False
+    pts = a + _SEGMENT[:, None] * d
+    pres, rres = pose_residuals_np(arm, pts, T)
+    if np.all(pres <= tol[0]) and np.all(rres <= tol[1]):
+        return True
+    moved = project(arm, pts, T)
+    pres, rres = pose_residuals_np(arm, moved, T)
+    shift = np.max(np.abs(_wrap(moved - pts)), axis=1)
+    return bool(np.all(pres <= tol[0]) and np.all(rres <= tol[1]) and np.all(shift <= size))
+
+
+def _same_or_connected(rows, q, T, arm, tol) -> bool:
+    if len(rows) == 0:
+        return False
+    dist = np.max(np.abs(_wrap(np.asarray(rows) - q)), axis=1)
+    if np.min(dist) <= SAME:
+        return True
+    return any(_connected(rows[i], q, T, arm, tol) for i in np.argsort(dist)[:3] if dist[i] <= NEAR)
+
+
+def contains(result, q, T, arm: Arm, tol=(1e-10, 1e-10)) -> bool:
+    """Does the IK answer ``result`` contain the configuration q (6,) of pose T (see the module)?"""
+    q = np.asarray(q, dtype=float)
+    if _same_or_connected(result.q, q, T, arm, tol):
+        return True
+    for row in result.continua:
+        for c in row:
+            m = c.member(float(q[c.free_joint - 1]))
+            if _same_or_connected(m[None], q, T, arm, tol):
+                return True
+    return False
+
+
+@dataclass(frozen=True)
+class Coverage:
+    """An IK answer against the oracle on one pose.
+
+    Attributes:
+        missed: Oracle solutions (k, 6) the answer does not contain.
+        wrong: Rows (indices) of the answer that miss the pose by the oracle's forward kinematics.
+        oracle_solutions: How many clusters the oracle found.
+    """
+
+    missed: np.ndarray
+    wrong: tuple[int, ...]
+    oracle_solutions: int
+
+
+def coverage(result, oracle: OracleSolutions, T, arm: Arm, tol=(1e-10, 1e-10)) -> Coverage:
+    """Which oracle solutions the answer misses, and which of its rows are wrong."""
+    missed = [o for o in oracle.q if not contains(result, o, T, arm, tol)]
+    wrong = ()
+    if len(result.q):
+        pres, rres = pose_residuals_np(arm, result.q, T)
+        wrong = tuple(int(i) for i in np.flatnonzero((pres > tol[0]) | (rres > tol[1])))
+    return Coverage(np.array(missed).reshape(-1, 6), wrong, len(oracle.q))
