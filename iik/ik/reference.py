@@ -357,7 +357,10 @@ def _collect(n, q, own, pres, rres, hval, flat, T, arm, tol_p, tol_r):
                 snapped = _snap(arm, row, T[i], tol_p, tol_r)
                 kind = L.FREE_NUMERICAL if snapped is None else L.FREE_Q3
                 row = row if snapped is None else snapped
-            if any(_same(row, q_k, k_k, kind, T[i], arm, tol_p, tol_r) for q_k, k_k in zip(kept, kinds, strict=True)):
+            if any(
+                _same(row, q_k, k_k, kind, T[i], arm, tol_p, tol_r)
+                for q_k, k_k in zip(kept, kinds, strict=True)
+            ):
                 continue
             kept.append(row)
             kinds.append(kind)
