@@ -115,7 +115,7 @@ def test_two_quick_runs_give_the_same_verdicts(runs):
 
 def test_read_report(runs, tmp_path):
     doc = read_report(runs[0][2].with_suffix(".json"))
-    assert doc["format"] == "iik-verification-report/1"
+    assert doc["format"] == "iik-verification-report/2"
     with pytest.raises(ReportError, match="no such file"):
         read_report(tmp_path / "none.json")
     (tmp_path / "bad.json").write_text("{", encoding="utf-8")
