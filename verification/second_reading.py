@@ -386,9 +386,9 @@ def numbering_slips(name: str, printed, label: str = "") -> list[Reading]:
     if isinstance(printed, int):
         for v in (printed - 1, printed + 1):
             out.append(Reading(Kind.NUMBERING, f"{word} {printed} read as {v}", {name: v}))
-    elif isinstance(printed, str) and printed.isalpha():
+    elif isinstance(printed, str) and any(c.isalpha() for c in printed):
         for d in (-1, 1):
-            v = "".join(chr(ord(c) + d) for c in printed)
+            v = "".join(chr(ord(c) + d) if c.isalpha() else c for c in printed)
             out.append(Reading(Kind.NUMBERING, f"{word} {printed} read as {v}", {name: v}))
     elif isinstance(printed, tuple) and len(printed) == 2:
         out.append(Reading(Kind.NUMBERING, f"{word} {printed[0]} and {printed[1]} swapped",

@@ -376,7 +376,7 @@ def _sigma_zero_points(ctx) -> list[Probe]:
     rng = ctx.rng("eq68-points")
     out = []
     sets = [(t2, t4) for t2 in (ARM.q_min[1], ARM.q_max[1]) for t4 in (ARM.q_min[3], ARM.q_max[3])]
-    for t2, t4 in sets[: ctx.n(4, 1)]:
+    for t2, t4 in sets[: ctx.n(4, 2)]:
         t1 = rng.uniform(ARM.q_min[0], ARM.q_max[0])
 
         def q_at(t5, t2=t2, t4=t4, t1=t1):

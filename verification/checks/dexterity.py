@@ -334,6 +334,7 @@ def eq44_beta_outer(ctx, delta):
         "-",
         c.q,
         unit="-",
+        domain=_conf_domain(ctx, "aligned-planar"),
     )
 
 
@@ -356,6 +357,7 @@ def eq45_beta_inner(ctx, delta):
         c.q,
         unit="-",
         note=f"|J2 - SLJ| = d to {d_err.max():.1e} m",
+        domain=_conf_domain(ctx, "contracted-planar"),
     )
 
 
@@ -948,6 +950,8 @@ def printed_admitted_set(ctx, admit):
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="admitted_set",
+        domain=f"{len(P)} reachable points (fk of q uniform in Table I), a {sw['na']} x {sw['nb']} (alpha, beta) "
+        "grid over every orientation of z6 at each",
         figures=figs,
         reason="the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the "
         "roll geometry, and Eq 48/50/51 are wrong (rows above): admitted "
@@ -1084,4 +1088,5 @@ def gamma_free(ctx, unaffected):
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="gamma_free",
+        domain=f"{len(q)} poses fk(q), q uniform in Table I, gamma at 12 values over a full turn each",
     )

@@ -1422,8 +1422,9 @@ def eq42_matrix(ctx, eq42):
     )
     if verdict is Verdict.HOLDS:
         return row
-    r, c = bad_entries[0]
-    return row.reread(eq42_reading(ctx, eq42, [(r - 1, c - 1)], f"r{r}{c} as printed", count=False))
+    which = ", ".join(f"r{r}{c}" for r, c in bad_entries)
+    return row.reread(eq42_reading(ctx, eq42, [(r - 1, c - 1) for r, c in bad_entries], f"{which} as printed",
+                                   count=False))
 
 
 @SECTION.check(

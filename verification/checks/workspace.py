@@ -597,7 +597,7 @@ def _rear_points(ctx) -> tuple[np.ndarray, float]:
     rng = ctx.rng("eq39-points")
     n = ctx.n(400, 60)
     phi = rng.uniform(160 * _D, 200 * _D, n)
-    r = rng.uniform(0.05, 0.9, n)
+    r = np.where(np.arange(n) % 4 == 0, rng.uniform(0.01, 0.2, n), rng.uniform(0.05, 0.9, n))  # a quarter near the axis
     P = np.column_stack([r * np.cos(phi), r * np.sin(phi), rng.uniform(-0.5, 1.1, n)])
     return P[np.arctan2(P[:, 1], P[:, 0]) >= 160 * _D], 160 * _D
 
@@ -694,8 +694,8 @@ def eq39_theta2(ctx, eq39):
             "nearest "
             f"joint 4 is at theta2 = {best[k]:.4f} rad",
         ),
-        domain=f"{len(P)} points at azimuth 160-200 deg, radius 0.05-0.9 m, z from -0.5 to 1.1 m (behind the "
-        "arm, near and far from the axis; theta2 clipped at both Table I limits)",
+        domain=f"{len(P)} points at azimuth 160-200 deg, radius 0.05-0.9 m (a quarter 0.01-0.2 m: within l2 of the "
+        "axis, where u - l2 changes sign), z from -0.5 to 1.1 m (theta2 clipped at both Table I limits)",
     )
     return row.reread(eq39_reading(ctx, P, th1, eq39)) if row.verdict is Verdict.ERRATUM else row
 
