@@ -32,9 +32,9 @@ simulator's assumed 20 ms lag, not by the PowerCube modules. The Table V round t
 our driver against our simulator: it holds *by construction*.
 
 Forms. The simulation rows take the simulated arm as their form (:class:`SimArm`): the
-assumed lag (printed, also the good form), and as slips one ten times as sluggish; the
-early-update row takes the update fraction (95 % as printed, 90 %, and 100 %: no early
-update, as slip).
+assumed lag (printed, also the good form) and, as slip, the same runs with the logged errors
+read in the wrong unit (mm as m: no extra run); the early-update row takes the update
+fraction (95 % as printed, also the good form, and 100 %: no early update, as slip).
 """
 
 from __future__ import annotations
@@ -117,10 +117,13 @@ class SimArm:
     Attributes:
         lag: Tracking lag of the measured signals behind the set-point [s].
         what: Description for the report.
+        error_scale: Factor the run log's errors are read with (1: metres as logged; a slip reads them in
+            the wrong unit).
     """
 
     lag: float = LAG
     what: str = "the simulated arm with its assumed 20 ms lag"
+    error_scale: float = 1.0
 
 
 @dataclass(frozen=True)
@@ -139,6 +142,7 @@ class SimRun:
         lag: The simulator's tracking lag [s].
         latency: Share of the host's real time the run's clock counted.
         wall: Real time of the execution [s].
+        error_scale: Factor the step-point errors are read with (1 = metres, as logged).
     """
 
     name: str
@@ -152,19 +156,20 @@ class SimRun:
     lag: float
     latency: float
     wall: float
+    error_scale: float = 1.0
 
     @property
     def ee_error(self) -> np.ndarray:
         """(m,) step-point end-effector errors [m] (FK of the measured joints)."""
-        return self.analysis.ee_error
+        return self.analysis.ee_error * self.error_scale
 
     @property
     def max_ee(self) -> float:
-        return self.analysis.max_ee_error
+        return self.analysis.max_ee_error * self.error_scale
 
     @property
     def mean_ee(self) -> float:
-        return self.analysis.mean_ee_error
+        return self.analysis.mean_ee_error * self.error_scale
 
     @property
     def label(self) -> str:
@@ -535,7 +540,10 @@ def check_early_update(ctx, early: float) -> list[Row]:
 
 
 def _zone_runs(ctx, arm: SimArm, runs) -> list[SimRun]:
-    return [execute_scenario(ctx, name, limit=limit, lag=arm.lag) for name, limit in runs]
+    import dataclasses
+
+    return [dataclasses.replace(execute_scenario(ctx, name, limit=limit, lag=arm.lag), error_scale=arm.error_scale)
+            for name, limit in runs]
 
 
 def _arm_forms(sim_id: str) -> dict:
@@ -543,8 +551,8 @@ def _arm_forms(sim_id: str) -> dict:
         printed=SimArm(),
         good=SimArm(),
         good_is="the simulated arm with its assumed lag (the printed form is the simulation's model)",
-        slips=(Slip(SlipKind.MODEL, f"an arm lagging {10 * LAG * 1e3:.0f} ms (ten times the assumed lag)",
-                    SimArm(10 * LAG, "an arm lagging ten times the assumed lag")),),
+        slips=(Slip(SlipKind.UNIT, "the logged errors read in mm as m (x 1000)",
+                    SimArm(LAG, "the simulated arm, its errors read x 1000", error_scale=1000.0)),),
         rows=(sim_id,),
     )
 

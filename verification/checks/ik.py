@@ -264,8 +264,8 @@ class Lookup:
         printed=ThesisSolver(),
         good=Lookup(),
         good_is="a lookup of precomputed solutions (no computation)",
-        slips=(Slip(SlipKind.MODEL, "the thesis IIK with a 0.5 deg theta1 grid (10x the work)",
-                    ThesisSolver(n_grid=720)),),
+        slips=(Slip(SlipKind.MODEL, "the thesis IIK with a 1 deg theta1 grid (5x the work)",
+                    ThesisSolver(n_grid=360)),),
     ),
 )
 def benchmark(ctx, solver):

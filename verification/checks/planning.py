@@ -162,7 +162,7 @@ def check_eq53_ellipsoid(ctx, readings) -> Row:
         domain=f"{len(sizes)} boxes: 0.30 x 0.20 x 0.50 m and sizes uniform in 0.05-1 m per side (flat, long and "
         "cubic), every corner",
     )
-    return row.reread(eq53_reading(sizes)) if row.verdict is Verdict.ERRATUM else row
+    return row.reread(eq53_reading(sizes[:200])) if row.verdict is Verdict.ERRATUM else row
 
 
 def eq53_reading(sizes):
@@ -192,7 +192,7 @@ def eq53_reading(sizes):
     ]
     return search(stated, readings, misfit, 1e-9, printed="x_r = w/(cos b cos a), y_r = d/(cos b sin a), "
                   "z_r = h/sin a, a = pi/4, b = atan(cos a)", stated_text="w, d, h the box's width, depth and "
-                  "height (Sec 3.6.2.1), a = pi/4", route="Eq 52 evaluated at the 8 corners of each box",
+                  "height (Sec 3.6.2.1), a = pi/4", route=f"Eq 52 evaluated at the 8 corners of {len(sizes)} of the boxes",
                   measure="max |Eq 52 at the corners - 1|")
 
 

@@ -26,7 +26,7 @@ from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
 from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon, off_by, verdict_of
 from ..second_reading import Kind, Reading, search
-from ..shorthand import cos_sin
+from ..shorthand import cos_sin, wrap
 
 _D = np.pi / 180
 ARM = iik.THESIS_ARM
@@ -45,7 +45,7 @@ def eq36_41_test(
     """The test of Sec 3.4.4 -> boolean (n,) 'within boundary' (0 of Eq 38/41).
 
     ``eq39``: ``"printed"`` (link 3 aimed from the base axis) or ``"corrected"`` (from joint 2,
-    clipped to Table I); ``eq40_sign``: the sign in Eq 40's ``(l2 -+ l3 c2)`` (printed: -1);
+    limited to Table I by the nearer limit on the circle); ``eq40_sign``: the sign in Eq 40's ``(l2 -+ l3 c2)`` (printed: -1);
     ``margin`` [m]: added to both reach radii (the tolerance test); ``th1_rule``: joint 1 in regions 2/3
     at the region's limit (``"region"``), at 160 deg in both (``"printed"``: Eq 40's cos(160 deg),
     sin(160 deg) literally) or at the other limit (``"other"``); ``reach1``, ``reach23`` [m]: the reach
@@ -66,7 +66,7 @@ def eq36_41_test(
             th2 = eq39_sign * np.arctan2(pz - l1, np.sqrt(px**2 + py**2))  # Eq 39 as printed
         else:
             u = px * np.cos(th1) + py * np.sin(th1)
-            th2 = np.clip(eq39_sign * np.arctan2(pz - l1, u - l2), arm.lower[1], arm.upper[1])
+            th2 = clip_angle(eq39_sign * np.arctan2(pz - l1, u - l2), arm.lower[1], arm.upper[1])
         c2, s2 = cos_sin(th2)
         x4 = (l2 + eq40_sign * l3 * c2) * np.cos(th1)  # Eq 40 (printed: l2 - l3 c2)
         y4 = (l2 + eq40_sign * l3 * c2) * np.sin(th1)
@@ -565,9 +565,19 @@ def eq39_printed(P, th1):
     return -np.arctan2(P[:, 2] - ARM.l1, np.hypot(P[:, 0], P[:, 1]))
 
 
+def clip_angle(t, lo: float, hi: float):
+    """``t`` [rad] limited to [lo, hi] by the nearer limit *on the circle* (a plain clip picks the wrong one for
+    an angle past one limit but nearer the other across +-pi)."""
+    t = np.asarray(t, float)
+    d_lo = np.abs(wrap(t - lo))
+    d_hi = np.abs(wrap(t - hi))
+    inside = (t >= lo) & (t <= hi)
+    return np.where(inside, t, np.where(d_lo < d_hi, lo, hi))
+
+
 def eq39_corrected(P, th1):
     u = P[:, 0] * np.cos(th1) + P[:, 1] * np.sin(th1)
-    return np.clip(-np.arctan2(P[:, 2] - ARM.l1, u - ARM.l2), ARM.lower[1], ARM.upper[1])
+    return clip_angle(-np.arctan2(P[:, 2] - ARM.l1, u - ARM.l2), ARM.lower[1], ARM.upper[1])
 
 
 def _nearest_joint4_theta2(P, th1) -> np.ndarray:
@@ -618,9 +628,9 @@ def _joint4_grid_theta2(P: np.ndarray, th1: float, n: int = 2001) -> np.ndarray:
 def eq39_reading(ctx, P, th1, eq39):
     """Second reading of Eq 39 (the form) on the check's points: the form under each nearby reading of its
     inputs (theta2 measured the other way, joint 1 at the other limit, the point given in Sec 3.3.1's frame
-    moved up by l1) vs the nearest-joint-4 theta2 of a dense grid."""
+    moved up by l1) vs the nearest-joint-4 theta2 of a dense grid (cached per run: it depends on no form)."""
     stated = {"sign": 1.0, "th1": th1, "dz": 0.0}
-    truths = {th1: _joint4_grid_theta2(P, th1)}
+    truths = ctx.cache.setdefault(("workspace.eq39_grid", ctx.quick), {})
 
     def misfit(x) -> float:
         if x["th1"] not in truths:
@@ -640,17 +650,18 @@ def eq39_reading(ctx, P, th1, eq39):
 
 
 def _eq39_plus(P, th1):
-    return -eq39_corrected(P, th1)
+    u = P[:, 0] * np.cos(th1) + P[:, 1] * np.sin(th1)
+    return clip_angle(np.arctan2(P[:, 2] - ARM.l1, u - ARM.l2), ARM.lower[1], ARM.upper[1])
 
 
 def _eq39_swapped(P, th1):
     u = P[:, 0] * np.cos(th1) + P[:, 1] * np.sin(th1)
-    return np.clip(-np.arctan2(u - ARM.l2, P[:, 2] - ARM.l1), ARM.lower[1], ARM.upper[1])
+    return clip_angle(-np.arctan2(u - ARM.l2, P[:, 2] - ARM.l1), ARM.lower[1], ARM.upper[1])
 
 
 def _eq39_atan(P, th1):
     u = P[:, 0] * np.cos(th1) + P[:, 1] * np.sin(th1)
-    return np.clip(-np.arctan((P[:, 2] - ARM.l1) / (u - ARM.l2)), ARM.lower[1], ARM.upper[1])
+    return clip_angle(-np.arctan((P[:, 2] - ARM.l1) / (u - ARM.l2)), ARM.lower[1], ARM.upper[1])
 
 
 @SECTION.check(
@@ -659,7 +670,8 @@ def _eq39_atan(P, th1):
     forms=Forms(
         printed=eq39_printed,
         good=eq39_corrected,
-        good_is="theta2 = -atan2(pz - l1, u - l2), u along the joint-1 limit direction, clipped to Table I",
+        good_is="theta2 = -atan2(pz - l1, u - l2), u along the joint-1 limit direction, limited to Table I by the "
+        "nearer limit on the circle",
         slips=(
             Slip(SlipKind.SIGN, "+atan2(pz - l1, u - l2)", _eq39_plus),
             Slip(SlipKind.SWAP, "atan2's arguments exchanged", _eq39_swapped),
@@ -671,7 +683,10 @@ def _eq39_atan(P, th1):
 def eq39_theta2(ctx, eq39):
     """Eq 39: the theta2 at which joint 4 comes nearest to the point (joint 1 at 160 deg)."""
     P, th1 = _rear_points(ctx)
-    best = _nearest_joint4_theta2(P, th1)
+    key = ("workspace.eq39_nearest", ctx.quick)
+    if key not in ctx.cache:
+        ctx.cache[key] = _nearest_joint4_theta2(P, th1)
+    best = ctx.cache[key]
     err = np.abs(eq39(P, th1) - best)
     m = (Measure("max |theta2 of the form - nearest-joint-4 theta2|", err.max(), 1e-6, "rad"),)
     k = int(np.argmax(err))
@@ -687,7 +702,8 @@ def eq39_theta2(ctx, eq39):
         erratum=Erratum(
             "Eq 39",
             "theta2 = -atan2(pz - l1, sqrt(px^2 + py^2)) (link 3 aimed from the base axis)",
-            "theta2 = -atan2(pz - l1, u - l2), u = px cos(th1) + py sin(th1), clipped to Table I (aimed "
+            "theta2 = -atan2(pz - l1, u - l2), u = px cos(th1) + py sin(th1), limited to Table I by the nearer "
+            "limit on the circle (aimed "
             "from "
             "joint 2: the nearest joint-4 position)",
             f"p = {fmt_vec(P[k])} m: Eq 39 gives theta2 = {eq39(P[k : k + 1], th1)[0]:.4f} rad, the "
@@ -1053,7 +1069,7 @@ def radial_projection(p, arm=ARM) -> np.ndarray:
         if region.any():
             q = p[region]
             u = q[:, 0] * np.cos(th1) + q[:, 1] * np.sin(th1)
-            th2 = np.clip(-np.arctan2(q[:, 2] - l1, u - l2), arm.lower[1], arm.upper[1])
+            th2 = clip_angle(-np.arctan2(q[:, 2] - l1, u - l2), arm.lower[1], arm.upper[1])
             c[region] = np.column_stack(
                 [
                     (l2 + l3 * np.cos(th2)) * np.cos(th1),
