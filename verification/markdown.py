@@ -47,8 +47,8 @@ _HOW_TO_READ = (
     "- **Falsifiability.** `iik verify --self-test` reruns every check with a known-good form (it must "
     "pass) and with the mistakes a person could make in that formula (sign, swapped index, atan for "
     "asin, a wrong link length, degrees for radians, a transposed rotation, the other branch of a "
-    "square root, an off-by-one), plus an epsilon tolerance test; none may pass. The table at the end "
-    "lists each check's slips.",
+    "square root, an off-by-one), plus an epsilon tolerance test; each must be caught (some graded row "
+    "fails). The table at the end lists each check's slips.",
     "- **Scope.** Thesis rows grade the thesis by its own claims; *project standard* rows grade our "
     "stricter standards and are counted apart.",
     "",
@@ -143,17 +143,18 @@ def _findings(doc: dict) -> list[str]:
         "",
         f"Of {len(top)} thesis claims (grouped claims counted once):",
         "",
-        f"- **Confirmed by measurement: {g['confirmed']}** (each could have failed; listed per section below).",
+        f"- **Confirmed by measurement: {g['confirmed']}** (each could have failed; listed per section "
+        "below).",
         f"- **Refuted: {g['refuted']}** -- {len(by['erratum'])} errata (a printed formula or number is wrong "
-        f"under every nearby reading of its inputs): {_refs(by['erratum'])}; {len(by['does not hold'])} claims "
-        f"that do not hold: {_refs(by['does not hold'])}.",
+        f"under every nearby reading of its inputs): {_refs(by['erratum'])}; {len(by['does not hold'])} "
+        f"claims that do not hold: {_refs(by['does not hold'])}.",
         f"- **Input slips: {g['input slip']}** -- the printed result is right for a nearby reading of its "
         f"stated input, so the slip is in the input: {_refs(by['input slip'])}.",
         f"- **Untestable here: {g['untestable']}** (not checkable, with the reason in the row): "
         f"{_refs(by['not checkable'])}.",
         f"- **Not evidence: {g['not evidence']}** -- {len(by['holds by construction'])} hold by construction "
-        f"(identities, round trips through our own code), {len(by['consistent with our reconstruction'])} are "
-        f"consistent with our reconstruction ({_refs(by['consistent with our reconstruction'])}), "
+        f"(identities, round trips through our own code), {len(by['consistent with our reconstruction'])} "
+        f"are consistent with our reconstruction ({_refs(by['consistent with our reconstruction'])}), "
         f"{len(by['not reproduced on our reconstruction'])} are not reproduced on it "
         f"({_refs(by['not reproduced on our reconstruction'])}).",
         "",
@@ -164,7 +165,8 @@ def _findings(doc: dict) -> list[str]:
 
 
 def _section_verdict(sec: dict, recs: list[dict]) -> str:
-    """One quotable line for a section: confirmed count, then the refuted / slipped / untestable references."""
+    """One quotable line for a section: the confirmed count, then the refuted, slipped and untestable
+    references."""
     ids = {i for c in sec["checks"] for i in c["rows"]}
     top = [r for r in recs if r["id"] in ids and r["parent"] is None and r["scope"] == "thesis"]
     if not top:
@@ -172,7 +174,8 @@ def _section_verdict(sec: dict, recs: list[dict]) -> str:
         return f"Project standards only: {_counts_line(dict(_zero(), **_count(proj)))}."
     c = _count(top)
     parts = [f"{c.get('holds', 0)} of {len(top)} thesis claims confirmed by measurement"]
-    for verdict, word in (("erratum", "errata"), ("input slip", "input slips"), ("does not hold", "do not hold"),
+    for verdict, word in (("erratum", "errata"), ("input slip", "input slips"), ("does not hold",
+        "do not hold"),
                           ("not reproduced on our reconstruction", "not reproduced on our reconstruction"),
                           ("not checkable", "not checkable")):
         refs = [r["reference"] for r in top if r["verdict"] == verdict]
@@ -329,8 +332,8 @@ def _row_block(rec: dict, details: list[dict]) -> list[str]:
 def _reading_lines(sr: dict) -> list[str]:
     before = f" (verdict before it: {sr['before']})" if sr["before"] else ""
     return [
-        f"- second reading of `{_cell(sr['printed'])}` (stated: {_cell(sr['stated'])}){before}: re-derived by "
-        f"{_cell(sr['route'])}; {sr['searched']} readings searched ({_cell(', '.join(sr['kinds']))}); "
+        f"- second reading of `{_cell(sr['printed'])}` (stated: {_cell(sr['stated'])}){before}: re-derived "
+        f"by {_cell(sr['route'])}; {sr['searched']} readings searched ({_cell(', '.join(sr['kinds']))}); "
         f"{_cell(sr['result'])}; **the slip is {_cell(sr['where'])}**",
     ]
 
@@ -384,7 +387,8 @@ def _tail(doc: dict) -> list[str]:
             searched = f"{sr['searched']} ({', '.join(sr['kinds'])})" if sr else "-"
             before = f" (was {sr['before']})" if sr and sr["before"] and sr["before"] != r["verdict"] else ""
             lines.append(
-                f"| {_link(r['id'])} | {r['verdict']}{before} | {_cell(e['equation'])} | {_cell(e['printed'])} | "
+                f"| {_link(r['id'])} | {r['verdict']}{before} | {_cell(e['equation'])} | "
+                f"{_cell(e['printed'])} | "
                 f"{_cell(e['corrected'])} | {_cell(searched)} | {_cell(sr['result'] if sr else '-')} | "
                 f"{_cell(sr['where'] if sr else '-')} |"
             )

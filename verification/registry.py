@@ -23,7 +23,7 @@ form moved by a tiny epsilon -- and takes the form as its second argument::
 
 ``iik verify`` calls it with ``forms.printed``; :func:`verification.self_test` calls it
 again with ``forms.good`` (it must pass: :attr:`Verdict.passes`), with each slip and with
-the tolerance form (none may pass). A check that cannot flip by its nature (a byte
+the tolerance form (each must make a graded row fail). A check that cannot flip by its nature (a byte
 comparison, a transcription round trip, a statement that needs the real arm) says why
 with ``by_construction="..."`` and is counted apart.
 
@@ -58,7 +58,8 @@ import numpy as np
 
 from .assumptions import ASSUMPTIONS
 from .errors import RegistrationError, RowError
-from .second_reading import SecondReading, Slip as Where
+from .second_reading import SecondReading
+from .second_reading import Slip as Where
 
 __all__ = [
     "Verdict",
@@ -378,7 +379,7 @@ class Forms:
         printed: The thesis's form (a function, a table, printed numbers).
         good: A known-good form: the check must pass with it (:attr:`Verdict.passes`).
         good_is: What the good form is (for the self-test listing).
-        slips: Realistic mistakes in the formula (:class:`Slip`, not epsilon ones): none may pass.
+        slips: Realistic mistakes in the formula (:class:`Slip`, not epsilon ones): each must be caught.
         tolerance: The good form moved by a tiny epsilon (:func:`epsilon`): shows the tolerance bites;
             ``None`` where nothing is graded against a tolerance.
         rows: Local ids of the rows the self-test grades; empty = every row of the check.

@@ -386,7 +386,8 @@ def summary(results: Iterable[CheckResult]) -> str:
     lines[0:0] = [f"{len(top)} claims from {len(results)} checks (grouped claims counted once)"]
     for r in top:
         if r.scope is Scope.THESIS and r.verdict in (Verdict.ERRATUM, Verdict.INPUT_SLIP):
-            lines.append(f"  {r.verdict.value}: {r.id} ({r.reference}): " + "; ".join(e.equation for e in r.errata))
+            where = "; ".join(e.equation for e in r.errata)
+            lines.append(f"  {r.verdict.value}: {r.id} ({r.reference}): {where}")
         elif r.scope is Scope.THESIS and r.verdict is Verdict.DOES_NOT_HOLD:
             lines.append(f"  does not hold: {r.id} ({r.reference})")
     failed = [res.check.name for res in results if res.error]

@@ -263,25 +263,39 @@ def _fmt(v) -> str:
     return str(v)
 
 
-def signs(stated: Mapping[str, Any], names: Iterable[str], *, label: Callable[[str], str] = str) -> list[Reading]:
+def signs(
+    stated: Mapping[str, Any], names: Iterable[str], *, label: Callable[[str], str] = str
+) -> list[Reading]:
     """The sign of each named (non-zero) stated value flipped."""
     out = []
     for n in names:
         v = stated[n]
         if np.any(np.asarray(v) != 0):
-            out.append(Reading(Kind.SIGN, f"{label(n)} = {_fmt(-np.asarray(v) if np.ndim(v) else -v)}",
-                               {n: -np.asarray(v) if np.ndim(v) else -v}))
+            out.append(
+                Reading(
+                    Kind.SIGN,
+                    f"{label(n)} = {_fmt(-np.asarray(v) if np.ndim(v) else -v)}",
+                    {n: -np.asarray(v) if np.ndim(v) else -v},
+                )
+            )
     return out
 
 
-def other_limits(stated: Mapping[str, Any], name: str, lower: float, upper: float, *, what: str = "") -> list[Reading]:
+def other_limits(
+    stated: Mapping[str, Any], name: str, lower: float, upper: float, *, what: str = ""
+) -> list[Reading]:
     """If the named value sits at a joint limit: the other limit."""
     v = float(stated[name])
     out = []
     for at, other, word in ((lower, upper, "upper"), (upper, lower, "lower")):
         if abs(v - at) <= 1e-9:
-            out.append(Reading(Kind.LIMIT, f"{what or name} at its {word} limit ({np.degrees(other):.0f} deg)",
-                               {name: other}))
+            out.append(
+                Reading(
+                    Kind.LIMIT,
+                    f"{what or name} at its {word} limit ({np.degrees(other):.0f} deg)",
+                    {name: other},
+                )
+            )
     return out
 
 
@@ -292,9 +306,16 @@ def units(stated: Mapping[str, Any], names: Iterable[str]) -> list[Reading]:
         v = float(stated[n])
         if v == 0:
             continue
-        out.append(Reading(Kind.UNIT, f"{n} = {v:.6g} taken as degrees ({np.radians(v):.4g} rad)",
-                           {n: float(np.radians(v))}))
-        out.append(Reading(Kind.UNIT, f"{n} = {np.degrees(v):.6g} deg typed as rad", {n: float(np.degrees(v))}))
+        out.append(
+            Reading(
+                Kind.UNIT,
+                f"{n} = {v:.6g} taken as degrees ({np.radians(v):.4g} rad)",
+                {n: float(np.radians(v))},
+            )
+        )
+        out.append(
+            Reading(Kind.UNIT, f"{n} = {np.degrees(v):.6g} deg typed as rad", {n: float(np.degrees(v))})
+        )
     return out
 
 
@@ -356,7 +377,11 @@ def digit_slips(name: str, printed) -> list[Reading]:
             new = flat.copy()
             new[i] = float(s)
             where = f"{name}[{i + 1}]" if flat.size > 1 else name
-            out.append(Reading(Kind.DIGITS, f"{where} = {repr(float(v))} read as {s}", {name: new.reshape(arr.shape)}))
+            out.append(
+                Reading(
+                    Kind.DIGITS, f"{where} = {repr(float(v))} read as {s}", {name: new.reshape(arr.shape)}
+                )
+            )
     return out
 
 
@@ -373,7 +398,9 @@ def moved_entries(name: str, printed, *, within: str = "column") -> list[Reading
                 continue
             b = a.copy()
             b[..., i, j], b[..., k, m] = a[..., k, m], a[..., i, j]
-            out.append(Reading(Kind.MOVED, f"{name}({i + 1},{j + 1}) and ({k + 1},{m + 1}) exchanged", {name: b}))
+            out.append(
+                Reading(Kind.MOVED, f"{name}({i + 1},{j + 1}) and ({k + 1},{m + 1}) exchanged", {name: b})
+            )
     return out
 
 
@@ -391,6 +418,11 @@ def numbering_slips(name: str, printed, label: str = "") -> list[Reading]:
             v = "".join(chr(ord(c) + d) if c.isalpha() else c for c in printed)
             out.append(Reading(Kind.NUMBERING, f"{word} {printed} read as {v}", {name: v}))
     elif isinstance(printed, tuple) and len(printed) == 2:
-        out.append(Reading(Kind.NUMBERING, f"{word} {printed[0]} and {printed[1]} swapped",
-                           {name: (printed[1], printed[0])}))
+        out.append(
+            Reading(
+                Kind.NUMBERING,
+                f"{word} {printed[0]} and {printed[1]} swapped",
+                {name: (printed[1], printed[0])},
+            )
+        )
     return out

@@ -89,8 +89,11 @@ class SelfTestOutcome:
         """One markdown table row: check, status, verdicts, slips caught and missed, tolerance test."""
         caught = "; ".join(f"{s.kind}: {s.what}" for s in self.caught) or "-"
         missed = "; ".join(f"{s.kind}: {s.what} ({s.verdicts})" for s in self.missed) or "-"
-        tol = "-" if self.tolerance is None else ("caught" if self.tolerance.caught else
-                                                  f"PASSES ({self.tolerance.verdicts})")
+        tol = (
+            "-"
+            if self.tolerance is None
+            else ("caught" if self.tolerance.caught else f"PASSES ({self.tolerance.verdicts})")
+        )
         n = f"{len(self.caught)}/{len(self.slips)}" if self.slips else "-"
         return (
             f"| `{self.check}` | {self.status} | {self.printed} | {self.good} | {n} | {caught} | {missed} | "
@@ -152,7 +155,9 @@ def self_test_check(check: Check, ctx: Context) -> SelfTestOutcome:
         status = FLIPS
     else:
         status = MISSES
-    return SelfTestOutcome(where, status, _verdicts(printed), _verdicts(good), slips, tol, f"good = {f.good_is}")
+    return SelfTestOutcome(
+        where, status, _verdicts(printed), _verdicts(good), slips, tol, f"good = {f.good_is}"
+    )
 
 
 def run_self_test(ctx: Context, *, select: Sequence[str] | None = None) -> list[SelfTestOutcome]:
@@ -184,8 +189,14 @@ def summary_line(outcomes: Sequence[SelfTestOutcome]) -> str:
     )
 
 
-def self_test(ctx: Context | None = None, *, quick: bool = False, seed: int = 20120101,
-              select: Sequence[str] | None = None, out=None) -> int:
+def self_test(
+    ctx: Context | None = None,
+    *,
+    quick: bool = False,
+    seed: int = 20120101,
+    select: Sequence[str] | None = None,
+    out=None,
+) -> int:
     """Run the self-test, print its table (:func:`table`) to ``out`` (stdout); return 0 if every check
     flips (or is by construction), else 1.
 

@@ -22,8 +22,10 @@ from verification.second_reading import (
     units,
 )
 
+_LO, _HI = -np.radians(160), np.radians(160)
 
-def _lam(q, lo=-np.radians(160), hi=np.radians(160)):
+
+def _lam(q, lo=_LO, hi=_HI):
     """Eq 58 inverted: the printed value's recipe."""
     return np.arcsin((q - (hi + lo) / 2) / ((hi - lo) / 2))
 
@@ -31,8 +33,16 @@ def _lam(q, lo=-np.radians(160), hi=np.radians(160)):
 def _read(printed: float, q: float, **kw):
     stated = {"q": q, "lam": printed}
     readings = signs(stated, ["q"]) + digit_slips("lam", printed) + kw.get("extra", [])
-    return search(stated, readings, lambda x: abs(x["lam"] - _lam(x["q"])), 1e-3, printed="u0",
-                  stated_text="q", route="Eq 58", measure="|printed - lambda|")
+    return search(
+        stated,
+        readings,
+        lambda x: abs(x["lam"] - _lam(x["q"])),
+        1e-3,
+        printed="u0",
+        stated_text="q",
+        route="Eq 58",
+        measure="|printed - lambda|",
+    )
 
 
 def test_an_input_reading_moves_the_slip_to_the_input():
@@ -52,14 +62,29 @@ def test_right_as_stated_withdraws_the_erratum_and_a_wrong_value_stays_one():
 
 def test_a_digit_slip_is_a_typo_and_combinations_are_tried_last():
     # -0.0698 printed as -0.698: a dropped zero (the printed side)
-    typo = search({"x": -0.698}, digit_slips("x", -0.698), lambda s: abs(s["x"] + 0.0698), 1e-6,
-                  printed="x", stated_text="-", route="-", measure="-")
+    typo = search(
+        {"x": -0.698},
+        digit_slips("x", -0.698),
+        lambda s: abs(s["x"] + 0.0698),
+        1e-6,
+        printed="x",
+        stated_text="-",
+        route="-",
+        measure="-",
+    )
     assert typo.slip is Slip.TYPO and "-0.0698" in typo.explanation.text
     # an input sign and a dropped digit together (A6's N0): only searched when no single reading works
     stated = {"t": 1.0, "x": -0.698}
-    both = search(stated, signs(stated, ["t"]) + digit_slips("x", -0.698),
-                  lambda s: abs(s["x"] - (-0.0698) * s["t"] * -1), 1e-6, printed="x", stated_text="t",
-                  route="-", measure="-")
+    both = search(
+        stated,
+        signs(stated, ["t"]) + digit_slips("x", -0.698),
+        lambda s: abs(s["x"] - (-0.0698) * s["t"] * -1),
+        1e-6,
+        printed="x",
+        stated_text="t",
+        route="-",
+        measure="-",
+    )
     assert both.slip is Slip.INPUT_AND_TYPO and len(both.explanation.readings) == 2
     single = len(signs(stated, ["t"]) + digit_slips("x", -0.698))
     assert len(both.trials) > 1 + single  # the pairs were searched
@@ -88,8 +113,16 @@ def test_undefined_readings_count_as_not_reproducing():
             raise np.linalg.LinAlgError("singular")
         return float("nan") if x["q"] == 2 else 0.0
 
-    sr = search({"q": 1.0}, [Reading(Kind.SIGN, "-1", {"q": -1.0}), Reading(Kind.SIGN, "2", {"q": 2.0})], misfit,
-                0.0, printed="-", stated_text="-", route="-", measure="-")
+    sr = search(
+        {"q": 1.0},
+        [Reading(Kind.SIGN, "-1", {"q": -1.0}), Reading(Kind.SIGN, "2", {"q": 2.0})],
+        misfit,
+        0.0,
+        printed="-",
+        stated_text="-",
+        route="-",
+        measure="-",
+    )
     assert [t.misfit for t in sr.trials] == [0.0, float("inf"), float("inf")]
 
 
@@ -97,7 +130,9 @@ def test_reread_grades_an_erratum_by_its_second_reading():
     e = Erratum("Eq 1", "p", "c", "x")
     row = Row("c", "Eq 1", "m", "n", Verdict.ERRATUM, errata=(e,))
     slip = row.reread(_read(1.0654, np.radians(-140)))
-    assert slip.verdict is Verdict.INPUT_SLIP and slip.errata == (e,) and slip.second_reading.before == "erratum"
+    assert (
+        slip.verdict is Verdict.INPUT_SLIP and slip.errata == (e,) and slip.second_reading.before == "erratum"
+    )
     withdrawn = row.reread(_read(-1.0654, np.radians(-140)))
     assert withdrawn.verdict is Verdict.HOLDS and withdrawn.errata == ()
     stays = row.reread(_read(0.7, np.radians(-140)))

@@ -36,7 +36,9 @@ def _tolerant(ctx, form):
     return Row("c", "Eq 1", "m", str(form), Verdict.HOLDS if abs(form) <= 0.5 else Verdict.DOES_NOT_HOLD)
 
 
-_FORMS = Forms(printed=1, good=0, good_is="0", slips=(Slip(SlipKind.SIGN, "1", 1), Slip(SlipKind.CLAIM, "2", 2)))
+_FORMS = Forms(
+    printed=1, good=0, good_is="0", slips=(Slip(SlipKind.SIGN, "1", 1), Slip(SlipKind.CLAIM, "2", 2))
+)
 
 
 def test_a_constant_verdict_cannot_flip(tmp_path):
@@ -54,7 +56,9 @@ def test_a_missed_slip_or_a_loose_tolerance_fails(tmp_path):
     missed = self_test_check(Check("t.m", "S", 0, _tolerant, forms=forms, prefix="t"), ctx)
     assert missed.status == "MISSES A SLIP" and missed.failed
     assert [s.what for s in missed.missed] == ["0.1"]
-    loose = Forms(0, 0, "0", slips=(Slip(SlipKind.SIGN, "-1", -1),), tolerance=Slip(SlipKind.EPSILON, "0 + 0.1", 0.1))
+    loose = Forms(
+        0, 0, "0", slips=(Slip(SlipKind.SIGN, "-1", -1),), tolerance=Slip(SlipKind.EPSILON, "0 + 0.1", 0.1)
+    )
     out = self_test_check(Check("t.l", "S", 0, _tolerant, forms=loose, prefix="t"), ctx)
     assert out.status == "MISSES A SLIP" and out.tolerance is not None and not out.tolerance.caught
     assert "PASSES" in out.line() and "| check |" in table([out])

@@ -26,7 +26,7 @@ from ..oracles.normal_distance import parameters, surface_point, tool_point
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
 from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon
-from ..second_reading import Kind, Reading, choices, digit_slips, moved_entries, search
+from ..second_reading import Kind, Reading, digit_slips, moved_entries, search
 from ..shorthand import cos_sin
 
 _D = np.pi / 180
@@ -92,7 +92,8 @@ def _results(ctx) -> dict:
             for name, d in PRINTED.items()
         }
         a2 = PRINTED["A2"]
-        res[A2_READ] = normal_acceleration(np.r_[-a2["q0"][0], a2["q0"][1:]], a2["free"], normal_hint=a2["N0"])
+        res[A2_READ] = normal_acceleration(np.r_[-a2["q0"][0], a2["q0"][1:]], a2["free"],
+            normal_hint=a2["N0"])
         sides = {}
         for name, r in res.items():
             cls = oracle_for(ctx).classify(np.array([r.point + EPS * r.N0, r.point - EPS * r.N0]))
@@ -123,7 +124,7 @@ def recomputed_values(ctx) -> dict:
 
 
 def eig_of_h_values(ctx) -> dict:
-    """A realistic slip: the eigenvalues of H* reported for those of Q* (the curvature term of Eq 65 left out)."""
+    """A realistic slip: the eigenvalues of H* reported for those of Q* (Eq 65's curvature term left out)."""
     res, _ = _results(ctx)
     out = recomputed_values(ctx)
     for name in out:
@@ -174,8 +175,8 @@ _CACHE: dict = {}
 
 def _point(q0, free, hint):
     """``(N0, eig(Q*) [mm], H* [mm])`` by their meaning at joints ``q0`` on the surface with free joints
-    ``free``, N0's sign chosen along ``hint``; None where the surface has no normal (cached per process: a pure
-    function of its inputs)."""
+    ``free``, N0's sign chosen along ``hint``; None where the surface has no normal (cached per process: a
+    pure function of its inputs)."""
     key = (np.asarray(q0, float).round(12).tobytes(), tuple(free))
     if key not in _CACHE:
         try:
@@ -272,7 +273,8 @@ def reading_u0(pv: dict):
     readings = _q0_readings("A1") + [Reading(Kind.LIMIT, "Eq 58 with q^U and q^L exchanged", {"swap": True})]
     return search(stated, readings + digit_slips("u0", pv["u0"]), misfit, _TOL_UNIT,
                   printed=f"u0 = {fmt_vec(pv['u0'])}", stated_text=_stated_text("A1"),
-                  route="Eq 58 inverted (arcsin) at the reading's joints", measure="max |printed - lambda(q0)|")
+                  route="Eq 58 inverted (arcsin) at the reading's joints",
+                      measure="max |printed - lambda(q0)|")
 
 
 def reading_h(pv: dict, mask: np.ndarray, what: str):
@@ -299,7 +301,8 @@ def reading_dq(pv: dict):
 
     return search(_stated("A2", pv), _q0_readings("A2"), misfit, 0.0,
                   printed=f"delta q = {pv['dq']} 'because joint 1 is at its lower limit'",
-                  stated_text=_stated_text("A2"), route="Eq 67 at the reading's joints (+1 at a lower limit, -1 at "
+                  stated_text=_stated_text("A2"),
+                      route="Eq 67 at the reading's joints (+1 at a lower limit, -1 at "
                   "an upper one)", measure="largest difference of the printed step from Eq 67's")
 
 
@@ -577,14 +580,16 @@ def _a2(pv, r, side, r_read=None, side_read: str = "") -> Row:
                 "App. E, A2, delta q1",
                 "delta q1 = -1 because joint 1 is at its lower limit",
                 "delta q1 = +1 at a lower limit (Eq 67)",
-                f"with Eq 67, sigma = N0.G_q1 dq1 = {mm['sigma'][1]:.4f} mm: the opposite sign of the positive "
-                f"eigenvalues, so motion is admissible both ways; ground truth: {side}",
+                f"with Eq 67, sigma = N0.G_q1 dq1 = {mm['sigma'][1]:.4f} mm: the opposite sign of the "
+                f"positive eigenvalues, so motion is admissible both ways; ground truth: {side}",
             ),
             reread=lambda: reading_dq(pv),
         ),
         _conclusion_detail(
             "A2", pv, side, r,
-            "" if r_read is None else f" | second reading with theta1 = +160 deg (the reading that reproduces the "
+            ""
+            if r_read is None
+            else f" | second reading with theta1 = +160 deg (the reading that reproduces the "
             f"printed N0, delta q1 and the sign of sigma): Abdel-Malek's test {r_read.verdict} as printed, "
             f"ground truth {side_read}: the local test is right there, the point is still reached from both "
             "sides by other configurations",
@@ -700,8 +705,10 @@ def eq69_reading(ctx, f1):
         return float(np.linalg.norm(f1(qq) - tool_point(qq[:, :5]), axis=1).max())
 
     pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != (4, 5)]
-    readings = [Reading(Kind.WHICH, f"the set [theta{a} = 0, theta{b} = 0]", {"pair": (a, b)}) for a, b in pairs]
-    return search(stated, readings, misfit, 1e-12, printed="f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; ...; "
+    readings = [Reading(Kind.WHICH, f"the set [theta{a} = 0, theta{b} = 0]", {"pair": (a, b)}) for a,
+        b in pairs]
+    return search(stated, readings, misfit, 1e-12,
+        printed="f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; ...; "
                   "l5 c3 s5 + l1]", stated_text="s(1) = [theta4 = 0, theta5 = 0] (App. E, Table VI)",
                   route="the tool point of the Table II chain by iik.dh with the pair held at 0",
                   measure="max |f(1) - tool point| [m]")
@@ -747,8 +754,7 @@ def eq69_surface(ctx, f1):
     q69 = np.array([[-7 * np.pi / 9, 0.3, 0.0, 0.0, 0.0, 0.0]])
     row = Row.graded(
         "Eq 69: on s(1) the tool point is f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + l5 "
-        "s1 c5 "
-        "- l5 c1 s3 s5; l5 c3 s5 + l1].",
+        "s1 c5 - l5 c1 s3 s5; l5 c3 s5 + l1].",
         "Eq 69 (App. E)",
         f"printed f(1) vs the Eq 4 tool point (iik.fk, = Pinocchio) at {len(q)} random q with theta4 = "
         "theta5 = 0",
@@ -764,8 +770,7 @@ def eq69_surface(ctx, f1):
             "free theta1, theta2 as in u(1); the printed H*(2,2) = q_s2^2 (l3+l4+l5) needs this form)",
             f"at theta1 = -7pi/9, theta2 = 0.3 rad (theta3..5 = 0): Eq 69 gives "
             f"{fmt_vec(f1(q69)[0] * 1e3, 1)} mm, the arm {fmt_vec(iik.fk(q69)[0, :3, 3] * 1e3, 1)} mm; "
-            "worst "
-            f"sample {fmt_vec(q[k])} rad",
+            f"worst sample {fmt_vec(q[k])} rad",
         ),
         domain=f"{len(q)} q uniform in Table I with theta4 = theta5 = 0 (the whole surface f(1))",
     )

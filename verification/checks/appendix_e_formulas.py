@@ -36,14 +36,17 @@ from ..oracles.abdel_malek import (
 from ..oracles.normal_distance import SurfacePoint, surface_point, tool_point
 from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon
 from ..second_reading import Kind, Reading, search
-from .appendix_e import PRINTED, SECTION as _POINTS
+from .appendix_e import PRINTED
+from .appendix_e import SECTION as _POINTS
 
 ARM = iik.THESIS_ARM
 _D = np.pi / 180
 SECTION = Section(_POINTS.title, depends_on=("lengths", "pinocchio"), prefix="appendix_e")
 TOL = 1e-3  # [mm]: a formula vs its meaning (both in floating point, central differences: ~1e-5 mm)
-_ROUTE = ("vs what it means: verification.oracles.normal_distance (Table II chain by iik.dh, central differences), "
-          "at A1, A2, A6 and random points of s(1), s(2), s(26)")
+_ROUTE = (
+    "vs what it means: verification.oracles.normal_distance (Table II chain by iik.dh, central differences), "
+    "at A1, A2, A6 and random points of s(1), s(2), s(26)"
+)
 
 
 @dataclass(frozen=True)
@@ -127,13 +130,21 @@ def probes(ctx) -> list[Probe]:
 
 def _domain(ps) -> str:
     n = sum(1 for p in ps if not p.name.startswith("A"))
-    return (f"A1, A2, A6 and {n} random points of s(1), s(2), s(26) (their free joints uniform over Table I; "
-            "the fixed joints at their singular values and limits)")
+    return (
+        f"A1, A2, A6 and {n} random points of s(1), s(2), s(26) (their free joints uniform over Table I; "
+        "the fixed joints at their singular values and limits)"
+    )
 
 
 def _formula_row(rid, key, claim, measures, numbers, printed, corrected, worst: Probe, domain) -> Row:
     return Row.graded(
-        claim, key, _ROUTE, numbers, measures, id=rid, domain=domain,
+        claim,
+        key,
+        _ROUTE,
+        numbers,
+        measures,
+        id=rid,
+        domain=domain,
         erratum=Erratum(key, printed, corrected, f"at {worst.name}, q0 = {fmt_vec(worst.q0)} rad"),
     )
 
@@ -153,10 +164,16 @@ def eq58_printed(lo, hi, lam):
     forms=Forms.right(
         eq58_printed,
         (
-            Slip(SlipKind.SWAP, "(qU - qL)/2 + (qU + qL)/2 sin(lambda): mid and half exchanged",
-                 lambda lo, hi, lam: (hi - lo) / 2 + (hi + lo) / 2 * np.sin(lam)),
-            Slip(SlipKind.FUNCTION, "cos(lambda) for sin(lambda)", lambda lo, hi, lam: (hi + lo) / 2
-                 + (hi - lo) / 2 * np.cos(lam)),
+            Slip(
+                SlipKind.SWAP,
+                "(qU - qL)/2 + (qU + qL)/2 sin(lambda): mid and half exchanged",
+                lambda lo, hi, lam: (hi - lo) / 2 + (hi + lo) / 2 * np.sin(lam),
+            ),
+            Slip(
+                SlipKind.FUNCTION,
+                "cos(lambda) for sin(lambda)",
+                lambda lo, hi, lam: (hi + lo) / 2 + (hi - lo) / 2 * np.cos(lam),
+            ),
         ),
         tolerance=epsilon(eq58_printed, 1e-9),
     ),
@@ -173,7 +190,9 @@ def eq58_parameterisation(ctx, eq58):
     inside = np.all((q >= lo - 1e-12) & (q <= hi + 1e-12))
     m = (
         Measure("max |q(-+pi/2) - Table I limits|", ends, 1e-12, "rad"),
-        Measure("max |dq/dlambda - (qU - qL)/2 cos(lambda)| (central differences)", np.abs(fd - qs).max(), 1e-8),
+        Measure(
+            "max |dq/dlambda - (qU - qL)/2 cos(lambda)| (central differences)", np.abs(fd - qs).max(), 1e-8
+        ),
         Measure("parameter values mapped outside Table I", 0 if inside else 1, 0),
     )
     return Row.graded(
@@ -186,7 +205,9 @@ def eq58_parameterisation(ctx, eq58):
         m,
         id="eq58",
         domain=f"{len(lam)} values of lambda over [-pi/2, pi/2] (both ends exactly), joints 1-5",
-        erratum=Erratum("Eq 58", "q = (qU + qL)/2 + (qU - qL)/2 sin(lambda)", "-", f"ends off by {ends:.3g} rad"),
+        erratum=Erratum(
+            "Eq 58", "q = (qU + qL)/2 + (qU - qL)/2 sin(lambda)", "-", f"ends off by {ends:.3g} rad"
+        ),
     )
 
 
@@ -196,10 +217,16 @@ def eq58_parameterisation(ctx, eq58):
     forms=Forms.right(
         eq59_normal,
         (
-            Slip(SlipKind.MODEL, "the null vector of G_q alone (q_s left out: the joint limits ignored)",
-                 lambda Gq, qs: eq59_normal(Gq, np.ones(5))),
-            Slip(SlipKind.BRANCH, "the first left singular vector (the largest) for the null one",
-                 lambda Gq, qs: np.linalg.svd(Gq * qs[None, :])[0][:, 0]),
+            Slip(
+                SlipKind.MODEL,
+                "the null vector of G_q alone (q_s left out: the joint limits ignored)",
+                lambda Gq, qs: eq59_normal(Gq, np.ones(5)),
+            ),
+            Slip(
+                SlipKind.BRANCH,
+                "the first left singular vector (the largest) for the null one",
+                lambda Gq, qs: np.linalg.svd(Gq * qs[None, :])[0][:, 0],
+            ),
         ),
         tolerance=epsilon(eq59_normal, 1e-6),
     ),
@@ -207,13 +234,24 @@ def eq58_parameterisation(ctx, eq58):
 def eq59_null(ctx, eq59):
     """Eq 59: N0 = null[G_q q_s]^T is the unit normal of the singular surface."""
     ps = probes(ctx)
-    errs = np.array([min(np.abs(n - p.N0).max(), np.abs(n + p.N0).max())
-                     for p in ps for n in [np.asarray(eq59(p.Gq, p.qs), float)]])
+    errs = np.array(
+        [
+            min(np.abs(n - p.N0).max(), np.abs(n + p.N0).max())
+            for p in ps
+            for n in [np.asarray(eq59(p.Gq, p.qs), float)]
+        ]
+    )
     m = (Measure("max |N0 of Eq 59 - surface normal| (up to sign)", errs.max(), 1e-6),)
     return _formula_row(
-        "eq59", "Eq 59", "Eq 59: N0 = null[G_q q_s]^T is the normal of the singular surface at the point.", m,
+        "eq59",
+        "Eq 59",
+        "Eq 59: N0 = null[G_q q_s]^T is the normal of the singular surface at the point.",
+        m,
         f"max |Eq 59 - normal from the surface's tangents| = {errs.max():.1e} over {len(ps)} points",
-        "N0 = null[G_q q_s]^T", "-", _worst(ps, errs), _domain(ps),
+        "N0 = null[G_q q_s]^T",
+        "-",
+        _worst(ps, errs),
+        _domain(ps),
     )
 
 
@@ -240,13 +278,24 @@ def _h_minus_second(N0, Hq, Gq, qs, qss):
 def eq61_h(ctx, eq61):
     """Eq 61: H* is the Hessian in s of the normal component N0.G(q(s))."""
     ps = probes(ctx)
-    errs = np.array([np.abs(np.asarray(eq61(p.N0, p.Hq, p.Gq, p.qs, p.qss)) - p.meaning("h_star")).max() * 1e3
-                     for p in ps])
+    errs = np.array(
+        [
+            np.abs(np.asarray(eq61(p.N0, p.Hq, p.Gq, p.qs, p.qss)) - p.meaning("h_star")).max() * 1e3
+            for p in ps
+        ]
+    )
     m = (Measure("max |H* of Eq 61 - Hessian of N0.G(q(s))|", errs.max(), TOL, "mm"),)
     return _formula_row(
-        "eq61", "Eq 61", "Eq 61: H* = q_s^T [N0 G]_qq q_s + sum_i d(N0 G)/dq_i [q_i]_ss is the second derivative "
-        "in s of the normal component N0.G(q(s)) (a_n = s'^T H* s', Eq 60).", m,
-        f"max difference {errs.max():.2g} mm over {len(ps)} points", "H* = ...", "-", _worst(ps, errs), _domain(ps),
+        "eq61",
+        "Eq 61",
+        "Eq 61: H* = q_s^T [N0 G]_qq q_s + sum_i d(N0 G)/dq_i [q_i]_ss is the second derivative "
+        "in s of the normal component N0.G(q(s)) (a_n = s'^T H* s', Eq 60).",
+        m,
+        f"max difference {errs.max():.2g} mm over {len(ps)} points",
+        "H* = ...",
+        "-",
+        _worst(ps, errs),
+        _domain(ps),
     )
 
 
@@ -271,14 +320,26 @@ def _b_transposed(f_u, rows):
 def eq63_generalised_inverse(ctx, eq63):
     """Eq 63: B G_q q_s is the rate du*/ds at which the surface point follows the tool (E f(u*) = E G)."""
     ps = probes(ctx)
-    errs = np.array([np.abs(np.asarray(eq63(p.f_u, p.rows)) @ (p.Gq * p.qs[None, :]) - p.meaning("du_ds", p.rows)).max()
-                     for p in ps])
+    errs = np.array(
+        [
+            np.abs(
+                np.asarray(eq63(p.f_u, p.rows)) @ (p.Gq * p.qs[None, :]) - p.meaning("du_ds", p.rows)
+            ).max()
+            for p in ps
+        ]
+    )
     m = (Measure("max |B G_q q_s - du*/ds|", errs.max(), 1e-6),)
     return _formula_row(
-        "eq63", "Eq 63", "Eq 63: B = [E f_u]^-1 E (E two independent rows of f_u) maps the tool's motion to the "
-        "surface's parameters: B G_q q_s = du*/ds.", m,
-        f"max difference {errs.max():.2g} over {len(ps)} points (E the best-conditioned row pair)", "B = [E f_u]^-1 E",
-        "-", _worst(ps, errs), _domain(ps),
+        "eq63",
+        "Eq 63",
+        "Eq 63: B = [E f_u]^-1 E (E two independent rows of f_u) maps the tool's motion to the "
+        "surface's parameters: B G_q q_s = du*/ds.",
+        m,
+        f"max difference {errs.max():.2g} over {len(ps)} points (E the best-conditioned row pair)",
+        "B = [E f_u]^-1 E",
+        "-",
+        _worst(ps, errs),
+        _domain(ps),
     )
 
 
@@ -306,14 +367,23 @@ def eq65_q(ctx, eq65):
     for p in ps:
         H = eq61_h_star(p.N0, p.Hq, p.Gq, p.qs, p.qss)
         B = eq63_b(p.f_u, p.rows)
-        errs.append(np.abs(np.asarray(eq65(H, B, p.Gq, p.qs, p.nf_uu())) - p.meaning("q_star", p.rows)).max() * 1e3)
+        errs.append(
+            np.abs(np.asarray(eq65(H, B, p.Gq, p.qs, p.nf_uu())) - p.meaning("q_star", p.rows)).max() * 1e3
+        )
     errs = np.array(errs)
     m = (Measure("max |Q* of Eq 65 - Hessian of the normal distance|", errs.max(), TOL, "mm"),)
     return _formula_row(
-        "eq65", "Eq 62-65", "Eq 62-65: Q* = H* - q_s^T G_q^T B^T [N0 f]_uu B G_q q_s is the second derivative in s "
+        "eq65",
+        "Eq 62-65",
+        "Eq 62-65: Q* = H* - q_s^T G_q^T B^T [N0 f]_uu B G_q q_s is the second derivative in s "
         "of the tool's normal distance from the singular surface (the normal acceleration eta = s'^T Q* s', "
-        "Eq 57).", m, f"max difference {errs.max():.2g} mm over {len(ps)} points", "Q* = ...", "-",
-        _worst(ps, errs), _domain(ps),
+        "Eq 57).",
+        m,
+        f"max difference {errs.max():.2g} mm over {len(ps)} points",
+        "Q* = ...",
+        "-",
+        _worst(ps, errs),
+        _domain(ps),
     )
 
 
@@ -356,20 +426,23 @@ def eq66_67_sigma(ctx, eq66):
     errs = np.array(errs)
     m = (Measure("max |sigma of Eq 66-67 - normal motion into the range|", errs.max(), TOL, "mm"),)
     return Row.graded(
-        "Eq 66-67: sigma = N0 G_qi dq_i, dq_i = +1 at a lower limit and -1 at an upper one, is the first-order "
-        "motion of the tool along N0 when joint i leaves its limit (into Table I).",
-        "Eq 66-67", _ROUTE + " with a joint at a limit",
-        f"max difference {errs.max():.2g} mm over {len(errs)} joints at limits at {len(ps)} points", m,
-        id="eq66_67", domain=_domain(ps) + "; only the points with a joint on a limit (A2, A6, s(2), s(26))",
+        "Eq 66-67: sigma = N0 G_qi dq_i, dq_i = +1 at a lower limit and -1 at an upper one, is the "
+        "first-order motion of the tool along N0 when joint i leaves its limit (into Table I).",
+        "Eq 66-67",
+        _ROUTE + " with a joint at a limit",
+        f"max difference {errs.max():.2g} mm over {len(errs)} joints at limits at {len(ps)} points",
+        m,
+        id="eq66_67",
+        domain=_domain(ps) + "; only the points with a joint on a limit (A2, A6, s(2), s(26))",
         erratum=Erratum("Eq 66-67", "sigma = N0 G_qi dq_i", "-", f"max difference {errs.max():.3g} mm"),
     )
 
 
 # ----------------------------------------------------------------------------- Eq 68
 def _sigma_zero_points(ctx) -> list[Probe]:
-    """Points of s(24)-s(27) (theta2 and theta4 at limits, theta3 = 0, free theta1, theta5) where Eq 66 vanishes
-    for one of the joints at a limit: theta5 = 0 (sigma_4 = 0) and the roots of sigma_2(theta5), at random
-    theta1 (cached)."""
+    """Points of s(24)-s(27) (theta2 and theta4 at limits, theta3 = 0, free theta1, theta5) where Eq 66
+    vanishes for one of the joints at a limit: theta5 = 0 (sigma_4 = 0) and the roots of sigma_2(theta5), at
+    random theta1 (cached)."""
     key = ("appendix_e.sigma_zero", ctx.quick)
     if key in ctx.cache:
         return ctx.cache[key]
@@ -464,11 +537,13 @@ def eq68_kbar_value(ctx, eq68):
     vals = [f"{_kbar_at(p, j, eq68_printed) * 1e3:.1f}" for j, p in pts]
     m = (Measure("max |K-bar of Eq 68 - (-d2 phi/dq_i^2)|", errs.max(), TOL, "mm"),)
     return Row.graded(
-        "Eq 68: K-bar = G_qi^T B^T [N0 G]_uu B G_qi - [N0 G]_qiqi, the difference in normal curvature, is minus "
-        "the second derivative of the tool's normal distance from the surface along joint i (where Eq 66 = 0).",
+        "Eq 68: K-bar = G_qi^T B^T [N0 G]_uu B G_qi - [N0 G]_qiqi, the difference in normal curvature, is "
+        "minus "
+        "the second derivative of the tool's normal distance from the surface along joint i (where Eq 66 = "
+        "0).",
         "Eq 68",
-        "Eq 68 as printed (Pinocchio) vs the second derivative of the normal distance phi along joint i alone "
-        "(verification.oracles.normal_distance), at the points where sigma_i = 0",
+        "Eq 68 as printed (Pinocchio) vs the second derivative of the normal distance phi along joint i "
+        "alone (verification.oracles.normal_distance), at the points where sigma_i = 0",
         f"{len(pts)} points, K-bar = {', '.join(vals)} mm; max difference {errs.max():.2g} mm",
         m,
         id="eq68",
@@ -498,7 +573,8 @@ def _side(p: Probe, j: int, sign_n0: float = 1.0, rows=None) -> float:
 
 def rule_reading(pts, rule):
     """Second reading of the K-bar rule: the side predicted by ``rule`` vs the measured one under the nearby
-    readings of its inputs (N0 the other way, the joint moved out of its range, the other row pair of Eq 63)."""
+    readings of its inputs (N0 the other way, the joint moved out of its range, the
+    other row pair of Eq 63)."""
     stated = {"n0": 1.0, "out": 1.0, "alt_rows": False}
 
     def misfit(x) -> float:
@@ -515,11 +591,18 @@ def rule_reading(pts, rule):
         Reading(Kind.LIMIT, "the joint moved out of its range (dq of the other limit)", {"out": -1.0}),
         Reading(Kind.CONVENTION, "Eq 63's other row pair", {"alt_rows": True}),
     ]
-    return search(stated, readings, misfit, 0.0, printed="'If K-bar > 0 the singular surface admits motion in the "
-                  "direction of N0; if K-bar < 0 in the opposite direction'", stated_text="K-bar of Eq 68, N0 of "
-                  "Eq 59, dq of Eq 67", route="the sign of the tool's normal distance after the joint leaves its "
-                  f"limit by {_STEP:g} rad (verification.oracles.normal_distance)",
-                  measure="points where the predicted side is wrong")
+    return search(
+        stated,
+        readings,
+        misfit,
+        0.0,
+        printed="'If K-bar > 0 the singular surface admits motion in the "
+        "direction of N0; if K-bar < 0 in the opposite direction'",
+        stated_text="K-bar of Eq 68, N0 of Eq 59, dq of Eq 67",
+        route="the sign of the tool's normal distance after the joint leaves its "
+        f"limit by {_STEP:g} rad (verification.oracles.normal_distance)",
+        measure="points where the predicted side is wrong",
+    )
 
 
 @SECTION.check(
@@ -549,9 +632,10 @@ def eq68_rule(ctx, rule):
         "Eq 68: 'If K-bar > 0 the singular surface admits motion in the direction of N0. If K-bar < 0 the "
         "singular surface admits motion in the opposite direction of N0.'",
         "Eq 68",
-        f"at the points where sigma_i = 0 (row eq68): the side the rule predicts from K-bar's sign vs the side "
-        f"of the surface the tool goes to when joint i leaves its limit by {_STEP:g} rad (the sign of its normal "
-        "distance, verification.oracles.normal_distance)",
+        "at the points where sigma_i = 0 (row eq68): the side the rule predicts from K-bar's sign vs the "
+        "side "
+        f"of the surface the tool goes to when joint i leaves its limit by {_STEP:g} rad (the sign of its "
+        "normal distance, verification.oracles.normal_distance)",
         f"the rule is wrong at {wrong} of {len(pts)} points; measured: {detail}",
         m,
         id="eq68.rule",

@@ -168,9 +168,10 @@ def configurations(ctx, kind: str) -> Pose35:
 
 
 _KIND_TEXT = {
-    "aligned-planar": "theta3 = theta4 = 0 (links 3-4 aligned, the arm in one vertical plane; p in front of the axis)",
-    "contracted-planar": "theta3 = 0, theta4 = +-119 deg (links 3-4 contracted, one vertical plane; p in front of "
-    "the axis)",
+    "aligned-planar": ("theta3 = theta4 = 0 (links 3-4 aligned, the arm in one vertical plane; "
+                       "p in front of the axis)"),
+    "contracted-planar": ("theta3 = 0, theta4 = +-119 deg (links 3-4 contracted, one vertical plane; "
+                          "p in front of the axis)"),
     "aligned": "theta4 = 0 (links 3-4 aligned), theta3 free",
     "contracted": "theta4 = +-119 deg (links 3-4 contracted), theta3 free",
 }
@@ -179,9 +180,10 @@ _KIND_TEXT = {
 def _conf_domain(ctx, kind: str, n: int | None = None) -> str:
     c = configurations(ctx, kind)
     t2 = np.degrees(c.q[:, 1])
-    return (f"{n if n is not None else len(c.q)} configurations with {_KIND_TEXT[kind]}; the other joints uniform in "
-            f"Table I, theta2 over the whole range ({t2.min():.0f}..{t2.max():.0f} deg), a third within 10^U(-6, -1.5) "
-            "rad of +-90 deg (link 3 vertical)")
+    count = n if n is not None else len(c.q)
+    return (f"{count} configurations with {_KIND_TEXT[kind]}; the other joints uniform in "
+            f"Table I, theta2 over the whole range ({t2.min():.0f}..{t2.max():.0f} deg), a third within "
+            "10^U(-6, -1.5) rad of +-90 deg (link 3 vertical)")
 
 
 def _direction(c: Pose35, incl: np.ndarray) -> np.ndarray:
@@ -368,7 +370,8 @@ def eq46_printed(p):
 def _dir(alpha: np.ndarray, beta: np.ndarray) -> np.ndarray:
     """The unit vector at azimuth ``alpha`` and inclination ``beta`` in that vertical plane (Sec 3.5's angles:
     beta past 90 deg tilts it back over the vertical) -> (n, 3)."""
-    return np.cos(beta)[:, None] * np.stack([np.cos(alpha), np.sin(alpha), 0 * alpha], 1) + np.sin(beta)[:, None] \
+    return np.cos(beta)[:, None] * np.stack([np.cos(alpha), np.sin(alpha), 0 * alpha], 1) + np.sin(beta)[:,
+        None] \
         * np.array([0.0, 0.0, 1.0])
 
 
@@ -389,9 +392,10 @@ def _eq46_error(c: Pose35, r: np.ndarray, alpha: np.ndarray) -> np.ndarray:
 
 
 def eq46_reading(ctx, c: Pose35, r: np.ndarray, eq46):
-    """Second reading of Eq 46 (the form): link 5 against the direction the thesis's angles describe, under the
-    stated convention (beta the inclination in the arm's vertical plane, up to 180 deg as Eq 44 gives it) and
-    under our former reading (beta within +-90 deg, alpha the azimuth of link 5's horizontal projection)."""
+    """Second reading of Eq 46 (the form): link 5 against the direction the thesis's angles describe,
+    under the stated convention (beta the inclination in the arm's vertical plane, up to 180 deg as Eq 44
+    gives it) and under our former reading (beta within +-90 deg, alpha the azimuth of link 5's horizontal
+    projection)."""
     phi = np.arctan2(c.p[:, 1], c.p[:, 0])
     from_j2 = c.p - np.stack([L2 * np.cos(phi), L2 * np.sin(phi), 0 * phi], 1)  # p seen from joint 2 (Eq 37)
     stated = {"convention": "thesis", "p": c.p}
@@ -403,14 +407,16 @@ def eq46_reading(ctx, c: Pose35, r: np.ndarray, eq46):
         return float(np.abs(wrap(alpha - c.alpha)).max())
 
     readings = [
-        Reading(Kind.CONVENTION, "beta within +-90 deg, alpha the azimuth of link 5's horizontal projection (the "
+        Reading(Kind.CONVENTION,
+            "beta within +-90 deg, alpha the azimuth of link 5's horizontal projection (the "
                 "reading that made Eq 46 an erratum)", {"convention": "projection"}),
-        Reading(Kind.WHICH, "(px, py) measured from joint 2, as Eq 43 measures beta' (they differ by pi where p is "
+        Reading(Kind.WHICH,
+            "(px, py) measured from joint 2, as Eq 43 measures beta' (they differ by pi where p is "
                 "horizontally within l2 of the base axis)", {"p": from_j2}),
     ]
     return search(stated, readings, misfit, TOL, printed="alpha' = atan2(py, px)",
-                  stated_text="Sec 3.5's angles: alpha the azimuth of the arm's vertical plane, beta the inclination "
-                  "in it (Eq 43-45: beta' +- delta, which runs past 90 deg)",
+                  stated_text="Sec 3.5's angles: alpha the azimuth of the arm's vertical plane, beta the "
+                  "inclination in it (Eq 43-45: beta' +- delta, which runs past 90 deg)",
                   route="link 5 (p - SLJ) from Pinocchio joint placements vs the direction of (alpha', beta)",
                   measure="max |link 5 - direction of the angles| (unit vectors) or |alpha difference| [rad]")
 
@@ -462,25 +468,30 @@ def eq46_nominal_alpha(ctx, eq46):
     row = _geometry_row(
         "eq46",
         "Eq 46",
-        "alpha' = atan2(py, px) is the azimuth of the end-effector (link 5) when the entire arm lies in one vertical "
-        "plane: with beta' +- delta of Eq 43-45 it gives link 5's direction.",
-        "configurations with theta3 = 0 (links 3-4 aligned or contracted; Pinocchio): link 5 (p - SLJ) vs the unit "
-        "vector at azimuth alpha' and inclination beta' +- delta in that vertical plane (Sec 3.5's angles: beta runs "
-        "past 90 deg when link 5 tilts back over the vertical, Figs 21c, 24c)",
+        "alpha' = atan2(py, px) is the azimuth of the end-effector (link 5) when the entire arm lies in one "
+        "vertical plane: with beta' +- delta of Eq 43-45 it gives link 5's direction.",
+        "configurations with theta3 = 0 (links 3-4 aligned or contracted; Pinocchio): link 5 (p - SLJ) vs "
+        "the unit "
+        "vector at azimuth alpha' and inclination beta' +- delta in that vertical plane (Sec 3.5's angles: "
+        "beta runs past 90 deg when link 5 tilts back over the vertical, Figs 21c, 24c)",
         err,
         TOL,
         "alpha' = atan2(py, px)",
         "-",
         both.q,
         unit="-",
-        note=f"link 5 faces the base axis in {inward.mean():.0%} of these configurations (beta' + delta up to "
-        f"{beta.max():.1f} deg; past 90 deg in {past.mean():.0%}): there too the angles describe link 5 exactly "
-        f"(max {err[far & inward].max() if (far & inward).any() else 0:.1e}); where p is horizontally within l2 of "
-        f"the axis (between the axis and joint 2, {close.mean():.0%} of them) Eq 43's beta' is measured toward the "
+        note=f"link 5 faces the base axis in {inward.mean():.0%} of these configurations (beta' + delta up "
+        f"to {beta.max():.1f} deg; past 90 deg in {past.mean():.0%}): there too the angles describe link 5 "
+        "exactly "
+        f"(max {err[far & inward].max() if (far & inward).any() else 0:.1e}); where p is horizontally within "
+        "l2 of "
+        f"the axis (between the axis and joint 2, {close.mean():.0%} of them) Eq 43's beta' is measured "
+        "toward the "
         f"axis and the pair misses by {err[close].max() if close.any() else 0:.2g}; beyond joint 2 max "
         f"{err[far].max() if far.any() else 0:.1e}",
         domain=_conf_domain(ctx, "aligned-planar", len(both.q)).replace(_KIND_TEXT["aligned-planar"],
-                                                                       "theta3 = 0 and theta4 = 0 or +-119 deg"),
+                                                                       "theta3 = 0 and theta4 = 0 or +-119 "
+                                                                       "deg"),
     )
     return row.reread(eq46_reading(ctx, both, r, eq46))
 
@@ -539,7 +550,8 @@ def _inclination_forms(good_is: str) -> Forms:
         slips=(
             Slip(SlipKind.FUNCTION, "atan for asin (as printed)", eq48_printed),
             Slip(SlipKind.LENGTH, "l3 for the segment's length", lambda h, r: eq48_corrected(h, L3 + 0 * r)),
-            Slip(SlipKind.SIGN, "h_SLJ + l1 (the base height added)", lambda h, r: eq48_corrected(h + 2 * L1, r)),
+            Slip(SlipKind.SIGN, "h_SLJ + l1 (the base height added)", lambda h, r: eq48_corrected(h + 2 * L1,
+                r)),
         ),
         tolerance=Slip(SlipKind.EPSILON, "the good delta + 1 urad", off_by(eq48_corrected, 1e-6)),
     )
@@ -565,7 +577,8 @@ def inclination_reading(c: Pose35, truth: np.ndarray, r: float, form, printed: s
     if r < L3 + L4:
         readings.append(Reading(Kind.UNIT, "phi with 180 - 119 = 61 taken as rad", {"r": D_IN_RAD}))
     return search(stated, readings, misfit, TOL, printed=printed,
-                  stated_text=f"h_SLJ (Eq 47), l1, the segment's length {'l3 + l4' if r >= L3 + L4 else 'phi'}",
+                  stated_text="h_SLJ (Eq 47), l1, the segment's length "
+                  f"{'l3 + l4' if r >= L3 + L4 else 'phi'}",
                   route="the inclination of joint 2 -> SLJ from Pinocchio joint placements",
                   measure="max |form - inclination| [rad]")
 
@@ -669,7 +682,7 @@ def _sigma_rows(ctx, form, kind, key, rid, r, claim, corrected) -> Row:
     c = configurations(ctx, kind)
     v = c.S - c.J2
     out = np.stack([np.cos(c.q[:, 0]), np.sin(c.q[:, 0])], 1)  # joint 1's vertical plane, outward
-    # the true inclination of links 3-4 in that plane (Sec 3.5's convention: past 90 deg when link 3 leans back
+    # the true inclination of links 3-4 in that plane (Sec 3.5's convention: past 90 deg when link 3 leans
     # over the axis); with link 3 leaning forward it is Eq 48/50 corrected (asin)
     delta = np.arctan2(v[:, 2], np.einsum("ni,ni->n", v[:, :2], out))
     rho = np.hypot(c.p[:, 0], c.p[:, 1])
@@ -684,17 +697,18 @@ def _sigma_rows(ctx, form, kind, key, rid, r, claim, corrected) -> Row:
         "random configurations with links 3-4 "
         f"{'aligned (theta4 = 0)' if r > D_IN else 'contracted (theta4 = +-119 deg)'} "
         "and any theta3 (link 5 leaves the vertical plane; Pinocchio): the deviation |alpha - alpha'| of "
-        "link 5's azimuth from the point's vs sigma, with the true delta fed in (the inclination of links 3-4 in "
-        "joint 1's vertical plane: Eq 48/50 corrected where link 3 leans forward, past 90 deg where it leans back "
-        "over the axis)",
+        "link 5's azimuth from the point's vs sigma, with the true delta fed in (the inclination of links "
+        "3-4 in "
+        "joint 1's vertical plane: Eq 48/50 corrected where link 3 leans forward, past 90 deg where it leans "
+        "back over the axis)",
         err,
         TOL,
         claim.split(":")[0],
         corrected,
         c.q,
         note=f"with the printed Eq {48 if r > D_IN else 50} delta chained in: max {chained.max():.3g} rad; "
-        f"link 3 leaning back over the axis (delta past 90 deg) in {np.mean(np.abs(delta) > np.pi / 2):.0%} of the "
-        "configurations",
+        f"link 3 leaning back over the axis (delta past 90 deg) in {np.mean(np.abs(delta) > np.pi / 2):.0%} "
+        "of the configurations",
         domain=_conf_domain(ctx, kind),
     )
     if row.verdict is not Verdict.ERRATUM:
@@ -711,7 +725,8 @@ def _sigma_rows(ctx, form, kind, key, rid, r, claim, corrected) -> Row:
         Reading(Kind.UNIT, "phi with 180 - 119 = 61 taken as rad", {"r": D_IN_RAD}),
     ]
     return row.reread(search(stated, readings, misfit, TOL, printed=claim.split(":")[0],
-                             stated_text="rho = |p_xy|, beta of link 5, delta of links 3-4, the segment's length",
+                             stated_text="rho = |p_xy|, beta of link 5, delta of links 3-4, the segment's "
+                             "length",
                              route="link 5's azimuth from Pinocchio joint placements",
                              measure="max ||alpha - alpha'| - sigma| [rad]"))
 
@@ -775,7 +790,8 @@ def _sec35_half(alpha35, beta35):
                  lambda a, b: (a, np.pi / 2 - b)),
             Slip(SlipKind.BRANCH, "alpha + 180 deg, 90 deg - beta (the other side of the pole)",
                  lambda a, b: (wrap(a + np.pi), np.pi / 2 - b)),
-            Slip(SlipKind.UNIT, "alpha + 180 deg, beta + 45 deg (a quarter turn taken as an eighth)", _sec35_half),
+            Slip(SlipKind.UNIT, "alpha + 180 deg, beta + 45 deg (a quarter turn taken as an eighth)",
+                _sec35_half),
         ),
     ),
 )
@@ -790,8 +806,7 @@ def beta_convention(ctx, to_eq42):
     m = (Measure("max angle difference", err.max(), TOL, "rad"),)
     row = Row.graded(
         "The beta of Sec 3.5 (Eq 43-51) is the beta of the Euler matrix of Eq 42 (r13 = c_a s_b, r23 = s_a "
-        "s_b, "
-        "r33 = c_b), and alpha likewise.",
+        "s_b, r33 = c_b), and alpha likewise.",
         "Eq 42 vs Eq 43-47",
         f"{len(c.q)} configurations (Pinocchio): the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5: azimuth, "
         "inclination) through the form vs the Eq 42 angles of z6 (azimuth, polar angle)",
@@ -825,14 +840,17 @@ def convention_reading(c: Pose35, to_eq42):
         z6 = chain_frames(c.q, d6=x["d6"])[:, 5, :3, 2]
         beta = np.arcsin(np.clip(z6[:, 2], -1, 1)) if x["elevation"] else np.arccos(np.clip(z6[:, 2], -1, 1))
         alpha = np.arctan2(z6[:, 1], z6[:, 0])
-        return float(np.maximum(np.abs(wrap(a - alpha)) * (np.abs(z6[:, 2]) < 1 - 1e-12), np.abs(b - beta)).max())
+        return float(np.maximum(np.abs(wrap(a - alpha)) * (np.abs(z6[:, 2]) < 1 - 1e-12),
+            np.abs(b - beta)).max())
 
     readings = [
         Reading(Kind.SIGN, "d6 = +l5 (z6 along link 5, as Eq 9 and App. B's 5_6T read it)", {"d6": L5}),
-        Reading(Kind.CONVENTION, "Eq 42's beta read as an elevation from the horizontal", {"elevation": True}),
+        Reading(Kind.CONVENTION, "Eq 42's beta read as an elevation from the horizontal",
+            {"elevation": True}),
     ]
     return search(stated, readings, misfit, TOL, printed="Sec 3.5's (alpha, beta) of link 5 used as Eq 42's",
-                  stated_text="Eq 42's matrix (r33 = cos beta: beta the polar angle of z6), Table II (d6 = -l5)",
+                  stated_text="Eq 42's matrix (r33 = cos beta: beta the polar angle of z6), Table II (d6 = "
+                  "-l5)",
                   route="z6 of the Table II chain by iik.dh (not Pinocchio)",
                   measure="max angle difference [rad]")
 
@@ -936,22 +954,20 @@ def printed_admitted_set(ctx, admit):
     )
     return Row.graded(
         "The orientations Eq 43-51 admit at a point inside the workspace are reachable (at least one IK "
-        "solution), "
-        "so choosing them guarantees convergence.",
+        "solution), so choosing them guarantees convergence.",
         "Sec 3.5.2-3.5.3, Eq 43-51, Sec 5.2",
         "IK feasibility sweep: iik.solve (complete, within Table I) on pose_from_zxz(p, alpha, beta, 0) "
         "over a "
         f"{sw['na']} x {sw['nb']} (alpha, beta) grid at {len(P)} reachable points (fk of random q), vs the "
         "admitted set",
         f"admitted {n_adm}, solvable {n_true} of {truth.size}; soundness (admitted and solvable / admitted) "
-        f"{s:.1%}, "
-        f"completeness (admitted and solvable / solvable) {c:.1%}; unsound orientations per point: "
+        f"{s:.1%}, completeness (admitted and solvable / solvable) {c:.1%}; unsound orientations per point: "
         f"{per_point}",
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="admitted_set",
-        domain=f"{len(P)} reachable points (fk of q uniform in Table I), a {sw['na']} x {sw['nb']} (alpha, beta) "
-        "grid over every orientation of z6 at each",
+        domain=f"{len(P)} reachable points (fk of q uniform in Table I), a {sw['na']} x {sw['nb']} (alpha, "
+        "beta) grid over every orientation of z6 at each",
         figures=figs,
         reason="the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the "
         "roll geometry, and Eq 48/50/51 are wrong (rows above): admitted "

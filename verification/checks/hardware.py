@@ -48,7 +48,18 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from hardware.executor import EARLY_UPDATE
-from verification.registry import Erratum, Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict, verdict_of
+from verification.registry import (
+    Erratum,
+    Forms,
+    Measure,
+    Row,
+    Scope,
+    Section,
+    Slip,
+    SlipKind,
+    Verdict,
+    verdict_of,
+)
 from verification.second_reading import Kind, Reading, search
 
 if TYPE_CHECKING:
@@ -396,8 +407,8 @@ def check_table_v(ctx) -> Row:
     bad = [f for f, v in ok.items() if not v]
     return Row(
         basis="a round trip of our driver against our simulated modules, both written from the same protocol "
-        "description (docs/POWERCUBE.md): it shows the software agrees with itself, not that the real modules "
-        "behave as Table V says",
+        "description (docs/POWERCUBE.md): it shows the software agrees with itself, not that the real "
+        "modules behave as Table V says",
         domain="every Table V function once, on six simulated modules",
         claim="The command set of Table V (App. A) works as described; the path is followed with the "
         "constant-velocity function PCube_moveStep, which receives a goal position and a time (Sec 4.3)",
@@ -420,14 +431,15 @@ def check_table_v(ctx) -> Row:
 
 
 _REAL = ("it is a statement about the real PowerCube arm (its joints stopping and vibrating, its measured "
-         "errors): no real arm is attached to `iik verify`; the simulation that reproduces it is the project row "
-         "below it, whose verdict the simulator's assumed tracking lag decides")
-_SIM_BASIS = ("hardware.sim's arm: FSTEP at constant velocity and measured signals lagging by an assumed pure delay "
-              "(20 ms), not identified on the real modules; the verdict follows that assumption")
+         "errors): no real arm is attached to `iik verify`; the simulation that reproduces it is the project "
+         "row below it, whose verdict the simulator's assumed tracking lag decides")
+_SIM_BASIS = ("hardware.sim's arm: FSTEP at constant velocity and measured signals lagging by an assumed "
+              "pure delay (20 ms), not identified on the real modules; the verdict follows that assumption")
 
 
 def _split(thesis: Row, sim_id: str) -> list[Row]:
-    """The thesis's claim as not checkable, and its simulation as a project row on the simulator's assumption."""
+    """The thesis's claim as not checkable, and its simulation as a project row on the simulator's
+    assumption."""
     passes = thesis.verdict is Verdict.HOLDS
     sim = thesis.replace(
         id=sim_id,
@@ -517,7 +529,8 @@ def check_early_update(ctx, early: float) -> list[Row]:
     )
     return _split(Row(
         id="check_early_update",
-        domain=f"scenarios {', '.join(n for n, _ in (_COMPARE_QUICK if ctx.quick else _COMPARE))}, every step-point",
+        domain=f"scenarios {', '.join(n for n, _ in (_COMPARE_QUICK if ctx.quick else _COMPARE))}, every "
+        "step-point",
         claim="Sending each step-point only after the previous command finished stops the joints at every "
         "step-point (the cause of the vibrations); sending the next command after 95 % of the previous "
         "one's time removes the stops but adds some end-effector error (Sec 4.3)",
@@ -542,7 +555,8 @@ def check_early_update(ctx, early: float) -> list[Row]:
 def _zone_runs(ctx, arm: SimArm, runs) -> list[SimRun]:
     import dataclasses
 
-    return [dataclasses.replace(execute_scenario(ctx, name, limit=limit, lag=arm.lag), error_scale=arm.error_scale)
+    return [dataclasses.replace(execute_scenario(ctx, name, limit=limit, lag=arm.lag),
+        error_scale=arm.error_scale)
             for name, limit in runs]
 
 
@@ -685,7 +699,8 @@ class LimitReading:
         good_is="the value limits the current [A] (FMAXCUR)",
         slips=(
             Slip(SlipKind.UNIT, "the value in rad (a position limit)", LimitReading("position", "rad")),
-            Slip(SlipKind.UNIT, "the value in rad/s (a speed limit, as printed)", LimitReading("velocity", "rad/s")),
+            Slip(SlipKind.UNIT, "the value in rad/s (a speed limit, as printed)", LimitReading("velocity",
+                "rad/s")),
         ),
     ),
 )
@@ -749,13 +764,16 @@ def check_set_max_cur(ctx, reading: LimitReading) -> Row:
         return 0.0 if x["unit"] == units[held] else 1.0
 
     readings = [
-        Reading(Kind.MOVED, "'rad/s' a unit misplaced from the neighbouring rows (PCube_getVel, PCube_moveRamp): "
+        Reading(Kind.MOVED,
+            "'rad/s' a unit misplaced from the neighbouring rows (PCube_getVel, PCube_moveRamp): "
                 "this row's own 'maximum current' gives A", {"unit": "A"}),
     ]
     return row.reread(search({"unit": reading.unit}, readings, misfit, 0.0,
                              printed=f"PCube_setMaxCur ... 'the new value in {reading.unit}'",
-                             stated_text="'Sets the actual maximum current' (the same row); FMAXCUR (POWERCUBE.md)",
-                             route="the quantity the simulated module holds at 0.3 after PCube_setMaxCur(0.3)",
+                             stated_text="'Sets the actual maximum current' (the same row); FMAXCUR "
+                             "(POWERCUBE.md)",
+                             route="the quantity the simulated module holds at 0.3 after "
+                             "PCube_setMaxCur(0.3)",
                              measure="the printed unit differs from that quantity's (0 = same)"))
 
 

@@ -34,7 +34,7 @@ from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements
 from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon, verdict_of
-from ..second_reading import Kind, Reading, choices, moved_entries, search
+from ..second_reading import Kind, Reading, search
 from ..shorthand import cos_sin, wrap
 
 ARM = iik.THESIS_ARM
@@ -70,8 +70,8 @@ class Sample:
     def domain(self) -> str:
         return (
             f"{len(self.q) - self.hard} q uniform in Table I plus {self.hard} near the singular values "
-            "(theta3 = +-90 deg, theta4 = 0, theta5 = 0, theta4 + theta5 = 0 or 180 deg, within 10^U(-9, -2) rad; "
-            "a joint on its limit)"
+            "(theta3 = +-90 deg, theta4 = 0, theta5 = 0, theta4 + theta5 = 0 or 180 deg, within 10^U(-9, -2) "
+            "rad; a joint on its limit)"
         )
 
     @property
@@ -172,7 +172,8 @@ def _row(
     what = "max |form - truth|" + (f" x |{scale[0]}|" if scale else "")
     numbers = f"{what} = {w:.2g} {unit} over {len(err)} q"
     if scale is not None:
-        numbers += f" (raw: max {worst(raw)[0]:.2g} {unit}, at |{scale[0]}| = {np.abs(scale[1][int(np.argmax(raw))]):.1g})"
+        at = np.abs(scale[1][int(np.argmax(raw))])
+        numbers += f" (raw: max {worst(raw)[0]:.2g} {unit}, at |{scale[0]}| = {at:.1g})"
     return Row.graded(
         claim,
         key,
@@ -253,15 +254,18 @@ _ATAN2 = Forms(
     "the argument of c + i s",
     slips=(
         Slip(SlipKind.SWAP, "atan2(c, s): the arguments exchanged", lambda sn, cs: np.arctan2(cs, sn)),
-        Slip(SlipKind.FUNCTION, "atan(s / c) for atan2 (the quadrant lost)", lambda sn, cs: np.arctan(sn / cs)),
+        Slip(SlipKind.FUNCTION, "atan(s / c) for atan2 (the quadrant lost)", lambda sn,
+            cs: np.arctan(sn / cs)),
     ),
     tolerance=epsilon(np.arctan2, 1e-6, "atan2 + 1 urad"),
 )
 #: Why the one-line steps hold by construction when fed the true sine and cosine.
-_ATAN2_BASIS = "atan2 of the true sine and cosine returns the angle: an identity of atan2, not a fact about the arm"
-_PYTHAGORAS = ("+-sqrt(1 - x^2) with the true cosine (sine) is +-|sine| (cosine): Pythagoras, not a fact about "
-               "the arm; which sign is right is graded by ik.four_configurations")
-_SAME_TABLE = ("Pinocchio's model is generated from the same Table II (urdf/thesis_arm.urdf), so the product of "
+_ATAN2_BASIS = ("atan2 of the true sine and cosine returns the angle: an identity of atan2, not a fact about "
+                "the arm")
+_PYTHAGORAS = ("+-sqrt(1 - x^2) with the true cosine (sine) is +-|sine| (cosine): Pythagoras, not a fact "
+               "about the arm; which sign is right is graded by ik.four_configurations")
+_SAME_TABLE = ("Pinocchio's model is generated from the same Table II (urdf/thesis_arm.urdf), so the product "
+               "of "
                "its link transforms is its pose by associativity: an identity, not evidence about the thesis")
 
 
@@ -378,7 +382,8 @@ eq7_point_c = _step(
         _eq7_geom,
         "p_B + l3 (unit vector of link 3)",
         slips=(
-            Slip(SlipKind.SIGN, "z_C = +l3 s2", lambda t1, t2: eq7_printed(t1, t2) * np.array([1.0, 1.0, -1.0])),
+            Slip(SlipKind.SIGN, "z_C = +l3 s2", lambda t1, t2: eq7_printed(t1, t2) * np.array([1.0, 1.0,
+                -1.0])),
             Slip(SlipKind.SWAP, "c1 and s1 exchanged in the l3 terms", lambda t1, t2: eq7_printed(t1, t2) + L3
                  * np.stack([np.cos(t2) * (np.sin(t1) - np.cos(t1)), np.cos(t2) * (np.cos(t1) - np.sin(t1)),
                              0 * t1], 1)),
@@ -492,7 +497,7 @@ def _eq9_miss(s: Sample, eq9) -> np.ndarray:
 
 
 # ----------------------------------------------------------------------------- second readings (iik.dh route)
-def table_ii(**rows) -> "DHTable":  # noqa: F821 (iik.dh.DHTable)
+def table_ii(**rows) -> DHTable:  # noqa: F821 (iik.dh.DHTable)
     """Table II (iik.THESIS_ARM's) with some rows' fields replaced: ``d6=...`` or ``alpha2=...``."""
     import dataclasses
 
@@ -506,7 +511,8 @@ def table_ii(**rows) -> "DHTable":  # noqa: F821 (iik.dh.DHTable)
 
 
 def chain_frames(q: np.ndarray, **rows) -> np.ndarray:
-    """Every frame 0_iT (i = 1..6) of Table II (with ``rows`` replaced) by iik.dh, not Pinocchio: (n, 6, 4, 4)."""
+    """Every frame 0_iT (i = 1..6) of Table II (with ``rows`` replaced) by iik.dh, not Pinocchio:
+    (n, 6, 4, 4)."""
     from iik.dh import dh_chain
 
     return dh_chain(table_ii(**rows), q, all_frames=True)
@@ -547,8 +553,10 @@ def eq9_reading(ctx, s: Sample, eq9):
         Reading(Kind.CONVENTION, "the branches read as tangents only (theta2 mod pi)", {"period": np.pi}),
     ]
     return search(stated, readings, misfit, TOL_ANGLE, printed="tan(theta2) = P / (+-Q), both branches",
-                  stated_text="theta2 of Table II (offset -90 deg), the two solutions of Eq 8 (theta2, theta2 + pi)",
-                  route=_DH_ROUTE, measure="max over q of the gap between the printed and the true pair [rad]")
+                  stated_text="theta2 of Table II (offset -90 deg), the two solutions of Eq 8 (theta2, "
+                  "theta2 + pi)",
+                  route=_DH_ROUTE,
+                      measure="max over q of the gap between the printed and the true pair [rad]")
 
 
 eq9_theta2 = _step(
@@ -609,8 +617,10 @@ def wrist_reading(s: Sample, eq9abc, k: int, printed: str):
     readings = [
         Reading(Kind.SIGN, "d6 = +l5 (z6 pointing from the wrist to the tool, as App. B's 5_6T prints it)",
                 {"d6": L5}),
-        Reading(Kind.SWAP, "r13 r23 r33 read from the third row (the rotation transposed)", {"transpose": True}),
-        Reading(Kind.CONVENTION, "the base frame not moved up by l1 (Sec 3.3.1's shift left out)", {"shift": 0.0}),
+        Reading(Kind.SWAP, "r13 r23 r33 read from the third row (the rotation transposed)",
+            {"transpose": True}),
+        Reading(Kind.CONVENTION, "the base frame not moved up by l1 (Sec 3.3.1's shift left out)",
+            {"shift": 0.0}),
     ]
     return search(stated, readings, misfit, TOL, printed=printed,
                   stated_text="Table II (d6 = -l5), Eq 4's pose, Sec 3.3.1's frame moved up by l1",
@@ -648,8 +658,7 @@ def wrist_point(ctx, eq9abc):
         pr = f"{name} = p_{name[-1].lower()} {'- l1 ' if key == '9c' else ''}- {sym} l5"
         co = (
             f"{name} = p_{name[-1].lower()} {'- l1 ' if key == '9c' else ''}+ {sym} l5 (Table II has d6 = "
-            "-l5: "
-            "z6 points from the tool back to the wrist)"
+            "-l5: z6 points from the tool back to the wrist)"
         )
         row = _row(
             s,
@@ -933,7 +942,8 @@ def extremum_reading(ctx, form, sign: float, rows: slice):
     what = "minimum" if sign > 0 else "maximum"
     return search(stated, readings, misfit, 1.0 - _EXT_SHARE,
                   printed="min = atan2(py, px)" if sign > 0 else "max = atan2(py, px) +- pi",
-                  stated_text="p = (px, py, pz) the end-effector point ('theta1 oriented toward the end-effector')",
+                  stated_text="p = (px, py, pz) the end-effector point ('theta1 oriented toward the "
+                  "end-effector')",
                   route=f"the {what} of ||E|| by a 3600-point grid and successive parabolic interpolation",
                   measure=f"share of poses NOT at the {what} (within {_EXT_TOL:g} m^2)")
 
@@ -995,8 +1005,8 @@ def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
         f"atan2(yD, xD){'' if sign > 0 else ' + pi'} is in {hit_d:.1%}",
         m,
         id=rid,
-        domain=f"the first {m_pts} poses of the uniform sample ({s.domain.split(' plus')[0]}); theta1 over the "
-        "whole turn",
+        domain=f"the first {m_pts} poses of the uniform sample ({s.domain.split(' plus')[0]}); theta1 over "
+        "the whole turn",
         erratum=Erratum(
             key,
             printed_text,
@@ -1039,7 +1049,8 @@ def eq12_minimum(ctx, form):
         "atan2(yD, xD) + pi (the wrist point's opposite azimuth)",
         slips=(
             Slip(SlipKind.BRANCH, "atan2(yD, xD) without the pi (the minimum's side)", _eq12_wrist),
-            Slip(SlipKind.SIGN, "-atan2(yD, xD) + pi", lambda p, D: wrap(np.pi - np.arctan2(D[:, 1], D[:, 0]))),
+            Slip(SlipKind.SIGN, "-atan2(yD, xD) + pi", lambda p, D: wrap(np.pi - np.arctan2(D[:, 1], D[:,
+                0]))),
         ),
         tolerance=epsilon(eq13_corrected, 1e-3, "the good form + 1 mrad"),
     ),
@@ -1082,7 +1093,8 @@ def eq14_reading(s: Sample, eq14):
         return float(np.abs(eq14(D, x["mirror"] * s.q[:, 0] + x["turn"]) - s.c(4)).max())
 
     readings = [
-        Reading(Kind.CONVENTION, "the y axis mirrored (y_D and theta1 with the other sign)", {"mirror": -1.0}),
+        Reading(Kind.CONVENTION, "the y axis mirrored (y_D and theta1 with the other sign)",
+            {"mirror": -1.0}),
         Reading(Kind.WHICH, "theta1 of the other root (theta1 + pi)", {"turn": np.pi}),
         Reading(Kind.WHICH, "the wrist point of the printed Eq 9 (p - l5 z6)",
                 {"D": eq9abc_printed(d.p, d.R[:, :, 2])}),
@@ -1367,7 +1379,8 @@ def eq18_frame_reading(ctx, s: Sample, wrist):
                 {"shift": L1}),
         Reading(Kind.SIGN, "the frame moved down by l1", {"shift": -L1}),
     ]
-    return search(stated, readings, misfit, TOL, printed="0_2T^-1 with -l1 c2 - l2 s2 and l1 s2 - l2 c2 in column 4",
+    return search(stated, readings, misfit, TOL,
+        printed="0_2T^-1 with -l1 c2 - l2 s2 and l1 s2 - l2 c2 in column 4",
                   stated_text="D of Eq 9 in the frame of Sec 3.3.1 (moved up by l1, Eq 9c)",
                   route=_DH_ROUTE, measure="max |printed 0_2T^-1 0_5T - printed 2_5T| [m]")
 
@@ -1461,7 +1474,8 @@ eq20_s3 = _step(
     unit="-",
     printed="s3 = (s1 xD - c1 yD) / (l4 s4)",
     note=lambda s, err: f"smallest |s4| sampled {np.abs(s.s(4)).min():.1e} (s4 = 0, theta4 = 0, is 0/0: the "
-    "wrist on the link-3 axis, singular set s(1)); graded on |error| |s4|: the division by s4 costs eps / |s4|",
+    "wrist on the link-3 axis, singular set s(1)); graded on |error| |s4|: the division by s4 costs eps / "
+    "|s4|",
     scale=("s4", lambda s: s.s(4)),
     forms=_printed_is_right(
         eq20_printed,
@@ -1518,7 +1532,8 @@ eq24_entries = _step(
     printed="(2_6T)_13 = -c3 s45, (2_6T)_23 = -c45",
     forms=_printed_is_right(
         eq24_printed,
-        Slip(SlipKind.SWAP, "(1,3) = -s3 s45", lambda q: np.stack([-np.sin(q[:, 2]) * np.sin(q[:, 3] + q[:, 4]),
+        Slip(SlipKind.SWAP, "(1,3) = -s3 s45", lambda q: np.stack([-np.sin(q[:, 2]) * np.sin(q[:, 3] + q[:,
+            4]),
                                                                   eq24_printed(q)[:, 1]], 1)),
         Slip(SlipKind.SIGN, "(2,3) = +c45", lambda q: eq24_printed(q) * np.array([1.0, -1.0])),
         good_is="the printed entries (they are right)",
@@ -1621,7 +1636,8 @@ def eq27_s45(ctx, eq27):
         "eq27",
         "s45 = (r13 c1 s2 + r23 s1 s2 + r33 c2) / (-c3), then theta5 by Eq 28.",
         f"theta5 through Eq 27 and Eq 28 (c45 from Eq 26) with the true pose and theta1..theta4, vs the "
-        f"generating theta5; {len(s.q)} q of the IK sample plus {len(near.q)} with |c3| = 10^U{_C3_EXP}; graded "
+        f"generating theta5; {len(s.q)} q of the IK sample plus {len(near.q)} with |c3| = 10^U{_C3_EXP}; "
+        "graded "
         "on |error| |c3|: an exact formula that divides by c3 loses eps / |c3| in floating point, so a raw "
         "tolerance would flip with the sampling (at c3 = 0 itself it is 0/0: row eq27.c3_zero)",
         err,
@@ -1793,8 +1809,7 @@ def eq30_matrices(ctx, mats):
             "m or -",
             printed="5_6T = [c6 -s6 0 0; 0 0 1 0; -s6 -c6 0 -l5; 0 0 0 1]",
             corrected="5_6T = [c6 -s6 0 0; 0 0 1 -l5; -s6 -c6 0 0; 0 0 0 1] (the offset d6 = -l5 lies along "
-            "y5, "
-            "row 2); harmless for Eq 31-32, which use only entries (3,1) and (3,2)",
+            "y5, row 2); harmless for Eq 31-32, which use only entries (3,1) and (3,2)",
         ),
     ]
     if rows[1].verdict is Verdict.ERRATUM:
@@ -1864,7 +1879,8 @@ def _element_step(order: float, number: int, name: str, claim: str, printed: str
         tol=TOL,
         unit="-",
         printed=printed,
-        forms=Forms.right(lhs, _element_slips(lhs), tolerance=epsilon(lhs, 1e-9, "the left side moved by 1e-9"),
+        forms=Forms.right(lhs, _element_slips(lhs), tolerance=epsilon(lhs, 1e-9,
+            "the left side moved by 1e-9"),
                           good_is="the printed left side (it is right)"),
     )
 

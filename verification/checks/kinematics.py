@@ -31,7 +31,19 @@ from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements, thesis_model, tool_jacobians, tool_poses
 from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
 from ..plotting import draw_arm, draw_collision, draw_scene, new_figure
-from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict, epsilon, verdict_of
+from ..registry import (
+    Erratum,
+    Forms,
+    Measure,
+    Row,
+    Scope,
+    Section,
+    Slip,
+    SlipKind,
+    Verdict,
+    epsilon,
+    verdict_of,
+)
 from ..second_reading import Kind, Reading, choices, moved_entries, search
 from ..shorthand import cos_sin
 from ..testing.strategies import BEYOND, sample_joints
@@ -770,7 +782,8 @@ def appb_reading(i: int, printed: np.ndarray, qs: np.ndarray, text: str = ""):
               "transpose": False, "P": printed}
 
     def misfit(x) -> float:
-        T = dh_link_transform(DHRow(x["alpha"], x["a"], x["d"], row.offset), x["sign"] * theta, x["convention"])
+        T = dh_link_transform(DHRow(x["alpha"], x["a"], x["d"], row.offset), x["sign"] * theta,
+            x["convention"])
         return float(np.abs(x["P"] - (_rotation_transposed(T) if x["transpose"] else T)).max())
 
     readings = [
@@ -785,7 +798,8 @@ def appb_reading(i: int, printed: np.ndarray, qs: np.ndarray, text: str = ""):
     ]
     return search(stated, readings, misfit, TOL_EXACT, printed=text or APPB_TEXT[i],
                   stated_text=f"Table II row {i + 1} (alpha{i} = {np.degrees(row.alpha):.0f} deg, a{i} = "
-                  f"{row.a:.3f} m, d{i + 1} = {row.d:.3f} m, offset {np.degrees(row.offset):.0f} deg), modified DH",
+                  f"{row.a:.3f} m, d{i + 1} = {row.d:.3f} m, offset {np.degrees(row.offset):.0f} deg), "
+                  "modified DH",
                   route=_CRAIG, measure="max |printed - re-derived| entry over the sampled q")
 
 
@@ -816,7 +830,8 @@ def appb_product_reading(printed: np.ndarray, qs: np.ndarray):
         *choices(Kind.CONVENTION, "transpose", {"the product's rotation transposed": True}),
     ]
     return search(stated, readings, misfit, TOL_EXACT, printed="0_1T 1_2T ... 5_6T of App. B as printed",
-                  stated_text="Table II (Eq 1: the product of its link transforms)", route="the Table II chain "
+                  stated_text="Table II (Eq 1: the product of its link transforms)",
+                      route="the Table II chain "
                   "by iik.dh.dh_chain under each reading, not Pinocchio",
                   measure="max |product - re-derived chain| entry over the sampled q")
 
@@ -850,7 +865,8 @@ def _neg(r, c):
 
 _APPB_SLIPS = (
     Slip(SlipKind.SIGN, "4_5T with the sign of its (1,1) entry flipped", _appb_slip(4, _neg(0, 0))),
-    Slip(SlipKind.TRANSPOSE, "3_4T's rotation transposed", _appb_slip(3, lambda M, q, a: _rotation_transposed(M))),
+    Slip(SlipKind.TRANSPOSE, "3_4T's rotation transposed", _appb_slip(3, lambda M, q,
+        a: _rotation_transposed(M))),
     Slip(SlipKind.LENGTH, "2_3T with l4 for l3 in its (2,4) entry", _appb_slip(2, _set(1, 3, "l4"))),
 )
 
@@ -965,7 +981,8 @@ def appendix_b(ctx, appb):
             domain=_JOINT_DOMAIN.format(n=len(qs)),
         )
     )
-    rows.append(product_row if verdict is Verdict.HOLDS else product_row.reread(appb_product_reading(printed, qs)))
+    rows.append(product_row if verdict is Verdict.HOLDS else product_row.reread(appb_product_reading(printed,
+        qs)))
     return rows
 
 
@@ -1227,8 +1244,7 @@ def appendix_c(ctx, appc):
             "Appendix C: the 15 printed entries of the 3x5 Jacobian (Eq 56) are the derivatives of Eq 55.",
             "Eq 56 (App. C)",
             "each printed entry vs Pinocchio computeFrameJacobian(frame 'tool', LOCAL_WORLD_ALIGNED) and "
-            "central "
-            f"differences (h = 1e-6 rad) of the Pinocchio tool point, {len(qs)} q",
+            f"central differences (h = 1e-6 rad) of the Pinocchio tool point, {len(qs)} q",
             f"{n_ok} of 15 entries match (worst |printed - Pinocchio| = "
             f"{max(w[0] for w in worst_.values()):.1e} m/rad)",
             group_v,
@@ -1262,7 +1278,8 @@ def appendix_c(ctx, appc):
             m35,
             id="eq35",
             holds_as=Verdict.IDENTITY,
-            basis="Eq 35 is the definition of the Jacobian (the first-order change of the tool point); with the "
+            basis="Eq 35 is the definition of the Jacobian (the first-order change of the tool point); with "
+            "the "
             "App. C entries right (row kinematics.appc) it holds by construction: this re-measures App. C",
             domain=_JOINT_DOMAIN.format(n=len(qs)) + "; one random unit joint direction per q",
             erratum=Erratum(
@@ -1417,8 +1434,8 @@ def eq42_matrix(ctx, eq42):
         measures=m,
         figures=(fig,),
         errata=errata,
-        domain=f"{len(a)} angle triples: alpha, gamma uniform in [-pi, pi], beta uniform in [0, pi] (both poles "
-        "of the polar angle included)",
+        domain=f"{len(a)} angle triples: alpha, gamma uniform in [-pi, pi], beta uniform in [0, pi] (both "
+        "poles of the polar angle included)",
     )
     if verdict is Verdict.HOLDS:
         return row
@@ -1459,8 +1476,7 @@ def eq42_convention(ctx, eq42):
             "'Z-X-Z representation convention' (Sec 3.5.1)",
             "Craig's Z-Y-Z, R = Rz(alpha) Ry(beta) Rz(gamma) (scipy 'ZYZ'): z6 = [r13 r23 r33] = "
             "[c_a s_b, s_a s_b, c_b], alpha its azimuth, beta its polar angle; iik uses Z-Y-Z (how Sec "
-            "3.5's "
-            "own alpha, beta map to these is checked in the Dexterity section)",
+            "3.5's own alpha, beta map to these is checked in the Dexterity section)",
             f"alpha, beta, gamma = {a0}, {b0}, {g0} rad: printed r13 = {P0[0, 2]:.6f} = Z-Y-Z r13; Z-X-Z "
             f"r13 = s_a s_b = {Rotation.from_euler('ZXZ', [a0, b0, g0]).as_matrix()[0, 2]:.6f}",
         ),
@@ -1538,7 +1554,8 @@ def eq42_reading(ctx, eq42, entries, printed: str, *, count: bool):
     which = ", ".join(f"r{r + 1}{c + 1}" for r, c in entries)
     return search(stated, readings, misfit, 0.0 if count else TOL_EXACT, printed=printed,
                   stated_text="'the Z-X-Z representation convention described in [2]' (Sec 3.5.1), "
-                  "R = Rz(alpha) Rx(beta) Rz(gamma)", route=_ELEMENTARY + f", on {len(a)} of the angle triples",
+                  "R = Rz(alpha) Rx(beta) Rz(gamma)",
+                  route=_ELEMENTARY + f", on {len(a)} of the angle triples",
                   measure=(f"entries of {which} that differ (> {TOL_EXACT:g})" if count
                            else f"max |printed - re-derived| of {which}"))
 
@@ -1632,8 +1649,7 @@ def ur5_generator_check(ctx, generator):
         "iik.urdf (Sec 3.2 method: DH description)",
         f"Pinocchio FK of the generated URDF (frame 'tool') vs ur5_robot.urdf (frame 'tool0') at {len(qs)} q "
         "uniform in [-pi, pi]^6, after T_ref = B T_dh E with frozen B = RotZ(pi), E = I (solved in closed "
-        "form "
-        "from 50 q, see verification/oracles/ur5.py)",
+        "form from 50 q, see verification/oracles/ur5.py)",
         f"max |dp| = {dp.max():.1e} m, max rotation angle = {dr.max():.1e} rad (tolerance 1e-9; the "
         "reference "
         f"file rounds pi/2 to 1.57079632679); solved B, E differ from the frozen ones by {d_solved:.1e}",
@@ -1662,13 +1678,11 @@ def panda_generator_check(ctx, generator):
     m = (Measure("max |dp|", dp.max(), 1e-9, "m"), Measure("max rotation angle", dr.max(), 1e-9, "rad"))
     return Row.graded(
         "(Project) The DH -> URDF generator maps Craig's modified DH (Table II's convention) right: the "
-        "Franka "
-        "Panda built from its published modified DH table matches example-robot-data's panda.urdf.",
+        "Franka Panda built from its published modified DH table matches example-robot-data's panda.urdf.",
         "iik.urdf (Sec 3.2 method: Craig's convention)",
         f"Pinocchio FK of the generated URDF (frame 'tool' = frame 7 + 0.107 m flange) vs panda.urdf (frame "
         f"'panda_link8') at {len(qs)} q uniform within the Panda's limits; base and tool transforms solved "
-        "in "
-        "closed form from 50 q",
+        "in closed form from 50 q",
         f"max |dp| = {dp.max():.1e} m, max rotation angle = {dr.max():.1e} rad (tolerance 1e-9); solved "
         f"base/tool transforms differ from the identity by {d_id:.1e}",
         m,
@@ -1745,8 +1759,7 @@ def table_i_self_collision(ctx, limits):
         "The joint limits of Table I keep the arm from hitting itself.",
         "Sec 3.2, Table I",
         "(a) geometry-independent: minimum over q within the limits of the distance from the tool point (Eq "
-        "4) "
-        f"to the upper-arm axis segment J2-J34 (sampling {len(qs)} q, then L-BFGS-B within the limits), "
+        f"4) to the upper-arm axis segment J2-J34 (sampling {len(qs)} q, then L-BFGS-B within the limits), "
         f">= {MIN_CLEARANCE * 1e3:.0f} mm required; (b) Coal via Pinocchio on the assumed PowerCube "
         "collision "
         f"shapes of urdf/thesis_arm.urdf (non-adjacent links), {len(qs)} q uniform within the limits",
@@ -1756,7 +1769,8 @@ def table_i_self_collision(ctx, limits):
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="table_i_self_collision",
-        domain=f"{len(qs)} q uniform within the limits under test, then a bounded local search from the worst",
+        domain=f"{len(qs)} q uniform within the limits under test, then a bounded local search from the "
+        "worst",
         reason="the limits bound each joint separately; theta4 + theta5 can reach 238 deg, so the gripper "
         "can be folded into the upper arm (and with theta2 near 95 deg link 3 meets the base module)",
     )

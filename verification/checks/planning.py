@@ -159,16 +159,16 @@ def check_eq53_ellipsoid(ctx, readings) -> Row:
                 for n, v in values.items()
             ),
         ),
-        domain=f"{len(sizes)} boxes: 0.30 x 0.20 x 0.50 m and sizes uniform in 0.05-1 m per side (flat, long and "
-        "cubic), every corner",
+        domain=f"{len(sizes)} boxes: 0.30 x 0.20 x 0.50 m and sizes uniform in 0.05-1 m per side (flat, long "
+        "and cubic), every corner",
     )
     return row.reread(eq53_reading(sizes[:200])) if row.verdict is Verdict.ERRATUM else row
 
 
 def eq53_reading(sizes):
     """Second reading of Eq 53: Eq 52 at the corners of the boxes with the printed radii under each nearby
-    reading of w, d, h (the full or the half dimensions), of a (45 taken as rad) and of the printed formula (the
-    a of z_r = h / sin a a misprinted b)."""
+    reading of w, d, h (the full or the half dimensions),
+    of a (45 taken as rad) and of the printed formula (the a of z_r = h / sin a a misprinted b)."""
     stated = {"dims": 1.0, "a": math.pi / 4, "z_angle": "a"}
 
     def radii(half, x):
@@ -182,7 +182,8 @@ def eq53_reading(sizes):
         worst = 0.0
         for s in sizes:
             box = Obstacle((0.0, 0.0, 0.0), tuple(s))
-            worst = max(worst, float(np.abs(ellipsoid_value(box.corners, box.center, radii(box.half, x)) - 1).max()))
+            worst = max(worst, float(np.abs(ellipsoid_value(box.corners, box.center, radii(box.half,
+                x)) - 1).max()))
         return worst
 
     readings = [
@@ -191,8 +192,9 @@ def eq53_reading(sizes):
         Reading(Kind.MOVED, "the a of z_r = h / sin(a) a misprinted b", {"z_angle": "b"}),
     ]
     return search(stated, readings, misfit, 1e-9, printed="x_r = w/(cos b cos a), y_r = d/(cos b sin a), "
-                  "z_r = h/sin a, a = pi/4, b = atan(cos a)", stated_text="w, d, h the box's width, depth and "
-                  "height (Sec 3.6.2.1), a = pi/4", route=f"Eq 52 evaluated at the 8 corners of {len(sizes)} of the boxes",
+                  "z_r = h/sin a, a = pi/4, b = atan(cos a)",
+                  stated_text="w, d, h the box's width, depth and height (Sec 3.6.2.1), a = pi/4",
+                  route=f"Eq 52 evaluated at the 8 corners of {len(sizes)} of the boxes",
                   measure="max |Eq 52 at the corners - 1|")
 
 
@@ -250,7 +252,8 @@ def _moved_entry() -> dict:
             Slip(SlipKind.OFF_BY_ONE, "A -> D through via-points 1, 3 (the second one a number off)",
                  (_moved_entry(), VIA_POINTS)),
             Slip(SlipKind.SIGN, "via-point 3 with the sign of x flipped",
-                 (TABLE_IV_PRINTED, {**VIA_POINTS, 3: (-VIA_POINTS[3][0], VIA_POINTS[3][1], VIA_POINTS[3][2])})),
+                 (TABLE_IV_PRINTED, {**VIA_POINTS, 3: (-VIA_POINTS[3][0], VIA_POINTS[3][1],
+                     VIA_POINTS[3][2])})),
         ),
     ),
 )
@@ -333,12 +336,12 @@ def check_table_iii(ctx, via) -> Row:
         Measure("smallest height of a via-point above the floor", float(above.min()), zone, "m", bound=">="),
     )
     return Row.graded(
-        claim="The four via-points of Table III lie inside the workspace, clear of the platform and above the "
-        "floor ('four different via-points were selected inside the workspace to ensure safety paths')",
+        claim="The four via-points of Table III lie inside the workspace, clear of the platform and above "
+        "the floor ('four different via-points were selected inside the workspace to ensure safety paths')",
         reference="Table III, Sec 3.6.3",
-        method="ground-truth position reachability (the oracle of the workspace section: 10^6 joint samples + "
-        "bounded position IK) of each printed via-point; its distance to the platform box and its height above "
-        "the floor (iik.scene, the 30 mm zone of Sec 3.6.2.2)",
+        method="ground-truth position reachability (the oracle of the workspace section: 10^6 joint samples "
+        "+ bounded position IK) of each printed via-point; its distance to the platform box and its height "
+        "above the floor (iik.scene, the 30 mm zone of Sec 3.6.2.2)",
         numbers="; ".join(
             f"via-point {k} {fmt} mm: {'reachable' if ok else 'unreachable'} (IK residual {res:.1e} m), "
             f"{db * 1e3:.0f} mm from the platform, {h * 1e3:.0f} mm above the floor"
@@ -408,17 +411,18 @@ def check_fig42e_via_points(ctx, table) -> Row:
         Measure("largest |azimuth| along the path (joint 1 pointing at it)", az, limit, "rad"),
     )
     return Row.graded(
-        claim="Fig 42e: to cross from region A to region D the planner takes two via-points (Table IV: 1, 2), "
-        "and so avoids the conflict zone at the centre of the workspace (the platform the arm stands on) "
+        claim="Fig 42e: to cross from region A to region D the planner takes two via-points (Table IV: 1, "
+        "2), and so avoids the conflict zone at the centre of the workspace (the platform the arm stands on) "
         "and the plane behind the arm",
         reference="Sec 4.2.2 (Fig 42e), Table IV",
-        method="scenario e (scenarios/e.toml): the regions of its start and goal (inferred Fig 29), the via-points "
-        "Table IV gives for them, the Sec 3.6 path through them (iik.planning.build_path); clearance from the "
-        "platform box (iik.scene) and azimuth every 5 mm, also of the straight line it replaces",
+        method="scenario e (scenarios/e.toml): the regions of its start and goal (inferred Fig 29), the "
+        "via-points "
+        "Table IV gives for them, the Sec 3.6 path through them (iik.planning.build_path); clearance from "
+        "the platform box (iik.scene) and azimuth every 5 mm, also of the straight line it replaces",
         numbers=f"start in {a}, goal in {b}: Table IV gives via-points {list(nums)}; the path has "
         f"{len(path.via_points)} via-points; the straight line start -> goal goes "
-        f"{'through' if line_clear < 0 else 'past'} the platform (clearance {line_clear * 1e3:.0f} mm, -1000 = "
-        f"inside), the via-point path keeps {path_clear * 1e3:.0f} mm from it; largest |azimuth| "
+        f"{'through' if line_clear < 0 else 'past'} the platform (clearance {line_clear * 1e3:.0f} mm, -1000 "
+        f"= inside), the via-point path keeps {path_clear * 1e3:.0f} mm from it; largest |azimuth| "
         f"{math.degrees(az):.1f} deg (limit {math.degrees(limit):.0f} deg)",
         measures=m,
         fail=Verdict.NOT_REPRODUCED,
@@ -517,8 +521,10 @@ def check_arc_route(ctx, route) -> list[Row]:
                 reason="; ".join(reasons)
                 + ("; depends on the reconstructed via-points and orientations" if reasons else ""),
                 id=f"arc_route_{name}",
-                basis=f"the via-points and orientations of {name} are our reconstruction (scenarios/{name}.toml): "
-                "the thesis prints neither, so whether the straight line has unsolvable steps depends on them",
+                basis=f"the via-points and orientations of {name} are our reconstruction "
+                f"(scenarios/{name}.toml): "
+                "the thesis prints neither, so whether the straight line has unsolvable steps depends on "
+                "them",
                 domain=f"the {len(line[0])} steps of the middle segment of the reconstructed {name}",
             )
         )
@@ -740,7 +746,8 @@ def _scenario_row(
 
 
 #: What the scenario rows rest on.
-_SCENES = ("the scenes are our reconstruction (scenarios/*.toml): the thesis shows Fig 42's pictures but prints "
+_SCENES = ("the scenes are our reconstruction (scenarios/*.toml): the thesis shows Fig 42's pictures but "
+           "prints "
            "no start, goal, obstacle size or position, so the verdict is about the reconstructed scenes")
 
 
@@ -836,8 +843,8 @@ def check_scenarios(ctx, source: PathSource) -> Row:
         views=views,
         id="scenarios",
         on_reconstruction=True,
-        domain=f"the {len(details)} reconstructed scenes of Fig 42 planned in this run, every step-point and every "
-        "2 mm of arm motion",
+        domain=f"the {len(details)} reconstructed scenes of Fig 42 planned in this run, every step-point and "
+        "every 2 mm of arm motion",
     )
 
 
@@ -877,8 +884,7 @@ def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
         "motion",
         reference="Sec 4.2, Sec 3.6",
         method=f"{source.name}; whole-arm Coal clearance sampled every 2 mm of arm motion (certified "
-        "bisection "
-        "where the bound is undecided)." + _quick_note(ctx),
+        "bisection where the bound is undecided)." + _quick_note(ctx),
         numbers="; ".join(f"{d.id}: {_mm(d)}" for d in details),
         scope=Scope.PROJECT,
         id="scenarios_whole_arm",
@@ -931,12 +937,12 @@ def check_planner(ctx, source: PathSource) -> Row:
         reference="Sec 4.2, Sec 3.6",
         method=f"{source.name}: the planner (thesis path, other IK branches, arc route, redesigns, "
         "RRT-Connect; TOPP-RA), re-measured here independently of its acceptance rule: whole-arm Coal "
-        "clearance every "
-        "2 mm of arm motion." + _quick_note(ctx),
+        "clearance every 2 mm of arm motion." + _quick_note(ctx),
         numbers="; ".join(f"{d.id}: {_mm(d)}" for d in details),
         scope=Scope.PROJECT,
         id="planner",
-        domain="every planned scenario of this run, every 2 mm of arm motion of the path and its timed trajectory",
+        domain="every planned scenario of this run, every 2 mm of arm motion of the path and its timed "
+        "trajectory",
     )
 
 
@@ -1026,7 +1032,8 @@ def check_smooth_joints(ctx, form) -> Row:
         on_reconstruction=True,
         basis=_SCENES + "; the jumps come from the orientation search our reconstruction needs where the "
         "nominal orientation has no solution",
-        domain=f"the {len(details)} reconstructed scenes planned in this run, every pair of consecutive step-points",
+        domain=f"the {len(details)} reconstructed scenes planned in this run, every pair of consecutive "
+        "step-points",
     )
 
 
@@ -1123,8 +1130,7 @@ def check_thesis_timing(ctx, timing: Callable) -> Row:
         per.append(
             f"{name}: {tr.duration:.2f} s, max |qd|/v {v:.3f}, max |qdd|/a "
             + ("unbounded" if math.isinf(a) else f"{a:.3f}")
-            + f" (largest speed change between samples "
-            f"{dv:.2f} v_max)"
+            + f" (largest speed change between samples {dv:.2f} v_max)"
         )
     if not peaks:
         return Row(

@@ -92,8 +92,8 @@ def step_length(ctx, steps):
         fail=Verdict.NOT_REPRODUCED,
         holds_as=Verdict.RECONSTRUCTION,
         basis="the paths are our reconstruction (scenarios/p1-p3.toml): the thesis prints neither the start, "
-        "the via-points nor the goal of its predefined paths, only their heights (0.8 m table, 0.45 m platform, "
-        "the floor); step lengths follow from the segment lengths we chose",
+        "the via-points nor the goal of its predefined paths, only their heights (0.8 m table, 0.45 m "
+        "platform, the floor); step lengths follow from the segment lengths we chose",
         id="step_length",
         domain=f"the three reconstructed predefined paths {', '.join(PATHS)}, every step",
     )
@@ -144,8 +144,8 @@ def iik_along_paths(ctx, solver):
         verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
         id="iik_along_paths",
         measures=m,
-        domain=f"every step-point of the reconstructed paths {', '.join(PATHS)} (the misses are the IIK's own, "
-        "as on random poses: ik.completeness)",
+        domain=f"every step-point of the reconstructed paths {', '.join(PATHS)} (the misses are the IIK's "
+        "own, as on random poses: ik.completeness)",
         reason=""
         if n_missed == 0
         else "the theta1 grid misses roots and c3 = +-sqrt(1 - s3^2) (Eq 21) loses accuracy near theta3 = "
@@ -190,7 +190,8 @@ _SAME = 1e-6  # [rad]: both iterate to 1e-6 deg (Sec 4.2.1); "the same values" w
         good=_pick_newtons,
         good_is="Newton's own answer in place of the IIK's",
         slips=(
-            Slip(SlipKind.SIGN, "the IIK solution of largest effort (the comparison reversed)", _pick_max_effort),
+            Slip(SlipKind.SIGN, "the IIK solution of largest effort (the comparison reversed)",
+                _pick_max_effort),
             Slip(SlipKind.MODEL, "the IIK solution nearest to the home pose (not to the previous step)",
                  _pick_nearest_zero),
         ),
@@ -230,10 +231,8 @@ def iik_vs_newton(ctx, pick):
     method = (
         f"thesis IIK at every step-point of {', '.join(PATHS)} (nominal orientation), the solution chosen by "
         "the form from the previous IIK configuration; Newton (pseudo-inverse, Pinocchio) started from the "
-        "same "
-        "previous configuration, as in the thesis; steps where the IIK has no solution skipped; same = "
-        "within "
-        f"{_SAME:g} rad"
+        "same previous configuration, as in the thesis; steps where the IIK has no solution skipped; same = "
+        f"within {_SAME:g} rad"
     )
     return [
         Row(
@@ -255,8 +254,7 @@ def iik_vs_newton(ctx, pick):
             "Sec 4.2.1.1, Eq 54",
             method + "; Eq 54 from the previous configuration to each answer",
             f"effort index differs (> {_SAME:g} rad) on {np.mean(de > _SAME):.1%} of {len(de)} steps; "
-            "largest "
-            f"difference {np.max(de):.2g} rad",
+            f"largest difference {np.max(de):.2g} rad",
             me,
             fail=Verdict.DOES_NOT_HOLD,
             id="iik_vs_newton.effort",

@@ -100,8 +100,8 @@ def _table(rid: str, claim: str, source: str, method: str, bad_is: str, details:
 
 
 #: Why Table VII holds whatever the arm: three columns dropped leave a 3x2 matrix.
-_VII_BASIS = ("with three joints at their limits their columns are dropped, so the reduced Jacobian is 3x2 and "
-              "has rank <= 2 whatever the arm: singular by construction (shown, not evidence)")
+_VII_BASIS = ("with three joints at their limits their columns are dropped, so the reduced Jacobian is 3x2 "
+              "and has rank <= 2 whatever the arm: singular by construction (shown, not evidence)")
 
 
 @SECTION.check(
@@ -111,7 +111,8 @@ _VII_BASIS = ("with three joints at their limits their columns are dropped, so t
         (
             Slip(SlipKind.MODEL, "each set with one non-limit fixed joint 10 deg off (or one limit released)",
                  _moved(TABLE_VI)),
-            Slip(SlipKind.OFF_BY_ONE, "each set's fixed joints one joint number off", _shifted_joints(TABLE_VI)),
+            Slip(SlipKind.OFF_BY_ONE, "each set's fixed joints one joint number off",
+                _shifted_joints(TABLE_VI)),
         ),
         good_is="Table VI as printed (every set is singular)",
     ),
@@ -150,8 +151,7 @@ def table_vi(ctx, sets):
         f"The {len(sets)} sets of Table VI (type I and II) are singularity sets of the arm.",
         "Table VI (App. D)",
         f"Pinocchio position Jacobian (reduced: columns of joints at a limit dropped) on {n} random samples "
-        "of "
-        "each set's free joints within Table I; singular = rank < 3",
+        "of each set's free joints within Table I; singular = rank < 3",
         "sets that are not singular",
         details,
         lambda bad: f"{len(sets) - len(bad)} of {len(sets)} sets singular on every sample"
@@ -182,8 +182,7 @@ def table_vii(ctx, sets):
         details.append(
             _entry(
                 f"s({s0.index})-s({group[-1].index}): joints {joints} at their limits (8 combinations), "
-                "joints "
-                f"{list(s0.free)} free, are constraint (type III) singularity sets.",
+                f"joints {list(s0.free)} free, are constraint (type III) singularity sets.",
                 f"App. D, Table VII, s({s0.index})-s({group[-1].index})",
                 f"rank < 3 on {min(fr):.0%}-{max(fr):.0%} of samples"
                 + (f". Note: {s0.note}" if s0.note else ""),
@@ -324,25 +323,22 @@ def missing_singularities(ctx, member):
         f"{ctx.n(2, 1)} random starts each ({ctx.n(20, 6)} for the full Jacobian): bounded least squares on "
         "all 3x3 "
         "minors of the reduced Jacobian (rank < 3 <=> all minors vanish), then membership in the listed sets "
-        "and "
-        "clustering by which joints sit at limits or at 0/+-90 deg",
+        "and clustering by which joints sit at limits or at 0/+-90 deg",
         f"{len(res)} singular configurations found; {len(res) - len(unexpl)} lie in a listed set; "
         f"{len(unexpl)} lie in "
         f"none ({len(clusters)} clusters). With no joint at a limit: {len(interior)} found, "
-        f"{len(interior_unexpl)} "
-        f"outside the list. Largest clusters: {top}{ex}",
+        f"{len(interior_unexpl)} outside the list. Largest clusters: {top}{ex}",
         verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
         id="missing",
         measures=m,
         figures=figs,
-        domain="51 cases (no joint, one or two joints at a limit), random starts over Table I; the search ends "
-        "on the singular set, so the sample is the singular configurations themselves",
+        domain="51 cases (no joint, one or two joints at a limit), random starts over Table I; the search "
+        "ends on the singular set, so the sample is the singular configurations themselves",
         reason="; ".join(
             (
                 [
                     f"{len(interior_unexpl)} singular configurations with no joint at a limit lie outside "
-                    "s(1) "
-                    "(type I is incomplete)"
+                    "s(1) (type I is incomplete)"
                 ]
                 if interior_unexpl
                 else []

@@ -34,8 +34,9 @@ class Slip:
         return search({"cite": self.cited}, numbering_slips("cite", self.cited, "the citation"),
                       lambda x: 0.0 if x["cite"] == self.right else 1.0, 0.0, printed=self.quote,
                       stated_text=f"the sentence describes {self.correct}",
-                      route="the thesis's List of Figures, List of Tables, Table of Contents, equation numbering "
-                      "and reference list", measure="the cited target differs from the described one (0 = same)")
+                      route="the thesis's List of Figures, List of Tables, Table of Contents, equation "
+                      "numbering and reference list",
+                      measure="the cited target differs from the described one (0 = same)")
 
 
 #: The slips found by reading each citation against the thesis's lists (captions quoted from them).
@@ -153,8 +154,7 @@ def cross_references(ctx):
         "describes.",
         "Cross-references (whole text)",
         "every numbered citation read against the List of Figures, List of Tables, Table of Contents and "
-        "equation "
-        "numbering of the thesis and its reference list",
+        "equation numbering of the thesis and its reference list",
         "; ".join(f"{s.where}: '{s.quote}' -> {s.correct}" for s in SLIPS),
         Verdict.ERRATUM if SLIPS else Verdict.HOLDS,
         id="cross_references",

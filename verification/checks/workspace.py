@@ -24,7 +24,19 @@ from ..numbers import fmt_vec
 from ..oracles.pinocchio_model import joint_placements
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon, off_by, verdict_of
+from ..registry import (
+    Erratum,
+    Forms,
+    Measure,
+    Row,
+    Section,
+    Slip,
+    SlipKind,
+    Verdict,
+    epsilon,
+    off_by,
+    verdict_of,
+)
 from ..second_reading import Kind, Reading, search
 from ..shorthand import cos_sin, wrap
 
@@ -45,7 +57,8 @@ def eq36_41_test(
     """The test of Sec 3.4.4 -> boolean (n,) 'within boundary' (0 of Eq 38/41).
 
     ``eq39``: ``"printed"`` (link 3 aimed from the base axis) or ``"corrected"`` (from joint 2,
-    limited to Table I by the nearer limit on the circle); ``eq40_sign``: the sign in Eq 40's ``(l2 -+ l3 c2)`` (printed: -1);
+    limited to Table I by the nearer limit on the circle); ``eq40_sign``: the sign in Eq 40's
+    ``(l2 -+ l3 c2)`` (printed: -1);
     ``margin`` [m]: added to both reach radii (the tolerance test); ``th1_rule``: joint 1 in regions 2/3
     at the region's limit (``"region"``), at 160 deg in both (``"printed"``: Eq 40's cos(160 deg),
     sin(160 deg) literally) or at the other limit (``"other"``); ``reach1``, ``reach23`` [m]: the reach
@@ -269,9 +282,10 @@ def classification_reading(ctx, test, region: str, printed: str):
         Reading(Kind.SIGN, "theta2 of Eq 39 measured the other way", {"eq39_sign": -stated["eq39_sign"]}),
     ]
     return search(stated, readings, misfit, 0.0, printed=printed,
-                  stated_text="regions by Eq 36 (joint 1 at its limit, +-160 deg, in regions 2/3), theta2 by Eq 39",
-                  route="the test re-evaluated under each reading against the reachability oracle (10^6 joint "
-                  "samples + position IK)", measure="misclassified graded test points")
+                  stated_text="regions by Eq 36 (joint 1 at its limit, +-160 deg, in regions 2/3), theta2 by "
+                  "Eq 39",
+                  route="the test re-evaluated under each reading against the reachability oracle (10^6 "
+                  "joint samples + position IK)", measure="misclassified graded test points")
 
 
 def _classification_row(ctx, form, rid, key, claim, method, region: str, printed: str, corrected: str) -> Row:
@@ -326,7 +340,8 @@ _COMPOSITE = (
         good=in_workspace,
         good_is="iik.in_workspace (Eq 39 and Eq 40 corrected)",
         slips=(
-            Slip(SlipKind.SIGN, "Eq 40 with l2 - l3 c2 (Eq 39 corrected)", partial(eq36_41_test, eq39="corrected")),
+            Slip(SlipKind.SIGN, "Eq 40 with l2 - l3 c2 (Eq 39 corrected)", partial(eq36_41_test,
+                eq39="corrected")),
             Slip(SlipKind.LIMIT, "joint 1 at the other limit in regions 2/3",
                  partial(eq36_41_test, eq39="corrected", eq40_sign=1.0, th1_rule="other")),
             Slip(SlipKind.LENGTH, "region 1's reach l3 + l4 (l5 left out)",
@@ -346,8 +361,7 @@ def eq36_41(ctx, test):
         "Eq 36-41 decide whether a point is inside the workspace (region 1: |p - joint 2| <= l3+l4+l5; "
         "regions 2/3: "
         "|p - joint 4| <= l4+l5 with joint 1 at its limit); 'the algorithm was capable of recognizing "
-        "whether a "
-        "given position was inside of the workspace ... during every trial' (Sec 5.2).",
+        "whether a given position was inside of the workspace ... during every trial' (Sec 5.2).",
         _COMPOSITE + "; 10000 points uniform in a box around the arm plus 4000 at azimuth 150-210 deg "
         "(quick: 1500 + 600). Map: cross-sections z = l1, y = 0",
         "all",
@@ -402,7 +416,8 @@ def _first_links(th1: np.ndarray, th2: np.ndarray | None = None, upto: int = 2) 
 
 
 def _refined_min(dist, t: np.ndarray, h: float, lo=None, hi=None, iters: int = 50) -> np.ndarray:
-    """Golden-section refinement of a per-point 1-D minimum bracketed by [t - h, t + h] (clipped to [lo, hi])."""
+    """Golden-section refinement of a per-point 1-D minimum bracketed by [t - h, t + h] (clipped to
+    [lo, hi])."""
     a, b = t - h, t + h
     if lo is not None:
         a, b = np.clip(a, lo, hi), np.clip(b, lo, hi)
@@ -432,7 +447,8 @@ def _joint2_nearest_theta1(P: np.ndarray, n: int = 3600) -> np.ndarray:
     forms=Forms.right(
         eq36_printed,
         (
-            Slip(SlipKind.SWAP, "atan2(px, py): the arguments exchanged", lambda P: np.arctan2(P[:, 0], P[:, 1])),
+            Slip(SlipKind.SWAP, "atan2(px, py): the arguments exchanged", lambda P: np.arctan2(P[:, 0], P[:,
+                1])),
             Slip(SlipKind.FUNCTION, "atan(py / px) for atan2 (the quadrant lost)",
                  lambda P: np.arctan(P[:, 1] / P[:, 0])),
             Slip(SlipKind.BRANCH, "atan2(py, px) + pi (the opposite side)",
@@ -464,20 +480,21 @@ def eq36_azimuth(ctx, eq36):
     k = int(np.argmax(gap))
     return Row.graded(
         "phi = atan2(py, px) (Eq 36) is the joint-1 angle that brings joint 2 nearest to the point (the "
-        "farthest reach toward it, Sec 3.4.4.1); region 1 is -160 < phi < 160 deg, where that angle is within "
-        "Table I.",
+        "farthest reach toward it, Sec 3.4.4.1); region 1 is -160 < phi < 160 deg, where that angle is "
+        "within Table I.",
         "Eq 36",
-        "the joint-1 angle that puts joint 2 (Pinocchio) nearest to each point, by a 7200-point grid over the "
+        "the joint-1 angle that puts joint 2 (Pinocchio) nearest to each point, by a 7200-point grid over "
+        "the "
         "whole turn and golden-section refinement, vs the form; the extra distance it costs, and the region "
         "the form assigns vs whether that angle is outside Table I",
-        f"max extra distance {gap.max():.2g} m (max angular difference {d_angle[r > 1e-3].max():.2g} rad away "
-        f"from the axis, {d_angle.max():.2g} rad within 1 mm of it, where the azimuth barely matters); points "
-        f"in the wrong region: {int(np.sum(region_form != region_true))}",
+        f"max extra distance {gap.max():.2g} m (max angular difference {d_angle[r > 1e-3].max():.2g} rad "
+        f"away from the axis, {d_angle.max():.2g} rad within 1 mm of it, where the azimuth barely matters); "
+        f"points in the wrong region: {int(np.sum(region_form != region_true))}",
         m,
         id="eq36",
         domain=f"{len(P)} points: {len(P) // 3} uniform in the box [-0.95, 0.95]^2 x [-0.55, 1.15] m, "
-        f"{len(P) // 3} within 1 um..1 mm of the base axis, {len(P) // 3} within 1e-3 deg of azimuth -160, 160 "
-        "or 180 deg",
+        f"{len(P) // 3} within 1 um..1 mm of the base axis, {len(P) // 3} within 1e-3 deg of azimuth -160, "
+        "160 or 180 deg",
         erratum=Erratum("Eq 36", "phi = atan2(py, px)", "the joint-1 angle nearest the point",
                         f"p = {fmt_vec(P[k])} m: joint 2 is {gap[k]:.3g} m farther than it need be"),
     )
@@ -497,8 +514,10 @@ def _joint(q: np.ndarray, frame: int) -> np.ndarray:
     forms=Forms.right(
         eq37_printed,
         (
-            Slip(SlipKind.SWAP, "[l2 sin(phi), l2 cos(phi), l1]", lambda phi: eq37_printed(phi)[:, [1, 0, 2]]),
-            Slip(SlipKind.LENGTH, "l3 for l2", lambda phi: eq37_printed(phi) * np.array([ARM.l3 / ARM.l2] * 2 + [1])),
+            Slip(SlipKind.SWAP, "[l2 sin(phi), l2 cos(phi), l1]", lambda phi: eq37_printed(phi)[:, [1, 0,
+                2]]),
+            Slip(SlipKind.LENGTH, "l3 for l2",
+                lambda phi: eq37_printed(phi) * np.array([ARM.l3 / ARM.l2] * 2 + [1])),
         ),
         tolerance=epsilon(eq37_printed, 1e-9, "each coordinate moved by 1 nm"),
     ),
@@ -566,8 +585,8 @@ def eq39_printed(P, th1):
 
 
 def clip_angle(t, lo: float, hi: float):
-    """``t`` [rad] limited to [lo, hi] by the nearer limit *on the circle* (a plain clip picks the wrong one for
-    an angle past one limit but nearer the other across +-pi)."""
+    """``t`` [rad] limited to [lo, hi] by the nearer limit *on the circle* (a plain clip picks the wrong one
+    for an angle past one limit but nearer the other across +-pi)."""
     t = np.asarray(t, float)
     d_lo = np.abs(wrap(t - lo))
     d_hi = np.abs(wrap(t - hi))
@@ -607,7 +626,8 @@ def _rear_points(ctx) -> tuple[np.ndarray, float]:
     rng = ctx.rng("eq39-points")
     n = ctx.n(400, 60)
     phi = rng.uniform(160 * _D, 200 * _D, n)
-    r = np.where(np.arange(n) % 4 == 0, rng.uniform(0.01, 0.2, n), rng.uniform(0.05, 0.9, n))  # a quarter near the axis
+    r = np.where(np.arange(n) % 4 == 0, rng.uniform(0.01, 0.2, n), rng.uniform(0.05, 0.9,
+        n))  # a quarter near the axis
     P = np.column_stack([r * np.cos(phi), r * np.sin(phi), rng.uniform(-0.5, 1.1, n)])
     return P[np.arctan2(P[:, 1], P[:, 0]) >= 160 * _D], 160 * _D
 
@@ -645,7 +665,8 @@ def eq39_reading(ctx, P, th1, eq39):
     ]
     return search(stated, readings, misfit, 1e-6, printed="theta2 = -atan2(pz - l1, sqrt(px^2 + py^2))",
                   stated_text="the point p (base frame), joint 1 at its limit (160 deg), Table II's l1",
-                  route="a 2001-point theta2 grid of joint 4 by iik.dh, refined by golden section (not Pinocchio)",
+                  route="a 2001-point theta2 grid of joint 4 by iik.dh, refined by golden section (not "
+                  "Pinocchio)",
                   measure="max |form - nearest-joint-4 theta2| [rad]")
 
 
@@ -670,8 +691,8 @@ def _eq39_atan(P, th1):
     forms=Forms(
         printed=eq39_printed,
         good=eq39_corrected,
-        good_is="theta2 = -atan2(pz - l1, u - l2), u along the joint-1 limit direction, limited to Table I by the "
-        "nearer limit on the circle",
+        good_is="theta2 = -atan2(pz - l1, u - l2), u along the joint-1 limit direction, limited to Table I "
+        "by the nearer limit on the circle",
         slips=(
             Slip(SlipKind.SIGN, "+atan2(pz - l1, u - l2)", _eq39_plus),
             Slip(SlipKind.SWAP, "atan2's arguments exchanged", _eq39_swapped),
@@ -702,15 +723,14 @@ def eq39_theta2(ctx, eq39):
         erratum=Erratum(
             "Eq 39",
             "theta2 = -atan2(pz - l1, sqrt(px^2 + py^2)) (link 3 aimed from the base axis)",
-            "theta2 = -atan2(pz - l1, u - l2), u = px cos(th1) + py sin(th1), limited to Table I by the nearer "
-            "limit on the circle (aimed "
-            "from "
-            "joint 2: the nearest joint-4 position)",
+            "theta2 = -atan2(pz - l1, u - l2), u = px cos(th1) + py sin(th1), limited to Table I by the "
+            "nearer limit on the circle (aimed "
+            "from joint 2: the nearest joint-4 position)",
             f"p = {fmt_vec(P[k])} m: Eq 39 gives theta2 = {eq39(P[k : k + 1], th1)[0]:.4f} rad, the "
-            "nearest "
-            f"joint 4 is at theta2 = {best[k]:.4f} rad",
+            f"nearest joint 4 is at theta2 = {best[k]:.4f} rad",
         ),
-        domain=f"{len(P)} points at azimuth 160-200 deg, radius 0.05-0.9 m (a quarter 0.01-0.2 m: within l2 of the "
+        domain=f"{len(P)} points at azimuth 160-200 deg, radius 0.05-0.9 m (a quarter 0.01-0.2 m: within l2 "
+        "of the "
         "axis, where u - l2 changes sign), z from -0.5 to 1.1 m (theta2 clipped at both Table I limits)",
     )
     return row.reread(eq39_reading(ctx, P, th1, eq39)) if row.verdict is Verdict.ERRATUM else row
@@ -805,11 +825,9 @@ def eq40_joint4(ctx, eq40):
             "Eq 40",
             "x4 = (l2 - l3 c2) cos(160 deg), y4 = (l2 - l3 c2) sin(160 deg)",
             "x4 = (l2 + l3 c2) cos(th1), y4 = (l2 + l3 c2) sin(th1) (joint 4 is l3 beyond joint 2 along "
-            "link 3, "
-            "Table II / Eq 4; th1 = -160 deg in region 3)",
+            "link 3, Table II / Eq 4; th1 = -160 deg in region 3)",
             f"theta1 = 160 deg, theta2 = {th2[k]:.4f} rad: printed joint 4 is {err[k] * 1e3:.0f} mm from "
-            "the "
-            "true one",
+            "the true one",
         ),
         domain=f"{len(th2)} theta2 uniform over Table I (-120..95 deg), joint 1 at 160 deg",
     )
@@ -938,8 +956,7 @@ def three_surface_boundary(ctx, surfaces):
         + ", ".join(f"{k}: {int(np.sum(covered & (labels[nn] == k)))}" for k in surfaces)
         + "]",
         f"|azimuth| < 160 deg: {int(covered[front].sum())} of {int(front.sum())} covered; |azimuth| >= 160 "
-        "deg: "
-        f"{int(covered[~front].sum())} of {int((~front).sum())}",
+        f"deg: {int(covered[~front].sum())} of {int((~front).sum())}",
     ]
     if surfaces is BOUNDARY_SURFACES_PRINTED:
         lines += _side_test(ctx)
@@ -963,8 +980,7 @@ def three_surface_boundary(ctx, surfaces):
         reason="f(1) is the exterior boundary for |azimuth| < 160 deg; behind the arm the boundary is the "
              "corrected Eq 39-41 "
         "surface (joint 1 at its limit, wrist stretched, |p - joint 4| = l4 + l5 with th3, th4 varying), not "
-        "f(2)/f(3) "
-        "(th3 = 90 fixed) with the printed ranges, most of whose points are interior",
+        "f(2)/f(3) (th3 = 90 fixed) with the printed ranges, most of whose points are interior",
     )
 
 
@@ -982,8 +998,7 @@ def _side_test(ctx) -> list[str]:
         both = oracle.classify(pts[k] + 2e-3 * n0).reachable & oracle.classify(pts[k] - 2e-3 * n0).reachable
         out.append(
             f"{name}: {int((~both).sum())} of {len(k)} sampled surface points have an unreachable side at 2 "
-            "mm "
-            f"along the surface normal (boundary points); {int(both.sum())} are interior"
+            f"mm along the surface normal (boundary points); {int(both.sum())} are interior"
         )
     return out
 
@@ -1036,7 +1051,8 @@ def no_interior_boundary(ctx, margin):
         fail=Verdict.DOES_NOT_HOLD,
         id="no_interior_boundary",
         domain=_TEST_DOMAIN.format(n_box=tp["n_box"], n_back=len(P) - tp["n_box"]) + f"; those at least "
-        f"{margin * 1e3:.0f} mm inside the f(1) sphere, plus {len(core)} points in a 0.7 m cube around joint 2",
+        f"{margin * 1e3:.0f} mm inside the f(1) sphere, plus {len(core)} points in a 0.7 m cube around joint "
+        "2",
     )
 
 
@@ -1128,7 +1144,8 @@ def _outside_points(ctx) -> np.ndarray:
         good=_closest,
         good_is="iik.closest_reachable (bounded least squares over the joints)",
         slips=(
-            Slip(SlipKind.SIGN, "the projection pushed 5 mm outside instead of onto the boundary", _pushed_out),
+            Slip(SlipKind.SIGN, "the projection pushed 5 mm outside instead of onto the boundary",
+                _pushed_out),
             Slip(SlipKind.MODEL, "every point projected onto the region-1 sphere "
                  "(regions 2/3 ignored)", _region1_only),
         ),
@@ -1159,8 +1176,7 @@ def app_g_relocation(ctx, relocate):
         "is fk(q) of a q inside Table I); reachability of the relocated point (0.1 mm back inside) by the IK "
         "oracle",
         f"{len(P)} points outside the workspace ({int(r23.sum())} at |azimuth| >= 160 deg): relocated point "
-        "reachable "
-        f"for {ok.mean():.1%}; | |relocation - p| - |closest - p| |: region 1 max "
+        f"reachable for {ok.mean():.1%}; | |relocation - p| - |closest - p| |: region 1 max "
         f"{np.abs(extra[~r23]).max() * 1e3:.4f} mm, regions 2/3 max {np.abs(extra[r23]).max() * 1e3:.4f} mm; "
         f"iik.closest_reachable: max |fk(q) - point| = {fk_err:.1e} m",
         Verdict.RECONSTRUCTION if ok_all else Verdict.NOT_REPRODUCED,
@@ -1169,6 +1185,6 @@ def app_g_relocation(ctx, relocate):
         reason="" if ok_all else "the relocation is not the closest reachable point",
         basis="the relocation rule is our reading: the thesis shows only its result (Figs 61-62), not how it "
         "relocates; graded is the radial projection onto the Sec 3.4.4 boundary (Eq 38 / corrected Eq 41)",
-        domain=f"{len(P)} points outside the workspace (the test of Sec 3.4.4), 0.5-1.3 m from (0, 0, l1), half "
-        "of them behind the arm (azimuth 160-200 deg)",
+        domain=f"{len(P)} points outside the workspace (the test of Sec 3.4.4), 0.5-1.3 m from (0, 0, l1), "
+        "half of them behind the arm (azimuth 160-200 deg)",
     )

@@ -132,7 +132,8 @@ def eq59_normal(Gq: np.ndarray, qs: np.ndarray) -> np.ndarray:
     return U[:, 2]
 
 
-def eq61_h_star(N0: np.ndarray, Hq: np.ndarray, Gq: np.ndarray, qs: np.ndarray, qss: np.ndarray) -> np.ndarray:
+def eq61_h_star(N0: np.ndarray, Hq: np.ndarray, Gq: np.ndarray, qs: np.ndarray,
+    qss: np.ndarray) -> np.ndarray:
     """Eq 61: H* = q_s^T [N0.G]_qq q_s + sum_i (N0.G_qi) [q_i]_ss (5 x 5)."""
     NG_qq = np.einsum("k,kij->ij", N0, Hq)
     return qs[:, None] * NG_qq * qs[None, :] + np.diag((N0 @ Gq) * qss)
@@ -145,7 +146,8 @@ def eq63_b(f_u: np.ndarray, rows: tuple[int, int]) -> np.ndarray:
     return np.linalg.solve(E @ f_u, E)
 
 
-def eq65_q_star(H: np.ndarray, B: np.ndarray, Gq: np.ndarray, qs: np.ndarray, Nf_uu: np.ndarray) -> np.ndarray:
+def eq65_q_star(H: np.ndarray, B: np.ndarray, Gq: np.ndarray, qs: np.ndarray,
+    Nf_uu: np.ndarray) -> np.ndarray:
     """Eq 65: Q* = H* - q_s^T G_q^T B^T [N0.f]_uu B G_q q_s (5 x 5)."""
     M = B @ (Gq * qs[None, :])
     return H - M.T @ Nf_uu @ M

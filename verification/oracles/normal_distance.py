@@ -154,7 +154,8 @@ class SurfacePoint:
         return np.stack(cols, -1)
 
     def sigma(self, joint: int, dq: float) -> float:
-        """Eq 66 by its meaning: the first-order normal motion [m] when joint ``joint`` moves by ``dq`` rad."""
+        """Eq 66 by its meaning: the first-order normal motion [m] when joint ``joint`` moves by ``dq``
+        rad."""
         e = np.zeros(5)
         e[joint - 1] = _H1
         G = tool_point(np.array([self.q0 + e, self.q0 - e]), self.arm)
@@ -165,7 +166,8 @@ class SurfacePoint:
         return -self.offset_curvature(joint, rows)
 
     def offset(self, joint: int, t: float, rows: tuple[int, int] | None = None) -> float:
-        """phi [m] after joint ``joint`` moves by ``t`` rad alone: the tool's signed distance from the surface."""
+        """phi [m] after joint ``joint`` moves by ``t`` rad alone: the tool's signed distance from the
+        surface."""
         q = self.q0.copy()
         q[joint - 1] += t
         G = tool_point(q[None], self.arm)

@@ -46,7 +46,8 @@ def test_appendix_e_verdicts_follow_the_printed_numbers(ctx):
     a1 = {d.id: d for d in rows["a1"].details}
     assert rows["a1"].verdict is Verdict.ERRATUM
     # u0 is Eq 58 inverted at theta1 = +7 pi/9: an input slip; H*(4,2) no reading explains
-    assert a1["u0"].verdict is Verdict.INPUT_SLIP and "theta1 = +140" in a1["u0"].second_reading.explanation.text
+    u0 = a1["u0"]
+    assert u0.verdict is Verdict.INPUT_SLIP and "theta1 = +140" in u0.second_reading.explanation.text
     assert a1["h_offdiag"].verdict is Verdict.ERRATUM
     assert a1["q"].verdict is Verdict.HOLDS and a1["conclusion"].verdict is Verdict.HOLDS
     assert "lengths-circular" in a1["h_diag"].depends_on
