@@ -927,6 +927,11 @@ def _sweep_forms(printed) -> Forms:
     )
 
 
+def _sweep_domain(sw) -> str:
+    return (f"{len(sw['P'])} reachable points (fk of q uniform in Table I), a {sw['na']} x {sw['nb']} "
+            "(alpha, beta) grid over every orientation of z6 at each")
+
+
 def _graded_sweep(ctx, admit):
     """The sweep, the set ``admit`` admits on it, its rates (:func:`_rates`) and the soundness measure."""
     sw = _sweep(ctx)
@@ -966,8 +971,7 @@ def printed_admitted_set(ctx, admit):
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="admitted_set",
-        domain=f"{len(P)} reachable points (fk of q uniform in Table I), a {sw['na']} x {sw['nb']} (alpha, "
-        "beta) grid over every orientation of z6 at each",
+        domain=_sweep_domain(sw),
         figures=figs,
         reason="the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the "
         "roll geometry, and Eq 48/50/51 are wrong (rows above): admitted "
@@ -1006,7 +1010,7 @@ def _iik_admit(p, A, B):
 )
 def iik_dexterity(ctx, admit):
     """(Project) iik.dexterity (the thesis's SLJ-shell model, exact cone) vs the same sweep."""
-    _, _, (s, c, n_adm, _), m = _graded_sweep(ctx, admit)
+    sw, _, (s, c, n_adm, _), m = _graded_sweep(ctx, admit)
     return Row(
         "(Project) iik.dexterity admits only reachable orientations.",
         "iik.dexterity (Sec 3.5 model)",
@@ -1015,6 +1019,7 @@ def iik_dexterity(ctx, admit):
         verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
         id="iik_dexterity",
         measures=m,
+        domain=_sweep_domain(sw),
         scope=Scope.PROJECT,
         reason=""
         if m[0].holds

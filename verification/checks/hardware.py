@@ -675,6 +675,7 @@ def check_real_arm(ctx) -> Row:
         "500000` logs the same step-point errors",
         numbers="-",
         verdict=Verdict.NOT_CHECKABLE,
+        domain="none: the claim is about the real arm's measurements",
         reason="no real arm is attached to `iik verify`; the simulator's tracking lag (pure delay), current "
         "model and host latency are assumptions, not identified from the real modules, and the thesis gives "
         "no joint speeds, so the simulated errors are not the real arm's",
@@ -794,6 +795,7 @@ def check_move_cur(ctx) -> Row:
         "cannot decide it",
         numbers="-",
         verdict=Verdict.NOT_CHECKABLE,
+        domain="Table V's description of PCube_moveCur (and of PCube_moveVel beside it)",
         reason="finding: the description is that of velocity control (PCube_moveVel), not of current "
         "control; deciding it needs the real modules or a dynamics model of the joint under load",
     )

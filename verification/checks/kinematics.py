@@ -1043,6 +1043,7 @@ def appendix_b_first_set(ctx, first):
             "only fragments ('c2 -s2 0', '0 0 1', '-l2 -c2', the last unplaceable); 2_3T..5_6T absent",
             Verdict.NOT_CHECKABLE,
             id="appb.first_set",
+            domain="the extracted text of App. B's first set",
             reason="the extracted text of this set is garbled beyond 0_1T (matrix brackets and rows lost); "
             "only the second (home-pose) set can be checked",
         ),
