@@ -3,7 +3,9 @@
 Checks live in :mod:`verification.checks` and register themselves; ``iik verify`` runs
 them all and writes ``reports/verification.json`` (one record per row, see
 ``report.schema.json``) and ``reports/verification.md`` rendered from it;
-:func:`self_test` proves that every verdict can fail.
+:func:`self_test` proves that every verdict can fail, on the mistakes a person would make;
+:mod:`verification.second_reading` searches the nearby readings of a printed value's inputs
+before it is called wrong.
 """
 
 from .errors import RegistrationError, ReportError, RowError, VerificationError
@@ -16,7 +18,10 @@ from .registry import (
     Row,
     Scope,
     Section,
+    Slip,
+    SlipKind,
     Verdict,
+    epsilon,
     load_checks,
     register,
     registered_checks,
@@ -39,6 +44,9 @@ __all__ = [
     "Context",
     "Erratum",
     "Forms",
+    "Slip",
+    "SlipKind",
+    "epsilon",
     "Measure",
     "Row",
     "Scope",

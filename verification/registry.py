@@ -8,28 +8,38 @@ checks by adding a module there; no central list is edited.
 on the printed form and on an independent reference (Pinocchio, Coal, finite
 differences, geometry, ground-truth sampling); its verdict comes from that comparison
 and a tolerance (:class:`Measure`, :func:`verdict_of`), never from a constant. To prove
-it, the check declares its :class:`Forms` -- the printed form, a known-good form and a
-deliberately perturbed form -- and takes the form as its second argument::
+it, the check declares its :class:`Forms` -- the printed form, a known-good form and the
+*slips* a person could make in that formula (a sign, a swapped index, atan for asin, a
+wrong link length, degrees for radians, a transposed rotation, the other branch of a
+square root, an off-by-one in a table index), plus, where a tolerance is graded, the good
+form moved by a tiny epsilon -- and takes the form as its second argument::
 
-    @SECTION.check(12, forms=Forms(printed=eq4_printed, good=eq4_from_dh,
-                   bad=off_by(eq4_printed, 1e-9), good_is="...", bad_is="..."))
+    @SECTION.check(12, forms=Forms(printed=eq4_printed, good=eq4_from_dh, good_is="...",
+                   slips=(Slip(SIGN, "p_z with -l3 s2 as +l3 s2", eq4_sign_slip),),
+                   tolerance=epsilon(eq4_printed, 1e-9)))
     def eq4_vs_pinocchio(ctx, eq4) -> Row: ...
 
 (``SECTION`` is the module's :class:`Section`; :func:`register` is the general form.)
 
 ``iik verify`` calls it with ``forms.printed``; :func:`verification.self_test` calls it
-again with ``forms.good`` (it must say "holds") and ``forms.bad`` (it must not). A check
-that cannot flip by its nature (a byte comparison, a transcription round trip, a
-statement that needs the real arm) says why with ``by_construction="..."`` and is
-counted apart.
+again with ``forms.good`` (it must pass: :attr:`Verdict.passes`), with each slip and with
+the tolerance form (each must make a graded row fail). A check that cannot flip by its nature (a byte
+comparison, a transcription round trip, a statement that needs the real arm) says why
+with ``by_construction="..."`` and is counted apart.
 
-Each :class:`Row` is one thesis claim with its reference, the method, the measured
-numbers, a :class:`Verdict`, what the verdict depends on (ids of
-:mod:`verification.assumptions`) and whether it grades the thesis's own claim or a
-stricter project standard (:class:`Scope`). A printed formula that is wrong gives
-``Verdict.ERRATUM`` with :class:`Erratum` records; that is a finding, not a failure.
-Only an exception inside a check (the software failing) makes ``iik verify`` exit
-non-zero.
+**Grades.** Each :class:`Row` is one thesis claim with its reference, the method, the
+sampled domain, the measured numbers, a :class:`Verdict`, what the verdict depends on (ids
+of :mod:`verification.assumptions`) and whether it grades the thesis's own claim or a
+stricter project standard (:class:`Scope`). The verdict says what was measured: *holds*
+(a measurement that could have failed), *holds by construction* (an identity or a round
+trip through our own code: shown, not evidence), *consistent with our reconstruction* (it
+rests on a reconstruction or assumption, named in ``basis``), *not checkable* (with its
+reason), and on the other side *erratum* (a printed formula or number is wrong),
+*input slip* (the printed result is right for a nearby reading of its stated inputs: the
+slip is in the input), *does not hold* and *not reproduced on our reconstruction*. An
+erratum is declared only after a second reading (:mod:`verification.second_reading`,
+:meth:`Row.reread`). Only an exception inside a check (the software failing) makes
+``iik verify`` exit non-zero.
 """
 
 from __future__ import annotations
@@ -48,6 +58,8 @@ import numpy as np
 
 from .assumptions import ASSUMPTIONS
 from .errors import RegistrationError, RowError
+from .second_reading import SecondReading
+from .second_reading import Slip as Where
 
 __all__ = [
     "Verdict",
@@ -56,6 +68,9 @@ __all__ = [
     "Measure",
     "verdict_of",
     "Row",
+    "SlipKind",
+    "Slip",
+    "epsilon",
     "Forms",
     "off_by",
     "Context",
@@ -68,12 +83,44 @@ __all__ = [
 
 
 class Verdict(str, Enum):
-    """Outcome of checking one thesis claim."""
+    """Outcome of checking one thesis claim: what was measured, not only whether it agreed."""
 
-    HOLDS = "holds"
-    ERRATUM = "erratum"  # a printed formula/number is wrong; corrected form recorded
+    HOLDS = "holds"  # measured against an independent reference; it could have failed
+    IDENTITY = "holds by construction"  # an identity or a round trip through our own code: not evidence
+    RECONSTRUCTION = "consistent with our reconstruction"  # rests on a reconstruction/assumption (basis)
+    INPUT_SLIP = "input slip"  # the printed result is right for a nearby reading of its stated input
+    ERRATUM = "erratum"  # a printed formula/number is wrong (after a second reading); corrected form recorded
     DOES_NOT_HOLD = "does not hold"  # a claim (not a formula) is refuted by measurement
+    NOT_REPRODUCED = "not reproduced on our reconstruction"  # fails, but only on a reconstruction (basis)
     NOT_CHECKABLE = "not checkable"  # with its reason
+
+    @property
+    def passes(self) -> bool:
+        """True for the verdicts a known-good form must give (and a slip must not)."""
+        return self in (Verdict.HOLDS, Verdict.IDENTITY, Verdict.RECONSTRUCTION)
+
+    @property
+    def group(self) -> str:
+        """Where the report's opening counts it: ``confirmed``, ``refuted``, ``input slip``, ``not evidence``
+        or ``untestable``."""
+        return _GROUP[self]
+
+    @property
+    def needs_basis(self) -> bool:
+        """True if the row must name what the verdict rests on instead of a measurement (``Row.basis``)."""
+        return self in (Verdict.IDENTITY, Verdict.RECONSTRUCTION, Verdict.NOT_REPRODUCED)
+
+
+_GROUP = {
+    Verdict.HOLDS: "confirmed",
+    Verdict.IDENTITY: "not evidence",
+    Verdict.RECONSTRUCTION: "not evidence",
+    Verdict.INPUT_SLIP: "input slip",
+    Verdict.ERRATUM: "refuted",
+    Verdict.DOES_NOT_HOLD: "refuted",
+    Verdict.NOT_REPRODUCED: "not evidence",
+    Verdict.NOT_CHECKABLE: "untestable",
+}
 
 
 class Scope(str, Enum):
@@ -176,6 +223,12 @@ class Row:
             group counts once, its details are listed below it.
         appendix: Long numbers (matrices) printed in the report's appendix.
         check: ``module:function`` of the check (set by the registry).
+        basis: What a verdict that is not a measurement rests on: the identity or round trip of a
+            ``IDENTITY`` row, the reconstruction or assumption of a ``RECONSTRUCTION`` /
+            ``NOT_REPRODUCED`` row (required for those).
+        domain: The sampled domain (joint ranges, how near the singular values, how many samples).
+        second_reading: The search of nearby readings behind an ``ERRATUM`` or ``INPUT_SLIP`` verdict
+            (:meth:`reread`).
     """
 
     claim: str
@@ -195,14 +248,23 @@ class Row:
     details: tuple[Row, ...] = ()
     appendix: str = ""
     check: str = ""
+    basis: str = ""
+    domain: str = ""
+    second_reading: SecondReading | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.verdict, Verdict):
             raise RowError("verdict", f"must be a Verdict, got {self.verdict!r}")
         if self.verdict is Verdict.NOT_CHECKABLE and not self.reason:
             raise RowError("reason", "a NOT_CHECKABLE row needs a reason")
-        if self.verdict is Verdict.ERRATUM and not self.errata:
-            raise RowError("errata", "an ERRATUM row needs at least one Erratum record")
+        if self.verdict in (Verdict.ERRATUM, Verdict.INPUT_SLIP) and not self.errata:
+            raise RowError("errata", f"an {self.verdict.name} row needs at least one Erratum record")
+        if self.verdict is Verdict.INPUT_SLIP and (
+            self.second_reading is None or self.second_reading.slip is not Where.INPUT
+        ):
+            raise RowError("second_reading", "an INPUT_SLIP row needs the second reading that reproduces it")
+        if self.verdict.needs_basis and not self.basis:
+            raise RowError("basis", f"a {self.verdict.name} row must name what it rests on")
         if self.id and not _ID.match(self.id):
             raise RowError("id", f"{self.id!r} must be lowercase letters, digits, '.', '_' or '-'")
         unknown = [a for a in self.depends_on if a not in ASSUMPTIONS]
@@ -225,29 +287,88 @@ class Row:
         measures: Iterable[Measure],
         *,
         fail: Verdict = Verdict.ERRATUM,
+        holds_as: Verdict = Verdict.HOLDS,
         erratum: Erratum | None = None,
         reason: str = "",
         **fields,
     ) -> Row:
-        """A row whose verdict follows its ``measures`` (:func:`verdict_of` with ``fail``); the
-        ``erratum`` and the ``reason`` are recorded only if the verdict is not HOLDS."""
+        """A row whose verdict follows its ``measures``: ``holds_as`` (HOLDS, or IDENTITY /
+        RECONSTRUCTION for a row that is not evidence, with its ``basis``) if every measure is within
+        its bound, else ``fail``; the ``erratum`` and the ``reason`` are recorded only if it fails."""
         measures = tuple(measures)
-        verdict = verdict_of(measures, fail=fail)
-        failed = verdict is not Verdict.HOLDS
+        failed = verdict_of(measures, fail=fail) is not Verdict.HOLDS
         return cls(
             claim,
             reference,
             method,
             numbers,
-            verdict,
+            fail if failed else holds_as,
             measures=measures,
             errata=(erratum,) if failed and erratum is not None else (),
             reason=reason if failed else "",
             **fields,
         )
 
+    def reread(self, second: SecondReading) -> Row:
+        """This row after the second reading ``second`` of its printed value.
+
+        An ``ERRATUM`` survives only if no reading of the stated inputs reproduces the printed value:
+        reproduced as stated, it is withdrawn (``HOLDS``, errata dropped); reproduced by a nearby
+        reading of an input, it becomes ``INPUT_SLIP`` (the errata keep the correction). Any other
+        verdict is kept; the record is attached either way."""
+        verdict, errata = self.verdict, self.errata
+        if self.verdict is Verdict.ERRATUM:
+            if second.slip is Where.NONE:
+                verdict, errata = Verdict.HOLDS, ()
+            elif second.slip is Where.INPUT:
+                verdict = Verdict.INPUT_SLIP
+        return replace(self, verdict=verdict, errata=errata,
+                       second_reading=replace(second, before=self.verdict.value))
+
 
 _RIGHT = "the printed form (it is right)"
+
+
+class SlipKind(str, Enum):
+    """The kinds of mistake a person makes in a formula (the self-test's slips), and the tolerance test."""
+
+    SIGN = "sign"
+    SWAP = "swapped index"
+    FUNCTION = "wrong function"  # atan for asin, atan for atan2, cos for sin
+    LENGTH = "wrong link length"
+    UNIT = "degree/radian"
+    TRANSPOSE = "transposed rotation"
+    BRANCH = "other branch"  # of a square root, of acos, of atan2
+    OFF_BY_ONE = "off by one"  # a table index, a joint number, a row
+    TERM = "dropped or extra term"
+    LIMIT = "other joint limit"
+    CLAIM = "stronger or weaker claim"  # for claims about counts, shares, sets
+    MODEL = "wrong model or method"  # a wrong frame, convention or procedure
+    EPSILON = "epsilon (tolerance test)"
+
+
+@dataclass(frozen=True)
+class Slip:
+    """A deliberately wrong form for the self-test.
+
+    Attributes:
+        kind: Which kind of mistake (:class:`SlipKind`).
+        what: The mistake in words, e.g. ``"-l3 s2 written +l3 s2"``.
+        form: The form with the mistake (same type as the printed one).
+    """
+
+    kind: SlipKind
+    what: str
+    form: Any
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.kind, SlipKind):
+            raise RegistrationError(self.what, f"slip kind must be a SlipKind, got {self.kind!r}")
+
+
+def epsilon(form: Callable, eps: float, what: str = "") -> Slip:
+    """The tolerance test: ``form`` with its output moved by ``eps`` (:func:`off_by`)."""
+    return Slip(SlipKind.EPSILON, what or f"the good form moved by {eps:g}", off_by(form, eps))
 
 
 @dataclass(frozen=True)
@@ -256,34 +377,52 @@ class Forms:
 
     Attributes:
         printed: The thesis's form (a function, a table, printed numbers).
-        good: A known-good form: the check must say "holds" with it.
-        bad: A deliberately perturbed form: the check must not say "holds".
+        good: A known-good form: the check must pass with it (:attr:`Verdict.passes`).
         good_is: What the good form is (for the self-test listing).
-        bad_is: What the perturbation is.
+        slips: Realistic mistakes in the formula (:class:`Slip`, not epsilon ones): each must be caught.
+        tolerance: The good form moved by a tiny epsilon (:func:`epsilon`): shows the tolerance bites;
+            ``None`` where nothing is graded against a tolerance.
         rows: Local ids of the rows the self-test grades; empty = every row of the check.
     """
 
     printed: Any
     good: Any
-    bad: Any
     good_is: str
-    bad_is: str
+    slips: tuple[Slip, ...]
+    tolerance: Slip | None = None
     rows: tuple[str, ...] = ()
 
-    @classmethod
-    def slipped(cls, printed, good, slip: Callable, eps: float, *, good_is: str, bad_is: str, rows=()):
-        """Forms whose bad form is ``slip`` (the printed or the good form) moved by ``eps``
-        (:func:`off_by`)."""
-        return cls(printed, good, off_by(slip, eps), good_is=good_is, bad_is=bad_is, rows=rows)
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "slips", tuple(self.slips))
+        object.__setattr__(self, "rows", tuple(self.rows))
+        if not self.slips:
+            raise RegistrationError(self.good_is, "forms need at least one realistic slip")
+        for sl in self.slips:
+            if not isinstance(sl, Slip) or sl.kind is SlipKind.EPSILON:
+                raise RegistrationError(sl.what if isinstance(sl, Slip) else repr(sl),
+                                        "a slip must be a realistic Slip (the epsilon form is `tolerance`)")
+        if self.tolerance is not None and (
+            not isinstance(self.tolerance, Slip) or self.tolerance.kind is not SlipKind.EPSILON
+        ):
+            raise RegistrationError(self.good_is, "tolerance must be an epsilon Slip (verification.epsilon)")
 
     @classmethod
-    def right(cls, form: Callable, eps: float, *, bad_is: str, good_is: str = _RIGHT):
-        """Forms of a form printed right: it is also the good one; the bad one is it moved by ``eps``."""
-        return cls.slipped(form, form, form, eps, good_is=good_is, bad_is=bad_is)
+    def right(cls, form, slips: Iterable[Slip], *, tolerance: Slip | None = None, good_is: str = _RIGHT,
+              rows=()) -> Forms:
+        """Forms of a form printed right: it is also the good one."""
+        return cls(form, form, good_is, tuple(slips), tolerance, tuple(rows))
+
+    @property
+    def slips_is(self) -> str:
+        """The slips (and the tolerance test) in words."""
+        parts = [f"{s.kind.value}: {s.what}" for s in self.slips]
+        if self.tolerance is not None:
+            parts.append(f"tolerance: {self.tolerance.what}")
+        return "; ".join(parts)
 
 
 def off_by(form: Callable, eps: float) -> Callable:
-    """``form`` with its output moved by ``eps`` (a deliberate slip, for :attr:`Forms.bad`)."""
+    """``form`` with its output moved by ``eps`` (the tolerance test's form)."""
 
     def slipped(*args, **kwargs):
         return np.asarray(form(*args, **kwargs)) + eps
@@ -463,8 +602,8 @@ def register(
             raise RegistrationError(
                 key, "declares forms but its function takes no form argument (expected func(ctx, form))"
             )
-        if forms is not None and not (forms.good_is and forms.bad_is):
-            raise RegistrationError(key, "forms need good_is and bad_is descriptions")
+        if forms is not None and not (forms.good_is and all(sl.what for sl in forms.slips)):
+            raise RegistrationError(key, "forms need a good_is description and every slip its 'what'")
         unknown = [a for a in depends_on if a not in ASSUMPTIONS]
         if unknown:
             raise RegistrationError(key, f"unknown assumption(s) {unknown}")

@@ -10,7 +10,10 @@ counts and a header (commit, versions, seed, machine). It follows
 
 Counting: a grouped claim (App. C entries, Table VI sets, Table VII groups) is one row
 with its entries as ``details``; the headline counts top-level rows only, thesis claims
-and project standards apart.
+and project standards apart, every :class:`~verification.registry.Verdict` separately, and
+groups them (confirmed, refuted, input slips, not evidence, untestable). Every erratum and
+input slip carries its second reading (:mod:`verification.second_reading`); a report whose
+errata lack one is refused (a bug in a check, not a finding).
 """
 
 from __future__ import annotations
@@ -24,18 +27,19 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .assumptions import ASSUMPTIONS
-from .errors import ReportError
+from .errors import ReportError, RowError
 from .markdown import render
 from .provenance import provenance
 from .registry import Check, Context, Row, Scope, Verdict, registered_checks
 from .schema import schema_errors
+from .second_reading import SecondReading
 from .thesis_index import ITEMS, chapter_of, chapter_of_reference, parse_refs
 
 __all__ = ["CheckResult", "Verification", "verify", "run_checks", "report_document", "write_report",
-           "read_report", "summary", "FORMAT", "QUICK_TITLE"]
+           "read_report", "summary", "unread_errata", "FORMAT", "GROUPS", "QUICK_TITLE"]
 
 #: The ``format`` field of every report document.
-FORMAT = "iik-verification-report/1"
+FORMAT = "iik-verification-report/2"
 #: The title of a ``--quick`` report: its first line says so (markdown heading, first JSON field).
 QUICK_TITLE = "QUICK verification report (small samples, not the report of record: run `iik verify`)"
 
@@ -127,6 +131,44 @@ def _counts(rows: Iterable[dict]) -> dict:
     return {v.value: c.get(v.value, 0) for v in Verdict}
 
 
+#: The groups of the report's opening, in order.
+GROUPS = ("confirmed", "refuted", "input slip", "not evidence", "untestable")
+
+
+def _groups(counts: dict) -> dict:
+    out = dict.fromkeys(GROUPS, 0)
+    for v in Verdict:
+        out[v.group] += counts[v.value]
+    return out
+
+
+def _reading_record(sr: SecondReading | None) -> dict | None:
+    if sr is None:
+        return None
+    return {
+        "printed": sr.printed,
+        "stated": sr.stated,
+        "route": sr.route,
+        "measure": sr.measure,
+        "tolerance": _num(sr.tolerance),
+        "slip": sr.slip.name.lower(),
+        "where": sr.slip.value,
+        "result": sr.result(),
+        "searched": sr.searched,
+        "kinds": sr.kinds(),
+        "before": sr.before,
+        "trials": [
+            {
+                "reading": t.text,
+                "sides": sorted(t.sides),
+                "misfit": _num(t.misfit),
+                "reproduces": t.reproduces,
+            }
+            for t in sr.trials
+        ],
+    }
+
+
 def _covers(row: Row) -> tuple[str, ...]:
     return row.covers or parse_refs(row.reference)
 
@@ -176,6 +218,9 @@ def _record(row: Row, section: str, parent: str | None) -> dict:
         "chapter": chapter,
         "parent": parent,
         "appendix": row.appendix,
+        "basis": row.basis,
+        "domain": row.domain,
+        "second_reading": _reading_record(row.second_reading),
     }
 
 
@@ -185,7 +230,7 @@ def _num(x: float):
 
 def _falsifiable(check: Check) -> str:
     if check.forms is not None:
-        return f"forms: good = {check.forms.good_is}; bad = {check.forms.bad_is}"
+        return f"forms: good = {check.forms.good_is}; slips = {check.forms.slips_is}"
     if check.by_construction:
         return f"by construction: {check.by_construction}"
     return "not declared"
@@ -248,14 +293,17 @@ def report_document(results: Iterable[CheckResult], *, title: str | None = None)
             chapters.setdefault(r["chapter"], []).append(r)
     header = provenance(seed, quick).as_dict()
     header["seconds"] = round(sum(r.seconds for r in results), 2)
+    thesis = _counts(r for r in top if r["scope"] == Scope.THESIS.value)
+    project = _counts(r for r in top if r["scope"] == Scope.PROJECT.value)
     return {
         "title": title or (QUICK_TITLE if quick else "Verification report"),
         "format": FORMAT,
         "header": header,
         "assumptions": [{"id": a.id, "text": a.text} for a in ASSUMPTIONS.values()],
         "summary": {
-            "thesis": _counts(r for r in top if r["scope"] == Scope.THESIS.value),
-            "project": _counts(r for r in top if r["scope"] == Scope.PROJECT.value),
+            "thesis": thesis,
+            "project": project,
+            "groups": {"thesis": _groups(thesis), "project": _groups(project)},
             "failures": sum(1 for res in results if res.error),
             "chapters": {k: _counts(v) for k, v in sorted(chapters.items())},
         },
@@ -265,10 +313,36 @@ def report_document(results: Iterable[CheckResult], *, title: str | None = None)
     }
 
 
+def unread_errata(doc: dict) -> list[str]:
+    """Ids of the report's erratum and input-slip rows that carry no second reading (must be none); a
+    grouped row is read through its entries (each of its erratum entries must carry one)."""
+    wrong = (Verdict.ERRATUM.value, Verdict.INPUT_SLIP.value)
+    entries: dict[str, list[dict]] = {}
+    for r in doc["rows"]:
+        if r["parent"]:
+            entries.setdefault(r["parent"], []).append(r)
+    out = []
+    for r in doc["rows"]:
+        if r["verdict"] not in wrong or r["second_reading"] is not None:
+            continue
+        own = [d for d in entries.get(r["id"], []) if d["verdict"] in wrong]
+        if not own or any(d["second_reading"] is None for d in own):
+            out.append(r["id"])
+    return out
+
+
 def write_report(results: Iterable[CheckResult], path: Path, *, title: str | None = None) -> Path:
-    """Write ``verification.json`` and the markdown report ``path`` (same folder); return ``path``."""
+    """Write ``verification.json`` and the markdown report ``path`` (same folder); return ``path``.
+
+    Raises:
+        RowError: an erratum row has no second reading (a check declared a printed value wrong
+            without searching the nearby readings of its inputs: a bug in that check).
+    """
     path = Path(path)
     doc = report_document(results, title=title)
+    unread = unread_errata(doc)
+    if unread:
+        raise RowError("second_reading", "errata without a second reading: " + ", ".join(unread))
     errors = schema_errors(doc)
     if errors:  # a bug in this module, not bad input: fail loudly
         raise AssertionError("report document breaks report.schema.json: " + "; ".join(errors[:5]))
@@ -311,8 +385,9 @@ def summary(results: Iterable[CheckResult]) -> str:
             lines.append(f"  {scope.value}: " + ", ".join(f"{c.get(v, 0)} {v.value}" for v in Verdict))
     lines[0:0] = [f"{len(top)} claims from {len(results)} checks (grouped claims counted once)"]
     for r in top:
-        if r.scope is Scope.THESIS and r.verdict is Verdict.ERRATUM:
-            lines.append(f"  erratum: {r.id} ({r.reference}): " + "; ".join(e.equation for e in r.errata))
+        if r.scope is Scope.THESIS and r.verdict in (Verdict.ERRATUM, Verdict.INPUT_SLIP):
+            where = "; ".join(e.equation for e in r.errata)
+            lines.append(f"  {r.verdict.value}: {r.id} ({r.reference}): {where}")
         elif r.scope is Scope.THESIS and r.verdict is Verdict.DOES_NOT_HOLD:
             lines.append(f"  does not hold: {r.id} ({r.reference})")
     failed = [res.check.name for res in results if res.error]

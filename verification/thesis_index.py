@@ -368,7 +368,7 @@ CLAIMS: tuple[Item, ...] = (
         "Claim 4.9",
         "Sec 4.2.2 (Fig 42e)",
         "the planner chose two via-points to cross regions (Table IV)",
-        (f"{_PL}:check_table_iv",),
+        (f"{_PL}:check_fig42e_via_points",),
     ),
     _claim(
         "Claim 4.10",

@@ -7,7 +7,20 @@ import math
 import pytest
 
 from iik.errors import IIKError
-from verification import Check, Erratum, Forms, Measure, RegistrationError, Row, RowError, Verdict, register
+from verification import (
+    Check,
+    Erratum,
+    Forms,
+    Measure,
+    RegistrationError,
+    Row,
+    RowError,
+    Slip,
+    SlipKind,
+    Verdict,
+    epsilon,
+    register,
+)
 from verification.registry import Section, off_by, registered_checks, verdict_of
 from verification.thesis_index import parse_refs
 
@@ -48,15 +61,21 @@ def test_registration_errors():
     some = registered_checks()[0]
     with pytest.raises(RegistrationError, match="twice"):
         register("S", name=some.name)(_takes_form)
-    forms = Forms(printed=1, good=1, bad=2, good_is="g", bad_is="b")
+    forms = Forms(printed=1, good=1, good_is="g", slips=(Slip(SlipKind.CLAIM, "b", 2),))
     with pytest.raises(RegistrationError, match="by construction"):
         register("S", name="test.both", forms=forms, by_construction="x")(_takes_form)
     with pytest.raises(RegistrationError, match="no form argument"):
         register("S", name="test.noform", forms=forms)(lambda ctx: _row())
     with pytest.raises(RegistrationError, match="assumption"):
         register("S", name="test.assume", depends_on=("nope",))(lambda ctx: _row())
-    with pytest.raises(RegistrationError, match="descriptions"):
-        register("S", name="test.desc", forms=Forms(1, 1, 2, "", ""))(_takes_form)
+    with pytest.raises(RegistrationError, match="description"):
+        register("S", name="test.desc", forms=Forms(1, 1, "", (Slip(SlipKind.CLAIM, "b", 2),)))(_takes_form)
+    with pytest.raises(RegistrationError, match="realistic slip"):  # none, or the epsilon form as a slip
+        Forms(1, 1, "g", ())
+    with pytest.raises(RegistrationError, match="realistic"):
+        Forms(1, 1, "g", (epsilon(lambda x: x, 1e-9),))
+    with pytest.raises(RegistrationError, match="tolerance"):
+        Forms(1, 1, "g", (Slip(SlipKind.SIGN, "s", 2),), tolerance=Slip(SlipKind.SIGN, "s", 3))
     assert all(c.name.startswith("verification.") for c in registered_checks())  # nothing leaked in
 
 
@@ -71,7 +90,7 @@ def test_check_run_assigns_ids_check_and_defaults():
         func=rows,
         depends_on=("l1",),
         prefix="m",
-        forms=Forms(printed=1, good=1, bad=2, good_is="g", bad_is="b"),
+        forms=Forms(printed=1, good=1, good_is="g", slips=(Slip(SlipKind.CLAIM, "b", 2),)),
     )
     out = chk.run(None)
     assert [r.id for r in out] == ["m.a", "m.a-2", "m.rows"]
@@ -127,6 +146,23 @@ def test_section_defaults_reach_its_checks():
     assert checks["verification.checks.ik.four_configurations"].depends_on == ("l1", "lengths")  # its own
     with pytest.raises(RegistrationError, match="assumption"):  # the section's default is checked too
         Section("S", depends_on=("nope",)).check(1.0)(lambda ctx: _row())
+
+
+def test_grades_that_are_not_measurements_name_their_basis():
+    """Holds by construction / on our reconstruction need a basis; the groups of the report's opening."""
+    for v in (Verdict.IDENTITY, Verdict.RECONSTRUCTION, Verdict.NOT_REPRODUCED):
+        with pytest.raises(RowError, match="rests on"):
+            _row(verdict=v)
+        assert _row(verdict=v, basis="why").basis == "why"
+    ok = Row.graded("c", "Eq 4", "m", "1", [Measure("x", 0.5, 1.0)], holds_as=Verdict.IDENTITY, basis="b")
+    assert ok.verdict is Verdict.IDENTITY
+    bad = Row.graded("c", "Eq 4", "m", "1", [Measure("x", 2.0, 1.0)], holds_as=Verdict.IDENTITY, basis="b",
+                     fail=Verdict.DOES_NOT_HOLD)
+    assert bad.verdict is Verdict.DOES_NOT_HOLD
+    assert [v for v in Verdict if v.passes] == [Verdict.HOLDS, Verdict.IDENTITY, Verdict.RECONSTRUCTION]
+    assert {v.group for v in Verdict} == {"confirmed", "refuted", "input slip", "not evidence", "untestable"}
+    with pytest.raises(RowError, match="second reading"):  # an input slip needs the reading behind it
+        _row(verdict=Verdict.INPUT_SLIP, errata=(Erratum("Eq 1", "p", "c", "x"),))
 
 
 def test_off_by_moves_the_output_only():

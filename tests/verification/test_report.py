@@ -115,7 +115,7 @@ def test_two_quick_runs_give_the_same_verdicts(runs):
 
 def test_read_report(runs, tmp_path):
     doc = read_report(runs[0][2].with_suffix(".json"))
-    assert doc["format"] == "iik-verification-report/1"
+    assert doc["format"] == "iik-verification-report/2"
     with pytest.raises(ReportError, match="no such file"):
         read_report(tmp_path / "none.json")
     (tmp_path / "bad.json").write_text("{", encoding="utf-8")
@@ -142,3 +142,77 @@ def test_quick_report_is_marked(runs, doc):
     assert doc["title"].startswith("QUICK")
     assert runs[0][2].read_text(encoding="utf-8").startswith("# QUICK")
     assert runs[0][2].with_suffix(".json").read_text(encoding="utf-8").startswith('{"title": "QUICK')
+
+
+def test_every_erratum_carries_its_second_reading(doc):
+    """Issue 19: no printed value is called wrong (or an input slip) without the search behind it."""
+    from verification.report import unread_errata
+
+    assert unread_errata(doc) == []
+    read = [r for r in doc["rows"] if r["verdict"] in ("erratum", "input slip") and r["second_reading"]]
+    assert len(read) >= 25
+    for r in read:
+        sr = r["second_reading"]
+        assert sr["searched"] >= 1 and sr["trials"][0]["sides"] == ["as stated"], r["id"]
+        assert (r["verdict"] == "input slip") == (sr["slip"] == "input"), r["id"]
+    broken = dict(doc, rows=[dict(read[0], second_reading=None)])
+    assert unread_errata(broken) == [read[0]["id"]]
+
+
+def test_a_report_with_an_unread_erratum_is_refused(runs, tmp_path):
+    from verification import RowError
+    from verification.registry import Erratum, Row, Verdict
+    from verification.report import CheckResult
+
+    res = runs[0][1][0]
+    bad = Row("c", "Eq 1", "m", "n", Verdict.ERRATUM, errata=(Erratum("Eq 1", "p", "c", "x"),), id="k.x")
+    with pytest.raises(RowError, match="second reading"):
+        write_report([CheckResult(res.check, (bad,), 0.0)], tmp_path / "verification.md")
+
+
+def test_grades_are_counted_apart_and_rest_on_a_basis(doc):
+    s = doc["summary"]
+    assert set(s["thesis"]) == set(schema()["$defs"]["counts"]["required"])
+    top = [r for r in doc["rows"] if r["parent"] is None and r["scope"] == "thesis"]
+    for grade in ("holds", "holds by construction", "consistent with our reconstruction", "input slip",
+                  "erratum", "does not hold", "not checkable"):
+        assert s["thesis"][grade] > 0, grade
+    assert sum(s["groups"]["thesis"].values()) == len(top)
+    for r in doc["rows"]:
+        if r["verdict"] in ("holds by construction", "consistent with our reconstruction",
+                            "not reproduced on our reconstruction"):
+            assert r["basis"], r["id"]
+    # the Sec 4.3 experimental claims are not checkable; their simulation is a project row
+    sim = {r["id"]: r for r in doc["rows"] if r["id"].endswith(".sim")}
+    assert len(sim) == 3 and all(r["scope"] == "project standard" for r in sim.values())
+    for rid in sim:
+        assert next(r for r in doc["rows"] if r["id"] == rid[:-4])["verdict"] == "not checkable"
+    # every top-level row, of either scope, states its domain (what it sampled or read)
+    missing = [r["id"] for r in doc["rows"] if r["parent"] is None and not r["domain"]]
+    assert not missing, missing
+
+
+def test_markdown_opens_with_the_findings_and_how_to_read(runs):
+    md = runs[0][2].read_text(encoding="utf-8")
+    head = md.split("\n## Index")[0]
+    order = [head.index(h) for h in ("## What this report finds", "## How to read this report",
+                                     "## Verdict per section", "## Summary")]
+    assert order == sorted(order)
+    for word in ("Confirmed by measurement", "Refuted", "Input slips", "Untestable here", "Not evidence"):
+        assert word in head
+    sections = md.count("\n**Verdict:** ")
+    assert sections >= 10
+    assert "## Errata and input slips, with their second readings" in md
+    assert "readings searched" in md and "where the slip is" in md
+
+
+def test_new_rows_cover_the_gaps(doc):
+    """Issue 19's coverage gaps: Eq 36 and Eq 68 evaluated, Claim 4.9 on scenario e, Table III more than a
+    symmetry, the correct App. E formulas in rows of their own."""
+    keys = {it["key"]: it for it in doc["index"]}
+    for key in ("Eq 36", "Eq 58", "Eq 59", "Eq 61", "Eq 63", "Eq 65", "Eq 66", "Eq 67", "Eq 68"):
+        own = [r for r in doc["rows"] if key in r["covers"] and r["parent"] is None
+               and not r["id"].startswith("appendix_e.a")]
+        assert own, key
+    assert [r["id"] for r in keys["Claim 4.9"]["rows"]] == ["planning.fig42e_via_points"]
+    assert "planning.check_table_iii" in {r["id"] for r in keys["Table III"]["rows"]}

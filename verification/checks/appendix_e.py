@@ -21,10 +21,12 @@ import iik
 
 from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_matrix, fmt_vec
-from ..oracles.abdel_malek import normal_acceleration
+from ..oracles.abdel_malek import eq67_dq, normal_acceleration
+from ..oracles.normal_distance import parameters, surface_point, tool_point
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Section, Verdict
+from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon
+from ..second_reading import Kind, Reading, digit_slips, moved_entries, search
 from ..shorthand import cos_sin
 
 _D = np.pi / 180
@@ -73,6 +75,8 @@ PRINTED = {
         conclusion="both",
     ),
 }
+#: A2 read with theta1 at its upper limit (+160 deg): the reading that reproduces its N0, delta q1 and sigma.
+A2_READ = "A2 (theta1 = +160 deg)"
 _TOL_UNIT = 1e-3  # N0, u0: printed to 3-4 decimals
 _TOL_B = 1e-4  # [1/mm]: B printed to 4 decimals
 _REL, _ABS = 2e-3, 0.1  # H*, Q*, eig, sigma [mm]: 0.2 % (the lengths are known to 1 mm) + 0.1 mm
@@ -87,6 +91,9 @@ def _results(ctx) -> dict:
             )
             for name, d in PRINTED.items()
         }
+        a2 = PRINTED["A2"]
+        res[A2_READ] = normal_acceleration(np.r_[-a2["q0"][0], a2["q0"][1:]], a2["free"],
+            normal_hint=a2["N0"])
         sides = {}
         for name, r in res.items():
             cls = oracle_for(ctx).classify(np.array([r.point + EPS * r.N0, r.point - EPS * r.N0]))
@@ -116,6 +123,33 @@ def recomputed_values(ctx) -> dict:
     return out
 
 
+def eig_of_h_values(ctx) -> dict:
+    """A realistic slip: the eigenvalues of H* reported for those of Q* (Eq 65's curvature term left out)."""
+    res, _ = _results(ctx)
+    out = recomputed_values(ctx)
+    for name in out:
+        H = res[name].in_mm()["H"]
+        out[name] = dict(out[name], eig=np.sort(np.linalg.eigvalsh(0.5 * (H + H.T))))
+    return out
+
+
+def inverted_dq_values(ctx) -> dict:
+    """A realistic slip: Eq 67 read the other way (-1 at a lower limit), sigma computed with it."""
+    out = recomputed_values(ctx)
+    a2 = dict(out["A2"])
+    a2["dq"] = {j: -v for j, v in a2["dq"].items()}
+    a2["sigma"] = {j: -v for j, v in a2["sigma"].items()}
+    out["A2"] = a2
+    return out
+
+
+def swapped_limits_values(ctx) -> dict:
+    """A realistic slip: Eq 58 inverted with q^U and q^L exchanged (u0 of A1 with both signs flipped)."""
+    out = recomputed_values(ctx)
+    out["A1"] = dict(out["A1"], u0=-np.asarray(out["A1"]["u0"]))
+    return out
+
+
 def perturbed_values(ctx) -> dict:
     """Deliberately wrong: the recomputed numbers 5 % off, the conclusions flipped, the step signs flipped."""
     flip = {"+N0": "-N0", "-N0": "+N0", "both": "+N0", "none": "both"}
@@ -131,6 +165,145 @@ def perturbed_values(ctx) -> dict:
         w["conclusion"] = flip[w["conclusion"]]
         out[name] = w
     return out
+
+
+# ----------------------------------------------------------------------------- second readings
+_MEANING = "what the quantity means (verification.oracles.normal_distance: the Table II chain by iik.dh, " \
+    "not Pinocchio, not the printed formulas)"
+_CACHE: dict = {}
+
+
+def _point(q0, free, hint):
+    """``(N0, eig(Q*) [mm], H* [mm])`` by their meaning at joints ``q0`` on the surface with free joints
+    ``free``, N0's sign chosen along ``hint``; None where the surface has no normal (cached per process: a
+    pure function of its inputs)."""
+    key = (np.asarray(q0, float).round(12).tobytes(), tuple(free))
+    if key not in _CACHE:
+        try:
+            sp = surface_point(q0, free)
+            _CACHE[key] = (sp.N0, np.linalg.eigvalsh(sp.q_star()) * 1e3, sp.h_star() * 1e3)
+        except (iik.InvalidInputError, np.linalg.LinAlgError):
+            _CACHE[key] = None
+    got = _CACHE[key]
+    if got is None:
+        return None
+    n, eig, H = got
+    sgn = -1.0 if np.dot(n, hint) < 0 else 1.0
+    return sgn * n, np.sort(sgn * eig), sgn * H
+
+
+def _q0_readings(name: str) -> list[Reading]:
+    """Nearby readings of point ``name``'s stated joints: each non-zero angle's sign, a joint at a limit at
+    its other limit, and (A2) Sec 3.4.3's s(2) with theta1 = +160 deg."""
+    q0 = PRINTED[name]["q0"]
+    lo, hi = iik.THESIS_ARM.q_min[:5], iik.THESIS_ARM.q_max[:5]
+    out = []
+    for j in range(5):
+        v = q0[j]
+        other = hi[j] if abs(v - lo[j]) < 1e-9 else (lo[j] if abs(v - hi[j]) < 1e-9 else None)
+        if other is not None:
+            q = q0.copy()
+            q[j] = other
+            out.append(Reading(Kind.LIMIT, f"theta{j + 1} at its other limit ({np.degrees(other):+.0f} deg)",
+                               {"q0": q}))
+        if v != 0 and (other is None or abs(-v - other) > 1e-9):
+            q = q0.copy()
+            q[j] = -v
+            out.append(Reading(Kind.SIGN, f"theta{j + 1} = {np.degrees(-v):+.1f} deg", {"q0": q}))
+    return out
+
+
+def _free_readings(name: str) -> list[Reading]:
+    """The other pairs of free joints (which joints span the surface)."""
+    free = PRINTED[name]["free"]
+    pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != tuple(free)]
+    return [Reading(Kind.WHICH, f"free joints {a}, {b}", {"free": (a, b)}) for a, b in pairs]
+
+
+def _stated(name: str, pv: dict) -> dict:
+    d = PRINTED[name]
+    return {"q0": d["q0"], "free": d["free"], **{k: pv[k] for k in ("u0", "N0", "eig", "H", "dq") if k in pv}}
+
+
+def _stated_text(name: str) -> str:
+    d = PRINTED[name]
+    return f"q0 = {fmt_vec(np.degrees(d['q0']), 1)} deg on {d['surface']}, free joints {d['free']}"
+
+
+def reading_n0(name: str, pv: dict):
+    """Second reading of a printed N0: the surface normal at each nearby reading of the point, vs the printed
+    vector read as typed or one digit slip away (sign of N0 free)."""
+    def misfit(x) -> float:
+        sp = _point(x["q0"], x["free"], x["N0"])
+        if sp is None:
+            return float("inf")
+        return float(np.abs(np.asarray(x["N0"], float) - sp[0]).max())
+
+    return search(_stated(name, pv), _q0_readings(name) + digit_slips("N0", pv["N0"]), misfit, _TOL_UNIT,
+                  printed=f"N0 = {fmt_vec(pv['N0'])}", stated_text=_stated_text(name), route=_MEANING,
+                  measure="max |printed - surface normal| (up to sign)")
+
+
+def reading_eig(name: str, pv: dict):
+    """Second reading of printed eigenvalues of Q*: Q* as the Hessian of the normal distance at each nearby
+    reading of the point and of its free joints, vs the printed values (sorted)."""
+    pr = np.sort(np.asarray(pv["eig"], float))
+
+    def misfit(x) -> float:
+        sp = _point(x["q0"], x["free"], PRINTED[name]["N0"])
+        if sp is None:
+            return float("inf")
+        ours = sp[1]
+        return float(np.max(np.abs(pr - ours) / (_ABS + _REL * np.abs(ours))))
+
+    return search(_stated(name, pv), _q0_readings(name) + _free_readings(name), misfit, 1.0,
+                  printed=f"eig(Q*) = {fmt_vec(pr, 2)} mm", stated_text=_stated_text(name), route=_MEANING,
+                  measure=f"max |printed - ours| / ({_ABS} mm + {_REL:.1%}) over the sorted eigenvalues")
+
+
+def reading_u0(pv: dict):
+    """Second reading of A1's u0: Eq 58 inverted at each nearby reading of q0 (and with the limits
+    exchanged), vs the printed u0 read as typed or one digit slip away."""
+    stated = {**_stated("A1", pv), "swap": False}
+
+    def misfit(x) -> float:
+        lam = parameters(x["q0"])
+        return float(np.abs(np.asarray(x["u0"], float) - (-lam if x["swap"] else lam)).max())
+
+    readings = _q0_readings("A1") + [Reading(Kind.LIMIT, "Eq 58 with q^U and q^L exchanged", {"swap": True})]
+    return search(stated, readings + digit_slips("u0", pv["u0"]), misfit, _TOL_UNIT,
+                  printed=f"u0 = {fmt_vec(pv['u0'])}", stated_text=_stated_text("A1"),
+                  route="Eq 58 inverted (arcsin) at the reading's joints",
+                      measure="max |printed - lambda(q0)|")
+
+
+def reading_h(pv: dict, mask: np.ndarray, what: str):
+    """Second reading of A1's printed H* entries ``mask``: the Hessian of N0.G(q(s)) at each nearby reading,
+    vs the printed matrix as typed, transposed or with an entry moved."""
+    def misfit(x) -> float:
+        sp = _point(x["q0"], x["free"], PRINTED["A1"]["N0"])
+        if sp is None:
+            return float("inf")
+        ours, pr = sp[2], np.asarray(x["H"], float)
+        return float(np.max((np.abs(pr - ours) / (_ABS + _REL * np.abs(ours)))[mask]))
+
+    readings = _q0_readings("A1") + [Reading(Kind.SWAP, "H* transposed", {"H": np.asarray(pv["H"], float).T})]
+    readings += moved_entries("H", pv["H"]) + moved_entries("H", pv["H"], within="row")
+    return search(_stated("A1", pv), readings, misfit, 1.0, printed=what, stated_text=_stated_text("A1"),
+                  route=_MEANING, measure=f"max |printed - ours| / ({_ABS} mm + {_REL:.1%})")
+
+
+def reading_dq(pv: dict):
+    """Second reading of A2's delta q1: Eq 67 at each nearby reading of q0, vs the printed step."""
+    def misfit(x) -> float:
+        ours = eq67_dq(x["q0"])
+        return float(max(abs(x["dq"].get(j, 0.0) - ours.get(j, 0.0)) for j in set(ours) | set(x["dq"])))
+
+    return search(_stated("A2", pv), _q0_readings("A2"), misfit, 0.0,
+                  printed=f"delta q = {pv['dq']} 'because joint 1 is at its lower limit'",
+                  stated_text=_stated_text("A2"),
+                      route="Eq 67 at the reading's joints (+1 at a lower limit, -1 at "
+                  "an upper one)", measure="largest difference of the printed step from Eq 67's")
 
 
 def _near(a, b, rel=_REL, abs_=_ABS) -> tuple[float, bool]:
@@ -149,11 +322,14 @@ def _detail(
     erratum: Erratum | None,
     fail: Verdict = Verdict.ERRATUM,
     depends=(),
+    reread=None,
+    basis: str = "",
 ) -> Row:
-    verdict = Verdict.HOLDS if ok else fail
+    """A detail row; an erratum is re-read by ``reread()`` (a SecondReading) before it stands."""
+    verdict = (Verdict.IDENTITY if basis else Verdict.HOLDS) if ok else fail
     if verdict is Verdict.ERRATUM and erratum is None:
         erratum = Erratum(ref, claim, "the recomputed value", numbers)
-    return Row(
+    row = Row(
         claim,
         ref,
         "",
@@ -164,7 +340,9 @@ def _detail(
         errata=(erratum,) if verdict is Verdict.ERRATUM else (),
         reason="" if ok or fail is not Verdict.DOES_NOT_HOLD else "ground truth disagrees",
         depends_on=depends,
+        basis=basis,
     )
+    return row.reread(reread()) if verdict is Verdict.ERRATUM and reread is not None else row
 
 
 def _n0_detail(name, pv, r) -> Row:
@@ -185,6 +363,7 @@ def _n0_detail(name, pv, r) -> Row:
             f"at q0 = {fmt_vec(r.q0)} rad the normal of the surface is {fmt_vec(r.N0)}; the printed "
             f"vector has norm {norm:.3f}" + ("" if abs(norm - 1) < 1e-3 else " (not a unit vector)"),
         ),
+        reread=lambda: reading_n0(name, pv),
     )
 
 
@@ -207,20 +386,21 @@ def _eig_detail(name, pv, mm) -> Row:
             f"eta = 0 and Q* has zero eigenvalues; the printed list has {int(np.sum(np.abs(pr) < 1e-9))} "
             f"zeros (eig(H*) = {fmt_vec(eig_h, 1)} mm)",
         ),
+        reread=lambda: reading_eig(name, pv),
     )
 
 
 _SIDE_TEXT = {"+N0": "only along +N0 (a boundary)", "both": "both ways (not a boundary)"}
 
 
-def _conclusion_detail(name, pv, side, r) -> Row:
+def _conclusion_detail(name, pv, side, r, note: str = "") -> Row:
     ok = pv["conclusion"] == side
     return _detail(
         "conclusion",
         f"{name}: motion is admissible {_SIDE_TEXT.get(pv['conclusion'], pv['conclusion'])}.",
         f"App. E, {name}",
         f"printed {pv['conclusion']} | ground truth {side} (reachability of p +- 2 mm "
-        f"N0, p = {fmt_vec(r.point * 1e3, 1)} mm) | Abdel-Malek's test with our numbers: {r.verdict}",
+        f"N0, p = {fmt_vec(r.point * 1e3, 1)} mm) | Abdel-Malek's test with our numbers: {r.verdict}" + note,
         ok,
         Measure("printed side differs from ground truth", 0.0 if ok else 1.0, 0.0),
         None,
@@ -229,13 +409,17 @@ def _conclusion_detail(name, pv, side, r) -> Row:
 
 
 def _group(name, claim, ref, details: list[Row], appendix: str = "") -> Row:
+    """The point's row: the worst of its details (does not hold, erratum, input slip, holds)."""
+    slips = [d for d in details if d.verdict is Verdict.INPUT_SLIP]
     if any(d.verdict is Verdict.DOES_NOT_HOLD for d in details):
         verdict = Verdict.DOES_NOT_HOLD
     elif any(d.verdict is Verdict.ERRATUM for d in details):
         verdict = Verdict.ERRATUM
+    elif slips:
+        verdict = Verdict.INPUT_SLIP
     else:
         verdict = Verdict.HOLDS
-    wrong = [d.id for d in details if d.verdict is not Verdict.HOLDS]
+    wrong = [d.id for d in details if not d.verdict.passes]
     m = (Measure("printed quantities that disagree", len(wrong), 0),)
     return Row(
         claim,
@@ -250,8 +434,10 @@ def _group(name, claim, ref, details: list[Row], appendix: str = "") -> Row:
         id=name.lower(),
         measures=m,
         details=tuple(details),
+        domain=f"the printed point {name} (q0 as stated) and its +-{EPS * 1e3:.0f} mm probes along N0",
         errata=tuple(e for d in details for e in d.errata),
         appendix=appendix,
+        second_reading=slips[0].second_reading if verdict is Verdict.INPUT_SLIP else None,
         reason="the printed conclusion disagrees with ground truth"
         if verdict is Verdict.DOES_NOT_HOLD
         else "",
@@ -283,6 +469,7 @@ def _a1(pv, r, side) -> Row:
                 f"u0 = {fmt_vec(r.lam0)} (Eq 58 inverted at theta1 = -7 pi/9: sin(lambda1) = -140/160)",
                 f"q1(lambda = +1.0654) = {np.degrees(2.7925 * np.sin(1.0654)):.1f} deg, not -140 deg",
             ),
+            reread=lambda: reading_u0(pv),
         ),
         _n0_detail("A1", pv, r),
         _detail(
@@ -301,6 +488,7 @@ def _a1(pv, r, side) -> Row:
                 f"{mm['H'][3, 1]:.2f} mm; only the symmetric value reproduces the printed Q*(2,4) = Q*(4,2) "
                 "= 0",
             ),
+            reread=lambda: reading_h(pv, off, "the off-diagonal entries of H* as printed (H*(4,2) = +1703)"),
         ),
         _detail(
             "h_diag",
@@ -311,6 +499,8 @@ def _a1(pv, r, side) -> Row:
             Measure("max |printed - ours| on the diagonal", d_diag, _ABS, "mm"),
             None,
             depends=("lengths-circular", "pinocchio"),
+            basis="circular: l2..l5 were recovered from these four numbers (docs/ARM.md), so they agree by "
+            "construction",
         ),
         _detail(
             "b",
@@ -355,12 +545,13 @@ def _a1(pv, r, side) -> Row:
     )
 
 
-def _a2(pv, r, side) -> Row:
+def _a2(pv, r, side, r_read=None, side_read: str = "") -> Row:
     mm = r.in_mm()
     eq67 = {j: (1.0 if b == "lower" else -1.0) for j, b in r.at_limit}
     dq_ok = pv["dq"] == eq67
-    s_pr, s_ours = pv["sigma"][1], mm["sigma"][1]
-    d_s, ok_s = _near(abs(s_pr), abs(s_ours), rel=1e-3, abs_=1e-3)
+    # Eq 66 with the printed step: sigma = N0 . G_q1 * (printed delta q1)
+    s_pr, s_ours = pv["sigma"][1], mm["sigma"][1] * pv["dq"].get(1, 0.0) / eq67[1]
+    d_s, ok_s = _near(s_pr, s_ours, rel=1e-3, abs_=1e-3)
     details = [
         _n0_detail("A2", pv, r),
         _eig_detail("A2", pv, mm),
@@ -368,9 +559,9 @@ def _a2(pv, r, side) -> Row:
             "sigma",
             "A2: |sigma| = 389.2341 mm (Eq 66).",
             "App. E, A2, Eq 66",
-            f"printed {s_pr} | ours {s_ours:.4f} mm (magnitude compared; its sign follows delta q1)",
+            f"printed {s_pr} | ours {s_ours:.4f} mm (Eq 66 with the printed delta q1 = {pv['dq'].get(1)})",
             ok_s,
-            Measure("| |printed| - |ours| |", d_s, 1e-3 * abs(s_ours), "mm"),
+            Measure("|printed - ours|", d_s, 1e-3 * abs(s_ours), "mm"),
             Erratum(
                 "App. E, A2, sigma",
                 f"sigma = {s_pr}",
@@ -389,11 +580,20 @@ def _a2(pv, r, side) -> Row:
                 "App. E, A2, delta q1",
                 "delta q1 = -1 because joint 1 is at its lower limit",
                 "delta q1 = +1 at a lower limit (Eq 67)",
-                f"with Eq 67, sigma = N0.G_q1 dq1 = {s_ours:.4f} mm: the opposite sign of the positive "
-                f"eigenvalues, so motion is admissible both ways; ground truth: {side}",
+                f"with Eq 67, sigma = N0.G_q1 dq1 = {mm['sigma'][1]:.4f} mm: the opposite sign of the "
+                f"positive eigenvalues, so motion is admissible both ways; ground truth: {side}",
             ),
+            reread=lambda: reading_dq(pv),
         ),
-        _conclusion_detail("A2", pv, side, r),
+        _conclusion_detail(
+            "A2", pv, side, r,
+            ""
+            if r_read is None
+            else f" | second reading with theta1 = +160 deg (the reading that reproduces the "
+            f"printed N0, delta q1 and the sign of sigma): Abdel-Malek's test {r_read.verdict} as printed, "
+            f"ground truth {side_read}: the local test is right there, the point is still reached from both "
+            "sides by other configurations",
+        ),
     ]
     return _group(
         "A2",
@@ -431,9 +631,14 @@ def _a6(pv, r, side) -> Row:
     forms=Forms(
         printed=printed_values,
         good=recomputed_values,
-        bad=perturbed_values,
         good_is="our recomputed numbers, conclusions from ground truth",
-        bad_is="our numbers 5 % off, conclusions and step signs flipped",
+        slips=(
+            Slip(SlipKind.TERM, "eig(H*) for eig(Q*) (Eq 65's curvature term left out)", eig_of_h_values),
+            Slip(SlipKind.SIGN, "Eq 67 read the other way (-1 at a lower limit)", inverted_dq_values),
+            Slip(SlipKind.LIMIT, "Eq 58 inverted with q^U and q^L exchanged", swapped_limits_values),
+        ),
+        tolerance=Slip(SlipKind.EPSILON, "our numbers 5 % off, conclusions and step signs flipped",
+                       perturbed_values),
     ),
 )
 def appendix_e(ctx, values):
@@ -442,7 +647,7 @@ def appendix_e(ctx, values):
     pv = values(ctx)
     rows = [
         _a1(pv["A1"], res["A1"], sides["A1"]),
-        _a2(pv["A2"], res["A2"], sides["A2"]),
+        _a2(pv["A2"], res["A2"], sides["A2"], res[A2_READ], sides[A2_READ]),
         _a6(pv["A6"], res["A6"], sides["A6"]),
     ]
     rows[0] = rows[0].replace(figures=(_eig_figure(ctx, res, pv),))
@@ -451,7 +656,7 @@ def appendix_e(ctx, values):
 
 def _eig_figure(ctx, results, pv) -> str:
     fig = new_figure(figsize=(10, 3))
-    for k, (name, r) in enumerate(results.items()):
+    for k, (name, r) in enumerate((n, v) for n, v in results.items() if n in PRINTED):
         ax = fig.add_subplot(1, 3, k + 1)
         x = np.arange(5)
         ax.bar(x - 0.2, np.sort(np.asarray(pv[name]["eig"], float)), 0.4, label="thesis (printed)")
@@ -486,12 +691,56 @@ def eq69_corrected(q):
     return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - L * s2], 1)
 
 
+def eq69_reading(ctx, f1):
+    """Second reading of Eq 69 (the form): which singular set's surface it is. The tool point of the Table II
+    chain (iik.dh) with each pair of joints held at 0, the others uniform in Table I, vs the form."""
+    rng = ctx.rng("eq69-reading")
+    arm = iik.THESIS_ARM
+    q = rng.uniform(arm.q_min, arm.q_max, (ctx.n(200, 40), 6))
+    stated = {"pair": (4, 5)}
+
+    def misfit(x) -> float:
+        qq = q.copy()
+        qq[:, [j - 1 for j in x["pair"]]] = 0.0
+        return float(np.linalg.norm(f1(qq) - tool_point(qq[:, :5]), axis=1).max())
+
+    pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != (4, 5)]
+    readings = [Reading(Kind.WHICH, f"the set [theta{a} = 0, theta{b} = 0]", {"pair": (a, b)}) for a,
+        b in pairs]
+    return search(stated, readings, misfit, 1e-12,
+        printed="f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; ...; "
+                  "l5 c3 s5 + l1]", stated_text="s(1) = [theta4 = 0, theta5 = 0] (App. E, Table VI)",
+                  route="the tool point of the Table II chain by iik.dh with the pair held at 0",
+                  measure="max |f(1) - tool point| [m]")
+
+
+def _eq69_sign(q):
+    out = eq69_corrected(q)
+    L = float(np.sum(iik.THESIS_ARM.lengths[2:]))
+    out[:, 2] += 2 * L * np.sin(q[:, 1])
+    return out
+
+
+def _eq69_short(q):
+    l1, l2, l3, l4, _ = iik.THESIS_ARM.lengths
+    c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
+    L = l3 + l4
+    return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - L * s2], 1)
+
+
 @SECTION.check(
     48.5,
     depends_on=EXACT_GEOMETRY,
-    forms=Forms.slipped(eq69_printed, eq69_corrected, eq69_corrected, 1e-9,
-                        good_is="f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
-                        bad_is="the good point + 1 nm"),
+    forms=Forms(
+        eq69_printed,
+        eq69_corrected,
+        "f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
+        slips=(
+            Slip(SlipKind.SIGN, "l1 + L s2 for l1 - L s2", _eq69_sign),
+            Slip(SlipKind.LENGTH, "L = l3 + l4 (l5 left out)", _eq69_short),
+        ),
+        tolerance=epsilon(eq69_corrected, 1e-9, "the good point + 1 nm"),
+    ),
 )
 def eq69_surface(ctx, f1):
     """Eq 69: the parametric surface f(1) of s(1) = [theta4 = 0, theta5 = 0] vs the arm (Eq 4)."""
@@ -503,10 +752,9 @@ def eq69_surface(ctx, f1):
     m = (Measure("max |f(1) - tool point|", err.max(), 1e-12, "m"),)
     k = int(np.argmax(err))
     q69 = np.array([[-7 * np.pi / 9, 0.3, 0.0, 0.0, 0.0, 0.0]])
-    return Row.graded(
+    row = Row.graded(
         "Eq 69: on s(1) the tool point is f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + l5 "
-        "s1 c5 "
-        "- l5 c1 s3 s5; l5 c3 s5 + l1].",
+        "s1 c5 - l5 c1 s3 s5; l5 c3 s5 + l1].",
         "Eq 69 (App. E)",
         f"printed f(1) vs the Eq 4 tool point (iik.fk, = Pinocchio) at {len(q)} random q with theta4 = "
         "theta5 = 0",
@@ -522,7 +770,8 @@ def eq69_surface(ctx, f1):
             "free theta1, theta2 as in u(1); the printed H*(2,2) = q_s2^2 (l3+l4+l5) needs this form)",
             f"at theta1 = -7pi/9, theta2 = 0.3 rad (theta3..5 = 0): Eq 69 gives "
             f"{fmt_vec(f1(q69)[0] * 1e3, 1)} mm, the arm {fmt_vec(iik.fk(q69)[0, :3, 3] * 1e3, 1)} mm; "
-            "worst "
-            f"sample {fmt_vec(q[k])} rad",
+            f"worst sample {fmt_vec(q[k])} rad",
         ),
+        domain=f"{len(q)} q uniform in Table I with theta4 = theta5 = 0 (the whole surface f(1))",
     )
+    return row.reread(eq69_reading(ctx, f1)) if row.verdict is Verdict.ERRATUM else row

@@ -26,7 +26,21 @@ from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Verdict, off_by, verdict_of
+from ..registry import (
+    Erratum,
+    Forms,
+    Measure,
+    Row,
+    Scope,
+    Section,
+    Slip,
+    SlipKind,
+    Verdict,
+    epsilon,
+    off_by,
+    verdict_of,
+)
+from ..second_reading import Kind, Reading, search
 from ..shorthand import wrap
 
 ARM = iik.THESIS_ARM
@@ -126,18 +140,22 @@ def _pose35(q) -> Pose35:
 
 def configurations(ctx, kind: str) -> Pose35:
     """Configurations the text describes (cached): ``"aligned-planar"`` (theta3 = theta4 = 0),
-    ``"contracted-planar"`` (theta3 = 0, theta4 = +-119 deg), ``"aligned"`` (theta4 = 0, link 3 pointing
-    away from the base axis), ``"contracted"`` (theta4 = +-119 deg); the planar ones keep p in front of
-    the base axis (its azimuth is theta1)."""
+    ``"contracted-planar"`` (theta3 = 0, theta4 = +-119 deg), ``"aligned"`` (theta4 = 0), ``"contracted"``
+    (theta4 = +-119 deg); theta2 over the whole of Table I, a third of the samples within 10^U(-6, -1.5)
+    rad of theta2 = +-90 deg (link 3 vertical: where the inclination formulas are hardest); the planar ones
+    keep p in front of the base axis (its azimuth is theta1)."""
     key = ("dex.conf", kind, ctx.quick)
     if key in ctx.cache:
         return ctx.cache[key]
     rng = ctx.rng(f"dex-{kind}")
     n = ctx.n(3000, 300)
     q = rng.uniform(ARM.q_min, ARM.q_max, (n, 6))
+    near = np.arange(n) % 3 == 0
+    q[near, 1] = (rng.choice([-1.0, 1.0], n) * np.pi / 2 + rng.choice([-1.0, 1.0], n)
+                  * 10 ** rng.uniform(-6, -1.5, n))[near]
+    q[:, 1] = np.clip(q[:, 1], ARM.q_min[1], ARM.q_max[1])
     if kind.startswith("aligned"):
         q[:, 3] = 0.0
-        q[:, 1] = rng.uniform(-85 * _D, 85 * _D, n)  # link 3 pointing away from the base axis
     else:
         q[:, 3] = rng.choice([-1.0, 1.0], n) * 119 * _D
     if kind.endswith("planar"):
@@ -149,6 +167,25 @@ def configurations(ctx, kind: str) -> Pose35:
     return c
 
 
+_KIND_TEXT = {
+    "aligned-planar": ("theta3 = theta4 = 0 (links 3-4 aligned, the arm in one vertical plane; "
+                       "p in front of the axis)"),
+    "contracted-planar": ("theta3 = 0, theta4 = +-119 deg (links 3-4 contracted, one vertical plane; "
+                          "p in front of the axis)"),
+    "aligned": "theta4 = 0 (links 3-4 aligned), theta3 free",
+    "contracted": "theta4 = +-119 deg (links 3-4 contracted), theta3 free",
+}
+
+
+def _conf_domain(ctx, kind: str, n: int | None = None) -> str:
+    c = configurations(ctx, kind)
+    t2 = np.degrees(c.q[:, 1])
+    count = n if n is not None else len(c.q)
+    return (f"{count} configurations with {_KIND_TEXT[kind]}; the other joints uniform in "
+            f"Table I, theta2 over the whole range ({t2.min():.0f}..{t2.max():.0f} deg), a third within "
+            "10^U(-6, -1.5) rad of +-90 deg (link 3 vertical)")
+
+
 def _direction(c: Pose35, incl: np.ndarray) -> np.ndarray:
     """Unit vector at inclination ``incl`` in the plane of J2, p (horizontal part along J2->p)."""
     h = c.p - c.J2
@@ -157,8 +194,10 @@ def _direction(c: Pose35, incl: np.ndarray) -> np.ndarray:
     return np.cos(incl)[:, None] * h + np.sin(incl)[:, None] * np.array([0.0, 0.0, 1.0])
 
 
-def _geometry_row(rid, key, claim, method, err, tol, printed, corrected, q, note="", unit="rad") -> Row:
-    """A row graded on ``max err <= tol`` (NaN counts as infinite); an erratum at the worst q otherwise."""
+def _geometry_row(rid, key, claim, method, err, tol, printed, corrected, q, note="", unit="rad", basis="",
+                  domain="") -> Row:
+    """A row graded on ``max err <= tol`` (NaN counts as infinite); an erratum at the worst q otherwise; with
+    ``basis`` (why it is an identity) a passing row holds by construction."""
     if not len(err):
         w, erratum = 0.0, None
     else:
@@ -173,6 +212,9 @@ def _geometry_row(rid, key, claim, method, err, tol, printed, corrected, q, note
         (Measure("max |form - exact geometry|", w, tol, unit),),
         id=rid,
         erratum=erratum,
+        holds_as=Verdict.IDENTITY if basis else Verdict.HOLDS,
+        basis=basis,
+        domain=domain,
     )
 
 
@@ -188,10 +230,30 @@ def _eq43_asin(p):
     return np.arcsin(v[:, 2] / np.linalg.norm(v, axis=1))
 
 
+def _eq43_swapped(p):
+    phi = np.arctan2(p[:, 1], p[:, 0])
+    x2, y2, z2 = L2 * np.cos(phi), L2 * np.sin(phi), L1
+    return np.arctan(np.sqrt((p[:, 0] - x2) ** 2 + (p[:, 1] - y2) ** 2) / (p[:, 2] - z2))
+
+
+def _eq43_l3(p):
+    phi = np.arctan2(p[:, 1], p[:, 0])
+    x2, y2, z2 = L3 * np.cos(phi), L3 * np.sin(phi), L1
+    return np.arctan((p[:, 2] - z2) / np.sqrt((p[:, 0] - x2) ** 2 + (p[:, 1] - y2) ** 2))
+
+
 @SECTION.check(
     50.1,
-    forms=Forms.slipped(eq43_printed, _eq43_asin, eq43_printed, 1e-6,
-                        good_is="asin of the rise over |p - J2|", bad_is="the printed beta' + 1 urad"),
+    forms=Forms(
+        eq43_printed,
+        _eq43_asin,
+        "asin of the rise over |p - J2|",
+        slips=(
+            Slip(SlipKind.SWAP, "rise and run exchanged", _eq43_swapped),
+            Slip(SlipKind.LENGTH, "joint 2 at l3 from the axis (l3 for l2)", _eq43_l3),
+        ),
+        tolerance=epsilon(eq43_printed, 1e-6, "the printed beta' + 1 urad"),
+    ),
 )
 def eq43_nominal_beta(ctx, eq43):
     """Eq 43: beta' is the inclination of the line from joint 2 to the end-effector."""
@@ -209,6 +271,9 @@ def eq43_nominal_beta(ctx, eq43):
         "beta' as printed",
         "-",
         c.q,
+        basis="beta' = atan(rise / run) and the reference asin(rise / |p - J2|) are two expressions of the "
+        "inclination of the same vector (joint 2 by Eq 37, graded in workspace.eq37): an identity",
+        domain=_conf_domain(ctx, "aligned-planar"),
     )
 
 
@@ -217,8 +282,29 @@ def eq44_delta(rho, r):
     return np.arccos(np.clip((L5**2 + rho**2 - r**2) / (2 * L5 * rho), -1, 1))
 
 
+def _delta_sign(rho, r):
+    return np.arccos(np.clip((L5**2 - rho**2 - r**2) / (2 * L5 * rho), -1, 1))
+
+
+def _delta_swapped(rho, r):
+    return np.arccos(np.clip((r**2 + rho**2 - L5**2) / (2 * L5 * rho), -1, 1))
+
+
+def _delta_asin(rho, r):
+    return np.arcsin(np.clip((L5**2 + rho**2 - r**2) / (2 * L5 * rho), -1, 1))
+
+
 #: Eq 44 and Eq 45 share the printed triangle.
-_DELTA = Forms.right(eq44_delta, 1e-6, bad_is="delta + 1 urad", good_is="the printed triangle (it is right)")
+_DELTA = Forms.right(
+    eq44_delta,
+    (
+        Slip(SlipKind.SIGN, "l5^2 - rho^2 - r^2 in the numerator", _delta_sign),
+        Slip(SlipKind.SWAP, "l5^2 and r^2 exchanged (the angle at the other vertex)", _delta_swapped),
+        Slip(SlipKind.FUNCTION, "asin for acos", _delta_asin),
+    ),
+    tolerance=epsilon(eq44_delta, 1e-6, "delta + 1 urad"),
+    good_is="the printed triangle (it is right)",
+)
 
 
 def _extreme_direction_error(c: Pose35, delta_form, r) -> np.ndarray:
@@ -250,6 +336,7 @@ def eq44_beta_outer(ctx, delta):
         "-",
         c.q,
         unit="-",
+        domain=_conf_domain(ctx, "aligned-planar"),
     )
 
 
@@ -272,6 +359,7 @@ def eq45_beta_inner(ctx, delta):
         c.q,
         unit="-",
         note=f"|J2 - SLJ| = d to {d_err.max():.1e} m",
+        domain=_conf_domain(ctx, "contracted-planar"),
     )
 
 
@@ -279,52 +367,133 @@ def eq46_printed(p):
     return np.arctan2(p[:, 1], p[:, 0])
 
 
-def _eq46_facing(p, c: Pose35 | None = None):
-    """alpha' = atan2(py, px), + pi where link 5 points toward the base axis (facing inside)."""
-    a = eq46_printed(p)
-    if c is None:
-        return a
-    inward = np.einsum("ni,ni->n", c.a[:, :2], c.p[:, :2]) < 0
-    return np.where(inward, wrap(a + np.pi), a)
+def _dir(alpha: np.ndarray, beta: np.ndarray) -> np.ndarray:
+    """The unit vector at azimuth ``alpha`` and inclination ``beta`` in that vertical plane (Sec 3.5's angles:
+    beta past 90 deg tilts it back over the vertical) -> (n, 3)."""
+    return np.cos(beta)[:, None] * np.stack([np.cos(alpha), np.sin(alpha), 0 * alpha], 1) + np.sin(beta)[:,
+        None] \
+        * np.array([0.0, 0.0, 1.0])
+
+
+def _planar(ctx) -> tuple[Pose35, np.ndarray]:
+    """Both planar families (aligned and contracted) and the r of their triangle (l3 + l4 or d)."""
+    c, c2 = configurations(ctx, "aligned-planar"), configurations(ctx, "contracted-planar")
+    both = Pose35(np.concatenate([c.q, c2.q]), np.concatenate([c.p, c2.p]), np.concatenate([c.S, c2.S]),
+                  np.concatenate([c.J2, c2.J2]))
+    return both, np.concatenate([np.full(len(c.q), L3 + L4), np.full(len(c2.q), D_IN)])
+
+
+def _eq46_error(c: Pose35, r: np.ndarray, alpha: np.ndarray) -> np.ndarray:
+    """|link 5 - the direction at (alpha, beta' +- delta)|, the nearer of the two (Eq 43-45's beta)."""
+    rho = np.linalg.norm(c.p - c.J2, axis=1)
+    bp, d = eq43_printed(c.p), eq44_delta(rho, r)
+    return np.minimum(np.linalg.norm(_dir(alpha, bp + d) - c.a, axis=1),
+                      np.linalg.norm(_dir(alpha, bp - d) - c.a, axis=1))
+
+
+def eq46_reading(ctx, c: Pose35, r: np.ndarray, eq46):
+    """Second reading of Eq 46 (the form): link 5 against the direction the thesis's angles describe,
+    under the stated convention (beta the inclination in the arm's vertical plane, up to 180 deg as Eq 44
+    gives it) and under our former reading (beta within +-90 deg, alpha the azimuth of link 5's horizontal
+    projection)."""
+    phi = np.arctan2(c.p[:, 1], c.p[:, 0])
+    from_j2 = c.p - np.stack([L2 * np.cos(phi), L2 * np.sin(phi), 0 * phi], 1)  # p seen from joint 2 (Eq 37)
+    stated = {"convention": "thesis", "p": c.p}
+
+    def misfit(x) -> float:
+        alpha = np.asarray(eq46(x["p"]), float)
+        if x["convention"] == "thesis":
+            return float(_eq46_error(c, r, alpha).max())
+        return float(np.abs(wrap(alpha - c.alpha)).max())
+
+    readings = [
+        Reading(Kind.CONVENTION,
+            "beta within +-90 deg, alpha the azimuth of link 5's horizontal projection (the "
+                "reading that made Eq 46 an erratum)", {"convention": "projection"}),
+        Reading(Kind.WHICH,
+            "(px, py) measured from joint 2, as Eq 43 measures beta' (they differ by pi where p is "
+                "horizontally within l2 of the base axis)", {"p": from_j2}),
+    ]
+    return search(stated, readings, misfit, TOL, printed="alpha' = atan2(py, px)",
+                  stated_text="Sec 3.5's angles: alpha the azimuth of the arm's vertical plane, beta the "
+                  "inclination in it (Eq 43-45: beta' +- delta, which runs past 90 deg)",
+                  route="link 5 (p - SLJ) from Pinocchio joint placements vs the direction of (alpha', beta)",
+                  measure="max |link 5 - direction of the angles| (unit vectors) or |alpha difference| [rad]")
+
+
+def eq46_from_joint2(p):
+    """alpha' as the azimuth of p seen from joint 2 (Eq 37's point at azimuth atan2(py, px)): the direction of
+    Eq 43's run."""
+    phi = np.arctan2(p[:, 1], p[:, 0])
+    return np.arctan2(p[:, 1] - L2 * np.sin(phi), p[:, 0] - L2 * np.cos(phi))
+
+
+def _eq46_swapped(p):
+    return np.arctan2(p[:, 0], p[:, 1])
+
+
+def _eq46_atan(p):
+    return np.arctan(p[:, 1] / p[:, 0])
+
+
+def _eq46_turned(p):
+    return eq46_printed(p) + np.pi
 
 
 @SECTION.check(
     50.4,
     forms=Forms(
-        printed=lambda p, c: eq46_printed(p),
-        good=_eq46_facing,
-        bad=lambda p, c: eq46_printed(p) + 1e-3,
-        good_is="atan2(py, px), + pi when link 5 faces the base axis",
-        bad_is="atan2(py, px) + 1 mrad",
+        eq46_printed,
+        eq46_from_joint2,
+        "the azimuth of p seen from joint 2 (the direction of Eq 43's run)",
+        (
+            Slip(SlipKind.SWAP, "atan2(px, py): the arguments exchanged", _eq46_swapped),
+            Slip(SlipKind.FUNCTION, "atan(py / px) for atan2 (the quadrant lost)", _eq46_atan),
+            Slip(SlipKind.BRANCH, "atan2(py, px) + pi (the opposite azimuth)", _eq46_turned),
+        ),
+        tolerance=epsilon(eq46_from_joint2, 1e-3, "that azimuth + 1 mrad"),
     ),
 )
 def eq46_nominal_alpha(ctx, eq46):
-    """Eq 46: with the whole arm in one vertical plane, link 5 points at azimuth alpha' = atan2(py, px)."""
-    c = configurations(ctx, "aligned-planar")
-    c2 = configurations(ctx, "contracted-planar")
-    both = Pose35(
-        np.concatenate([c.q, c2.q]),
-        np.concatenate([c.p, c2.p]),
-        np.concatenate([c.S, c2.S]),
-        np.concatenate([c.J2, c2.J2]),
-    )
-    err = np.abs(wrap(eq46(both.p, both) - both.alpha))
+    """Eq 46: with the whole arm in one vertical plane, link 5 points at azimuth alpha' = atan2(py, px) and
+    inclination beta' +- delta (Eq 43-45; beta past 90 deg when it faces the base axis)."""
+    both, r = _planar(ctx)
+    err = _eq46_error(both, r, np.asarray(eq46(both.p), float))
     inward = np.einsum("ni,ni->n", both.a[:, :2], both.p[:, :2]) < 0
-    return _geometry_row(
+    rho = np.linalg.norm(both.p - both.J2, axis=1)
+    beta = np.degrees(eq43_printed(both.p) + eq44_delta(rho, r))
+    past = beta > 90
+    close = np.hypot(both.p[:, 0], both.p[:, 1]) < L2
+    far = ~close
+    row = _geometry_row(
         "eq46",
         "Eq 46",
-        "alpha' = atan2(py, px) is the azimuth of the end-effector (link 5) when "
-        "the entire arm lies in one vertical plane.",
-        "configurations with theta3 = 0 (links 3-4 aligned or contracted; Pinocchio): azimuth of "
-        "link 5 vs the form",
+        "alpha' = atan2(py, px) is the azimuth of the end-effector (link 5) when the entire arm lies in one "
+        "vertical plane: with beta' +- delta of Eq 43-45 it gives link 5's direction.",
+        "configurations with theta3 = 0 (links 3-4 aligned or contracted; Pinocchio): link 5 (p - SLJ) vs "
+        "the unit "
+        "vector at azimuth alpha' and inclination beta' +- delta in that vertical plane (Sec 3.5's angles: "
+        "beta runs past 90 deg when link 5 tilts back over the vertical, Figs 21c, 24c)",
         err,
         TOL,
         "alpha' = atan2(py, px)",
-        "alpha' = atan2(py, px) when link 5 points away from the base axis, atan2(py, px) + pi when "
-        "it points toward it (end-effector facing inside, Figs 21c, 24c)",
+        "-",
         both.q,
-        note=f"link 5 faces the base axis in {inward.mean():.0%} of these configurations",
+        unit="-",
+        note=f"link 5 faces the base axis in {inward.mean():.0%} of these configurations (beta' + delta up "
+        f"to {beta.max():.1f} deg; past 90 deg in {past.mean():.0%}): there too the angles describe link 5 "
+        "exactly "
+        f"(max {err[far & inward].max() if (far & inward).any() else 0:.1e}); where p is horizontally within "
+        "l2 of "
+        f"the axis (between the axis and joint 2, {close.mean():.0%} of them) Eq 43's beta' is measured "
+        "toward the "
+        f"axis and the pair misses by {err[close].max() if close.any() else 0:.2g}; beyond joint 2 max "
+        f"{err[far].max() if far.any() else 0:.1e}",
+        domain=_conf_domain(ctx, "aligned-planar", len(both.q)).replace(_KIND_TEXT["aligned-planar"],
+                                                                       "theta3 = 0 and theta4 = 0 or +-119 "
+                                                                       "deg"),
     )
+    return row.reread(eq46_reading(ctx, both, r, eq46))
 
 
 def eq47_printed(pz, beta):
@@ -333,7 +502,14 @@ def eq47_printed(pz, beta):
 
 @SECTION.check(
     50.5,
-    forms=Forms.right(eq47_printed, 1e-9, bad_is="h + 1 nm"),
+    forms=Forms.right(
+        eq47_printed,
+        (
+            Slip(SlipKind.FUNCTION, "l5 cos(beta) for l5 sin(beta)", lambda pz, b: pz - L5 * np.cos(b)),
+            Slip(SlipKind.LENGTH, "l4 for l5", lambda pz, b: pz - L4 * np.sin(b)),
+        ),
+        tolerance=epsilon(eq47_printed, 1e-9, "h + 1 nm"),
+    ),
 )
 def eq47_slj_height(ctx, eq47):
     """Eq 47: the SLJ is at height pz - l5 sin(beta)."""
@@ -350,6 +526,9 @@ def eq47_slj_height(ctx, eq47):
         "-",
         c.q,
         unit="m",
+        basis="beta is read from the same link-5 vector (asin of its rise over l5) whose rise the formula "
+        "subtracts: pz - l5 sin(beta) is the SLJ's height by construction",
+        domain=_conf_domain(ctx, "aligned"),
     )
 
 
@@ -367,10 +546,41 @@ def _inclination_forms(good_is: str) -> Forms:
     return Forms(
         printed=eq48_printed,
         good=eq48_corrected,
-        bad=off_by(eq48_corrected, 1e-6),
         good_is=good_is,
-        bad_is="the good delta + 1 urad",
+        slips=(
+            Slip(SlipKind.FUNCTION, "atan for asin (as printed)", eq48_printed),
+            Slip(SlipKind.LENGTH, "l3 for the segment's length", lambda h, r: eq48_corrected(h, L3 + 0 * r)),
+            Slip(SlipKind.SIGN, "h_SLJ + l1 (the base height added)", lambda h, r: eq48_corrected(h + 2 * L1,
+                r)),
+        ),
+        tolerance=Slip(SlipKind.EPSILON, "the good delta + 1 urad", off_by(eq48_corrected, 1e-6)),
     )
+
+
+#: d (Eq 45) = phi (Eq 50, 51) with its angle 180 - 119 = 61 taken as radians.
+D_IN_RAD = float(np.sqrt(L3**2 + L4**2 - 2 * L3 * L4 * np.cos(61.0)))
+
+
+def inclination_reading(c: Pose35, truth: np.ndarray, r: float, form, printed: str):
+    """Second reading of Eq 48 / Eq 50 (the form): the inclination of links 3-4 under each nearby reading of
+    its stated inputs (the height measured from the base, delta measured downward, and for the contracted
+    length its 61 deg taken as radians)."""
+    stated = {"h": c.S[:, 2], "r": r, "sign": 1.0}
+
+    def misfit(x) -> float:
+        return float(np.abs(x["sign"] * form(x["h"], x["r"]) - truth).max())
+
+    readings = [
+        Reading(Kind.CONVENTION, "h_SLJ measured from the base (l1 not subtracted)", {"h": c.S[:, 2] + L1}),
+        Reading(Kind.SIGN, "delta measured downward", {"sign": -1.0}),
+    ]
+    if r < L3 + L4:
+        readings.append(Reading(Kind.UNIT, "phi with 180 - 119 = 61 taken as rad", {"r": D_IN_RAD}))
+    return search(stated, readings, misfit, TOL, printed=printed,
+                  stated_text="h_SLJ (Eq 47), l1, the segment's length "
+                  f"{'l3 + l4' if r >= L3 + L4 else 'phi'}",
+                  route="the inclination of joint 2 -> SLJ from Pinocchio joint placements",
+                  measure="max |form - inclination| [rad]")
 
 
 def _inclination_rows(ctx, form, kind, key, rid, r, printed, corrected) -> Row:
@@ -378,7 +588,7 @@ def _inclination_rows(ctx, form, kind, key, rid, r, printed, corrected) -> Row:
     v = c.S - c.J2
     truth = np.arcsin(v[:, 2] / np.linalg.norm(v, axis=1))
     what = "aligned" if kind == "aligned" else "contracted (theta4 = +-119 deg)"
-    return _geometry_row(
+    row = _geometry_row(
         rid,
         key,
         f"{printed}: the inclination of links 3-4 ({what}).",
@@ -390,7 +600,11 @@ def _inclination_rows(ctx, form, kind, key, rid, r, printed, corrected) -> Row:
         corrected,
         c.q,
         note=f"|J2 - SLJ| = {r:.4f} m: the rise over the segment's length is a sine, not a tangent",
+        domain=_conf_domain(ctx, kind),
     )
+    if row.verdict is not Verdict.ERRATUM:
+        return row
+    return row.reread(inclination_reading(c, truth, r, form, printed))
 
 
 @SECTION.check(50.6, forms=_inclination_forms("delta = asin((h_SLJ - l1) / (l3 + l4))"))
@@ -436,36 +650,85 @@ def _sigma_true(rho, beta, delta, r, reach):
     return np.arccos(np.clip((rho**2 + lb**2 - reach**2) / (2 * rho * lb), -1, 1))
 
 
+def _sigma_sign(rho, beta, delta, r, reach=None):
+    lb = L5 * np.cos(beta)
+    return np.arccos(np.clip((rho**2 - lb**2 - (r * np.cos(delta) + L2) ** 2) / (2 * rho * lb), -1, 1))
+
+
+def _sigma_sin(rho, beta, delta, r, reach=None):
+    return eq49_sigma(rho, np.pi / 2 - beta, delta, r)
+
+
+def _sigma_no_l2(rho, beta, delta, r, reach=None):
+    lb = L5 * np.cos(beta)
+    return np.arccos(np.clip((rho**2 + lb**2 - (r * np.cos(delta)) ** 2) / (2 * rho * lb), -1, 1))
+
+
 #: Eq 49 and Eq 51 share the printed law of cosines.
-_SIGMA = Forms.slipped(eq49_sigma, _sigma_true, _sigma_true, 1e-6,
-                       good_is="the law of cosines with the SLJ's true horizontal distance",
-                       bad_is="that sigma + 1 urad")
+_SIGMA = Forms(
+    eq49_sigma,
+    _sigma_true,
+    "the law of cosines with the SLJ's true horizontal distance",
+    slips=(
+        Slip(SlipKind.SIGN, "rho^2 - (l5 cos b)^2 in the numerator", _sigma_sign),
+        Slip(SlipKind.FUNCTION, "l5 sin(b) for l5 cos(b)", _sigma_sin),
+        Slip(SlipKind.LENGTH, "the SLJ's distance without l2", _sigma_no_l2),
+    ),
+    tolerance=epsilon(_sigma_true, 1e-6, "that sigma + 1 urad"),
+)
 
 
 def _sigma_rows(ctx, form, kind, key, rid, r, claim, corrected) -> Row:
     c = configurations(ctx, kind)
     v = c.S - c.J2
-    delta = np.arcsin(v[:, 2] / np.linalg.norm(v, axis=1))  # the true inclination (Eq 48/50 corrected)
+    out = np.stack([np.cos(c.q[:, 0]), np.sin(c.q[:, 0])], 1)  # joint 1's vertical plane, outward
+    # the true inclination of links 3-4 in that plane (Sec 3.5's convention: past 90 deg when link 3 leans
+    # over the axis); with link 3 leaning forward it is Eq 48/50 corrected (asin)
+    delta = np.arctan2(v[:, 2], np.einsum("ni,ni->n", v[:, :2], out))
     rho = np.hypot(c.p[:, 0], c.p[:, 1])
     reach = np.hypot(c.S[:, 0], c.S[:, 1])
     sig = form(rho, c.beta, delta, r, reach)
     err = np.abs(np.abs(wrap(c.alpha - c.phi)) - sig)
     chained = np.abs(np.abs(wrap(c.alpha - c.phi)) - eq49_sigma(rho, c.beta, eq48_printed(c.S[:, 2], r), r))
-    return _geometry_row(
+    row = _geometry_row(
         rid,
         key,
         claim,
         "random configurations with links 3-4 "
         f"{'aligned (theta4 = 0)' if r > D_IN else 'contracted (theta4 = +-119 deg)'} "
         "and any theta3 (link 5 leaves the vertical plane; Pinocchio): the deviation |alpha - alpha'| of "
-        "link 5's azimuth from the point's vs sigma, with the true delta (Eq 48/50 corrected) fed in",
+        "link 5's azimuth from the point's vs sigma, with the true delta fed in (the inclination of links "
+        "3-4 in "
+        "joint 1's vertical plane: Eq 48/50 corrected where link 3 leans forward, past 90 deg where it leans "
+        "back over the axis)",
         err,
         TOL,
         claim.split(":")[0],
         corrected,
         c.q,
-        note=f"with the printed Eq {48 if r > D_IN else 50} delta chained in: max {chained.max():.3g} rad",
+        note=f"with the printed Eq {48 if r > D_IN else 50} delta chained in: max {chained.max():.3g} rad; "
+        f"link 3 leaning back over the axis (delta past 90 deg) in {np.mean(np.abs(delta) > np.pi / 2):.0%} "
+        "of the configurations",
+        domain=_conf_domain(ctx, kind),
     )
+    if row.verdict is not Verdict.ERRATUM:
+        return row
+    target = np.abs(wrap(c.alpha - c.phi))
+    stated = {"delta": delta, "r": r, "beta": c.beta}
+
+    def misfit(x) -> float:
+        return float(np.abs(target - form(rho, x["beta"], x["delta"], x["r"], reach)).max())
+
+    readings = [
+        Reading(Kind.SIGN, "delta measured the other way", {"delta": -delta}),
+        Reading(Kind.SIGN, "beta measured the other way", {"beta": -c.beta}),
+        Reading(Kind.UNIT, "phi with 180 - 119 = 61 taken as rad", {"r": D_IN_RAD}),
+    ]
+    return row.reread(search(stated, readings, misfit, TOL, printed=claim.split(":")[0],
+                             stated_text="rho = |p_xy|, beta of link 5, delta of links 3-4, the segment's "
+                             "length",
+                             route="link 5's azimuth from Pinocchio joint placements",
+                             measure="max ||alpha - alpha'| - sigma| [rad]"))
 
 
 @SECTION.check(50.7, forms=_SIGMA)
@@ -521,9 +784,15 @@ def _sec35_half(alpha35, beta35):
     forms=Forms(
         printed=sec35_as_printed,
         good=sec35_to_eq42,
-        bad=_sec35_half,
         good_is="alpha + 180 deg, beta + 90 deg (z6 = -a)",
-        bad_is="alpha + 180 deg, beta + 45 deg",
+        slips=(
+            Slip(SlipKind.SIGN, "alpha, 90 deg - beta (z6 taken along link 5, d6 = +l5)",
+                 lambda a, b: (a, np.pi / 2 - b)),
+            Slip(SlipKind.BRANCH, "alpha + 180 deg, 90 deg - beta (the other side of the pole)",
+                 lambda a, b: (wrap(a + np.pi), np.pi / 2 - b)),
+            Slip(SlipKind.UNIT, "alpha + 180 deg, beta + 45 deg (a quarter turn taken as an eighth)",
+                _sec35_half),
+        ),
     ),
 )
 def beta_convention(ctx, to_eq42):
@@ -535,10 +804,9 @@ def beta_convention(ctx, to_eq42):
     a, b = to_eq42(c.alpha, c.beta)
     err = np.maximum(np.abs(wrap(a - alpha42)) * (np.sin(beta42) > 1e-6), np.abs(b - beta42))
     m = (Measure("max angle difference", err.max(), TOL, "rad"),)
-    return Row.graded(
+    row = Row.graded(
         "The beta of Sec 3.5 (Eq 43-51) is the beta of the Euler matrix of Eq 42 (r13 = c_a s_b, r23 = s_a "
-        "s_b, "
-        "r33 = c_b), and alpha likewise.",
+        "s_b, r33 = c_b), and alpha likewise.",
         "Eq 42 vs Eq 43-47",
         f"{len(c.q)} configurations (Pinocchio): the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5: azimuth, "
         "inclination) through the form vs the Eq 42 angles of z6 (azimuth, polar angle)",
@@ -554,7 +822,37 @@ def beta_convention(ctx, to_eq42):
             "angles",
             f"{fmt_q(c.q[int(np.argmax(err))])}: angles differ by {err.max():.3f} rad",
         ),
+        domain=_conf_domain(ctx, "aligned"),
     )
+    return row.reread(convention_reading(c, to_eq42)) if row.verdict is Verdict.ERRATUM else row
+
+
+def convention_reading(c: Pose35, to_eq42):
+    """Second reading of the Sec 3.5 / Eq 42 convention (the form): Eq 42's angles of z6 from the iik.dh chain
+    under each nearby reading of the stated conventions (d6 = +l5: z6 along link 5; Eq 42's beta read as an
+    elevation from the horizontal), vs the form's angles."""
+    from .ik_equations import chain_frames
+
+    a, b = to_eq42(c.alpha, c.beta)
+    stated = {"d6": -L5, "elevation": False}
+
+    def misfit(x) -> float:
+        z6 = chain_frames(c.q, d6=x["d6"])[:, 5, :3, 2]
+        beta = np.arcsin(np.clip(z6[:, 2], -1, 1)) if x["elevation"] else np.arccos(np.clip(z6[:, 2], -1, 1))
+        alpha = np.arctan2(z6[:, 1], z6[:, 0])
+        return float(np.maximum(np.abs(wrap(a - alpha)) * (np.abs(z6[:, 2]) < 1 - 1e-12),
+            np.abs(b - beta)).max())
+
+    readings = [
+        Reading(Kind.SIGN, "d6 = +l5 (z6 along link 5, as Eq 9 and App. B's 5_6T read it)", {"d6": L5}),
+        Reading(Kind.CONVENTION, "Eq 42's beta read as an elevation from the horizontal",
+            {"elevation": True}),
+    ]
+    return search(stated, readings, misfit, TOL, printed="Sec 3.5's (alpha, beta) of link 5 used as Eq 42's",
+                  stated_text="Eq 42's matrix (r33 = cos beta: beta the polar angle of z6), Table II (d6 = "
+                  "-l5)",
+                  route="z6 of the Table II chain by iik.dh (not Pinocchio)",
+                  measure="max angle difference [rad]")
 
 
 def _sweep(ctx):
@@ -597,6 +895,11 @@ class SolvableOnly:
     truth: str = "sweep"
 
 
+def _unconverted(p, A, B):
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return printed_admits(p, A, B)
+
+
 def _admit_all(p, A, B):
     return np.ones(A.shape, bool)
 
@@ -615,10 +918,18 @@ def _sweep_forms(printed) -> Forms:
     return Forms(
         printed=printed,
         good=SolvableOnly(),
-        bad=_admit_all,
         good_is="exactly the orientations the sweep solves",
-        bad_is="every orientation",
+        slips=(
+            Slip(SlipKind.CLAIM, "every orientation", _admit_all),
+            Slip(SlipKind.MODEL, "the angles used without the Eq 42 conversion (Sec 3.5's read as Eq 42's)",
+                 _unconverted),
+        ),
     )
+
+
+def _sweep_domain(sw) -> str:
+    return (f"{len(sw['P'])} reachable points (fk of q uniform in Table I), a {sw['na']} x {sw['nb']} "
+            "(alpha, beta) grid over every orientation of z6 at each")
 
 
 def _graded_sweep(ctx, admit):
@@ -648,20 +959,19 @@ def printed_admitted_set(ctx, admit):
     )
     return Row.graded(
         "The orientations Eq 43-51 admit at a point inside the workspace are reachable (at least one IK "
-        "solution), "
-        "so choosing them guarantees convergence.",
+        "solution), so choosing them guarantees convergence.",
         "Sec 3.5.2-3.5.3, Eq 43-51, Sec 5.2",
         "IK feasibility sweep: iik.solve (complete, within Table I) on pose_from_zxz(p, alpha, beta, 0) "
         "over a "
         f"{sw['na']} x {sw['nb']} (alpha, beta) grid at {len(P)} reachable points (fk of random q), vs the "
         "admitted set",
         f"admitted {n_adm}, solvable {n_true} of {truth.size}; soundness (admitted and solvable / admitted) "
-        f"{s:.1%}, "
-        f"completeness (admitted and solvable / solvable) {c:.1%}; unsound orientations per point: "
+        f"{s:.1%}, completeness (admitted and solvable / solvable) {c:.1%}; unsound orientations per point: "
         f"{per_point}",
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="admitted_set",
+        domain=_sweep_domain(sw),
         figures=figs,
         reason="the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the "
         "roll geometry, and Eq 48/50/51 are wrong (rows above): admitted "
@@ -700,7 +1010,7 @@ def _iik_admit(p, A, B):
 )
 def iik_dexterity(ctx, admit):
     """(Project) iik.dexterity (the thesis's SLJ-shell model, exact cone) vs the same sweep."""
-    _, _, (s, c, n_adm, _), m = _graded_sweep(ctx, admit)
+    sw, _, (s, c, n_adm, _), m = _graded_sweep(ctx, admit)
     return Row(
         "(Project) iik.dexterity admits only reachable orientations.",
         "iik.dexterity (Sec 3.5 model)",
@@ -709,6 +1019,7 @@ def iik_dexterity(ctx, admit):
         verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
         id="iik_dexterity",
         measures=m,
+        domain=_sweep_domain(sw),
         scope=Scope.PROJECT,
         reason=""
         if m[0].holds
@@ -758,9 +1069,11 @@ def _figure(ctx, sw, adm_iik, adm_pr, cases) -> str:
     forms=Forms(
         printed=(1, 2, 3, 4, 5),
         good=(1, 2, 3, 4, 5),
-        bad=(1, 2, 3, 4, 5, 6),
         good_is="the printed claim (joints 1-5 unaffected)",
-        bad_is="joints 1-6 unaffected",
+        slips=(
+            Slip(SlipKind.CLAIM, "joints 1-6 unaffected", (1, 2, 3, 4, 5, 6)),
+            Slip(SlipKind.OFF_BY_ONE, "joints 2-6 unaffected (the joint numbers one off)", (2, 3, 4, 5, 6)),
+        ),
     ),
 )
 def gamma_free(ctx, unaffected):
@@ -796,4 +1109,5 @@ def gamma_free(ctx, unaffected):
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="gamma_free",
+        domain=f"{len(q)} poses fk(q), q uniform in Table I, gamma at 12 values over a full turn each",
     )

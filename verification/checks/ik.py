@@ -20,7 +20,7 @@ import iik
 from iik.ik import solve_batch
 from iik.ik.thesis import solve_thesis_arrays, thesis_candidates
 
-from ..registry import Forms, Measure, Row, Section, Verdict, verdict_of
+from ..registry import Forms, Measure, Row, Section, Slip, SlipKind, Verdict, verdict_of
 from ..testing.ik_cost import ThesisSolver, compare_cost
 from . import ik_equations
 
@@ -56,9 +56,8 @@ def _complete_arrays(T):
     forms=Forms(
         printed=4,
         good=2,
-        bad=3,
         good_is="2 valid configurations per root (Eq 20 ties the sign of s3 to s4)",
-        bad_is="3 per root",
+        slips=(Slip(SlipKind.CLAIM, "3 per root", 3), Slip(SlipKind.CLAIM, "1 per root", 1)),
     ),
 )
 def four_configurations(ctx, per_root):
@@ -80,6 +79,7 @@ def four_configurations(ctx, per_root):
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="four_configurations",
+        domain=f"{len(q)} poses fk(q), q uniform in Table I",
         reason="Eq 20 ties the sign of s3 to the sign of s4, so only 2 of the 4 sign pairs are consistent; "
         "the other 2 fail Eq 4 (spurious roots from the +- of Eq 9 give 0)",
     )
@@ -99,9 +99,11 @@ class CountClaim:
 _COUNTS = dict(
     printed=CountClaim(8, 2),
     good=CountClaim(16, 1),
-    bad=CountClaim(4, 2),
     good_is="at most 16 (the bound for any 6R arm), at least 1 (the generating q)",
-    bad_is="at most 4, at least 2",
+    slips=(
+        Slip(SlipKind.CLAIM, "at most 4, at least 1", CountClaim(4, 1)),
+        Slip(SlipKind.CLAIM, "at most 16, at least 5", CountClaim(16, 5)),
+    ),
 )
 
 
@@ -142,6 +144,7 @@ def _counts_row(ctx, claim: CountClaim, within: bool) -> Row:
         id="solution_counts" + ("_table_i" if within else ""),
         measures=m,
         reason="; ".join(reasons),
+        domain=f"{len(q)} poses fk(q), q uniform in Table I (the generating q is a solution of each)",
     )
 
 
@@ -178,9 +181,13 @@ def solver_forms(thesis: Solver) -> Forms:
     return Forms(
         printed=thesis,
         good=Solver("complete elimination solver", "complete"),
-        bad=Solver("thesis IIK on a 30 deg grid", "thesis", n_grid=12),
         good_is="the complete elimination solver",
-        bad_is="the thesis IIK with a 30 deg theta1 grid",
+        slips=(
+            Slip(SlipKind.MODEL, "the thesis IIK with a 30 deg theta1 grid",
+                 Solver("thesis IIK on a 30 deg grid", "thesis", n_grid=12)),
+            Slip(SlipKind.MODEL, "the thesis IIK with a 180 deg theta1 grid (2 cells)",
+                 Solver("thesis IIK on a 180 deg grid", "thesis", n_grid=2)),
+        ),
     )
 
 
@@ -216,6 +223,7 @@ def completeness(ctx, solver):
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="completeness",
+        domain=f"{len(q)} poses fk(q), q uniform in Table I",
         reason="two roots in one grid cell (or a tangent root) give no sign change, and c3 = +-sqrt(1 - "
         "s3^2) (Eq 21) loses accuracy near |s3| = 1; the complete solver takes every real root of a degree-8 "
         "polynomial",
@@ -254,9 +262,9 @@ class Lookup:
     forms=Forms(
         printed=ThesisSolver(),
         good=Lookup(),
-        bad=ThesisSolver(n_grid=7200),
         good_is="a lookup of precomputed solutions (no computation)",
-        bad_is="the thesis IIK with a 0.05 deg theta1 grid (100x the work)",
+        slips=(Slip(SlipKind.MODEL, "the thesis IIK with a 1 deg theta1 grid (5x the work)",
+                    ThesisSolver(n_grid=360)),),
     ),
 )
 def benchmark(ctx, solver):
@@ -302,4 +310,5 @@ def benchmark(ctx, solver):
         id="benchmark",
         measures=m,
         reason=reason,
+        domain=f"{len(q)} poses fk(q), q uniform in Table I; {c.repeats} repeats",
     )

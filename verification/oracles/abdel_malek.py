@@ -31,7 +31,8 @@ import pinocchio as pin
 
 import iik
 
-__all__ = ["NormalAcceleration", "normal_acceleration", "position_and_jacobian"]
+__all__ = ["NormalAcceleration", "normal_acceleration", "position_and_jacobian", "hessian", "eq58_rates",
+           "eq59_normal", "eq61_h_star", "eq63_b", "eq65_q_star", "eq67_dq", "eq68_kbar"]
 
 _H = 1e-6
 
@@ -55,7 +56,7 @@ def position_and_jacobian(q5: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return data.oMf[fid].translation.copy(), J[:3, :5].copy()
 
 
-def _hessian(q5: np.ndarray) -> np.ndarray:
+def hessian(q5: np.ndarray) -> np.ndarray:
     """Second derivatives d2G/dq_i dq_j [m/rad^2], shape (3, 5, 5), by central differences."""
     Hs = np.empty((3, 5, 5))
     for i in range(5):
@@ -116,6 +117,58 @@ class NormalAcceleration:
         return "both"
 
 
+def eq58_rates(q0: np.ndarray, arm: iik.Arm = iik.THESIS_ARM) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Eq 58 at ``q0`` (5,) [rad]: ``(lambda0, q_s, [q]_ss)``: the parameters and the diagonals of dq/dlambda
+    and d2q/dlambda2."""
+    lo, hi = arm.q_min[:5], arm.q_max[:5]
+    mid, half = (hi + lo) / 2, (hi - lo) / 2
+    lam = np.arcsin(np.clip((np.asarray(q0, float) - mid) / half, -1.0, 1.0))
+    return lam, half * np.cos(lam), -half * np.sin(lam)
+
+
+def eq59_normal(Gq: np.ndarray, qs: np.ndarray) -> np.ndarray:
+    """Eq 59: the left null vector of G_q q_s (3 x 5) (sign arbitrary)."""
+    U, _, _ = np.linalg.svd(Gq * qs[None, :])
+    return U[:, 2]
+
+
+def eq61_h_star(N0: np.ndarray, Hq: np.ndarray, Gq: np.ndarray, qs: np.ndarray,
+    qss: np.ndarray) -> np.ndarray:
+    """Eq 61: H* = q_s^T [N0.G]_qq q_s + sum_i (N0.G_qi) [q_i]_ss (5 x 5)."""
+    NG_qq = np.einsum("k,kij->ij", N0, Hq)
+    return qs[:, None] * NG_qq * qs[None, :] + np.diag((N0 @ Gq) * qss)
+
+
+def eq63_b(f_u: np.ndarray, rows: tuple[int, int]) -> np.ndarray:
+    """Eq 63: B = [E f_u]^-1 E with E picking ``rows`` (2 x 3)."""
+    E = np.zeros((2, 3))
+    E[0, rows[0]] = E[1, rows[1]] = 1.0
+    return np.linalg.solve(E @ f_u, E)
+
+
+def eq65_q_star(H: np.ndarray, B: np.ndarray, Gq: np.ndarray, qs: np.ndarray,
+    Nf_uu: np.ndarray) -> np.ndarray:
+    """Eq 65: Q* = H* - q_s^T G_q^T B^T [N0.f]_uu B G_q q_s (5 x 5)."""
+    M = B @ (Gq * qs[None, :])
+    return H - M.T @ Nf_uu @ M
+
+
+def eq67_dq(q0: np.ndarray, arm: iik.Arm = iik.THESIS_ARM, tol: float = 1e-9) -> dict[int, float]:
+    """Eq 67: ``{joint: dq}`` for the joints (1-based) at a limit: +1 at a lower limit, -1 at an upper one."""
+    out = {}
+    for i in range(5):
+        if abs(q0[i] - arm.q_min[i]) <= tol:
+            out[i + 1] = 1.0
+        elif abs(q0[i] - arm.q_max[i]) <= tol:
+            out[i + 1] = -1.0
+    return out
+
+
+def eq68_kbar(g: np.ndarray, B: np.ndarray, Nf_uu: np.ndarray, NG_ii: float) -> float:
+    """Eq 68: K-bar = G_qi^T B^T [N0.G]_uu B G_qi - [N0.G]_qiqi for the column ``g`` = G_qi."""
+    return float(g @ B.T @ Nf_uu @ B @ g - NG_ii)
+
+
 def normal_acceleration(q0, free: tuple[int, int], arm: iik.Arm = iik.THESIS_ARM,
                         normal_hint=None, limit_tol: float = 1e-9,
                         prefer_rows: tuple[int, int] | None = None) -> NormalAcceleration:
@@ -126,21 +179,16 @@ def normal_acceleration(q0, free: tuple[int, int], arm: iik.Arm = iik.THESIS_ARM
     because the columns of ``G_q q_s`` lie in the span of ``f_u``).
     """
     q0 = np.asarray(q0, dtype=float)[:5]
-    lo, hi = arm.q_min[:5], arm.q_max[:5]
-    mid, half = (hi + lo) / 2, (hi - lo) / 2
-    lam = np.arcsin(np.clip((q0 - mid) / half, -1.0, 1.0))  # Eq 58 inverted
-    qs = half * np.cos(lam)  # dq/dlambda (diagonal of q_s)
-    qss = -half * np.sin(lam)  # d2q_i/dlambda_i^2
+    lam, qs, qss = eq58_rates(q0, arm)  # Eq 58
     G, Gq = position_and_jacobian(q0)
-    Gqs = Gq * qs[None, :]
-    U, S, _ = np.linalg.svd(Gqs)
-    N0 = U[:, 2]  # Eq 59: left null vector
+    S = np.linalg.svd(Gq * qs[None, :], compute_uv=False)
+    N0 = eq59_normal(Gq, qs)  # Eq 59
     if normal_hint is not None and np.dot(N0, normal_hint) < 0:
         N0 = -N0
-    Hq = _hessian(q0)  # (3, 5, 5)
+    Hq = hessian(q0)  # (3, 5, 5)
     NG_qq = np.einsum("k,kij->ij", N0, Hq)  # [N0.G]_qq
     NG_q = N0 @ Gq  # d(N0.G)/dq_i
-    H = qs[:, None] * NG_qq * qs[None, :] + np.diag(NG_q * qss)  # Eq 61
+    H = eq61_h_star(N0, Hq, Gq, qs, qss)  # Eq 61
     u = [j - 1 for j in free]
     f_u = Gq[:, u]  # 3x2 surface Jacobian w.r.t. the free joints
     E_rows = None
@@ -153,20 +201,14 @@ def normal_acceleration(q0, free: tuple[int, int], arm: iik.Arm = iik.THESIS_ARM
             break
     if E_rows is None:
         raise iik.InvalidInputError("q0", "the surface Jacobian f_u has rank < 2 at this point")
-    E = np.zeros((2, 3))
-    E[0, E_rows[0]] = E[1, E_rows[1]] = 1.0
-    B = np.linalg.solve(E @ f_u, E)  # Eq 63
+    B = eq63_b(f_u, E_rows)  # Eq 63
     Nf_uu = NG_qq[np.ix_(u, u)]  # [N0.f]_uu
-    M = B @ Gqs  # (2, 5)
-    Q = H - M.T @ Nf_uu @ M  # Eq 65
+    Q = eq65_q_star(H, B, Gq, qs, Nf_uu)  # Eq 65
     eig = np.sort(np.linalg.eigvalsh(0.5 * (Q + Q.T)))
     at_limit, sigma, kbar = [], {}, {}
-    for i in range(5):
-        for bound, val, dq in (("lower", lo[i], 1.0), ("upper", hi[i], -1.0)):  # Eq 67
-            if abs(q0[i] - val) <= limit_tol:
-                at_limit.append((i + 1, bound))
-                sigma[i + 1] = float(NG_q[i] * dq)  # Eq 66
-                g = Gq[:, i]
-                kbar[i + 1] = float(g @ B.T @ Nf_uu @ B @ g - NG_qq[i, i])  # Eq 68
+    for j, dq in eq67_dq(q0, arm, limit_tol).items():  # Eq 67
+        at_limit.append((j, "lower" if dq > 0 else "upper"))
+        sigma[j] = float(NG_q[j - 1] * dq)  # Eq 66
+        kbar[j] = eq68_kbar(Gq[:, j - 1], B, Nf_uu, NG_qq[j - 1, j - 1])  # Eq 68
     return NormalAcceleration(q0, lam, G, tuple(free), N0, H, E_rows, B, Q, eig, tuple(at_limit),
                               sigma, kbar, float(S[2]))

@@ -8,6 +8,7 @@ import sys
 import pytest
 
 from iik.cli import main
+from verification.registry import Verdict
 
 
 def sections_and_rows(report_dir) -> dict[str, int]:
@@ -31,7 +32,7 @@ def test_iik_verify_quick_writes_report(cli_report, capsys):
     assert code == 0
     assert "## Summary" in (out_dir / "verification.md").read_text(encoding="utf-8")
     rows = json.loads((out_dir / "verification.json").read_text(encoding="utf-8"))["rows"]
-    verdicts = ("holds", "erratum", "does not hold", "not checkable")
+    verdicts = tuple(v.value for v in Verdict)
     for ref in ("Eq 4", "App. B", "App. C", "Table II", "Eq 42", "Sec 4.3.1", "Table V"):
         hits = [r for r in rows if ref in r["reference"]]
         assert hits, f"no report row for {ref}"
@@ -56,8 +57,8 @@ def test_iik_verify_self_test(tmp_path, capsys):
                  "--out", str(tmp_path)])
     out = capsys.readouterr().out
     assert code == 0, out
-    assert "flips  verification.checks.planning:check_eq53_ellipsoid" in out
-    assert "by construction  verification.checks.hardware:check_table_v" in out
+    assert "| `verification.checks.planning:check_eq53_ellipsoid` | flips |" in out
+    assert "| `verification.checks.hardware:check_table_v` | by construction |" in out
     assert out.strip().splitlines()[-1].startswith("self-test: 1 checks flip")
     assert not any(tmp_path.iterdir())
 

@@ -23,7 +23,8 @@ def test_hardware_section_quick(tmp_path):
     by_claim = {row.reference: row for row in rows}
     # every Table V function round-trips against the simulated modules
     table_v = next(row for row in rows if row.reference == "Sec 4.3, App. A, Table V")
-    assert table_v.verdict is Verdict.HOLDS, table_v.numbers
+    # our driver against our simulator: shown, not evidence
+    assert table_v.verdict is Verdict.IDENTITY and table_v.basis, table_v.numbers
     # the real arm's errors are explicitly not checkable
     assert by_claim["Sec 4.3.1, 4.3.2"].verdict is Verdict.NOT_CHECKABLE
     # the printed unit of PCube_setMaxCur is an erratum (it limits the current, not the speed)
@@ -31,17 +32,22 @@ def test_hardware_section_quick(tmp_path):
     assert "Table V (PCube_setMaxCur)" in errata
     # every row names what it depends on, the simulated arm first of all
     assert all("sim-arm" in row.depends_on for row in rows)
-    # the error rows are graded by measures, not by a constant
-    for ref in ("Sec 4.3", "Sec 4.3.1", "Sec 4.3.2"):
-        assert by_claim[ref].measures and by_claim[ref].verdict is Verdict.HOLDS, by_claim[ref].numbers
+    # the thesis's Sec 4.3 claims are not checkable without the real arm; their simulations are project
+    # rows graded by measures on the simulator's assumption, not by a constant
+    for rid in ("check_early_update", "check_predefined_10mm", "check_safety_zone_30mm"):
+        real = next(row for row in rows if row.id == f"hardware.{rid}")
+        sim = next(row for row in rows if row.id == f"hardware.{rid}.sim")
+        assert real.verdict is Verdict.NOT_CHECKABLE and real.scope.value == "thesis"
+        assert sim.scope.value == "project standard" and sim.measures, sim.numbers
+        assert sim.verdict is Verdict.RECONSTRUCTION and "assumed" in sim.basis
 
 
 def test_error_rows_follow_the_simulated_arm(tmp_path):
     """The 10 mm row holds on an arm without lag and fails on one ten times as sluggish."""
     ctx = Context(out_dir=tmp_path, quick=True)
-    ideal = hw.check_predefined_10mm(ctx, hw.SimArm(0.0))
-    sluggish = hw.check_predefined_10mm(ctx, hw.SimArm(0.2))
-    assert ideal.verdict is Verdict.HOLDS and sluggish.verdict is Verdict.DOES_NOT_HOLD
+    ideal = hw.check_predefined_10mm(ctx, hw.SimArm(0.0))[1]
+    sluggish = hw.check_predefined_10mm(ctx, hw.SimArm(0.2))[1]
+    assert ideal.verdict is Verdict.RECONSTRUCTION and sluggish.verdict is Verdict.NOT_REPRODUCED
     assert ideal.measures[0].value < sluggish.measures[0].value
 
 

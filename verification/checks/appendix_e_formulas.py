@@ -1,0 +1,651 @@
+"""Appendix E's formulas, each in a row of its own (Eq 58, 59, 61, 63, 62-65, 66-67, 68).
+
+The App. E rows of :mod:`verification.checks.appendix_e` grade the numbers printed at A1, A2 and
+A6; here each printed formula is graded on its own, so a right formula does not look falsified
+beside a wrong printed number. The printed form of each formula (as
+:mod:`verification.oracles.abdel_malek` implements it: Pinocchio Jacobians and their central
+differences) is compared with what the quantity means
+(:mod:`verification.oracles.normal_distance`: the Table II chain by ``iik.dh``, the surface
+normal from its tangents, Hessians of the normal distance by central differences), at A1, A2,
+A6 and at random points of the singular sets s(1), s(2) and s(26) with their free joints
+uniform over Table I. Eq 68 is evaluated where the text applies it -- where Eq 66 vanishes
+(points of s(24)-s(27) found by root finding) -- and its sign rule is graded against the side
+to which the tool actually moves when the joint leaves its limit.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+import iik
+
+from ..numbers import fmt_vec
+from ..oracles.abdel_malek import (
+    eq58_rates,
+    eq59_normal,
+    eq61_h_star,
+    eq63_b,
+    eq65_q_star,
+    eq67_dq,
+    eq68_kbar,
+    hessian,
+    position_and_jacobian,
+)
+from ..oracles.normal_distance import SurfacePoint, surface_point, tool_point
+from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon
+from ..second_reading import Kind, Reading, search
+from .appendix_e import PRINTED
+from .appendix_e import SECTION as _POINTS
+
+ARM = iik.THESIS_ARM
+_D = np.pi / 180
+SECTION = Section(_POINTS.title, depends_on=("lengths", "pinocchio"), prefix="appendix_e")
+TOL = 1e-3  # [mm]: a formula vs its meaning (both in floating point, central differences: ~1e-5 mm)
+_ROUTE = (
+    "vs what it means: verification.oracles.normal_distance (Table II chain by iik.dh, central differences), "
+    "at A1, A2, A6 and random points of s(1), s(2), s(26)"
+)
+
+
+@dataclass(frozen=True)
+class Probe:
+    """A point of a singular set with the printed formulas' ingredients (Pinocchio) and the meaning-based
+    quantities (SI units).
+
+    Attributes:
+        name: ``"A1"`` or ``"s(26) #3"``; q0: joints 1-5 [rad]; free: the free joints (1-based).
+        Gq: (3, 5) tool-point Jacobian; Hq: (3, 5, 5) its derivatives; lam, qs, qss: Eq 58 at q0.
+        sp: the meaning-based :class:`~verification.oracles.normal_distance.SurfacePoint`.
+        rows: Eq 63's row pair (the best-conditioned one).
+    """
+
+    name: str
+    q0: np.ndarray
+    free: tuple[int, int]
+    Gq: np.ndarray
+    Hq: np.ndarray
+    lam: np.ndarray
+    qs: np.ndarray
+    qss: np.ndarray
+    sp: SurfacePoint
+    rows: tuple[int, int]
+    _memo: dict = field(default_factory=dict, compare=False, repr=False)
+
+    def meaning(self, what: str, *args):
+        """``self.sp.<what>(*args)``, computed once (the meaning does not depend on any form)."""
+        key = (what, args)
+        if key not in self._memo:
+            self._memo[key] = getattr(self.sp, what)(*args)
+        return self._memo[key]
+
+    @property
+    def f_u(self) -> np.ndarray:
+        return self.Gq[:, [j - 1 for j in self.free]]
+
+    @property
+    def N0(self) -> np.ndarray:
+        return self.sp.N0
+
+    def nf_uu(self) -> np.ndarray:
+        u = [j - 1 for j in self.free]
+        return np.einsum("k,kij->ij", self.N0, self.Hq)[np.ix_(u, u)]
+
+
+def _probe(name, q0, free) -> Probe | None:
+    q0 = np.asarray(q0, float)
+    try:
+        sp = surface_point(q0, free)
+    except iik.InvalidInputError:
+        return None
+    lam, qs, qss = eq58_rates(q0, ARM)
+    _, Gq = position_and_jacobian(q0)
+    return Probe(name, q0, tuple(free), Gq, hessian(q0), lam, qs, qss, sp, sp.rows)
+
+
+#: The singular sets sampled besides A1, A2, A6: (name, fixed {joint: value [rad]}, free joints).
+_SETS = (
+    ("s(1)", {3: 0.0, 4: 0.0, 5: 0.0}, (1, 2)),
+    ("s(2)", {1: -160 * _D, 3: 90 * _D, 5: 0.0}, (2, 4)),
+    ("s(26)", {2: 95 * _D, 3: 0.0, 4: -119 * _D}, (1, 5)),
+)
+
+
+def probes(ctx) -> list[Probe]:
+    """A1, A2, A6 and random points of s(1), s(2), s(26) (free joints uniform in Table I), cached."""
+    key = ("appendix_e.probes", ctx.quick)
+    if key not in ctx.cache:
+        out = [_probe(n, d["q0"], d["free"]) for n, d in PRINTED.items()]
+        rng = ctx.rng("appendix-e-formulas")
+        for name, fixed, free in _SETS:
+            for k in range(ctx.n(6, 2)):
+                q = rng.uniform(ARM.q_min[:5], ARM.q_max[:5])
+                for j, v in fixed.items():
+                    q[j - 1] = v
+                out.append(_probe(f"{name} #{k + 1}", q, free))
+        ctx.cache[key] = [p for p in out if p is not None]
+    return ctx.cache[key]
+
+
+def _domain(ps) -> str:
+    n = sum(1 for p in ps if not p.name.startswith("A"))
+    return (
+        f"A1, A2, A6 and {n} random points of s(1), s(2), s(26) (their free joints uniform over Table I; "
+        "the fixed joints at their singular values and limits)"
+    )
+
+
+def _formula_row(rid, key, claim, measures, numbers, printed, corrected, worst: Probe, domain) -> Row:
+    return Row.graded(
+        claim,
+        key,
+        _ROUTE,
+        numbers,
+        measures,
+        id=rid,
+        domain=domain,
+        erratum=Erratum(key, printed, corrected, f"at {worst.name}, q0 = {fmt_vec(worst.q0)} rad"),
+    )
+
+
+def _worst(ps, errs) -> Probe:
+    return ps[int(np.argmax(errs))]
+
+
+# ----------------------------------------------------------------------------- Eq 58
+def eq58_printed(lo, hi, lam):
+    """Eq 58: q = (qU + qL)/2 + (qU - qL)/2 sin(lambda) [rad]."""
+    return (hi + lo) / 2 + (hi - lo) / 2 * np.sin(lam)
+
+
+@SECTION.check(
+    47.5,
+    forms=Forms.right(
+        eq58_printed,
+        (
+            Slip(
+                SlipKind.SWAP,
+                "(qU - qL)/2 + (qU + qL)/2 sin(lambda): mid and half exchanged",
+                lambda lo, hi, lam: (hi - lo) / 2 + (hi + lo) / 2 * np.sin(lam),
+            ),
+            Slip(
+                SlipKind.FUNCTION,
+                "cos(lambda) for sin(lambda)",
+                lambda lo, hi, lam: (hi + lo) / 2 + (hi - lo) / 2 * np.cos(lam),
+            ),
+        ),
+        tolerance=epsilon(eq58_printed, 1e-9),
+    ),
+)
+def eq58_parameterisation(ctx, eq58):
+    """Eq 58: lambda in [-pi/2, pi/2] maps onto Table I; q_s = (qU - qL)/2 cos(lambda) is its derivative."""
+    lo, hi = ARM.q_min[:5], ARM.q_max[:5]
+    lam = np.concatenate([[-np.pi / 2, np.pi / 2], np.linspace(-np.pi / 2, np.pi / 2, ctx.n(201, 21))])
+    q = np.array([eq58(lo, hi, v) for v in lam])  # (m, 5)
+    ends = max(np.abs(q[0] - lo).max(), np.abs(q[1] - hi).max())
+    h = 1e-6
+    fd = np.array([(eq58(lo, hi, v + h) - eq58(lo, hi, v - h)) / (2 * h) for v in lam])
+    qs = (hi - lo) / 2 * np.cos(lam)[:, None]
+    inside = np.all((q >= lo - 1e-12) & (q <= hi + 1e-12))
+    m = (
+        Measure("max |q(-+pi/2) - Table I limits|", ends, 1e-12, "rad"),
+        Measure(
+            "max |dq/dlambda - (qU - qL)/2 cos(lambda)| (central differences)", np.abs(fd - qs).max(), 1e-8
+        ),
+        Measure("parameter values mapped outside Table I", 0 if inside else 1, 0),
+    )
+    return Row.graded(
+        "Eq 58: q_i(lambda_i) = (qU + qL)/2 + (qU - qL)/2 sin(lambda_i) reaches the joint limits at lambda = "
+        "-+pi/2 and stays within them; q_s = (qU - qL)/2 cos(lambda) (App. E).",
+        "Eq 58",
+        "the printed map on lambda over [-pi/2, pi/2] for joints 1-5 of Table I; its derivative by central "
+        "differences vs the q_s App. E uses",
+        f"max |q(-+pi/2) - limits| = {ends:.1e} rad; max |dq/dlambda - q_s| = {np.abs(fd - qs).max():.1e}",
+        m,
+        id="eq58",
+        domain=f"{len(lam)} values of lambda over [-pi/2, pi/2] (both ends exactly), joints 1-5",
+        erratum=Erratum(
+            "Eq 58", "q = (qU + qL)/2 + (qU - qL)/2 sin(lambda)", "-", f"ends off by {ends:.3g} rad"
+        ),
+    )
+
+
+# ----------------------------------------------------------------------------- Eq 59
+@SECTION.check(
+    47.6,
+    forms=Forms.right(
+        eq59_normal,
+        (
+            Slip(
+                SlipKind.MODEL,
+                "the null vector of G_q alone (q_s left out: the joint limits ignored)",
+                lambda Gq, qs: eq59_normal(Gq, np.ones(5)),
+            ),
+            Slip(
+                SlipKind.BRANCH,
+                "the first left singular vector (the largest) for the null one",
+                lambda Gq, qs: np.linalg.svd(Gq * qs[None, :])[0][:, 0],
+            ),
+        ),
+        tolerance=epsilon(eq59_normal, 1e-6),
+    ),
+)
+def eq59_null(ctx, eq59):
+    """Eq 59: N0 = null[G_q q_s]^T is the unit normal of the singular surface."""
+    ps = probes(ctx)
+    errs = np.array(
+        [
+            min(np.abs(n - p.N0).max(), np.abs(n + p.N0).max())
+            for p in ps
+            for n in [np.asarray(eq59(p.Gq, p.qs), float)]
+        ]
+    )
+    m = (Measure("max |N0 of Eq 59 - surface normal| (up to sign)", errs.max(), 1e-6),)
+    return _formula_row(
+        "eq59",
+        "Eq 59",
+        "Eq 59: N0 = null[G_q q_s]^T is the normal of the singular surface at the point.",
+        m,
+        f"max |Eq 59 - normal from the surface's tangents| = {errs.max():.1e} over {len(ps)} points",
+        "N0 = null[G_q q_s]^T",
+        "-",
+        _worst(ps, errs),
+        _domain(ps),
+    )
+
+
+# ----------------------------------------------------------------------------- Eq 61
+def _h_no_second(N0, Hq, Gq, qs, qss):
+    return eq61_h_star(N0, Hq, Gq, qs, np.zeros_like(qss))
+
+
+def _h_minus_second(N0, Hq, Gq, qs, qss):
+    return eq61_h_star(N0, Hq, Gq, qs, -qss)
+
+
+@SECTION.check(
+    47.7,
+    forms=Forms.right(
+        eq61_h_star,
+        (
+            Slip(SlipKind.TERM, "without the sum of d(N0.G)/dq_i [q_i]_ss", _h_no_second),
+            Slip(SlipKind.SIGN, "minus the sum of d(N0.G)/dq_i [q_i]_ss", _h_minus_second),
+        ),
+        tolerance=epsilon(eq61_h_star, 1e-6),
+    ),
+)
+def eq61_h(ctx, eq61):
+    """Eq 61: H* is the Hessian in s of the normal component N0.G(q(s))."""
+    ps = probes(ctx)
+    errs = np.array(
+        [
+            np.abs(np.asarray(eq61(p.N0, p.Hq, p.Gq, p.qs, p.qss)) - p.meaning("h_star")).max() * 1e3
+            for p in ps
+        ]
+    )
+    m = (Measure("max |H* of Eq 61 - Hessian of N0.G(q(s))|", errs.max(), TOL, "mm"),)
+    return _formula_row(
+        "eq61",
+        "Eq 61",
+        "Eq 61: H* = q_s^T [N0 G]_qq q_s + sum_i d(N0 G)/dq_i [q_i]_ss is the second derivative "
+        "in s of the normal component N0.G(q(s)) (a_n = s'^T H* s', Eq 60).",
+        m,
+        f"max difference {errs.max():.2g} mm over {len(ps)} points",
+        "H* = ...",
+        "-",
+        _worst(ps, errs),
+        _domain(ps),
+    )
+
+
+# ----------------------------------------------------------------------------- Eq 63
+def _b_transposed(f_u, rows):
+    E = np.zeros((2, 3))
+    E[0, rows[0]] = E[1, rows[1]] = 1.0
+    return np.linalg.inv(E @ f_u).T @ E
+
+
+@SECTION.check(
+    47.8,
+    forms=Forms.right(
+        eq63_b,
+        (
+            Slip(SlipKind.TRANSPOSE, "[E f_u]^-T E (the inverse transposed)", _b_transposed),
+            Slip(SlipKind.SIGN, "-[E f_u]^-1 E", lambda f_u, rows: -eq63_b(f_u, rows)),
+        ),
+        tolerance=epsilon(eq63_b, 1e-6),
+    ),
+)
+def eq63_generalised_inverse(ctx, eq63):
+    """Eq 63: B G_q q_s is the rate du*/ds at which the surface point follows the tool (E f(u*) = E G)."""
+    ps = probes(ctx)
+    errs = np.array(
+        [
+            np.abs(
+                np.asarray(eq63(p.f_u, p.rows)) @ (p.Gq * p.qs[None, :]) - p.meaning("du_ds", p.rows)
+            ).max()
+            for p in ps
+        ]
+    )
+    m = (Measure("max |B G_q q_s - du*/ds|", errs.max(), 1e-6),)
+    return _formula_row(
+        "eq63",
+        "Eq 63",
+        "Eq 63: B = [E f_u]^-1 E (E two independent rows of f_u) maps the tool's motion to the "
+        "surface's parameters: B G_q q_s = du*/ds.",
+        m,
+        f"max difference {errs.max():.2g} over {len(ps)} points (E the best-conditioned row pair)",
+        "B = [E f_u]^-1 E",
+        "-",
+        _worst(ps, errs),
+        _domain(ps),
+    )
+
+
+# ----------------------------------------------------------------------------- Eq 62, 64, 65
+def _q_plus(H, B, Gq, qs, Nf_uu):
+    return 2 * H - eq65_q_star(H, B, Gq, qs, Nf_uu)
+
+
+@SECTION.check(
+    47.9,
+    forms=Forms.right(
+        eq65_q_star,
+        (
+            Slip(SlipKind.SIGN, "H* + q_s^T G_q^T B^T [N0 f]_uu B G_q q_s", _q_plus),
+            Slip(SlipKind.TERM, "Q* = H* (the curvature term of Eq 62 left out)", lambda H, B, Gq, qs, Nf: H),
+        ),
+        tolerance=epsilon(eq65_q_star, 1e-6),
+    ),
+)
+def eq65_q(ctx, eq65):
+    """Eq 62, 64, 65: Q* = H* - q_s^T G_q^T B^T [N0 f]_uu B G_q q_s is the Hessian in s of the tool's normal
+    distance from the surface (eta = s'^T Q* s')."""
+    ps = probes(ctx)
+    errs = []
+    for p in ps:
+        H = eq61_h_star(p.N0, p.Hq, p.Gq, p.qs, p.qss)
+        B = eq63_b(p.f_u, p.rows)
+        errs.append(
+            np.abs(np.asarray(eq65(H, B, p.Gq, p.qs, p.nf_uu())) - p.meaning("q_star", p.rows)).max() * 1e3
+        )
+    errs = np.array(errs)
+    m = (Measure("max |Q* of Eq 65 - Hessian of the normal distance|", errs.max(), TOL, "mm"),)
+    return _formula_row(
+        "eq65",
+        "Eq 62-65",
+        "Eq 62-65: Q* = H* - q_s^T G_q^T B^T [N0 f]_uu B G_q q_s is the second derivative in s "
+        "of the tool's normal distance from the singular surface (the normal acceleration eta = s'^T Q* s', "
+        "Eq 57).",
+        m,
+        f"max difference {errs.max():.2g} mm over {len(ps)} points",
+        "Q* = ...",
+        "-",
+        _worst(ps, errs),
+        _domain(ps),
+    )
+
+
+# ----------------------------------------------------------------------------- Eq 66-67
+def eq66_67_printed(N0, Gq, q0):
+    """Eq 66-67: ``{joint: sigma}`` = N0 . G_qi dq_i with dq_i = +1 at a lower limit, -1 at an upper one."""
+    return {j: float(N0 @ Gq[:, j - 1] * dq) for j, dq in eq67_dq(q0, ARM).items()}
+
+
+def _sigma_inverted(N0, Gq, q0):
+    return {j: -v for j, v in eq66_67_printed(N0, Gq, q0).items()}
+
+
+def _sigma_next_joint(N0, Gq, q0):
+    return {j: float(N0 @ Gq[:, j % 5] * dq) for j, dq in eq67_dq(q0, ARM).items()}
+
+
+@SECTION.check(
+    48.0,
+    forms=Forms.right(
+        eq66_67_printed,
+        (
+            Slip(SlipKind.LIMIT, "dq = -1 at a lower limit, +1 at an upper one", _sigma_inverted),
+            Slip(SlipKind.OFF_BY_ONE, "G_q of the next joint", _sigma_next_joint),
+        ),
+    ),
+)
+def eq66_67_sigma(ctx, eq66):
+    """Eq 66-67: sigma = N0 G_qi dq_i is the first-order normal motion of the tool when joint i leaves its
+    limit into the range."""
+    ps = [p for p in probes(ctx) if eq67_dq(p.q0, ARM)]
+    errs = []
+    for p in ps:
+        got = eq66(p.N0, p.Gq, p.q0)
+        for j, dq in eq67_dq(p.q0, ARM).items():
+            inward = p.q0[j - 1] + 1e-3 * dq
+            into = ARM.q_min[j - 1] <= inward <= ARM.q_max[j - 1]
+            truth = p.meaning("sigma", j, dq if into else -dq)
+            errs.append(abs(got.get(j, np.inf) - truth) * 1e3)
+    errs = np.array(errs)
+    m = (Measure("max |sigma of Eq 66-67 - normal motion into the range|", errs.max(), TOL, "mm"),)
+    return Row.graded(
+        "Eq 66-67: sigma = N0 G_qi dq_i, dq_i = +1 at a lower limit and -1 at an upper one, is the "
+        "first-order motion of the tool along N0 when joint i leaves its limit (into Table I).",
+        "Eq 66-67",
+        _ROUTE + " with a joint at a limit",
+        f"max difference {errs.max():.2g} mm over {len(errs)} joints at limits at {len(ps)} points",
+        m,
+        id="eq66_67",
+        domain=_domain(ps) + "; only the points with a joint on a limit (A2, A6, s(2), s(26))",
+        erratum=Erratum("Eq 66-67", "sigma = N0 G_qi dq_i", "-", f"max difference {errs.max():.3g} mm"),
+    )
+
+
+# ----------------------------------------------------------------------------- Eq 68
+def _sigma_zero_points(ctx) -> list[Probe]:
+    """Points of s(24)-s(27) (theta2 and theta4 at limits, theta3 = 0, free theta1, theta5) where Eq 66
+    vanishes for one of the joints at a limit: theta5 = 0 (sigma_4 = 0) and the roots of sigma_2(theta5), at
+    random theta1 (cached)."""
+    key = ("appendix_e.sigma_zero", ctx.quick)
+    if key in ctx.cache:
+        return ctx.cache[key]
+    rng = ctx.rng("eq68-points")
+    out = []
+    sets = [(t2, t4) for t2 in (ARM.q_min[1], ARM.q_max[1]) for t4 in (ARM.q_min[3], ARM.q_max[3])]
+    for t2, t4 in sets[: ctx.n(4, 2)]:
+        t1 = rng.uniform(ARM.q_min[0], ARM.q_max[0])
+
+        def q_at(t5, t2=t2, t4=t4, t1=t1):
+            return np.array([t1, t2, 0.0, t4, t5])
+
+        out.append(("sigma_4", q_at(0.0)))
+        grid = np.linspace(ARM.q_min[4] + 1e-3, ARM.q_max[4] - 1e-3, 241)
+
+        def s2(t5):
+            q = q_at(t5)
+            e = np.zeros(5)
+            e[4] = 1e-6
+            f5 = (tool_point(q + e) - tool_point(q - e)) / 2e-6
+            e1 = np.zeros(5)
+            e1[0] = 1e-6
+            f1 = (tool_point(q + e1) - tool_point(q - e1)) / 2e-6
+            e2 = np.zeros(5)
+            e2[1] = 1e-6
+            g2 = (tool_point(q + e2) - tool_point(q - e2)) / 2e-6
+            return float(np.cross(f1, f5) @ g2)  # unnormalised normal: continuous in theta5
+
+        vals = _s2_grid(q_at, grid)
+        for k in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
+            a, b = grid[k], grid[k + 1]
+            for _ in range(50):
+                c = 0.5 * (a + b)
+                a, b = (c, b) if np.sign(s2(c)) == np.sign(s2(a)) else (a, c)
+            out.append(("sigma_2", q_at(0.5 * (a + b))))
+    res = []
+    for which, q in out:
+        p = _probe(f"s(24-27) {which} = 0 at {fmt_vec(np.degrees(q), 1)} deg", q, (1, 5))
+        j = int(which[-1])
+        # a sign change of the unnormalised normal through zero (tangents parallel) is not a root of sigma
+        if p is not None and abs(p.sp.sigma(j, 1.0)) < 1e-7:
+            res.append((j, p))
+    ctx.cache[key] = res
+    return res
+
+
+def _s2_grid(q_at, grid) -> np.ndarray:
+    """The unnormalised normal (f_theta1 x f_theta5) dotted with G_q2 on a theta5 grid, vectorised."""
+    q = np.array([q_at(t) for t in grid])
+
+    def d(j):
+        e = np.zeros(5)
+        e[j] = 1e-6
+        return (tool_point(q + e) - tool_point(q - e)) / 2e-6
+
+    return np.einsum("ni,ni->n", np.cross(d(0), d(4)), d(1))
+
+
+def eq68_printed(g, B, Nf_uu, NG_ii):
+    return eq68_kbar(g, B, Nf_uu, NG_ii)
+
+
+def _kbar_swapped(g, B, Nf_uu, NG_ii):
+    return -eq68_kbar(g, B, Nf_uu, NG_ii)
+
+
+def _kbar_no_b(g, B, Nf_uu, NG_ii):
+    return float(-NG_ii)
+
+
+def _kbar_at(p: Probe, j: int, form) -> float:
+    NG_qq = np.einsum("k,kij->ij", p.N0, p.Hq)
+    return float(form(p.Gq[:, j - 1], eq63_b(p.f_u, p.rows), p.nf_uu(), NG_qq[j - 1, j - 1]))
+
+
+@SECTION.check(
+    48.1,
+    forms=Forms.right(
+        eq68_printed,
+        (
+            Slip(SlipKind.SIGN, "the two terms of Eq 68 exchanged", _kbar_swapped),
+            Slip(SlipKind.TERM, "without the G_qi^T B^T [N0 G]_uu B G_qi term", _kbar_no_b),
+        ),
+        tolerance=epsilon(eq68_printed, 1e-6),
+    ),
+)
+def eq68_kbar_value(ctx, eq68):
+    """Eq 68 evaluated where the text applies it (Eq 66 = 0): K-bar is minus the second derivative of the
+    tool's normal distance from the surface as joint i alone leaves its limit."""
+    pts = _sigma_zero_points(ctx)
+    errs = np.array([abs(_kbar_at(p, j, eq68) - p.meaning("kbar", j, p.rows)) * 1e3 for j, p in pts])
+    vals = [f"{_kbar_at(p, j, eq68_printed) * 1e3:.1f}" for j, p in pts]
+    m = (Measure("max |K-bar of Eq 68 - (-d2 phi/dq_i^2)|", errs.max(), TOL, "mm"),)
+    return Row.graded(
+        "Eq 68: K-bar = G_qi^T B^T [N0 G]_uu B G_qi - [N0 G]_qiqi, the difference in normal curvature, is "
+        "minus "
+        "the second derivative of the tool's normal distance from the surface along joint i (where Eq 66 = "
+        "0).",
+        "Eq 68",
+        "Eq 68 as printed (Pinocchio) vs the second derivative of the normal distance phi along joint i "
+        "alone (verification.oracles.normal_distance), at the points where sigma_i = 0",
+        f"{len(pts)} points, K-bar = {', '.join(vals)} mm; max difference {errs.max():.2g} mm",
+        m,
+        id="eq68",
+        domain=f"{len(pts)} points of s(24)-s(27) (theta2, theta4 at limits, theta3 = 0) where sigma_4 = 0 "
+        "(theta5 = 0) or sigma_2 = 0 (roots in theta5), theta1 random in Table I",
+        erratum=Erratum("Eq 68", "K-bar = ...", "-", f"max difference {errs.max():.3g} mm"),
+    )
+
+
+def rule_printed(kbar: float) -> float:
+    """The printed rule: K-bar > 0 -> motion along +N0 (+1), K-bar < 0 -> along -N0 (-1)."""
+    return float(np.sign(kbar))
+
+
+def rule_corrected(kbar: float) -> float:
+    """K-bar > 0 -> the tool moves to the -N0 side (phi ~ -K t^2 / 2)."""
+    return float(-np.sign(kbar))
+
+
+_STEP = 1e-2  # [rad]: how far joint i leaves its limit to see which side the tool moves to
+
+
+def _side(p: Probe, j: int, sign_n0: float = 1.0, rows=None) -> float:
+    dq = eq67_dq(p.q0, ARM).get(j, 1.0)
+    return float(np.sign(sign_n0 * p.meaning("offset", j, _STEP * dq, rows)))
+
+
+def rule_reading(pts, rule):
+    """Second reading of the K-bar rule: the side predicted by ``rule`` vs the measured one under the nearby
+    readings of its inputs (N0 the other way, the joint moved out of its range, the
+    other row pair of Eq 63)."""
+    stated = {"n0": 1.0, "out": 1.0, "alt_rows": False}
+
+    def misfit(x) -> float:
+        wrong = 0
+        for j, p in pts:
+            rows = [r for r in ((0, 1), (0, 2), (1, 2)) if r != p.rows][0] if x["alt_rows"] else p.rows
+            k = _kbar_at(p, j, eq68_printed) * x["n0"]
+            dq = eq67_dq(p.q0, ARM).get(j, 1.0) * x["out"]
+            wrong += rule(k) != float(np.sign(x["n0"] * p.meaning("offset", j, _STEP * dq, rows)))
+        return float(wrong)
+
+    readings = [
+        Reading(Kind.SIGN, "N0 the other way", {"n0": -1.0}),
+        Reading(Kind.LIMIT, "the joint moved out of its range (dq of the other limit)", {"out": -1.0}),
+        Reading(Kind.CONVENTION, "Eq 63's other row pair", {"alt_rows": True}),
+    ]
+    return search(
+        stated,
+        readings,
+        misfit,
+        0.0,
+        printed="'If K-bar > 0 the singular surface admits motion in the "
+        "direction of N0; if K-bar < 0 in the opposite direction'",
+        stated_text="K-bar of Eq 68, N0 of Eq 59, dq of Eq 67",
+        route="the sign of the tool's normal distance after the joint leaves its "
+        f"limit by {_STEP:g} rad (verification.oracles.normal_distance)",
+        measure="points where the predicted side is wrong",
+    )
+
+
+@SECTION.check(
+    48.2,
+    forms=Forms(
+        rule_printed,
+        rule_corrected,
+        "K-bar > 0 -> the -N0 side (K-bar is minus the normal distance's curvature)",
+        slips=(
+            Slip(SlipKind.SIGN, "K-bar > 0 -> the +N0 side (as printed)", rule_printed),
+            Slip(SlipKind.CLAIM, "always the +N0 side", lambda k: 1.0),
+        ),
+    ),
+)
+def eq68_rule(ctx, rule):
+    """Eq 68's rule: where sigma = 0, K-bar > 0 means the surface admits motion along +N0."""
+    pts = _sigma_zero_points(ctx)
+    pred = np.array([rule(_kbar_at(p, j, eq68_printed)) for j, p in pts])
+    seen = np.array([_side(p, j) for j, p in pts])
+    wrong = int(np.sum(pred != seen))
+    m = (Measure("points where the rule predicts the wrong side", wrong, 0),)
+    detail = "; ".join(
+        f"K-bar_{j} = {_kbar_at(p, j, eq68_printed) * 1e3:.0f} mm -> {'+' if seen[k] > 0 else '-'}N0"
+        for k, (j, p) in enumerate(pts)
+    )
+    row = Row.graded(
+        "Eq 68: 'If K-bar > 0 the singular surface admits motion in the direction of N0. If K-bar < 0 the "
+        "singular surface admits motion in the opposite direction of N0.'",
+        "Eq 68",
+        "at the points where sigma_i = 0 (row eq68): the side the rule predicts from K-bar's sign vs the "
+        "side "
+        f"of the surface the tool goes to when joint i leaves its limit by {_STEP:g} rad (the sign of its "
+        "normal distance, verification.oracles.normal_distance)",
+        f"the rule is wrong at {wrong} of {len(pts)} points; measured: {detail}",
+        m,
+        id="eq68.rule",
+        domain=f"{len(pts)} points of s(24)-s(27) where sigma_4 = 0 or sigma_2 = 0",
+        erratum=Erratum(
+            "Eq 68 (sign rule)",
+            "K-bar > 0: motion in the direction of N0; K-bar < 0: opposite",
+            "K-bar > 0: motion opposite to N0 (the tool's normal distance is about -K-bar t^2 / 2), or K-bar "
+            "with its two terms exchanged",
+            detail,
+        ),
+    )
+    return row.reread(rule_reading(pts, rule)) if row.verdict is Verdict.ERRATUM else row
