@@ -3,16 +3,15 @@
 Each also derives from the matching built-in so generic handlers keep working:
 a malformed frame is a ``ValueError``, a missing reply a ``TimeoutError``.
 
-:class:`StopSignal` is the exception: SIGTERM or SIGHUP during a run is a
-``KeyboardInterrupt`` (like Ctrl-C), not an error, so that no ``except Exception``
-swallows it before the arm is halted.
+:class:`StopSignal` (defined in :mod:`iik.signals`, listed here with the layer's errors) is
+the exception: SIGTERM or SIGHUP during a run is a ``KeyboardInterrupt`` (like Ctrl-C),
+not an error, so that no ``except Exception`` swallows it before the arm is halted.
 """
 
 from __future__ import annotations
 
-import signal
-
 from iik.errors import IIKError
+from iik.signals import StopSignal
 
 __all__ = [
     "HardwareError",
@@ -149,14 +148,3 @@ class SimulatorError(HardwareError, RuntimeError):
         super().__init__(reason)
 
 
-class StopSignal(KeyboardInterrupt):
-    """SIGTERM or SIGHUP arrived during a run (:func:`hardware.signals.stop_on_signals`);
-    handled like Ctrl-C: HALT broadcast, fault and end records, log flushed.
-
-    Attributes:
-        signum: The signal number (``signal.SIGTERM``...).
-    """
-
-    def __init__(self, signum: int):
-        self.signum = int(signum)
-        super().__init__(f"stopped by {signal.Signals(self.signum).name}")

@@ -14,7 +14,7 @@ turned off. The run log (``OUT/<name>-<date>-<time>.jsonl``, never overwritten; 
 file ``out`` names) is analysed as in Sec 4.3 (:func:`hardware.analyse`), and the run
 is ``ok`` only if its end-effector error stays inside its safety zone.
 
-SIGTERM and SIGHUP stop a run like Ctrl-C (:mod:`hardware.signals`): HALT, fault and
+SIGTERM and SIGHUP stop a run like Ctrl-C (:mod:`iik.signals`): HALT, fault and
 end records, log on disk. Nothing here prints: notes and executed steps are reported
 through callbacks.
 """
@@ -30,13 +30,13 @@ from pathlib import Path
 
 from iik.errors import InvalidInputError
 from iik.planning.timing import EXECUTION_MARGIN
+from iik.signals import stop_on_signals
 
 from . import protocol as P
 from .analysis import SAFETY_ZONE_PREDEFINED, RunAnalysis, analyse, plot_run, summary_text
 from .driver import WATCHDOG_PERIOD, PowerCubeArm
 from .executor import EARLY_UPDATE, ExecutionOptions, RunResult, ValidationOptions, execute
 from .runlog import read_run_log
-from .signals import stop_on_signals
 from .sim import SimulatedArm, simulated_arm
 from .sources import DEMO_SPEED, StepTargets, csv_trajectory, demo_trajectory, scenario_trajectory
 
