@@ -20,20 +20,20 @@ from __future__ import annotations
 import contextlib
 import errno
 import io
-import os
-import shutil
 import signal
 import socket
-import tempfile
 import threading
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Protocol
 
 import numpy as np
 import viser
+
+from iik.errors import FileError
+from iik.files import atomic_output, check_output
 
 from ..errors import ExportError, PortInUseError, ViewRequestError
 from .environment import configure_server
@@ -243,26 +243,15 @@ def _frames(anim: Animation, fps: float) -> Sequence[int]:
     return keep
 
 
-def _prepare(directory: Path, force: bool) -> None:
-    if directory.exists() and not directory.is_dir():
-        raise ExportError(directory, "exists and is not a folder")
+@contextlib.contextmanager
+def _export_errors(directory: Path, force: bool) -> Iterator[None]:
+    """Refuse a non-empty folder without ``force``; :class:`iik.errors.FileError` as :class:`ExportError`."""
     if directory.is_dir() and any(directory.iterdir()) and not force:
         raise ExportError(directory, "folder is not empty (use --force to replace its contents)")
-
-
-def _install(tmp: Path, directory: Path) -> None:
-    """Move the finished ``tmp`` folder to ``directory`` (replacing it) without a half-written state."""
-    if directory.exists():
-        old = Path(tempfile.mkdtemp(prefix=".iik-view-old-", dir=directory.parent))
-        os.replace(directory, old / "x")
-        try:
-            os.replace(tmp, directory)
-        except OSError:
-            os.replace(old / "x", directory)
-            raise
-        shutil.rmtree(old, ignore_errors=True)
-    else:
-        os.replace(tmp, directory)
+    try:
+        yield
+    except FileError as exc:
+        raise ExportError(directory, exc.reason) from None
 
 
 def record(view: View, *, fps: float = 25.0) -> tuple[str, int]:
@@ -291,28 +280,22 @@ def record(view: View, *, fps: float = 25.0) -> tuple[str, int]:
 def export(view: View, directory: Path | str, *, force: bool = False, fps: float = 25.0) -> ExportResult:
     """Write ``directory/index.html``: the view and its animation, playable from disk offline.
 
+    The folder is written whole or not at all (:func:`iik.files.atomic_output`): an error or an
+    interrupt (Ctrl-C, SIGTERM, SIGHUP) leaves ``directory`` as it was.
+
     Raises:
         ExportError: ``directory`` is not empty (without ``force``), is a file, or cannot be written.
     """
     t_start = time.perf_counter()
-    directory = Path(directory)
-    _prepare(directory, force)
-    page, frames = record(view, fps=fps)
-    try:
-        directory.parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix=".iik-view-", dir=directory.parent))
-        mask = os.umask(0)
-        os.umask(mask)
-        tmp.chmod(0o777 & ~mask)  # mkdtemp makes it private; the export is an ordinary folder
-    except OSError as exc:
-        raise ExportError(directory, f"cannot write here ({exc.strerror or exc})") from None
-    try:
-        (tmp / EXPORT_FILE).write_text(page, encoding="utf-8")
-        _install(tmp, directory)
-    except OSError as exc:
-        raise ExportError(directory, f"cannot write the export ({exc.strerror or exc})") from None
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+    directory, owns = Path(directory), None if force else ()
+    with _export_errors(directory, force):
+        check_output(directory, "export", folder=True, owns=owns)  # before the work
+        with atomic_output(directory, "export", folder=True, owns=owns) as out:
+            page, frames = record(view, fps=fps)
+            try:
+                (out.path / EXPORT_FILE).write_text(page, encoding="utf-8")
+            except OSError as exc:
+                raise ExportError(directory, f"cannot write the export ({exc.strerror or exc})") from None
     size = sum(f.stat().st_size for f in directory.rglob("*") if f.is_file())
     return ExportResult(path=directory, size=size, frames=frames, seconds=time.perf_counter() - t_start)
 

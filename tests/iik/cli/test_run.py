@@ -1,7 +1,10 @@
 """``iik run`` end to end: on the in-process simulated arm, and as a process against ``iik sim-arm``."""
 
 import csv
+import json
 import signal
+import subprocess
+import sys
 import threading
 import time
 
@@ -13,6 +16,7 @@ import iik
 from hardware import protocol as P
 from hardware import read_run_log
 from iik.cli import main
+from iik.files import PARTIAL_PREFIX
 
 STEMS = ("joint_error", "ee_error", "velocity")
 ANGLE = "--margin-deg: must be a finite angle in [0, 90) deg, got "
@@ -106,7 +110,7 @@ def test_run_needs_one_source(tmp_path, capsys):
     (["run", "--demo", "--modules", "1", "1", "2", "3", "4", "5"], "--modules"),
     (["run", "--demo", "--update", "sideways"], "--update"),
     (["run", "--demo", "--bogus"], "--bogus"),
-    (["run", "--trajectory", "no/such/file.csv"], "--trajectory: no/such/file.csv: cannot read it"),
+    (["run", "--trajectory", "no/such/file.csv"], "--trajectory: cannot read no/such/file.csv: no such file"),
     (["run", "no-such-scenario"], "scenario"),
     (["run", "--demo", "--interface", "no-such-interface", "--channel", "x"], "no-such-interface"),
 ])
@@ -210,3 +214,38 @@ def test_two_sim_arms_on_one_channel_are_a_fault(udp_bus, tmp_path):
     assert line.startswith("iik run: error: DuplicateModuleError: module 1: two answers to GETPARAM VERSION")
     assert "not properly shut down" not in err and "Traceback" not in err
     assert not list(tmp_path.glob("*.jsonl"))
+
+
+def test_a_run_killed_outright_leaves_the_previous_log_and_keeps_its_records_aside(tmp_path, capsys):
+    """The run log is written beside its name and moved there when closed: SIGKILL (no cleanup
+    possible) mid-run leaves the earlier `--out r.jsonl` exactly as it was, and the killed run's
+    records, flushed line by line, in its `.partial-*-r.jsonl` sibling."""
+    q = np.linspace(0, 1, 12)[:, None] * np.array([0.2, 0.1, -0.1, 0.1, 0.3, 0.0])
+    path = tmp_path / "traj.csv"
+    with path.open("w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["t"] + [f"q{i}" for i in range(1, 7)])
+        for k, row in enumerate(q):
+            w.writerow([f"{0.3 * k:.3f}"] + [f"{v:.6f}" for v in row])
+    log = tmp_path / "r.jsonl"
+    argv = ["run", "--trajectory", str(path), "--sim-start", "plan", "--zone-mm", "30", "--out", str(log),
+            "--no-figures"]
+    assert main(argv) == 0
+    before = log.read_bytes()
+    proc = subprocess.Popen([sys.executable, "-m", "iik.cli", *argv], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        lines = []
+        while not any("step 2/" in x for x in lines):  # the log has records
+            line = proc.stderr.readline()
+            assert line, lines
+            lines.append(line)
+        proc.kill()
+        proc.wait(timeout=30)
+    finally:
+        proc.kill()
+    assert log.read_bytes() == before and read_run_log(log).status == "ok"
+    (partial,) = [p for p in tmp_path.iterdir() if p.name.startswith(PARTIAL_PREFIX)]
+    assert partial.name.endswith("-r.jsonl")
+    kinds = [json.loads(line)["type"] for line in partial.read_text().splitlines()]
+    assert kinds[0] == "header" and "command" in kinds and "end" not in kinds
