@@ -19,7 +19,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from .registry import Check, Context, Row, Verdict, registered_checks
+from .registry import Check, Context, Row, Verdict, selected_checks
 
 __all__ = ["SelfTestOutcome", "self_test_check", "run_self_test", "self_test"]
 
@@ -104,10 +104,7 @@ def self_test_check(check: Check, ctx: Context) -> SelfTestOutcome:
 
 def run_self_test(ctx: Context, *, select: Sequence[str] | None = None) -> list[SelfTestOutcome]:
     """Self-test every registered check (or those whose name or section contains a ``select`` item)."""
-    checks = registered_checks()
-    if select:
-        checks = [c for c in checks if any(s in c.name or s in c.section for s in select)]
-    return [self_test_check(c, ctx) for c in checks]
+    return [self_test_check(c, ctx) for c in selected_checks(select)]
 
 
 def self_test(ctx: Context | None = None, *, quick: bool = False, seed: int = 20120101,
