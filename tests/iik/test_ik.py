@@ -254,11 +254,11 @@ def test_batch_to_solve_and_bad_method():
         iik.solve(np.eye(4), method="magic")
 
 
-def test_pose_from_zxz_round_trip():
+def test_pose_from_euler_round_trip():
     q = np.array([0.3, -0.2, 0.5, 0.7, -0.4, 0.9])
     T = iik.fk(q)
-    a, b, g = iik.zxz_from_matrix(T[:3, :3])
-    T2 = iik.pose_from_zxz(T[:3, 3], a, b, g)
+    a, b, g = iik.euler_from_matrix(T[:3, :3])
+    T2 = iik.pose_from_euler(T[:3, 3], a, b, g)
     assert np.allclose(T, T2, atol=1e-12)
     assert contains(iik.solve(T2).q, q, T2, ARM)
 
