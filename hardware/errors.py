@@ -21,6 +21,7 @@ __all__ = [
     "ModuleFault",
     "ModuleHalted",
     "DuplicateModuleError",
+    "SecondControllerError",
     "BusError",
     "RunLogError",
     "SimulatorError",
@@ -125,6 +126,24 @@ class DuplicateModuleError(HardwareError):
         self.request = request
         super().__init__(f"module {module_id}: two answers to {request}: more than one module with id "
                          f"{module_id} is on the bus (give each module its own id)")
+
+
+class SecondControllerError(HardwareError):
+    """Another controller commands the modules on this bus: frames to the modules (a request or a
+    broadcast) that this host did not send, e.g. two ``iik run`` on one channel. Two controllers
+    on one arm is a fault: the run stops (HALT).
+
+    Attributes:
+        frame_id: The CAN identifier of the foreign frame.
+        request: What it was, e.g. ``"GETPARAM VERSION to module 3"``.
+    """
+
+    def __init__(self, frame_id: int, request: str):
+        self.frame_id = frame_id
+        self.request = request
+        super().__init__(f"two controllers on one bus: another host sent {request} (CAN id "
+                         f"0x{frame_id:03x}), which this host did not send; stop the other controller "
+                         "(another iik run on this channel?) and run again")
 
 
 class BusError(HardwareError, OSError):
