@@ -9,16 +9,19 @@ separate ``iik sim-arm``; ``--interface socketcan --channel can0 --bitrate 50000
 python-can interface) drives real modules, with their watchdog on (``--no-watchdog``).
 
 Writes a new run log ``OUT/<name>-<date>-<time>.jsonl`` (or the ``--out FILE.jsonl``) and
-three PNG figures, prints the end-effector error summary (Sec 4.3). Exit 0: the run went to
-the end inside its safety zone; 1: it went to the end but its error left the zone; 2: an
-error (nothing moved, or HALT after a fault); 128 + N: stopped by signal N (HALT sent).
-The work is :func:`hardware.runner.run`.
+three PNG figures, prints the end-effector error summary (Sec 4.3). The last line on stdout is
+the status, on every path: ``status: ok``, ``status: outside zone``, ``status: error before the
+run`` (nothing was executed), ``status: fault during the run`` (HALT sent, the log ends with
+it) or ``status: interrupted by SIGNAL``. Exit 0: the run went to the end inside its safety
+zone; 1: it went to the end but its error left the zone; 2: an error (nothing moved, or HALT
+after a fault); 128 + N: stopped by signal N (HALT sent). The work is :func:`hardware.runner.run`.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import signal
 import sys
 from pathlib import Path
 
@@ -50,8 +53,9 @@ def add_arguments(p) -> None:
     p.add_argument("--speed", type=float, default=1.0, help="run at this fraction (0, 1] of the "
                    "planned or written speed: every step lasts 1/SPEED as long (default 1)")
     p.add_argument("--margin-deg", type=float, default=None, help="margin inside Table I [deg] (default 0.5)")
-    p.add_argument("--zone-mm", type=float, default=None, help="largest end-effector error of an ok run "
-                   "[mm] (default: the scenario's safety zone; 10 mm, Sec 4.3.1, for a file or the demo)")
+    p.add_argument("--zone-mm", type=float, default=None, help="largest end-effector error of an ok run, "
+                   "(0, 1000] mm (default: the scenario's safety zone; 10 mm, Sec 4.3.1, for a file or the "
+                   "demo)")
     p.add_argument("--lag", type=float, default=0.02, help="simulated tracking lag [0, 1] s")
     p.add_argument("--sim-start", choices=("home", "plan"), default="home",
                    help="simulated arm starts at q = 0 (home) or at the trajectory start")
@@ -66,13 +70,28 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
-    from hardware.runner import RunRequest
+    try:
+        report = _run(args)
+    except BaseException as exc:  # the status line on stdout on every path; the error follows on stderr
+        print(_status(exc), flush=True)
+        raise
+    print(report.summary())
+    return 0 if report.ok else 1
+
+
+def _run(args):
+    """The :class:`hardware.runner.RunReport` of the command line's request."""
+    from hardware.runner import MAX_ZONE, RunRequest
     from hardware.runner import run as run_request
+    from iik.errors import InvalidInputError
 
     given = {}  # the library's defaults unless typed
     if args.margin_deg is not None:
         given["margin"] = math.radians(args.margin_deg)
-    if args.zone_mm is not None:
+    if args.zone_mm is not None:  # checked in the unit typed
+        if not (math.isfinite(args.zone_mm) and 0 < args.zone_mm <= MAX_ZONE * 1e3):
+            raise InvalidInputError("--zone-mm", f"must be a finite number in (0, {MAX_ZONE * 1e3:g}] mm, "
+                                                 f"got {args.zone_mm:g} mm")
         given["zone"] = args.zone_mm / 1e3
     request = RunRequest(
         scenario=args.scenario, trajectory=args.trajectory, demo=args.demo, interface=args.interface,
@@ -91,9 +110,18 @@ def run(args) -> int:
             print(line, file=sys.stderr, flush=True)
 
     try:
-        report = run_request(request, notify=lambda text: print(text, file=sys.stderr), progress=progress)
+        return run_request(request, notify=lambda text: print(text, file=sys.stderr), progress=progress)
     finally:
         if tty and shown:
             print(file=sys.stderr)
-    print(report.summary())
-    return 0 if report.ok else 1
+
+
+def _status(exc: BaseException) -> str:
+    """The last stdout line of a run that raised (the run's ``run_log`` is set once it started)."""
+    log = getattr(exc, "run_log", None)
+    during = f"HALT sent; run log {log}" if log is not None else "nothing was executed"
+    if isinstance(exc, KeyboardInterrupt):
+        name = signal.Signals(getattr(exc, "signum", signal.SIGINT)).name
+        return f"status: interrupted by {name} ({during})"
+    when = "fault during" if log is not None else "error before"
+    return f"status: {when} the run ({type(exc).__name__}; {during})"

@@ -139,12 +139,21 @@ class ExportResult:
 
 
 def _check_port(host: str, port: int) -> None:
+    """Bind ``host:port`` once: a host that is no address of this machine is a bad ``host``
+    (:class:`ViewRequestError`), a taken or forbidden port a :class:`PortInUseError`."""
     family = socket.AF_INET6 if ":" in host else socket.AF_INET
     with socket.socket(family, socket.SOCK_STREAM) as s:
         s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         try:
             s.bind((host, port))
+        except socket.gaierror as exc:  # not an address nor a name that resolves (999.1.1.1)
+            raise ViewRequestError("host", f"bad host {host!r}: not an address or host name "
+                                           f"({exc.strerror}); e.g. 127.0.0.1 (this machine only), 0.0.0.0 "
+                                           "(every interface)") from None
         except OSError as exc:
+            if exc.errno == errno.EADDRNOTAVAIL:  # a valid address of another machine (8.8.8.8)
+                raise ViewRequestError("host", f"bad host {host!r}: not an address of this machine "
+                                               f"({exc.strerror}); e.g. 127.0.0.1, 0.0.0.0") from None
             detail = "address in use" if exc.errno == errno.EADDRINUSE else exc.strerror or str(exc)
             raise PortInUseError(host, port, detail) from None
 
@@ -153,6 +162,7 @@ def open_server(host: str, port: int) -> viser.ViserServer:
     """A quiet :class:`viser.ViserServer` on exactly ``host:port`` (0: any free port).
 
     Raises:
+        ViewRequestError: ``host`` is not an address of this machine; ``port`` is no TCP port.
         PortInUseError: the port is taken (viser itself would silently move to the next one).
     """
     if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:

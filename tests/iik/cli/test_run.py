@@ -106,7 +106,8 @@ def test_run_needs_one_source(tmp_path, capsys):
     (["run", "--demo", "--timeout", "0"], "--timeout: must be a finite number in (0, 10] s, got 0.0"),
     (["run", "--demo", "--bitrate", "-5"], "--bitrate: must be a PowerCube bit rate"),
     (["run", "--demo", "--port", "0"], "--port"),
-    (["run", "--demo", "--zone-mm", "0"], "--zone-mm"),
+    (["run", "--demo", "--zone-mm", "0"], "--zone-mm: must be a finite number in (0, 1000] mm, got 0 mm"),
+    (["run", "--demo", "--zone-mm", "-5"], "--zone-mm: must be a finite number in (0, 1000] mm, got -5 mm"),
     (["run", "--demo", "--modules", "1", "1", "2", "3", "4", "5"], "--modules"),
     (["run", "--demo", "--update", "sideways"], "--update"),
     (["run", "--demo", "--bogus"], "--bogus"),
@@ -118,10 +119,15 @@ def test_run_bad_input_is_one_line_and_exit_2(argv, named, tmp_path, capfd):
     """Hostile options end in one stderr line naming the option as typed, exit 2, nothing on disk,
     no internal warning."""
     assert main([*argv, "--out", str(tmp_path / "out")]) == 2
-    err = capfd.readouterr().err.strip().splitlines()
+    out, err = capfd.readouterr()
+    err = err.strip().splitlines()
     # planning/validation notes may come first; the error is the one line after them
     errors = [line for line in err if "error" in line]
     assert len(errors) == 1 and errors[0].startswith("iik run: error: ") and named in errors[0], err
+    if not errors[0].startswith(("iik run: error: argument", "iik run: error: unrecognized")):
+        # a command line that parses is a run: its status line comes last on stdout
+        assert out.strip().splitlines()[-1].startswith("status: error before the run (") and \
+            out.strip().endswith("; nothing was executed)"), out
     assert "Traceback" not in "\n".join(err) and "Warning" not in "\n".join(err)
     assert not list((tmp_path / "out").glob("*.jsonl")) if (tmp_path / "out").exists() else True
 
@@ -177,6 +183,7 @@ def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_pa
         run.send_signal(signum)
         rc = run.wait(timeout=30)
         err = lines + run.stderr.read().splitlines()
+        out = run.stdout.read().strip().splitlines()
     finally:
         listener.close()
     name = signal.Signals(signum).name
@@ -184,6 +191,7 @@ def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_pa
     assert err[-1].startswith(f"iik run: interrupted by {name}; HALT broadcast to every module; the run log "
                               f"{log} ends with the fault; the modules stay halted until reset: run again "
                               "with --reset"), err
+    assert out[-1] == f"status: interrupted by {name} (HALT sent; run log {log})", out
     assert listener.halts, "no HALT broadcast seen on the bus"
     assert "not properly shut down" not in "\n".join(err) and "Traceback" not in "\n".join(err)
     records = read_run_log(log).records

@@ -77,6 +77,15 @@ def test_port_in_use(capsys):
     _one_error(err, "PortInUseError", f"port {port}")
 
 
+@pytest.mark.parametrize(("host", "why"), [("999.1.1.1", "not an address or host name"),
+                                           ("192.0.2.1", "not an address of this machine")])
+def test_a_bad_host_is_a_bad_host_not_a_port_in_use(capsys, host, why):
+    code, _, err = _run(capsys, "--q", "0", "0", "0", "0", "0", "0", "--host", host, "--port", "8123")
+    assert code == 2
+    _one_error(err, "ViewRequestError", f"--host: bad host '{host}': {why}")
+    assert "port" not in err
+
+
 def test_export_into_a_non_empty_folder(capsys, tmp_path):
     (tmp_path / "x.txt").write_text("keep")
     code, _, err = _run(capsys, "--q", "0", "0", "0", "0", "0", "0", "--export", str(tmp_path))
