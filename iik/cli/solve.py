@@ -46,7 +46,7 @@ def run(args) -> int:
                                                            iik.THESIS_ARM)
     with np.errstate(all="ignore"):  # absurd inputs (--xyz 1e308) are unreachable, not warnings
         T = iik.pose_from_euler(np.array(args.xyz), *conv_in(args.zyz))
-        with iik.ik.compile_notice():  # one line on stderr if the kernel compiles (> 1 s)
+        with iik.ik.compile_notice():  # one line on stderr if the kernel compiles (not when it loads)
             res = iik.solve(T, method=args.method, within_limits=not args.all)
         efforts = iik.effort_index(prev, res.q) if (prev is not None and res.count) else None
     best = None
