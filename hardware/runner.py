@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import signal
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from datetime import datetime
@@ -40,7 +41,8 @@ from .runlog import read_run_log
 from .sim import SimulatedArm, simulated_arm
 from .sources import DEMO_SPEED, StepTargets, csv_trajectory, demo_trajectory, scenario_trajectory
 
-__all__ = ["RunRequest", "RunReport", "run", "SIM_TIMEOUT", "BUS_TIMEOUT", "MAX_TIMEOUT", "MAX_ZONE"]
+__all__ = ["RunRequest", "RunReport", "run", "failure_status", "SIM_TIMEOUT", "BUS_TIMEOUT", "MAX_TIMEOUT",
+           "MAX_ZONE"]
 
 #: ACK timeout [s] for the in-process simulation: generous, since its threads share one interpreter
 #: (and a loaded machine) with the host; it never goes silent unless a fault is injected.
@@ -389,3 +391,17 @@ def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
     analysis = analyse(read_run_log(result.log_path))
     figures = tuple(plot_run(analysis, log_path.parent, log_path.stem)) if request.figures else ()
     return RunReport(request, targets, result, analysis, zone, rests.between_steps(), figures)
+
+
+def failure_status(exc: BaseException) -> str:
+    """The status line of a run that raised instead of returning a :class:`RunReport` (whose
+    :meth:`~RunReport.summary` ends with the status otherwise): ``error before the run``,
+    ``fault during the run`` (``exc.run_log`` set: HALT sent, the log ends with the fault) or
+    ``interrupted by SIGNAL``."""
+    log = getattr(exc, "run_log", None)
+    during = f"HALT sent; run log {log}" if log is not None else "nothing was executed"
+    if isinstance(exc, KeyboardInterrupt):
+        name = signal.Signals(getattr(exc, "signum", signal.SIGINT)).name
+        return f"status: interrupted by {name} ({during})"
+    when = "fault during" if log is not None else "error before"
+    return f"status: {when} the run ({type(exc).__name__}; {during})"

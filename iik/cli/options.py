@@ -6,7 +6,7 @@ import argparse
 import math
 import sys
 
-__all__ = ["add_pose_arguments", "warn_degrees", "warn_millimetres", "joint_angles"]
+__all__ = ["add_pose_arguments", "warn_degrees", "warn_millimetres", "joint_angles", "millimetres"]
 
 #: The Euler angles option and its deprecated alias (the thesis calls Eq 42 "Z-X-Z"; it is Z-Y-Z).
 EULER, EULER_DEPRECATED = "--zyz", "--zxz"
@@ -78,3 +78,14 @@ def joint_angles(values, flag: str, deg: bool, arm):
             raise InvalidInputError(flag, f"q{j + 1} = {values[j]:g} {unit} is outside the joint limits "
                                           f"[{show(lo):.4g}, {show(hi):.4g}] {unit} (Table I)")
     return q
+
+
+def millimetres(value: float, flag: str, largest: float) -> float:
+    """An option typed in mm as metres, if a finite number in (0, ``largest`` [m]]; else an
+    InvalidInputError naming ``flag`` in the unit typed."""
+    from iik.errors import InvalidInputError
+
+    if not (math.isfinite(value) and 0 < value <= largest * 1e3):
+        raise InvalidInputError(flag, f"must be a finite number in (0, {largest * 1e3:g}] mm, "
+                                      f"got {value:g} mm")
+    return value / 1e3

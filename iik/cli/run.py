@@ -9,21 +9,21 @@ separate ``iik sim-arm``; ``--interface socketcan --channel can0 --bitrate 50000
 python-can interface) drives real modules, with their watchdog on (``--no-watchdog``).
 
 Writes a new run log ``OUT/<name>-<date>-<time>.jsonl`` (or the ``--out FILE.jsonl``) and
-three PNG figures, prints the end-effector error summary (Sec 4.3). The last line on stdout is
-the status, on every path: ``status: ok``, ``status: outside zone``, ``status: error before the
-run`` (nothing was executed), ``status: fault during the run`` (HALT sent, the log ends with
-it) or ``status: interrupted by SIGNAL``. Exit 0: the run went to the end inside its safety
-zone; 1: it went to the end but its error left the zone; 2: an error (nothing moved, or HALT
-after a fault); 128 + N: stopped by signal N (HALT sent). The work is :func:`hardware.runner.run`.
+three PNG figures, prints the end-effector error summary (Sec 4.3); its last stdout line is the
+status on every path (:func:`hardware.runner.failure_status` when the run raised). Exit 0: the
+run went to the end inside its safety zone; 1: it went to the end but its error left the zone;
+2: an error (nothing moved, or HALT after a fault); 128 + N: stopped by signal N (HALT sent).
+The work is :func:`hardware.runner.run`.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
-import signal
 import sys
 from pathlib import Path
+
+from .options import millimetres
 
 NAME = "run"
 HELP = "plan, validate and execute a trajectory on the (simulated by default) PowerCube arm"
@@ -35,8 +35,7 @@ def add_arguments(p) -> None:
     p.add_argument("--trajectory", type=Path, default=None, metavar="CSV",
                    help="joint trajectory file with columns t,q1..q6 [s, rad], e.g. iik plan's steps.csv")
     p.add_argument("--demo", action="store_true", help="a built-in straight-line demo trajectory")
-    p.add_argument("--interface", default=None,
-                   help="python-can interface (default: an in-process simulated arm)")
+    p.add_argument("--interface", default=None, help="python-can interface (default: simulated arm)")
     p.add_argument("--channel", default=None, help="bus channel (e.g. can0, 239.74.163.2)")
     p.add_argument("--bitrate", type=int, default=None,
                    help="bit rate [bit/s]: 125000, 250000, 500000 or 1000000")
@@ -53,9 +52,8 @@ def add_arguments(p) -> None:
     p.add_argument("--speed", type=float, default=1.0, help="run at this fraction (0, 1] of the "
                    "planned or written speed: every step lasts 1/SPEED as long (default 1)")
     p.add_argument("--margin-deg", type=float, default=None, help="margin inside Table I [deg] (default 0.5)")
-    p.add_argument("--zone-mm", type=float, default=None, help="largest end-effector error of an ok run, "
-                   "(0, 1000] mm (default: the scenario's safety zone; 10 mm, Sec 4.3.1, for a file or the "
-                   "demo)")
+    p.add_argument("--zone-mm", type=float, default=None, help="largest end-effector error of an ok run "
+                   "(0, 1000] mm (default: the scenario's safety zone; 10 mm, Sec 4.3.1, for a file or demo)")
     p.add_argument("--lag", type=float, default=0.02, help="simulated tracking lag [0, 1] s")
     p.add_argument("--sim-start", choices=("home", "plan"), default="home",
                    help="simulated arm starts at q = 0 (home) or at the trajectory start")
@@ -70,29 +68,25 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
+    from hardware.runner import failure_status
     try:
         report = _run(args)
     except BaseException as exc:  # the status line on stdout on every path; the error follows on stderr
-        print(_status(exc), flush=True)
+        print(failure_status(exc), flush=True)
         raise
     print(report.summary())
     return 0 if report.ok else 1
 
 
-def _run(args):
-    """The :class:`hardware.runner.RunReport` of the command line's request."""
+def _run(args):  # -> hardware.runner.RunReport
     from hardware.runner import MAX_ZONE, RunRequest
     from hardware.runner import run as run_request
-    from iik.errors import InvalidInputError
 
     given = {}  # the library's defaults unless typed
     if args.margin_deg is not None:
         given["margin"] = math.radians(args.margin_deg)
-    if args.zone_mm is not None:  # checked in the unit typed
-        if not (math.isfinite(args.zone_mm) and 0 < args.zone_mm <= MAX_ZONE * 1e3):
-            raise InvalidInputError("--zone-mm", f"must be a finite number in (0, {MAX_ZONE * 1e3:g}] mm, "
-                                                 f"got {args.zone_mm:g} mm")
-        given["zone"] = args.zone_mm / 1e3
+    if args.zone_mm is not None:
+        given["zone"] = millimetres(args.zone_mm, "--zone-mm", MAX_ZONE)
     request = RunRequest(
         scenario=args.scenario, trajectory=args.trajectory, demo=args.demo, interface=args.interface,
         channel=args.channel, bitrate=args.bitrate, port=args.port, modules=tuple(args.modules),
@@ -114,14 +108,3 @@ def _run(args):
     finally:
         if tty and shown:
             print(file=sys.stderr)
-
-
-def _status(exc: BaseException) -> str:
-    """The last stdout line of a run that raised (the run's ``run_log`` is set once it started)."""
-    log = getattr(exc, "run_log", None)
-    during = f"HALT sent; run log {log}" if log is not None else "nothing was executed"
-    if isinstance(exc, KeyboardInterrupt):
-        name = signal.Signals(getattr(exc, "signum", signal.SIGINT)).name
-        return f"status: interrupted by {name} ({during})"
-    when = "fault during" if log is not None else "error before"
-    return f"status: {when} the run ({type(exc).__name__}; {during})"
