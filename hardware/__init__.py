@@ -10,7 +10,6 @@ for planned scenarios.
 * :func:`analyse`: joint and end-effector errors of a run log (Sec 4.3, Figs 46-56).
 * :mod:`hardware.sources`: step targets from a scenario, a CSV file or the demo line.
 * :func:`run`: one run end to end (:class:`RunRequest` -> :class:`RunReport`), behind ``iik run``.
-* :mod:`hardware.signals`: SIGTERM and SIGHUP stop a run like Ctrl-C (HALT, complete log).
 * :mod:`hardware.errors`: every error of the layer, under :class:`iik.errors.IIKError`.
 """
 

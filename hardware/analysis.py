@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from iik.arm import THESIS_ARM, Arm
+from iik.files import atomic_output
 from iik.kinematics import fk
 from iik.planning.obstacles import SAFETY_ZONE
 
@@ -136,14 +137,14 @@ def summary_text(a: RunAnalysis, name: str = "run") -> str:
 
 
 def plot_run(a: RunAnalysis, out_dir, stem: str = "run") -> list[Path]:
-    """Write three PNG figures (joint errors, EE error, joint velocities); returns their paths."""
+    """Write three PNG figures (joint errors, EE error, joint velocities), each whole or not at
+    all (:func:`iik.files.atomic_output`); returns their paths."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
 
     def figure(name: str, draw, xlabel: str, ylabel: str, title: str, **legend) -> Path:
         fig, ax = plt.subplots(figsize=(7, 3.5))
@@ -151,11 +152,11 @@ def plot_run(a: RunAnalysis, out_dir, stem: str = "run") -> list[Path]:
         ax.set(xlabel=xlabel, ylabel=ylabel, title=title)
         ax.legend(**legend)
         ax.grid(alpha=0.3)
-        path = out / f"{stem}_{name}.png"
         fig.tight_layout()
-        fig.savefig(path, dpi=110)
+        with atomic_output(out / f"{stem}_{name}.png", "out", folder=False) as png:  # whole or not at all
+            fig.savefig(png.path, dpi=110, format="png")
         plt.close(fig)
-        return path
+        return png.target
 
     def joints(ax, x, y) -> None:
         for j in range(y.shape[1]):

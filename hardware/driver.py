@@ -22,7 +22,9 @@ Every request waits for its echoing ACK (:func:`hardware.protocol.is_echo`)
 until a timeout; every other frame read meanwhile is discarded (unsolicited
 state frames are remembered as faults), except a second echo of a request already
 answered: two modules share an id, a :class:`~hardware.errors.DuplicateModuleError`
-(:meth:`PowerCubeArm.open` also listens for such answers). HALT latches until RESET:
+(:meth:`PowerCubeArm.open` also listens for such answers), and a frame to the modules
+(a request or a broadcast) that this host did not send: another controller commands
+them, a :class:`~hardware.errors.SecondControllerError`. HALT latches until RESET:
 after :meth:`halt` the driver refuses motion commands locally until :meth:`reset`.
 
 Motion commands are checked before they are sent: finite; position targets inside
@@ -47,7 +49,15 @@ import numpy as np
 from iik.arm import THESIS_ARM, Arm
 
 from . import protocol as P
-from .errors import BusError, CANTimeoutError, DuplicateModuleError, ModuleHalted, ProtocolError, SafetyError
+from .errors import (
+    BusError,
+    CANTimeoutError,
+    DuplicateModuleError,
+    ModuleHalted,
+    ProtocolError,
+    SafetyError,
+    SecondControllerError,
+)
 
 __all__ = ["PowerCubeModule", "PowerCubeArm", "Link", "scan", "open_bus", "DEFAULT_TIMEOUT",
            "WATCHDOG_PERIOD", "DUPLICATE_WINDOW", "SPEED_TOLERANCE"]
@@ -91,7 +101,10 @@ class Link:
 
     Serialises requests (a lock), applies the echo rule, remembers unsolicited
     state frames in :attr:`faults` (module id -> :class:`~hardware.protocol.State`)
-    and counts CAN error frames in :attr:`error_frames`.
+    and counts CAN error frames in :attr:`error_frames`. It remembers the frames it sent
+    (and :meth:`own` periodic ones), so that a frame to the modules it did not send, which
+    only another controller can have sent, is told from its own on an interface that
+    loops them back.
     """
 
     def __init__(self, bus: can.BusABC, timeout: float = DEFAULT_TIMEOUT):
@@ -105,10 +118,20 @@ class Link:
         self.error_frames = 0  # CAN error frames seen (bus errors reported by the interface)
         self._lock = threading.RLock()
         self._answered: deque[tuple[float, P.Request]] = deque(maxlen=64)  # (when, request) answered
+        self._sent: dict[tuple[int, bytes], float] = {}  # (identifier, data) sent -> when (inf: periodic)
+
+    def own(self, frame: can.Message, when: float = math.inf) -> None:
+        """Remember ``frame`` as sent by this host at ``when`` [monotonic s] (forgotten after
+        :data:`DUPLICATE_WINDOW`; ``inf``, a periodic frame: kept)."""
+        if len(self._sent) > 512:
+            old = time.monotonic() - DUPLICATE_WINDOW
+            self._sent = {k: t for k, t in self._sent.items() if t >= old}
+        self._sent[(frame.arbitration_id, bytes(frame.data))] = when
 
     def send(self, msg: P.Message) -> None:
         """Encode and send one frame; python-can errors become :class:`BusError`."""
         frame = P.encode(msg)
+        self.own(frame, time.monotonic())
         try:
             self.bus.send(frame, timeout=self.timeout)
         except can.CanError as exc:
@@ -127,6 +150,8 @@ class Link:
         if frame.is_error_frame:
             self.error_frames += 1
             return
+        if (foreign := self._foreign(frame)) is not None:
+            raise SecondControllerError(frame.arbitration_id, foreign)
         recent = time.monotonic() - DUPLICATE_WINDOW
         for when, req in self._answered:
             if when >= recent and P.is_echo(req, frame):
@@ -138,6 +163,20 @@ class Link:
                 return
             if isinstance(msg, P.StateFrame):
                 self.faults[msg.module] = msg.state
+
+    def _foreign(self, frame: can.Message) -> str | None:
+        """What ``frame`` is if it goes to the modules and this host did not send it, else None."""
+        arb = frame.arbitration_id
+        to_modules = not frame.is_extended_id and (
+            arb == P.ID_ALL or P.ID_GET < arb < P.ID_GET + 32 or P.ID_SET < arb < P.ID_SET + 32)
+        if not to_modules or (arb, bytes(frame.data)) in self._sent:
+            return None
+        try:
+            msg = P.decode(frame)
+        except ProtocolError:
+            return "a frame to the modules"
+        module = getattr(msg, "module", None)
+        return P.describe(msg) + (" (broadcast)" if module is None else f" to module {module}")
 
     def drain(self, wait: float = 0.0) -> None:
         """Read and discard whatever is queued (late ACKs of earlier requests), listening
@@ -651,6 +690,7 @@ class PowerCubeArm:
             return
         frame = P.encode(P.Broadcast(P.Cmd.WATCHDOG))
         self.link.send(P.Broadcast(P.Cmd.WATCHDOG))
+        self.link.own(frame)  # python-can repeats it: this host's, on an interface that loops frames back
         try:
             self._watchdog = self.bus.send_periodic(frame, period)
         except can.CanError as exc:

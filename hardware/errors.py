@@ -3,16 +3,15 @@
 Each also derives from the matching built-in so generic handlers keep working:
 a malformed frame is a ``ValueError``, a missing reply a ``TimeoutError``.
 
-:class:`StopSignal` is the exception: SIGTERM or SIGHUP during a run is a
-``KeyboardInterrupt`` (like Ctrl-C), not an error, so that no ``except Exception``
-swallows it before the arm is halted.
+:class:`StopSignal` (defined in :mod:`iik.signals`, listed here with the layer's errors) is
+the exception: SIGTERM or SIGHUP during a run is a ``KeyboardInterrupt`` (like Ctrl-C),
+not an error, so that no ``except Exception`` swallows it before the arm is halted.
 """
 
 from __future__ import annotations
 
-import signal
-
 from iik.errors import IIKError
+from iik.signals import StopSignal
 
 __all__ = [
     "HardwareError",
@@ -22,6 +21,7 @@ __all__ = [
     "ModuleFault",
     "ModuleHalted",
     "DuplicateModuleError",
+    "SecondControllerError",
     "BusError",
     "RunLogError",
     "SimulatorError",
@@ -128,6 +128,24 @@ class DuplicateModuleError(HardwareError):
                          f"{module_id} is on the bus (give each module its own id)")
 
 
+class SecondControllerError(HardwareError):
+    """Another controller commands the modules on this bus: frames to the modules (a request or a
+    broadcast) that this host did not send, e.g. two ``iik run`` on one channel. Two controllers
+    on one arm is a fault: the run stops (HALT).
+
+    Attributes:
+        frame_id: The CAN identifier of the foreign frame.
+        request: What it was, e.g. ``"GETPARAM VERSION to module 3"``.
+    """
+
+    def __init__(self, frame_id: int, request: str):
+        self.frame_id = frame_id
+        self.request = request
+        super().__init__(f"two controllers on one bus: another host sent {request} (CAN id "
+                         f"0x{frame_id:03x}), which this host did not send; stop the other controller "
+                         "(another iik run on this channel?) and run again")
+
+
 class BusError(HardwareError, OSError):
     """The CAN interface itself failed (python-can raised ``CanError``)."""
 
@@ -149,14 +167,3 @@ class SimulatorError(HardwareError, RuntimeError):
         super().__init__(reason)
 
 
-class StopSignal(KeyboardInterrupt):
-    """SIGTERM or SIGHUP arrived during a run (:func:`hardware.signals.stop_on_signals`);
-    handled like Ctrl-C: HALT broadcast, fault and end records, log flushed.
-
-    Attributes:
-        signum: The signal number (``signal.SIGTERM``...).
-    """
-
-    def __init__(self, signum: int):
-        self.signum = int(signum)
-        super().__init__(f"stopped by {signal.Signals(self.signum).name}")

@@ -16,7 +16,7 @@ Two steps, and the second only accepts the output of the first:
 
 On any fault (ACK timeout, ERROR bit or unsolicited state frame, CAN error,
 malformed reply, a duplicate module id, Ctrl-C, SIGTERM or SIGHUP) it broadcasts HALT,
-records the fault, fsyncs the log and re-raises (:mod:`hardware.signals`).
+records the fault, fsyncs the log and re-raises (:mod:`iik.signals`).
 
 Times are compared as they go on the wire: a step lasts a whole number of
 milliseconds (FSTEP's u16, the time resolution of the protocol), so a step time is
@@ -40,12 +40,12 @@ from iik.errors import InvalidInputError
 from iik.kinematics import fk
 from iik.planning.timing import EXECUTION_MARGIN, MIN_STEP
 from iik.rotations import rotation_angle
+from iik.signals import stop_on_signals
 
 from . import protocol as P
 from .driver import SPEED_TOLERANCE, PowerCubeArm
 from .errors import BusError, ModuleFault, SafetyError, target_name
 from .runlog import RunLog
-from .signals import stop_on_signals
 
 __all__ = ["ValidationOptions", "ValidatedTrajectory", "validate", "check_poses", "ExecutionOptions",
            "RunResult", "execute", "time_steps", "EARLY_UPDATE"]
@@ -310,7 +310,7 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
             sleep: Callable[[float], None] = time.sleep) -> RunResult:
     """Stream ``trajectory`` to ``arm`` and log it to ``log_path`` (JSON lines).
 
-    SIGTERM and SIGHUP are handled like Ctrl-C meanwhile (:func:`hardware.signals.stop_on_signals`).
+    SIGTERM and SIGHUP are handled like Ctrl-C meanwhile (:func:`iik.signals.stop_on_signals`).
 
     Raises:
         SafetyError: ``trajectory`` is not a :class:`ValidatedTrajectory`, or the arm

@@ -14,7 +14,7 @@ turned off. The run log (``OUT/<name>-<date>-<time>.jsonl``, never overwritten; 
 file ``out`` names) is analysed as in Sec 4.3 (:func:`hardware.analyse`), and the run
 is ``ok`` only if its end-effector error stays inside its safety zone.
 
-SIGTERM and SIGHUP stop a run like Ctrl-C (:mod:`hardware.signals`): HALT, fault and
+SIGTERM and SIGHUP stop a run like Ctrl-C (:mod:`iik.signals`): HALT, fault and
 end records, log on disk. Nothing here prints: notes and executed steps are reported
 through callbacks.
 """
@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import signal
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from datetime import datetime
@@ -30,17 +31,18 @@ from pathlib import Path
 
 from iik.errors import InvalidInputError
 from iik.planning.timing import EXECUTION_MARGIN
+from iik.signals import stop_on_signals
 
 from . import protocol as P
 from .analysis import SAFETY_ZONE_PREDEFINED, RunAnalysis, analyse, plot_run, summary_text
 from .driver import WATCHDOG_PERIOD, PowerCubeArm
 from .executor import EARLY_UPDATE, ExecutionOptions, RunResult, ValidationOptions, execute
 from .runlog import read_run_log
-from .signals import stop_on_signals
 from .sim import SimulatedArm, simulated_arm
 from .sources import DEMO_SPEED, StepTargets, csv_trajectory, demo_trajectory, scenario_trajectory
 
-__all__ = ["RunRequest", "RunReport", "run", "SIM_TIMEOUT", "BUS_TIMEOUT", "MAX_TIMEOUT"]
+__all__ = ["RunRequest", "RunReport", "run", "failure_status", "SIM_TIMEOUT", "BUS_TIMEOUT", "MAX_TIMEOUT",
+           "MAX_ZONE"]
 
 #: ACK timeout [s] for the in-process simulation: generous, since its threads share one interpreter
 #: (and a loaded machine) with the host; it never goes silent unless a fault is injected.
@@ -49,6 +51,8 @@ SIM_TIMEOUT = 2.0
 BUS_TIMEOUT = 0.1
 #: Longest ACK timeout accepted [s] (a reply takes milliseconds; more only hides a dead bus).
 MAX_TIMEOUT = 10.0
+#: Largest safety zone of an ``ok`` run [m] (:attr:`RunRequest.zone`).
+MAX_ZONE = 1.0
 UPDATES = ("thesis", "buffered")
 SIM_STARTS = ("home", "plan")
 
@@ -142,7 +146,7 @@ class RunRequest:
             shown = f"{math.degrees(self.margin):g} deg" if number else repr(self.margin)
             raise InvalidInputError("margin", f"must be a finite angle in [0, 90) deg, got {shown}")
         if self.zone is not None:
-            _number(self.zone, "zone", 0.0, 1.0, " m")
+            _number(self.zone, "zone", 0.0, MAX_ZONE, " m")
         _number(self.lag, "lag", 0.0, 1.0, " s", open_lo=False)
         if self.watchdog not in (None, True, False):
             raise InvalidInputError("watchdog", f"must be True, False or None, got {self.watchdog!r}")
@@ -179,7 +183,8 @@ class RunReport:
         result: The executor's counts (log path, commands, samples, duration [s]).
         analysis: Step-point joint and end-effector errors (Sec 4.3).
         zone: The safety zone the end-effector error had to stay in [m].
-        rests: Simulated runs: times a joint came to rest between two steps; None on a bus.
+        rests: Simulated runs: times a joint came to rest between two planned steps (the rest at the
+            end of an approach to the start is by design, not counted); None on a bus.
         figures: Paths of the PNG figures written.
     """
 
@@ -203,16 +208,18 @@ class RunReport:
 
     @property
     def step_changes(self) -> int:
-        """Joint step changes of the run (6 x (n - 2)), the denominator of :attr:`rests`."""
+        """Joint step changes between planned steps (6 x (n - 2)), the denominator of :attr:`rests`."""
         return len(self.request.modules) * max(len(self.targets) - 2, 0)
 
     def summary(self) -> str:
         """The run's summary for a terminal (mm and degrees for display); its last line is the status."""
         r, req = self.result, self.request
         lines = [summary_text(self.analysis, self.targets.name)]
-        if self.rests is not None:
-            lines.append(f"  simulated joints came to rest between two steps {self.rests} times (of "
+        if self.rests is not None and self.step_changes:
+            lines.append(f"  simulated joints came to rest between two planned steps {self.rests} times (of "
                          f"{self.step_changes} step changes; update {req.update}, early {req.early})")
+        elif self.rests is not None:
+            lines.append("  one planned step: no step change for a joint to rest at")
         lines.append(f"run log: {r.log_path} ({r.commands} commands, {r.samples} samples, "
                      f"{r.duration:.2f} s)")
         lines += [f"figure: {p}" for p in self.figures]
@@ -299,6 +306,27 @@ def _prepare(arm: PowerCubeArm, request: RunRequest) -> None:
         raise
 
 
+class _Rests:
+    """Rests of the simulated joints between planned steps: those the simulator recorded after the
+    first planned step started (:meth:`progress` of step 1 marks it; by then every module has
+    started that step: its FSTEP was acknowledged), so the settle after an approach is not one."""
+
+    def __init__(self, sim: SimulatedArm | None, progress: Callable[[int, int], None] | None):
+        self.sim, self.forward, self.before = sim, progress, 0
+
+    def _count(self) -> int:
+        return sum(len(m.stops) for m in self.sim.modules.values())
+
+    def progress(self, k: int, n: int) -> None:
+        if k == 1 and self.sim is not None:
+            self.before = self._count()
+        if self.forward is not None:
+            self.forward(k, n)
+
+    def between_steps(self) -> int | None:
+        return None if self.sim is None else self._count() - self.before
+
+
 def _halted_note(request: RunRequest, log_path: Path) -> str | None:
     """What to tell after a run stopped by a fault, if it had started (its log has records)."""
     if not log_path.exists() or log_path.stat().st_size == 0:
@@ -330,6 +358,8 @@ def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
             ``DuplicateModuleError``...), after HALT was broadcast and the fault logged
             (the exception's note says where the log is).
         KeyboardInterrupt, StopSignal: Ctrl-C, SIGTERM or SIGHUP, handled the same way.
+
+    An exception raised after the run started carries ``run_log`` (the log's path) besides its note.
     """
     say = notify or (lambda text: None)
     with stop_on_signals():
@@ -349,14 +379,29 @@ def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
         try:
             with _open_arm(request, initial) as (sim, arm):
                 _prepare(arm, request)
-                result = execute(arm, traj, log_path, options=options, progress=progress)
-                rests = None if sim is None else sum(len(m.stops) for m in sim.modules.values())
+                rests = _Rests(sim, progress)
+                result = execute(arm, traj, log_path, options=options, progress=rests.progress)
         except BaseException as exc:
             if (note := _halted_note(request, log_path)) is not None:
                 exc.add_note(note)
+                exc.run_log = log_path  # the run started: HALT sent, the log ends with the fault
             elif request.out.suffix != ".jsonl":
                 log_path.unlink(missing_ok=True)  # reserved, never written: the run did not start
             raise
     analysis = analyse(read_run_log(result.log_path))
     figures = tuple(plot_run(analysis, log_path.parent, log_path.stem)) if request.figures else ()
-    return RunReport(request, targets, result, analysis, zone, rests, figures)
+    return RunReport(request, targets, result, analysis, zone, rests.between_steps(), figures)
+
+
+def failure_status(exc: BaseException) -> str:
+    """The status line of a run that raised instead of returning a :class:`RunReport` (whose
+    :meth:`~RunReport.summary` ends with the status otherwise): ``error before the run``,
+    ``fault during the run`` (``exc.run_log`` set: HALT sent, the log ends with the fault) or
+    ``interrupted by SIGNAL``."""
+    log = getattr(exc, "run_log", None)
+    during = f"HALT sent; run log {log}" if log is not None else "nothing was executed"
+    if isinstance(exc, KeyboardInterrupt):
+        name = signal.Signals(getattr(exc, "signum", signal.SIGINT)).name
+        return f"status: interrupted by {name} ({during})"
+    when = "fault during" if log is not None else "error before"
+    return f"status: {when} the run ({type(exc).__name__}; {during})"

@@ -15,6 +15,7 @@ runs as written (``iik plan``'s ``steps.csv`` and ``trajectory.csv`` both qualif
 from __future__ import annotations
 
 import csv
+import io
 import math
 import os
 import re
@@ -25,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from iik.errors import InvalidInputError
+from iik.files import read_text
 from iik.ik import select, solve
 from iik.kinematics import fk
 
@@ -45,7 +47,7 @@ CSV_COLUMNS = ("t", "q1", "q2", "q3", "q4", "q5", "q6")
 NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 #: Bounds of a trajectory CSV (memory and time stay bounded): rows of step-points and file size.
 MAX_CSV_ROWS = 200_000  # 33 min of 10 ms steps
-MAX_CSV_BYTES = 50_000_000
+MAX_CSV_BYTES = 50_000_000  # largest trajectory file [bytes]: reading stops there
 
 
 @dataclass(frozen=True)
@@ -133,24 +135,20 @@ def csv_trajectory(path: str | os.PathLike) -> StepTargets:
     file's joints, so validation cannot catch a wrong IK.
 
     Raises:
-        InvalidInputError: (argument ``trajectory``) the file cannot be read, is empty, has no
-            header line, or a cell is missing, not a number or not finite -- naming the line and
-            column (both counted from 1) -- or it exceeds :data:`MAX_CSV_ROWS` / :data:`MAX_CSV_BYTES`.
+        FileError: (argument ``trajectory``) the file is missing, not a regular file, not UTF-8 or
+            larger than :data:`MAX_CSV_BYTES` (:func:`iik.files.read_text` stops reading there).
+        InvalidInputError: (argument ``trajectory``) the file is empty, has no header line, or a
+            cell is missing, not a number or not finite -- naming the line and column (both
+            counted from 1) -- or it exceeds :data:`MAX_CSV_ROWS`.
     """
     path = Path(path)
 
     def bad(reason: str) -> InvalidInputError:
         return InvalidInputError("trajectory", f"{path}: {reason}")
 
+    text = read_text(path, "trajectory", limit=MAX_CSV_BYTES, what="a trajectory file", encoding="utf-8-sig")
     try:
-        if path.stat().st_size > MAX_CSV_BYTES:
-            raise bad(f"larger than the {MAX_CSV_BYTES // 1_000_000} MB limit of a trajectory file")
-        with path.open(encoding="utf-8-sig", newline="") as f:
-            rows = _csv_rows(csv.reader(f), bad)
-    except OSError as exc:
-        raise bad(f"cannot read it ({exc.strerror or exc})") from None
-    except UnicodeDecodeError as exc:
-        raise bad(f"not UTF-8 text (byte 0x{exc.object[exc.start]:02x} at offset {exc.start})") from None
+        rows = _csv_rows(csv.reader(io.StringIO(text, newline="")), bad)
     except csv.Error as exc:
         raise bad(f"not CSV ({exc})") from None
     lines, values = rows

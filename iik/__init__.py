@@ -17,7 +17,15 @@ from .ik import (
 )
 from .joint_path import BRANCH_SWITCH_STEP, JointPath, branch_switches, effort_index, path_effort
 from .kinematics import fk, fk_chain, jacobian, joint_frames, position_jacobian
-from .rotations import pose_from_zxz, rotation_angle, zxz_from_matrix, zxz_matrix
+from .rotations import (
+    euler_from_matrix,
+    euler_matrix,
+    pose_from_euler,
+    pose_from_zxz,
+    rotation_angle,
+    zxz_from_matrix,
+    zxz_matrix,
+)
 from .scene import THESIS_SCENE, Scene
 from .workspace import ClosestReachable, closest_reachable, in_workspace
 
@@ -42,10 +50,13 @@ __all__ = [
     "select",
     "effort_index",
     "follow_path",
-    "pose_from_zxz",
+    "pose_from_euler",
+    "euler_matrix",
+    "euler_from_matrix",
+    "rotation_angle",
+    "pose_from_zxz",  # deprecated aliases (they warn): Eq 42 is Z-Y-Z
     "zxz_from_matrix",
     "zxz_matrix",
-    "rotation_angle",
     "Scene",
     "THESIS_SCENE",
     "IIKError",

@@ -16,6 +16,7 @@ __all__ = [
     "UnreachablePoseError",
     "DexterityError",
     "NotOrthonormalError",
+    "FileError",
 ]
 
 
@@ -35,6 +36,22 @@ class InvalidInputError(IIKError, ValueError):
         self.argument = argument
         self.reason = reason
         super().__init__(f"{argument}: {reason}")
+
+
+class FileError(InvalidInputError, OSError):
+    """A file or folder an argument names cannot be read or written as asked (:mod:`iik.files`):
+    missing, not a regular file (a device, a FIFO, a folder), over its size limit, not UTF-8,
+    or an output that would replace something else.
+
+    Attributes:
+        argument: The argument naming the file (e.g. ``"trajectory"``, ``"out"``).
+        reason: Why, naming the path.
+        path: The path as given.
+    """
+
+    def __init__(self, argument: str, reason: str, path=None):
+        self.path = path
+        super().__init__(argument, reason)
 
 
 class UnreachablePoseError(IIKError, ValueError):

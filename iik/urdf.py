@@ -87,7 +87,11 @@ __all__ = [
     "adjacent_pairs",
     "urdf_link_frames",
     "TOOL_FRAME",
+    "MAX_URDF_BYTES",
 ]
+
+#: Largest URDF file the project reads [bytes] (the generated thesis arm is about 10 kB).
+MAX_URDF_BYTES = 10_000_000
 
 #: Name of the fixed frame at the end effector (origin of DH frame N, composed with ``tool``).
 TOOL_FRAME = "tool"

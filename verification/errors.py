@@ -6,13 +6,15 @@
   (a "not checkable" row without its reason, an erratum without a record, a bad id).
 * :class:`ReportError` -- a ``verification.json`` that cannot be read back (missing
   file, not JSON, or not matching ``report.schema.json``).
+* :class:`SelectionError` -- a selection of checks (``iik verify --only TEXT``) with an item
+  that matches no check (bad input: nothing is run or written).
 """
 
 from __future__ import annotations
 
-from iik.errors import IIKError
+from iik.errors import IIKError, InvalidInputError
 
-__all__ = ["VerificationError", "RegistrationError", "RowError", "ReportError"]
+__all__ = ["VerificationError", "RegistrationError", "RowError", "ReportError", "SelectionError"]
 
 
 class VerificationError(IIKError):
@@ -69,3 +71,18 @@ class ReportError(_AboutError):
 
     about = "path"
     path: str
+
+
+class SelectionError(VerificationError, InvalidInputError):
+    """A selection of checks (:func:`verification.registry.selected_checks`) with items that match
+    no check's name or section.
+
+    Attributes:
+        argument: ``"select"`` (``iik verify --only``).
+        reason: Which items match nothing, and what there is to match.
+        unmatched: Those items.
+    """
+
+    def __init__(self, unmatched, reason: str):
+        self.unmatched = tuple(unmatched)
+        super().__init__("select", reason)

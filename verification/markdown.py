@@ -99,6 +99,14 @@ def _counts_line(c: dict) -> str:
     return ", ".join(f"{c[v]} {v}" for v in _VERDICTS if c[v]) or "none"
 
 
+def _mode(h: dict) -> str:
+    """Quick or full samples; a partial run (``--only``) says so and is never "full"."""
+    if not h.get("only"):
+        return "quick (small samples)" if h["quick"] else "full"
+    only = ", ".join(f"`{s}`" for s in h["only"])
+    return f"partial (only the checks matching {only}), {'small' if h['quick'] else 'report-size'} samples"
+
+
 def _header(doc: dict) -> list[str]:
     h = doc["header"]
     dirty = {True: " (uncommitted changes)", False: "", None: ""}[h["dirty"]]
@@ -115,9 +123,9 @@ def _header(doc: dict) -> list[str]:
         *banner,
         _INTRO,
         "",
-        f"- commit: `{h['commit']}`{dirty}",
+        f"- iik {h.get('version', '?')}, commit: `{h['commit']}`{dirty} ({h.get('commit_from', '?')})",
         f"- created: {h['created']} (checks ran {h['seconds']} s)",
-        f"- seed: {h['seed']}; mode: {'quick (small samples)' if h['quick'] else 'full'}",
+        f"- seed: {h['seed']}; mode: {_mode(h)}",
         f"- python {h['python']}; {versions}",
         f"- machine: {m.get('platform', '')}, {m.get('processor', '')}, {m.get('cpus', '?')} CPUs",
         "",

@@ -1,8 +1,20 @@
-"""Where a report came from: commit, package versions, seeds and machine (the report header)."""
+"""Where a report came from: version, commit, package versions, seeds and machine (the report header).
+
+The commit is read where it can be trusted:
+
+* imported from a source checkout (an editable install, or the repository itself): ``git
+  rev-parse HEAD`` and ``git status`` of that checkout, at run time;
+* imported from an installed wheel (``pip install .``): the record the build wrote into the
+  wheel, :data:`BUILD_RECORD` (``hatch_build.py``: the commit and whether the tree had
+  uncommitted changes when the wheel was built). A git repository that merely encloses the
+  installation (a ``.venv`` inside a clone) is not asked: its HEAD need not be what was built;
+* neither: ``"unknown ..."``, saying why.
+"""
 
 from __future__ import annotations
 
 import datetime as _dt
+import json
 import os
 import platform
 import subprocess
@@ -11,7 +23,14 @@ from dataclasses import asdict, dataclass, field
 from importlib import metadata
 from pathlib import Path
 
-__all__ = ["Provenance", "provenance", "PACKAGES"]
+from iik.errors import FileError
+from iik.files import read_text
+
+__all__ = ["Provenance", "provenance", "PACKAGES", "BUILD_RECORD"]
+
+#: The build record of an installed wheel (written at build time by ``hatch_build.py``; absent in
+#: a source checkout).
+BUILD_RECORD = Path(__file__).with_name("build.json")
 
 #: Distributions whose versions a verdict can depend on.
 PACKAGES = (
@@ -35,15 +54,18 @@ class Provenance:
     """The report header.
 
     Attributes:
-        commit: ``git rev-parse HEAD`` of the checkout the package was imported from, or
-            ``"unknown (not a git checkout)"``.
-        dirty: Uncommitted changes in that checkout (None if unknown).
+        commit: The commit the code came from (module docstring), or ``"unknown (...)"``.
+        dirty: Uncommitted changes in that checkout, at run time or at build time (None if unknown).
         versions: Installed version per distribution of :data:`PACKAGES`.
         seed: The seed every check's random samples derive from.
         quick: Quick mode (small samples).
         python: Python version.
         machine: Platform, processor and logical CPU count.
         created: UTC time the report was written (ISO 8601).
+        version: The version of this distribution (``iik``).
+        commit_from: Where :attr:`commit` was read: ``"git checkout"``, ``"build record (built
+            <time>)"`` or ``"unknown"``.
+        only: The selection of a partial run (``iik verify --only``), or None (every check ran).
     """
 
     commit: str
@@ -54,6 +76,9 @@ class Provenance:
     python: str = ""
     machine: dict = field(default_factory=dict)
     created: str = ""
+    version: str = ""
+    commit_from: str = "unknown"
+    only: list | None = None
 
     def as_dict(self) -> dict:
         return asdict(self)
@@ -74,14 +99,42 @@ def _version(dist: str) -> str:
         return "not installed"
 
 
-def provenance(seed: int, quick: bool) -> Provenance:
-    """Collect the header for a run with ``seed`` and ``quick``."""
-    root = Path(__file__).resolve().parent.parent
-    commit = _git(["rev-parse", "HEAD"], root)
-    status = _git(["status", "--porcelain", "--untracked-files=no"], root) if commit else None
+def _build_record() -> dict | None:
+    try:
+        rec = json.loads(read_text(BUILD_RECORD, "build record", limit=100_000))
+    except (FileError, ValueError):
+        return None
+    return rec if isinstance(rec, dict) and isinstance(rec.get("commit"), str) else None
+
+
+def _commit() -> tuple[str, bool | None, str]:
+    """``(commit, dirty, where from)`` (module docstring)."""
+    here = Path(__file__).resolve()
+    root = here.parent.parent
+    tracked = _git(["ls-files", "--error-unmatch", str(here.relative_to(root))], root) is not None
+    if tracked:  # imported from a checkout, not from an installation a repository happens to enclose
+        commit = _git(["rev-parse", "HEAD"], root)
+        status = _git(["status", "--porcelain", "--untracked-files=no"], root) if commit else None
+        if commit:
+            return commit, None if status is None else bool(status), "git checkout"
+    rec = _build_record()
+    if rec is not None:
+        dirty = rec.get("dirty")
+        built = f"build record (built {rec.get('built')})"
+        return rec["commit"], dirty if isinstance(dirty, bool) else None, built
+    return "unknown (not a git checkout, and built without a build record)", None, "unknown"
+
+
+def provenance(seed: int, quick: bool, only=None) -> Provenance:
+    """Collect the header for a run with ``seed`` and ``quick`` (and the selection ``only`` of a
+    partial run)."""
+    commit, dirty, commit_from = _commit()
     return Provenance(
-        commit=commit or "unknown (not a git checkout)",
-        dirty=None if status is None else bool(status),
+        commit=commit,
+        dirty=dirty,
+        version=_version("iik"),
+        commit_from=commit_from,
+        only=None if not only else [str(s) for s in only],
         versions={p: _version(p) for p in PACKAGES},
         seed=int(seed),
         quick=bool(quick),

@@ -56,8 +56,10 @@ from typing import Any
 
 import numpy as np
 
+from iik.errors import InvalidInputError
+
 from .assumptions import ASSUMPTIONS
-from .errors import RegistrationError, RowError
+from .errors import RegistrationError, RowError, SelectionError
 from .second_reading import SecondReading
 from .second_reading import Slip as Where
 
@@ -78,7 +80,9 @@ __all__ = [
     "register",
     "Section",
     "registered_checks",
+    "selected_checks",
     "load_checks",
+    "check_seed",
 ]
 
 
@@ -430,6 +434,14 @@ def off_by(form: Callable, eps: float) -> Callable:
     return slipped
 
 
+def check_seed(seed) -> int:
+    """``seed`` if it is a non-negative integer below 2**63 (what every generator of a run derives
+    from, :meth:`Context.rng`); else :class:`~iik.errors.InvalidInputError` (argument ``seed``)."""
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2**63:
+        raise InvalidInputError("seed", f"expected an integer in 0 .. 2**63 - 1, got {seed!r}")
+    return int(seed)
+
+
 @dataclass
 class Context:
     """What a check may use.
@@ -447,6 +459,9 @@ class Context:
     seed: int = 20120101
     quick: bool = False
     cache: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        self.seed = check_seed(self.seed)
 
     def rng(self, salt: int | str = 0) -> np.random.Generator:
         """A generator seeded by ``seed`` and ``salt``, reproducible per check."""
@@ -683,3 +698,24 @@ def registered_checks() -> list[Check]:
     for c in _REGISTRY.values():
         first[c.section] = min(first.get(c.section, c.order), c.order)
     return sorted(_REGISTRY.values(), key=lambda c: (first[c.section], c.section, c.order, c.name))
+
+
+def selected_checks(select: Iterable[str] | None = None) -> list[Check]:
+    """The registered checks whose name or section contains an item of ``select`` (all if it is
+    None or empty), in :func:`registered_checks` order.
+
+    Raises:
+        SelectionError: an item matches no check (a typo would otherwise run nothing, or less
+            than meant, and write a report of it).
+    """
+    checks = registered_checks()
+    items = [str(s) for s in (select or ())]
+    if not items:
+        return checks
+    unmatched = [s for s in items if not any(s in c.name or s in c.section for c in checks)]
+    if unmatched:
+        modules = sorted({c.name.split(".")[-2] for c in checks})
+        verb = "matches" if len(unmatched) == 1 else "match"
+        raise SelectionError(unmatched, f"{', '.join(map(repr, unmatched))} {verb} no check's name or "
+                                        f"section (e.g. a check module: {', '.join(modules)})")
+    return [c for c in checks if any(s in c.name or s in c.section for s in items)]

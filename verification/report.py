@@ -26,22 +26,38 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from iik.errors import FileError
+from iik.files import atomic_output, read_text
+
 from .assumptions import ASSUMPTIONS
 from .errors import ReportError, RowError
 from .markdown import render
 from .provenance import provenance
-from .registry import Check, Context, Row, Scope, Verdict, registered_checks
+from .registry import Check, Context, Row, Scope, Verdict, selected_checks
 from .schema import schema_errors
 from .second_reading import SecondReading
 from .thesis_index import ITEMS, chapter_of, chapter_of_reference, parse_refs
 
 __all__ = ["CheckResult", "Verification", "verify", "run_checks", "report_document", "write_report",
-           "read_report", "summary", "unread_errata", "FORMAT", "GROUPS", "QUICK_TITLE"]
+           "read_report", "summary", "unread_errata", "FORMAT", "GROUPS", "QUICK_TITLE", "REPORT_FILES",
+           "MAX_REPORT_BYTES", "partial_title"]
 
 #: The ``format`` field of every report document.
 FORMAT = "iik-verification-report/2"
 #: The title of a ``--quick`` report: its first line says so (markdown heading, first JSON field).
 QUICK_TITLE = "QUICK verification report (small samples, not the report of record: run `iik verify`)"
+#: What :func:`verify` writes into its folder (a folder holding anything else is not replaced).
+REPORT_FILES = ("verification.md", "verification.json", "figures", "views")
+#: Largest ``verification.json`` :func:`read_report` reads [bytes] (a full report is about 1 MB).
+MAX_REPORT_BYTES = 50_000_000
+
+
+def partial_title(select: Sequence[str], quick: bool) -> str:
+    """The title of a run of only some checks (``iik verify --only``): its first line says so."""
+    only = ", ".join(f"'{s}'" for s in select)
+    small = "; small samples" if quick else ""
+    return (f"PARTIAL verification report (only the checks matching {only}{small}: not the report of record: "
+            "run `iik verify`)")
 
 
 @dataclass(frozen=True)
@@ -70,13 +86,12 @@ def run_checks(
     select: Sequence[str] | None = None,
     progress: Callable[[int, int, Check, CheckResult | None], None] | None = None,
 ) -> list[CheckResult]:
-    """Run every registered check (or those whose name or section contains a ``select`` item).
+    """Run every registered check (or those whose name or section contains a ``select`` item;
+    :class:`~verification.errors.SelectionError` if an item matches none).
 
     ``progress(i, n, check, result)`` is called before (result None) and after each check.
     """
-    checks = registered_checks()
-    if select:
-        checks = [c for c in checks if any(s in c.name or s in c.section for s in select)]
+    checks = selected_checks(select)
     results = []
     for i, chk in enumerate(checks):
         if progress:
@@ -116,14 +131,28 @@ def verify(out_dir: Path, *, quick: bool = False, seed: int = 20120101, select: 
     """Run every registered check (:func:`run_checks`) and write ``out_dir/verification.md``.
 
     The report is the same whether this is called from Python or by ``iik verify``:
-    every module of :mod:`verification.checks` registers its checks on loading.
+    every module of :mod:`verification.checks` registers its checks on loading. The folder
+    is written whole or not at all (:func:`iik.files.atomic_output`): figures, views and
+    the report go into a temporary sibling that replaces ``out_dir`` when complete, so an
+    error or an interrupt (Ctrl-C, SIGTERM, SIGHUP) leaves the previous report as it was.
+    A run of only some checks (``select``) is titled as such (:func:`partial_title`).
+
+    Raises:
+        SelectionError: an item of ``select`` matches no check (nothing is run or written).
+        InvalidInputError: ``seed`` is not an integer in 0 .. 2**63 - 1.
+        FileError: (argument ``out_dir``) ``out_dir`` is a file, holds other things than
+            :data:`REPORT_FILES`, or cannot be written.
     """
     t0 = time.perf_counter()
-    Path(out_dir).mkdir(parents=True, exist_ok=True)  # fail before the checks run, not after
-    results = run_checks(Context(out_dir=Path(out_dir), seed=seed, quick=quick), select=select,
-                         progress=progress)
-    path = write_report(results, Path(out_dir) / "verification.md")
-    return Verification(tuple(results), path, time.perf_counter() - t0)
+    select = list(select or ())
+    selected_checks(select)  # a selection that matches nothing fails here, before anything is written
+    ctx = Context(out_dir=Path(out_dir), seed=seed, quick=quick)  # (checks the seed)
+    with atomic_output(out_dir, "out_dir", folder=True, owns=REPORT_FILES) as out:
+        ctx.out_dir = out.path
+        results = run_checks(ctx, select=select, progress=progress)
+        title = partial_title(select, quick) if select else None
+        write_report(results, out.path / "verification.md", title=title, only=select or None)
+    return Verification(tuple(results), Path(out_dir) / "verification.md", time.perf_counter() - t0)
 
 
 def _counts(rows: Iterable[dict]) -> dict:
@@ -264,8 +293,10 @@ def _index(records: list[dict]) -> list[dict]:
     return out
 
 
-def report_document(results: Iterable[CheckResult], *, title: str | None = None) -> dict:
-    """The report as a JSON-ready dict (see ``report.schema.json``)."""
+def report_document(results: Iterable[CheckResult], *, title: str | None = None,
+                    only: Sequence[str] | None = None) -> dict:
+    """The report as a JSON-ready dict (see ``report.schema.json``); ``only``: the selection of a
+    partial run (in the header)."""
     results = list(results)
     seed = results[0].seed if results else 0
     quick = results[0].quick if results else False
@@ -291,7 +322,7 @@ def report_document(results: Iterable[CheckResult], *, title: str | None = None)
     for r in top:
         if r["scope"] == Scope.THESIS.value:
             chapters.setdefault(r["chapter"], []).append(r)
-    header = provenance(seed, quick).as_dict()
+    header = provenance(seed, quick, only).as_dict()
     header["seconds"] = round(sum(r.seconds for r in results), 2)
     thesis = _counts(r for r in top if r["scope"] == Scope.THESIS.value)
     project = _counts(r for r in top if r["scope"] == Scope.PROJECT.value)
@@ -331,7 +362,8 @@ def unread_errata(doc: dict) -> list[str]:
     return out
 
 
-def write_report(results: Iterable[CheckResult], path: Path, *, title: str | None = None) -> Path:
+def write_report(results: Iterable[CheckResult], path: Path, *, title: str | None = None,
+                 only: Sequence[str] | None = None) -> Path:
     """Write ``verification.json`` and the markdown report ``path`` (same folder); return ``path``.
 
     Raises:
@@ -339,7 +371,7 @@ def write_report(results: Iterable[CheckResult], path: Path, *, title: str | Non
             without searching the nearby readings of its inputs: a bug in that check).
     """
     path = Path(path)
-    doc = report_document(results, title=title)
+    doc = report_document(results, title=title, only=only)
     unread = unread_errata(doc)
     if unread:
         raise RowError("second_reading", "errata without a second reading: " + ", ".join(unread))
@@ -358,14 +390,17 @@ def read_report(path) -> dict:
     """Read and validate a ``verification.json`` (for notebooks and tools).
 
     Raises:
-        ReportError: the file is missing, not JSON, or does not follow the schema.
+        ReportError: the file is missing, not a regular file, over :data:`MAX_REPORT_BYTES`, not
+            JSON, or does not follow the schema.
     """
     p = Path(path)
+    if not p.exists():
+        raise ReportError(str(path), "no such file (run `iik verify` first)")
     try:
-        doc = json.loads(p.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise ReportError(str(path), "no such file (run `iik verify` first)") from None
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        doc = json.loads(read_text(p, "path", limit=MAX_REPORT_BYTES, what="a report"))
+    except FileError as exc:
+        raise ReportError(str(path), exc.reason) from None
+    except json.JSONDecodeError as exc:
         raise ReportError(str(path), f"not a JSON report ({exc})") from None
     errors = schema_errors(doc)
     if errors:

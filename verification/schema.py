@@ -13,6 +13,8 @@ import re
 from functools import lru_cache
 from pathlib import Path
 
+from iik.files import read_text
+
 __all__ = ["SCHEMA_PATH", "schema", "schema_errors"]
 
 #: The schema file shipped with the package.
@@ -32,7 +34,7 @@ _TYPES = {
 @lru_cache(maxsize=1)
 def schema() -> dict:
     """The report schema (parsed once)."""
-    return json.loads(SCHEMA_PATH.read_text(encoding="utf-8"))
+    return json.loads(read_text(SCHEMA_PATH, "SCHEMA_PATH", limit=1_000_000, what="the report schema"))
 
 
 def _resolve(node: dict, root: dict) -> dict:

@@ -24,7 +24,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from .registry import Check, Context, Row, Slip, registered_checks
+from .registry import Check, Context, Row, Slip, selected_checks
 
 __all__ = ["SlipOutcome", "SelfTestOutcome", "self_test_check", "run_self_test", "self_test", "table"]
 
@@ -162,10 +162,7 @@ def self_test_check(check: Check, ctx: Context) -> SelfTestOutcome:
 
 def run_self_test(ctx: Context, *, select: Sequence[str] | None = None) -> list[SelfTestOutcome]:
     """Self-test every registered check (or those whose name or section contains a ``select`` item)."""
-    checks = registered_checks()
-    if select:
-        checks = [c for c in checks if any(s in c.name or s in c.section for s in select)]
-    return [self_test_check(c, ctx) for c in checks]
+    return [self_test_check(c, ctx) for c in selected_checks(select)]
 
 
 def table(outcomes: Sequence[SelfTestOutcome]) -> str:

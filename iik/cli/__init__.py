@@ -96,7 +96,7 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:  # an output file or folder that cannot be written
         print(f"iik {args.command}: error: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt as exc:  # Ctrl-C, or SIGTERM/SIGHUP as hardware.errors.StopSignal
+    except KeyboardInterrupt as exc:  # Ctrl-C, or SIGTERM/SIGHUP as iik.signals.StopSignal
         signum = getattr(exc, "signum", signal.SIGINT)
         notes = "".join(f"; {n}" for n in getattr(exc, "__notes__", ()))
         print(f"iik {args.command}: interrupted by {signal.Signals(signum).name}{notes}", file=sys.stderr,

@@ -1,4 +1,8 @@
-"""``iik plan``: plan a pick-and-place scenario and write the trajectory, per-step data and figures."""
+"""``iik plan``: plan a pick-and-place scenario and write the trajectory, per-step data and figures.
+
+The output folder is written whole or not at all (:func:`iik.planning.write_outputs`); an
+``--out`` that is a file, or a folder holding other things than a plan's files, is refused
+before planning."""
 
 from __future__ import annotations
 
@@ -12,7 +16,8 @@ HELP = "plan a scenario (TOML): thesis planner + whole-arm Coal check + fallback
 
 def add_arguments(p) -> None:
     p.add_argument("scenario", help="scenario file, e.g. scenarios/j.toml, or a shipped name, e.g. j")
-    p.add_argument("--out", type=Path, default=None, help="output folder (default: plan_<name>)")
+    p.add_argument("--out", type=Path, default=None, help="output folder (default: plan_<name>), replaced "
+                   "only when every file is written")
     p.add_argument("--no-fallbacks", action="store_true",
                    help="thesis planner only (no other branches, redesigns or RRT-Connect)")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
@@ -20,11 +25,15 @@ def add_arguments(p) -> None:
     p.add_argument("--seed", type=int, default=1, help="seed of the RRT-Connect fallback")
     p.add_argument("--timeout", default="60", metavar="SECONDS",
                    help="stop planning after this many seconds with the best attempt so far (default 60)")
+    p.spelling.update(file="SCENARIO")  # ScenarioError("file", ...): the scenario file as typed
 
 
 def run(args) -> int:
-    from iik.planning import PlanOptions, plan, write_outputs
+    from iik.files import check_output
+    from iik.planning import PLAN_FILES, PlanOptions, plan, write_outputs
 
+    if args.out is not None:  # refused before planning, not after
+        check_output(args.out, "out", folder=True, owns=PLAN_FILES)
     opts = PlanOptions(fallbacks=not args.no_fallbacks, rrt=not args.no_fallbacks, dt=args.dt, seed=args.seed,
                        timeout=_seconds(args.timeout, "--timeout"))
 

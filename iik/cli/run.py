@@ -9,9 +9,10 @@ separate ``iik sim-arm``; ``--interface socketcan --channel can0 --bitrate 50000
 python-can interface) drives real modules, with their watchdog on (``--no-watchdog``).
 
 Writes a new run log ``OUT/<name>-<date>-<time>.jsonl`` (or the ``--out FILE.jsonl``) and
-three PNG figures, prints the end-effector error summary (Sec 4.3). Exit 0: the run went to
-the end inside its safety zone; 1: it went to the end but its error left the zone; 2: an
-error (nothing moved, or HALT after a fault); 128 + N: stopped by signal N (HALT sent).
+three PNG figures, prints the end-effector error summary (Sec 4.3); its last stdout line is the
+status on every path (:func:`hardware.runner.failure_status` when the run raised). Exit 0: the
+run went to the end inside its safety zone; 1: it went to the end but its error left the zone;
+2: an error (nothing moved, or HALT after a fault); 128 + N: stopped by signal N (HALT sent).
 The work is :func:`hardware.runner.run`.
 """
 
@@ -21,6 +22,8 @@ import argparse
 import math
 import sys
 from pathlib import Path
+
+from .options import millimetres
 
 NAME = "run"
 HELP = "plan, validate and execute a trajectory on the (simulated by default) PowerCube arm"
@@ -32,8 +35,7 @@ def add_arguments(p) -> None:
     p.add_argument("--trajectory", type=Path, default=None, metavar="CSV",
                    help="joint trajectory file with columns t,q1..q6 [s, rad], e.g. iik plan's steps.csv")
     p.add_argument("--demo", action="store_true", help="a built-in straight-line demo trajectory")
-    p.add_argument("--interface", default=None,
-                   help="python-can interface (default: an in-process simulated arm)")
+    p.add_argument("--interface", default=None, help="python-can interface (default: simulated arm)")
     p.add_argument("--channel", default=None, help="bus channel (e.g. can0, 239.74.163.2)")
     p.add_argument("--bitrate", type=int, default=None,
                    help="bit rate [bit/s]: 125000, 250000, 500000 or 1000000")
@@ -51,7 +53,7 @@ def add_arguments(p) -> None:
                    "planned or written speed: every step lasts 1/SPEED as long (default 1)")
     p.add_argument("--margin-deg", type=float, default=None, help="margin inside Table I [deg] (default 0.5)")
     p.add_argument("--zone-mm", type=float, default=None, help="largest end-effector error of an ok run "
-                   "[mm] (default: the scenario's safety zone; 10 mm, Sec 4.3.1, for a file or the demo)")
+                   "(0, 1000] mm (default: the scenario's safety zone; 10 mm, Sec 4.3.1, for a file or demo)")
     p.add_argument("--lag", type=float, default=0.02, help="simulated tracking lag [0, 1] s")
     p.add_argument("--sim-start", choices=("home", "plan"), default="home",
                    help="simulated arm starts at q = 0 (home) or at the trajectory start")
@@ -66,14 +68,25 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
-    from hardware.runner import RunRequest
+    from hardware.runner import failure_status
+    try:
+        report = _run(args)
+    except BaseException as exc:  # the status line on stdout on every path; the error follows on stderr
+        print(failure_status(exc), flush=True)
+        raise
+    print(report.summary())
+    return 0 if report.ok else 1
+
+
+def _run(args):  # -> hardware.runner.RunReport
+    from hardware.runner import MAX_ZONE, RunRequest
     from hardware.runner import run as run_request
 
     given = {}  # the library's defaults unless typed
     if args.margin_deg is not None:
         given["margin"] = math.radians(args.margin_deg)
     if args.zone_mm is not None:
-        given["zone"] = args.zone_mm / 1e3
+        given["zone"] = millimetres(args.zone_mm, "--zone-mm", MAX_ZONE)
     request = RunRequest(
         scenario=args.scenario, trajectory=args.trajectory, demo=args.demo, interface=args.interface,
         channel=args.channel, bitrate=args.bitrate, port=args.port, modules=tuple(args.modules),
@@ -91,9 +104,7 @@ def run(args) -> int:
             print(line, file=sys.stderr, flush=True)
 
     try:
-        report = run_request(request, notify=lambda text: print(text, file=sys.stderr), progress=progress)
+        return run_request(request, notify=lambda text: print(text, file=sys.stderr), progress=progress)
     finally:
         if tty and shown:
             print(file=sys.stderr)
-    print(report.summary())
-    return 0 if report.ok else 1

@@ -1,10 +1,12 @@
 """``iik solve``: all inverse-kinematics solutions of one pose.
 
-The pose is a position [m] and the Eq 42 Euler angles (corrected, see
-:mod:`iik.rotations`) in rad, or in degrees with ``--deg``. Prints every
-solution with its FK residuals, the joint-limit flag and the Eq 54 effort index
-to ``--previous`` (which, like the angles, is read in degrees with ``--deg``).
-Exit 0 if a solution was found, 1 if none (unreachable, or none inside Table I).
+The pose is a position [m] and the Euler angles of the corrected Eq 42, Z-Y-Z (``--zyz``;
+``--zxz`` is its deprecated alias: the thesis calls Eq 42 Z-X-Z, see :mod:`iik.rotations`)
+in rad, or in degrees with ``--deg``. Prints every solution with its FK residuals, the
+joint-limit flag and the Eq 54 effort index to ``--previous`` (a configuration inside
+Table I, read in degrees with ``--deg`` like the angles). A position beyond the arm's
+reach that would be within it in millimetres gets a warning. Exit 0 if a solution was
+found, 1 if none (unreachable, or none inside Table I).
 """
 
 from __future__ import annotations
@@ -13,18 +15,20 @@ import json
 
 import numpy as np
 
-from .options import add_pose_arguments, warn_degrees
+from .options import add_pose_arguments, joint_angles, warn_degrees, warn_millimetres
 
 NAME = "solve"
-HELP = "all IK solutions of a pose given as --xyz X Y Z --zxz ALPHA BETA GAMMA (exit 1 if none)"
+HELP = "all IK solutions of a pose given as --xyz X Y Z --zyz ALPHA BETA GAMMA (exit 1 if none)"
 
 
 def add_arguments(p) -> None:
     add_pose_arguments(p, required=True)
     p.add_argument("--deg", action="store_true", help="angles in and out in degrees")
     p.add_argument("--previous", nargs=6, type=float, default=None, metavar="Q",
-                   help="previous joint angles (for the Eq 54 effort index)")
-    p.add_argument("--method", choices=("complete", "thesis"), default="complete")
+                   help="previous joint angles, inside Table I (for the Eq 54 effort index)")
+    p.add_argument("--method", choices=("complete", "thesis"), default="complete",
+                   help="complete: the compiled elimination, every solution (default); thesis: the IIK of "
+                        "Sec 3.3 as printed (theta1 grid + bisection, errata corrected), which can miss some")
     p.add_argument("--all", action="store_true", help="also list solutions outside the joint limits")
     p.add_argument("--json", action="store_true", help="machine-readable output")
     p.spelling.update(q_prev="--previous", previous_q="--previous")  # the library's names as typed
@@ -33,13 +37,16 @@ def add_arguments(p) -> None:
 def run(args) -> int:
     import iik
     from iik.ik import select_index
+    from iik.kinematics import reach_bound
 
-    warn_degrees(NAME, args, ("--zxz", "--previous"))
+    warn_degrees(NAME, args, ("--zyz", "--previous"))
+    warn_millimetres(NAME, args.xyz, reach_bound(iik.THESIS_ARM))
     conv_in = np.radians if args.deg else np.asarray
-    prev = None if args.previous is None else conv_in(args.previous)
+    prev = None if args.previous is None else joint_angles(args.previous, "--previous", args.deg,
+                                                           iik.THESIS_ARM)
     with np.errstate(all="ignore"):  # absurd inputs (--xyz 1e308) are unreachable, not warnings
-        T = iik.pose_from_zxz(np.array(args.xyz), *conv_in(args.zxz))
-        with iik.ik.compile_notice():  # one line on stderr if the kernel compiles (> 1 s)
+        T = iik.pose_from_euler(np.array(args.xyz), *conv_in(args.zyz))
+        with iik.ik.compile_notice():  # one line on stderr if the kernel compiles (not when it loads)
             res = iik.solve(T, method=args.method, within_limits=not args.all)
         efforts = iik.effort_index(prev, res.q) if (prev is not None and res.count) else None
     best = None
@@ -48,7 +55,8 @@ def run(args) -> int:
     conv = np.degrees if args.deg else (lambda x: x)
     if args.json:
         out = res.to_dict(degrees=args.deg)
-        out["pose"] = {"xyz_m": list(args.xyz), "zxz": list(args.zxz),
+        out["pose"] = {"xyz_m": list(args.xyz), "zyz": list(args.zyz),
+                       "zxz": list(args.zyz),  # deprecated duplicate of "zyz" (the old, wrong name)
                        "angle_unit": "deg" if args.deg else "rad"}
         if efforts is not None:
             for s, e in zip(out["solutions"], np.atleast_1d(efforts), strict=True):

@@ -22,7 +22,8 @@ def add_arguments(p) -> None:
 
 def run(args) -> int:
     from iik.errors import InvalidInputError
-    from iik.urdf import thesis_urdf
+    from iik.files import read_text, write_text
+    from iik.urdf import MAX_URDF_BYTES, thesis_urdf
 
     text = thesis_urdf()
     if args.check is not None:
@@ -30,16 +31,12 @@ def run(args) -> int:
         if path is None:
             raise InvalidInputError("--check", "name the file to compare, e.g. iik urdf --check "
                                                "urdf/thesis_arm.urdf")
-        try:
-            same = path.read_text(encoding="utf-8") == text
-        except OSError as exc:
-            raise InvalidInputError("--check", f"cannot read {path}: {exc.strerror}") from None
+        same = read_text(path, "--check", limit=MAX_URDF_BYTES, what="a URDF file") == text
         print(f"{path}: {'up to date' if same else 'DIFFERS from the generator output'}")
         return 0 if same else 1
     if args.out is None or str(args.out) == "-":
         sys.stdout.write(text)
         return 0
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text(text, encoding="utf-8")
+    write_text(args.out, "--out", text)  # whole or not at all
     print(f"wrote {args.out} ({len(text)} bytes)")
     return 0

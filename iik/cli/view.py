@@ -10,10 +10,10 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from .options import add_pose_arguments, warn_degrees
+from .options import add_pose_arguments, joint_angles, warn_degrees, warn_millimetres
 
 NAME = "view"
-HELP = "3D web viewer: a pose (--q, --xyz/--zxz), interactive IK (no target), a plan (SCENARIO), a run log"
+HELP = "3D web viewer: a pose (--q, --xyz/--zyz), interactive IK (no target), a plan (SCENARIO), a run log"
 EPILOG = ("A --q outside the joint limits (Table I) is bad input: one-line error, exit 2, nothing shown or "
           "written; with --allow-outside-limits it is shown, the links its offending joints move in red, "
           "with a one-line warning on stderr, exit 0. Exit status: 0 shown; 1 shown, but the plan failed or "
@@ -52,26 +52,32 @@ def _request(args):
     """The :class:`~iik.planning.viewer.ViewRequest` of the command line (angles to rad)."""
     import numpy as np
 
+    from iik.arm import THESIS_ARM
     from iik.planning import PlanOptions
     from iik.planning.viewer import ViewRequest
 
     ang = (lambda v: None if v is None else tuple(np.radians(v) if args.deg else v))
     plan = ({} if args.timeout is None else {"timeout": args.timeout}) | (
         {"fallbacks": False, "rrt": False} if args.no_fallbacks else {})
+    previous = None if args.previous is None else tuple(joint_angles(args.previous, "--previous", args.deg,
+                                                                     THESIS_ARM))
     return ViewRequest(scenario=args.scenario, planning=PlanOptions(**plan) if plan else None, q=ang(args.q),
-                       xyz=None if args.xyz is None else tuple(args.xyz), zxz=ang(args.zxz),
-                       previous=ang(args.previous), interactive=args.interactive,
+                       xyz=None if args.xyz is None else tuple(args.xyz), zxz=ang(args.zyz),
+                       previous=previous, interactive=args.interactive,
                        allow_outside_limits=args.allow_outside_limits)
 
 
 def run(args) -> int:
+    from iik.arm import THESIS_ARM
     from iik.errors import InvalidInputError
+    from iik.kinematics import reach_bound
     from iik.planning.viewer import ExportResult, ViewOptions, view
 
-    warn_degrees(NAME, args, ("--q", "--zxz", "--previous"))
+    warn_degrees(NAME, args, ("--q", "--zyz", "--previous"))
+    warn_millimetres(NAME, args.xyz, reach_bound(THESIS_ARM))
     opts = ViewOptions(host=args.host, port=args.port, export=args.export, force=args.force)
     if args.run is not None:
-        if args.scenario or args.q or args.xyz or args.zxz:
+        if args.scenario or args.q or args.xyz or args.zyz:
             raise InvalidInputError("--run", "show a run log alone (no scenario or pose)")
         from hardware.view import view_run
 

@@ -6,7 +6,7 @@
 * :func:`select` (least Eq 54 effort within Table I), :func:`follow_path`.
 """
 
-from .options import DEFAULT_OPTIONS, IKOptions
+from .options import DEFAULT_OPTIONS, ORTHONORMAL_TOL, IKOptions
 from .result import Continuum, IKBatch, IKResult
 from .selection import branch_signature, follow_path, select, select_index
 from .solve import COMPILE_MESSAGE, METHODS, compile_notice, solve, solve_batch, solve_many
@@ -17,6 +17,7 @@ __all__ = [
     "Continuum",
     "IKOptions",
     "DEFAULT_OPTIONS",
+    "ORTHONORMAL_TOL",
     "METHODS",
     "solve",
     "solve_many",

@@ -17,7 +17,6 @@ method returns approximate configurations for poses just out of reach.
 from __future__ import annotations
 
 import sys
-import threading
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 
@@ -499,24 +498,31 @@ COMPILE_MESSAGE = "compiling the IK kernel, once"
 
 
 @contextmanager
-def compile_notice(emit: Callable[[str], None] | None = None, after: float = 1.0) -> Iterator[None]:
-    """Say :data:`COMPILE_MESSAGE` (one line) if the block is still running ``after`` seconds
-    while the IK kernel is not compiled in this process yet (the first call after an install
-    compiles it; later processes load it from the on-disk cache in well under a second).
+def compile_notice(emit: Callable[[str], None] | None = None) -> Iterator[None]:
+    """Say :data:`COMPILE_MESSAGE` (one line) when Numba starts compiling a function of the
+    project inside the block: on the first call after an install (or after the kernel's
+    sources changed), about 10-20 s. Loading the compiled kernel from its on-disk cache, as
+    every later process does, compiles nothing and says nothing, however long a loaded
+    machine takes to load it. (``IKOptions(parallel=True)`` compiles its own entry point on
+    its first use: also said.)
 
     Args:
         emit: Receives the message (default: print to stderr).
-        after: Delay [s].
     """
-    if _KERNEL is not None and _KERNEL.solve_many.signatures:
+    from numba.core import event
+
+    say = emit or (lambda m: print(m, file=sys.stderr, flush=True))
+    said: list[bool] = []
+
+    class _FirstCompile(event.Listener):
+        def on_start(self, ev) -> None:
+            func = getattr(ev.data.get("dispatcher"), "py_func", None)
+            if not said and getattr(func, "__module__", "").startswith("iik."):
+                said.append(True)
+                say(COMPILE_MESSAGE)
+
+        def on_end(self, ev) -> None:
+            pass
+
+    with event.install_listener("numba:compile", _FirstCompile()):
         yield
-        return
-    timer = threading.Timer(
-        after, emit or (lambda m: print(m, file=sys.stderr, flush=True)), args=(COMPILE_MESSAGE,)
-    )
-    timer.daemon = True
-    timer.start()
-    try:
-        yield
-    finally:
-        timer.cancel()

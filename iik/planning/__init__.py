@@ -22,7 +22,7 @@ from .cartesian import CartesianPath, build_path, poses_of
 from .collision import PathClearance, SceneCollision
 from .errors import PlanningError, PlanningFailed, PlanningTimeout, SamplingError, ScenarioError, TimingError
 from .obstacles import SAFETY_ZONE, Obstacle, ellipsoid_value, enclosing_radii, repel_points, repulsion_normal
-from .output import plot_effort, plot_joints, plot_scene, write_outputs
+from .output import PLAN_FILES, plot_effort, plot_joints, plot_scene, write_outputs
 from .path import (
     MAX_STEP,
     MAX_STEP_POINTS,
@@ -146,6 +146,7 @@ __all__ = [
     "thesis_timing",
     # outputs
     "write_outputs",
+    "PLAN_FILES",
     "plot_scene",
     "plot_joints",
     "plot_effort",

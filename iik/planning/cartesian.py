@@ -8,7 +8,7 @@ Sec 3.6.2.2), and so are the planner's via-points (Sec 3.6.3), never the
 scenario's requested ones (Sec 4.2.1: the tool "must pass through such
 via-points"); step-points under the platform or floor safety level are lifted;
 too-long steps created by repulsion are subdivided and repelled again. Orientations follow the gradual Euler
-change (or slerp). Frames and units: base frame 0, m, rad (Z-X-Z angles of the
+change (or slerp). Frames and units: base frame 0, m, rad (Z-Y-Z angles of the
 corrected Eq 42).
 """
 
@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InvalidInputError
-from ..rotations import pose_from_zxz, zxz_from_matrix
+from ..rotations import euler_from_matrix, pose_from_euler
 from ..scene import AxisBox, Scene
 from .errors import ScenarioError
 from .obstacles import ellipsoid_value, enclosing_radii, repel_points
@@ -37,7 +37,7 @@ class CartesianPath:
 
     Attributes:
         points: (n, 3) tool points [m].
-        euler: (n, 3) Z-X-Z angles (alpha, beta, gamma) [rad] per point (Eq 42).
+        euler: (n, 3) Z-Y-Z angles (alpha, beta, gamma) [rad] per point (corrected Eq 42).
         segment: (n,) index of the segment each point belongs to.
         key_index: Indices of start, via-points and goal in ``points``.
         via_points: (k, 3) via-points used [m] (after repulsion).
@@ -74,9 +74,9 @@ class CartesianPath:
 
 
 def poses_of(points: np.ndarray, euler: np.ndarray) -> np.ndarray:
-    """(n, 4, 4) tool poses from points [m] and Z-X-Z angles [rad] (corrected Eq 42)."""
+    """(n, 4, 4) tool poses from points [m] and Z-Y-Z angles [rad] (corrected Eq 42)."""
     euler = np.asarray(euler, float)
-    return pose_from_zxz(points, euler[:, 0], euler[:, 1], euler[:, 2]).reshape(-1, 4, 4)
+    return pose_from_euler(points, euler[:, 0], euler[:, 1], euler[:, 2]).reshape(-1, 4, 4)
 
 
 def _alpha_auto(points: np.ndarray) -> np.ndarray:
@@ -151,7 +151,7 @@ def _orientations(sc: Scenario, points: np.ndarray) -> np.ndarray:
         return euler
     grid = interpolate_orientation(e0, e1, 201, method="slerp")
     R = grid[np.rint(t * 200).astype(int)]
-    return np.array([np.asarray(zxz_from_matrix(r), float).reshape(-1)[:3] for r in R])
+    return np.array([np.asarray(euler_from_matrix(r), float).reshape(-1)[:3] for r in R])
 
 
 def build_path(sc: Scenario, *, scene: Scene | None = None, via_points=None,

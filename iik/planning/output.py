@@ -11,6 +11,11 @@
 ``iik run --trajectory`` accepts either CSV as written (:mod:`iik.planning.timing`).
 * ``summary.txt`` -- the summary, the notes and every attempt;
 * ``scene.png`` (like Fig 42), ``joints.png`` (like Fig 43), ``effort.png`` (like Fig 44).
+
+The folder is written whole or not at all (:func:`iik.files.atomic_output`): into a temporary
+sibling, moved into place when every file is written; an interrupt leaves the previous
+output as it was. An existing folder is replaced only if it holds nothing but these files
+(:data:`PLAN_FILES`).
 """
 
 from __future__ import annotations
@@ -22,20 +27,35 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from iik.arm import THESIS_ARM, Arm
+from iik.files import atomic_output
 
 from .obstacles import enclosing_radii
 
 if TYPE_CHECKING:  # pragma: no cover
     from .pipeline import PlanResult
 
-__all__ = ["write_outputs", "plot_scene", "plot_joints", "plot_effort", "box_faces", "collision_faces",
-           "draw_arm_bodies", "set_equal_axes"]
+__all__ = ["PLAN_FILES", "write_outputs", "plot_scene", "plot_joints", "plot_effort", "box_faces",
+           "collision_faces", "draw_arm_bodies", "set_equal_axes"]
+
+
+#: Every file :func:`write_outputs` writes (an output folder holding anything else is not replaced).
+PLAN_FILES = ("trajectory.csv", "steps.csv", "summary.txt", "scene.png", "joints.png", "effort.png")
 
 
 def write_outputs(res: PlanResult, out: Path, *, figures: bool = True) -> list[Path]:
-    """Write the CSVs, the summary and (optionally) the figures into ``out``; return the paths."""
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    """Write the CSVs, the summary and (optionally) the figures into the folder ``out``, whole or
+    not at all (module docstring); return the paths written.
+
+    Raises:
+        FileError: (argument ``out``) ``out`` is a file, holds other things than
+            :data:`PLAN_FILES`, or cannot be written.
+    """
+    with atomic_output(out, "out", folder=True, owns=PLAN_FILES) as o:
+        files = _write_files(res, o.path, figures)
+    return [o.final(f) for f in files]
+
+
+def _write_files(res: PlanResult, out: Path, figures: bool) -> list[Path]:
     files = []
     if res.trajectory is not None:
         tr = res.trajectory

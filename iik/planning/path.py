@@ -16,7 +16,7 @@ All points are in the arm's base frame 0 [m]; angles in rad.
   about the joint-1 axis (radius, azimuth, height), i.e. it travels *around*
   the base instead of cutting towards it. The azimuth never wraps through
   +-180 deg (the joint-1 cut behind the arm, Sec 3.6.3).
-* :func:`interpolate_orientation` -- the thesis's "gradual" change of the Z-X-Z
+* :func:`interpolate_orientation` -- the thesis's "gradual" change of the Z-Y-Z
   Euler angles (alpha, beta, gamma linearly, Sec 4.2.1) or a slerp between the
   start and goal rotations (``scipy.spatial.transform.Slerp``).
 """
@@ -29,7 +29,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
 
 from ..errors import InvalidInputError
-from ..rotations import zxz_matrix
+from ..rotations import euler_matrix
 from ..validation import as_float_array, as_joints, as_points
 
 __all__ = [
@@ -178,11 +178,11 @@ def interpolate_joints(q_keys, *, max_joint_step: float = 0.05) -> np.ndarray:
     return np.concatenate(out)
 
 
-def interpolate_orientation(start_zxz, goal_zxz, n: int, *, method: str = "euler") -> np.ndarray:
+def interpolate_orientation(start_euler, goal_euler, n: int, *, method: str = "euler") -> np.ndarray:
     """Orientations for ``n`` points from the start to the goal orientation.
 
     Args:
-        start_zxz, goal_zxz: Z-X-Z Euler angles (alpha, beta, gamma) [rad] (Eq 42).
+        start_euler, goal_euler: Z-Y-Z Euler angles (alpha, beta, gamma) [rad] (corrected Eq 42).
         n: Number of points (>= 2), start and goal included.
         method: ``"euler"`` -- the thesis's gradual change: each Euler angle
             changes linearly (Sec 4.2.1); ``"slerp"`` -- spherical linear
@@ -191,17 +191,17 @@ def interpolate_orientation(start_zxz, goal_zxz, n: int, *, method: str = "euler
     Returns:
         ``"euler"``: (n, 3) Euler angles [rad]. ``"slerp"``: (n, 3, 3) rotation matrices.
     """
-    e0 = as_float_array(start_zxz, "start_zxz").reshape(-1)
-    e1 = as_float_array(goal_zxz, "goal_zxz").reshape(-1)
+    e0 = as_float_array(start_euler, "start_euler").reshape(-1)
+    e1 = as_float_array(goal_euler, "goal_euler").reshape(-1)
     if e0.shape != (3,) or e1.shape != (3,):
-        raise InvalidInputError("start_zxz/goal_zxz", "expected three Euler angles each")
+        raise InvalidInputError("start_euler/goal_euler", "expected three Euler angles each")
     if int(n) != n or n < 2:
         raise InvalidInputError("n", f"needs at least 2 points, got {n!r}")
     s = np.linspace(0.0, 1.0, int(n))[:, None]
     if method == "euler":
         return e0 + s * (e1 - e0)
     if method == "slerp":
-        R = Rotation.from_matrix(np.stack([zxz_matrix(*e0), zxz_matrix(*e1)]))
+        R = Rotation.from_matrix(np.stack([euler_matrix(*e0), euler_matrix(*e1)]))
         return Slerp([0.0, 1.0], R)(s[:, 0]).as_matrix()
     raise InvalidInputError("method", f"expected 'euler' or 'slerp', got {method!r}")
 

@@ -241,13 +241,15 @@ class PlanResult:
         if not self.success:
             head += f" -- {self.reason}"
         tr = self.trajectory
-        return (f"{head}\n  steps {len(self.q)}, tool path {self.path_length:.3f} m, "
-                f"whole-arm clearance certified >= {self.min_clearance * 1000:.1f} mm "
+        certified = (f"whole-arm clearance certified >= {self.min_clearance * 1000:.1f} mm"
+                     if np.isfinite(self.min_clearance) else "no path to certify a clearance for")
+        timed = (f"timed-trajectory clearance {self.trajectory_clearance * 1000:.1f} mm"
+                 if np.isfinite(self.trajectory_clearance) else "not timed")
+        return (f"{head}\n  steps {len(self.q)}, tool path {self.path_length:.3f} m, {certified} "
                 f"(safety zone {s.safety_zone * 1000:.0f} mm), branch switches {len(self.branch_switches)}, "
                 f"beta/alpha/gamma+pi changed at {len(self.beta_changed_steps)}/"
                 f"{len(self.alpha_changed_steps)}/{len(self.gamma_changed_steps)} "
-                f"steps, timed-trajectory clearance {self.trajectory_clearance * 1000:.1f} mm, "
-                f"planning {self.planning_time * 1000:.0f} ms"
+                f"steps, {timed}, planning {self.planning_time * 1000:.0f} ms"
                 + (f"\n  duration {tr.duration:.2f} s (TOPP-RA) vs {self.thesis_trajectory.duration:.2f} s "
                    "(thesis: velocity proportional to effort)"
                    if tr is not None and self.thesis_trajectory else ""))

@@ -24,8 +24,9 @@ from pathlib import Path
 import pinocchio as pin
 
 from iik.arm import THESIS_ARM, Arm
+from iik.files import read_text
 from iik.resources import urdf_path
-from iik.urdf import TOOL_FRAME, adjacent_pairs, thesis_urdf
+from iik.urdf import MAX_URDF_BYTES, TOOL_FRAME, adjacent_pairs, thesis_urdf
 
 __all__ = ["ThesisModel", "thesis_model", "load_model", "collision_link"]
 
@@ -56,21 +57,23 @@ def collision_link(model: pin.Model, geom: pin.GeometryObject) -> str:
 
 
 def load_model(path: Path | str, *, with_collision: bool = True) -> ThesisModel:
-    """Load any URDF file written by :mod:`iik.urdf` (not cached)."""
+    """Load any URDF file written by :mod:`iik.urdf` (not cached; read by :func:`iik.files.read_text`,
+    at most :data:`iik.urdf.MAX_URDF_BYTES`: its shapes are primitives, no mesh files).
+
+    Raises:
+        FileError: (argument ``path``) missing, not a regular file, too large or not UTF-8.
+    """
     path = Path(path)
-    return dataclasses.replace(_build(str(path), with_collision, from_file=True), path=path)
+    text = read_text(path, "path", limit=MAX_URDF_BYTES, what="a URDF file")
+    return dataclasses.replace(_build(text, with_collision), path=path)
 
 
-def _build(urdf: str, with_collision: bool, *, from_file: bool) -> ThesisModel:
-    """Model and collision model from a URDF file name or URDF text."""
-    if from_file:
-        model = pin.buildModelFromUrdf(urdf)
-    else:
-        model = pin.buildModelFromXML(urdf)
+def _build(urdf: str, with_collision: bool) -> ThesisModel:
+    """Model and collision model from URDF text."""
+    model = pin.buildModelFromXML(urdf)
     geom = pin.GeometryModel()
     if with_collision:
-        geom = (pin.buildGeomFromUrdf(model, urdf, pin.COLLISION) if from_file
-                else pin.buildGeomFromUrdfString(model, urdf, pin.COLLISION))
+        geom = pin.buildGeomFromUrdfString(model, urdf, pin.COLLISION)
         skip = {frozenset(p) for p in adjacent_pairs(model.nq)}
         objs = geom.geometryObjects
         for i in range(len(objs)):
@@ -94,4 +97,4 @@ def thesis_model(arm: Arm = THESIS_ARM) -> ThesisModel:
 def _cached_model(arm: Arm) -> ThesisModel:
     if arm == THESIS_ARM:
         return load_model(urdf_path())
-    return _build(thesis_urdf(arm), True, from_file=False)
+    return _build(thesis_urdf(arm), True)

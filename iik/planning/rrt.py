@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from iik.arm import THESIS_ARM, Arm
-from iik.errors import IIKError
+from iik.errors import IIKError, InvalidInputError
 from iik.validation import as_joints
 
 from .collision import SceneCollision
@@ -31,15 +31,23 @@ def rrt_connect(q_start, q_goal, checker: SceneCollision, *, required: float, ar
     States must keep ``required + margin`` [m] so that the motions between the
     states OMPL checks (every ~0.01 rad) keep ``required`` under the certified check.
 
+    Reproducible: ``seed`` seeds every random generator the attempt creates (OMPL's
+    sampler, planner and path simplifier), whatever OMPL did before in the process, and
+    the path is simplified by bounded passes, not for a time; so one seed gives one path
+    (unless ``time_limit`` runs out first, on a slow machine).
+
     Returns:
         (n, 6) joint path [rad] with consecutive configurations at most
         ``max_joint_step`` apart per joint, or ``None`` if OMPL found no solution
         within ``time_limit`` seconds.
 
     Raises:
+        InvalidInputError: ``seed`` is not an integer in 1 .. 2**32 - 1 (OMPL ignores 0).
         SamplingError: OMPL raised (its exception is the cause).
     """
     qa, qb = as_joints(q_start, "q_start")[0][0], as_joints(q_goal, "q_goal")[0][0]
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 1 <= seed < 2**32:
+        raise InvalidInputError("seed", f"expected an integer in 1 .. 2**32 - 1, got {seed!r}")
     try:
         states = _solve(qa, qb, checker, required + margin, arm, time_limit, seed)
     except IIKError:
@@ -64,7 +72,7 @@ def _solve(q_start, q_goal, checker: SceneCollision, clearance: float, arm: Arm,
     from ompl import util as ou
 
     ou.setLogLevel(ou.LOG_ERROR)
-    ou.RNG.setSeed(int(seed))
+    _reseed(int(seed))
     space = ob.RealVectorStateSpace(6)
     bounds = ob.RealVectorBounds(6)
     for i in range(6):
@@ -90,6 +98,25 @@ def _solve(q_start, q_goal, checker: SceneCollision, clearance: float, arm: Arm,
     solved = ss.solve(time_limit)
     if not solved or not ss.haveExactSolutionPath():
         return None
-    ss.simplifySolution(1.0)
     path = ss.getSolutionPath()
+    ss.getPathSimplifier().simplifyMax(path)  # bounded passes, no clock: the same states for the same seed
     return [np.array([path.getState(k)[i] for i in range(6)]) for k in range(path.getStateCount())]
+
+
+def _reseed(seed: int) -> None:
+    """Seed OMPL's seed generator: every generator OMPL creates from now on derives from ``seed``.
+
+    OMPL logs "Random number generation already started. Changing seed now will not lead to
+    deterministic sampling" when it handed out seeds before, and re-seeds all the same: the
+    generators created earlier keep their state, but an attempt creates all of its own after
+    this call (``test_rrt`` checks that one seed gives one path in a fresh process and after
+    other attempts). The message is therefore silenced here, not for the whole program.
+    """
+    from ompl import util as ou
+
+    level = ou.getLogLevel()
+    ou.setLogLevel(ou.LOG_NONE)
+    try:
+        ou.RNG.setSeed(seed)
+    finally:
+        ou.setLogLevel(level)

@@ -1,9 +1,10 @@
 """A pick-and-place scenario as a frozen dataclass, and its geometric checks.
 
-Units: positions [m] in the arm's base frame 0; angles [rad] (Z-X-Z Euler
-angles of Eq 42). :class:`Waypoint` and :class:`Scenario` check every value
-on construction (finite numbers of the right type, within the bounds below)
-and raise :class:`~iik.planning.ScenarioError` naming the field. The file
+Units: positions [m] in the arm's base frame 0; angles [rad] (Z-Y-Z Euler
+angles of the corrected Eq 42, which the thesis calls Z-X-Z). :class:`Waypoint`
+and :class:`Scenario` check every value on construction (finite numbers of the
+right type, within the bounds below) and raise :class:`~iik.planning.ScenarioError`
+naming the field. The file
 loader (:mod:`iik.planning.scenario_io`) converts file units and frames and
 then calls :func:`check_scenario` for the geometric checks: start, goal and
 requested via-points outside every box, the platform and the floor, and
@@ -83,7 +84,7 @@ def point3(v, field: str, bound: float = MAX_COORDINATE) -> tuple[float, float, 
 
 @dataclass(frozen=True)
 class Waypoint:
-    """An end-effector target: tool point and Z-X-Z orientation.
+    """An end-effector target: tool point and Z-Y-Z orientation (corrected Eq 42).
 
     Attributes:
         position: Tool point (3,) [m], base frame.

@@ -9,7 +9,7 @@ File format (all keys documented in ``scenarios/README.md``)::
     frame = "floor"        # "floor": z is the height above the floor; "base": arm base frame 0
     [start]
     position = [0.45, 0.30, 0.86]   # m
-    beta_deg = 0.0                  # Z-X-Z (corrected Eq 42) angles in degrees (or beta = ... in rad);
+    beta_deg = 0.0                  # Z-Y-Z (corrected Eq 42) angles in degrees (or beta = ... in rad);
     alpha_deg = 0.0                 # omit alpha for "any alpha" (Sec 3.6)
     gamma_deg = 0.0
     [goal]
@@ -29,13 +29,13 @@ File format (all keys documented in ``scenarios/README.md``)::
     kind = "obstacle"               # or "support" (a table the object stands on)
 
 Every problem is a :class:`iik.planning.ScenarioError` naming the field: an
-unreadable file (missing, not UTF-8, over :data:`MAX_FILE_SIZE`, nested too
-deeply), TOML syntax errors (with line/column), missing or mistyped keys,
-unknown keys, values outside the bounds of :mod:`iik.planning.scenario`, and
-impossible tasks (start, goal or a requested via-point in an obstacle, the
-platform, below the floor, or outside the workspace of the arm -- with the
-closest reachable point -- or a path of too many step-points). Points in
-messages are in the file's frame, and the message says which.
+unreadable file (missing, not a regular file, not UTF-8, over :data:`MAX_FILE_SIZE`:
+read by :func:`iik.files.read_text`, which stops there; nested too deeply), TOML syntax
+errors (with line/column), missing or mistyped keys, unknown keys, values outside the
+bounds of :mod:`iik.planning.scenario`, and impossible tasks (start, goal or a
+requested via-point in an obstacle, the platform, below the floor, or outside the
+workspace of the arm -- with the closest reachable point -- or a path of too many
+step-points). Points in messages are in the file's frame, and the message says which.
 
 :func:`scenario_to_toml` / :func:`write_scenario` write the base frame and
 every field, so ``load_scenario(write_scenario(sc, path)) == sc`` exactly:
@@ -51,7 +51,8 @@ from pathlib import Path
 import numpy as np
 
 from iik.arm import THESIS_ARM, Arm
-from iik.errors import InvalidInputError
+from iik.errors import FileError, InvalidInputError
+from iik.files import read_text, write_text
 from iik.resources import scenarios_dir
 from iik.scene import THESIS_SCENE, Scene
 
@@ -101,8 +102,8 @@ def scenario_path(scenario: str | Path) -> Path:
             scenario; the message lists the shipped names.
     """
     path = Path(scenario)
-    if path.is_file() or path.suffix or len(path.parts) > 1:
-        return path  # a file name: load_scenario says if it is missing
+    if path.exists() or path.suffix or len(path.parts) > 1:
+        return path  # a file name: load_scenario says if it is missing or not a regular file
     shipped = scenarios_dir() / f"{path.name}.toml"
     if shipped.is_file():
         return shipped
@@ -122,14 +123,9 @@ def load_scenario(path, *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
     """Read and validate one scenario file (see the module docstring) for ``arm`` in ``scene``."""
     path = Path(path)
     try:
-        if (size := path.stat().st_size) > MAX_FILE_SIZE:
-            raise ScenarioError("file", f"{path} has {size} bytes; a scenario file has at most "
-                                        f"{MAX_FILE_SIZE}")
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ScenarioError("file", f"{path} does not exist") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ScenarioError("file", f"cannot read {path}: {exc}") from None
+        text = read_text(path, "file", limit=MAX_FILE_SIZE, what="a scenario file")
+    except FileError as exc:
+        raise ScenarioError("file", exc.reason) from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -375,11 +371,11 @@ def scenario_to_toml(sc: Scenario) -> str:
 
 
 def write_scenario(sc: Scenario, path) -> Path:
-    """Write ``sc`` to ``path`` as TOML (:func:`scenario_to_toml`); return the path."""
+    """Write ``sc`` to ``path`` as TOML (:func:`scenario_to_toml`), whole or not at all
+    (:func:`iik.files.write_text`); return the path."""
     path = Path(path)
     text = scenario_to_toml(sc)
     try:
-        path.write_text(text, encoding="utf-8")
-    except OSError as exc:
-        raise ScenarioError("file", f"cannot write {path}: {exc}") from None
-    return path
+        return write_text(path, "file", text)
+    except FileError as exc:
+        raise ScenarioError("file", exc.reason) from None

@@ -145,7 +145,7 @@ def all_solutions(points: np.ndarray, euler: np.ndarray, *, arm: Arm = THESIS_AR
     alpha/beta changes of :data:`ORIENTATION_OFFSETS`, cheapest first.
 
     Args:
-        points, euler: (n, 3) tool points [m] and Z-X-Z angles [rad].
+        points, euler: (n, 3) tool points [m] and Z-Y-Z angles [rad] (corrected Eq 42).
         arm: The arm whose IK and joint limits are used.
         ramp: Spread every needed change linearly over this many steps on each
             side, then solve again (gradual orientation change, Sec 4.2.1).

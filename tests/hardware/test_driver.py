@@ -12,7 +12,13 @@ import pytest
 import iik
 from hardware import PowerCubeArm, PowerCubeModule, SimulatedArm, scan
 from hardware import protocol as P
-from hardware.errors import CANTimeoutError, DuplicateModuleError, ModuleHalted, SafetyError
+from hardware.errors import (
+    CANTimeoutError,
+    DuplicateModuleError,
+    ModuleHalted,
+    SafetyError,
+    SecondControllerError,
+)
 from verification.testing.polling import wait_until
 
 
@@ -318,6 +324,41 @@ def test_one_module_each_opens_cleanly(new_channel):
             can.Bus(interface="virtual", channel=ch) as bus:
         arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0)
         assert len(arm.open()) == 6 and sorted(scan(bus, range(1, 8), timeout=0.2)) == [1, 2, 3, 4, 5, 6]
+
+
+def test_two_controllers_on_one_bus_are_named_as_such(new_channel):
+    """Two hosts driving one arm (two `iik run` on one channel): each sees requests it did not send,
+    a SecondControllerError naming them, not "more than one module with id N"."""
+    ch = new_channel()
+    with SimulatedArm.virtual(ch), can.Bus(interface="virtual", channel=ch) as bus_a, \
+            can.Bus(interface="virtual", channel=ch) as bus_b:
+        a, b = (PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0) for bus in (bus_a, bus_b))
+        a.open()
+        with pytest.raises(SecondControllerError) as info:
+            b.open()
+        e = info.value
+        assert e.frame_id == P.ID_GET + 1 and e.request == "GETPARAM VERSION to module 1"
+        assert str(e).startswith("two controllers on one bus: another host sent GETPARAM VERSION to module 1")
+        b.link.send(P.GetParam(2, P.Param.ACT_FPOS))  # the second host goes on commanding regardless
+        with pytest.raises(SecondControllerError, match="GETPARAM ACT_FPOS to module 2"):
+            a.get_pos()  # and the first host sees its requests
+
+
+def test_frames_a_host_sent_itself_are_not_another_controller(new_channel):
+    """An interface that loops a host's own frames back (receive_own_messages) is one controller, its
+    periodic watchdog refresh included; a frame it never sent is another one."""
+    ch = new_channel()
+    loopback = can.Bus(interface="virtual", channel=ch, receive_own_messages=True)
+    with SimulatedArm.virtual(ch), loopback as bus, can.Bus(interface="virtual", channel=ch) as other:
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0)
+        arm.open()
+        arm.start_watchdog()
+        time.sleep(0.2)  # a few refreshes come back
+        arm.get_pos()
+        arm.stop_watchdog()
+        other.send(P.encode(P.GetParam(7, P.Param.ACT_FPOS)))
+        with pytest.raises(SecondControllerError, match="GETPARAM ACT_FPOS to module 7"):
+            arm.get_pos()
 
 
 def test_a_second_answer_during_requests_is_a_fault(arm, sim, channel):

@@ -23,6 +23,7 @@ from hardware.errors import (
     StopSignal,
 )
 from hardware.executor import ExecutionOptions, ValidatedTrajectory, ValidationOptions, time_steps
+from iik.files import PARTIAL_PREFIX
 
 ARM = iik.THESIS_ARM
 QA = np.array([0.1, -0.3, 0.4, 0.5, -0.2, 0.7])
@@ -436,7 +437,11 @@ def test_log_survives_a_killed_process(new_channel, tmp_path):
     finally:
         if proc.poll() is None:
             proc.kill()
-    run = read_run_log(log)  # every line on disk is a complete record
+    # the log moves to its name only when closed: the records of the killed run are on disk in its
+    # temporary sibling, every line a complete record (iik.files, hardware.runlog)
+    assert not log.exists()
+    (partial,) = tmp_path.glob(f"{PARTIAL_PREFIX}*-crash.jsonl")
+    run = read_run_log(partial)
     assert not run.complete and len(run.command_k) >= 5 and len(run.samples_t) > 5
 
 

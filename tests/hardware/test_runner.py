@@ -132,3 +132,20 @@ def test_run_on_an_empty_bus_raises_a_typed_timeout(tmp_path):
     with pytest.raises(CANTimeoutError):
         run(req)
     assert not list(tmp_path.glob("*.jsonl"))  # the reserved log name is given back: nothing ran
+
+
+def test_rests_count_only_between_planned_steps(tmp_path):
+    """From the home pose the arm approaches the start and settles there: that rest is by design, not a
+    rest between two planned steps. With one planned step there is no step change at all, so nothing
+    to count, whatever the machine's load (it used to say '6 times (of 0 step changes)')."""
+    path = tmp_path / "one.csv"
+    path.write_text("t,q1,q2,q3,q4,q5,q6\n0,0.1,0.1,0,0.4,1,0\n0.5,0.15,0.1,0,0.4,1,0\n")
+    one = run(RunRequest(trajectory=path, sim_start="home", out=tmp_path, figures=False))
+    assert 0 in read_run_log(one.result.log_path).command_k  # the approach from home was commanded
+    assert one.step_changes == 0 and one.rests == 0
+    assert "one planned step: no step change for a joint to rest at" in one.summary()
+    assert "of 0 step changes" not in one.summary()
+    demo = run(RunRequest(demo=True, sim_start="home", update="buffered", out=tmp_path, figures=False))
+    assert 0 <= demo.rests <= demo.step_changes == 6 * (len(demo.targets) - 2)
+    assert f"came to rest between two planned steps {demo.rests} times (of {demo.step_changes} step changes" \
+        in demo.summary()

@@ -279,6 +279,15 @@ def test_batch_to_solve_and_bad_method():
         iik.solve(np.eye(4), method="magic")
 
 
+def test_pose_from_euler_round_trip():
+    q = np.array([0.3, -0.2, 0.5, 0.7, -0.4, 0.9])
+    T = iik.fk(q, ARM)
+    a, b, g = iik.euler_from_matrix(T[:3, :3])
+    T2 = iik.pose_from_euler(T[:3, 3], a, b, g)
+    assert np.allclose(T, T2, atol=1e-12)
+    assert contains(iik.solve(T2, ARM), q, T2, ARM)
+
+
 @pytest.mark.parametrize("method", ["complete", "reference", "thesis"])
 @pytest.mark.parametrize("position", [[1e308, 0.0, 0.0], [-1e308, 1e308, 1e308], [0.0, 0.0, 1e200],
                                       [1.3, 0.0, 0.3]])

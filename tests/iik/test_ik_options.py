@@ -8,10 +8,11 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scipy.spatial.transform import Rotation
 
 import iik
 from iik.errors import InvalidInputError, NotOrthonormalError
-from iik.ik import DEFAULT_OPTIONS, IKOptions
+from iik.ik import DEFAULT_OPTIONS, ORTHONORMAL_TOL, IKOptions
 
 ARM = iik.THESIS_ARM
 LO, HI = ARM.q_min, ARM.q_max
@@ -82,6 +83,28 @@ def test_beyond_the_tolerance_a_typed_error_says_how_far_and_which_option():
     assert r.count > 0 and r.rotation_projection > 1e-3
 
 
+def test_the_default_takes_what_a_teach_pendant_shows_and_says_why_in_the_error():
+    """Issue 20 item 11: rotations rounded to 4 decimals (a pendant's display) deviate by at most
+    2 sqrt(3) 0.5e-4 + 3 (0.5e-4)^2 = 1.73e-4 from orthonormal; 22 % of them exceeded the old default 1e-4.
+    Every one is solved now, the projection reported; beyond the default the error says why."""
+    R = Rotation.random(20_000, random_state=7).as_matrix()
+    dev = np.abs(np.einsum("nji,njk->nik", np.round(R, 4), np.round(R, 4)) - np.eye(3)).max(axis=(1, 2))
+    bound = 2 * np.sqrt(3) * 0.5e-4 + 3 * 0.25e-8
+    assert dev.max() <= bound < DEFAULT_OPTIONS.orthonormal_tol == ORTHONORMAL_TOL
+    assert np.mean(dev > 1e-4) > 0.2  # what the old default refused
+    q = np.random.default_rng(5).uniform(LO, HI, size=(400, 6))
+    T = iik.fk(q)
+    T[:, :3, :3] = np.round(T[:, :3, :3], 4)
+    res = iik.solve_many(T, within_limits=False)  # no NotOrthonormalError
+    assert all(r.count > 0 and 0 < r.rotation_projection <= 2e-4 for r in res)
+    scaled = T[0].copy()
+    scaled[:3, :3] *= 1.001  # max |R^T R - I| = 2e-3
+    with pytest.raises(NotOrthonormalError) as e:
+        iik.solve(scaled)
+    assert "rounded to 4 decimals, which deviate by at most 1.7e-4" in str(e.value)
+    assert "3 decimals deviate by up to 1.7e-3" in str(e.value)
+
+
 def test_just_out_of_reach_is_approximate_far_out_is_unreachable():
     """A stretched arm (theta4 = 0) is on the boundary of the reachable poses: pushed out by
     1e-7 m it is 'approximate' (the least-residual configurations), by 1 cm 'unreachable'."""
@@ -103,7 +126,7 @@ def test_just_out_of_reach_is_approximate_far_out_is_unreachable():
     assert rf.count == 0 and rf.reason.startswith("unreachable")
 
 
-_NOISE = ["float32", "round9", "round6", "gauss1e-9", "gauss1e-8", "gauss1e-7", "gauss1e-6"]
+_NOISE = ["float32", "round9", "round6", "rot4", "gauss1e-9", "gauss1e-8", "gauss1e-7", "gauss1e-6"]
 
 
 def noisy_pose(T: np.ndarray, kind: str, rng: np.random.Generator) -> np.ndarray:
@@ -111,6 +134,10 @@ def noisy_pose(T: np.ndarray, kind: str, rng: np.random.Generator) -> np.ndarray
         return T.astype(np.float32).astype(float)
     if kind.startswith("round"):
         return np.round(T, int(kind[5:]))
+    if kind == "rot4":  # the rotation as a teach pendant shows it (positions rounded to 0.1 mm may leave
+        R = T.copy()  # the reachable set by more than approximate_tol at the boundary: that is no noise)
+        R[:3, :3] = np.round(T[:3, :3], 4)
+        return R
     N = T + rng.normal(0.0, float(kind[5:]), T.shape)
     N[3] = [0.0, 0.0, 0.0, 1.0]
     return N
@@ -125,7 +152,7 @@ def noisy_reachable(draw):
 
 
 def _scale(kind: str) -> float:
-    return {"float32": 1e-7, "round9": 1e-9, "round6": 1e-6}.get(kind) or float(kind[5:])
+    return {"float32": 1e-7, "round9": 1e-9, "round6": 1e-6, "rot4": 1e-4}.get(kind) or float(kind[5:])
 
 
 @settings(max_examples=200)

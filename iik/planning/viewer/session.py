@@ -20,20 +20,20 @@ from __future__ import annotations
 import contextlib
 import errno
 import io
-import os
-import shutil
 import signal
 import socket
-import tempfile
 import threading
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Protocol
 
 import numpy as np
 import viser
+
+from iik.errors import FileError
+from iik.files import atomic_output, check_output
 
 from ..errors import ExportError, PortInUseError, ViewRequestError
 from .environment import configure_server
@@ -139,12 +139,21 @@ class ExportResult:
 
 
 def _check_port(host: str, port: int) -> None:
+    """Bind ``host:port`` once: a host that is no address of this machine is a bad ``host``
+    (:class:`ViewRequestError`), a taken or forbidden port a :class:`PortInUseError`."""
     family = socket.AF_INET6 if ":" in host else socket.AF_INET
     with socket.socket(family, socket.SOCK_STREAM) as s:
         s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         try:
             s.bind((host, port))
+        except socket.gaierror as exc:  # not an address nor a name that resolves (999.1.1.1)
+            raise ViewRequestError("host", f"bad host {host!r}: not an address or host name "
+                                           f"({exc.strerror}); e.g. 127.0.0.1 (this machine only), 0.0.0.0 "
+                                           "(every interface)") from None
         except OSError as exc:
+            if exc.errno == errno.EADDRNOTAVAIL:  # a valid address of another machine (8.8.8.8)
+                raise ViewRequestError("host", f"bad host {host!r}: not an address of this machine "
+                                               f"({exc.strerror}); e.g. 127.0.0.1, 0.0.0.0") from None
             detail = "address in use" if exc.errno == errno.EADDRINUSE else exc.strerror or str(exc)
             raise PortInUseError(host, port, detail) from None
 
@@ -153,6 +162,7 @@ def open_server(host: str, port: int) -> viser.ViserServer:
     """A quiet :class:`viser.ViserServer` on exactly ``host:port`` (0: any free port).
 
     Raises:
+        ViewRequestError: ``host`` is not an address of this machine; ``port`` is no TCP port.
         PortInUseError: the port is taken (viser itself would silently move to the next one).
     """
     if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
@@ -243,26 +253,15 @@ def _frames(anim: Animation, fps: float) -> Sequence[int]:
     return keep
 
 
-def _prepare(directory: Path, force: bool) -> None:
-    if directory.exists() and not directory.is_dir():
-        raise ExportError(directory, "exists and is not a folder")
+@contextlib.contextmanager
+def _export_errors(directory: Path, force: bool) -> Iterator[None]:
+    """Refuse a non-empty folder without ``force``; :class:`iik.errors.FileError` as :class:`ExportError`."""
     if directory.is_dir() and any(directory.iterdir()) and not force:
         raise ExportError(directory, "folder is not empty (use --force to replace its contents)")
-
-
-def _install(tmp: Path, directory: Path) -> None:
-    """Move the finished ``tmp`` folder to ``directory`` (replacing it) without a half-written state."""
-    if directory.exists():
-        old = Path(tempfile.mkdtemp(prefix=".iik-view-old-", dir=directory.parent))
-        os.replace(directory, old / "x")
-        try:
-            os.replace(tmp, directory)
-        except OSError:
-            os.replace(old / "x", directory)
-            raise
-        shutil.rmtree(old, ignore_errors=True)
-    else:
-        os.replace(tmp, directory)
+    try:
+        yield
+    except FileError as exc:
+        raise ExportError(directory, exc.reason) from None
 
 
 def record(view: View, *, fps: float = 25.0) -> tuple[str, int]:
@@ -291,28 +290,22 @@ def record(view: View, *, fps: float = 25.0) -> tuple[str, int]:
 def export(view: View, directory: Path | str, *, force: bool = False, fps: float = 25.0) -> ExportResult:
     """Write ``directory/index.html``: the view and its animation, playable from disk offline.
 
+    The folder is written whole or not at all (:func:`iik.files.atomic_output`): an error or an
+    interrupt (Ctrl-C, SIGTERM, SIGHUP) leaves ``directory`` as it was.
+
     Raises:
         ExportError: ``directory`` is not empty (without ``force``), is a file, or cannot be written.
     """
     t_start = time.perf_counter()
-    directory = Path(directory)
-    _prepare(directory, force)
-    page, frames = record(view, fps=fps)
-    try:
-        directory.parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix=".iik-view-", dir=directory.parent))
-        mask = os.umask(0)
-        os.umask(mask)
-        tmp.chmod(0o777 & ~mask)  # mkdtemp makes it private; the export is an ordinary folder
-    except OSError as exc:
-        raise ExportError(directory, f"cannot write here ({exc.strerror or exc})") from None
-    try:
-        (tmp / EXPORT_FILE).write_text(page, encoding="utf-8")
-        _install(tmp, directory)
-    except OSError as exc:
-        raise ExportError(directory, f"cannot write the export ({exc.strerror or exc})") from None
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+    directory, owns = Path(directory), None if force else ()
+    with _export_errors(directory, force):
+        check_output(directory, "export", folder=True, owns=owns)  # before the work
+        with atomic_output(directory, "export", folder=True, owns=owns) as out:
+            page, frames = record(view, fps=fps)
+            try:
+                (out.path / EXPORT_FILE).write_text(page, encoding="utf-8")
+            except OSError as exc:
+                raise ExportError(directory, f"cannot write the export ({exc.strerror or exc})") from None
     size = sum(f.stat().st_size for f in directory.rglob("*") if f.is_file())
     return ExportResult(path=directory, size=size, frames=frames, seconds=time.perf_counter() - t_start)
 

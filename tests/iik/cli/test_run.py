@@ -1,7 +1,10 @@
 """``iik run`` end to end: on the in-process simulated arm, and as a process against ``iik sim-arm``."""
 
 import csv
+import json
 import signal
+import subprocess
+import sys
 import threading
 import time
 
@@ -13,6 +16,7 @@ import iik
 from hardware import protocol as P
 from hardware import read_run_log
 from iik.cli import main
+from iik.files import PARTIAL_PREFIX
 
 STEMS = ("joint_error", "ee_error", "velocity")
 ANGLE = "--margin-deg: must be a finite angle in [0, 90) deg, got "
@@ -102,11 +106,12 @@ def test_run_needs_one_source(tmp_path, capsys):
     (["run", "--demo", "--timeout", "0"], "--timeout: must be a finite number in (0, 10] s, got 0.0"),
     (["run", "--demo", "--bitrate", "-5"], "--bitrate: must be a PowerCube bit rate"),
     (["run", "--demo", "--port", "0"], "--port"),
-    (["run", "--demo", "--zone-mm", "0"], "--zone-mm"),
+    (["run", "--demo", "--zone-mm", "0"], "--zone-mm: must be a finite number in (0, 1000] mm, got 0 mm"),
+    (["run", "--demo", "--zone-mm", "-5"], "--zone-mm: must be a finite number in (0, 1000] mm, got -5 mm"),
     (["run", "--demo", "--modules", "1", "1", "2", "3", "4", "5"], "--modules"),
     (["run", "--demo", "--update", "sideways"], "--update"),
     (["run", "--demo", "--bogus"], "--bogus"),
-    (["run", "--trajectory", "no/such/file.csv"], "--trajectory: no/such/file.csv: cannot read it"),
+    (["run", "--trajectory", "no/such/file.csv"], "--trajectory: cannot read no/such/file.csv: no such file"),
     (["run", "no-such-scenario"], "scenario"),
     (["run", "--demo", "--interface", "no-such-interface", "--channel", "x"], "no-such-interface"),
 ])
@@ -114,10 +119,15 @@ def test_run_bad_input_is_one_line_and_exit_2(argv, named, tmp_path, capfd):
     """Hostile options end in one stderr line naming the option as typed, exit 2, nothing on disk,
     no internal warning."""
     assert main([*argv, "--out", str(tmp_path / "out")]) == 2
-    err = capfd.readouterr().err.strip().splitlines()
+    out, err = capfd.readouterr()
+    err = err.strip().splitlines()
     # planning/validation notes may come first; the error is the one line after them
     errors = [line for line in err if "error" in line]
     assert len(errors) == 1 and errors[0].startswith("iik run: error: ") and named in errors[0], err
+    if not errors[0].startswith(("iik run: error: argument", "iik run: error: unrecognized")):
+        # a command line that parses is a run: its status line comes last on stdout
+        assert out.strip().splitlines()[-1].startswith("status: error before the run (") and \
+            out.strip().endswith("; nothing was executed)"), out
     assert "Traceback" not in "\n".join(err) and "Warning" not in "\n".join(err)
     assert not list((tmp_path / "out").glob("*.jsonl")) if (tmp_path / "out").exists() else True
 
@@ -173,6 +183,7 @@ def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_pa
         run.send_signal(signum)
         rc = run.wait(timeout=30)
         err = lines + run.stderr.read().splitlines()
+        out = run.stdout.read().strip().splitlines()
     finally:
         listener.close()
     name = signal.Signals(signum).name
@@ -180,6 +191,7 @@ def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_pa
     assert err[-1].startswith(f"iik run: interrupted by {name}; HALT broadcast to every module; the run log "
                               f"{log} ends with the fault; the modules stay halted until reset: run again "
                               "with --reset"), err
+    assert out[-1] == f"status: interrupted by {name} (HALT sent; run log {log})", out
     assert listener.halts, "no HALT broadcast seen on the bus"
     assert "not properly shut down" not in "\n".join(err) and "Traceback" not in "\n".join(err)
     records = read_run_log(log).records
@@ -210,3 +222,38 @@ def test_two_sim_arms_on_one_channel_are_a_fault(udp_bus, tmp_path):
     assert line.startswith("iik run: error: DuplicateModuleError: module 1: two answers to GETPARAM VERSION")
     assert "not properly shut down" not in err and "Traceback" not in err
     assert not list(tmp_path.glob("*.jsonl"))
+
+
+def test_a_run_killed_outright_leaves_the_previous_log_and_keeps_its_records_aside(tmp_path, capsys):
+    """The run log is written beside its name and moved there when closed: SIGKILL (no cleanup
+    possible) mid-run leaves the earlier `--out r.jsonl` exactly as it was, and the killed run's
+    records, flushed line by line, in its `.partial-*-r.jsonl` sibling."""
+    q = np.linspace(0, 1, 12)[:, None] * np.array([0.2, 0.1, -0.1, 0.1, 0.3, 0.0])
+    path = tmp_path / "traj.csv"
+    with path.open("w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["t"] + [f"q{i}" for i in range(1, 7)])
+        for k, row in enumerate(q):
+            w.writerow([f"{0.3 * k:.3f}"] + [f"{v:.6f}" for v in row])
+    log = tmp_path / "r.jsonl"
+    argv = ["run", "--trajectory", str(path), "--sim-start", "plan", "--zone-mm", "30", "--out", str(log),
+            "--no-figures"]
+    assert main(argv) == 0
+    before = log.read_bytes()
+    proc = subprocess.Popen([sys.executable, "-m", "iik.cli", *argv], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        lines = []
+        while not any("step 2/" in x for x in lines):  # the log has records
+            line = proc.stderr.readline()
+            assert line, lines
+            lines.append(line)
+        proc.kill()
+        proc.wait(timeout=30)
+    finally:
+        proc.kill()
+    assert log.read_bytes() == before and read_run_log(log).status == "ok"
+    (partial,) = [p for p in tmp_path.iterdir() if p.name.startswith(PARTIAL_PREFIX)]
+    assert partial.name.endswith("-r.jsonl")
+    kinds = [json.loads(line)["type"] for line in partial.read_text().splitlines()]
+    assert kinds[0] == "header" and "command" in kinds and "end" not in kinds

@@ -2,8 +2,10 @@
 
 import json
 import re
+import signal
 import subprocess
 import sys
+import time
 
 import pytest
 
@@ -93,3 +95,66 @@ def test_python_and_cli_give_the_same_report(cli_report, tmp_path):
     assert "Hardware execution (Sec 4.3, App. A)" in cli
     assert list(cli.items()) == list(written.items())
     assert list(py["sections"]) == list(cli) and sum(cli.values()) > 100
+
+
+def _tree(folder) -> dict:
+    return {str(p.relative_to(folder)): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_ctrl_c_mid_way_leaves_the_previous_report_unmixed(tmp_path):
+    """SIGINT while `iik verify --only kinematics` is writing figures: the previous report folder is
+    exactly as it was (no new figure beside it), and no temporary is left behind."""
+    out = tmp_path / "r"
+    assert main(["verify", "--quick", "--only", "table_ii_encoding", "--out", str(out)]) == 0
+    before = _tree(out)
+    proc = subprocess.Popen([sys.executable, "-m", "iik.cli", "verify", "--quick", "--only", "kinematics",
+                             "--out", str(out)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 300
+        while not list(tmp_path.rglob("*.png")) and time.monotonic() < deadline:  # a figure is being written
+            time.sleep(0.05)
+        assert list(tmp_path.rglob("*.png")), "no figure was written"
+        proc.send_signal(signal.SIGINT)
+        err = proc.communicate(timeout=120)[1]
+    finally:
+        proc.kill()
+    assert proc.returncode == 130 and "iik verify: interrupted by SIGINT" in err, err[-2000:]
+    assert _tree(out) == before
+    assert [p.name for p in tmp_path.iterdir()] == ["r"]
+
+
+def test_a_selection_that_matches_nothing_is_an_error_and_writes_nothing(tmp_path, capsys):
+    out = tmp_path / "r"
+    assert main(["verify", "--quick", "--only", "table_ii_encoding", "--out", str(out)]) == 0
+    before = _tree(out)
+    capsys.readouterr()
+    assert main(["verify", "--only", "zzzz", "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1
+    assert err[0].startswith("iik verify: error: SelectionError: --only: 'zzzz' matches no check")
+    assert main(["verify", "--self-test", "--only", "table_ii_encoding", "zzzz"]) == 2  # each item must match
+    assert _tree(out) == before
+
+
+def test_a_partial_run_says_so_first_and_never_claims_full_mode(tmp_path):
+    assert main(["verify", "--only", "table_ii_encoding", "--out", str(tmp_path)]) == 0
+    md = (tmp_path / "verification.md").read_text(encoding="utf-8")
+    doc = json.loads((tmp_path / "verification.json").read_text(encoding="utf-8"))
+    first = "# PARTIAL verification report (only the checks matching 'table_ii_encoding'"
+    assert md.splitlines()[0].startswith(first)
+    assert doc["title"].startswith("PARTIAL") and doc["header"]["only"] == ["table_ii_encoding"]
+    assert "mode: full" not in md and "mode: partial (only the checks matching `table_ii_encoding`)" in md
+
+
+@pytest.mark.parametrize(("argv", "typed"), [
+    (["--seed", "-5"], "InvalidInputError: --seed: expected an integer in 0 .. 2**63 - 1, got -5"),
+    (["--out", "FILE"], "FileError: --out: {tmp}/FILE is a file, not a folder"),
+    (["--out", "."], "FileError: --out: '.' names no folder to write"),
+])
+def test_bad_options_are_one_line_errors_exit_2(tmp_path, capsys, argv, typed):
+    (tmp_path / "FILE").write_text("mine")
+    argv = [str(tmp_path / a) if a == "FILE" else a for a in argv]
+    assert main(["verify", "--quick", "--only", "table_ii_encoding", *argv]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and typed.format(tmp=tmp_path) in err[0], err
+    assert (tmp_path / "FILE").read_text() == "mine"

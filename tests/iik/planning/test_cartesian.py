@@ -5,7 +5,7 @@ import dataclasses
 import numpy as np
 
 from iik.planning import Obstacle, Scenario, Waypoint, build_path, ellipsoid_value, enclosing_radii, poses_of
-from iik.rotations import pose_from_zxz, zxz_matrix
+from iik.rotations import euler_matrix, pose_from_euler
 from iik.scene import THESIS_SCENE
 
 
@@ -56,7 +56,7 @@ def test_poses_follow_the_corrected_eq42():
     cp = build_path(_scenario(obstacles=()))
     T = poses_of(cp.points, cp.euler)
     for i in (0, cp.n // 2, cp.n - 1):
-        assert np.allclose(T[i], pose_from_zxz(cp.points[i], *cp.euler[i]))
+        assert np.allclose(T[i], pose_from_euler(cp.points[i], *cp.euler[i]))
 
 
 def test_slerp_orientation_starts_and_ends_at_the_requested_rotations():
@@ -64,9 +64,9 @@ def test_slerp_orientation_starts_and_ends_at_the_requested_rotations():
                              start=Waypoint((0.30, 0.25, -0.35), 0.3, 0.2, 0.0),
                              goal=Waypoint((0.30, -0.25, -0.35), -0.5, 0.6, 0.4))
     cp = build_path(sc)
-    R = np.stack([zxz_matrix(*e) for e in cp.euler])
-    assert np.allclose(R[0], zxz_matrix(0.3, 0.2, 0.0), atol=1e-9)
-    assert np.allclose(R[-1], zxz_matrix(-0.5, 0.6, 0.4), atol=1e-9)
+    R = np.stack([euler_matrix(*e) for e in cp.euler])
+    assert np.allclose(R[0], euler_matrix(0.3, 0.2, 0.0), atol=1e-9)
+    assert np.allclose(R[-1], euler_matrix(-0.5, 0.6, 0.4), atol=1e-9)
     # rotation angle between consecutive steps is nearly constant (spherical interpolation)
     ang = [np.arccos(np.clip((np.trace(R[i].T @ R[i + 1]) - 1) / 2, -1, 1)) for i in range(len(R) - 1)]
     assert max(ang) - min(ang) < 0.02

@@ -1,10 +1,15 @@
 """Files and figures of a plan (iik.planning.output)."""
 
 import csv
+import signal
+import subprocess
+import sys
+import textwrap
 
 import numpy as np
 
-from iik.planning import PlanOptions, plan, write_outputs
+from iik.cli import main
+from iik.planning import PLAN_FILES, PlanOptions, plan, write_outputs
 
 
 def test_files_hold_the_plan(tmp_path):
@@ -40,3 +45,37 @@ def test_a_failed_plan_writes_no_executable_times(tmp_path):
     write_outputs(r, tmp_path, figures=False)
     with (tmp_path / "steps.csv").open() as f:
         assert "t" not in csv.DictReader(f).fieldnames
+
+
+INTERRUPTED_PLAN = textwrap.dedent("""
+    import os, signal, sys, time
+    import matplotlib.figure
+    from iik.cli import main
+    def savefig(self, *args, **kwargs):  # SIGTERM while the first figure is being written
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(30)
+    matplotlib.figure.Figure.savefig = savefig
+    sys.exit(main(["plan", "p3", "--out", sys.argv[1]]))
+""")
+
+
+def test_sigterm_while_writing_leaves_the_previous_plan_output_unmixed(tmp_path):
+    """`iik plan p3 --out p` stopped by SIGTERM half-way through its files leaves p2's output as it was."""
+    out = tmp_path / "p"
+    assert main(["plan", "p2", "--out", str(out)]) == 0
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    assert set(before) == set(PLAN_FILES)
+    res = subprocess.run([sys.executable, "-c", INTERRUPTED_PLAN, str(out)], capture_output=True, text=True,
+                         timeout=600)
+    assert res.returncode == 128 + signal.SIGTERM, res.stderr
+    assert "iik plan: interrupted by SIGTERM" in res.stderr
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before
+    assert [p.name for p in tmp_path.iterdir()] == ["p"]  # no temporary left behind
+
+
+def test_an_out_folder_holding_other_files_is_refused_before_planning(tmp_path, capsys):
+    (tmp_path / "notes.txt").write_text("mine")
+    assert main(["plan", "p1", "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "iik plan: error: FileError: --out: " in err and "holds other things (notes.txt)" in err
+    assert "planning p1" not in err and [p.name for p in tmp_path.iterdir()] == ["notes.txt"]

@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 from iik.errors import InvalidInputError
 from iik.planning import path
-from iik.rotations import zxz_matrix
+from iik.rotations import euler_matrix
 
 coord = st.floats(-1.0, 1.0)
 point = st.tuples(coord, coord, coord).map(np.array)
@@ -55,7 +55,7 @@ def test_orientation_euler_and_slerp_end_at_the_targets():
     assert np.allclose(E[0], e0) and np.allclose(E[-1], e1)
     assert np.allclose(np.diff(E, axis=0), (e1 - e0) / 10)
     R = path.interpolate_orientation(e0, e1, 11, method="slerp")
-    assert np.allclose(R[0], zxz_matrix(*e0)) and np.allclose(R[-1], zxz_matrix(*e1))
+    assert np.allclose(R[0], euler_matrix(*e0)) and np.allclose(R[-1], euler_matrix(*e1))
     ang = [np.arccos(np.clip((np.trace(R[i].T @ R[i + 1]) - 1) / 2, -1, 1)) for i in range(10)]
     assert np.ptp(ang) < 1e-9  # constant rate
 

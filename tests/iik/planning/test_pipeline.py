@@ -118,6 +118,9 @@ def test_thesis_only_mode_reports_honestly():
     # the thesis planner alone keeps the tool point off the padded ellipsoid but not the gripper
     assert not r.success and "thesis path rejected" in r.reason and r.method == "none"
     assert not any(a.accepted for a in r.attempts)
+    # no NaN where there is no number: no path, no certified clearance, no timing
+    assert "nan" not in r.summary() and "no path to certify a clearance for" in r.summary()
+    assert "not timed" in r.summary()
 
 
 def test_lji_mode_interpolates_joints_between_key_points(tmp_path):

@@ -41,8 +41,8 @@ def test_run_log_that_does_not_parse(capsys, tmp_path):
 
 
 @pytest.mark.parametrize(("flags", "typed"), [
-    (("--xyz", "nan", "0", "0", "--zxz", "0", "0", "0"), "--xyz:"),
-    (("--xyz", "0.4", "0", "0.3", "--zxz", "0", "inf", "0"), "--zxz:"),
+    (("--xyz", "nan", "0", "0", "--zyz", "0", "0", "0"), "--xyz:"),
+    (("--xyz", "0.4", "0", "0.3", "--zyz", "0", "inf", "0"), "--zyz:"),
 ])
 def test_bad_pose_names_the_flag_as_typed(capsys, tmp_path, flags, typed):
     code, _, err = _run(capsys, *flags, "--export", str(tmp_path / "out"))
@@ -52,7 +52,7 @@ def test_bad_pose_names_the_flag_as_typed(capsys, tmp_path, flags, typed):
 
 
 def test_far_pose_is_shown_unreachable_without_internal_warnings(capfd, tmp_path):
-    argv = ["view", "--xyz", "1e308", "0", "0", "--zxz", "0", "0", "0", "--export", str(tmp_path / "out")]
+    argv = ["view", "--xyz", "1e308", "0", "0", "--zyz", "0", "0", "0", "--export", str(tmp_path / "out")]
     code = main(argv)
     out, err = capfd.readouterr()
     assert code == 0 and "0 IK solution(s)" in out and "unreachable" in out
@@ -60,9 +60,9 @@ def test_far_pose_is_shown_unreachable_without_internal_warnings(capfd, tmp_path
 
 
 def test_angles_that_look_like_degrees_get_a_warning(capsys, tmp_path):
-    argv = ("--xyz", "0.4", "0.3", "0.2", "--zxz", "180", "120", "0", "--export", str(tmp_path / "a"))
+    argv = ("--xyz", "0.4", "0.3", "0.2", "--zyz", "180", "120", "0", "--export", str(tmp_path / "a"))
     code, _, err = _run(capsys, *argv)
-    assert code == 0 and "iik view: warning: --zxz 180 120 0 look like degrees" in err
+    assert code == 0 and "iik view: warning: --zyz 180 120 0 look like degrees" in err
     code, _, err = _run(capsys, *argv[:-1], str(tmp_path / "b"), "--deg")
     assert code == 0 and "warning" not in err
 
@@ -75,6 +75,15 @@ def test_port_in_use(capsys):
         code, _, err = _run(capsys, "--q", "0", "0", "0", "0", "0", "0", "--port", str(port))
     assert code == 2
     _one_error(err, "PortInUseError", f"port {port}")
+
+
+@pytest.mark.parametrize(("host", "why"), [("999.1.1.1", "not an address or host name"),
+                                           ("192.0.2.1", "not an address of this machine")])
+def test_a_bad_host_is_a_bad_host_not_a_port_in_use(capsys, host, why):
+    code, _, err = _run(capsys, "--q", "0", "0", "0", "0", "0", "0", "--host", host, "--port", "8123")
+    assert code == 2
+    _one_error(err, "ViewRequestError", f"--host: bad host '{host}': {why}")
+    assert "port" not in err
 
 
 def test_export_into_a_non_empty_folder(capsys, tmp_path):

@@ -1,12 +1,17 @@
 """Serving and exporting: localhost by default, a clear error for a taken port, no half-written export."""
 
 import os
+import signal
 import socket
+import subprocess
+import sys
+import textwrap
 
 import numpy as np
 import pytest
 
 import iik
+from iik.cli import main
 from iik.planning.viewer import (
     ExportError,
     PortInUseError,
@@ -81,6 +86,33 @@ def test_a_failed_export_leaves_nothing(tmp_path):
     with pytest.raises(RuntimeError):
         export(Broken(), tmp_path / "out")
     assert list(tmp_path.iterdir()) == []
+
+
+INTERRUPTED_EXPORT = textwrap.dedent("""
+    import os, pathlib, signal, sys, time
+    from iik.cli import main
+    real = pathlib.Path.write_text
+    def write_text(self, text, *args, **kwargs):  # SIGTERM half-way through the page
+        if self.name == "index.html":
+            real(self, text[: len(text) // 2], *args, **kwargs)
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(30)
+        return real(self, text, *args, **kwargs)
+    pathlib.Path.write_text = write_text
+    sys.exit(main(["view", "--q", "0.3", "0", "0", "0", "0", "0", "--export", sys.argv[1], "--force"]))
+""")
+
+
+def test_sigterm_while_exporting_leaves_the_previous_page_and_no_temporary(tmp_path):
+    out = tmp_path / "v"
+    assert main(["view", "--q", "0", "0", "0", "0", "0", "0", "--export", str(out)]) == 0
+    before = (out / "index.html").read_bytes()
+    res = subprocess.run([sys.executable, "-c", INTERRUPTED_EXPORT, str(out)], capture_output=True, text=True,
+                         timeout=300)
+    assert res.returncode == 128 + signal.SIGTERM, res.stderr
+    assert "iik view: interrupted by SIGTERM" in res.stderr
+    assert [p.name for p in out.iterdir()] == ["index.html"] and (out / "index.html").read_bytes() == before
+    assert [p.name for p in tmp_path.iterdir()] == ["v"]
 
 
 def test_an_animation_is_recorded_frame_by_frame(tmp_path):
