@@ -26,7 +26,7 @@ evaluates that condition exactly:
   (Sec 3.5.1).
 
 **Angle convention.** Results are in the convention of Eq 42 as corrected in
-:mod:`iik.rotations` (the one :func:`iik.pose_from_zxz` takes): ``beta`` is
+:mod:`iik.rotations` (the one :func:`iik.pose_from_euler` takes): ``beta`` is
 the polar angle of the tool z axis ``z6 = [r13, r23, r33]`` from +z and
 ``alpha`` its azimuth. Frame 6's z axis points from the tool back along link 5
 (Table II, ``d6 = -l5``), so ``z6 = -a``. The thesis's Sec 3.5 angles are

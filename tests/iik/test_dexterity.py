@@ -59,7 +59,7 @@ def test_outside_workspace_is_an_answer_like_ik():
     assert r.case == "unreachable" and not r.reachable and r.beta_range is None
     assert "outside the workspace" in r.reason and not alpha_admissible(r, 0.0, 1.0)
     assert iik.dexterity(p, beta=1.0).case == "unreachable"  # a beta does not turn it into an error
-    T = iik.pose_from_zxz(p, 0.0, 1.0, 0.0)
+    T = iik.pose_from_euler(p, 0.0, 1.0, 0.0)
     ik = iik.solve(T)
     assert ik.count == 0 and ik.reason.startswith("unreachable")
     for res in (r, ik):
@@ -78,10 +78,10 @@ def test_home_pose_has_one_orientation():
     assert r.case == "outer"
     assert r.beta_range[0] == pytest.approx(math.pi / 2, abs=1e-6)
     assert r.beta_range[1] == pytest.approx(math.pi / 2, abs=1e-6)
-    a, b, _ = iik.zxz_from_matrix(T[:3, :3])
+    a, b, _ = iik.euler_from_matrix(T[:3, :3])
     assert r.admits(a, b, tol=1e-6)
     # and ground truth agrees: a tilted approach at the same point is not solvable
-    assert len(iik.solve(iik.pose_from_zxz(T[:3, 3], a, b + 0.2, 0.0)).q) == 0
+    assert len(iik.solve(iik.pose_from_euler(T[:3, 3], a, b + 0.2, 0.0)).q) == 0
 
 
 def test_outer_case_matches_eq44():
@@ -137,6 +137,6 @@ def test_admitted_orientations_mostly_solvable():
             lo, hi = rb.alpha_intervals[0]
             alpha = 0.5 * (lo + hi)
             total += 1
-            ok += len(iik.solve(iik.pose_from_zxz(p, alpha, beta, 0.0)).q) > 0
+            ok += len(iik.solve(iik.pose_from_euler(p, alpha, beta, 0.0)).q) > 0
     assert total >= 20
     assert ok / total > 0.85

@@ -7,7 +7,7 @@ point ``p``; beta is its inclination from the horizontal (Eq 43, 47) and alpha i
 text describes (links 3-4 aligned, theta4 = 0; or contracted, theta4 = +-119 deg; the arm
 in one vertical plane, theta3 = 0). The IK ground truth: an orientation ``(alpha, beta)``
 (Eq 42 convention, see :mod:`iik.rotations`) is feasible at ``p`` if ``iik.solve``
-(complete solver) returns a solution within Table I for ``iik.pose_from_zxz(p, alpha,
+(complete solver) returns a solution within Table I for ``iik.pose_from_euler(p, alpha,
 beta, 0)`` (gamma only turns joint 6, checked separately). The printed Eq 43-51 are
 transcribed in :func:`printed_admits`.
 """
@@ -868,7 +868,7 @@ def _sweep(ctx):
     A, B = A.ravel(), B.ravel()
     truth = np.zeros((npts, A.size), bool)
     for i, p in enumerate(P):
-        T = iik.pose_from_zxz(np.tile(p, (A.size, 1)), A, B, np.zeros_like(A))
+        T = iik.pose_from_euler(np.tile(p, (A.size, 1)), A, B, np.zeros_like(A))
         truth[i] = [len(r.q) > 0 for r in iik.solve_many(T)]
     out = dict(P=P, A=A, B=B, truth=truth, na=na, nb=nb)
     ctx.cache[key] = out
@@ -961,7 +961,7 @@ def printed_admitted_set(ctx, admit):
         "The orientations Eq 43-51 admit at a point inside the workspace are reachable (at least one IK "
         "solution), so choosing them guarantees convergence.",
         "Sec 3.5.2-3.5.3, Eq 43-51, Sec 5.2",
-        "IK feasibility sweep: iik.solve (complete, within Table I) on pose_from_zxz(p, alpha, beta, 0) "
+        "IK feasibility sweep: iik.solve (complete, within Table I) on pose_from_euler(p, alpha, beta, 0) "
         "over a "
         f"{sw['na']} x {sw['nb']} (alpha, beta) grid at {len(P)} reachable points (fk of random q), vs the "
         "admitted set",
@@ -1081,13 +1081,13 @@ def gamma_free(ctx, unaffected):
     rng = ctx.rng("gamma")
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(ctx.n(40, 6), 6))
     T = iik.fk(q)
-    ang = np.array([iik.zxz_from_matrix(t[:3, :3]) for t in T])
+    ang = np.array([iik.euler_from_matrix(t[:3, :3]) for t in T])
     gam = np.linspace(-np.pi, np.pi, 13)[:-1]
     ok, total, moved = 0, 0, 0.0
     cols = [j - 1 for j in unaffected]
     for t, (a, b, _) in zip(T, ang, strict=True):
         k = len(gam)
-        res = iik.solve_many(iik.pose_from_zxz(np.tile(t[:3, 3], (k, 1)), np.full(k, a), np.full(k, b), gam))
+        res = iik.solve_many(iik.pose_from_euler(np.tile(t[:3, 3], (k, 1)), np.full(k, a), np.full(k, b), gam))
         ok += sum(len(r.q) > 0 for r in res)
         total += k
         base = res[0].q[:, cols] if len(res[0].q) else None

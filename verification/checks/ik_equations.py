@@ -331,7 +331,7 @@ def eq6_printed(th1):
 
 
 def _eq6_rot(th1):
-    return np.einsum("nij,j->ni", iik.zxz_matrix(th1, np.zeros_like(th1), np.zeros_like(th1)), [L2, 0, 0])
+    return np.einsum("nij,j->ni", iik.euler_matrix(th1, np.zeros_like(th1), np.zeros_like(th1)), [L2, 0, 0])
 
 
 eq6_point_b = _step(

@@ -289,9 +289,11 @@ def _nudged(f, index, eps=1e-9):
 
 def _with_lengths(**lengths):
     """THESIS_ARM with some link lengths replaced (a wrong-link-length slip)."""
-    import dataclasses
+    from iik.arm import thesis_arm
 
-    return dataclasses.replace(THESIS_ARM, **lengths)
+    t = THESIS_ARM.thesis_lengths
+    vals = {k: lengths.get(k, getattr(t, k)) for k in ("l1", "l2", "l3", "l4", "l5")}
+    return thesis_arm(**vals, lower=THESIS_ARM.lower, upper=THESIS_ARM.upper, name="slipped lengths")
 
 
 def _eq4_pz_sign(q, arm=THESIS_ARM):

@@ -84,7 +84,7 @@ def _pose_view(req: ViewRequest) -> PoseView:
                                      joints_outside_limits(req.q))
         return PoseView(q=req.q, previous=req.previous, interactive=req.interactive)
     xyz, zxz = (req.xyz, req.zxz) if req.xyz is not None else HOME_TARGET
-    T = iik.pose_from_zxz(np.asarray(xyz, float), *np.asarray(zxz, float))
+    T = iik.pose_from_euler(np.asarray(xyz, float), *np.asarray(zxz, float))
     interactive = req.interactive or req.xyz is None
     return PoseView(T, previous=req.previous, interactive=interactive)
 

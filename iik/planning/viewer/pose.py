@@ -127,7 +127,7 @@ class PoseView:
 
     def summary(self) -> str:
         p = self.T[:3, 3]  # in m, as given: a far (unreachable) point prints as typed, no overflow
-        a = np.degrees(iik.zxz_from_matrix(self.T[:3, :3]))
+        a = np.degrees(iik.euler_from_matrix(self.T[:3, :3]))
         r = self.result
         head = (f"Tool at ({p[0]:.4g}, {p[1]:.4g}, {p[2]:.4g}) m, Eq 42 angles "
                 f"({a[0]:.1f}, {a[1]:.1f}, {a[2]:.1f}) deg: **{r.count} IK solution(s)**, "

@@ -99,7 +99,7 @@ def test_exported_plan_opens_from_disk_and_draws_arm_and_obstacle(browser, plan_
 
 
 def test_exported_pose_shows_every_solution(browser, tmp_path):
-    T = iik.pose_from_zxz([0.4, 0.3, 0.2], np.pi, np.radians(120), 0.0)
+    T = iik.pose_from_euler([0.4, 0.3, 0.2], np.pi, np.radians(120), 0.0)
     view = PoseView(T)
     assert view.result.count >= 2
     img, rect = _open_export(browser, view, tmp_path / "pose", "pose_all_solutions.png")

@@ -10,7 +10,7 @@ from iik.planning.viewer.bodies import joints_outside_limits, outside_limits_tex
 
 
 def test_every_configuration_reaches_the_pose():
-    T = iik.pose_from_zxz([0.4, 0.3, 0.2], np.pi, np.radians(120), 0.0)
+    T = iik.pose_from_euler([0.4, 0.3, 0.2], np.pi, np.radians(120), 0.0)
     view = PoseView(T)
     qs = view.configurations()
     assert len(qs) == iik.solve(T, within_limits=False).count >= 2
