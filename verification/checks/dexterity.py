@@ -1087,7 +1087,8 @@ def gamma_free(ctx, unaffected):
     cols = [j - 1 for j in unaffected]
     for t, (a, b, _) in zip(T, ang, strict=True):
         k = len(gam)
-        res = iik.solve_many(iik.pose_from_euler(np.tile(t[:3, 3], (k, 1)), np.full(k, a), np.full(k, b), gam))
+        poses = iik.pose_from_euler(np.tile(t[:3, 3], (k, 1)), np.full(k, a), np.full(k, b), gam)
+        res = iik.solve_many(poses)
         ok += sum(len(r.q) > 0 for r in res)
         total += k
         base = res[0].q[:, cols] if len(res[0].q) else None
