@@ -11,8 +11,14 @@ the input, not in the result.* A check that finds a printed value wrong re-deriv
   alternatives (:func:`choices`: the other Euler convention, row vs column vectors, which frame,
   which point, which singular set);
 * on the *printed* side, dropped or misplaced digits of a printed number (:func:`digit_slips`), a
-  printed entry moved to a neighbouring place (:func:`moved_entries`) and a citation one number or
-  letter off (:func:`numbering_slips`): these are typos of the result.
+  printed entry moved to a neighbouring place (:func:`moved_entries`), a printed entry with its sign
+  dropped or added (:func:`sign_typos`) and a citation one number or letter off
+  (:func:`numbering_slips`): these are typos of the result.
+
+A reading of the inputs must also keep what the same passage prints from them: a check passes the
+passage's other printed values into the misfit (e.g. A1's N0 beside its u0), so an input reading that
+reproduces one number but breaks another that holds as stated does not explain the slip; a typo of the
+printed number does.
 
 :class:`SecondReading` records every reading searched with its misfit and says where the slip is
 (:class:`Slip`): nowhere (the value is right as stated: the erratum does not survive), in the stated
@@ -46,6 +52,7 @@ __all__ = [
     "choices",
     "digit_slips",
     "moved_entries",
+    "sign_typos",
     "numbering_slips",
 ]
 
@@ -62,10 +69,11 @@ class Kind(str, Enum):
     WHICH = "which angle, point or set"
     DIGITS = "dropped or misplaced digits (printed side)"
     MOVED = "an entry printed in the wrong place (printed side)"
+    PRINTED_SIGN = "a sign dropped or added in a printed entry (printed side)"
     NUMBERING = "a citation one number or letter off (printed side)"
 
 
-_PRINT_SIDE = (Kind.DIGITS, Kind.MOVED, Kind.NUMBERING)
+_PRINT_SIDE = (Kind.DIGITS, Kind.MOVED, Kind.PRINTED_SIGN, Kind.NUMBERING)
 
 
 @dataclass(frozen=True)
@@ -178,9 +186,11 @@ class SecondReading:
 
     @property
     def explanation(self) -> Trial | None:
-        """The reproducing reading that decides :attr:`slip` (input readings first), if any."""
+        """The reproducing reading that decides :attr:`slip` (input readings first, then printed-side ones,
+        then pairs; within each, the first in the search's order: a check lists its readings most plausible
+        first, and misfits within the tolerance are all reproductions), if any."""
         order = {frozenset({"input"}): 0, frozenset({"printed"}): 1}
-        found = sorted(self.reproducing, key=lambda t: (order.get(t.sides, 2), t.misfit))
+        found = sorted(self.reproducing, key=lambda t: order.get(t.sides, 2))
         return found[0] if found else None
 
     @property
@@ -401,6 +411,29 @@ def moved_entries(name: str, printed, *, within: str = "column") -> list[Reading
             out.append(
                 Reading(Kind.MOVED, f"{name}({i + 1},{j + 1}) and ({k + 1},{m + 1}) exchanged", {name: b})
             )
+    return out
+
+
+def sign_typos(name: str, printed, *, label: Callable[[tuple], str] | None = None) -> list[Reading]:
+    """Printed-side readings of ``printed`` (a vector, a matrix, or matrices sampled over inputs: shape
+    (..., r, c)): each entry that is not zero everywhere read with its sign flipped (a dropped or extra
+    minus).
+    ``label(index)`` words an entry (default ``name[i]`` or ``name(i,j)``, 1-based)."""
+    a = np.asarray(printed, float)
+    out = []
+    shape = a.shape if a.ndim == 1 else a.shape[-2:]
+    for idx in np.ndindex(*shape):
+        entry = a[idx] if a.ndim == 1 else a[(..., *idx)]
+        if not np.any(entry != 0):
+            continue
+        b = a.copy()
+        if a.ndim == 1:
+            b[idx] = -a[idx]
+        else:
+            b[(..., *idx)] = -a[(..., *idx)]
+        where = label(idx) if label else (f"{name}[{idx[0] + 1}]" if a.ndim == 1
+                                          else f"{name}({idx[0] + 1},{idx[1] + 1})")
+        out.append(Reading(Kind.PRINTED_SIGN, f"{where} printed with its sign flipped", {name: b}))
     return out
 
 

@@ -17,6 +17,7 @@ from verification.second_reading import (
     numbering_slips,
     other_limits,
     search,
+    sign_typos,
     signs,
     swapped,
     units,
@@ -105,6 +106,23 @@ def test_generators():
     assert [r.change["c"] for r in numbering_slips("c", "9b")] == ["9a", "9c"]
     assert all(r.side == "printed" for r in m + digit_slips("x", 1.25) + numbering_slips("c", 2))
     assert Reading(Kind.SIGN, "t").side == "input"
+
+
+def test_sign_typos_flip_one_printed_entry_and_lose_to_an_input_reading():
+    v = sign_typos("u", [1.0654, 0.0, -0.5])
+    assert [r.change["u"].tolist() for r in v] == [[-1.0654, 0.0, -0.5], [1.0654, 0.0, 0.5]]  # zeros skipped
+    m = sign_typos("P", np.array([[[1.0, 0.0], [2.0, 3.0]]] * 4))  # matrices sampled over 4 inputs
+    where = ((1, 1), (2, 1), (2, 2))
+    assert [r.text for r in m] == [f"P({i},{j}) printed with its sign flipped" for i, j in where]
+    assert all(r.side == "printed" and r.change["P"][:, 1, 0].tolist() == [-2.0] * 4 for r in m[1:2])
+    # alone, theta1 = +140 deg explains u0 as an input slip (test above); when a value printed beside it pins
+    # theta1 (the misfit counts it), the dropped minus sign is the explanation: a typo, the erratum stays
+    pinned = search({"q": np.radians(-140), "lam": 1.0654},
+                    signs({"q": np.radians(-140)}, ["q"]) + sign_typos("lam", np.array([1.0654])),
+                    lambda x: max(float(np.abs(x["lam"] - _lam(x["q"])).max()),
+                                  abs(x["q"] - np.radians(-140))),
+                    1e-3, printed="u0", stated_text="q", route="Eq 58", measure="-")
+    assert pinned.slip is Slip.TYPO
 
 
 def test_undefined_readings_count_as_not_reproducing():
