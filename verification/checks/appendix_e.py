@@ -26,7 +26,7 @@ from ..oracles.normal_distance import parameters, surface_point, tool_point
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
 from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon
-from ..second_reading import Kind, Reading, digit_slips, moved_entries, search
+from ..second_reading import Kind, Reading, digit_slips, moved_entries, search, sign_typos
 from ..shorthand import cos_sin
 
 _D = np.pi / 180
@@ -262,19 +262,25 @@ def reading_eig(name: str, pv: dict):
 
 
 def reading_u0(pv: dict):
-    """Second reading of A1's u0: Eq 58 inverted at each nearby reading of q0 (and with the limits
-    exchanged), vs the printed u0 read as typed or one digit slip away."""
+    """Second reading of A1's u0: Eq 58 inverted at each nearby reading of q0 (and with the limits exchanged),
+    vs the printed u0 read as typed, one digit slip away or with an entry's sign flipped. A reading of q0 must
+    also keep the N0 printed beside u0 from the same q0 (it holds as stated): a q0 that reproduces u0 but not
+    N0 does not explain the slip."""
     stated = {**_stated("A1", pv), "swap": False}
 
     def misfit(x) -> float:
         lam = parameters(x["q0"])
-        return float(np.abs(np.asarray(x["u0"], float) - (-lam if x["swap"] else lam)).max())
+        u0 = float(np.abs(np.asarray(x["u0"], float) - (-lam if x["swap"] else lam)).max())
+        sp = _point(x["q0"], x["free"], x["N0"])
+        n0 = float("inf") if sp is None else float(np.abs(np.asarray(x["N0"], float) - sp[0]).max())
+        return max(u0, n0)
 
     readings = _q0_readings("A1") + [Reading(Kind.LIMIT, "Eq 58 with q^U and q^L exchanged", {"swap": True})]
-    return search(stated, readings + digit_slips("u0", pv["u0"]), misfit, _TOL_UNIT,
-                  printed=f"u0 = {fmt_vec(pv['u0'])}", stated_text=_stated_text("A1"),
-                  route="Eq 58 inverted (arcsin) at the reading's joints",
-                      measure="max |printed - lambda(q0)|")
+    return search(stated, readings + digit_slips("u0", pv["u0"]) + sign_typos("u0", pv["u0"]), misfit,
+                  _TOL_UNIT, printed=f"u0 = {fmt_vec(pv['u0'])}", stated_text=_stated_text("A1"),
+                  route="Eq 58 inverted (arcsin) at the reading's joints; the N0 printed beside it by its "
+                  "meaning (verification.oracles.normal_distance) at the same joints",
+                  measure="max(|printed u0 - lambda(q0)|, |printed N0 - surface normal|)")
 
 
 def reading_h(pv: dict, mask: np.ndarray, what: str):
@@ -289,6 +295,7 @@ def reading_h(pv: dict, mask: np.ndarray, what: str):
 
     readings = _q0_readings("A1") + [Reading(Kind.SWAP, "H* transposed", {"H": np.asarray(pv["H"], float).T})]
     readings += moved_entries("H", pv["H"]) + moved_entries("H", pv["H"], within="row")
+    readings += sign_typos("H", pv["H"])
     return search(_stated("A1", pv), readings, misfit, 1.0, printed=what, stated_text=_stated_text("A1"),
                   route=_MEANING, measure=f"max |printed - ours| / ({_ABS} mm + {_REL:.1%})")
 

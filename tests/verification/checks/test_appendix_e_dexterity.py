@@ -45,10 +45,14 @@ def test_appendix_e_verdicts_follow_the_printed_numbers(ctx):
     rows = {r.id: r for r in E.appendix_e(ctx, E.printed_values)}
     a1 = {d.id: d for d in rows["a1"].details}
     assert rows["a1"].verdict is Verdict.ERRATUM
-    # u0 is Eq 58 inverted at theta1 = +7 pi/9: an input slip; H*(4,2) no reading explains
+    # u0 is Eq 58 inverted at theta1 = +7 pi/9, but the N0 printed beside it holds at the stated -7 pi/9: the
+    # input reading breaks N0, so u0's slip is a dropped minus sign (a typo, still an erratum); H*(4,2) too
     u0 = a1["u0"]
-    assert u0.verdict is Verdict.INPUT_SLIP and "theta1 = +140" in u0.second_reading.explanation.text
-    assert a1["h_offdiag"].verdict is Verdict.ERRATUM
+    assert u0.verdict is Verdict.ERRATUM and u0.second_reading.slip.name == "TYPO"
+    assert "u0[1]" in u0.second_reading.explanation.text
+    plus = {t.text: t for t in u0.second_reading.trials}["theta1 = +140.0 deg"]
+    assert not plus.reproduces and a1["n0"].verdict is Verdict.HOLDS
+    assert a1["h_offdiag"].verdict is Verdict.ERRATUM and a1["h_offdiag"].second_reading.slip.name == "TYPO"
     assert a1["q"].verdict is Verdict.HOLDS and a1["conclusion"].verdict is Verdict.HOLDS
     assert "lengths-circular" in a1["h_diag"].depends_on
     assert rows["a2"].verdict is Verdict.DOES_NOT_HOLD
@@ -82,12 +86,15 @@ def test_dexterity_is_graded_from_the_printed_equations(ctx):
         assert check(ctx, ok).verdict is Verdict.IDENTITY, check.__name__
     # Eq 49 is sampled over the whole theta2 range (the row says so), link 3 leaning back included
     assert "whole range" in X.eq49_alpha_outer(ctx, X.eq49_sigma).domain
-    # Eq 46: beta past 90 deg describes link 5 exactly; only where p is within l2 of the axis the azimuth
-    # must be taken from joint 2 (like Eq 43's beta'): an input slip, not an erratum
+    # Eq 46: beta past 90 deg describes link 5 exactly (137.05 deg at the configuration that made it an
+    # erratum); only where p lies between the axis and joint 2 the pair misses, because Eq 43's square root
+    # drops the run's sign: an input slip, Eq 46 as printed
     eq46 = X.eq46_nominal_alpha(ctx, X.eq46_printed)
-    assert eq46.verdict is Verdict.INPUT_SLIP and "joint 2" in eq46.second_reading.explanation.text
+    assert eq46.verdict is Verdict.INPUT_SLIP and "run with its sign" in eq46.second_reading.explanation.text
+    assert "137.05 deg" in eq46.numbers
     trial = {t.text: t for t in eq46.second_reading.trials}
     assert any("made Eq 46 an erratum" in k and not t.reproduces for k, t in trial.items())
+    assert any("joint 2" in k and t.reproduces for k, t in trial.items())  # the equivalent reading
     # Eq 48 and Eq 50 use atan where the geometry needs asin
     assert X.eq48_inclination(ctx, X.eq48_printed).verdict is Verdict.ERRATUM
     assert X.eq48_inclination(ctx, X.eq48_corrected).verdict is Verdict.HOLDS
