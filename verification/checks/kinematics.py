@@ -44,7 +44,7 @@ from ..registry import (
     epsilon,
     verdict_of,
 )
-from ..second_reading import Kind, Reading, choices, moved_entries, search
+from ..second_reading import Kind, Reading, choices, moved_entries, search, sign_typos
 from ..shorthand import cos_sin
 from ..testing.strategies import BEYOND, sample_joints
 
@@ -777,7 +777,7 @@ def appb_reading(i: int, printed: np.ndarray, qs: np.ndarray, text: str = ""):
     """Second reading of App. B's link matrix ``i`` (0-based; ``printed`` (n, 4, 4) at ``qs``): Craig's
     formula on Table II row i+1 under each nearby reading of the row (the twist's sign, the offset d's
     sign, the joint angle's sign, the standard convention, the rotation transposed) and of the printed
-    matrix (an entry in the neighbouring row of its column)."""
+    matrix (an entry in the neighbouring row of its column, an entry's sign flipped)."""
     row = table_ii_printed().rows[i]
     theta = qs[:, i]
     stated = {"alpha": row.alpha, "d": row.d, "a": row.a, "sign": 1.0, "convention": "modified",
@@ -797,6 +797,7 @@ def appb_reading(i: int, printed: np.ndarray, qs: np.ndarray, text: str = ""):
         *choices(Kind.CONVENTION, "convention", {"standard DH (Rz Tz Tx Rx)": "standard"}),
         *choices(Kind.SWAP, "transpose", {"the rotation transposed (row vs column vectors)": True}),
         *moved_entries("P", printed),
+        *sign_typos("P", printed),
     ]
     return search(stated, readings, misfit, TOL_EXACT, printed=text or APPB_TEXT[i],
                   stated_text=f"Table II row {i + 1} (alpha{i} = {np.degrees(row.alpha):.0f} deg, a{i} = "
