@@ -1083,25 +1083,33 @@ def dh_sample(q: np.ndarray, hard: int = 0) -> Sample:
 
 def eq14_reading(s: Sample, eq14):
     """Second reading of Eq 14 (the form): cos(theta4) of the generating q vs the form fed the wrist point of
-    the iik.dh chain under each nearby reading (the y axis mirrored, theta1 on the other side, the wrist
-    point of the printed Eq 9)."""
+    the iik.dh chain under each nearby reading (the y axis mirrored, theta1 measured the other way, theta1 on
+    the other side, the wrist point of the printed Eq 9). A reading must also keep Eq 11, printed two
+    equations before from the same D and theta1 (it holds as stated): its residual, over 2 l3 l4 (the scale
+    of c4), counts in the misfit."""
     d = dh_sample(s.q)
-    stated = {"mirror": 1.0, "D": d.D, "turn": 0.0}
+    stated = {"mirror": 1.0, "D": d.D, "turn": 0.0, "sign1": 1.0}
 
     def misfit(x) -> float:
         D = x["D"] * np.array([1.0, x["mirror"], 1.0])
-        return float(np.abs(eq14(D, x["mirror"] * s.q[:, 0] + x["turn"]) - s.c(4)).max())
+        th1 = x["sign1"] * x["mirror"] * s.q[:, 0] + x["turn"]
+        c4 = float(np.abs(eq14(D, th1) - s.c(4)).max())
+        e11 = float(np.abs(eq11_printed(D, th1, s.q[:, 1])).max()) / (2 * L3 * L4)  # Eq 11 = 0 at a solution
+        return max(c4, e11)
 
     readings = [
         Reading(Kind.CONVENTION, "the y axis mirrored (y_D and theta1 with the other sign)",
             {"mirror": -1.0}),
+        Reading(Kind.SIGN, "theta1 measured the other way (s1 with the other sign; reproduces Eq 14 alone)",
+                {"sign1": -1.0}),
         Reading(Kind.WHICH, "theta1 of the other root (theta1 + pi)", {"turn": np.pi}),
         Reading(Kind.WHICH, "the wrist point of the printed Eq 9 (p - l5 z6)",
                 {"D": eq9abc_printed(d.p, d.R[:, :, 2])}),
     ]
     return search(stated, readings, misfit, TOL, printed="c4 = (... - 2 l2 (xD c1 - yD s1)) / (2 l3 l4)",
-                  stated_text="the wrist point D (Eq 9 corrected), theta1, Table II's l2, l3, l4",
-                  route=_DH_ROUTE, measure="max |form - cos(theta4)|")
+                  stated_text="the wrist point D (Eq 9 corrected), theta1, Table II's l2, l3, l4; Eq 11 from "
+                  "the same D and theta1",
+                  route=_DH_ROUTE, measure="max(|form - cos(theta4)|, |Eq 11| / (2 l3 l4))")
 
 
 eq14_c4 = _step(
