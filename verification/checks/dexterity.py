@@ -363,6 +363,11 @@ def eq45_beta_inner(ctx, delta):
     )
 
 
+#: q [rad] of the counterexample that made Eq 46 an erratum before issue 19 (links 3-4 aligned, link 5 facing
+#: the base axis): beta' + delta = 137.05 deg there.
+OLD_EQ46_COUNTEREXAMPLE = np.array([1.0427, -0.3330, 0.0, 0.0, 2.0590, -2.3543])
+
+
 def eq46_printed(p):
     return np.arctan2(p[:, 1], p[:, 0])
 
@@ -383,36 +388,48 @@ def _planar(ctx) -> tuple[Pose35, np.ndarray]:
     return both, np.concatenate([np.full(len(c.q), L3 + L4), np.full(len(c2.q), D_IN)])
 
 
-def _eq46_error(c: Pose35, r: np.ndarray, alpha: np.ndarray) -> np.ndarray:
-    """|link 5 - the direction at (alpha, beta' +- delta)|, the nearer of the two (Eq 43-45's beta)."""
+def eq43_signed_run(p):
+    """Eq 43 with the run's sign kept: atan2(pz - z2, |p_xy| - l2), the inclination of J2 -> p in the vertical
+    half-plane of azimuth atan2(py, px) (past 90 deg where p lies between the base axis and joint 2)."""
+    return np.arctan2(p[:, 2] - L1, np.hypot(p[:, 0], p[:, 1]) - L2)
+
+
+def _eq46_error(c: Pose35, r: np.ndarray, alpha: np.ndarray, nominal=eq43_printed) -> np.ndarray:
+    """|link 5 - the direction at (alpha, beta' +- delta)|, the nearer of the two (Eq 43-45's beta;
+    ``nominal`` gives beta')."""
     rho = np.linalg.norm(c.p - c.J2, axis=1)
-    bp, d = eq43_printed(c.p), eq44_delta(rho, r)
+    bp, d = nominal(c.p), eq44_delta(rho, r)
     return np.minimum(np.linalg.norm(_dir(alpha, bp + d) - c.a, axis=1),
                       np.linalg.norm(_dir(alpha, bp - d) - c.a, axis=1))
 
 
 def eq46_reading(ctx, c: Pose35, r: np.ndarray, eq46):
-    """Second reading of Eq 46 (the form): link 5 against the direction the thesis's angles describe,
-    under the stated convention (beta the inclination in the arm's vertical plane, up to 180 deg as Eq 44
-    gives it) and under our former reading (beta within +-90 deg, alpha the azimuth of link 5's horizontal
-    projection)."""
+    """Second reading of Eq 46 (the form): link 5 against the direction the thesis's angles describe, under
+    the stated convention (beta the inclination in the arm's vertical plane, past 90 deg as Eq 44 gives it,
+    beta' by Eq 43 as printed), with Eq 43's run signed (|p_xy| - l2: the sign its square root drops), with
+    (px, py) seen from joint 2, and under our former reading (beta within +-90 deg, alpha the azimuth of
+    link 5's horizontal projection). The signed run comes first: it keeps Eq 46 as printed."""
     phi = np.arctan2(c.p[:, 1], c.p[:, 0])
     from_j2 = c.p - np.stack([L2 * np.cos(phi), L2 * np.sin(phi), 0 * phi], 1)  # p seen from joint 2 (Eq 37)
-    stated = {"convention": "thesis", "p": c.p}
+    stated = {"convention": "thesis", "p": c.p, "run": "unsigned"}
 
     def misfit(x) -> float:
         alpha = np.asarray(eq46(x["p"]), float)
         if x["convention"] == "thesis":
-            return float(_eq46_error(c, r, alpha).max())
+            nominal = eq43_printed if x["run"] == "unsigned" else eq43_signed_run
+            return float(_eq46_error(c, r, alpha, nominal).max())
         return float(np.abs(wrap(alpha - c.alpha)).max())
 
     readings = [
-        Reading(Kind.CONVENTION,
-            "beta within +-90 deg, alpha the azimuth of link 5's horizontal projection (the "
-                "reading that made Eq 46 an erratum)", {"convention": "projection"}),
+        Reading(Kind.SIGN, "Eq 43's run with its sign: beta' = atan2(pz - z2, |p_xy| - l2) (the square root "
+                "drops the sign where p lies between the base axis and joint 2; Eq 46 as printed)",
+                {"run": "signed"}),
         Reading(Kind.WHICH,
             "(px, py) measured from joint 2, as Eq 43 measures beta' (they differ by pi where p is "
                 "horizontally within l2 of the base axis)", {"p": from_j2}),
+        Reading(Kind.CONVENTION,
+            "beta within +-90 deg, alpha the azimuth of link 5's horizontal projection (the "
+                "reading that made Eq 46 an erratum)", {"convention": "projection"}),
     ]
     return search(stated, readings, misfit, TOL, printed="alpha' = atan2(py, px)",
                   stated_text="Sec 3.5's angles: alpha the azimuth of the arm's vertical plane, beta the "
@@ -465,6 +482,10 @@ def eq46_nominal_alpha(ctx, eq46):
     past = beta > 90
     close = np.hypot(both.p[:, 0], both.p[:, 1]) < L2
     far = ~close
+    old = _pose35(OLD_EQ46_COUNTEREXAMPLE[None])  # the configuration that made Eq 46 an erratum (issue 19)
+    old_r = np.array([L3 + L4])
+    old_beta = eq43_printed(old.p) + eq44_delta(np.linalg.norm(old.p - old.J2, axis=1), old_r)
+    old_err = _eq46_error(old, old_r, np.asarray(eq46(old.p), float))[0]
     row = _geometry_row(
         "eq46",
         "Eq 46",
@@ -476,15 +497,19 @@ def eq46_nominal_alpha(ctx, eq46):
         "beta runs past 90 deg when link 5 tilts back over the vertical, Figs 21c, 24c)",
         err,
         TOL,
-        "alpha' = atan2(py, px)",
-        "-",
+        "alpha' = atan2(py, px) paired with beta' of Eq 43 (run without its sign)",
+        "Eq 46 stands; Eq 43's run keeps its sign: beta' = atan2(pz - z2, |p_xy| - l2) (equivalently "
+        "alpha' the azimuth of p seen from joint 2); the two differ only where p lies horizontally between "
+        "the base axis and joint 2",
         both.q,
         unit="-",
         note=f"link 5 faces the base axis in {inward.mean():.0%} of these configurations (beta' + delta up "
         f"to {beta.max():.1f} deg; past 90 deg in {past.mean():.0%}): there too the angles describe link 5 "
         "exactly "
-        f"(max {err[far & inward].max() if (far & inward).any() else 0:.1e}); where p is horizontally within "
-        "l2 of "
+        f"(max {err[far & inward].max() if (far & inward).any() else 0:.1e}; at the configuration that made "
+        f"Eq 46 an erratum before issue 19, {fmt_q(OLD_EQ46_COUNTEREXAMPLE)}, beta' + delta = "
+        f"{np.degrees(old_beta[0]):.2f} deg and (alpha', beta) is link 5 to {old_err:.1e}); where p is "
+        "horizontally within l2 of "
         f"the axis (between the axis and joint 2, {close.mean():.0%} of them) Eq 43's beta' is measured "
         "toward the "
         f"axis and the pair misses by {err[close].max() if close.any() else 0:.2g}; beyond joint 2 max "
