@@ -86,9 +86,10 @@ class SelfTestOutcome:
         return tuple(s for s in self.slips if not s.caught)
 
     def line(self) -> str:
-        """One markdown table row: check, status, verdicts, slips caught and missed, tolerance test."""
-        caught = "; ".join(f"{s.kind}: {s.what}" for s in self.caught) or "-"
-        missed = "; ".join(f"{s.kind}: {s.what} ({s.verdicts})" for s in self.missed) or "-"
+        """One markdown table row: check, status, verdicts, slips caught and missed, tolerance test (a '|' in
+        a slip's words is escaped, so "|BC| - |DC|" stays in its cell)."""
+        caught = "; ".join(f"{s.kind}: {_cell(s.what)}" for s in self.caught) or "-"
+        missed = "; ".join(f"{s.kind}: {_cell(s.what)} ({s.verdicts})" for s in self.missed) or "-"
         tol = (
             "-"
             if self.tolerance is None
@@ -99,6 +100,10 @@ class SelfTestOutcome:
             f"| `{self.check}` | {self.status} | {self.printed} | {self.good} | {n} | {caught} | {missed} | "
             f"{tol} |"
         )
+
+
+def _cell(text: str) -> str:
+    return str(text).replace("|", "\\|")
 
 
 #: The header of :meth:`SelfTestOutcome.line`'s table.
