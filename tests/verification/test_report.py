@@ -216,3 +216,22 @@ def test_new_rows_cover_the_gaps(doc):
         assert own, key
     assert [r["id"] for r in keys["Claim 4.9"]["rows"]] == ["planning.fig42e_via_points"]
     assert "planning.check_table_iii" in {r["id"] for r in keys["Table III"]["rows"]}
+
+
+def test_errata_agree_with_their_independent_rederivation(doc):
+    """Issue 19: every erratum and input slip the report declares has been re-derived independently (sympy, a
+    hand-written Table II chain: tests/verification/test_errata_rederived.py), with the same grade and the
+    slip in the same place; a new erratum without a re-derivation fails here."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).with_name("test_errata_rederived.py")
+    spec = importlib.util.spec_from_file_location("rederived", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    table = {**mod.REDERIVED, **mod.CITATIONS}
+    read = {r["id"]: r for r in doc["rows"] if r["second_reading"]}
+    graded = {rid: (r["verdict"], r["second_reading"]["slip"]) for rid, r in read.items()
+              if r["verdict"] in ("erratum", "input slip")}
+    assert graded == {rid: table[rid] for rid in graded}, "a row disagrees with (or lacks) its re-derivation"
+    assert set(table) <= set(graded), sorted(set(table) - set(graded))
