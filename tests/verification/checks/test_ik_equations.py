@@ -49,6 +49,18 @@ def test_eq27_holds_near_c3_zero_and_fails_at_it(ctx):
     assert Q.eq27_c3_zero(ctx, Q.eq27_companion).verdict is Verdict.HOLDS
 
 
+@pytest.mark.parametrize("deepest", [-6, -7, -10, -13])
+def test_eq27s_verdict_does_not_depend_on_how_near_c3_zero_it_samples(monkeypatch, tmp_path, deepest):
+    """Issue 19: the old raw tolerance flipped between a sample down to |c3| = 1e-6 and one down to 1e-7; graded
+    on |error| |c3| the printed Eq 27 holds at every depth and its sign slip fails at every depth."""
+    monkeypatch.setattr(Q, "_C3_EXP", (deepest, -3))
+    fresh = Context(out_dir=tmp_path, quick=True)
+    row = Q.eq27_s45(fresh, Q.eq27_printed)
+    assert row.verdict is Verdict.HOLDS, row.numbers
+    assert np.abs(np.cos(Q._near_c3_zero(fresh).q[:, 2])).min() < 10.0 ** (deepest + 1)
+    assert not Q.eq27_s45(fresh, Q._eq27_plus).verdict.passes
+
+
 def test_eq12_eq13_graded_on_the_extrema_of_E(ctx):
     """The minimum of ||E|| (not of |E|) is near the wrist azimuth, not the end-effector's (Eq 12)."""
     r12 = Q.eq12_minimum(ctx, Q.eq12_printed)
