@@ -77,3 +77,21 @@ def test_labels_and_errors(tmp_path):
 
     err = self_test_check(Check("t.e", "S", 0, boom, forms=_FORMS, prefix="t"), ctx)
     assert err.status == "ERROR" and "kaput" in err.note
+
+
+def test_a_form_printed_right_is_run_once_for_printed_and_good(tmp_path):
+    """Forms.right: the printed form is the good one, so its rows are not computed twice (the self-test's
+    time); a different good form is run."""
+    calls = []
+
+    def counted(ctx, form):
+        calls.append(form)
+        return _follows(ctx, form)
+
+    ctx = Context(out_dir=tmp_path, quick=True)
+    right = Forms.right(0, (Slip(SlipKind.SIGN, "1", 1),))
+    out = self_test_check(Check("t.r", "S", 0, counted, forms=right, prefix="t"), ctx)
+    assert out.status == "flips" and calls == [0, 1]
+    calls.clear()
+    self_test_check(Check("t.f", "S", 0, counted, forms=_FORMS, prefix="t"), ctx)
+    assert calls == [1, 0, 1, 2]
