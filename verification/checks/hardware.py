@@ -76,7 +76,7 @@ __all__ = [
 ]
 
 #: The executor sleeps 1/FAST_FORWARD of each wait; the clock advances by all of it.
-FAST_FORWARD = 20.0
+FAST_FORWARD = 60.0
 #: Share of the host's real time (computation, bus round trips) that the graded runs' clock counts.
 LATENCY_SCALE = 0.01
 #: Executor sampling period [s] (simulated time).
