@@ -39,8 +39,12 @@ _HOW_TO_READ = (
     "- **Second reading.** No printed value is called wrong before the nearby readings of its inputs "
     "and conventions were searched (signs of angles, the other joint limit, degrees vs radians, swapped "
     "or transposed indices, row vs column conventions, the other Euler convention, which angle or set, "
-    "dropped or misplaced digits), re-deriving the value by a route of its own. Each erratum row shows "
-    "the readings searched, whether one reproduces the printed value and where the slip is.",
+    "dropped or misplaced digits or signs), re-deriving the value by a route of its own. A reading of an "
+    "input must also keep the values printed beside it from the same input (A1's N0 pins its theta1). "
+    "Each erratum row shows the readings searched, whether one reproduces the printed value and where the "
+    "slip is: nowhere (withdrawn), the stated input (*input slip*), a typo of the printed result, or the "
+    "result itself (both stay *errata*). Every erratum and input slip is also re-derived apart from the "
+    "code that found it (sympy, a hand-written Table II chain: tests/verification/test_errata_rederived.py).",
     "- **Domain.** Each row states the domain it sampled; formulas are sampled where they are hardest "
     "(near their singular values, across the whole joint range), and the tolerance says why it is what "
     "it is.",
