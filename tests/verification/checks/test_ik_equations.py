@@ -51,8 +51,8 @@ def test_eq27_holds_near_c3_zero_and_fails_at_it(ctx):
 
 @pytest.mark.parametrize("deepest", [-6, -7, -10, -13])
 def test_eq27s_verdict_does_not_depend_on_how_near_c3_zero_it_samples(monkeypatch, tmp_path, deepest):
-    """Issue 19: the old raw tolerance flipped between a sample down to |c3| = 1e-6 and one down to 1e-7; graded
-    on |error| |c3| the printed Eq 27 holds at every depth and its sign slip fails at every depth."""
+    """Issue 19: the old raw tolerance flipped between a sample down to |c3| = 1e-6 and one down to 1e-7;
+    graded on |error| |c3| the printed Eq 27 holds at every depth and its sign slip fails at every depth."""
     monkeypatch.setattr(Q, "_C3_EXP", (deepest, -3))
     fresh = Context(out_dir=tmp_path, quick=True)
     row = Q.eq27_s45(fresh, Q.eq27_printed)
