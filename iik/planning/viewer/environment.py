@@ -90,9 +90,9 @@ def add_view_presets(server: viser.ViserServer, points) -> dict:
             eye, target = framing(points, fov, preset)
             clients = [event.client] if event.client is not None else list(server.get_clients().values())
             for client in clients:
-                with client.atomic():
-                    client.camera.look_at = tuple(target)
+                with client.atomic():  # position first: viser's position setter carries look_at along
                     client.camera.position = tuple(eye)
+                    client.camera.look_at = tuple(target)
 
         buttons["camera"] = group
     return buttons

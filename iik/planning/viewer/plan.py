@@ -85,6 +85,7 @@ class PlanScene:
                         uplot.Series(label="clearance [mm]", stroke=_css(style.NEAREST), width=2),
                         uplot.Series(label="certified bound [mm]", stroke=_css(style.TOOL_PATH), dash=(6, 4)),
                         uplot.Series(label="safety zone [mm]", stroke=_css(style.UNSAFE), dash=(2, 3))),
+                    scales={"x": uplot.Scale(time=False, auto=True)},
                     title="whole-arm clearance vs time", aspect=1.6)
 
     def status(self, i: int) -> str:

@@ -155,6 +155,7 @@ class PoseView:
             label.text = "target" if self.result.count else "target (unreachable: no IK solution)"
 
         update()
+        self.target_label = label
         return update
 
     def _joint_sliders(self, server: viser.ViserServer, on_change) -> list:
@@ -196,6 +197,7 @@ class PoseView:
         toggles: list = []
         toggle_folder = server.gui.add_folder("Show solutions")
         update_target = self._target(server)
+        self.bodies, self.toggles = bodies, toggles
 
         def body(k: int) -> ArmBody:
             while len(bodies) <= k:
