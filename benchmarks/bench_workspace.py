@@ -1,12 +1,12 @@
-"""Benchmark: iik.in_workspace (vectorised) and iik.dexterity (per point).
+"""Benchmark: iik.in_workspace (vectorised) and the exact iik.dexterity (per point).
 
 Run: ``python benchmarks/bench_workspace.py [n]``. Prints medians over several
 repetitions and ratios against baselines measured in the same run:
 
 * ``in_workspace`` on an (n, 3) batch vs the same test called point by point
   (the naive loop); target >= 1e6 points/s for the batch;
-* ``dexterity`` per point vs one ``iik.solve`` (complete IK) per point (the cost
-  of asking the IK whether one orientation works); target <= 50 us per point.
+* the exact ``dexterity`` per point (IK feasibility on a grid of orientations, interval ends
+  root-found) vs one ``iik.solve`` (complete IK) per pose: how many IK calls one answer costs.
 """
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ import sys
 import numpy as np
 
 import iik
+from iik.dexterity import alpha_intervals
 from verification.testing.timing import median_seconds
 
 
@@ -32,20 +33,16 @@ def main(n: int = 1_000_000) -> None:
     q = rng.uniform(iik.THESIS_ARM.q_min, iik.THESIS_ARM.q_max, size=(m, 6))
     T = iik.fk(q)
     pts = T[:, :3, 3]
-    k = min(m, 1000)
-    t_dex = median_seconds(lambda: [iik.dexterity(p) for p in pts[:k]]) / k
-    betas = []
-    for p in pts[:k]:
-        r = iik.dexterity(p)
-        betas.append(None if r.beta_range is None else 0.5 * (r.beta_range[0] + r.beta_range[1]))
-    t_dex_b = median_seconds(lambda: [iik.dexterity(p, beta=b) for p, b in zip(pts[:k], betas, strict=True)
-                               if b is not None]) / max(1, sum(b is not None for b in betas))
-    kk = min(k, 300)
-    t_ik = median_seconds(lambda: [iik.solve(t) for t in T[:kk]], reps=3) / kk
-    print(f"dexterity(p): {t_dex * 1e6:8.2f} us/point (beta range)")
-    print(f"dexterity(p, beta): {t_dex_b * 1e6:8.2f} us/point (beta range + alpha range)")
+    arm = iik.THESIS_ARM
+    k = min(m, 10)  # exact dexterity runs the IK on a grid of orientations: seconds, not microseconds
+    t_dex = median_seconds(lambda: [iik.dexterity(p, arm) for p in pts[:k]], reps=1) / k
+    t_alpha = median_seconds(lambda: [alpha_intervals(p, 1.5, arm) for p in pts[:k]], reps=1) / k
+    kk = min(m, 300)
+    t_ik = median_seconds(lambda: [iik.solve(t, arm) for t in T[:kk]], reps=3) / kk
+    print(f"dexterity(p, arm): {t_dex * 1e3:8.1f} ms/point (exact beta intervals, default 2 deg grid)")
+    print(f"alpha_intervals(p, beta, arm): {t_alpha * 1e3:8.1f} ms/point (exact alpha intervals at one beta)")
     print(f"iik.solve per pose (baseline: one IK feasibility query): {t_ik * 1e6:8.2f} us/pose; "
-          f"dexterity is x{t_ik / t_dex_b:,.1f} faster than one IK call")
+          f"dexterity(p) costs {t_dex / t_ik:,.0f} IK calls")
 
 
 if __name__ == "__main__":

@@ -307,8 +307,12 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
             options: ExecutionOptions = ExecutionOptions(),
             progress: Callable[[int, int], None] | None = None,
             clock: Callable[[], float] = time.monotonic,
-            sleep: Callable[[float], None] = time.sleep) -> RunResult:
+            sleep: Callable[[float], None] = time.sleep,
+            header: dict | None = None) -> RunResult:
     """Stream ``trajectory`` to ``arm`` and log it to ``log_path`` (JSON lines).
+
+    ``header``: further fields of the log's header record (e.g. the scenario and its boxes, which
+    ``iik view --run`` draws); JSON-serialisable, and they cannot replace the executor's own fields.
 
     SIGTERM and SIGHUP are handled like Ctrl-C meanwhile (:func:`iik.signals.stop_on_signals`).
 
@@ -346,7 +350,7 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
         raise SafetyError("arm", f"is {np.max(err):.4f} rad from the trajectory start")
     with stop_on_signals():
         log = RunLog(log_path)
-        log.write({"type": "header", "version": 1, "module_ids": list(arm.module_ids),
+        log.write({**(header or {}), "type": "header", "version": 1, "module_ids": list(arm.module_ids),
                    "times": tr.times.tolist(), "q": tr.q.tolist(), "poses": tr.poses.tolist(),
                    "step_ms": tr.step_ms.tolist(), "early": options.early, "sync": options.sync,
                    "update": options.update, "watchdog": options.watchdog,

@@ -239,6 +239,17 @@ def _targets(request: RunRequest) -> StepTargets:
     return targets.slowed(request.speed)
 
 
+def _scenario_header(request: RunRequest) -> dict:
+    """The scenario and its boxes [m, base frame] for the run log's header (``iik view --run`` draws them)."""
+    if request.scenario is None:
+        return {}
+    from iik.planning import load_scenario, scenario_path
+
+    sc = load_scenario(scenario_path(request.scenario))
+    return {"scenario": sc.name, "obstacles": [{"name": b.name, "kind": b.kind, "center": list(b.center),
+                                                "size": list(b.size)} for b in sc.obstacles]}
+
+
 def _zone(request: RunRequest) -> float:
     """The safety zone of the run [m] (:attr:`RunRequest.zone`)."""
     if request.zone is not None:
@@ -380,7 +391,8 @@ def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
             with _open_arm(request, initial) as (sim, arm):
                 _prepare(arm, request)
                 rests = _Rests(sim, progress)
-                result = execute(arm, traj, log_path, options=options, progress=rests.progress)
+                result = execute(arm, traj, log_path, options=options, progress=rests.progress,
+                                 header=_scenario_header(request))
         except BaseException as exc:
             if (note := _halted_note(request, log_path)) is not None:
                 exc.add_note(note)

@@ -23,13 +23,15 @@ import os
 import numpy as np
 
 from iik import THESIS_ARM, fk
+from iik.planning import Obstacle
 from iik.planning.viewer import Shown, ViewOptions, show, style
 from iik.planning.viewer.motion import Motion, MotionView, Track
 
 from .errors import RunLogError
 from .runlog import Run, read_run_log
 
-__all__ = ["SIDE_BY_SIDE", "LOG_VERSION", "commanded_steps", "run_motion", "run_warnings", "view_run"]
+__all__ = ["SIDE_BY_SIDE", "LOG_VERSION", "commanded_steps", "run_motion", "run_obstacles", "run_warnings",
+           "view_run"]
 
 #: Offset of the measured arm along +y [m] (the arm reaches about 0.9 m).
 SIDE_BY_SIDE = 1.2
@@ -93,8 +95,22 @@ def run_motion(run: Run, *, name: str = "run") -> Motion:
                   for s, a, b in zip(k, dq, dp, strict=True))
     return Motion(title=f"iik view: run {name}", t=run.samples_t - run.samples_t[0],
                   headline=_headline(run, name, k, dq, dp), notes=notes, warnings=run_warnings(run),
+                  obstacles=run_obstacles(run, name),
                   tracks=(Track("commanded target", cmd, style.ARM),
-                          Track("measured", meas, style.MEASURED, (0.0, SIDE_BY_SIDE, 0.0))))
+                          Track(f"measured arm (PCube_getPos), +{SIDE_BY_SIDE} m along y", meas,
+                                style.MEASURED, (0.0, SIDE_BY_SIDE, 0.0))))
+
+
+def run_obstacles(run: Run, name: str = "run") -> tuple[Obstacle, ...]:
+    """The scenario's boxes recorded in the log's header (none for a CSV or demo run)."""
+    def box(b: dict) -> Obstacle:
+        return Obstacle(center=tuple(float(v) for v in b["center"]), size=tuple(float(v) for v in b["size"]),
+                        name=str(b["name"]), kind=str(b["kind"]))
+
+    try:
+        return tuple(box(b) for b in run.header.get("obstacles", ()))
+    except (KeyError, TypeError, ValueError) as exc:
+        raise RunLogError(f"{name}: the header's obstacles do not parse ({exc})") from None
 
 
 def run_warnings(run: Run) -> tuple[str, ...]:
@@ -116,4 +132,4 @@ def view_run(path: str | os.PathLike, options: ViewOptions | None = None) -> Sho
         RunLogError: The log is missing, malformed or has no samples.
     """
     motion = run_motion(read_run_log(path), name=os.fspath(path))
-    return show(MotionView(motion), options or ViewOptions(), headline=motion.headline)
+    return show(MotionView(motion, arm=THESIS_ARM), options or ViewOptions(), headline=motion.headline)

@@ -1,39 +1,32 @@
-"""Local dexterity (Sec 3.5): which end-effector orientations are possible at a point.
+"""Dexterity (Sec 3.5), exact: the end-effector orientations the complete IK reaches at a point.
 
-The thesis's model (Sec 3.5, Figs 18-26): the tool point ``p`` is reached with
-link 5 (length ``l5``) coming from the second-last joint (SLJ, joint 5), and
-the SLJ lies in a spherical shell around joint 2 (placed as in Eq 36-37 at
-azimuth ``phi = atan2(py, px)``): at most ``l3 + l4`` away (links 3 and 4
-aligned, exterior boundary) and at least ``d`` away (joint 4 at its limit,
-interior boundary, Eq 45 / Eq 50). The service sphere of radius ``l5`` around
-``p`` cuts that shell: outer intersection only (end effector facing outside),
-both (ring effect) or inner only (facing inside), Figs 20-21.
+The question of Sec 3.5: at a tool point ``p``, which orientations can the end effector take?
+This module answers it with the complete IK (:func:`iik.solve`) instead of the thesis's
+formulas. An orientation is given by the angles of Eq 42 as corrected in :mod:`iik.rotations`
+(Z-Y-Z, the convention :func:`iik.pose_from_euler` takes): ``beta`` is the polar angle of the
+tool z axis from the base +z, ``alpha`` its azimuth, ``gamma`` the roll about it.
 
-Writing ``e`` for the unit vector from joint 2 to ``p`` (elevation ``beta'``,
-Eq 43) and ``a`` for the direction of link 5 (SLJ -> tool), the SLJ
-``p - l5 a`` is in the shell exactly when the angle between ``a`` and ``e``
-lies in ``[delta_in, delta_out]`` with ``cos delta = (l5^2 + rho^2 - r^2) /
-(2 l5 rho)`` and ``r = l3 + l4`` (Eq 44) or ``r = d`` (Eq 45). This module
-evaluates that condition exactly:
+**Definition.** ``(alpha, beta)`` is *admissible* at ``p`` when some ``gamma`` gives a pose
+with an IK solution inside the joint limits (the one limit test,
+:meth:`iik.Arm.within_limits`; approximate rows do not count). For an arm whose tool z axis
+is the last joint's axis and whose tool point lies on it (the thesis arm: Table II, d6 = -l5),
+turning ``gamma`` turns joint 6 alone (Sec 3.5.1), so the test is one IK call on
+``pose_from_euler(p, alpha, beta, 0)`` for the arm with joint 6 opened to a full turn; when
+joint 6 spans a full turn itself (Table I: +-180 deg) every ``gamma`` is admissible too.
 
-* beta range: the elevations of admissible ``a``; in the outer case this is
-  Eq 44's ``beta' +- delta`` (clipped to +-90 deg);
-* alpha range for a chosen beta: the azimuths of admissible ``a`` at that
-  elevation, ``alpha_c +- [w_in, w_out]`` (one interval, or two in the ring
-  case), from the spherical law of cosines; the thesis's Eq 49 / Eq 51
-  instead use a projected triangle (checked separately in ``iik verify``);
-* gamma is free: it only turns joint 6, whose range (Table I) is a full turn
-  (Sec 3.5.1).
+**Method (root-finding on feasibility).** Feasibility is evaluated on a grid (``alpha`` every
+``2 pi / alpha_samples``, ``beta`` every ``pi / (beta_samples - 1)``); every change between
+two neighbouring samples is a bracket whose end is found by bisection on the IK's
+feasibility down to ``DexterityOptions.tol``. The ends of an ``beta`` interval are found the
+same way, with the predicate "some alpha is admissible" evaluated at the grid alphas and
+inside the alpha intervals of the feasible side of the bracket (they shrink to a point at the
+end of the beta range). So every end reported is a point where feasibility changes, within
+``tol``; a piece narrower than the grid step can be missed (``resolution`` says how fine).
 
-**Angle convention.** Results are in the convention of Eq 42 as corrected in
-:mod:`iik.rotations` (the one :func:`iik.pose_from_euler` takes): ``beta`` is
-the polar angle of the tool z axis ``z6 = [r13, r23, r33]`` from +z and
-``alpha`` its azimuth. Frame 6's z axis points from the tool back along link 5
-(Table II, ``d6 = -l5``), so ``z6 = -a``. The thesis's Sec 3.5 angles are
-those of ``a`` measured from the horizontal (Eq 43 ``atan`` of rise over run,
-Eq 47 ``h = pz - l5 sin(beta)``): ``beta_42 = beta_35 + 90 deg`` and
-``alpha_42 = alpha_35 + 180 deg`` (reported as an erratum by ``iik verify``).
-The Sec 3.5 values are kept in the result as ``inclination_range``.
+The thesis's own formulas (Eq 43-51: a shell around joint 2 that the second-last joint must
+lie in) are neither necessary nor sufficient; they are kept only as the thesis's rows in
+``verification/checks/dexterity.py``, graded there by their false-admit and false-reject
+rates against this set.
 """
 
 from __future__ import annotations
@@ -43,213 +36,343 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .arm import THESIS_ARM, Arm
+from .arm import Arm
 from .errors import DexterityError, InvalidInputError, UnreachablePoseError
+from .ik.solve import solve_batch
+from .rotations import pose_from_euler
 from .validation import as_float_array, as_points
 
-__all__ = ["Dexterity", "dexterity", "alpha_admissible"]
+__all__ = ["Dexterity", "DexterityOptions", "dexterity", "alpha_intervals", "admissible"]
 
-_HALF_PI = 0.5 * math.pi
+_TWO_PI = 2.0 * math.pi
+_AXIS_TOL = 1e-9  # [rad and m]: the tool z axis is joint 6's axis
+
+
+@dataclass(frozen=True)
+class DexterityOptions:
+    """How finely :func:`dexterity` looks for the admissible sets.
+
+    Attributes:
+        alpha_samples: Grid samples of alpha over a full turn (default 180: every 2 deg).
+        beta_samples: Grid samples of beta over [0, pi], both ends included (default 91: 2 deg).
+        tol: Bisection stops when a bracket is narrower than this [rad].
+    """
+
+    alpha_samples: int = 180
+    beta_samples: int = 91
+    tol: float = 1e-9
+
+    def __post_init__(self) -> None:
+        for name, lo in (("alpha_samples", 4), ("beta_samples", 3)):
+            v = getattr(self, name)
+            if not isinstance(v, int) or isinstance(v, bool) or not lo <= v <= 100_000:
+                raise InvalidInputError(name, f"expected an integer in {lo} .. 100000, got {v!r}")
+        if not (isinstance(self.tol, (int, float)) and math.isfinite(self.tol) and 1e-14 <= self.tol <= 0.1):
+            raise InvalidInputError("tol", f"expected a number in [1e-14, 0.1] rad, got {self.tol!r}")
+
+    @property
+    def resolution(self) -> tuple[float, float]:
+        """Grid steps (alpha, beta) [rad]: pieces narrower than these may be missed."""
+        return _TWO_PI / self.alpha_samples, math.pi / (self.beta_samples - 1)
 
 
 @dataclass(frozen=True)
 class Dexterity:
-    """Admissible end-effector orientations at one point (angles in rad, Eq 42 convention).
+    """The admissible orientations at one point, from the complete IK (angles in rad, Eq 42).
 
-    Like :class:`iik.IKResult`, an unreachable point is an answer, not an error: ``case`` is
-    ``"unreachable"`` and ``reason`` says why; :meth:`raise_if_unreachable` raises
+    Like :class:`iik.IKResult`, a point where nothing is admissible is an answer, not an error:
+    ``beta_intervals`` is empty and ``reason`` says why; :meth:`raise_if_unreachable` raises
     :class:`~iik.errors.UnreachablePoseError` on request.
 
     Attributes:
-        point: The tool point [m], (3,).
-        case: ``"outer"``, ``"ring"`` or ``"inner"`` (Figs 20-21), ``"none"`` when the
-            service sphere lies inside the inner SLJ boundary (the model admits nothing, although
-            the point may be reachable: ``iik verify`` measures how often), or ``"unreachable"``
-            (farther than ``l3 + l4 + l5`` from joint 2, Eq 38: no orientation at all).
-        beta_range: ``(beta_min, beta_max)``: polar angle of z6 from +z (None for ``"none"``).
-        inclination_range: The same range in the thesis's Sec 3.5 convention
-            (elevation of link 5 above the horizontal): ``beta - pi/2``.
+        point: The tool point [m], (3,), in the arm's base frame.
+        arm: The arm the sets belong to.
+        beta_intervals: Admissible beta, as disjoint ``(lo, hi)`` intervals in [0, pi], sorted.
+        beta_end_alphas: For each beta interval, an alpha admissible at its lower and at its upper
+            end (where the extreme tilt is reached: the alpha set shrinks to a point there).
         beta: The chosen beta, or None.
-        alpha_intervals: For the chosen beta, admissible alpha intervals
-            ``((lo, hi), ...)`` (1 or 2; angles are modulo 2 pi, ``lo <= hi``,
-            ``hi - lo <= 2 pi``). Empty when ``beta`` is None.
-        alpha_center: Azimuth of z6 in the nominal plane (Eq 46's alpha' + pi).
-        alpha_halfwidth: ``(w_in, w_out)``: admissible alpha = center +- [w_in, w_out].
-        gamma_range: ``(-pi, pi)``: any gamma (joint 6 spans a full turn, Sec 3.5.1).
-        nominal_inclination: beta' of Eq 43 [rad].
-        delta_out, delta_in: Cone half-angles of Eq 44 / Eq 45 [rad] (``pi`` /
-            ``0`` when that boundary does not cut the service sphere).
-        reason: Why nothing is admissible (cases ``"unreachable"`` and ``"none"``), else "".
+        alpha_intervals: For the chosen beta, the admissible alpha as ``(lo, hi)`` intervals with
+            ``-pi <= lo <= hi`` and ``hi - lo <= 2 pi`` (an interval may run past +pi: angles are
+            modulo 2 pi); ``(-pi, pi)`` is every alpha. Empty when ``beta`` is None.
+        gamma_free: Every gamma is admissible with an admissible (alpha, beta) (joint 6 spans a
+            full turn); else the gamma that fit depend on the solution (ask :func:`iik.solve`).
+        resolution: Grid steps (alpha, beta) [rad] of the search (:class:`DexterityOptions`).
+        tol: Every interval end is within this of a change of feasibility [rad].
+        reason: Why nothing is admissible, else "".
     """
 
     point: np.ndarray
-    case: str
-    beta_range: tuple[float, float] | None
-    inclination_range: tuple[float, float] | None
+    arm: Arm
+    beta_intervals: tuple[tuple[float, float], ...]
+    beta_end_alphas: tuple[tuple[float, float], ...]
     beta: float | None
     alpha_intervals: tuple[tuple[float, float], ...]
-    alpha_center: float
-    alpha_halfwidth: tuple[float, float]
-    gamma_range: tuple[float, float]
-    nominal_inclination: float
-    delta_out: float
-    delta_in: float
+    gamma_free: bool
+    resolution: tuple[float, float]
+    tol: float
     reason: str = ""
 
     @property
     def reachable(self) -> bool:
-        """False if the point is outside the workspace (case ``"unreachable"``)."""
-        return self.case != "unreachable"
+        """Is any orientation admissible at the point?"""
+        return bool(self.beta_intervals)
+
+    @property
+    def beta_range(self) -> tuple[float, float] | None:
+        """``(smallest, largest)`` admissible beta [rad] (the intervals may have gaps), or None."""
+        if not self.beta_intervals:
+            return None
+        return self.beta_intervals[0][0], self.beta_intervals[-1][1]
 
     def raise_if_unreachable(self) -> Dexterity:
-        """Return self, or raise :class:`~iik.errors.UnreachablePoseError` (with ``reason``) if
-        the point is outside the workspace (the same request as
-        :meth:`iik.IKResult.raise_if_unreachable`)."""
+        """Return self, or raise :class:`~iik.errors.UnreachablePoseError` (with ``reason``)."""
         if not self.reachable:
             raise UnreachablePoseError(self.reason)
         return self
 
-    def admits(self, alpha: float, beta: float, tol: float = 0.0) -> bool:
-        """Is ``(alpha, beta)`` admissible (any gamma)? ``tol`` widens every bound [rad]."""
-        if self.beta_range is None or not (self.beta_range[0] - tol <= beta <= self.beta_range[1] + tol):
-            return False
-        w_in, w_out = _alpha_widths(beta - _HALF_PI, self.nominal_inclination, self.delta_in,
-                                    self.delta_out)
-        if w_out < 0:
-            return False
-        dev = abs((alpha - self.alpha_center + math.pi) % (2 * math.pi) - math.pi)
-        return w_in - tol <= dev <= w_out + tol
+    def admits(self, alpha, beta) -> np.ndarray:
+        """Is each ``(alpha, beta)`` [rad] admissible? Asks the IK (:func:`admissible`), not the intervals."""
+        return admissible(self.point, alpha, beta, self.arm)
 
 
-def _clip1(x: float) -> float:
-    return -1.0 if x < -1.0 else (1.0 if x > 1.0 else x)
+def _gamma_is_joint6(arm: Arm) -> tuple[bool, str]:
+    """Is the tool z axis joint 6's axis, with the tool point on it (then gamma turns joint 6 alone)?"""
+    from .kinematics import fk
+
+    q = np.zeros(6)
+    pts, dirs = arm.joint_axes(q)
+    T = fk(q, arm)
+    z, p = T[:3, 2], T[:3, 3]
+    sin_angle = float(np.linalg.norm(np.cross(dirs[5], z)))
+    off = float(np.linalg.norm(np.cross(p - pts[5], dirs[5])))
+    if sin_angle > _AXIS_TOL or off > _AXIS_TOL:
+        angle = math.asin(min(1.0, sin_angle))
+        return False, (f"the tool z axis of {arm.name} is not joint 6's axis (angle {angle:.3g} rad, tool "
+                       f"point {off:.3g} m off it): gamma does not turn joint 6 alone")
+    return True, ""
 
 
-def _alpha_widths(inc: float, inc0: float, d_in: float, d_out: float) -> tuple[float, float]:
-    """Half-widths (w_in, w_out) of |alpha - alpha_c| at link-5 elevation ``inc``; w_out < 0 if none.
+def _roll_free_arm(arm: Arm) -> Arm:
+    """The arm with joint 6 opened to a full turn: any roll of the tool is some gamma."""
+    lo, hi = list(arm.lower), list(arm.upper)
+    if lo[5] == -math.pi and hi[5] == math.pi:
+        return arm
+    lo[5], hi[5] = -math.pi, math.pi
+    return arm.with_limits(lower=lo, upper=hi)
 
-    Spherical law of cosines: cos(angle(a, e)) = cos(inc) cos(inc0) cos(dA) + sin(inc) sin(inc0).
+
+def _feasible(p: np.ndarray, alpha: np.ndarray, beta: np.ndarray, free: Arm) -> np.ndarray:
+    """IK feasibility (an exact, in-limits solution of ``free``) at each (alpha, beta): bool (n,)."""
+    n = alpha.size
+    if n == 0:
+        return np.zeros(0, bool)
+    Ts = pose_from_euler(np.broadcast_to(p, (n, 3)), alpha, beta, np.zeros(n))
+    b = solve_batch(Ts, free, within_limits=True)
+    rows = np.arange(b.q.shape[1])[None, :] < b.count[:, None]
+    return np.any(rows & ~b.approximate, axis=1)
+
+
+def admissible(p, alpha, beta, arm: Arm) -> np.ndarray:
+    """Is each ``(alpha, beta)`` [rad] (Eq 42, broadcast) admissible at the tool point ``p`` [m]?
+
+    One IK call per orientation (:func:`iik.ik.solve_batch`): True when some gamma has an exact
+    solution inside ``arm``'s joint limits. Returns a bool array of the broadcast shape.
     """
-    cc = math.cos(inc) * math.cos(inc0)
-    ss = math.sin(inc) * math.sin(inc0)
-    if cc < 1e-12:  # a or e vertical: the angle does not depend on alpha
-        ang = math.acos(_clip1(ss))
-        return (0.0, math.pi) if d_in - 1e-12 <= ang <= d_out + 1e-12 else (0.0, -1.0)
-    hi = (math.cos(d_in) - ss) / cc  # angle >= d_in  <=>  cos(dA) <= hi
-    lo = (math.cos(d_out) - ss) / cc  # angle <= d_out <=>  cos(dA) >= lo
-    if lo > 1.0 + 1e-12 or hi < -1.0 - 1e-12 or lo > hi + 1e-12:
-        return 0.0, -1.0
-    return math.acos(_clip1(hi)), math.acos(_clip1(lo))
-
-
-def alpha_admissible(result: Dexterity, alpha, beta) -> np.ndarray:
-    """Vectorised :meth:`Dexterity.admits` over arrays of ``alpha``, ``beta`` [rad] (Eq 42)."""
+    pt = _point(p)
     a = as_float_array(alpha, "alpha")
     b = as_float_array(beta, "beta")
     a, b = np.broadcast_arrays(a, b)
-    if result.beta_range is None:
-        return np.zeros(a.shape, bool)
-    inc = b - _HALF_PI
-    inc0, d_in, d_out = result.nominal_inclination, result.delta_in, result.delta_out
-    cc = np.cos(inc) * math.cos(inc0)
-    ss = np.sin(inc) * math.sin(inc0)
-    cosang = cc * np.cos(a - result.alpha_center) + ss
-    ok = (cosang <= math.cos(d_in) + 1e-12) & (cosang >= math.cos(d_out) - 1e-12)
-    return ok & (b >= result.beta_range[0] - 1e-12) & (b <= result.beta_range[1] + 1e-12)
+    return _feasible(pt, a.ravel(), b.ravel(), _checked_free_arm(arm)).reshape(a.shape)
 
 
-def _point3(p) -> tuple[float, float, float]:
-    """One point (3,) [m] as three finite floats (fast path for float64 arrays), else a typed error."""
-    if isinstance(p, np.ndarray) and p.shape == (3,) and p.dtype == np.float64:
-        x, y, z = p.tolist()
-        if math.isfinite(x) and math.isfinite(y) and math.isfinite(z):
-            return x, y, z
+def alpha_intervals(p, beta: float, arm: Arm, *, options: DexterityOptions | None = None
+                    ) -> tuple[tuple[float, float], ...]:
+    """The admissible alpha intervals [rad] at the tool point ``p`` [m] for one ``beta`` [rad] (Eq 42).
+
+    Same intervals as ``dexterity(p, arm, beta=beta).alpha_intervals`` without computing the
+    beta intervals (and without raising when ``beta`` admits nothing: the answer is ``()``).
+    """
+    opts = options or DexterityOptions()
+    return _alpha_set(_point(p), _beta(beta), _checked_free_arm(arm), opts)
+
+
+def _beta(beta) -> float:
+    b = as_float_array(beta, "beta")
+    if b.shape != ():
+        raise InvalidInputError("beta", f"expected a scalar, got shape {b.shape}")
+    if not 0.0 <= float(b) <= math.pi:
+        raise InvalidInputError("beta", f"{float(b):.6g} rad is outside [0, pi]: a polar angle (Eq 42)")
+    return float(b)
+
+
+def _checked_free_arm(arm: Arm) -> Arm:
+    if not isinstance(arm, Arm):
+        raise InvalidInputError("arm", f"expected an iik.Arm, got {type(arm).__name__}")
+    ok, why = _gamma_is_joint6(arm)
+    if not ok:
+        raise InvalidInputError("arm", why)
+    return _roll_free_arm(arm)
+
+
+def _point(p) -> np.ndarray:
     pb, batched = as_points(p, "p")
     if batched:
         raise InvalidInputError("p", f"expected one point of shape (3,), got shape {pb.shape}")
-    x, y, z = pb[0].tolist()
-    return x, y, z
+    return pb[0].astype(float)
 
 
-def dexterity(p, beta: float | None = None, arm: Arm = THESIS_ARM) -> Dexterity:
-    """Admissible beta range at ``p`` and, for a chosen ``beta``, the alpha range (Sec 3.5).
+def _bisect(pred, inside: np.ndarray, outside: np.ndarray, tol: float) -> np.ndarray:
+    """Bisect every bracket (inside[i] feasible, outside[i] not) to ``tol``; returns the feasible ends.
+
+    ``pred`` maps an array of parameters to bool; all brackets advance together (one batch per step).
+    """
+    inside, outside = inside.astype(float).copy(), outside.astype(float).copy()
+    while inside.size and np.max(np.abs(outside - inside)) > tol:
+        mid = 0.5 * (inside + outside)
+        ok = pred(mid)
+        inside = np.where(ok, mid, inside)
+        outside = np.where(ok, outside, mid)
+    return inside
+
+
+def _intervals_on_circle(x: np.ndarray, ok: np.ndarray, pred, tol: float) -> tuple[tuple[float, float], ...]:
+    """Admissible intervals of a periodic parameter sampled at sorted ``x`` (in [-pi, pi)) with ``ok``."""
+    if ok.all():
+        return ((-math.pi, math.pi),)
+    if not ok.any():
+        return ()
+    xn, okn = np.append(x, x[0] + _TWO_PI), np.append(ok, ok[0])
+    up = np.nonzero(~okn[:-1] & okn[1:])[0]  # x[i] out, x[i+1] in: a start
+    down = np.nonzero(okn[:-1] & ~okn[1:])[0]  # x[i] in, x[i+1] out: an end
+    starts = _bisect(pred, xn[up + 1], xn[up], tol)
+    ends = _bisect(pred, xn[down], xn[down + 1], tol)
+    starts = (starts + math.pi) % _TWO_PI - math.pi
+    out = []
+    for s in np.sort(starts):
+        e = ends[np.argmin((ends - s) % _TWO_PI)]
+        e = s + (e - s) % _TWO_PI
+        out.append((float(s), float(e)))
+    return tuple(out)
+
+
+def _alpha_set(p, beta: float, free: Arm, opts: DexterityOptions) -> tuple:
+    """The admissible alpha intervals at ``beta``: grid samples, the ends between them bisected."""
+    x = -math.pi + _TWO_PI * np.arange(opts.alpha_samples) / opts.alpha_samples
+    ok = _feasible(p, x, np.full(x.size, beta), free)
+
+    def pred(a):
+        return _feasible(p, a, np.full(a.size, beta), free)
+
+    return _intervals_on_circle(x, ok, pred, opts.tol)
+
+
+def _runs(x: np.ndarray, ok: np.ndarray, pad: float) -> list[tuple[float, float]]:
+    """Spans ``(lo - pad, hi + pad)`` around each run of consecutive admissible samples of sorted ``x``."""
+    idx = np.nonzero(ok)[0]
+    if idx.size == 0:
+        return []
+    breaks = np.nonzero(np.diff(idx) > 1)[0]
+    firsts, lasts = np.r_[idx[0], idx[breaks + 1]], np.r_[idx[breaks], idx[-1]]
+    return [(float(x[i] - pad), float(x[j] + pad)) for i, j in zip(firsts, lasts, strict=True)]
+
+
+def _merged(spans: list[tuple[float, float]]) -> list[tuple[float, float]]:
+    out: list[list[float]] = []
+    for lo, hi in sorted(spans):
+        if out and lo <= out[-1][1]:
+            out[-1][1] = max(out[-1][1], hi)
+        else:
+            out.append([lo, hi])
+    return [(lo, hi) for lo, hi in out]
+
+
+def _beta_end(p, free, opts, b_in: float, b_out: float) -> tuple[float, float]:
+    """Bisect beta from a feasible ``b_in`` to an infeasible ``b_out``: the end, an alpha admissible at it.
+
+    "Some alpha is admissible at beta" is tested on the alpha grid and on 33 samples across each
+    span of alphas admissible at the feasible side (near the end the set shrinks to a point, like
+    the square root of the distance to it, so the samples follow it down).
+    """
+    grid = -math.pi + _TWO_PI * np.arange(opts.alpha_samples) / opts.alpha_samples
+    step = _TWO_PI / opts.alpha_samples
+    ok = _feasible(p, grid, np.full(grid.size, b_in), free)
+    spans, witness = _runs(grid, ok, step), float(grid[np.argmax(ok)])
+    while abs(b_out - b_in) > opts.tol:
+        mid = 0.5 * (b_in + b_out)
+        fine = [np.linspace(lo, hi, 33) for lo, hi in spans]
+        x = np.concatenate([grid, *fine])
+        ok = _feasible(p, x, np.full(x.size, mid), free)
+        if not ok.any():
+            b_out = mid
+            continue
+        b_in, witness = mid, float(x[np.argmax(ok)])
+        at = grid.size
+        spans = _runs(grid, ok[:at], step)
+        for f in fine:
+            spans += _runs(f, ok[at:at + f.size], f[1] - f[0])
+            at += f.size
+        spans = _merged(spans)
+    return b_in, float((witness + math.pi) % _TWO_PI - math.pi)
+
+
+def _beta_set(p, free: Arm, opts: DexterityOptions) -> tuple[tuple, tuple]:
+    """The admissible beta intervals and, for each, an admissible alpha at its two ends."""
+    betas = np.linspace(0.0, math.pi, opts.beta_samples)
+    grid = -math.pi + _TWO_PI * np.arange(opts.alpha_samples) / opts.alpha_samples
+    A, B = np.meshgrid(grid, betas)
+    ok_ab = _feasible(p, A.ravel(), B.ravel(), free).reshape(B.shape)
+    ok = ok_ab.any(axis=1)
+    out, wit, i, last = [], [], 0, len(betas) - 1
+    while i <= last:
+        if not ok[i]:
+            i += 1
+            continue
+        j = i
+        while j < last and ok[j + 1]:
+            j += 1
+        lo, a_lo = ((betas[0], grid[np.argmax(ok_ab[0])]) if i == 0
+                    else _beta_end(p, free, opts, betas[i], betas[i - 1]))
+        hi, a_hi = ((betas[last], grid[np.argmax(ok_ab[last])]) if j == last
+                    else _beta_end(p, free, opts, betas[j], betas[j + 1]))
+        out.append((float(lo), float(hi)))
+        wit.append((float(a_lo), float(a_hi)))
+        i = j + 1
+    return tuple(out), tuple(wit)
+
+
+def dexterity(p, arm: Arm, *, beta: float | None = None,
+              options: DexterityOptions | None = None) -> Dexterity:
+    """The admissible beta intervals at ``p`` and, for a chosen ``beta``, the alpha intervals (exact).
 
     Args:
-        p: Tool point [m], shape (3,), base frame 0.
-        beta: Optional polar angle [rad] of z6 (Eq 42 convention, see module doc).
-        arm: Arm parameters.
+        p: Tool point [m], shape (3,), in the arm's base frame.
+        arm: The arm (its tool z axis must be joint 6's axis, see the module doc).
+        beta: Optional polar angle [rad] of the tool z axis (Eq 42 convention).
+        options: Grid and bisection tolerance (:class:`DexterityOptions`).
 
     Returns:
-        :class:`Dexterity`; for ``p`` outside the workspace (farther than ``l3 + l4 + l5``
-        from joint 2, Eq 38) case ``"unreachable"`` with a ``reason`` (like an empty
-        :class:`iik.IKResult`; ``.raise_if_unreachable()`` raises instead).
+        :class:`Dexterity`. Nothing admissible (the point out of reach, or reached only outside
+        the limits) is an answer with empty intervals and a ``reason``.
 
     Raises:
-        InvalidInputError: NaN/inf or a wrong shape.
-        DexterityError: ``beta`` outside the admissible range at a reachable point (names the range).
+        InvalidInputError: NaN/inf, a wrong shape, or an arm whose roll is not joint 6.
+        DexterityError: ``beta`` outside every admissible interval at a point where some are.
     """
-    px, py, pz = _point3(p)
+    opts = options or DexterityOptions()
+    pt = _point(p)
+    beta = None if beta is None else _beta(beta)
+    free = _checked_free_arm(arm)
+    gamma_free = float(arm.upper[5]) - float(arm.lower[5]) >= _TWO_PI - 1e-12
+    betas, witnesses = _beta_set(pt, free, opts)
+    reason = "" if betas else (
+        f"no orientation at p = [{pt[0]:.4f}, {pt[1]:.4f}, {pt[2]:.4f}] m has an IK solution within the "
+        f"joint limits of {arm.name} (a grid of {opts.alpha_samples} x {opts.beta_samples} orientations: a "
+        f"set narrower than {math.degrees(max(opts.resolution)):.3g} deg may be missed)")
+    alphas: tuple[tuple[float, float], ...] = ()
     if beta is not None:
-        if isinstance(beta, float) and math.isfinite(beta):
-            pass  # fast path
-        else:
-            b = as_float_array(beta, "beta")
-            if b.shape != ():
-                raise InvalidInputError("beta", f"expected a scalar, got shape {b.shape}")
-            beta = float(b)
-    l1, l2, l3, l4, l5 = arm.l1, arm.l2, arm.l3, arm.l4, arm.l5
-    lim4 = float(arm.upper[3])
-    phi = math.atan2(py, px)  # Eq 36
-    th1 = min(max(phi, arm.lower[0]), arm.upper[0])  # joint 1 cannot point beyond its limits
-    vx, vy, vz = px - l2 * math.cos(th1), py - l2 * math.sin(th1), pz - l1  # Eq 37
-    rho = math.sqrt(vx * vx + vy * vy + vz * vz)  # Eq 44
-    r_out = l3 + l4
-    r_in = math.sqrt(l3 * l3 + l4 * l4 - 2 * l3 * l4 * math.cos(math.pi - lim4))  # Eq 45 d
-    gamma_range = (float(arm.lower[5]), float(arm.upper[5]))
-    if rho > r_out + l5 + 1e-12:
-        reason = (f"unreachable: p = [{px:.4f}, {py:.4f}, {pz:.4f}] m is outside the workspace: "
-                  f"{rho:.4f} m from joint 2, more than l3 + l4 + l5 = {r_out + l5:.4f} m (Eq 38)")
-        return Dexterity(point=np.array((px, py, pz)), case="unreachable", beta_range=None,
-                         inclination_range=None, beta=None, alpha_intervals=(), alpha_center=0.0,
-                         alpha_halfwidth=(0.0, -1.0), gamma_range=gamma_range, nominal_inclination=0.0,
-                         delta_out=0.0, delta_in=math.pi, reason=reason)
-    if rho + l5 < r_in - 1e-12 or rho < 1e-12:  # service sphere inside the inner SLJ boundary
-        if beta is not None:
-            raise DexterityError(beta, None)
-        return Dexterity(point=np.array((px, py, pz)), case="none", beta_range=None, inclination_range=None,
-                         beta=None, alpha_intervals=(), alpha_center=0.0, alpha_halfwidth=(0.0, -1.0),
-                         gamma_range=gamma_range, nominal_inclination=0.0, delta_out=0.0, delta_in=math.pi,
-                         reason="the Sec 3.5 model admits no orientation here (service sphere inside the "
-                                "inner boundary of the second-last joint)")
-    inc0 = math.atan2(vz, math.hypot(vx, vy))  # Eq 43 (beta')
-    c_out = (l5 * l5 + rho * rho - r_out * r_out) / (2 * l5 * rho)  # Eq 44
-    c_in = (l5 * l5 + rho * rho - r_in * r_in) / (2 * l5 * rho)  # Eq 45
-    d_out = math.acos(_clip1(c_out)) if c_out > -1.0 else math.pi
-    d_in = math.acos(_clip1(c_in)) if c_in < 1.0 else 0.0
-    outer_cut, inner_cut = c_out > -1.0, c_in < 1.0
-    case = "ring" if (outer_cut and inner_cut) else ("outer" if outer_cut else "inner")
-    lo = max(inc0 - d_out, -inc0 - (math.pi - d_in), -_HALF_PI)
-    hi = min(inc0 + d_out, -inc0 + (math.pi - d_in), _HALF_PI)
-    beta_range = (lo + _HALF_PI, hi + _HALF_PI)  # beta_42 = inclination + 90 deg
-    alpha_c = math.atan2(vy, vx) + math.pi  # z6 = -a: azimuth + 180 deg (Eq 46)
-    alpha_c = (alpha_c + math.pi) % (2 * math.pi) - math.pi
-    intervals: tuple[tuple[float, float], ...] = ()
-    widths = (0.0, math.pi)
-    if beta is not None:
-        if not (beta_range[0] - 1e-12 <= beta <= beta_range[1] + 1e-12):
-            raise DexterityError(beta, beta_range)
-        w_in, w_out = _alpha_widths(beta - _HALF_PI, inc0, d_in, d_out)
-        w_out = max(w_out, w_in)  # at the range ends the interval shrinks to a point
-        widths = (w_in, w_out)
-        if w_out >= math.pi - 1e-12 and w_in <= 1e-12:
-            intervals = ((alpha_c - math.pi, alpha_c + math.pi),)
-        elif w_in <= 1e-12:
-            intervals = ((alpha_c - w_out, alpha_c + w_out),)
-        else:
-            intervals = ((alpha_c - w_out, alpha_c - w_in), (alpha_c + w_in, alpha_c + w_out))
-    return Dexterity(
-        point=np.array((px, py, pz)), case=case, beta_range=beta_range, inclination_range=(lo, hi),
-        beta=beta, alpha_intervals=intervals, alpha_center=alpha_c, alpha_halfwidth=widths,
-        gamma_range=(float(arm.lower[5]), float(arm.upper[5])), nominal_inclination=inc0,
-        delta_out=d_out, delta_in=d_in,
-    )
+        if betas and not any(lo - opts.tol <= beta <= hi + opts.tol for lo, hi in betas):
+            raise DexterityError(beta, betas)
+        alphas = _alpha_set(pt, beta, free, opts)
+    return Dexterity(point=pt, arm=arm, beta_intervals=betas, beta_end_alphas=witnesses, beta=beta,
+                     alpha_intervals=alphas,
+                     gamma_free=gamma_free, resolution=opts.resolution, tol=opts.tol, reason=reason)

@@ -59,27 +59,21 @@ class UnreachablePoseError(IIKError, ValueError):
 
 
 class DexterityError(InvalidInputError):
-    """A requested ``beta`` is outside the admissible range at that point.
+    """A requested ``beta`` is outside every admissible interval at that point (:func:`iik.dexterity`).
 
     Attributes:
-        beta_range: The admissible ``(beta_min, beta_max)`` [rad] (Eq 42 convention).
+        beta_intervals: The admissible beta intervals ``((lo, hi), ...)`` [rad] (Eq 42 convention).
     """
 
-    def __init__(self, beta: float, beta_range: tuple[float, float] | None):
-        self.beta_range = beta_range
-        if beta_range is None:
-            super().__init__(
-                "beta",
-                f"{beta:.6g} rad: no beta is admissible at this point in the model of Sec 3.5 "
-                "(admissible range: empty)",
-            )
-            return
-        lo, hi = beta_range
+    def __init__(self, beta: float, beta_intervals):
+        self.beta_intervals = tuple(beta_intervals)
+        shown = ", ".join(f"[{lo:.6g}, {hi:.6g}]" for lo, hi in self.beta_intervals) or "none"
+        shown_deg = ", ".join(f"[{math.degrees(lo):.3f}, {math.degrees(hi):.3f}]"
+                              for lo, hi in self.beta_intervals) or "none"
         super().__init__(
             "beta",
-            f"{beta:.6g} rad ({math.degrees(beta):.3f} deg) is outside the admissible range "
-            f"[{lo:.6g}, {hi:.6g}] rad ([{math.degrees(lo):.3f}, {math.degrees(hi):.3f}] deg) "
-            "at this point",
+            f"{beta:.6g} rad ({math.degrees(beta):.3f} deg) is outside the admissible beta at this point: "
+            f"{shown} rad ({shown_deg} deg; exact, from the IK)",
         )
 
 

@@ -3,6 +3,7 @@
 fixture for tests that run ``iik`` processes on udp_multicast."""
 
 import os
+import time
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -74,6 +75,22 @@ class UdpBus:
                 b.shutdown()
         except (OSError, ImportError) as exc:
             return f"udp_multicast unavailable: {exc}"
+
+    def request_timeout(self, floor: float = 1.0, margin: float = 25.0) -> str:
+        """A CAN request timeout [s] for ``iik run`` on this bus (as ``--timeout`` text), derived from a
+        baseline measured now, under whatever load the machine has: ``margin`` times the slowest of
+        ten round trips to the running ``sim-arm`` (GETPOS of every module), at least ``floor``."""
+        from hardware import PowerCubeArm
+
+        with PowerCubeArm.from_interface(interface="udp_multicast", channel=self.group, port=self.port,
+                                         timeout=30.0) as arm:
+            arm.get_pos()  # the first request may pay for imports and discovery
+            worst = 0.0
+            for _ in range(10):
+                t0 = time.monotonic()
+                arm.get_pos()
+                worst = max(worst, time.monotonic() - t0)
+        return f"{max(floor, margin * worst):.3f}"
 
     def close(self) -> None:
         import subprocess

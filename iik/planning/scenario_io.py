@@ -154,24 +154,26 @@ def validate_scenario(sc: Scenario, *, arm: Arm = THESIS_ARM, scene: Scene = THE
     check_scenario(sc, platform=platform_box(scene), floor_z=scene.floor.z, frame=frame, **kw)
 
 
-def dexterity_notes(sc: Scenario, arm: Arm = THESIS_ARM) -> list[str]:
+def dexterity_notes(sc: Scenario, arm: Arm) -> list[str]:
     """Sec 3.6 asks for beta within the dexterity range (Sec 3.5); say where start/goal are not.
 
-    Advisory only: the Sec 3.5 model ignores the joint limits of joints 3-6 and is
-    stricter than the complete IK in places (a beta it rejects can have IK solutions),
-    so the planner decides by IK, not by this range.
+    Exact (:func:`iik.dexterity.alpha_intervals`, on the complete IK): a note when no alpha with
+    the waypoint's beta has an IK solution within the arm's limits at its position. Advisory: the
+    planner decides by IK along the whole path.
     """
-    from iik.dexterity import dexterity
+    from iik.dexterity import alpha_intervals
 
     notes = []
     for fld, wp in (("start", sc.start), ("goal", sc.goal)):
         try:
-            dexterity(np.asarray(wp.position, float), beta=wp.beta, arm=arm)
+            found = alpha_intervals(np.asarray(wp.position, float), wp.beta, arm)
         except InvalidInputError as exc:
-            if getattr(exc, "argument", "") != "beta":
-                raise
-            notes.append(f"{fld}.beta_deg = {math.degrees(wp.beta):.1f} deg is outside the Sec 3.5 dexterity "
-                         f"range ({exc.reason})")
+            notes.append(f"{fld}: the dexterity at this point was not computed ({exc})")
+            continue
+        if not found:
+            notes.append(f"{fld}.beta_deg = {math.degrees(wp.beta):.1f} deg is outside the dexterity range "
+                         "(no alpha with this beta has an IK solution within the joint limits here; "
+                         "iik.dexterity)")
     return notes
 
 

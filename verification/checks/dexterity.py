@@ -19,8 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import iik
-from iik.dexterity import alpha_admissible, dexterity
-from iik.errors import UnreachablePoseError
+from iik.dexterity import admissible, alpha_intervals, dexterity
 
 from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_q, worst
@@ -38,7 +37,6 @@ from ..registry import (
     Verdict,
     epsilon,
     off_by,
-    verdict_of,
 )
 from ..second_reading import Kind, Reading, search
 from ..shorthand import wrap
@@ -880,37 +878,86 @@ def convention_reading(c: Pose35, to_eq42):
                   measure="max angle difference [rad]")
 
 
-def _sweep(ctx):
+def sweep(ctx):
+    """The exact admissible set on a grid: :func:`iik.dexterity.admissible` (IK feasibility) at
+    ``na x nb`` orientations of each of ``npts`` reachable points (300 in the full report)."""
     key = ("dexterity_sweep", ctx.quick)
     if key in ctx.cache:
         return ctx.cache[key]
     rng = ctx.rng("dexterity-points")
-    npts = ctx.n(30, 8)
+    npts = ctx.n(300, 8)
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(npts, 6))
-    P = iik.fk(q)[:, :3, 3]
+    P = iik.fk(q, ARM)[:, :3, 3]
     na, nb = ctx.n(36, 24), ctx.n(18, 12)
     A, B = np.meshgrid((np.arange(na) + 0.5) / na * 2 * np.pi - np.pi, (np.arange(nb) + 0.5) / nb * np.pi)
     A, B = A.ravel(), B.ravel()
-    truth = np.zeros((npts, A.size), bool)
-    for i, p in enumerate(P):
-        T = iik.pose_from_euler(np.tile(p, (A.size, 1)), A, B, np.zeros_like(A))
-        truth[i] = [len(r.q) > 0 for r in iik.solve_many(T)]
+    truth = np.array([admissible(p, A, B, ARM) for p in P])
     out = dict(P=P, A=A, B=B, truth=truth, na=na, nb=nb)
     ctx.cache[key] = out
     return out
 
 
-def _rates(adm, truth):
-    both = np.sum(adm & truth)
-    sound = both / max(1, adm.sum())
-    complete = both / max(1, truth.sum())
-    return sound, complete, int(adm.sum()), int(truth.sum())
+@dataclass(frozen=True)
+class Rates:
+    """How an admitted set compares with the exact one on the sweep (counts of grid orientations)."""
+
+    admitted: int
+    rejected: int
+    false_admits: int  # admitted, but no IK solution within the limits
+    false_rejects: int  # rejected, but an IK solution within the limits exists
+
+    @property
+    def false_admit_rate(self) -> float:
+        """Share of the admitted orientations that have no solution."""
+        return self.false_admits / max(1, self.admitted)
+
+    @property
+    def false_reject_rate(self) -> float:
+        """Share of the rejected orientations that do have a solution."""
+        return self.false_rejects / max(1, self.rejected)
+
+    def text(self) -> str:
+        return (f"admitted {self.admitted}, rejected {self.rejected}; false admits {self.false_admits} "
+                f"({self.false_admit_rate:.1%} of the admitted have no IK solution within Table I), false "
+                f"rejects {self.false_rejects} ({self.false_reject_rate:.1%} of the rejected have one)")
+
+
+def rates(adm: np.ndarray, truth: np.ndarray) -> Rates:
+    """False-admit and false-reject counts of the admitted set ``adm`` against ``truth`` (same shape)."""
+    adm, truth = np.asarray(adm, bool), np.asarray(truth, bool)
+    return Rates(int(adm.sum()), int((~adm).sum()), int((adm & ~truth).sum()), int((~adm & truth).sum()))
 
 
 def admitted_printed(p, A, B):
     """Eq 43-51 as printed, the angles converted to Eq 42's (the reading of dexterity.beta_convention)."""
     with np.errstate(invalid="ignore", divide="ignore"):
-        return printed_admits(p, A - np.pi, B - np.pi / 2)
+        return printed_admits(p, A - np.pi, B - np.pi / 2, ARM)
+
+
+def shell_admits(p, A, B, arm) -> np.ndarray:
+    """Sec 3.5's model read exactly (the project's dexterity before issue 20): the second-last joint
+    ``p - l5 a`` (``a = -z6``, the direction of link 5) lies in the shell around joint 2 between
+    ``d`` (Eq 45, joint 4 at its limit) and ``l3 + l4`` (Eq 44), joint 2 placed by Eq 36-37 with
+    joint 1 clipped to its limits. The angle of ``a`` from the joint-2 direction must lie between the
+    cone half-angles of Eq 44 and Eq 45; no other joint limit enters. ``A``, ``B``: Eq 42 [rad]."""
+    l1, l2, l3, l4, l5 = arm.lengths
+    th1 = float(np.clip(np.arctan2(p[1], p[0]), arm.lower[0], arm.upper[0]))
+    v = np.array([p[0] - l2 * np.cos(th1), p[1] - l2 * np.sin(th1), p[2] - l1])  # Eq 37
+    rho = float(np.linalg.norm(v))
+    r_out = l3 + l4
+    r_in = np.sqrt(l3**2 + l4**2 - 2 * l3 * l4 * np.cos(np.pi - arm.upper[3]))  # Eq 45 d
+    A, B = np.broadcast_arrays(np.asarray(A, float), np.asarray(B, float))
+    if rho < 1e-12 or rho > r_out + l5 or rho + l5 < r_in:
+        return np.zeros(A.shape, bool)
+    c_out = (l5**2 + rho**2 - r_out**2) / (2 * l5 * rho)  # Eq 44: cos of the cone half-angle
+    c_in = (l5**2 + rho**2 - r_in**2) / (2 * l5 * rho)  # Eq 45
+    z6 = np.stack([np.sin(B) * np.cos(A), np.sin(B) * np.sin(A), np.cos(B)], axis=-1)
+    cos_ae = -(z6 @ (v / rho))
+    return (cos_ae <= min(c_in, 1.0) + 1e-12) & (cos_ae >= max(c_out, -1.0) - 1e-12)
+
+
+def _shell(p, A, B):
+    return shell_admits(p, A, B, ARM)
 
 
 @dataclass(frozen=True)
@@ -922,7 +969,7 @@ class SolvableOnly:
 
 def _unconverted(p, A, B):
     with np.errstate(invalid="ignore", divide="ignore"):
-        return printed_admits(p, A, B)
+        return printed_admits(p, A, B, ARM)
 
 
 def _admit_all(p, A, B):
@@ -958,12 +1005,17 @@ def _sweep_domain(sw) -> str:
 
 
 def _graded_sweep(ctx, admit):
-    """The sweep, the set ``admit`` admits on it, its rates (:func:`_rates`) and the soundness measure."""
-    sw = _sweep(ctx)
+    """The sweep, the set ``admit`` admits on it, its :class:`Rates` and the soundness measure."""
+    sw = sweep(ctx)
     adm = np.array([_admitted(admit, sw, i, p) for i, p in enumerate(sw["P"])])
-    rates = _rates(adm, sw["truth"])
-    m = (Measure("share of admitted orientations that are solvable", rates[0], _SOUND, bound=">="),)
-    return sw, adm, rates, m
+    r = rates(adm, sw["truth"])
+    m = (Measure("share of admitted orientations that are solvable", 1.0 - r.false_admit_rate, _SOUND,
+                 bound=">="),)
+    return sw, adm, r, m
+
+
+_SWEEP_METHOD = ("the exact admissible set on a grid: iik.dexterity.admissible (the complete IK, a solution "
+                 "within Table I for pose_from_euler(p, alpha, beta, 0); gamma turns joint 6 alone) ")
 
 
 @SECTION.check(
@@ -974,25 +1026,16 @@ def _graded_sweep(ctx, admit):
 def printed_admitted_set(ctx, admit):
     """Sec 3.5 / Sec 5.2: the orientations Eq 43-51 admit at a point can be reached ('at least one solution
     ... when suitable orientations were chosen ... guarantees the convergence of the inverse kinematics')."""
-    sw, adm, (s, c, n_adm, n_true), m = _graded_sweep(ctx, admit)
+    sw, adm, r, m = _graded_sweep(ctx, admit)
     P, truth = sw["P"], sw["truth"]
-    per_point = [int(np.sum(adm[i] & ~truth[i])) for i in range(len(P))]
-    figs = (
-        (_figure(ctx, sw, _iik_admitted(ctx, sw)[0], adm, _iik_admitted(ctx, sw)[1]),)
-        if admit is admitted_printed
-        else ()
-    )
+    figs = (_figure(ctx, sw, adm),) if admit is admitted_printed else ()
     return Row.graded(
         "The orientations Eq 43-51 admit at a point inside the workspace are reachable (at least one IK "
         "solution), so choosing them guarantees convergence.",
         "Sec 3.5.2-3.5.3, Eq 43-51, Sec 5.2",
-        "IK feasibility sweep: iik.solve (complete, within Table I) on pose_from_euler(p, alpha, beta, 0) "
-        "over a "
-        f"{sw['na']} x {sw['nb']} (alpha, beta) grid at {len(P)} reachable points (fk of random q), vs the "
-        "admitted set",
-        f"admitted {n_adm}, solvable {n_true} of {truth.size}; soundness (admitted and solvable / admitted) "
-        f"{s:.1%}, completeness (admitted and solvable / solvable) {c:.1%}; unsound orientations per point: "
-        f"{per_point}",
+        _SWEEP_METHOD + f"over a {sw['na']} x {sw['nb']} (alpha, beta) grid at {len(P)} reachable points, "
+        "vs the set Eq 43-51 admit (angles converted to Eq 42's)",
+        f"{r.text()}; of {truth.size} orientations {int(truth.sum())} are solvable",
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="admitted_set",
@@ -1004,88 +1047,158 @@ def printed_admitted_set(ctx, admit):
     )
 
 
-def _iik_admitted(ctx, sw):
-    """iik.dexterity's admitted set and case per sweep point (cached in the run's context)."""
-    key = ("dex.iik_admitted", ctx.quick)
+@SECTION.check(
+    51.2,
+    depends_on=("l1", "lengths", "ik-sweep"),
+    forms=_sweep_forms(_shell),
+)
+def shell_model(ctx, admit):
+    """Sec 3.5's model (the SLJ in the shell of Eq 44-45) read exactly, vs the same sweep."""
+    sw, _, r, m = _graded_sweep(ctx, admit)
+    return Row.graded(
+        "Sec 3.5's model read exactly (the second-last joint inside the shell of Eq 44-45, the angles "
+        "converted to Eq 42's) admits only reachable orientations.",
+        "Sec 3.5.2-3.5.3 (Figs 18-21), Eq 44-45",
+        _SWEEP_METHOD + "vs the orientations whose link-5 direction lies in the cone between the Eq 44 and "
+        "Eq 45 half-angles (the former iik.dexterity)",
+        r.text(),
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
+        id="shell_model",
+        domain=_sweep_domain(sw),
+        reason="the model ignores the joint-1, joint-2, joint-3 and joint-5 limits and where the wrist "
+        "really is: it is neither a necessary nor a sufficient condition (false admits and false "
+        "rejects above)",
+    )
+
+
+# ----------------------------------------------------------------------------- the exact sets
+_EDGE = 1e-7  # [rad]: a step across an interval end, 100 x the bisection tolerance
+
+
+def _grid_ends(p, beta, arm):
+    """A slip: the ends left on the 2 deg grid (no root-finding): each interval out to the next grid line."""
+    step = 2 * _D
+    return tuple((float(np.floor(lo / step) * step), float(np.ceil(hi / step) * step))
+                 for lo, hi in alpha_intervals(p, beta, arm))
+
+
+def _widened(p, beta, arm):
+    """A slip: the exact intervals widened by a quarter of a degree at each end."""
+    return tuple((lo - 0.25 * _D, hi + 0.25 * _D) for lo, hi in alpha_intervals(p, beta, arm))
+
+
+def _member(intervals, a):
+    ok = np.zeros(np.shape(a), bool)
+    for lo, hi in intervals:
+        ok |= (a - lo) % (2 * np.pi) <= hi - lo + 1e-12
+    return ok
+
+
+def _near_end(intervals, a, eps):
+    near = np.zeros(np.shape(a), bool)
+    for lo, hi in intervals:
+        for e in (lo, hi):
+            near |= np.abs((a - e + np.pi) % (2 * np.pi) - np.pi) <= eps
+    return near
+
+
+def _exact_sample(ctx):
+    key = ("dexterity_exact", ctx.quick)
     if key not in ctx.cache:
-        adm = np.zeros_like(sw["truth"])
-        cases = []
-        for i, p in enumerate(sw["P"]):
-            try:
-                r = dexterity(p)
-                adm[i] = alpha_admissible(r, sw["A"], sw["B"])
-                cases.append(r.case)
-            except UnreachablePoseError:
-                cases.append("none")
-        ctx.cache[key] = (adm, cases)
+        rng = ctx.rng("dexterity-exact")
+        q = rng.uniform(ARM.q_min, ARM.q_max, size=(ctx.n(5, 2), 6))
+        pts = iik.fk(q, ARM)[:, :3, 3]
+        ctx.cache[key] = [(p, dexterity(p, ARM)) for p in pts]
     return ctx.cache[key]
 
 
-def _iik_admit(p, A, B):
-    try:
-        return alpha_admissible(dexterity(p), A, B)
-    except UnreachablePoseError:
-        return np.zeros(A.shape, bool)
+def _beta_end_errors(p, d) -> int:
+    """Beta ends that are not a change of feasibility: the alpha iik.dexterity gives is admissible at the
+    end, and 1e-7 rad outside no alpha is (7200 over the turn and 200 within 1e-3 rad of that alpha)."""
+    bad, dense = 0, np.linspace(-np.pi, np.pi, 7200, endpoint=False)
+    for (lo, hi), (a_lo, a_hi) in zip(d.beta_intervals, d.beta_end_alphas, strict=True):
+        for end, a, inward in ((lo, a_lo, 1.0), (hi, a_hi, -1.0)):
+            if end <= 0.0 or end >= np.pi:
+                continue
+            near = np.concatenate([dense, a + np.linspace(-1e-3, 1e-3, 200)])
+            witness = bool(admissible(p, a, end, ARM))
+            outside = bool(admissible(p, near, end - inward * _EDGE, ARM).any())
+            bad += int(not witness or outside)
+    return bad
 
 
 @SECTION.check(
     51.5,
     depends_on=("l1", "lengths", "ik-sweep"),
-    forms=_sweep_forms(_iik_admit),
+    forms=Forms.right(alpha_intervals, (
+        Slip(SlipKind.MODEL, "interval ends left on the 2 deg grid (no root-finding)", _grid_ends),
+        Slip(SlipKind.CLAIM, "every interval a quarter degree wider at each end", _widened),
+    )),
 )
-def iik_dexterity(ctx, admit):
-    """(Project) iik.dexterity (the thesis's SLJ-shell model, exact cone) vs the same sweep."""
-    sw, _, (s, c, n_adm, _), m = _graded_sweep(ctx, admit)
-    return Row(
-        "(Project) iik.dexterity admits only reachable orientations.",
-        "iik.dexterity (Sec 3.5 model)",
-        "the sweep of dexterity.admitted_set",
-        f"admitted {n_adm}; soundness {s:.1%}, completeness {c:.1%}",
-        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+def iik_dexterity(ctx, intervals):
+    """(Project) iik.dexterity's alpha and beta intervals are the IK's feasible set, ends to 1e-7 rad."""
+    sample = _exact_sample(ctx)
+    dense = np.linspace(-np.pi, np.pi, 1440, endpoint=False)
+    mismatch, ends_bad, checked, n_int = 0, 0, 0, 0
+    beta_bad = sum(_beta_end_errors(p, d) for p, d in sample) if intervals is alpha_intervals else 0
+    for p, d in sample:
+        for lo, hi in d.beta_intervals:
+            for beta in np.linspace(lo, hi, 5)[1:-1]:
+                got = intervals(p, float(beta), ARM)
+                truth = admissible(p, dense, beta, ARM)
+                off = _member(got, dense) != truth
+                mismatch += int(np.sum(off & ~_near_end(got, dense, 1e-6)))
+                checked += dense.size
+                for a_lo, a_hi in got:
+                    if a_hi - a_lo >= 2 * np.pi - 1e-12:
+                        continue
+                    n_int += 1
+                    probe = np.array([a_lo - _EDGE, a_lo + _EDGE, a_hi - _EDGE, a_hi + _EDGE])
+                    ends_bad += int(np.any(admissible(p, probe, beta, ARM) != [False, True, True, False]))
+    m = (
+        Measure("grid orientations whose membership differs from IK feasibility", mismatch, 0),
+        Measure("alpha interval ends that are not a change of feasibility within 1e-7 rad", ends_bad, 0),
+        Measure("beta interval ends that are not a change of feasibility within 1e-7 rad", beta_bad, 0),
+    )
+    return Row.graded(
+        "(Project) iik.dexterity is exact: its alpha and beta intervals are the orientations with an IK "
+        "solution within Table I, each end a change of feasibility (root-found).",
+        "iik.dexterity (exact, on the complete IK)",
+        "at random reachable points: iik.dexterity's beta intervals; at 3 betas inside each, its alpha "
+        "intervals vs iik.dexterity.admissible on 1440 alphas; each alpha end probed 1e-7 rad on either "
+        "side; each beta end: a witness alpha 1e-7 rad inside, none of 7200 alphas 1e-7 rad outside",
+        f"{mismatch} of {checked} grid orientations differ; {ends_bad} of {n_int} alpha ends and {beta_bad} "
+        "beta ends are not a change of feasibility",
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="iik_dexterity",
-        measures=m,
-        domain=_sweep_domain(sw),
+        domain=f"{len(sample)} points fk(q), q uniform in Table I; 3 betas per beta interval",
         scope=Scope.PROJECT,
-        reason=""
-        if m[0].holds
-        else "the model ignores the joint-1, joint-2 and joint-5 limits and the roll "
-        "geometry: it is a necessary condition, not a sufficient one",
+        reason="an interval end is not where the IK's feasibility changes",
     )
 
 
-def _figure(ctx, sw, adm_iik, adm_pr, cases) -> str:
+def _figure(ctx, sw, adm_pr) -> str:
     truth = sw["truth"]
     na, nb = sw["na"], sw["nb"]
-    picks = []
-    for case in ("outer", "ring", "inner"):
-        idx = [i for i, c in enumerate(cases) if c == case]
-        if idx:
-            picks.append((case, idx[0]))
-    fig = new_figure(figsize=(4 * max(1, len(picks)), 3.4))
+    picks = list(range(min(3, len(sw["P"]))))
+    fig = new_figure(figsize=(4 * len(picks), 3.4))
     ext = (-180, 180, 0, 180)
-    for k, (case, i) in enumerate(picks):
+    for k, i in enumerate(picks):
         ax = fig.add_subplot(1, len(picks), k + 1)
-        ax.imshow(
-            truth[i].reshape(nb, na),
-            origin="lower",
-            extent=ext,
-            aspect="auto",
-            cmap="Greys",
-            vmin=0,
-            vmax=1.5,
-        )
-        for adm, col in ((adm_iik[i], "blue"), (adm_pr[i], "red")):
+        ax.imshow(truth[i].reshape(nb, na), origin="lower", extent=ext, aspect="auto", cmap="Greys",
+                  vmin=0, vmax=1.5)
+        p = sw["P"][i]
+        for adm, col in ((_shell(p, sw["A"], sw["B"]), "blue"), (adm_pr[i], "red")):
             if adm.any() and not adm.all():
                 ax.contour(adm.reshape(nb, na).astype(float), levels=[0.5], colors=col, extent=ext)
-        p = sw["P"][i]
-        ax.set_title(f"{case}: p = [{p[0]:.2f}, {p[1]:.2f}, {p[2]:.2f}] m", fontsize=8)
+        ax.set_title(f"p = [{p[0]:.2f}, {p[1]:.2f}, {p[2]:.2f}] m", fontsize=8)
         ax.set_xlabel("alpha [deg] (Eq 42)")
         ax.set_ylabel("beta [deg] (Eq 42)")
-    fig.suptitle(
-        "grey: solvable (iik.solve); blue: iik.dexterity; red: Eq 43-51 printed (converted)", fontsize=8
-    )
-    rel = ctx.save_figure(fig, "dexterity_alpha_beta.png", dpi=80)
-    return rel
+    fig.suptitle("grey: exact (iik.dexterity: an IK solution within Table I); blue: Sec 3.5's model read "
+                 "exactly; red: Eq 43-51 printed (converted)", fontsize=8)
+    return ctx.save_figure(fig, "dexterity_alpha_beta.png", dpi=80)
 
 
 @SECTION.check(

@@ -89,6 +89,7 @@ class ArmBody:
             self._shapes.setdefault(collision_link(tm.model, g), []).append(self._viz.frames[prefix + g.name])
         self._paint: dict[str, tuple[Colour, float]] = {}
         self.q = np.zeros(tm.model.nq)
+        self._viz.display(self.q)  # posed (home) from the start, never a heap of shapes at the origin
 
     @property
     def links(self) -> tuple[str, ...]:

@@ -20,7 +20,8 @@ from iik.scene import THESIS_SCENE, Scene
 from ..obstacles import Obstacle, enclosing_radii
 from . import style
 
-__all__ = ["draw_environment", "configure_server", "aim_camera", "camera_pose", "view_top", "legend_html"]
+__all__ = ["draw_environment", "configure_server", "aim_camera", "camera_pose", "view_top", "legend_html",
+           "fit_camera", "framing", "add_view_presets", "VIEW_PRESETS", "workspace_points"]
 
 
 def configure_server(server: viser.ViserServer, title: str) -> None:
@@ -29,6 +30,72 @@ def configure_server(server: viser.ViserServer, title: str) -> None:
     server.gui.set_panel_label(title)
     server.scene.set_up_direction("+z")
     aim_camera(server, style.CAMERA_LOOK_AT)
+
+
+#: View presets: (azimuth, elevation) [deg] of the eye seen from the target (z up; x ahead of the arm).
+VIEW_PRESETS = {"fit": (style.CAMERA_AZIMUTH_DEG, style.CAMERA_ELEVATION_DEG), "front": (0.0, 8.0),
+                "side": (-90.0, 8.0), "top": (-90.0, 89.0)}
+
+
+def workspace_points(arm, q, obstacles: Sequence[Obstacle] = (), offset=(0.0, 0.0, 0.0)) -> np.ndarray:
+    """Points [m] a view frames: the base, ``arm``'s joint origins and tool point at every ``q`` (k, 6)
+    [rad] it shows (the workspace the motion sweeps) and the corners of the scenario's boxes."""
+    from iik.kinematics import joint_frames
+
+    qs = np.asarray(q, float).reshape(-1, 6)
+    qs = qs[:: max(1, len(qs) // 200)]
+    pts = [np.zeros((1, 3)), joint_frames(qs, arm)[:, :, :3, 3].reshape(-1, 3)]
+    pts += [np.asarray(b.corners, float).reshape(-1, 3) for b in obstacles]
+    return np.vstack(pts) + np.asarray(offset, float)
+
+
+def framing(points, fov_deg: float, preset: str = "fit", *, aspect: float = 1.6,
+            margin: float = 1.08) -> tuple[np.ndarray, np.ndarray]:
+    """``(eye, target)`` [m] that show every point of ``points`` (n, 3) from the ``preset`` direction.
+
+    The target is the centre of the points' bounding box; the distance fits their bounding sphere into
+    the narrower of the vertical ``fov_deg`` and the horizontal field (``aspect`` width / height).
+    """
+    pts = np.asarray(points, float).reshape(-1, 3)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    target = 0.5 * (lo + hi)
+    radius = max(float(np.linalg.norm(pts - target, axis=1).max()), 0.1)
+    half = np.radians(fov_deg) / 2
+    half = min(half, np.arctan(np.tan(half) * aspect))
+    az, el = (np.radians(v) for v in VIEW_PRESETS[preset])
+    direction = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+    return target + margin * radius / np.sin(half) * direction, target
+
+
+def fit_camera(server: viser.ViserServer, points) -> tuple[np.ndarray, np.ndarray, float]:
+    """Set the initial camera to frame ``points`` (the fit preset): ``(eye, target, vertical fov [deg])``."""
+    fov = float(np.degrees(server.initial_camera.fov))
+    eye, target = framing(points, fov)
+    server.initial_camera.look_at = tuple(target)
+    server.initial_camera.position = tuple(eye)
+    return eye, target, fov
+
+
+def add_view_presets(server: viser.ViserServer, points) -> dict:
+    """Buttons Fit, Front, Side, Top in the live panel: each moves every connected client's camera to frame
+    ``points`` from that side. Returns the buttons by preset name."""
+    fov = float(np.degrees(server.initial_camera.fov))
+    buttons = {}
+    with server.gui.add_folder("View"):
+        group = server.gui.add_button_group("camera", options=tuple(k.capitalize() for k in VIEW_PRESETS))
+
+        @group.on_click
+        def _(event) -> None:
+            preset = str(group.value).lower()
+            eye, target = framing(points, fov, preset)
+            clients = [event.client] if event.client is not None else list(server.get_clients().values())
+            for client in clients:
+                with client.atomic():  # position first: viser's position setter carries look_at along
+                    client.camera.position = tuple(eye)
+                    client.camera.look_at = tuple(target)
+
+        buttons["camera"] = group
+    return buttons
 
 
 def camera_pose(look_at, distance: float = style.CAMERA_DISTANCE) -> tuple[np.ndarray, np.ndarray]:
@@ -60,10 +127,14 @@ def view_top(eye, target, fov_deg: float, fraction: float = 0.9) -> np.ndarray:
     return target + up * fraction * np.linalg.norm(target - eye) * np.tan(np.radians(fov_deg) / 2)
 
 
-def legend_html() -> str:
-    """The colour legend as HTML for the live panel."""
+def legend_html(arms: Sequence[tuple[str, style.Colour]] = ()) -> str:
+    """The colour legend as HTML for the live panel; ``arms``: ``(name, colour)`` of each arm drawn
+    (e.g. the commanded and the measured arm of a run), listed first instead of the generic arm."""
+    import html
+
+    entries = [(html.escape(n), c) for n, c in arms] + [e for e in style.LEGEND[1 if arms else 0:]]
     rows = "".join(f'<div><span style="display:inline-block;width:0.9em;height:0.9em;margin-right:0.4em;'
-                   f'background:rgb{c}"></span>{name}</div>' for name, c in style.LEGEND)
+                   f'background:rgb{c}"></span>{name}</div>' for name, c in entries)
     return f'<div style="font-size:0.8em;padding:0 0.5em">{rows}</div>'
 
 

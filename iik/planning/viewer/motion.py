@@ -13,11 +13,13 @@ from dataclasses import dataclass
 import numpy as np
 import viser
 
+from iik import Arm
 from iik.errors import InvalidInputError
 from iik.scene import THESIS_SCENE, Scene
 
+from ..robot_model import thesis_model
 from .bodies import ArmBody
-from .environment import aim_camera, draw_environment, legend_html
+from .environment import add_view_presets, draw_environment, fit_camera, legend_html, workspace_points
 from .session import Animation
 from .style import Colour
 
@@ -46,6 +48,7 @@ class Motion:
     """Frame times ``t`` (k,) [s], the arms' tracks, and an optional note per frame (shown with the time).
 
     ``warnings``: what the view cannot show faithfully (printed by ``iik view``, shown in the panel).
+    ``obstacles``: the scenario's boxes (:class:`~iik.planning.Obstacle`), drawn around every arm.
     """
 
     title: str
@@ -54,6 +57,7 @@ class Motion:
     notes: tuple[str, ...] = ()
     headline: str = ""
     warnings: tuple[str, ...] = ()
+    obstacles: tuple = ()
 
     def __post_init__(self) -> None:
         t = np.asarray(self.t, float)
@@ -69,9 +73,12 @@ class Motion:
 class MotionView:
     """A :class:`Motion` as a view: every arm on its own platform, a label per arm, a note per frame."""
 
-    def __init__(self, motion: Motion, *, scene: Scene = THESIS_SCENE):
+    def __init__(self, motion: Motion, *, arm: Arm, scene: Scene = THESIS_SCENE):
         self.motion = motion
+        self.arm = arm
+        self.model = thesis_model(arm)
         self.scene = scene
+        self.camera = None
         self.title = motion.title
         self.warnings = motion.warnings
 
@@ -83,18 +90,21 @@ class MotionView:
         m = self.motion
         if m.headline or m.warnings:
             server.gui.add_markdown(m.headline + "".join(f"\n\n**Warning:** {w}" for w in m.warnings))
-        server.gui.add_html(legend_html())
-        arms = []
+        server.gui.add_html(legend_html(tuple((tr.name, tr.colour) for tr in m.tracks)))
+        arms, pts = [], []
         for k, tr in enumerate(m.tracks):
-            draw_environment(server, scene=self.scene, offset=tr.offset, root=f"/scene{k}")
-            arms.append(ArmBody(server, f"/motion/{k}", colour=tr.colour, offset=tr.offset))
+            draw_environment(server, m.obstacles, scene=self.scene, offset=tr.offset, root=f"/scene{k}",
+                             ellipsoids=False)
+            arms.append(ArmBody(server, f"/motion/{k}", colour=tr.colour, offset=tr.offset, model=self.model))
             server.scene.add_label(f"/motion/{k}/name", tr.name, position=(0.0, 0.0, 1.0),
                                    anchor="bottom-center")
-        offsets = np.array([tr.offset for tr in m.tracks]).reshape(-1, 3)
-        centre = 0.5 * (offsets.min(axis=0) + offsets.max(axis=0)) + np.array([0.3, 0.0, 0.15])
-        aim_camera(server, centre, distance=1.7 + float(np.ptp(offsets[:, 1])) if len(offsets) else 1.7)
-        note = server.scene.add_label("/motion/note", "", position=tuple(centre + [0.0, 0.0, 0.95]),
-                                      anchor="bottom-center")
+            pts.append(workspace_points(self.arm, tr.q, m.obstacles, tr.offset))
+        pts = np.vstack(pts) if pts else np.zeros((1, 3))
+        self.camera = fit_camera(server, pts)
+        add_view_presets(server, pts)
+        top = np.array([0.5 * (pts[:, 0].min() + pts[:, 0].max()), 0.5 * (pts[:, 1].min() + pts[:, 1].max()),
+                        pts[:, 2].max() + 0.1])
+        note = server.scene.add_label("/motion/note", "", position=tuple(top), anchor="bottom-center")
 
         def show(i: int) -> None:
             for arm, tr in zip(arms, m.tracks, strict=True):

@@ -24,7 +24,14 @@ from ..robot_model import thesis_model
 from . import style
 from .attempts import attempt_lines, attempt_table
 from .bodies import ArmBody
-from .environment import aim_camera, draw_environment, legend_html, view_top
+from .environment import (
+    add_view_presets,
+    draw_environment,
+    fit_camera,
+    legend_html,
+    view_top,
+    workspace_points,
+)
 from .plan_data import PlanView, frame_clearance
 from .session import Animation
 
@@ -50,6 +57,37 @@ class PlanScene:
         warn = " - INSIDE THE SAFETY ZONE" if d < zone else ""
         return f"{c.link[i]} to {c.obstacle[i]}: {d * 1000:.1f} mm (zone {zone * 1000:.0f} mm){warn}"
 
+    def clearance_summary(self) -> str:
+        """Markdown: the actual minimum along the motion (where, when) beside the certified lower bound."""
+        p, c = self.plan, self.clearance
+        k = c.minimum
+        zone = p.safety_zone * 1000
+        bound = (f"**{p.certified_clearance * 1000:.1f} mm** (the planner's certified lower bound, between "
+                 "the frames included)" if np.isfinite(p.certified_clearance) else "none (no accepted path)")
+        return (f"Actual minimum along the motion: **{c.distance[k] * 1000:.1f} mm** at t = {p.t[k]:.2f} s "
+                f"(frame {k} of {len(p.t)}), {c.link[k]} to {c.obstacle[k]}.  \nCertified: {bound}.  \n"
+                f"Safety zone {zone:.0f} mm.")
+
+    def _clearance_panel(self, server: viser.ViserServer) -> None:
+        import viser.uplot as uplot
+
+        p, c = self.plan, self.clearance
+        mm = c.distance * 1000
+        cert = np.full_like(mm, p.certified_clearance * 1000)
+        zone = np.full_like(mm, p.safety_zone * 1000)
+        with server.gui.add_folder("Clearance"):
+            server.gui.add_markdown(self.clearance_summary())
+            if len(p.t) > 1:
+                server.gui.add_uplot(
+                    data=(p.t, mm, cert, zone),
+                    series=(
+                        uplot.Series(label="t [s]"),
+                        uplot.Series(label="clearance [mm]", stroke=_css(style.NEAREST), width=2),
+                        uplot.Series(label="certified bound [mm]", stroke=_css(style.TOOL_PATH), dash=(6, 4)),
+                        uplot.Series(label="safety zone [mm]", stroke=_css(style.UNSAFE), dash=(2, 3))),
+                    scales={"x": uplot.Scale(time=False, auto=True)},
+                    title="whole-arm clearance vs time", aspect=1.6)
+
     def status(self, i: int) -> str:
         p = self.plan
         q = ", ".join(f"{v:.1f}" for v in np.degrees(p.q[i]))
@@ -61,7 +99,8 @@ class PlanScene:
         server.gui.add_markdown(f"{p.headline}\n\nUnits: m, mm for clearances; frame: arm base frame 0 "
                                 f"(z up); floor grid 0.1 m. The arm shows {p.arm_shows}.")
         server.gui.add_html(legend_html())
-        with server.gui.add_folder("Attempt log"):
+        self._clearance_panel(server)
+        with server.gui.add_folder("Attempt log", expand_by_default=False):
             server.gui.add_markdown(attempt_table(p))
         if len(p.step_q) and len(p.q) > 1:
             tool = fk(p.q, p.arm)[:, :3, 3]
@@ -81,9 +120,9 @@ class PlanScene:
                             position=tuple(p.step_points[i]), opacity=0.8)
             s.add_label(f"/plan/switches/{k}/label", f"IK branch switch, step {i}, t = {t:.2f} s",
                         position=(0.0, 0.0, 0.05))
-        pts = np.vstack([p.step_points.reshape(-1, 3), np.zeros((1, 3)),
-                         np.array([b.center for b in p.obstacles]).reshape(-1, 3)])
-        self.camera = aim_camera(server, 0.5 * (pts.min(axis=0) + pts.max(axis=0)))
+        pts = np.vstack([workspace_points(p.arm, p.q, p.obstacles), p.step_points.reshape(-1, 3)])
+        self.camera = fit_camera(server, pts)
+        add_view_presets(server, pts)
         s.add_label("/plan/caption", self.caption, position=tuple(view_top(*self.camera)),
                     anchor="top-center", font_screen_scale=0.85)
         arm = ArmBody(server, "/plan/arm", colour=style.ARM, model=thesis_model(p.arm))
@@ -102,4 +141,11 @@ class PlanScene:
             tag.text = self.label(i)
 
         marks = tuple((t, "switch") for t in p.switch_times)
-        return Animation(times=p.t, show=show, marks=marks, status=self.status)
+        k = self.clearance.minimum
+        jumps = ((f"Jump to the minimum clearance (t = {p.t[k]:.2f} s)", float(p.t[k])),) \
+            if len(p.t) > 1 else ()
+        return Animation(times=p.t, show=show, marks=marks, status=self.status, jumps=jumps)
+
+
+def _css(c: style.Colour) -> str:
+    return f"rgb({c[0]}, {c[1]}, {c[2]})"

@@ -56,6 +56,8 @@ class PlanView:
         switch_times: Frame time [s] of each switch (the frame nearest that step's configuration).
         arm: The arm planned for (its URDF collision shapes are drawn).
         scene: Platform and floor planned in.
+        certified_clearance: The planner's certified lower bound on the whole-arm clearance along the
+            accepted path, between steps included [m] (nan without an accepted path).
     """
 
     name: str
@@ -79,6 +81,7 @@ class PlanView:
     switch_times: tuple[float, ...]
     arm: Arm = THESIS_ARM
     scene: Scene = THESIS_SCENE
+    certified_clearance: float = float("nan")
 
 
 @dataclass(frozen=True)
@@ -97,6 +100,11 @@ class FrameClearance:
     obstacle: tuple[str, ...]
     on_link: np.ndarray
     on_obstacle: np.ndarray
+
+    @property
+    def minimum(self) -> int:
+        """Index of the frame of least clearance (the first, on a tie)."""
+        return int(np.argmin(self.distance))
 
 
 def _start_pose(result: PlanResult) -> tuple[np.ndarray, str]:
@@ -148,7 +156,8 @@ def plan_scene(result: PlanResult) -> PlanView:
         attempts=tuple(result.attempts), best=result.best_attempt, notes=tuple(result.notes),
         arm_shows=arm_shows, obstacles=tuple(sc.obstacles), safety_zone=float(sc.safety_zone), t=t, q=q,
         step_q=step_q, step_points=points, via_points=via, switch_steps=switches, switch_times=times,
-        arm=result.arm, scene=result.scene)
+        arm=result.arm, scene=result.scene,
+        certified_clearance=float(result.min_clearance) if result.success and len(step_q) else float("nan"))
 
 
 def plan_for_view(scenario, options: PlanOptions | None = None, *, arm: Arm = THESIS_ARM,

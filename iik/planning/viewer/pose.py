@@ -23,7 +23,7 @@ from iik.validation import as_joints, as_poses
 
 from . import style
 from .bodies import ArmBody, joints_outside_limits, link_of_joint, outside_limits_text
-from .environment import aim_camera, draw_environment, legend_html
+from .environment import add_view_presets, draw_environment, fit_camera, legend_html, workspace_points
 from .session import Animation
 
 __all__ = ["PoseView", "MAX_SOLUTIONS"]
@@ -138,9 +138,55 @@ class PoseView:
             head += f"; solved in {self.solve_time * 1e6:.0f} us"
         return head + "".join(f"\n\n**Warning:** {w}" for w in self.warnings)
 
+    def colour(self, k: int) -> style.Colour:
+        """Colour of configuration ``k`` (:meth:`configurations`): its own, one per solution."""
+        return style.SOLUTIONS[k % len(style.SOLUTIONS)]
+
+    def _target(self, server: viser.ViserServer):
+        """The target frame (axes at the pose), with a label saying whether it is reached."""
+        frame = server.scene.add_frame("/pose/target", wxyz=_quat_wxyz(self.T[:3, :3]),
+                                       position=tuple(self.T[:3, 3]), axes_length=style.TARGET_FRAME_LENGTH,
+                                       axes_radius=0.006)
+        label = server.scene.add_label("/pose/target/label", "", position=(0.0, 0.0, 0.03),
+                                       anchor="bottom-left", font_screen_scale=0.8)
+
+        def update() -> None:
+            frame.wxyz, frame.position = _quat_wxyz(self.T[:3, :3]), tuple(self.T[:3, 3])
+            label.text = "target" if self.result.count else "target (unreachable: no IK solution)"
+
+        update()
+        self.target_label = label
+        return update
+
+    def _joint_sliders(self, server: viser.ViserServer, on_change) -> list:
+        """Six sliders [deg] over each joint's limits (wider when the given q is outside them)."""
+        sliders = []
+        with server.gui.add_folder("Joints [deg]"):
+            for j in range(6):
+                lo = min(float(np.degrees(self.arm.q_min[j])), float(np.degrees(self.given[j])))
+                hi = max(float(np.degrees(self.arm.q_max[j])), float(np.degrees(self.given[j])))
+                sl = server.gui.add_slider(f"q{j + 1}", min=round(lo, 1), max=round(hi, 1), step=0.1,
+                                           initial_value=float(np.degrees(self.given[j])))
+                sl.on_update(lambda _event: on_change(np.radians([s.value for s in sliders])))
+                sliders.append(sl)
+        return sliders
+
+    def set_q(self, q) -> None:
+        """Show another configuration ``q`` (6,) [rad]: its pose, every IK solution of it, its warnings."""
+        self.given = as_joints(q, "q")[0][0]
+        self.T = iik.fk(self.given, self.arm)
+        outside = outside_limits_text(self.given, self.arm)
+        self.warnings = (f"{outside}; shown anyway, the links those joints move in red",) if outside else ()
+        self.result = iik.solve(self.T, within_limits=False, arm=self.arm)
+        self.selected = 0
+
     def build(self, server: viser.ViserServer) -> Animation | None:
         draw_environment(server)
-        self.camera = aim_camera(server, (0.25, 0.0, 0.25), distance=1.3)
+        near = np.abs(self.T[:3, 3]).max() <= 3 * self.arm.reach  # a far target is shown by its label only
+        pts = np.vstack([workspace_points(self.arm, np.zeros((1, 6))), self.T[None, :3, 3][:int(near)],
+                         workspace_points(self.arm, self.configurations().reshape(-1, 6))])
+        self.camera = fit_camera(server, pts)
+        add_view_presets(server, pts)
         bodies: list[ArmBody] = []
         summary = server.gui.add_markdown(self.summary())
         opts = self.options() or ("none",)
@@ -148,34 +194,52 @@ class PoseView:
         table = server.gui.add_markdown("")
         server.gui.add_html(legend_html())
         labels: list = []
+        toggles: list = []
+        toggle_folder = server.gui.add_folder("Show solutions")
+        update_target = self._target(server)
+        self.bodies, self.toggles = bodies, toggles
 
         def body(k: int) -> ArmBody:
             while len(bodies) <= k:
                 n = len(bodies)
-                bodies.append(ArmBody(server, f"/pose/arm{n}", colour=style.SOLUTION, opacity=0.25))
+                bodies.append(ArmBody(server, f"/pose/arm{n}", colour=self.colour(n), opacity=0.25))
                 labels.append(server.scene.add_label(f"/pose/label{n}", f"#{n}", font_screen_scale=0.8))
+                with toggle_folder:
+                    tg = server.gui.add_checkbox(f"#{n}", initial_value=True)
+                tg.on_update(lambda _event: redraw())
+                toggles.append(tg)
             return bodies[k]
 
         def redraw() -> None:
             qs = self.configurations()
             for k, q in enumerate(qs):
                 b = body(k)
-                b.colour = style.SELECTED if k == self.selected else style.SOLUTION
-                red = {link_of_joint(j): style.OUT_OF_LIMITS for j in joints_outside_limits(q, self.arm)}
-                b.show(q)
-                b.paint(red, opacity=1.0 if k == self.selected else 0.25)
-                b.visible = True
                 name = "given q" if (self.given is not None and k == 0) else \
                     f"#{k - (self.given is not None)}"
+                toggles[k].label = name
+                shown = bool(toggles[k].value)
+                red = {link_of_joint(j): style.OUT_OF_LIMITS for j in joints_outside_limits(q, self.arm)}
+                b.show(q)
+                b.paint(red, opacity=1.0 if k == self.selected else 0.35)
+                b.visible = shown
                 labels[k].text = name
                 elbow = iik.joint_frames(q, self.arm)[2][:3, 3]
                 labels[k].position = tuple(elbow + [0.0, 0.0, 0.05 + 0.035 * k])  # stacked: no overlap
-                labels[k].visible = True
+                labels[k].visible = shown
+                toggles[k].visible = True
             for k in range(len(qs), len(bodies)):
                 bodies[k].visible = False
                 labels[k].visible = False
+                toggles[k].visible = False
             summary.content = self.summary()
             table.content = self.describe(self.selected) if len(qs) else ""
+            update_target()
+
+        def refresh_choices() -> None:
+            opts = self.options() or ("none",)
+            pick.options = opts
+            pick.value = opts[self.selected]
+            redraw()
 
         @pick.on_update
         def _(_event) -> None:
@@ -184,8 +248,11 @@ class PoseView:
                 self.selected = opts.index(pick.value)
                 redraw()
 
+        if self.given is not None and not self.interactive:
+            self.sliders = self._joint_sliders(server, lambda q: (self.set_q(q), refresh_choices()))
+
         if self.interactive:
-            gizmo = server.scene.add_transform_controls("/pose/target", scale=0.15,
+            gizmo = server.scene.add_transform_controls("/pose/gizmo", scale=0.15,
                                                         wxyz=_quat_wxyz(self.T[:3, :3]),
                                                         position=tuple(self.T[:3, 3]))
 
@@ -198,10 +265,7 @@ class PoseView:
                 self.given = None
                 self.warnings = ()
                 self.selected = self._default_selection()
-                opts = self.options() or ("none",)
-                pick.options = opts
-                pick.value = opts[self.selected]
-                redraw()
+                refresh_choices()
 
         redraw()
         return None

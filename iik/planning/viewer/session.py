@@ -53,12 +53,15 @@ class Animation:
         show: Callback placing every moving node at frame ``i``.
         marks: ``(time [s], label)`` pairs marked on the live time slider (e.g. IK branch switches).
         status: Optional callback giving a Markdown status line for frame ``i`` (live panel).
+        jumps: ``(button label, time [s])`` pairs: a live-panel button per pair moves the time slider
+            there (e.g. to the minimum clearance).
     """
 
     times: np.ndarray
     show: Callable[[int], None]
     marks: tuple[tuple[float, str], ...] = ()
     status: Callable[[int], str] | None = None
+    jumps: tuple[tuple[str, float], ...] = ()
 
     def frame_at(self, t: float) -> int:
         """Index of the last frame at or before ``t`` [s]."""
@@ -177,6 +180,15 @@ def open_server(host: str, port: int) -> viser.ViserServer:
     return server
 
 
+def _add_jump(gui, label: str, t: float, slider) -> None:
+    """A button that moves the time slider to ``t`` [s] (its update shows that frame)."""
+    button = gui.add_button(label, icon=viser.Icon.TARGET)
+
+    @button.on_click
+    def _(_event) -> None:
+        slider.value = t
+
+
 def _add_player(server: viser.ViserServer, anim: Animation) -> object:
     """Time slider (with marks), play/pause and a status line in the live panel."""
     gui = server.gui
@@ -196,6 +208,9 @@ def _add_player(server: viser.ViserServer, anim: Animation) -> object:
         anim.show(i)
         if anim.status:
             status.content = anim.status(i)
+
+    for label, t_jump in anim.jumps:
+        _add_jump(gui, label, min(max(float(t_jump), t0), t1), slider)
 
     @play.on_click
     def _(_event) -> None:
@@ -231,6 +246,8 @@ def serve(view: View, *, host: str = "127.0.0.1", port: int = 8080) -> LiveView:
     try:
         configure_server(server, view.title)
         anim = view.build(server)
+        if anim is not None and len(anim.times):
+            anim.show(0)  # the arm posed at t = 0 on first load, not a heap of shapes at the origin
         slider = _add_player(server, anim) if anim is not None and len(anim.times) > 1 else None
     except BaseException:
         with contextlib.redirect_stdout(io.StringIO()):

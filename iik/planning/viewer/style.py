@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 __all__ = [
-    "Colour", "rgb01", "ARM", "SOLUTION", "SELECTED", "MEASURED", "OUT_OF_LIMITS", "NEAREST",
+    "Colour", "rgb01", "ARM", "SOLUTION", "SELECTED", "SOLUTIONS", "TARGET_FRAME_LENGTH", "MEASURED",
+    "OUT_OF_LIMITS", "NEAREST",
     "UNSAFE", "OBSTACLE", "SUPPORT", "SUPPORT_OPACITY", "PLATFORM", "FLOOR", "ELLIPSOID", "TOOL_PATH",
     "STEP_POINT",
     "VIA_POINT", "SWITCH", "CAMERA_LOOK_AT", "CAMERA_AZIMUTH_DEG", "CAMERA_ELEVATION_DEG",
@@ -21,6 +22,10 @@ def rgb01(c: Colour) -> tuple[float, float, float]:
 ARM: Colour = (40, 90, 200)  # the planned / shown arm (blue)
 SOLUTION: Colour = (90, 140, 230)  # other IK solutions (translucent light blue)
 SELECTED: Colour = (40, 90, 200)
+#: One colour per IK solution in pose mode (solution k: SOLUTIONS[k % 8]); no red (kept for limits).
+SOLUTIONS: tuple[Colour, ...] = ((40, 90, 200), (20, 150, 140), (150, 80, 200), (200, 140, 0),
+                                 (60, 160, 60), (200, 90, 160), (100, 110, 130), (0, 170, 220))
+TARGET_FRAME_LENGTH = 0.12  # [m] axes of the target frame in pose mode
 MEASURED: Colour = (20, 150, 140)  # measured arm of a run log (teal)
 OUT_OF_LIMITS: Colour = (220, 30, 30)  # a link whose joint is outside Table I (red)
 NEAREST: Colour = (250, 170, 0)  # link nearest the scene (amber)

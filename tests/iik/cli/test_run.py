@@ -172,7 +172,9 @@ def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_pa
     udp_bus.start_sim()
     listener = _Listener(udp_bus)
     log = tmp_path / "run.jsonl"
-    run = udp_bus.process("run", "--demo", *udp_bus.args, "--timeout", "1", "--out", str(log), "--no-figures")
+    timeout = udp_bus.request_timeout()  # from a round trip measured now: a loaded machine gets more
+    run = udp_bus.process("run", "--demo", *udp_bus.args, "--timeout", timeout, "--out", str(log),
+                          "--no-figures")
     try:
         lines = []
         while not any("step 1/" in x for x in lines):  # the arm is moving along the trajectory
@@ -202,9 +204,10 @@ def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_pa
     from hardware import PowerCubeArm
 
     with PowerCubeArm.from_interface(interface="udp_multicast", channel=udp_bus.group, port=udp_bus.port,
-                                     timeout=1.0) as arm:
+                                     timeout=float(timeout)) as arm:
         assert all(s & P.State.HALTED for s in arm.states())  # latched until --reset
-    again = udp_bus.process("run", "--demo", *udp_bus.args, "--timeout", "1", "--out", str(tmp_path / "a"))
+    again = udp_bus.process("run", "--demo", *udp_bus.args, "--timeout", timeout, "--out",
+                            str(tmp_path / "a"))
     _, err2 = again.communicate(timeout=60)
     assert again.returncode == 2 and "halted" in err2 and "iik run --reset" in err2, err2
 

@@ -226,3 +226,20 @@ def test_the_suggested_point_is_in_the_file_frame_and_pasting_it_back_passes(tmp
     pasted = sc.goal.position if where == "goal" else sc.via_points[0]  # base frame, as loaded
     closest = closest_reachable([2.0, -0.25, 0.9 + THESIS_SCENE.floor.z]).point
     assert np.linalg.norm(np.subtract(pasted, closest)) <= 0.011  # the same point (mm rounding, <= 10 mm in)
+
+
+def test_dexterity_notes_are_exact_and_name_the_waypoint():
+    """A note exactly where no alpha with the waypoint's beta has an IK solution within the limits."""
+    import iik
+    from iik.dexterity import admissible
+    from iik.planning import dexterity_notes
+
+    arm = iik.THESIS_ARM
+    sc = load_scenario(scenario_path("j"), arm=arm)
+    assert dexterity_notes(sc, arm) == []
+    alphas = np.linspace(-np.pi, np.pi, 721)
+    assert admissible(np.asarray(sc.start.position), alphas, sc.start.beta, arm).any()
+    up = dataclasses.replace(sc, start=dataclasses.replace(sc.start, beta=0.0))  # tool z straight up
+    assert not admissible(np.asarray(up.start.position), alphas, 0.0, arm).any()
+    notes = dexterity_notes(up, arm)
+    assert len(notes) == 1 and notes[0].startswith("start.beta_deg = 0.0 deg is outside the dexterity range")

@@ -100,7 +100,22 @@ def test_dexterity_is_graded_from_the_printed_equations(ctx):
     assert X.eq48_inclination(ctx, X.eq48_corrected).verdict is Verdict.HOLDS
     assert X.eq50_inclination(ctx, X.eq48_printed).verdict is Verdict.ERRATUM
     row = X.printed_admitted_set(ctx, X.admitted_printed)
-    assert row.verdict is Verdict.DOES_NOT_HOLD and "soundness" in row.numbers
+    assert row.verdict is Verdict.DOES_NOT_HOLD
+    assert "false admits" in row.numbers and "false rejects" in row.numbers
+    # the thesis's model read exactly is neither necessary nor sufficient: both rates are measured non-zero
+    sw = X.sweep(ctx)
+    shell = X.rates([X.shell_admits(p, sw["A"], sw["B"], X.ARM) for p in sw["P"]], sw["truth"])
+    assert shell.false_admits > 0 and shell.false_rejects > 0
+    assert X.shell_model(ctx, X._shell).verdict is Verdict.DOES_NOT_HOLD
+    assert X.iik_dexterity(ctx, X.alpha_intervals).verdict is Verdict.HOLDS
+
+
+def test_rates_count_false_admits_and_false_rejects():
+    truth = np.array([True, True, False, False])
+    r = X.rates(np.array([True, False, True, False]), truth)
+    assert (r.admitted, r.rejected, r.false_admits, r.false_rejects) == (2, 2, 1, 1)
+    assert r.false_admit_rate == 0.5 and r.false_reject_rate == 0.5
+    assert X.rates(truth, truth).false_admits == 0 == X.rates(truth, truth).false_rejects
 
 
 def test_printed_admits_uses_the_printed_atan():

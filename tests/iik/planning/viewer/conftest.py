@@ -72,7 +72,7 @@ def canvas_rect(driver) -> tuple[float, float, float, float]:
     return tuple(r) if r else (0.0, 0.0, 0.0, 0.0)
 
 
-def wait_for_scene(driver, *, timeout: float = 60.0) -> np.ndarray:
+def wait_for_scene(driver, *, timeout: float = 120.0) -> np.ndarray:
     """Wait until the canvas draws a scene that has stopped fading in; return a screenshot.
 
     The scene counts as drawn when the image is not uniform; it has settled when the

@@ -6,7 +6,6 @@ Set ``IIK_SCREENSHOTS=DIR`` to keep the screenshots.
 from __future__ import annotations
 
 import os
-import time
 from pathlib import Path
 
 import numpy as np
@@ -124,12 +123,15 @@ def test_exported_failed_plan_shows_the_arm_and_its_attempt_log(browser, tmp_pat
         return _inside(_in_canvas(hue_mask(img, *BLUE), rect), arm_box), int(
             ((hsv[..., 2] < 0.35) & (hsv[..., 1] < 0.3)).sum())
 
-    # The page plays its recording: wait (15 s at most) until the arm stands at the start pose.
-    seen = arm_and_caption(img)
-    end = time.monotonic() + 15
-    while not (seen[0] > 0.9 and seen[1] > 300) and time.monotonic() < end:
-        time.sleep(0.5)
-        seen = arm_and_caption(screenshot(browser))
+    # The page plays its recording: wait until the arm stands at the start pose (a condition, not a time).
+    seen = [arm_and_caption(img)]
+
+    def settled() -> bool:
+        seen[0] = arm_and_caption(screenshot(browser))
+        return seen[0][0] > 0.9 and seen[0][1] > 300
+
+    wait_until(settled, 90.0, 0.5)
+    seen = seen[0]
     assert seen[0] > 0.9, f"the arm is not at the start pose ({seen[0]:.2f} of its pixels in its box)"
     # The caption hangs from the top centre of the view: dark text on the white page above the scene.
     assert seen[1] > 300, "no caption text below the top centre of the view"
@@ -143,10 +145,15 @@ def test_a_q_outside_the_limits_is_drawn_red(browser, tmp_path):
         assert bool(view.warnings) == (name == "outside")
         img, rect = _open_export(browser, view, tmp_path / name, f"pose_q4_{name}_limits.png")
         counts[name] = 0
-        for _ in range(8):  # the most red over 4 s: the colours arrive after the shapes
-            red = _in_canvas(hue_mask(screenshot(browser), *RED, min_sat=0.6), rect)
-            counts[name] = max(counts[name], int(red.sum()))
-            time.sleep(0.5)
+
+        def coloured(name=name, rect=rect) -> bool:
+            """The colours arrive after the shapes: the arm's blue shows once they have."""
+            img = screenshot(browser)
+            counts[name] = max(counts[name], int(_in_canvas(hue_mask(img, *RED, min_sat=0.6), rect).sum()))
+            blue = int(_in_canvas(hue_mask(img, *BLUE), rect).sum())
+            return blue > 300 and (name == "inside" or counts[name] > 400)
+
+        assert wait_until(coloured, 90.0, 0.5), (name, counts)
     assert counts["outside"] > 400 and counts["outside"] > 5 * counts["inside"], counts
 
 
@@ -176,25 +183,30 @@ def test_live_time_slider_moves_the_arm(browser, plan_j):
         thumb = _thumb(browser)
         thumb.click()
         thumb.send_keys(Keys.END)
-        moved = wait_until(lambda: abs(slider.value - t_end) < 1e-9, 10.0, 0.1)
+        moved = wait_until(lambda: abs(slider.value - t_end) < 1e-9, 30.0, 0.1)
         assert moved, "the server never saw the slider move"
-        time.sleep(1.5)
-        after = screenshot(browser)
-
         region = _box(project(_arm_points(plan_j.q[[0, -1]]), eye, target, fov_deg=fov, rect=rect), 30)
         x0, y0, x1, y1 = (int(max(v, 0)) for v in region)
+        blue0 = hue_mask(before, *BLUE)[y0:y1, x0:x1]  # not the panel's button
+        c0 = np.argwhere(blue0).mean(axis=0)
+        shot = [before]
+
+        def arm_moved() -> bool:
+            shot[0] = screenshot(browser)
+            blue1 = hue_mask(shot[0], *BLUE)[y0:y1, x0:x1]
+            return blue1.sum() > 100 and np.hypot(*(np.argwhere(blue1).mean(axis=0) - c0)) > 10
+
+        assert wait_until(arm_moved, 60.0, 0.25), "the arm's pixels did not move"
+        after = shot[0]
         changed = np.abs(after - before)[y0:y1, x0:x1].max(axis=2) > 0.15
         assert changed.mean() > 0.01, "the arm did not move on screen"
-        blue0, blue1 = (hue_mask(im, *BLUE)[y0:y1, x0:x1] for im in (before, after))  # not the panel's button
-        c0, c1 = (np.argwhere(m).mean(axis=0) for m in (blue0, blue1))
-        assert np.hypot(*(c1 - c0)) > 10, "the arm's pixels did not move"
 
         # Drag the thumb back to mid-track: the scene shows the motion half-way, with its clearance label.
         track = thumb.find_element("xpath", "..")
         drag = ActionChains(browser).click_and_hold(thumb).move_by_offset(-track.size["width"] // 2, 0)
         drag.release().perform()
-        assert wait_until(lambda: 0.2 * t_end < slider.value < 0.8 * t_end, 10.0, 0.1), slider.value
-        time.sleep(1.5)
+        assert wait_until(lambda: 0.2 * t_end < slider.value < 0.8 * t_end, 30.0, 0.1), slider.value
+        wait_until(lambda: np.abs(screenshot(browser) - after)[y0:y1, x0:x1].max() > 0.15, 60.0, 0.25)
         _keep(screenshot(browser), "live_j_mid_motion.png")
     finally:
         live.stop()

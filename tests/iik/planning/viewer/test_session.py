@@ -119,7 +119,7 @@ def test_an_animation_is_recorded_frame_by_frame(tmp_path):
     t = np.linspace(0.0, 2.0, 201)
     q = np.outer(t / 2.0, [1.0, -0.5, 0.5, 0.3, 0.2, 0.1])
     motion = Motion("m", t, (Track("a", q, (40, 90, 200)),))
-    res = export(MotionView(motion), tmp_path / "m", fps=25)
+    res = export(MotionView(motion, arm=iik.THESIS_ARM), tmp_path / "m", fps=25)
     assert res.frames == 51  # every 4th of 201 samples at 100 Hz, last kept
 
 
