@@ -28,17 +28,20 @@ margin inside the stops, as the planner uses).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..arm import LIMIT_TOL, Arm
 from ..joint_path import effort_index
+from ..validation import as_joints
 from . import members as _members
-from .result import Continuum
+from .result import Continuum, IKResult
 
-__all__ = ["windings", "nearest", "GOLDEN_STEPS"]
+__all__ = ["Candidates", "windings", "nearest", "GOLDEN_STEPS"]
 
-#: Golden-section iterations when refining a sampled continuum (STEP * 0.618^n ~ 1e-8 rad).
-GOLDEN_STEPS = 32
+#: Golden-section iterations when refining a sampled continuum (2 STEP * 0.618^n ~ 5e-10 rad).
+GOLDEN_STEPS = 40
 _TWO_PI = 2.0 * math.pi
 _EDGE = 1e-12  # clipped ends are moved this far inside, against rounding [rad]
 
@@ -156,3 +159,76 @@ def nearest(row, continua, previous, arm, *, limit_tol: float, samples=None):
             found = _sampled(c, previous, arm, limit_tol, samples or _members.along(c))
         best = min(best, found, key=lambda qe: qe[1])
     return best
+
+
+@dataclass(frozen=True)
+class Candidates:
+    """The solutions of one pose that a selection may pick from: every row with a configuration
+    inside the arm's limits, its windings (q_i + 2 pi m) and its continuum's members considered
+    (:mod:`iik.ik.nearest`).
+
+    Attributes:
+        q: (k, 6) the rows [rad] as the IK returned them (a continuum's representative).
+        continua: Per row, its :class:`~iik.ik.result.Continuum` objects (empty if isolated).
+        rows: Per row, its index in the :class:`IKResult` (or array) it came from.
+        arm: The arm whose limits apply.
+        limit_tol: Tolerance of the limits [rad] (negative: a margin inside the stops).
+    """
+
+    q: np.ndarray
+    continua: tuple
+    rows: tuple[int, ...]
+    arm: Arm
+    limit_tol: float = LIMIT_TOL
+    _samples: dict = field(default_factory=dict, compare=False, repr=False)
+
+    @classmethod
+    def of(cls, result_or_q, *, arm: Arm, limit_tol: float = LIMIT_TOL) -> Candidates:
+        """The candidates of an :class:`IKResult` or of an array (k, 6) of solutions [rad]."""
+        if isinstance(result_or_q, IKResult):
+            q, cont = np.asarray(result_or_q.q, float).reshape(-1, 6), result_or_q.continua
+        else:
+            raw = np.asarray(result_or_q) if not isinstance(result_or_q, np.ndarray) else result_or_q
+            q = np.zeros((0, 6)) if raw.size == 0 else as_joints(raw, "solutions")[0]
+            cont = ((),) * len(q)
+        every = cls(q, tuple(cont), tuple(range(len(q))), arm, limit_tol)
+        plain = ~np.isnan(windings(q, q, arm, limit_tol)).any(axis=1) if len(q) else np.zeros(0, bool)
+        keep = [i for i in range(len(q)) if plain[i] or every._feasible(i)]
+        return cls(q[keep], tuple(cont[i] for i in keep), tuple(keep), arm, limit_tol,
+                   {keep.index(i): v for i, v in every._samples.items() if i in keep})
+
+    def __len__(self) -> int:
+        return len(self.q)
+
+    def _feasible(self, i: int) -> bool:
+        """Has row i a configuration inside the limits (the row's windings first: cheap)?"""
+        if not np.isnan(windings(self.q[i], self.q[i], self.arm, self.limit_tol)).any():
+            return True
+        return bool(self.continua[i]) and self._nearest(i, self.q[i])[0] is not None
+
+    def _nearest(self, i: int, previous):
+        sampled = [c for c in self.continua[i] if c.kind != "collinear"]
+        if sampled and i not in self._samples:
+            self._samples[i] = _members.along(sampled[0])
+        return nearest(self.q[i], self.continua[i], previous, self.arm, limit_tol=self.limit_tol,
+                       samples=self._samples.get(i))
+
+    def configurations(self) -> np.ndarray:
+        """Per row, its configuration inside the limits nearest the row itself (k, 6) [rad]: the
+        row, another winding of it, or a member of its continuum."""
+        return np.array([self._nearest(i, self.q[i])[0] for i in range(len(self))]).reshape(-1, 6)
+
+    def nearest(self, previous_q) -> tuple[np.ndarray, np.ndarray]:
+        """Per row, the configuration nearest ``previous_q`` (6,) [rad] by Eq 54 inside the limits
+        (k, 6) [rad] and its effort (k,) [rad]: the row itself, another winding of it, or the
+        nearest member of its continuum."""
+        prev = as_joints(previous_q, "previous_q")[0][0]
+        Q = windings(self.q, prev, self.arm, self.limit_tol)  # isolated rows: all at once
+        E = np.full(len(self), math.inf)
+        ok = ~np.isnan(Q).any(axis=1)
+        if np.any(ok):
+            E[ok] = effort_index(prev, Q[ok])  # Eq 54
+        for i in (i for i in range(len(self)) if self.continua[i]):
+            q, E[i] = self._nearest(i, prev)
+            Q[i] = np.nan if q is None else q
+        return Q.reshape(-1, 6), E

@@ -7,84 +7,16 @@ closest to the previous configuration, measured by the effort index of Eq 54
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
-from ..arm import LIMIT_TOL, THESIS_ARM, Arm
+from ..arm import THESIS_ARM, Arm
 from ..errors import UnreachablePoseError
 from ..joint_path import BRANCH_SWITCH_STEP, JointPath, branch_switches, path_effort
 from ..validation import as_joints, as_poses
-from . import members as _members
-from .nearest import nearest, windings
-from .result import IKResult
+from .nearest import Candidates
+from .path_events import path_events
 
 __all__ = ["Candidates", "select", "select_index", "follow_path", "branch_signature"]
-
-
-@dataclass(frozen=True)
-class Candidates:
-    """The solutions of one pose that a selection may pick from: every row with a configuration
-    inside the arm's limits, its windings (q_i + 2 pi m) and its continuum's members considered
-    (:mod:`iik.ik.nearest`).
-
-    Attributes:
-        q: (k, 6) the rows [rad] as the IK returned them (a continuum's representative).
-        continua: Per row, its :class:`~iik.ik.result.Continuum` objects (empty if isolated).
-        rows: Per row, its index in the :class:`IKResult` (or array) it came from.
-        arm: The arm whose limits apply.
-        limit_tol: Tolerance of the limits [rad] (negative: a margin inside the stops).
-    """
-
-    q: np.ndarray
-    continua: tuple
-    rows: tuple[int, ...]
-    arm: Arm
-    limit_tol: float = LIMIT_TOL
-    _samples: dict = field(default_factory=dict, compare=False, repr=False)
-
-    @classmethod
-    def of(cls, result_or_q, *, arm: Arm, limit_tol: float = LIMIT_TOL) -> Candidates:
-        """The candidates of an :class:`IKResult` or of an array (k, 6) of solutions [rad]."""
-        if isinstance(result_or_q, IKResult):
-            q, cont = np.asarray(result_or_q.q, float).reshape(-1, 6), result_or_q.continua
-        else:
-            raw = np.asarray(result_or_q) if not isinstance(result_or_q, np.ndarray) else result_or_q
-            q = np.zeros((0, 6)) if raw.size == 0 else as_joints(raw, "solutions")[0]
-            cont = ((),) * len(q)
-        every = cls(q, tuple(cont), tuple(range(len(q))), arm, limit_tol)
-        keep = [i for i in range(len(q)) if every._feasible(i)]
-        return cls(q[keep], tuple(cont[i] for i in keep), tuple(keep), arm, limit_tol,
-                   {keep.index(i): v for i, v in every._samples.items() if i in keep})
-
-    def __len__(self) -> int:
-        return len(self.q)
-
-    def _feasible(self, i: int) -> bool:
-        """Has row i a configuration inside the limits (the row's windings first: cheap)?"""
-        if not np.isnan(windings(self.q[i], self.q[i], self.arm, self.limit_tol)).any():
-            return True
-        return bool(self.continua[i]) and self._nearest(i, self.q[i])[0] is not None
-
-    def _nearest(self, i: int, previous):
-        sampled = [c for c in self.continua[i] if c.kind != "collinear"]
-        if sampled and i not in self._samples:
-            self._samples[i] = _members.along(sampled[0])
-        return nearest(self.q[i], self.continua[i], previous, self.arm, limit_tol=self.limit_tol,
-                       samples=self._samples.get(i))
-
-    def configurations(self) -> np.ndarray:
-        """Per row, its configuration inside the limits nearest the row itself (k, 6) [rad]: the
-        row, another winding of it, or a member of its continuum."""
-        return np.array([self._nearest(i, self.q[i])[0] for i in range(len(self))]).reshape(-1, 6)
-
-    def nearest(self, previous_q) -> tuple[np.ndarray, np.ndarray]:
-        """Per row, the configuration nearest ``previous_q`` (6,) [rad] by Eq 54 inside the limits
-        (k, 6) [rad] and its effort (k,) [rad]: the row itself, another winding of it, or the
-        nearest member of its continuum."""
-        prev = as_joints(previous_q, "previous_q")[0][0]
-        out = [self._nearest(i, prev) for i in range(len(self))]
-        return (np.array([q for q, _ in out]).reshape(-1, 6), np.array([e for _, e in out], dtype=float))
 
 
 def select_index(result_or_q, previous_q, *, arm: Arm = THESIS_ARM) -> tuple[int, float]:
@@ -147,7 +79,11 @@ def follow_path(Ts, q0=None, *, method: str = "complete", arm: Arm = THESIS_ARM,
 
     Returns:
         :class:`~iik.joint_path.JointPath`; ``counts`` holds the within-limit
-        solutions per pose, rows of unreachable poses repeat the previous q.
+        solutions per pose, rows of unreachable poses repeat the previous q; ``events``
+        names each switch, each singular crossing and each branch change without singularity
+        (a cusp: back at an earlier pose at another configuration, :mod:`iik.ik.path_events`).
+        Each step takes the configuration nearest the previous one (a continuum's member, a
+        joint's winding), so the joint path stays continuous wherever the IK allows.
     """
     from .solve import solve_many
 
@@ -168,5 +104,6 @@ def follow_path(Ts, q0=None, *, method: str = "complete", arm: Arm = THESIS_ARM,
     else:
         full = np.vstack([start, q])
         effort, switches = path_effort(full)[1:], tuple(i - 1 for i in branch_switches(full, max_step))
+    events = path_events(q, arm, max_step, method=method, start=None if q0 is None else start)
     return JointPath(q=q, ok=ok, effort=effort, switches=switches,
-                     counts=np.array([len(c) for c in cands]))
+                     counts=np.array([len(c) for c in cands]), events=events)

@@ -28,7 +28,7 @@ import numpy as np
 
 from ..arm import THESIS_ARM, Arm
 from ..ik import solve_many
-from ..ik.selection import Candidates
+from ..ik.nearest import Candidates
 from ..joint_path import (
     BRANCH_SWITCH_STEP,
     JointPath,

@@ -14,16 +14,16 @@ from hypothesis import strategies as st
 
 import iik
 import iik.arms
-from iik.ik.selection import Candidates
+from iik.ik.nearest import Candidates
 from verification.testing.families import family, solver_joints, user_joints
 
 THESIS = iik.arms.get("thesis")
 CRX = iik.arms.get("crx10ia")
 #: The slow kinds (a theta1 continuum takes ~1 s to solve): a tenth of the profile's examples.
 FEW = settings(max_examples=max(3, settings.default.max_examples // 10), deadline=None,
-               suppress_health_check=[HealthCheck.too_slow])
+               suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
 SOME = settings(max_examples=max(5, settings.default.max_examples // 3), deadline=None,
-                suppress_health_check=[HealthCheck.too_slow])
+                suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
 
 
 def _reaches(q, T, arm, tol=1e-8):
@@ -47,7 +47,9 @@ def _check_nearest(arm, q, T, r, rng, shake):
     assert iik.effort_index(q, picked) <= 1e-7  # staying put (the numerical kind: within its tube)
     p = q + rng.uniform(-shake, shake, 6)
     picked = iik.select(r, p, arm=arm)
-    assert iik.effort_index(p, picked) <= iik.effort_index(p, q) + 1e-9
+    # q is a member: the choice is at least as near, to 1e-7 rad of Eq 54 (a sampled continuum's
+    # search is local, and along a tube where theta3 and theta6 trade off Eq 54 is flat to ~1e-8)
+    assert iik.effort_index(p, picked) <= iik.effort_index(p, q) + 1e-7
     assert _reaches(picked, T, arm, 1e-7) and arm.within_limits(picked)
 
 
