@@ -16,7 +16,7 @@ from ..validation import as_joints, as_poses
 from .nearest import Candidates
 from .path_events import path_events
 
-__all__ = ["Candidates", "select", "select_index", "follow_path", "branch_signature"]
+__all__ = ["select", "select_index", "follow_path", "branch_signature"]
 
 
 def select_index(result_or_q, previous_q, *, arm: Arm = THESIS_ARM) -> tuple[int, float]:
