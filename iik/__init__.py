@@ -15,7 +15,7 @@ from .ik import (
     solve,
     solve_many,
 )
-from .joint_path import BRANCH_SWITCH_STEP, JointPath, branch_switches, effort_index, path_effort
+from .joint_path import BRANCH_SWITCH_STEP, JointPath, PathEvent, branch_switches, effort_index, path_effort
 from .kinematics import fk, fk_chain, jacobian, joint_frames, position_jacobian
 from .rotations import (
     euler_from_matrix,
@@ -42,6 +42,7 @@ __all__ = [
     "position_jacobian",
     "IKResult",
     "JointPath",
+    "PathEvent",
     "path_effort",
     "branch_switches",
     "BRANCH_SWITCH_STEP",

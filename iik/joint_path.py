@@ -28,7 +28,7 @@ from .errors import InvalidInputError
 from .validation import as_joints
 
 __all__ = ["BRANCH_SWITCH_STEP", "effort_index", "effort_matrix", "path_effort", "branch_switches",
-           "JointPath"]
+           "PathEvent", "JointPath"]
 
 #: A step whose largest joint change exceeds this is a branch switch [rad].
 BRANCH_SWITCH_STEP = 0.5
@@ -77,6 +77,36 @@ def _column(value, n: int, dtype=float) -> np.ndarray:
 
 
 @dataclass(frozen=True)
+class PathEvent:
+    """Something that happened to the IK branch at one step of a followed path.
+
+    Kinds:
+
+    * ``"switch"``: the branch jumped: some joint moved more than the switch threshold in one
+      step (:func:`branch_switches`), or less but the branch did not continue to it (it ended
+      at a fold: :mod:`iik.ik.path_events`).
+    * ``"singular"``: the path met a singular configuration without a jump: det J changed sign,
+      or reached or left 0, from the previous step to this one.
+    * ``"cusp"``: a branch change without singularity: the path is back at the pose of step
+      ``earlier``, at another configuration (some joint differs by more than 1e-6 rad modulo
+      2 pi), and between the two steps it made no switch and det J kept its sign at every step.
+      Two IK solutions of one pose joined by a continuous path without a singularity: only a
+      cuspidal arm can do this (Wenger; the FANUC CRX is one).
+
+    Attributes:
+        step: The step (index into the path's ``q``).
+        kind: ``"switch"``, ``"singular"`` or ``"cusp"``.
+        detail: What happened, in words and numbers.
+        earlier: For ``"cusp"``, the earlier step at the same pose; else None.
+    """
+
+    step: int
+    kind: str
+    detail: str
+    earlier: int | None = None
+
+
+@dataclass(frozen=True)
 class JointPath:
     """One configuration per step of a path (an IK branch followed along it).
 
@@ -89,6 +119,8 @@ class JointPath:
         alpha_change, beta_change: (n,) Euler-angle offsets applied at each step [rad] (0 = nominal).
         gamma_change: (n,) gamma offset [rad]: 0, or pi for the gripper's half turn.
         start_solution: Index of the start solution this branch began from.
+        events: What happened to the branch (:class:`PathEvent`), in step order; filled by
+            :func:`iik.follow_path`.
     """
 
     q: np.ndarray
@@ -100,6 +132,7 @@ class JointPath:
     beta_change: np.ndarray | None = field(default=None)
     gamma_change: np.ndarray | None = field(default=None)
     start_solution: int = 0
+    events: tuple[PathEvent, ...] = ()
 
     def __post_init__(self) -> None:
         n = len(self.q)
@@ -107,6 +140,7 @@ class JointPath:
                             ("gamma_change", float)):
             object.__setattr__(self, name, _column(getattr(self, name), n, dtype))
         object.__setattr__(self, "switches", tuple(int(i) for i in self.switches))
+        object.__setattr__(self, "events", tuple(self.events))
 
     @property
     def n(self) -> int:

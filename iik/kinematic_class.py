@@ -122,6 +122,14 @@ class SolverChain:
     other: ClassReport
 
 
+def _distance(report: ClassReport) -> tuple[int, float, float]:
+    """How far a reading is from the class, for choosing the closer one: the failed conditions,
+    then the largest failed angle [rad], then the sum of the failed lengths [m]."""
+    failed = [c for c in report.conditions if not c.holds]
+    angles = [c.deviation for c in failed if c.unit == "rad"]
+    return len(failed), max(angles, default=0.0), sum(c.deviation for c in failed if c.unit == "m")
+
+
 class NotInClassError(InvalidInputError):
     """The arm is not a member of the class the complete IK solves.
 
@@ -131,7 +139,7 @@ class NotInClassError(InvalidInputError):
 
     def __init__(self, argument: str, reports: tuple[ClassReport, ...], detail: str = ""):
         self.reports = reports
-        best = min(reports, key=lambda r: sum(not c.holds for c in r.conditions))
+        best = min(reports, key=_distance)
         failed = [c.describe() for c in best.conditions if not c.holds]
         lines = "; ".join(failed)
         super().__init__(

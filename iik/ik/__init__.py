@@ -6,6 +6,7 @@
 * :func:`select` (least Eq 54 effort within Table I), :func:`follow_path`.
 """
 
+from .nearest import Candidates
 from .options import DEFAULT_OPTIONS, ORTHONORMAL_TOL, IKOptions
 from .result import Continuum, IKBatch, IKResult
 from .selection import branch_signature, follow_path, select, select_index
@@ -26,6 +27,7 @@ __all__ = [
     "COMPILE_MESSAGE",
     "select",
     "select_index",
+    "Candidates",
     "follow_path",
     "branch_signature",
 ]

@@ -23,6 +23,7 @@ __all__ = [
     "on_continuum",
     "theta1_branches",
     "inside_member",
+    "along",
     "STEP",
     "RESOLUTION",
 ]
@@ -156,6 +157,36 @@ def _edge(c, start: float, limit: float) -> float:
             return lo
         prev, last = q[i], th
     return limit
+
+
+def along(c) -> tuple[np.ndarray, np.ndarray]:
+    """Members of continuum ``c`` across its free joint's limits, by continuation from the
+    representative in both directions (steps of at most :data:`STEP` rad): the free-joint values
+    (n,) [rad] in increasing order and the members (n, 6) [rad] that reach the pose within the
+    tolerance. A member that misses it is left out and the march goes on (a numerical tube can
+    be thinner than the tolerance in places); a direction ends where the members jump (more than
+    0.5 rad from the last one kept: the curve is lost). The other joints' limits are not applied
+    (their windings are the caller's, :mod:`iik.ik.nearest`)."""
+    j = c.free_joint - 1
+    start = float(c.representative[j])
+    march = _march_closed if c.kind == "theta1" else _march
+    thetas, members = [start], [np.array(c.representative, dtype=float)]
+    tp, tr = c.tolerance
+    for limit in (float(c.arm.q_min[j]), float(c.arm.q_max[j])):
+        if abs(limit - start) <= RESOLUTION:
+            continue
+        path = _path(start, limit)
+        q, r = march(c, path)
+        prev = members[0]
+        for i, th in enumerate(path):
+            if float(np.max(np.abs(np.mod(q[i] - prev + np.pi, 2 * np.pi) - np.pi))) > _JUMP:
+                break
+            if r[i, 0] <= tp and r[i, 1] <= tr:
+                thetas.append(float(th))
+                members.append(q[i])
+                prev = q[i]
+    order = np.argsort(thetas, kind="stable")
+    return np.array(thetas)[order], np.array(members)[order]
 
 
 def feasible_interval(c) -> tuple[float, float]:

@@ -11,49 +11,51 @@ import numpy as np
 
 from ..arm import THESIS_ARM, Arm
 from ..errors import UnreachablePoseError
-from ..joint_path import BRANCH_SWITCH_STEP, JointPath, branch_switches, effort_index, path_effort
+from ..joint_path import BRANCH_SWITCH_STEP, JointPath, branch_switches, path_effort
 from ..validation import as_joints, as_poses
-from .result import IKResult
+from .nearest import Candidates
+from .path_events import path_events
 
 __all__ = ["select", "select_index", "follow_path", "branch_signature"]
 
 
-def _candidates(result_or_q, arm: Arm) -> np.ndarray:
-    if isinstance(result_or_q, IKResult):
-        q = result_or_q.q
-        return q[np.asarray(result_or_q.within_limits, bool)] if len(q) else q
-    q = np.asarray(result_or_q, dtype=float) if not isinstance(result_or_q, np.ndarray) else result_or_q
-    if q.size == 0:
-        return np.zeros((0, 6))
-    qb, _ = as_joints(q, "solutions")
-    inside = np.atleast_1d(arm.within_limits(qb))
-    return qb[inside]
-
-
 def select_index(result_or_q, previous_q, *, arm: Arm = THESIS_ARM) -> tuple[int, float]:
-    """Index (into the within-limit candidates) and Eq 54 effort of the best solution.
+    """Index into the usable rows (:attr:`Candidates.q`; for arms whose joint ranges lie within
+    (-pi, pi], the rows inside the limits) and the Eq 54 effort [rad] of the best solution,
+    measured to its nearest configuration (a continuum's nearest member, a joint's nearest
+    winding).
 
     Raises:
         UnreachablePoseError: no candidate inside the joint limits.
     """
-    cand = _candidates(result_or_q, arm)
+    cand = Candidates.of(result_or_q, arm=arm)
     if len(cand) == 0:
         reason = getattr(result_or_q, "reason", "") or "no solution inside the joint limits"
         raise UnreachablePoseError(f"nothing to select: {reason}")
-    E = np.atleast_1d(effort_index(previous_q, cand))
+    _, E = cand.nearest(previous_q)
     i = int(np.argmin(E))  # ties: the first in the deterministic order
     return i, float(E[i])
 
 
 def select(result_or_q, previous_q, *, arm: Arm = THESIS_ARM) -> np.ndarray:
-    """The solution (6,) [rad] inside the joint limits with the least Eq 54 effort.
+    """The configuration (6,) [rad] inside the joint limits with the least Eq 54 effort from
+    ``previous_q``: over every solution, each joint's windings and each continuum's members
+    (:mod:`iik.ik.nearest`), so a previous configuration that reaches the pose is returned as
+    itself.
 
     Args:
         result_or_q: An :class:`IKResult` or an array (k, 6) of candidate solutions.
         previous_q: The previous configuration (6,) [rad].
+
+    Raises:
+        UnreachablePoseError: no candidate inside the joint limits.
     """
-    i, _ = select_index(result_or_q, previous_q, arm=arm)
-    return _candidates(result_or_q, arm)[i].copy()
+    cand = Candidates.of(result_or_q, arm=arm)
+    if len(cand) == 0:
+        reason = getattr(result_or_q, "reason", "") or "no solution inside the joint limits"
+        raise UnreachablePoseError(f"nothing to select: {reason}")
+    Q, E = cand.nearest(previous_q)
+    return Q[int(np.argmin(E))].copy()
 
 
 def branch_signature(q) -> np.ndarray:
@@ -77,26 +79,31 @@ def follow_path(Ts, q0=None, *, method: str = "complete", arm: Arm = THESIS_ARM,
 
     Returns:
         :class:`~iik.joint_path.JointPath`; ``counts`` holds the within-limit
-        solutions per pose, rows of unreachable poses repeat the previous q.
+        solutions per pose, rows of unreachable poses repeat the previous q; ``events``
+        names each switch, each singular crossing and each branch change without singularity
+        (a cusp: back at an earlier pose at another configuration, :mod:`iik.ik.path_events`).
+        Each step takes the configuration nearest the previous one (a continuum's member, a
+        joint's winding), so the joint path stays continuous wherever the IK allows.
     """
     from .solve import solve_many
 
     Tb, _ = as_poses(Ts, "Ts")
-    results = solve_many(Tb, method=method, within_limits=True, arm=arm)
-    n = len(results)
+    cands = [Candidates.of(r, arm=arm) for r in solve_many(Tb, method=method, within_limits=False, arm=arm)]
+    n = len(cands)
     q = np.zeros((n, 6))
     ok = np.zeros(n, bool)
     prev = np.zeros(6) if q0 is None else as_joints(q0, "q0")[0][0]
     start = prev
-    for i, r in enumerate(results):
-        if r.count:
-            j, _ = select_index(r, prev, arm=arm)
-            prev, ok[i] = r.q[np.asarray(r.within_limits, bool)][j], True
+    for i, c in enumerate(cands):
+        if len(c):
+            Q, E = c.nearest(prev)
+            prev, ok[i] = Q[int(np.argmin(E))], True
         q[i] = prev
     if q0 is None:
         effort, switches = path_effort(q), branch_switches(q, max_step)
     else:
         full = np.vstack([start, q])
         effort, switches = path_effort(full)[1:], tuple(i - 1 for i in branch_switches(full, max_step))
+    events = path_events(q, arm, max_step, method=method, start=None if q0 is None else start)
     return JointPath(q=q, ok=ok, effort=effort, switches=switches,
-                     counts=np.array([r.count for r in results]))
+                     counts=np.array([len(c) for c in cands]), events=events)

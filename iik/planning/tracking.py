@@ -28,11 +28,11 @@ import numpy as np
 
 from ..arm import THESIS_ARM, Arm
 from ..ik import solve_many
+from ..ik.nearest import Candidates
 from ..joint_path import (
     BRANCH_SWITCH_STEP,
     JointPath,
     branch_switches,
-    effort_index,
     effort_matrix,
     path_effort,
 )
@@ -41,6 +41,7 @@ from .cartesian import CartesianPath, poses_of
 
 __all__ = [
     "LIMIT_MARGIN",
+    "RAMP",
     "IK_CHUNK",
     "BETA_STEPS",
     "ORIENTATION_OFFSETS",
@@ -54,6 +55,9 @@ __all__ = [
 #: Solutions closer than this to a joint stop are not used [rad]: a smooth timed
 #: curve through a waypoint *on* a stop would overshoot it (e.g. theta6 = pi exactly).
 LIMIT_MARGIN = 0.01
+
+#: Steps on each side over which :func:`all_solutions` spreads a needed orientation change.
+RAMP = 8
 
 #: Poses solved per call of the IK between two budget checks.
 IK_CHUNK = 256
@@ -119,25 +123,25 @@ class Tracking:
         return _steps(self.solutions_per_step == 0)
 
 
-def _usable(res, arm: Arm) -> np.ndarray:
-    """Within-limit solutions of one IK result, at least :data:`LIMIT_MARGIN` inside ``arm``'s stops."""
-    q = np.asarray(res.q, float).reshape(-1, 6)[np.asarray(res.within_limits, bool).reshape(-1)]
-    return q[arm.within_limits(q, tol=-LIMIT_MARGIN)] if len(q) else q
+def _usable(res, arm: Arm) -> Candidates:
+    """The solutions of one IK result with a configuration at least :data:`LIMIT_MARGIN` inside
+    ``arm``'s stops (windings and continua considered, :class:`~iik.ik.selection.Candidates`)."""
+    return Candidates.of(res, arm=arm, limit_tol=-LIMIT_MARGIN)
 
 
-def _solve(points: np.ndarray, euler: np.ndarray, arm: Arm, budget: Budget) -> list[np.ndarray]:
+def _solve(points: np.ndarray, euler: np.ndarray, arm: Arm, budget: Budget) -> list[Candidates]:
     """Usable solutions at every pose, solved :data:`IK_CHUNK` poses at a time (a budget tick between)."""
-    out: list[np.ndarray] = []
+    out: list[Candidates] = []
     for i in range(0, len(points), IK_CHUNK):
         budget.tick("IK poses", i, len(points))
         T = poses_of(points[i:i + IK_CHUNK], euler[i:i + IK_CHUNK])
-        out += [_usable(r, arm) for r in solve_many(T, arm=arm)]
+        out += [_usable(r, arm) for r in solve_many(T, arm=arm, within_limits=False)]
     return out
 
 
 def all_solutions(points: np.ndarray, euler: np.ndarray, *, arm: Arm = THESIS_ARM,
                   beta_steps: tuple[float, ...] = BETA_STEPS, adapt_orientation: bool = True,
-                  ramp: int = 8, budget: Budget | None = None) -> tuple[list[np.ndarray], np.ndarray]:
+                  ramp: int = RAMP, budget: Budget | None = None) -> tuple[list[np.ndarray], np.ndarray]:
     """Usable IK solutions of ``arm`` at every step, with orientation changes where needed.
 
     First the nominal orientation; then, at steps without a solution, the slight
@@ -152,10 +156,16 @@ def all_solutions(points: np.ndarray, euler: np.ndarray, *, arm: Arm = THESIS_AR
         budget: Time budget and progress (:class:`~iik.planning.Budget`); default: none.
 
     Returns:
-        ``(solutions, offsets)``: a list of (k_i, 6) arrays [rad] and the (n, 2)
+        ``(solutions, offsets)``: a list of (k_i, 6) arrays [rad] (one configuration per
+        solution, :meth:`~iik.ik.selection.Candidates.configurations`) and the (n, 2)
         (d_alpha, d_beta) used at each step [rad].
     """
-    budget = budget or Budget()
+    sols, offs = _candidates(points, euler, arm, beta_steps, adapt_orientation, ramp, budget or Budget())
+    return [c.configurations() for c in sols], offs
+
+
+def _candidates(points, euler, arm, beta_steps, adapt_orientation, ramp, budget: Budget):
+    """:func:`all_solutions` as :class:`~iik.ik.selection.Candidates` (continua kept)."""
     sols, offs = _solve_with_offsets(points, euler, arm, beta_steps, adapt_orientation, budget)
     if ramp > 0 and np.any(offs) and len(points) > 2:
         # Spread each needed change over +-ramp steps so orientation (and the joints)
@@ -228,23 +238,22 @@ def track_branches(path: CartesianPath, *, arm: Arm = THESIS_ARM, beta_steps: tu
         repeats the previous row (``ok`` False).
     """
     budget = budget or Budget()
-    sols, offs = all_solutions(path.points, path.euler, arm=arm, beta_steps=beta_steps,
-                               adapt_orientation=adapt_orientation, budget=budget)
+    sols, offs = _candidates(path.points, path.euler, arm, beta_steps, adapt_orientation, RAMP, budget)
     n = path.n
     counts = np.array([len(s) for s in sols])
     branches = []
-    for j, q0 in enumerate(sols[0]):
-        budget.tick("IK branches along the path", j, len(sols[0]))
+    starts = sols[0].configurations()
+    for j, q0 in enumerate(starts):
+        budget.tick("IK branches along the path", j, len(starts))
         qs = np.empty((n, 6))
         ok = np.zeros(n, bool)
         eff = np.zeros(n)
         qs[0], ok[0] = q0, True
         for i in range(1, n):
-            cand = sols[i]
-            if len(cand) == 0:
+            if len(sols[i]) == 0:
                 qs[i] = qs[i - 1]
                 continue
-            e = effort_index(qs[i - 1], cand)  # Eq 54 to every candidate
+            cand, e = sols[i].nearest(qs[i - 1])  # Eq 54 to every candidate's nearest configuration
             k = int(np.argmin(e))
             qs[i], ok[i], eff[i] = cand[k], True, e[k]
         branches.append(JointPath(q=qs, ok=ok, effort=eff, switches=branch_switches(qs, switch_threshold),
@@ -253,6 +262,27 @@ def track_branches(path: CartesianPath, *, arm: Arm = THESIS_ARM, beta_steps: tu
     branches.sort(key=lambda b: (not b.complete, len(b.switches), b.total_effort))
     return Tracking(branches=tuple(branches), solutions_per_step=counts,
                     alpha_changed_steps=_steps(offs[:, 0]), beta_changed_steps=_steps(offs[:, 1]))
+
+
+def _offered(cand: Candidates, previous: np.ndarray) -> np.ndarray:
+    """The configurations a DP layer offers for one pose: one per solution, and for a continuum
+    also its member nearest each of the ``previous`` configurations (m, 6) [rad] (the continuum
+    offers every member; staying put must be among the choices)."""
+    q = cand.configurations()
+    rows = [i for i in range(len(cand)) if cand.continua[i]]
+    if not rows or len(previous) == 0:
+        return q
+    extra = np.concatenate([cand.nearest(p)[0][rows] for p in previous])
+    allq = np.concatenate([q, extra])
+    _, first = np.unique(np.round(allq, 9), axis=0, return_index=True)
+    return allq[np.sort(first)]
+
+
+def _half_turns(q: np.ndarray, arm: Arm) -> np.ndarray:
+    """gamma + pi (theta6 -/+ pi), the same grasp for a gripper symmetric about z6: those inside margin."""
+    qf = q.copy()
+    qf[:, 5] -= np.pi * np.where(q[:, 5] >= 0, 1.0, -1.0)
+    return qf[arm.within_limits(qf, tol=-LIMIT_MARGIN)] if len(qf) else qf
 
 
 def _dp_layers(path: CartesianPath, arm: Arm, offsets, half_turn: bool, budget: Budget):
@@ -264,27 +294,19 @@ def _dp_layers(path: CartesianPath, arm: Arm, offsets, half_turn: bool, budget: 
     e[:, :, 1] += off[:, 1, None]
     sols = _solve(np.tile(path.points, (K, 1)), e.reshape(-1, 3), arm, budget)
     layers = []
+    before = [np.zeros((0, 6))] * K  # the previous step's configurations per orientation offset
     for i in range(n):
         budget.tick("orientation grid", i, n)
         qs, os_ = [], []
         for k in range(K):
-            q = sols[k * n + i]
-            if len(q):
-                o3 = np.repeat(np.append(off[k], 0.0)[None], len(q), axis=0)
-                qs.append(q)
-                os_.append(o3)
-                if half_turn:
-                    # gamma + pi: the same grasp for a gripper symmetric about z6 (theta6 -/+ pi)
-                    qf = q.copy()
-                    qf[:, 5] -= np.pi * np.where(q[:, 5] >= 0, 1.0, -1.0)
-                    keep = arm.within_limits(qf, tol=-LIMIT_MARGIN)
-                    if keep.any():
-                        of = o3[keep].copy()
-                        of[:, 2] = np.pi
-                        qs.append(qf[keep])
-                        os_.append(of)
-        layers.append((np.concatenate(qs) if qs else np.zeros((0, 6)),
-                       np.concatenate(os_) if os_ else np.zeros((0, 3))))
+            q = _offered(sols[k * n + i], before[k])
+            turned = _half_turns(q, arm) if half_turn else np.zeros((0, 6))
+            o3 = np.repeat(np.append(off[k], 0.0)[None], len(q) + len(turned), axis=0)
+            o3[len(q):, 2] = np.pi
+            before[k] = np.concatenate([q, turned])
+            qs.append(before[k])
+            os_.append(o3)
+        layers.append((np.concatenate(qs), np.concatenate(os_)))
     return layers
 
 

@@ -79,3 +79,30 @@ def test_the_arm_sets_the_ik_and_the_joint_limits(line):
     b = track_branches(line, arm=longer, adapt_orientation=False).complete[0]
     assert np.abs(iik.fk(b.q, longer)[:, :3, 3] - line.points).max() < 1e-8
     assert np.abs(iik.fk(b.q)[:, :3, 3] - line.points).max() > 0.01  # a different arm's solutions
+
+
+def _path_of(qs, arm):
+    """A CartesianPath through fk(qs) (tool points and Z-Y-Z angles of each configuration)."""
+    from iik.planning.cartesian import CartesianPath
+
+    T = iik.fk(qs, arm)
+    n = len(qs)
+    return CartesianPath(points=T[:, :3, 3], euler=np.array([iik.euler_from_matrix(t[:3, :3]) for t in T]),
+                         segment=np.zeros(n, int), key_index=(0, n - 1), via_points=np.zeros((0, 3)),
+                         via_numbers=(), routes=("line",), repelled=np.zeros(n, bool),
+                         lifted=np.zeros(n, bool), min_ellipsoid_value=np.inf)
+
+
+def test_tracking_stays_on_a_continuum_instead_of_switching():
+    """Issue 20 item 1 in the planner: only theta5 moves, through theta4 = theta5 = 0 (joints 3
+    and 6 collinear). The branch that starts at q keeps q's theta3 and theta6: no switch."""
+    arm = iik.THESIS_ARM
+    qs = np.tile([0.3, -0.5, 0.7, 0.0, 0.0, -0.4], (15, 1))
+    qs[:, 4] = np.linspace(-0.3, 0.3, 15)
+    cp = _path_of(qs, arm)
+    tr = track_branches(cp, arm=arm, adapt_orientation=False)
+    b = min(tr.branches, key=lambda b: np.abs(b.q[0] - qs[0]).max())
+    assert np.abs(b.q - qs).max() <= 1e-6 and b.switches == ()
+    dp = track_dp(cp, arm=arm, offsets=((0.0, 0.0),), half_turn=False)
+    best = min(dp.branches, key=lambda b: np.abs(b.q[0] - qs[0]).max())
+    assert np.abs(best.q - qs).max() <= 1e-6 and best.switches == ()
