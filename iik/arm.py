@@ -101,6 +101,22 @@ def _transform(T, name: str) -> tuple:
     return tuple(tuple(float(x) for x in row) for row in A)
 
 
+def _urdf_file(path, base_link: str, tip_link: str) -> str:
+    """The absolute path of the URDF file ``path`` if the arm's base link is the file's root link
+    (so the file's shapes sit in the arm's base frame); "" for URDF text or a chain from another link."""
+    import os
+
+    from .urdf_read import read_urdf_chain
+
+    if isinstance(path, str) and path.lstrip().startswith("<"):
+        return ""
+    try:
+        root = read_urdf_chain(path, None, tip_link).base_link
+    except InvalidInputError:
+        return ""
+    return os.path.abspath(os.fspath(path)) if root == base_link else ""
+
+
 def _cos_sin(x: float) -> tuple[float, float]:
     k = round(x / (math.pi / 2))
     if abs(x - k * (math.pi / 2)) <= ANGLE_TOL:
@@ -134,6 +150,9 @@ class Arm:
         joint_names: The joints' names (a URDF's, or ``joint1``..``joint6``).
         source: Where the numbers come from (a file and its origin).
         assumptions: Human-readable notes on which numbers are assumed.
+        urdf: The URDF file the arm was read from (absolute path; "" for an arm built from a DH
+            table, or changed after reading, e.g. :meth:`scaled`). Its collision shapes are the
+            arm's body in the collision checks and the viewer (:mod:`iik.planning.robot_model`).
         solver: The canonical member of the class the IK solves in (derived; read from the
             base or from the flange), with the class report.
     """
@@ -147,6 +166,7 @@ class Arm:
     joint_names: tuple[str, ...] = tuple(f"joint{i}" for i in range(1, 7))
     source: str = ""
     assumptions: tuple[str, ...] = field(default=())
+    urdf: str = ""
     solver: SolverChain = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -161,6 +181,8 @@ class Arm:
             object.__setattr__(self, k, vals)
         if len(self.joint_names) != 6:
             raise InvalidInputError("joint_names", "needs six names")
+        if not isinstance(self.urdf, str):
+            raise InvalidInputError("urdf", f"expected a URDF file's path as a string, got {self.urdf!r}")
         rows = [(r.alpha, r.a, r.d, r.offset) for r in self.dh.rows]
         object.__setattr__(
             self, "solver", solver_chain(rows, np.array(self.base), np.array(self.tool), argument=self.name)
@@ -234,6 +256,7 @@ class Arm:
             joint_names=tuple(j.name for j in ch.joints),
             source=f"{ch.source} ({ch.base_link} -> {ch.tip_link})",
             assumptions=notes,
+            urdf=_urdf_file(path, ch.base_link, ch.tip_link),
         )
 
     # ------------------------------------------------------------------ variants
@@ -276,6 +299,7 @@ class Arm:
             base=base,
             tool=tool,
             name=name or f"{self.name} x{factor:g}",
+            urdf="",  # the file's shapes have the old lengths
         )
 
     # ------------------------------------------------------------------ limits

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .arm import THESIS_ARM, Arm
+from .arm import Arm
 from .errors import DexterityError, InvalidInputError, UnreachablePoseError
 from .validation import as_float_array, as_points
 
@@ -171,7 +171,7 @@ def _point3(p) -> tuple[float, float, float]:
     return x, y, z
 
 
-def dexterity(p, beta: float | None = None, arm: Arm = THESIS_ARM) -> Dexterity:
+def dexterity(p, arm: Arm, beta: float | None = None) -> Dexterity:
     """Admissible beta range at ``p`` and, for a chosen ``beta``, the alpha range (Sec 3.5).
 
     Args:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..arm import THESIS_ARM, Arm
+from ..arm import Arm
 from ..errors import UnreachablePoseError
 from ..joint_path import BRANCH_SWITCH_STEP, JointPath, branch_switches, effort_index, path_effort
 from ..validation import as_joints, as_poses
@@ -30,7 +30,7 @@ def _candidates(result_or_q, arm: Arm) -> np.ndarray:
     return qb[inside]
 
 
-def select_index(result_or_q, previous_q, *, arm: Arm = THESIS_ARM) -> tuple[int, float]:
+def select_index(result_or_q, previous_q, *, arm: Arm) -> tuple[int, float]:
     """Index (into the within-limit candidates) and Eq 54 effort of the best solution.
 
     Raises:
@@ -45,7 +45,7 @@ def select_index(result_or_q, previous_q, *, arm: Arm = THESIS_ARM) -> tuple[int
     return i, float(E[i])
 
 
-def select(result_or_q, previous_q, *, arm: Arm = THESIS_ARM) -> np.ndarray:
+def select(result_or_q, previous_q, *, arm: Arm) -> np.ndarray:
     """The solution (6,) [rad] inside the joint limits with the least Eq 54 effort.
 
     Args:
@@ -62,7 +62,7 @@ def branch_signature(q) -> np.ndarray:
     return (qb[:, 3] >= 0).astype(int) * 2 + (qb[:, 4] >= 0).astype(int)
 
 
-def follow_path(Ts, q0=None, *, method: str = "complete", arm: Arm = THESIS_ARM,
+def follow_path(Ts, q0=None, *, method: str = "complete", arm: Arm,
                 max_step: float = BRANCH_SWITCH_STEP) -> JointPath:
     """Follow a sequence of poses (n, 4, 4), keeping one branch by least Eq 54 effort.
 
