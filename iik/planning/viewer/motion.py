@@ -13,9 +13,11 @@ from dataclasses import dataclass
 import numpy as np
 import viser
 
+from iik.arm import Arm
 from iik.errors import InvalidInputError
 from iik.scene import THESIS_SCENE, Scene
 
+from ..robot_model import arm_model
 from .bodies import ArmBody
 from .environment import aim_camera, draw_environment, legend_html
 from .session import Animation
@@ -43,7 +45,8 @@ class Track:
 
 @dataclass(frozen=True)
 class Motion:
-    """Frame times ``t`` (k,) [s], the arms' tracks, and an optional note per frame (shown with the time).
+    """Frame times ``t`` (k,) [s], the tracks of ``arm`` (every track is that arm: its FK, its body), and an
+    optional note per frame (shown with the time).
 
     ``warnings``: what the view cannot show faithfully (printed by ``iik view``, shown in the panel).
     """
@@ -51,6 +54,7 @@ class Motion:
     title: str
     t: np.ndarray
     tracks: tuple[Track, ...]
+    arm: Arm
     notes: tuple[str, ...] = ()
     headline: str = ""
     warnings: tuple[str, ...] = ()
@@ -63,6 +67,8 @@ class Motion:
             raise InvalidInputError("tracks", "every track needs one configuration per frame time")
         if self.notes and len(self.notes) != len(t):
             raise InvalidInputError("notes", "must be empty or one per frame")
+        if not isinstance(self.arm, Arm):
+            raise InvalidInputError("arm", f"expected an iik.Arm, got {type(self.arm).__name__}")
         object.__setattr__(self, "t", t)
 
 
@@ -85,9 +91,10 @@ class MotionView:
             server.gui.add_markdown(m.headline + "".join(f"\n\n**Warning:** {w}" for w in m.warnings))
         server.gui.add_html(legend_html())
         arms = []
+        model = arm_model(m.arm)
         for k, tr in enumerate(m.tracks):
             draw_environment(server, scene=self.scene, offset=tr.offset, root=f"/scene{k}")
-            arms.append(ArmBody(server, f"/motion/{k}", colour=tr.colour, offset=tr.offset))
+            arms.append(ArmBody(server, f"/motion/{k}", colour=tr.colour, model=model, offset=tr.offset))
             server.scene.add_label(f"/motion/{k}/name", tr.name, position=(0.0, 0.0, 1.0),
                                    anchor="bottom-center")
         offsets = np.array([tr.offset for tr in m.tracks]).reshape(-1, 3)

@@ -18,9 +18,10 @@ import numpy as np
 import viser
 
 import iik
-from iik import THESIS_ARM, Arm
+from iik import Arm
 from iik.validation import as_joints, as_poses
 
+from ..robot_model import arm_model
 from . import style
 from .bodies import ArmBody, joints_outside_limits, link_of_joint, outside_limits_text
 from .environment import aim_camera, draw_environment, legend_html
@@ -58,13 +59,14 @@ class PoseView:
             joints outside Table I move are red, and :attr:`warnings` has one line naming them).
         previous: Reference configuration of the effort index (default: ``q``, else zeros).
         interactive: Add a draggable gizmo for the tool pose (live viewer only).
-        arm: Arm parameters (limits, FK).
+        arm: The arm (limits, FK, IK, its body: :func:`~iik.planning.robot_model.arm_model`).
     """
 
-    def __init__(self, T=None, *, q=None, previous=None, interactive: bool = False, arm: Arm = THESIS_ARM):
+    def __init__(self, T=None, *, q=None, previous=None, interactive: bool = False, arm: Arm):
         if (T is None) == (q is None):
             raise iik.InvalidInputError("pose", "give exactly one of T (a pose) or q (a configuration)")
         self.arm = arm
+        self.model = arm_model(arm)
         self.given = None if q is None else as_joints(q, "q")[0][0]
         if self.given is not None:
             T = iik.fk(self.given, arm)
@@ -152,7 +154,8 @@ class PoseView:
         def body(k: int) -> ArmBody:
             while len(bodies) <= k:
                 n = len(bodies)
-                bodies.append(ArmBody(server, f"/pose/arm{n}", colour=style.SOLUTION, opacity=0.25))
+                bodies.append(ArmBody(server, f"/pose/arm{n}", colour=style.SOLUTION, model=self.model,
+                                      opacity=0.25))
                 labels.append(server.scene.add_label(f"/pose/label{n}", f"#{n}", font_screen_scale=0.8))
             return bodies[k]
 
@@ -161,7 +164,8 @@ class PoseView:
             for k, q in enumerate(qs):
                 b = body(k)
                 b.colour = style.SELECTED if k == self.selected else style.SOLUTION
-                red = {link_of_joint(j): style.OUT_OF_LIMITS for j in joints_outside_limits(q, self.arm)}
+                red = {link_of_joint(self.model, j): style.OUT_OF_LIMITS
+                       for j in joints_outside_limits(q, self.arm)}
                 b.show(q)
                 b.paint(red, opacity=1.0 if k == self.selected else 0.25)
                 b.visible = True
