@@ -11,6 +11,7 @@ import iik
 from hardware import protocol as P
 from hardware.errors import SafetyError
 from hardware.sim import SimModule, SimulatedArm
+from iik import THESIS_ARM
 
 
 def module(**kw):
@@ -101,7 +102,7 @@ def test_watchdog_trips_on_silence():
 
 
 def test_defaults_come_from_the_arm():
-    sim = SimulatedArm(bus=None, module_ids=(1, 2, 3, 4, 5, 6), start=False)  # type: ignore[arg-type]
+    sim = SimulatedArm(bus=None, module_ids=(1, 2, 3, 4, 5, 6), start=False, arm=THESIS_ARM)  # type: ignore[arg-type]
     arm = iik.THESIS_ARM
     for j, i in enumerate(sim.module_ids):
         m = sim.module(i)
@@ -180,13 +181,14 @@ def test_serve_until_stopped(new_channel):
 
     ch, stop, ready = new_channel(), threading.Event(), []
     th = threading.Thread(target=serve, args=("virtual", ch), daemon=True,
-                          kwargs={"stop": stop, "ready": ready.append, "initial": [0.1] * 6})
+                          kwargs={"stop": stop, "ready": ready.append, "initial": [0.1] * 6,
+                                  "arm": THESIS_ARM})
     th.start()
     deadline = time.monotonic() + 5.0
     while not ready and time.monotonic() < deadline:
         time.sleep(0.01)
     assert ready and ready[0].running
-    with PowerCubeArm.from_interface(interface="virtual", channel=ch, timeout=0.5) as arm:
+    with PowerCubeArm.from_interface(interface="virtual", channel=ch, timeout=0.5, arm=THESIS_ARM) as arm:
         assert len(arm.open()) == 6
         assert all(arm.get_pos() == np.float32(0.1))  # f32 on the wire
     stop.set()
@@ -201,10 +203,10 @@ def test_serve_refuses_bad_input_and_leaves_no_open_bus(new_channel, caplog):
     from hardware.sim import serve
 
     with pytest.raises(BusError, match="cannot open no-such-interface"):
-        serve("no-such-interface", "x", duration=0.1)
+        serve("no-such-interface", "x", duration=0.1, arm=THESIS_ARM)
     with pytest.raises(SafetyError, match="module_ids"):
-        serve("virtual", new_channel(), [0], duration=0.1)
+        serve("virtual", new_channel(), [0], duration=0.1, arm=THESIS_ARM)
     with pytest.raises(SafetyError, match="initial"):
-        serve("virtual", new_channel(), initial=[0.0, float("nan")], duration=0.1)
+        serve("virtual", new_channel(), initial=[0.0, float("nan")], duration=0.1, arm=THESIS_ARM)
     gc.collect()
     assert "not properly shut down" not in caplog.text

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import iik
+from iik import THESIS_ARM
 from iik.dexterity import alpha_admissible, dexterity
 from iik.errors import UnreachablePoseError
 
@@ -862,14 +863,14 @@ def _sweep(ctx):
     rng = ctx.rng("dexterity-points")
     npts = ctx.n(30, 8)
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(npts, 6))
-    P = iik.fk(q)[:, :3, 3]
+    P = iik.fk(q, THESIS_ARM)[:, :3, 3]
     na, nb = ctx.n(36, 24), ctx.n(18, 12)
     A, B = np.meshgrid((np.arange(na) + 0.5) / na * 2 * np.pi - np.pi, (np.arange(nb) + 0.5) / nb * np.pi)
     A, B = A.ravel(), B.ravel()
     truth = np.zeros((npts, A.size), bool)
     for i, p in enumerate(P):
         T = iik.pose_from_euler(np.tile(p, (A.size, 1)), A, B, np.zeros_like(A))
-        truth[i] = [len(r.q) > 0 for r in iik.solve_many(T)]
+        truth[i] = [len(r.q) > 0 for r in iik.solve_many(T, THESIS_ARM)]
     out = dict(P=P, A=A, B=B, truth=truth, na=na, nb=nb)
     ctx.cache[key] = out
     return out
@@ -987,7 +988,7 @@ def _iik_admitted(ctx, sw):
         cases = []
         for i, p in enumerate(sw["P"]):
             try:
-                r = dexterity(p)
+                r = dexterity(p, THESIS_ARM)
                 adm[i] = alpha_admissible(r, sw["A"], sw["B"])
                 cases.append(r.case)
             except UnreachablePoseError:
@@ -998,7 +999,7 @@ def _iik_admitted(ctx, sw):
 
 def _iik_admit(p, A, B):
     try:
-        return alpha_admissible(dexterity(p), A, B)
+        return alpha_admissible(dexterity(p, THESIS_ARM), A, B)
     except UnreachablePoseError:
         return np.zeros(A.shape, bool)
 
@@ -1080,7 +1081,7 @@ def gamma_free(ctx, unaffected):
     """Sec 3.5.1: gamma only changes joint 6 (a full turn), so any gamma works; ``unaffected`` joints stay."""
     rng = ctx.rng("gamma")
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(ctx.n(40, 6), 6))
-    T = iik.fk(q)
+    T = iik.fk(q, THESIS_ARM)
     ang = np.array([iik.euler_from_matrix(t[:3, :3]) for t in T])
     gam = np.linspace(-np.pi, np.pi, 13)[:-1]
     ok, total, moved = 0, 0, 0.0
@@ -1088,7 +1089,7 @@ def gamma_free(ctx, unaffected):
     for t, (a, b, _) in zip(T, ang, strict=True):
         k = len(gam)
         poses = iik.pose_from_euler(np.tile(t[:3, 3], (k, 1)), np.full(k, a), np.full(k, b), gam)
-        res = iik.solve_many(poses)
+        res = iik.solve_many(poses, THESIS_ARM)
         ok += sum(len(r.q) > 0 for r in res)
         total += k
         base = res[0].q[:, cols] if len(res[0].q) else None

@@ -4,6 +4,7 @@ import numpy as np
 from hypothesis import given
 
 import iik
+from iik import THESIS_ARM
 from iik.arm import thesis_arm
 from iik.planning.robot_model import thesis_model
 from iik.resources import urdf_path
@@ -12,8 +13,8 @@ from verification.testing.strategies import BEYOND, joint_batches, joint_vectors
 
 
 def test_thesis_model_is_cached_and_unpacks():
-    tm = thesis_model()
-    assert thesis_model() is tm and thesis_model(iik.THESIS_ARM) is tm
+    tm = thesis_model(THESIS_ARM)
+    assert thesis_model(THESIS_ARM) is tm and thesis_model(iik.THESIS_ARM) is tm
     model, collision = tm
     assert model.nq == 6 and len(collision.geometryObjects) > 7
     assert tm.path == urdf_path()
@@ -29,7 +30,8 @@ def test_another_arm_is_built_from_its_generated_urdf():
     tm = thesis_model(arm)
     assert tm.path is None and thesis_model(arm) is tm
     assert tm.model.lowerPositionLimit[0] == -1.0
-    assert len(tm.collision_model.collisionPairs) == len(thesis_model().collision_model.collisionPairs)
+    pairs = thesis_model(THESIS_ARM).collision_model.collisionPairs
+    assert len(tm.collision_model.collisionPairs) == len(pairs)
     data = tm.model.createData()
     for q in np.random.default_rng(2).uniform(a.q_min, a.q_max, size=(5, 6)):
         pin.framesForwardKinematics(tm.model, data, q)
