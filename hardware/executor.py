@@ -352,8 +352,9 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
     outside = np.argwhere((tr.q < soft[:, 0] - SOFT_LIMIT_TOL) | (tr.q > soft[:, 1] + SOFT_LIMIT_TOL))
     if len(outside):
         k, j = (int(v) for v in outside[0])
-        raise SafetyError(target_name(k, j), f"{tr.q[k, j]:.4f} rad is outside module {arm.module_ids[j]}'s soft "
-                          f"limits [{soft[j, 0]:.4f}, {soft[j, 1]:.4f}] rad (are the modules set up for the arm "
+        lo, hi = soft[j]
+        raise SafetyError(target_name(k, j), f"{tr.q[k, j]:.4f} rad is outside module {arm.module_ids[j]}'s "
+                          f"soft limits [{lo:.4f}, {hi:.4f}] rad (are the modules set up for the arm "
                           f"{tr.arm.name!r}?)", step=k, joint=j)
     if arm.arm is not None and not same_arm(arm.arm, tr.arm):
         raise SafetyError("arm", f"the modules' limits are those of the arm {arm.arm.name!r}; the trajectory "

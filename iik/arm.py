@@ -30,7 +30,15 @@ import numpy as np
 
 from .dh import DHRow, DHTable
 from .errors import InvalidInputError
-from .kinematic_class import ANGLE_TOL, LENGTH_TOL, SolverChain, axis_lines, chain_from_lines, solver_chain
+from .kinematic_class import (
+    ANGLE_TOL,
+    LENGTH_TOL,
+    NotInClassError,
+    SolverChain,
+    axis_lines,
+    chain_from_lines,
+    solver_chain,
+)
 
 __all__ = [
     "Arm",
@@ -246,18 +254,21 @@ class Arm:
             else ()
         )
         effort = tuple(j.effort if j.effort > 0 else 1.0 for j in ch.joints)
-        return cls(
-            dh=table,
-            base=base,
-            tool=tl,
-            acceleration=ASSUMED_ACCELERATION if acceleration is None else tuple(acceleration),
-            effort=effort,
-            name=name or ch.robot,
-            joint_names=tuple(j.name for j in ch.joints),
-            source=f"{ch.source} ({ch.base_link} -> {ch.tip_link})",
-            assumptions=notes,
-            urdf=_urdf_file(path, ch.base_link, ch.tip_link),
-        )
+        try:
+            return cls(
+                dh=table,
+                base=base,
+                tool=tl,
+                acceleration=ASSUMED_ACCELERATION if acceleration is None else tuple(acceleration),
+                effort=effort,
+                name=name or ch.robot,
+                joint_names=tuple(j.name for j in ch.joints),
+                source=f"{ch.source} ({ch.base_link} -> {ch.tip_link})",
+                assumptions=notes,
+                urdf=_urdf_file(path, ch.base_link, ch.tip_link),
+            )
+        except NotInClassError as exc:  # name the file, as every other error of a URDF does
+            raise NotInClassError(ch.source, exc.reports) from None
 
     # ------------------------------------------------------------------ variants
     def with_limits(

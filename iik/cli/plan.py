@@ -43,8 +43,9 @@ def run(args) -> int:
     def progress(msg: str) -> None:
         print(f"  ... {msg}", file=sys.stderr, flush=True)
 
+    arm = chosen_arm(args, data=True)  # a bad --arm is refused before planning
     print(f"planning {args.scenario}", file=sys.stderr)
-    res = plan(args.scenario, opts, arm=chosen_arm(args, data=True), progress=progress)
+    res = plan(args.scenario, opts, arm=arm, progress=progress)
     out = args.out or Path(f"plan_{res.scenario.name}")
     files = write_outputs(res, out, figures=not args.no_figures)
     print(res.summary())

@@ -83,7 +83,8 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 __all__ = ["load_scenario", "scenario_from_dict", "scenario_to_toml", "write_scenario", "scenario_path",
-           "thesis_scenario_paths", "shipped_scenario_paths", "platform_box", "validate_scenario", "dexterity_notes", "scenario_arm",
+           "thesis_scenario_paths", "shipped_scenario_paths", "platform_box", "validate_scenario",
+           "dexterity_notes", "scenario_arm",
            "MAX_FILE_SIZE"]
 
 #: Largest scenario file [bytes] (a shipped one is about 2 kB).
