@@ -8,6 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import iik
+import iik.arms
 from hardware import protocol as P
 from hardware.errors import SafetyError
 from hardware.sim import SimModule, SimulatedArm
@@ -101,13 +102,18 @@ def test_watchdog_trips_on_silence():
     assert out and out[0].state & P.State.COMM_ERROR and m.state(0.2) & P.State.ERROR
 
 
-def test_defaults_come_from_the_arm():
-    sim = SimulatedArm(bus=None, module_ids=(1, 2, 3, 4, 5, 6), start=False, arm=THESIS_ARM)  # type: ignore[arg-type]
-    arm = iik.THESIS_ARM
+@pytest.mark.parametrize("name", ["thesis", "crx10ia"])
+def test_the_modules_are_the_arms(name):
+    """Soft limits, speeds and accelerations of the simulated modules are the given arm's (the CRX's
+    J3 reaches 251 deg and its joints 2.09-3.14 rad/s, the thesis arm's Table I and 1.2 rad/s)."""
+    arm = iik.arms.get(name)
+    sim = SimulatedArm(bus=None, module_ids=(1, 2, 3, 4, 5, 6), start=False, arm=arm)  # type: ignore[arg-type]
     for j, i in enumerate(sim.module_ids):
         m = sim.module(i)
         assert m.params[P.Param.FMINPOS] == arm.lower[j] and m.params[P.Param.FMAXPOS] == arm.upper[j]
-        assert m.vmax == arm.velocity[j]
+        assert m.vmax == arm.velocity[j] and m.params[P.Param.FMAXACC] == arm.acceleration[j]
+    with pytest.raises(SafetyError, match="outside its soft limits"):  # an initial position beyond the arm's
+        SimulatedArm(bus=None, start=False, arm=arm, initial=np.r_[0, 0, arm.upper[2] + 0.01, 0, 0, 0])  # type: ignore[arg-type]
 
 
 def test_bad_fault_kind():

@@ -6,11 +6,13 @@ import numpy as np
 import pytest
 
 import iik
+import iik.arms
 from hardware import StepTargets
 from hardware.errors import SafetyError
 from hardware.sources import DEMO_STEP, csv_trajectory, demo_trajectory, scenario_trajectory
 from iik import THESIS_ARM
 from iik.errors import InvalidInputError
+from iik.planning import ScenarioError
 
 Q = np.linspace(0, 1, 4)[:, None] * np.array([0.05, 0.04, -0.03, 0.02, 0.1, 0.0])
 HEADER = "t,q1,q2,q3,q4,q5,q6"
@@ -117,3 +119,25 @@ def test_scenario_runs_the_step_times_the_plan_writes():
     assert t.times[-1] == pytest.approx(res.trajectory.duration, abs=0.01)  # the plan's duration
     assert "as iik plan times them" in t.note
     t.validate()  # executable as planned: Table I less the margin, speeds, FK vs the planned poses
+
+
+def test_the_step_targets_carry_the_arm_they_are_for(tmp_path):
+    """A scenario's targets are its arm's (the CRX's for crx_j; refused for another arm); a CSV file and the
+    demo are for the arm given: their planned poses are its FK, and validation uses its limits."""
+    crx = iik.arms.get("crx10ia")
+    t = scenario_trajectory("crx_j")
+    assert t.arm is crx and "planned for the arm 'crx10ia'" in t.note
+    np.testing.assert_allclose(iik.fk(t.q, crx)[:, :3, 3], t.poses[:, :3, 3], atol=1e-8)
+    assert len(t.validate()) == len(t)
+    with pytest.raises(ScenarioError, match="is for the arm"):
+        scenario_trajectory("j", arm=crx)
+    demo = demo_trajectory(crx)
+    assert demo.arm is crx and np.abs(iik.fk(demo.q, crx) - demo.poses).max() < 1e-9
+    assert len(demo.validate()) == len(demo)
+    rows = [",".join(f"{v:.9f}" for v in [k * 0.1, 0.0, 0.0, 3.5 * k / 3, 0.0, 0.0, 0.0]) for k in range(4)]
+    path = write(tmp_path / "j3.csv", rows)  # joint 3 to 3.5 rad: inside the CRX's limits, not Table I's
+    on_crx = csv_trajectory(path, crx)
+    np.testing.assert_allclose(on_crx.poses, iik.fk(on_crx.q, crx))
+    with pytest.raises(SafetyError, match="outside Table I"):
+        csv_trajectory(path, THESIS_ARM).validate()
+    assert len(dataclasses.replace(on_crx, times=on_crx.times * 20).validate()) == 4

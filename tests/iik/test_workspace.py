@@ -10,6 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import iik
+import iik.arms
 from iik import THESIS_ARM
 from iik.errors import IIKError, InvalidInputError
 from iik.workspace import position_lm, tool_positions
@@ -128,3 +129,22 @@ def test_closest_reachable_far_away_points(p):
     assert np.max(np.abs(iik.closest_reachable(ray, THESIS_ARM).point - r.point)) <= 1e-6
     d = (r.point - p) / np.max(np.abs(p))
     assert r.distance == pytest.approx(np.max(np.abs(p)) * np.sqrt(np.sum(d * d)), rel=1e-12)
+
+
+def test_another_arms_workspace_is_searched_with_its_own_fk():
+    """For an arm not of the thesis's form (the CRX-10iA) Sec 3.4.4 does not apply: in_workspace asks the
+    six-joint search of closest_reachable, which reaches FK points of random configurations inside the
+    CRX's limits, and refuses points beyond its reach bound with a reachable suggestion on the boundary."""
+    crx = iik.arms.get("crx10ia")
+    q = np.random.default_rng(11).uniform(crx.q_min, crx.q_max, (200, 6))
+    P = iik.fk(q, crx)[:, :3, 3]
+    assert iik.in_workspace(P, crx).all()
+    assert not iik.in_workspace(P, THESIS_ARM).all()  # the thesis arm's workspace is another
+    far = np.array([[crx.reach + 0.2, 0.0, 0.3], [0.0, 0.0, crx.reach + 0.5]])
+    assert not iik.in_workspace(far, crx).any()
+    c = iik.closest_reachable(far, crx)
+    assert c.moved.all() and np.all(c.distance > 0.19)
+    np.testing.assert_allclose(iik.fk(c.q, crx)[:, :3, 3], c.point, atol=1e-9)  # reached by its q
+    assert iik.closest_reachable(P[0], crx).distance == 0.0
+    with pytest.raises(InvalidInputError):
+        iik.in_workspace([np.nan, 0, 0], crx)
