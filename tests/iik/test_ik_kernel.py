@@ -249,7 +249,7 @@ def test_kernel_runs_as_python_under_numba_disable_jit():
     """NUMBA_DISABLE_JIT=1 (how one steps through the kernel in a debugger) gives plain Python
     functions: same solutions, no cache machinery (which needs a compiled dispatcher)."""
     code = ("import numpy as np, iik; q = np.array([0.3, -0.5, 0.7, 0.4, -0.6, 0.2]); "
-            "r = iik.solve(iik.fk(q)); "
+            "r = iik.solve(iik.fk(q, iik.THESIS_ARM), iik.THESIS_ARM); "
             "print(min(np.max(np.abs(np.angle(np.exp(1j * (row - q))))) for row in r.q))")
     env = dict(os.environ, NUMBA_DISABLE_JIT="1")
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300)

@@ -97,8 +97,8 @@ def test_jacobian_matches_finite_differences(q):
 @given(joint_batches())
 def test_batch_equals_loop(qs):
     for f in (iik.fk, iik.fk_chain, iik.position_jacobian, iik.jacobian, iik.joint_frames):
-        batch = f(qs)
-        loop = np.stack([f(q) for q in qs])
+        batch = f(qs, THESIS_ARM)
+        loop = np.stack([f(q, THESIS_ARM) for q in qs])
         np.testing.assert_array_equal(batch, loop)
 
 
@@ -120,7 +120,7 @@ BAD = [
 @pytest.mark.parametrize("bad,word", BAD)
 def test_bad_input_is_a_typed_error_naming_q(f, bad, word):
     with pytest.raises(InvalidInputError) as exc:
-        f(bad)
+        f(bad, THESIS_ARM)
     assert exc.value.argument == "q"
     assert isinstance(exc.value, iik.IIKError)
 
