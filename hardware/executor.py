@@ -150,9 +150,9 @@ def validate(times, q, poses, *, arm: Arm,
     out = np.argwhere((qa < lo) | (qa > hi))
     if len(out):
         k, j = (int(v) for v in out[0])
-        raise SafetyError(target_name(k, j), f"{qa[k, j]:.6f} rad outside Table I [{arm.q_min[j]:.4f}, "
-                          f"{arm.q_max[j]:.4f}] rad less the margin of {options.margin:.4f} rad "
-                          f"({math.degrees(options.margin):g} deg)", step=k, joint=j)
+        raise SafetyError(target_name(k, j), f"{qa[k, j]:.6f} rad outside {arm.limits_name} "
+                          f"[{arm.q_min[j]:.4f}, {arm.q_max[j]:.4f}] rad less the margin of "
+                          f"{options.margin:.4f} rad ({math.degrees(options.margin):g} deg)", step=k, joint=j)
     step_ms = _step_ms(t, options.min_step)
     vel = np.abs(np.diff(qa, axis=0)) / (step_ms[:, None] / 1000.0)
     vmax = np.asarray(arm.velocity) * options.velocity_fraction

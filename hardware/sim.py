@@ -470,7 +470,7 @@ def _checked_modules(module_ids, initial, arm: Arm, lag) -> tuple[list[int], np.
         lo, hi = arm.lower[k], arm.upper[k]
         if not lo <= p <= hi:
             raise SafetyError("initial", f"joint q{j + 1} at {p:g} rad is outside its soft limits "
-                              f"[{lo:.4f}, {hi:.4f}] rad (Table I)")
+                              f"[{lo:.4f}, {hi:.4f}] rad ({arm.limits_name})")
     if isinstance(lag, bool) or not isinstance(lag, (int, float)) or not (math.isfinite(lag)
                                                                            and 0 <= lag <= 1):
         raise InvalidInputError("lag", f"must be a finite number in [0, 1] s, got {lag!r}")

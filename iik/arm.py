@@ -158,6 +158,7 @@ class Arm:
         joint_names: The joints' names (a URDF's, or ``joint1``..``joint6``).
         source: Where the numbers come from (a file and its origin).
         assumptions: Human-readable notes on which numbers are assumed.
+        limits_name: What the joint limits are called in messages ("Table I" for the thesis arm).
         urdf: The URDF file the arm was read from (absolute path; "" for an arm built from a DH
             table, or changed after reading, e.g. :meth:`scaled`). Its collision shapes are the
             arm's body in the collision checks and the viewer (:mod:`iik.planning.robot_model`).
@@ -174,6 +175,7 @@ class Arm:
     joint_names: tuple[str, ...] = tuple(f"joint{i}" for i in range(1, 7))
     source: str = ""
     assumptions: tuple[str, ...] = field(default=())
+    limits_name: str = "the joint limits"
     urdf: str = ""
     solver: SolverChain = field(init=False, repr=False, compare=False)
 
@@ -281,7 +283,8 @@ class Arm:
         effort=None,
         name: str | None = None,
     ) -> Arm:
-        """This arm with other joint limits [rad, rad/s, rad/s^2, N m] (None: unchanged)."""
+        """This arm with other joint limits [rad, rad/s, rad/s^2, N m] (None: unchanged; other position
+        limits are no longer called by the old limits' name)."""
         dh = dataclasses.replace(
             self.dh,
             lower=tuple(self.dh.lower if lower is None else lower),
@@ -294,6 +297,7 @@ class Arm:
             acceleration=self.acceleration if acceleration is None else tuple(acceleration),
             effort=self.effort if effort is None else tuple(effort),
             name=self.name if name is None else name,
+            limits_name=self.limits_name if lower is None and upper is None else "the joint limits",
         )
 
     def scaled(self, factor: float, name: str | None = None) -> Arm:
@@ -452,6 +456,11 @@ class Arm:
         return pts, dirs
 
 
+def _table_i() -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Table I's lower and upper limits [rad]."""
+    return tuple(lo * _DEG for lo, _ in _TABLE_I_DEG), tuple(hi * _DEG for _, hi in _TABLE_I_DEG)
+
+
 def thesis_arm(
     l1: float,
     l2: float,
@@ -493,6 +502,7 @@ def thesis_arm(
         name=name,
         source="Mondragon Sanchez 2012, Table I and Table II",
         assumptions=assumptions,
+        limits_name="Table I" if (table.lower, table.upper) == _table_i() else "the joint limits",
     )
 
 

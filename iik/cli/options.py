@@ -69,17 +69,15 @@ def joint_angles(values, flag: str, deg: bool, arm):
     import numpy as np
 
     from iik.arm import LIMIT_TOL
-    from iik.arms import name_of
     from iik.errors import InvalidInputError
 
     with np.errstate(over="ignore"):
         q = np.radians(values) if deg else np.asarray(values, float)
     unit, show = ("deg", np.degrees) if deg else ("rad", lambda v: v)
-    source = "Table I" if name_of(arm) == "thesis" else f"the limits of {arm.name}"
     for j, (v, lo, hi) in enumerate(zip(q, arm.lower, arm.upper, strict=True)):
         if not (math.isfinite(v) and lo - LIMIT_TOL <= v <= hi + LIMIT_TOL):
             raise InvalidInputError(flag, f"q{j + 1} = {values[j]:g} {unit} is outside the joint limits "
-                                          f"[{show(lo):.4g}, {show(hi):.4g}] {unit} ({source})")
+                                          f"[{show(lo):.4g}, {show(hi):.4g}] {unit} ({arm.limits_name})")
     return q
 
 

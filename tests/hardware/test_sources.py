@@ -141,3 +141,7 @@ def test_the_step_targets_carry_the_arm_they_are_for(tmp_path):
     with pytest.raises(SafetyError, match="outside Table I"):
         csv_trajectory(path, THESIS_ARM).validate()
     assert len(dataclasses.replace(on_crx, times=on_crx.times * 20).validate()) == 4
+    beyond = write(tmp_path / "j3far.csv", [r.replace("3.500000000", "4.500000000") for r in rows])
+    with pytest.raises(SafetyError, match=r"outside the joint limits \[-1.2392, 4.3808\]") as info:
+        csv_trajectory(beyond, crx).validate()  # the CRX's J3 limits, not called Table I
+    assert "Table I" not in str(info.value)

@@ -50,8 +50,9 @@ def outside_limits_text(q, arm: Arm) -> str:
     qv = as_joints(q, "q")[0][0]
     deg = np.degrees
     return "; ".join(
-        f"q{j + 1} = {qv[j]:.4f} rad ({deg(qv[j]):.1f} deg) is outside Table I [{arm.q_min[j]:.4f}, "
-        f"{arm.q_max[j]:.4f}] rad ([{deg(arm.q_min[j]):.1f}, {deg(arm.q_max[j]):.1f}] deg)"
+        f"q{j + 1} = {qv[j]:.4f} rad ({deg(qv[j]):.1f} deg) is outside {arm.limits_name} "
+        f"[{arm.q_min[j]:.4f}, {arm.q_max[j]:.4f}] rad "
+        f"([{deg(arm.q_min[j]):.1f}, {deg(arm.q_max[j]):.1f}] deg)"
         for j in joints_outside_limits(qv, arm))
 
 

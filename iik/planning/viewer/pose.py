@@ -113,7 +113,8 @@ class PoseView:
         T = iik.fk(q, arm)
         dp = np.linalg.norm(T[:3, 3] - self.T[:3, 3])
         dR = iik.rotation_angle(T[:3, :3], self.T[:3, :3])
-        return (f"| joint | q [deg] | Table I [deg] | limits |\n|---|---|---|---|\n{rows}\n\n"
+        limits = arm.limits_name.removeprefix("the ")
+        return (f"| joint | q [deg] | {limits} [deg] | limits |\n|---|---|---|---|\n{rows}\n\n"
                 f"Effort index (Eq 54) from {self.reference}: **{E:.4f} rad** ({np.degrees(E):.2f} deg); "
                 f"FK residuals {dp:.1e} m, {dR:.1e} rad")
 
@@ -133,7 +134,7 @@ class PoseView:
         r = self.result
         head = (f"Tool at ({p[0]:.4g}, {p[1]:.4g}, {p[2]:.4g}) m, Eq 42 angles "
                 f"({a[0]:.1f}, {a[1]:.1f}, {a[2]:.1f}) deg: **{r.count} IK solution(s)**, "
-                f"{int(np.sum(r.within_limits))} within Table I")
+                f"{int(np.sum(r.within_limits))} within {self.arm.limits_name}")
         if r.count == 0:
             head += f" ({r.reason})"
         if self.solve_time:
