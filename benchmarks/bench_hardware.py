@@ -30,6 +30,7 @@ import numpy as np
 from hardware import PowerCubeArm, SimulatedArm
 from hardware import protocol as P
 from hardware.sources import csv_trajectory
+from iik import THESIS_ARM
 from verification.testing.timing import median_seconds
 
 
@@ -64,8 +65,8 @@ def _raw_echo_baseline(n: int) -> float:
 def main(n: int = 500) -> None:
     base = _raw_echo_baseline(n)
     ch = f"bench-{uuid.uuid4().hex}"
-    with SimulatedArm.virtual(ch), can.Bus(interface="virtual", channel=ch) as bus:
-        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0)
+    with SimulatedArm.virtual(ch, arm=THESIS_ARM), can.Bus(interface="virtual", channel=ch) as bus:
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0, arm=THESIS_ARM)
         m = arm.modules[0]
         req = median_seconds(m.get_pos, 5, calls=n)
 
@@ -110,7 +111,7 @@ def _csv_bench(lines: int = 10_000) -> None:
         np.savetxt(path, np.column_stack([np.arange(lines) * 0.01, q]), delimiter=",", fmt="%.9f",
                    header="t,q1,q2,q3,q4,q5,q6", comments="")
         base = median_seconds(lambda: np.loadtxt(path, delimiter=",", skiprows=1), 5)
-        ours = median_seconds(lambda: csv_trajectory(path), 5)
+        ours = median_seconds(lambda: csv_trajectory(path, THESIS_ARM), 5)
     print(f"{'CSV ' + str(lines) + ' lines, numpy.loadtxt (baseline)':44s} {base * 1e3:8.1f} ms {1.0:10.2f}")
     print(f"{'CSV ' + str(lines) + ' lines, csv_trajectory':44s} {ours * 1e3:8.1f} ms {ours / base:10.2f}")
 

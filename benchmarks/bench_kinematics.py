@@ -14,6 +14,7 @@ import numpy as np
 import pinocchio as pin
 
 import iik
+from iik import THESIS_ARM
 from iik.planning.robot_model import thesis_model
 from verification.testing.strategies import sample_joints
 from verification.testing.timing import median_seconds
@@ -21,7 +22,7 @@ from verification.testing.timing import median_seconds
 
 def main(n: int = 2000) -> None:
     qs = sample_joints(np.random.default_rng(0), n)
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     data = tm.model.createData()
 
     def pin_fk():
@@ -34,12 +35,12 @@ def main(n: int = 2000) -> None:
 
     cases = {
         "pinocchio FK, loop (baseline)": pin_fk,
-        "iik.fk (Eq 4), batch": lambda: iik.fk(qs),
-        "iik.fk_chain (Table II product), batch": lambda: iik.fk_chain(qs),
-        "iik.fk (Eq 4), loop": lambda: [iik.fk(q) for q in qs[: n // 10]],
+        "iik.fk (Eq 4), batch": lambda: iik.fk(qs, THESIS_ARM),
+        "iik.fk_chain (Table II product), batch": lambda: iik.fk_chain(qs, THESIS_ARM),
+        "iik.fk (Eq 4), loop": lambda: [iik.fk(q, THESIS_ARM) for q in qs[: n // 10]],
         "pinocchio frame Jacobian, loop": pin_jac,
-        "iik.jacobian (6x6), batch": lambda: iik.jacobian(qs),
-        "iik.position_jacobian (App C), batch": lambda: iik.position_jacobian(qs),
+        "iik.jacobian (6x6), batch": lambda: iik.jacobian(qs, THESIS_ARM),
+        "iik.position_jacobian (App C), batch": lambda: iik.position_jacobian(qs, THESIS_ARM),
     }
     per = {}
     for name, fn in cases.items():

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 
+from iik import THESIS_ARM
 from iik.planning import (
     PlanOptions,
     SceneCollision,
@@ -42,8 +43,8 @@ def main() -> None:
     def discrete():
         # same pipeline steps, but clearance at the step-points only (no motion check)
         cp = build_path(sc, scene=THESIS_SCENE)
-        br = track_branches(cp, adapt_orientation=False).branches
-        chk = SceneCollision(sc.obstacles)
+        br = track_branches(cp, adapt_orientation=False, arm=THESIS_ARM).branches
+        chk = SceneCollision(sc.obstacles, arm=THESIS_ARM)
         for b in br:
             pc = chk.path_clearance(b.q, -float("inf"))  # bound already met: no bisection samples
             if b.complete and pc.step.min() >= sc.safety_zone and pc.self_min > 0:
@@ -51,7 +52,7 @@ def main() -> None:
 
     def thesis():
         cp = build_path(sc, scene=THESIS_SCENE)
-        track_branches(cp, adapt_orientation=False)
+        track_branches(cp, adapt_orientation=False, arm=THESIS_ARM)
 
     t_full, t_disc, t_thesis = (median_seconds(f, args.runs, warmup=True) for f in (full, discrete, thesis))
     print(f"scenario {args.scenario}: median over {args.runs} runs")

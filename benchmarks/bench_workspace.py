@@ -16,6 +16,7 @@ import sys
 import numpy as np
 
 import iik
+from iik import THESIS_ARM
 from iik.dexterity import alpha_intervals
 from verification.testing.timing import median_seconds
 
@@ -24,16 +25,16 @@ def main(n: int = 1_000_000) -> None:
     rng = np.random.default_rng(0)
     P = rng.uniform([-1.0, -1.0, -0.6], [1.0, 1.0, 1.2], size=(n, 3))
     m = min(n, 2000)
-    t_batch = median_seconds(lambda: iik.in_workspace(P)) / n
-    t_loop = median_seconds(lambda: [iik.in_workspace(p) for p in P[:m]], reps=3) / m
+    t_batch = median_seconds(lambda: iik.in_workspace(P, THESIS_ARM)) / n
+    t_loop = median_seconds(lambda: [iik.in_workspace(p, THESIS_ARM) for p in P[:m]], reps=3) / m
     print(f"in_workspace, batch of {n}: {t_batch * 1e9:8.1f} ns/point = {1 / t_batch / 1e6:6.2f} M points/s")
     print(f"in_workspace, per-point loop (baseline): {t_loop * 1e9:8.1f} ns/point; "
           f"batch speed-up x{t_loop / t_batch:,.0f}")
 
     q = rng.uniform(iik.THESIS_ARM.q_min, iik.THESIS_ARM.q_max, size=(m, 6))
-    T = iik.fk(q)
+    T = iik.fk(q, THESIS_ARM)
     pts = T[:, :3, 3]
-    arm = iik.THESIS_ARM
+    arm = THESIS_ARM
     k = min(m, 10)  # exact dexterity runs the IK on a grid of orientations: seconds, not microseconds
     t_dex = median_seconds(lambda: [iik.dexterity(p, arm) for p in pts[:k]], reps=1) / k
     t_alpha = median_seconds(lambda: [alpha_intervals(p, 1.5, arm) for p in pts[:k]], reps=1) / k

@@ -22,13 +22,13 @@ from pathlib import Path
 
 import numpy as np
 
-from iik.arm import THESIS_ARM, Arm
+from iik.arm import Arm
 from iik.files import atomic_output
 from iik.kinematics import fk
 from iik.planning.obstacles import SAFETY_ZONE
 
 from .errors import RunLogError
-from .runlog import Run
+from .runlog import Run, run_arm
 
 __all__ = ["RunAnalysis", "analyse", "plot_run", "summary_text", "SAFETY_ZONE_PREDEFINED"]
 
@@ -49,6 +49,7 @@ class RunAnalysis:
         ee_error: (m,) |p(FK(q_measured)) - p(planned pose)| [m].
         samples_t, samples_dq: all samples' times [s] and joint velocities [rad/s].
         status: ``"ok"``, ``"fault"`` or ``None`` (incomplete log).
+        arm: The arm whose FK gave the end-effector errors (the one the log records).
     """
 
     steps: np.ndarray
@@ -60,6 +61,7 @@ class RunAnalysis:
     samples_t: np.ndarray
     samples_dq: np.ndarray
     status: str | None
+    arm: Arm
 
     @property
     def max_ee_error(self) -> float:
@@ -90,8 +92,15 @@ class RunAnalysis:
         return self.max_ee_error <= zone
 
 
-def analyse(run: Run, arm: Arm = THESIS_ARM) -> RunAnalysis:
-    """Step-point joint and end-effector errors of a parsed run log."""
+def analyse(run: Run, arm: Arm | None = None) -> RunAnalysis:
+    """Step-point joint and end-effector errors of a parsed run log, with the FK of the arm the log
+    records (:func:`hardware.runlog.run_arm`; ``arm``, if given, must be that arm).
+
+    Raises:
+        RunLogError: no samples, or the log records no arm and none is given.
+        InvalidInputError: (``arm``) ``arm`` is not the arm the log records.
+    """
+    arm = run_arm(run, arm)
     if len(run.samples_t) == 0:
         raise RunLogError("run log has no samples")
     at_send = {int(k): (float(t), qm) for t, k, qm in
@@ -119,7 +128,7 @@ def analyse(run: Run, arm: Arm = THESIS_ARM) -> RunAnalysis:
     ee = np.linalg.norm(p_meas - run.poses[steps, :3, 3], axis=1)
     return RunAnalysis(steps=steps, t=np.asarray(ts), q_planned=qp, q_measured=qm,
                        joint_error=qm - qp, ee_error=ee, samples_t=run.samples_t,
-                       samples_dq=run.samples_dq, status=run.status)
+                       samples_dq=run.samples_dq, status=run.status, arm=arm)
 
 
 def summary_text(a: RunAnalysis, name: str = "run") -> str:

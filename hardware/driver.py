@@ -46,7 +46,7 @@ from collections.abc import Iterable, Sequence
 import can
 import numpy as np
 
-from iik.arm import THESIS_ARM, Arm
+from iik.arm import Arm
 
 from . import protocol as P
 from .errors import (
@@ -509,7 +509,7 @@ class PowerCubeArm:
     Vector methods take and return arrays in joint order (rad, rad/s, A, s).
     """
 
-    def __init__(self, bus: can.BusABC, module_ids: Sequence[int], *, arm: Arm | None = THESIS_ARM,
+    def __init__(self, bus: can.BusABC, module_ids: Sequence[int], *, arm: Arm | None,
                  timeout: float = DEFAULT_TIMEOUT, owns_bus: bool = False):
         ids = [int(i) for i in module_ids]
         if not ids or len(set(ids)) != len(ids):

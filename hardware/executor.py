@@ -35,7 +35,8 @@ from pathlib import Path
 
 import numpy as np
 
-from iik.arm import THESIS_ARM, Arm
+from iik.arm import Arm
+from iik.arms import same_arm, to_record
 from iik.errors import InvalidInputError
 from iik.kinematics import fk
 from iik.planning.timing import EXECUTION_MARGIN, MIN_STEP
@@ -45,7 +46,10 @@ from iik.signals import stop_on_signals
 from . import protocol as P
 from .driver import SPEED_TOLERANCE, PowerCubeArm
 from .errors import BusError, ModuleFault, SafetyError, target_name
-from .runlog import RunLog
+from .runlog import RUN_LOG_VERSION, RunLog
+
+#: Rounding of the modules' soft limits as they come back on the wire (float32) [rad].
+SOFT_LIMIT_TOL = 1e-6
 
 __all__ = ["ValidationOptions", "ValidatedTrajectory", "validate", "check_poses", "ExecutionOptions",
            "RunResult", "execute", "time_steps", "EARLY_UPDATE"]
@@ -106,7 +110,7 @@ class ValidatedTrajectory:
         return f"ValidatedTrajectory(n={len(self)}, duration={self.times[-1]:.3f} s)"
 
 
-def validate(times, q, poses, *, arm: Arm = THESIS_ARM,
+def validate(times, q, poses, *, arm: Arm,
              options: ValidationOptions = ValidationOptions(),
              orientation_free=None) -> ValidatedTrajectory:
     """Check a planned trajectory target by target; see the module docstring.
@@ -146,9 +150,9 @@ def validate(times, q, poses, *, arm: Arm = THESIS_ARM,
     out = np.argwhere((qa < lo) | (qa > hi))
     if len(out):
         k, j = (int(v) for v in out[0])
-        raise SafetyError(target_name(k, j), f"{qa[k, j]:.6f} rad outside Table I [{arm.q_min[j]:.4f}, "
-                          f"{arm.q_max[j]:.4f}] rad less the margin of {options.margin:.4f} rad "
-                          f"({math.degrees(options.margin):g} deg)", step=k, joint=j)
+        raise SafetyError(target_name(k, j), f"{qa[k, j]:.6f} rad outside {arm.limits_name} "
+                          f"[{arm.q_min[j]:.4f}, {arm.q_max[j]:.4f}] rad less the margin of "
+                          f"{options.margin:.4f} rad ({math.degrees(options.margin):g} deg)", step=k, joint=j)
     step_ms = _step_ms(t, options.min_step)
     vel = np.abs(np.diff(qa, axis=0)) / (step_ms[:, None] / 1000.0)
     vmax = np.asarray(arm.velocity) * options.velocity_fraction
@@ -182,7 +186,7 @@ def _step_ms(t: np.ndarray, min_step: float) -> np.ndarray:
     return ms.astype(int)
 
 
-def check_poses(q, poses, *, arm: Arm = THESIS_ARM, options: ValidationOptions = ValidationOptions(),
+def check_poses(q, poses, *, arm: Arm, options: ValidationOptions = ValidationOptions(),
                 orientation_free=None) -> None:
     """FK (Eq 4) of every target ``q`` (n,6) [rad] against its planned pose ``poses`` (n,4,4) [m]:
     the targets come from an FK-verified IK solution. Raises :class:`SafetyError` naming the
@@ -210,7 +214,7 @@ def check_poses(q, poses, *, arm: Arm = THESIS_ARM, options: ValidationOptions =
                           f"{math.degrees(dr[k]):.4f} deg)", step=k)
 
 
-def time_steps(q, *, arm: Arm = THESIS_ARM, speed_fraction: float = 0.5, min_step: float = 0.05,
+def time_steps(q, *, arm: Arm, speed_fraction: float = 0.5, min_step: float = 0.05,
                ) -> np.ndarray:
     """Times [s] for step-points ``q`` (n,6): each step takes as long as its slowest
     joint needs at ``speed_fraction`` of its limit (at least ``min_step``), whole ms."""
@@ -317,8 +321,11 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
     SIGTERM and SIGHUP are handled like Ctrl-C meanwhile (:func:`iik.signals.stop_on_signals`).
 
     Raises:
-        SafetyError: ``trajectory`` is not a :class:`ValidatedTrajectory`, or the arm
-            is not where the trajectory starts and ``options.approach`` is off.
+        SafetyError: ``trajectory`` is not a :class:`ValidatedTrajectory`; a step is faster than a
+            module's own speed limit (FMAXVEL) or a target outside its soft limits (FMINPOS/FMAXPOS:
+            modules set up for another arm than the trajectory's); the host's limit check is
+            another arm's; or the arm is not where the trajectory starts and ``options.approach``
+            is off. Nothing is sent then.
         ModuleFault: a module reports an error or a halt before the start (nothing is sent).
         CANTimeoutError, ModuleFault, BusError, ProtocolError, DuplicateModuleError,
         KeyboardInterrupt, StopSignal: after HALT was broadcast and the fault logged.
@@ -345,16 +352,28 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
         k, j = (int(v) for v in over[0])
         raise SafetyError(target_name(k + 1, j), f"the step to it needs more than module "
                           f"{arm.module_ids[j]}'s speed limit of {limits[j]:.4f} rad/s", step=k + 1, joint=j)
+    soft = np.array([m.soft_limits() for m in arm.modules])  # FMINPOS/FMAXPOS: set for the arm they move
+    outside = np.argwhere((tr.q < soft[:, 0] - SOFT_LIMIT_TOL) | (tr.q > soft[:, 1] + SOFT_LIMIT_TOL))
+    if len(outside):
+        k, j = (int(v) for v in outside[0])
+        lo, hi = soft[j]
+        raise SafetyError(target_name(k, j), f"{tr.q[k, j]:.4f} rad is outside module {arm.module_ids[j]}'s "
+                          f"soft limits [{lo:.4f}, {hi:.4f}] rad (are the modules set up for the arm "
+                          f"{tr.arm.name!r}?)", step=k, joint=j)
+    if arm.arm is not None and not same_arm(arm.arm, tr.arm):
+        raise SafetyError("arm", f"the modules' limits are those of the arm {arm.arm.name!r}; the trajectory "
+                                 f"is for {tr.arm.name!r}")
     err = np.abs(arm.get_pos() - tr.q[0])
     if np.max(err) > options.start_tolerance and not options.approach:
         raise SafetyError("arm", f"is {np.max(err):.4f} rad from the trajectory start")
     with stop_on_signals():
         log = RunLog(log_path)
-        log.write({**(header or {}), "type": "header", "version": 1, "module_ids": list(arm.module_ids),
+        log.write({**(header or {}), "type": "header", "version": RUN_LOG_VERSION,
+                   "module_ids": list(arm.module_ids),
                    "times": tr.times.tolist(), "q": tr.q.tolist(), "poses": tr.poses.tolist(),
                    "step_ms": tr.step_ms.tolist(), "early": options.early, "sync": options.sync,
                    "update": options.update, "watchdog": options.watchdog,
-                   "bus": str(arm.bus.channel_info), "arm": tr.arm.name,
+                   "bus": str(arm.bus.channel_info), "arm": to_record(tr.arm),
                    "started": datetime.now(timezone.utc).isoformat()})
         stream = _Stream(arm, tr, log, options, clock, sleep)
         try:

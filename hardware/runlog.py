@@ -2,8 +2,13 @@
 
 Record types (field ``"type"``):
 
-* ``header``: ``module_ids``, planned ``times`` [s], ``q`` [rad] (n,6), ``poses`` (n,4,4) [m],
-  ``early`` (fraction of a step after which the next is sent), ``started`` (ISO time).
+* ``header``: ``version`` (:data:`RUN_LOG_VERSION`), ``module_ids``, planned ``times`` [s], ``q``
+  [rad] (n,6), ``poses`` (n,4,4) [m], ``early`` (fraction of a step after which the next is sent),
+  ``started`` (ISO time), ``arm``: the arm the trajectory was validated for and run on, as
+  :func:`iik.arms.to_record` writes it (its name, its shipped name or URDF file and the file's
+  SHA-256, and every number of its chain and limits). Version 1 logs recorded only the arm's
+  display name. :func:`read_run_log` reads the arm back (:attr:`Run.arm`, :func:`iik.arms.from_record`),
+  and the analysis and the viewer use it.
 * ``command``: ``t`` [s since start], ``k`` (target index), ``q`` [rad], ``time_s``,
   ``q_meas`` (actual positions from the extended FSTEP ACKs [rad]) and ``short`` (short states).
 * ``sample``: ``t``, ``k`` (last commanded target), measured ``q`` [rad] read at times
@@ -30,12 +35,20 @@ from pathlib import Path
 
 import numpy as np
 
-from iik.errors import FileError
+from iik.arm import Arm
+from iik.arms import from_record, same_arm
+from iik.errors import FileError, InvalidInputError
 from iik.files import AtomicOutput, read_text
 
 from .errors import RunLogError
 
-__all__ = ["RunLog", "Run", "read_run_log", "MAX_RUN_LOG_BYTES"]
+__all__ = ["RunLog", "Run", "read_run_log", "run_arm", "MAX_RUN_LOG_BYTES", "RUN_LOG_VERSION",
+           "READ_VERSIONS"]
+
+#: The run-log format written (header ``version``): 2 records the arm (:func:`iik.arms.to_record`).
+RUN_LOG_VERSION = 2
+#: The formats :func:`read_run_log` reads: 1 recorded only the arm's display name.
+READ_VERSIONS = (1, 2)
 
 #: Largest run log :func:`read_run_log` reads [bytes] (a simulated run logs about 45 kB/s: over an hour).
 MAX_RUN_LOG_BYTES = 200_000_000
@@ -84,9 +97,11 @@ class RunLog:
 
 @dataclass(frozen=True)
 class Run:
-    """A parsed run log. Arrays are SI; ``samples_*`` are in time order."""
+    """A parsed run log. Arrays are SI; ``samples_*`` are in time order. ``arm``: the arm the log
+    records (None if its header names none)."""
 
     header: dict
+    arm: Arm | None
     times: np.ndarray  # (n,) planned times [s]
     q_planned: np.ndarray  # (n,6)
     poses: np.ndarray  # (n,4,4)
@@ -142,7 +157,7 @@ def read_run_log(path: str | os.PathLike) -> Run:
             return np.asarray([r[key] for r in smp], dtype=dtype).reshape(-1, n_mod)
 
         run = Run(
-            header=h, times=times, q_planned=q, poses=poses,
+            header=h, arm=_arm(h, p), times=times, q_planned=q, poses=poses,
             command_t=np.asarray([r["t"] for r in cmds], dtype=float),
             command_k=np.asarray([r["k"] for r in cmds], dtype=int),
             command_q_meas=np.asarray([r.get("q_meas") or [np.nan] * n_mod for r in cmds],
@@ -163,3 +178,32 @@ def read_run_log(path: str | os.PathLike) -> Run:
     if len(times) != len(q) or len(q) != len(poses):
         raise RunLogError(f"{p}: header times/q/poses lengths differ")
     return run
+
+
+def _arm(header: dict, path: Path) -> Arm | None:
+    """The arm a header records (None without an ``arm`` entry)."""
+    if header.get("arm") is None:
+        return None
+    try:
+        return from_record(header["arm"], "arm")
+    except InvalidInputError as exc:
+        raise RunLogError(f"{path}: the header's arm: {exc.reason}") from None
+
+
+def run_arm(run: Run, arm: Arm | None = None) -> Arm:
+    """The arm of a run: the one its log records; ``arm``, if given, must be the same arm
+    (:func:`iik.arms.same_arm`); a log that records none needs ``arm``.
+
+    Raises:
+        InvalidInputError: (``arm``) ``arm`` is not the arm the log records.
+        RunLogError: the log records no arm and none is given.
+    """
+    if arm is not None and not isinstance(arm, Arm):
+        raise InvalidInputError("arm", f"expected an iik.Arm, got {type(arm).__name__}")
+    if run.arm is None:
+        if arm is None:
+            raise RunLogError("the run log records no arm: give the arm it was run on (--arm)")
+        return arm
+    if arm is not None and not same_arm(arm, run.arm):
+        raise InvalidInputError("arm", f"{arm.name!r} is not the arm the run log records ({run.arm.name!r})")
+    return run.arm

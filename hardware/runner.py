@@ -5,8 +5,11 @@
 :class:`RunReport`. The trajectory comes from one source (:mod:`hardware.sources`):
 a scenario planned by the project's planner (Sec 3.6) and timed as ``iik plan`` times
 it, a CSV file (``iik plan``'s files qualify as written), or the demo line; ``speed``
-slows any of them. Every target is validated (:func:`hardware.validate`: Table I with a
-margin, Sec 3.2 speeds, FK vs the planned pose) before the arm is opened. Without an
+slows any of them. The arm is the scenario's own, or the one given (``RunRequest.arm``,
+required for a CSV file or the demo); the simulated modules, the host's limit checks,
+the validation, the run log's header and the analysis all use it. Every target is
+validated (:func:`hardware.validate`: Table I with a margin, Sec 3.2 speeds, FK vs the
+planned pose) before the arm is opened. Without an
 ``interface`` the arm is simulated in-process (:func:`hardware.sim.simulated_arm`);
 otherwise the modules are reached through python-can (``udp_multicast`` to a separate
 ``iik sim-arm``, ``socketcan`` for real modules), with the modules' watchdog on unless
@@ -29,6 +32,7 @@ from dataclasses import dataclass, field
 from datetime import datetime
 from pathlib import Path
 
+from iik.arm import Arm
 from iik.errors import InvalidInputError
 from iik.planning.timing import EXECUTION_MARGIN
 from iik.signals import stop_on_signals
@@ -80,6 +84,8 @@ class RunRequest:
         scenario: A scenario TOML file, or the name of a shipped scenario (e.g. ``"j"``).
         trajectory: A CSV file with columns ``t,q1..q6`` [s, rad].
         demo: The built-in straight-line demo (:func:`hardware.sources.demo_trajectory`).
+        arm: The arm run (:class:`iik.Arm`). With a scenario None means the scenario's own arm (a
+            given one must be the same arm); a trajectory file or the demo needs one.
         interface, channel, bitrate, port: The python-can bus; ``interface=None`` simulates
             the arm in-process. ``bitrate`` [bit/s] is a PowerCube rate (125k, 250k, 500k, 1M).
         modules: The six module ids in joint order.
@@ -105,6 +111,7 @@ class RunRequest:
     scenario: str | Path | None = None
     trajectory: Path | None = None
     demo: bool = False
+    arm: Arm | None = None
     interface: str | None = None
     channel: str | None = None
     bitrate: int | None = None
@@ -155,6 +162,11 @@ class RunRequest:
             if value not in allowed:
                 raise InvalidInputError(name, f"must be one of {', '.join(allowed)}, got {value!r}")
         object.__setattr__(self, "out", Path(self.out))
+        if self.arm is not None and not isinstance(self.arm, Arm):
+            raise InvalidInputError("arm", f"expected an iik.Arm, got {type(self.arm).__name__}")
+        if self.arm is None and self.scenario is None:
+            raise InvalidInputError("arm", "a trajectory file or the demo does not say which arm it is for: "
+                                           "give the arm (RunRequest.arm, iik run --arm)")
 
     @property
     def simulated(self) -> bool:
@@ -231,33 +243,33 @@ class RunReport:
 
 def _targets(request: RunRequest) -> StepTargets:
     if request.demo:
-        targets = demo_trajectory(DEMO_SPEED)
+        targets = demo_trajectory(request.arm, DEMO_SPEED)
     elif request.trajectory is not None:
-        targets = csv_trajectory(request.trajectory)
+        targets = csv_trajectory(request.trajectory, request.arm)
     else:
-        targets = scenario_trajectory(request.scenario)
+        targets = scenario_trajectory(request.scenario, arm=request.arm)
     return targets.slowed(request.speed)
 
 
-def _scenario_header(request: RunRequest) -> dict:
+def _scenario_header(request: RunRequest, arm: Arm) -> dict:
     """The scenario and its boxes [m, base frame] for the run log's header (``iik view --run`` draws them)."""
     if request.scenario is None:
         return {}
     from iik.planning import load_scenario, scenario_path
 
-    sc = load_scenario(scenario_path(request.scenario))
+    sc = load_scenario(scenario_path(request.scenario), arm=arm)
     return {"scenario": sc.name, "obstacles": [{"name": b.name, "kind": b.kind, "center": list(b.center),
                                                 "size": list(b.size)} for b in sc.obstacles]}
 
 
-def _zone(request: RunRequest) -> float:
+def _zone(request: RunRequest, arm: Arm) -> float:
     """The safety zone of the run [m] (:attr:`RunRequest.zone`)."""
     if request.zone is not None:
         return request.zone
     if request.scenario is not None:
         from iik.planning import load_scenario, scenario_path
 
-        return float(load_scenario(scenario_path(request.scenario)).safety_zone)
+        return float(load_scenario(scenario_path(request.scenario), arm=arm).safety_zone)
     return SAFETY_ZONE_PREDEFINED
 
 
@@ -286,18 +298,19 @@ def _log_path(request: RunRequest, name: str) -> Path:
 
 
 @contextlib.contextmanager
-def _open_arm(request: RunRequest, initial) -> Iterator[tuple[SimulatedArm | None, PowerCubeArm]]:
-    """``(sim, arm)``: an in-process simulated arm, or ``(None, arm)`` on the request's bus."""
+def _open_arm(request: RunRequest, initial, arm: Arm) -> Iterator[tuple[SimulatedArm | None, PowerCubeArm]]:
+    """``(sim, host)``: an in-process simulated ``arm``, or ``(None, host)`` on the request's bus; the
+    host checks targets against ``arm``'s limits."""
     if request.simulated:
-        with simulated_arm(request.modules, lag=request.lag, initial=initial,
-                           timeout=request.timeout or SIM_TIMEOUT) as (sim, arm):
-            yield sim, arm
+        with simulated_arm(request.modules, arm=arm, lag=request.lag, initial=initial,
+                           timeout=request.timeout or SIM_TIMEOUT) as (sim, host):
+            yield sim, host
         return
     kw = {"port": request.port} if request.port is not None else {}
     with PowerCubeArm.from_interface(request.modules, interface=request.interface, channel=request.channel,
-                                     bitrate=request.bitrate, timeout=request.timeout or BUS_TIMEOUT,
-                                     **kw) as arm:
-        yield None, arm
+                                     bitrate=request.bitrate, timeout=request.timeout or BUS_TIMEOUT, arm=arm,
+                                     **kw) as host:
+        yield None, host
 
 
 def _prepare(arm: PowerCubeArm, request: RunRequest) -> None:
@@ -378,9 +391,10 @@ def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
         if targets.note:
             say(targets.note)
         traj = targets.validate(ValidationOptions(margin=request.margin))
-        say(f"{targets.name}: {len(traj)} step-points, {traj.times[-1]:.3f} s, validated "
-            f"(Table I - {math.degrees(request.margin):g} deg, speed limits, FK vs planned poses)")
-        zone = _zone(request)
+        say(f"{targets.name}: {len(traj)} step-points, {traj.times[-1]:.3f} s, validated for the arm "
+            f"{targets.arm.name!r} (joint limits - {math.degrees(request.margin):g} deg, speed limits, FK vs "
+            "planned poses)")
+        zone = _zone(request, targets.arm)
         log_path = _log_path(request, targets.name)
         if request.watchdog_on:
             say(f"watchdog on: WATCHDOG broadcast every {WATCHDOG_PERIOD * 1e3:.0f} ms; the modules stop "
@@ -388,11 +402,11 @@ def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
         options = ExecutionOptions(early=request.early, update=request.update, watchdog=request.watchdog_on)
         initial = traj.q[0] if request.sim_start == "plan" else None
         try:
-            with _open_arm(request, initial) as (sim, arm):
+            with _open_arm(request, initial, targets.arm) as (sim, arm):
                 _prepare(arm, request)
                 rests = _Rests(sim, progress)
                 result = execute(arm, traj, log_path, options=options, progress=rests.progress,
-                                 header=_scenario_header(request))
+                                 header=_scenario_header(request, targets.arm))
         except BaseException as exc:
             if (note := _halted_note(request, log_path)) is not None:
                 exc.add_note(note)
@@ -400,7 +414,7 @@ def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
             elif request.out.suffix != ".jsonl":
                 log_path.unlink(missing_ok=True)  # reserved, never written: the run did not start
             raise
-    analysis = analyse(read_run_log(result.log_path))
+    analysis = analyse(read_run_log(result.log_path), targets.arm)  # the log's arm, checked against it
     figures = tuple(plot_run(analysis, log_path.parent, log_path.stem)) if request.figures else ()
     return RunReport(request, targets, result, analysis, zone, rests.between_steps(), figures)
 

@@ -52,7 +52,7 @@ import can
 import numpy as np
 from ruckig import ControlInterface, InputParameter, Result, Ruckig, Trajectory
 
-from iik.arm import THESIS_ARM, Arm
+from iik.arm import Arm
 from iik.errors import InvalidInputError
 
 from . import protocol as P
@@ -470,7 +470,7 @@ def _checked_modules(module_ids, initial, arm: Arm, lag) -> tuple[list[int], np.
         lo, hi = arm.lower[k], arm.upper[k]
         if not lo <= p <= hi:
             raise SafetyError("initial", f"joint q{j + 1} at {p:g} rad is outside its soft limits "
-                              f"[{lo:.4f}, {hi:.4f}] rad (Table I)")
+                              f"[{lo:.4f}, {hi:.4f}] rad ({arm.limits_name})")
     if isinstance(lag, bool) or not isinstance(lag, (int, float)) or not (math.isfinite(lag)
                                                                            and 0 <= lag <= 1):
         raise InvalidInputError("lag", f"must be a finite number in [0, 1] s, got {lag!r}")
@@ -493,7 +493,7 @@ class SimulatedArm:
     """
 
     def __init__(self, bus: can.BusABC, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), *,
-                 arm: Arm = THESIS_ARM, lag: float = 0.02, initial=None, homed: bool = True,
+                 arm: Arm, lag: float = 0.02, initial=None, homed: bool = True,
                  tick: float = 0.002, watchdog_timeout: float = 1.0,
                  clock: Callable[[], float] = time.monotonic, owns_bus: bool = False,
                  start: bool = True):
@@ -678,10 +678,11 @@ class SimulatedArm:
 
 
 @contextlib.contextmanager
-def simulated_arm(module_ids=(1, 2, 3, 4, 5, 6), *, lag: float = 0.02, initial=None,
+def simulated_arm(module_ids=(1, 2, 3, 4, 5, 6), *, arm: Arm, lag: float = 0.02, initial=None,
                   timeout: float = 2.0, clock=time.monotonic):
-    """Yield ``(sim, arm)``: an in-process :class:`hardware.sim.SimulatedArm` on a private
-    ``virtual`` channel and a :class:`hardware.PowerCubeArm` talking to it.
+    """Yield ``(sim, arm)``: an in-process :class:`hardware.sim.SimulatedArm` of ``arm`` (its limits,
+    speeds and accelerations) on a private ``virtual`` channel and a :class:`hardware.PowerCubeArm`
+    talking to it (its local target check with the same limits).
 
     Host and simulated modules are threads of this process, so the interpreter's
     switch interval is shortened meanwhile (request round trips stay short) and
@@ -693,15 +694,16 @@ def simulated_arm(module_ids=(1, 2, 3, 4, 5, 6), *, lag: float = 0.02, initial=N
     switch = sys.getswitchinterval()
     sys.setswitchinterval(0.0005)
     try:
-        with SimulatedArm.virtual(channel, module_ids, lag=lag, initial=initial, clock=clock) as sim, \
-                PowerCubeArm.from_interface(module_ids, interface="virtual", channel=channel,
-                                            timeout=timeout) as arm:
-            yield sim, arm
+        with SimulatedArm.virtual(channel, module_ids, arm=arm, lag=lag, initial=initial,
+                                  clock=clock) as sim, \
+                PowerCubeArm.from_interface(module_ids, interface="virtual", channel=channel, arm=arm,
+                                            timeout=timeout) as host:
+            yield sim, host
     finally:
         sys.setswitchinterval(switch)
 
 
-def serve(interface: str, channel, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), *,
+def serve(interface: str, channel, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), *, arm: Arm,
           bitrate: int | None = None, port: int | None = None, lag: float = 0.02, initial=None,
           homed: bool = True, duration: float | None = None, stop: threading.Event | None = None,
           ready: Callable[[SimulatedArm], None] | None = None) -> None:
@@ -712,7 +714,8 @@ def serve(interface: str, channel, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6
     Args:
         interface, channel, bitrate, port: The bus (e.g. ``udp_multicast`` on 239.74.163.2,
             so a host in another process can reach the modules).
-        module_ids, lag, initial, homed: As for :class:`SimulatedArm`.
+        module_ids, arm, lag, initial, homed: As for :class:`SimulatedArm` (``arm``: the simulated
+            arm's limits, speeds and accelerations, e.g. ``iik.arms.get("crx10ia")``).
         ready: Called with the running arm once it serves.
 
     Raises:
@@ -720,7 +723,7 @@ def serve(interface: str, channel, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6
         (outside Table I). InvalidInputError: a lag outside [0, 1] s, a duration that is not
         a positive finite number of seconds, a bit rate or port that is not one.
     """
-    _checked_modules(module_ids, initial, THESIS_ARM, lag)  # before any bus is opened
+    _checked_modules(module_ids, initial, arm, lag)  # before any bus is opened
     if duration is not None and (isinstance(duration, bool) or not isinstance(duration, (int, float))
                                  or not (math.isfinite(duration) and duration > 0)):
         raise InvalidInputError("duration", f"must be a positive finite number of seconds, got {duration!r}")
@@ -730,7 +733,7 @@ def serve(interface: str, channel, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6
     if port is not None and (isinstance(port, bool) or not isinstance(port, int) or not 1 <= port <= 65535):
         raise InvalidInputError("port", f"must be a UDP port in 1..65535, got {port!r}")
     bus = open_bus(interface, channel, bitrate=bitrate, port=port)
-    with SimulatedArm(bus, module_ids, lag=lag, initial=initial, homed=homed, owns_bus=True) as sim:
+    with SimulatedArm(bus, module_ids, arm=arm, lag=lag, initial=initial, homed=homed, owns_bus=True) as sim:
         if ready is not None:
             ready(sim)
         (stop if stop is not None else threading.Event()).wait(duration)

@@ -1,9 +1,11 @@
 """Trajectories to execute: a planned scenario, a CSV file, or the built-in demo.
 
 Each source returns :class:`StepTargets`: the step times [s], joint targets (n, 6)
-[rad] and the planned tool poses (n, 4, 4) [m] that :func:`hardware.validate`
-checks the targets against. Nothing here prints; what a source has to say (which
-planner method succeeded, the clearance) is in :attr:`StepTargets.note`.
+[rad], the planned tool poses (n, 4, 4) [m] that :func:`hardware.validate`
+checks the targets against, and the arm they are for (a scenario's own arm, or the
+arm given for a CSV file or the demo): its limits and FK are the ones validated against.
+Nothing here prints; what a source has to say (which planner method succeeded, the
+clearance) is in :attr:`StepTargets.note`.
 
 A scenario runs exactly the trajectory ``iik plan`` writes: the planner's step-points
 at the times its TOPP-RA timing passes them, on the FSTEP millisecond clock
@@ -25,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from iik.arm import Arm
 from iik.errors import InvalidInputError
 from iik.files import read_text
 from iik.ik import select, solve
@@ -58,7 +61,8 @@ class StepTargets:
         name: Name of the run (scenario name, CSV file stem, ``"demo"``).
         times: (n,) step times [s].
         q: (n, 6) joint targets [rad].
-        poses: (n, 4, 4) planned poses of frame 6 in the base frame [m].
+        poses: (n, 4, 4) planned tool poses in the arm's base frame [m].
+        arm: The arm the step-points are for (validation: its limits, speeds and FK).
         orientation_free: (n,) bool: steps at which only the position is compared
             (the planner changed alpha/beta/gamma there on purpose, Sec 3.6), or None.
         note: What the source reports about itself (e.g. the planner's method), or "".
@@ -70,6 +74,7 @@ class StepTargets:
     times: np.ndarray
     q: np.ndarray
     poses: np.ndarray
+    arm: Arm
     orientation_free: np.ndarray | None = None
     note: str = ""
     origin: str = ""
@@ -87,7 +92,7 @@ class StepTargets:
         options = ValidationOptions() if options is None else options
         free = None if self.orientation_free is None else self.orientation_free[:n]
         try:
-            return validate(self.times[:n], self.q[:n], self.poses[:n], options=options,
+            return validate(self.times[:n], self.q[:n], self.poses[:n], arm=self.arm, options=options,
                             orientation_free=free)
         except SafetyError as exc:
             if exc.step is None or self.lines is None:
@@ -106,15 +111,22 @@ class StepTargets:
         return replace(self, times=self.times[0] + np.concatenate([[0.0], np.cumsum(dt)]))
 
 
-def demo_trajectory(speed: float = DEMO_SPEED) -> StepTargets:
-    """A straight line between two poses with step-points at most :data:`DEMO_STEP` apart
-    (Sec 4.2.1), the least-effort IK solution (Eq 54) at each, timed at ``speed`` of the
-    joint speed limits."""
+def demo_trajectory(arm: Arm, speed: float = DEMO_SPEED) -> StepTargets:
+    """A straight line of ``arm``'s tool between the poses of two configurations (inside the limits of
+    every shipped arm) with step-points at most :data:`DEMO_STEP` apart (Sec 4.2.1), the least-effort
+    IK solution (Eq 54) at each, timed at ``speed`` of the joint speed limits.
+
+    Raises:
+        InvalidInputError: (``arm``) the two configurations are outside the arm's limits.
+        UnreachablePoseError: a step-point of the line has no solution inside the limits.
+    """
     from scipy.spatial.transform import Rotation, Slerp
 
     qa = np.array([0.5, 0.1, 0.0, 0.4, 1.0, 0.0])  # away from the wrist singularity (q5 = 0)
     qb = np.array([0.0, 0.4, 0.0, 0.4, 1.0, 0.0])
-    Ta, Tb = fk(qa), fk(qb)
+    if not (arm.within_limits(qa, -0.05) and arm.within_limits(qb, -0.05)):
+        raise InvalidInputError("arm", f"the demo's configurations are outside the limits of {arm.name!r}")
+    Ta, Tb = fk(qa, arm), fk(qb, arm)
     dist = float(np.linalg.norm(Tb[:3, 3] - Ta[:3, 3]))
     n = max(2, math.ceil(dist / DEMO_STEP)) + 1
     s = np.linspace(0.0, 1.0, n)
@@ -125,14 +137,15 @@ def demo_trajectory(speed: float = DEMO_SPEED) -> StepTargets:
     q = np.empty((n, 6))
     prev = qa
     for k, T in enumerate(poses):
-        q[k] = prev = select(solve(T), prev)  # Eq 54: least effort from the previous
-    return StepTargets("demo", time_steps(q, speed_fraction=speed), q, poses)
+        q[k] = prev = select(solve(T, arm), prev, arm=arm)  # Eq 54: least effort from the previous
+    return StepTargets("demo", time_steps(q, arm=arm, speed_fraction=speed), q, poses, arm)
 
 
-def csv_trajectory(path: str | os.PathLike) -> StepTargets:
+def csv_trajectory(path: str | os.PathLike, arm: Arm) -> StepTargets:
     """Step-points from a CSV file whose header line names the columns ``t,q1..q6`` [s, rad]
-    (in any order; other columns are ignored). The planned poses are FK (Eq 4) of the
-    file's joints, so validation cannot catch a wrong IK.
+    (in any order; other columns are ignored), for ``arm`` (a joint file does not say which arm
+    it is for). The planned poses are FK of the file's joints (Eq 4 for the thesis arm), so
+    validation cannot catch a wrong IK.
 
     Raises:
         FileError: (argument ``trajectory``) the file is missing, not a regular file, not UTF-8 or
@@ -156,7 +169,7 @@ def csv_trajectory(path: str | os.PathLike) -> StepTargets:
         raise bad(f"needs at least 2 data lines (step-points) below the header, has {len(lines)}")
     data = np.array(values, dtype=float).reshape(len(lines), len(CSV_COLUMNS))
     q = data[:, 1:]
-    return StepTargets(path.stem, data[:, 0], q, fk(q), origin=str(path), lines=np.asarray(lines))
+    return StepTargets(path.stem, data[:, 0], q, fk(q, arm), arm, origin=str(path), lines=np.asarray(lines))
 
 
 def _csv_rows(reader, bad) -> tuple[array, array]:
@@ -218,17 +231,17 @@ def _cell(text: str, line: int, col: int, name: str, bad) -> float:
     return value
 
 
-def _plan(path: Path):
+def _plan(path: Path, arm: Arm | None):
     """The planner's result for a scenario file, timed as ``iik plan`` times it."""
     from iik.planning import PlanningFailed, plan
 
-    res = plan(path)
+    res = plan(path, arm=arm)
     if not res.success:
         raise PlanningFailed(res)
     return res
 
 
-def scenario_trajectory(name: str | Path, speed: float = 1.0) -> StepTargets:
+def scenario_trajectory(name: str | Path, speed: float = 1.0, *, arm: Arm | None = None) -> StepTargets:
     """Step-points of a scenario (file or shipped name, :func:`iik.planning.scenario_path`) planned by
     the project's planner (thesis planner of Sec 3.6 with its fallbacks and the whole-arm
     Coal check) at the times ``iik plan`` writes for them (TOPP-RA on the FSTEP clock,
@@ -237,10 +250,13 @@ def scenario_trajectory(name: str | Path, speed: float = 1.0) -> StepTargets:
     The planned poses are those of the thesis Cartesian path; where the planner
     changed alpha/beta (Sec 3.6) only the position is checked. For an RRT-Connect
     fallback path there is no Cartesian plan and the poses are FK of the joints.
+
+    The arm is the scenario's own; ``arm``, if given, must be the same arm (:func:`iik.planning.plan`).
+    The step targets carry the arm the plan was made for.
     """
     from iik.planning import poses_of, scenario_path
 
-    res = _plan(scenario_path(name))
+    res = _plan(scenario_path(name), arm)
     q = np.asarray(res.q, dtype=float)
     cart = res.cartesian
     free = np.zeros(len(q), dtype=bool)
@@ -252,9 +268,10 @@ def scenario_trajectory(name: str | Path, speed: float = 1.0) -> StepTargets:
     else:
         notes.append(f"{res.scenario.name}: planned by {res.method}; no Cartesian plan, poses are FK of "
                      "the joints")
-        poses = fk(q)
+        poses = fk(q, res.arm)
     times = np.asarray(res.trajectory.step_t, dtype=float)
-    notes.append(f"{res.scenario.name}: planned via {res.method} ({len(q)} step-points, {times[-1]:.3f} s "
+    notes.append(f"{res.scenario.name}: planned for the arm {res.arm.name!r} via {res.method} ({len(q)} "
+                 f"step-points, {times[-1]:.3f} s "
                  f"as iik plan times them, whole-arm clearance certified >= "
                  f"{res.min_clearance * 1e3:.1f} mm)")
-    return StepTargets(res.scenario.name, times, q, poses, free, "\n".join(notes)).slowed(speed)
+    return StepTargets(res.scenario.name, times, q, poses, res.arm, free, "\n".join(notes)).slowed(speed)

@@ -1,7 +1,9 @@
 """Show a run log in the 3D viewer: the commanded and the measured arm side by side.
 
-Reads a JSON-lines run log (:func:`hardware.runlog.read_run_log`, format version 1)
-and turns it into a neutral :class:`iik.planning.viewer.motion.Motion` at the sample times:
+Reads a JSON-lines run log (:func:`hardware.runlog.read_run_log`, format versions
+:data:`hardware.runlog.READ_VERSIONS`) and turns it into a neutral
+:class:`iik.planning.viewer.motion.Motion` of the arm the log records
+(:func:`hardware.runlog.run_arm`: its FK and its body) at the sample times:
 
 * **commanded**: the target of the step the modules were executing at each sample
   (:func:`commanded_steps`; header ``q`` at that step) [rad]. With the thesis's early
@@ -12,7 +14,7 @@ and turns it into a neutral :class:`iik.planning.viewer.motion.Motion` at the sa
 
 The measured arm stands :data:`SIDE_BY_SIDE` m along +y from the commanded one,
 each on its own platform. Every frame notes the largest joint difference [deg]
-and the tool-position difference [mm] (Eq 4 FK of both) between the measured arm
+and the tool-position difference [mm] (FK of the log's arm for both) between the measured arm
 and the commanded target (during a step the arm is still on its way to it).
 """
 
@@ -22,22 +24,30 @@ import os
 
 import numpy as np
 
-from iik import THESIS_ARM, fk
+from iik import Arm, fk
 from iik.planning import Obstacle
 from iik.planning.viewer import Shown, ViewOptions, show, style
 from iik.planning.viewer.motion import Motion, MotionView, Track
 
 from .errors import RunLogError
-from .runlog import Run, read_run_log
+from .runlog import READ_VERSIONS, RUN_LOG_VERSION, Run, read_run_log, run_arm
 
 __all__ = ["SIDE_BY_SIDE", "LOG_VERSION", "commanded_steps", "run_motion", "run_obstacles", "run_warnings",
-           "view_run"]
+           "view_run", "side_by_side"]
 
-#: Offset of the measured arm along +y [m] (the arm reaches about 0.9 m).
+#: Least offset of the measured arm along +y [m] (the thesis arm reaches about 0.9 m); a longer arm
+#: stands farther away (:func:`side_by_side`).
 SIDE_BY_SIDE = 1.2
 
-#: The run-log format version this view reads (header ``version``).
-LOG_VERSION = 1
+#: The run-log format version this view was written for (header ``version``; it reads every one of
+#: :data:`hardware.runlog.READ_VERSIONS`).
+LOG_VERSION = RUN_LOG_VERSION
+
+
+def side_by_side(arm: Arm) -> float:
+    """Offset [m] along +y of the measured arm: :data:`SIDE_BY_SIDE`, or the arm's reach bound
+    (:attr:`iik.Arm.reach`) for an arm that reaches farther."""
+    return max(SIDE_BY_SIDE, round(arm.reach, 1))
 
 
 def commanded_steps(run: Run) -> np.ndarray:
@@ -64,7 +74,7 @@ def _fault(run: Run) -> str:
     return f"; fault: {f.get('error', 'error')}: {f.get('message', '')} ({halt})"
 
 
-def _headline(run: Run, name: str, k: np.ndarray, dq: np.ndarray, dp: np.ndarray) -> str:
+def _headline(run: Run, name: str, k: np.ndarray, dq: np.ndarray, dp: np.ndarray, arm: Arm) -> str:
     """Counts, duration, update mode, status, fault; the largest differences during the planned steps."""
     t, steps = run.samples_t, k >= 1  # step 0: the start (an approach reaches it when the arm was elsewhere)
     largest = (f"Largest difference to the target during the planned steps {dq[steps].max():.2f} deg, "
@@ -72,13 +82,16 @@ def _headline(run: Run, name: str, k: np.ndarray, dq: np.ndarray, dp: np.ndarray
     approached = 0 in run.command_k and steps.any()
     approach = f", approach to the start {t[steps][0] - t[0]:.2f} s" if approached else ""
     status = run.status or "incomplete (no end record)"
-    return (f"Run log {name}: {len(run.command_t)} commands, {len(t)} samples, {t[-1] - t[0]:.2f} s"
-            f"{approach}, {run.header.get('update', 'thesis')} update, status {status}{_fault(run)}. "
-            f"Commanded target at the base; measured beside it (+{SIDE_BY_SIDE} m along y). {largest}.")
+    return (f"Run log {name}: arm {arm.name!r}, {len(run.command_t)} commands, {len(t)} samples, "
+            f"{t[-1] - t[0]:.2f} s{approach}, {run.header.get('update', 'thesis')} update, status "
+            f"{status}{_fault(run)}. Commanded target at the base; measured beside it "
+            f"(+{side_by_side(arm):g} m along y). {largest}.")
 
 
-def run_motion(run: Run, *, name: str = "run") -> Motion:
-    """The commanded and measured arms of a parsed run log, at its sample times."""
+def run_motion(run: Run, *, name: str = "run", arm: Arm | None = None) -> Motion:
+    """The commanded and measured arms of a parsed run log, at its sample times, drawn as the arm the
+    log records (``arm``, if given, must be that arm: :func:`hardware.runlog.run_arm`)."""
+    arm = run_arm(run, arm)
     if len(run.samples_t) == 0:
         raise RunLogError(f"{name}: the run log has no samples to show")
     if len(run.q_planned) == 0:
@@ -90,15 +103,15 @@ def run_motion(run: Run, *, name: str = "run") -> Motion:
     if not np.all(np.isfinite(meas)):
         raise RunLogError(f"{name}: measured positions contain non-finite values")
     dq = np.degrees(np.abs(meas - cmd).max(axis=1))
-    dp = np.linalg.norm(fk(meas)[:, :3, 3] - fk(cmd)[:, :3, 3], axis=1) * 1000
+    dp = np.linalg.norm(fk(meas, arm)[:, :3, 3] - fk(cmd, arm)[:, :3, 3], axis=1) * 1000
     notes = tuple(f"step {s}: measured - commanded target: joints {a:.2f} deg, tool {b:.1f} mm"
                   for s, a, b in zip(k, dq, dp, strict=True))
     return Motion(title=f"iik view: run {name}", t=run.samples_t - run.samples_t[0],
-                  headline=_headline(run, name, k, dq, dp), notes=notes, warnings=run_warnings(run),
+                  headline=_headline(run, name, k, dq, dp, arm), notes=notes, warnings=run_warnings(run),
                   obstacles=run_obstacles(run, name),
                   tracks=(Track("commanded target", cmd, style.ARM),
-                          Track(f"measured arm (PCube_getPos), +{SIDE_BY_SIDE} m along y", meas,
-                                style.MEASURED, (0.0, SIDE_BY_SIDE, 0.0))))
+                          Track(f"measured arm (PCube_getPos), +{side_by_side(arm):g} m along y", meas,
+                                style.MEASURED, (0.0, side_by_side(arm), 0.0))), arm=arm)
 
 
 def run_obstacles(run: Run, name: str = "run") -> tuple[Obstacle, ...]:
@@ -114,22 +127,27 @@ def run_obstacles(run: Run, name: str = "run") -> tuple[Obstacle, ...]:
 
 
 def run_warnings(run: Run) -> tuple[str, ...]:
-    """What the view cannot show faithfully: a newer log format, an arm other than the thesis arm."""
+    """What the view cannot show faithfully: a log format it does not know, an arm rebuilt from the
+    log's numbers (its URDF file is gone or changed: its body is generated, not the file's)."""
     out = []
     version = run.header.get("version", LOG_VERSION)
-    if version != LOG_VERSION:
-        out.append(f"run-log format version {version}; this viewer reads version {LOG_VERSION}")
-    arm = run.header.get("arm")
-    if arm is not None and arm != THESIS_ARM.name:
-        out.append(f"the run used the arm {arm!r}; it is drawn with the thesis arm's geometry and FK")
+    if version not in READ_VERSIONS:
+        out.append(f"run-log format version {version}; this viewer reads versions "
+                   f"{', '.join(map(str, READ_VERSIONS))}")
+    rec = run.header.get("arm")
+    if isinstance(rec, dict) and rec.get("urdf") and run.arm is not None and not run.arm.urdf:
+        out.append(f"the run's arm {run.arm.name!r} was read from {rec['urdf']}, which is missing or "
+                   "changed: it is drawn with shapes generated along its links")
     return tuple(out)
 
 
-def view_run(path: str | os.PathLike, options: ViewOptions | None = None) -> Shown:
+def view_run(path: str | os.PathLike, options: ViewOptions | None = None, *, arm: Arm | None = None) -> Shown:
     """Serve or export (``options.export``) the run log at ``path``; see :func:`iik.planning.viewer.present`.
+    The arm is the one the log records; ``arm``, if given, must be that arm.
 
     Raises:
-        RunLogError: The log is missing, malformed or has no samples.
+        RunLogError: The log is missing, malformed or has no samples, or records no arm and none is given.
+        InvalidInputError: (``arm``) ``arm`` is not the arm the log records.
     """
-    motion = run_motion(read_run_log(path), name=os.fspath(path))
-    return show(MotionView(motion, arm=THESIS_ARM), options or ViewOptions(), headline=motion.headline)
+    motion = run_motion(read_run_log(path), name=os.fspath(path), arm=arm)
+    return show(MotionView(motion), options or ViewOptions(), headline=motion.headline)

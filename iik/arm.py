@@ -109,6 +109,22 @@ def _transform(T, name: str) -> tuple:
     return tuple(tuple(float(x) for x in row) for row in A)
 
 
+def _urdf_file(path, base_link: str, tip_link: str) -> str:
+    """The absolute path of the URDF file ``path`` if the arm's base link is the file's root link
+    (so the file's shapes sit in the arm's base frame); "" for URDF text or a chain from another link."""
+    import os
+
+    from .urdf_read import read_urdf_chain
+
+    if isinstance(path, str) and path.lstrip().startswith("<"):
+        return ""
+    try:
+        root = read_urdf_chain(path, None, tip_link).base_link
+    except InvalidInputError:
+        return ""
+    return os.path.abspath(os.fspath(path)) if root == base_link else ""
+
+
 def _cos_sin(x: float) -> tuple[float, float]:
     k = round(x / (math.pi / 2))
     if abs(x - k * (math.pi / 2)) <= ANGLE_TOL:
@@ -142,6 +158,10 @@ class Arm:
         joint_names: The joints' names (a URDF's, or ``joint1``..``joint6``).
         source: Where the numbers come from (a file and its origin).
         assumptions: Human-readable notes on which numbers are assumed.
+        limits_name: What the joint limits are called in messages ("Table I" for the thesis arm).
+        urdf: The URDF file the arm was read from (absolute path; "" for an arm built from a DH
+            table, or changed after reading, e.g. :meth:`scaled`). Its collision shapes are the
+            arm's body in the collision checks and the viewer (:mod:`iik.planning.robot_model`).
         solver: The canonical member of the class the IK solves in (derived; read from the
             base or from the flange), with the class report.
     """
@@ -155,6 +175,8 @@ class Arm:
     joint_names: tuple[str, ...] = tuple(f"joint{i}" for i in range(1, 7))
     source: str = ""
     assumptions: tuple[str, ...] = field(default=())
+    limits_name: str = "the joint limits"
+    urdf: str = ""
     solver: SolverChain = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -169,6 +191,8 @@ class Arm:
             object.__setattr__(self, k, vals)
         if len(self.joint_names) != 6:
             raise InvalidInputError("joint_names", "needs six names")
+        if not isinstance(self.urdf, str):
+            raise InvalidInputError("urdf", f"expected a URDF file's path as a string, got {self.urdf!r}")
         rows = [(r.alpha, r.a, r.d, r.offset) for r in self.dh.rows]
         object.__setattr__(
             self, "solver", solver_chain(rows, np.array(self.base), np.array(self.tool), argument=self.name)
@@ -243,8 +267,9 @@ class Arm:
                 joint_names=tuple(j.name for j in ch.joints),
                 source=f"{ch.source} ({ch.base_link} -> {ch.tip_link})",
                 assumptions=notes,
+                urdf=_urdf_file(path, ch.base_link, ch.tip_link),
             )
-        except NotInClassError as exc:  # name the file, as every other URDF error does
+        except NotInClassError as exc:  # name the file, as every other error of a URDF does
             raise NotInClassError(ch.source, exc.reports) from None
 
     # ------------------------------------------------------------------ variants
@@ -258,7 +283,8 @@ class Arm:
         effort=None,
         name: str | None = None,
     ) -> Arm:
-        """This arm with other joint limits [rad, rad/s, rad/s^2, N m] (None: unchanged)."""
+        """This arm with other joint limits [rad, rad/s, rad/s^2, N m] (None: unchanged; other position
+        limits are no longer called by the old limits' name)."""
         dh = dataclasses.replace(
             self.dh,
             lower=tuple(self.dh.lower if lower is None else lower),
@@ -271,6 +297,7 @@ class Arm:
             acceleration=self.acceleration if acceleration is None else tuple(acceleration),
             effort=self.effort if effort is None else tuple(effort),
             name=self.name if name is None else name,
+            limits_name=self.limits_name if lower is None and upper is None else "the joint limits",
         )
 
     def scaled(self, factor: float, name: str | None = None) -> Arm:
@@ -287,6 +314,7 @@ class Arm:
             base=base,
             tool=tool,
             name=name or f"{self.name} x{factor:g}",
+            urdf="",  # the file's shapes have the old lengths
         )
 
     # ------------------------------------------------------------------ limits
@@ -428,6 +456,11 @@ class Arm:
         return pts, dirs
 
 
+def _table_i() -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Table I's lower and upper limits [rad]."""
+    return tuple(lo * _DEG for lo, _ in _TABLE_I_DEG), tuple(hi * _DEG for _, hi in _TABLE_I_DEG)
+
+
 def thesis_arm(
     l1: float,
     l2: float,
@@ -469,6 +502,7 @@ def thesis_arm(
         name=name,
         source="Mondragon Sanchez 2012, Table I and Table II",
         assumptions=assumptions,
+        limits_name="Table I" if (table.lower, table.upper) == _table_i() else "the joint limits",
     )
 
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .arm import THESIS_ARM, Arm
+from .arm import Arm
 from .dh import dh_chain
 from .validation import as_joints
 
@@ -132,7 +132,7 @@ def _apply(q, compiled, data, shape: tuple[int, ...]) -> np.ndarray:
     return out if batched else out[0]
 
 
-def fk(q, arm: Arm = THESIS_ARM) -> np.ndarray:
+def fk(q, arm: Arm) -> np.ndarray:
     """Tool pose ``base . links(q) . tool`` of the arm (Eq 4 for the thesis arm).
 
     Args:
@@ -148,7 +148,7 @@ def fk(q, arm: Arm = THESIS_ARM) -> np.ndarray:
     return _apply(q, k.fk_many, k.arm_data(arm).vector, (4, 4))
 
 
-def fk_chain(q, arm: Arm = THESIS_ARM) -> np.ndarray:
+def fk_chain(q, arm: Arm) -> np.ndarray:
     """Tool pose by the NumPy modified-DH product (:func:`iik.dh.dh_chain`) with the base and
     tool transforms: independent of the compiled :func:`fk` (checked against each other and
     against Pinocchio)."""
@@ -156,18 +156,18 @@ def fk_chain(q, arm: Arm = THESIS_ARM) -> np.ndarray:
     return np.array(arm.base) @ T @ np.array(arm.tool)
 
 
-def joint_frames(q, arm: Arm = THESIS_ARM) -> np.ndarray:
+def joint_frames(q, arm: Arm) -> np.ndarray:
     """Link frames ``base . 0_T_i``, i = 1..6, shape (6, 4, 4) or (n, 6, 4, 4) [m]."""
     return np.array(arm.base) @ dh_chain(arm.dh_table(), q, all_frames=True)
 
 
-def position_jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
+def position_jacobian(q, arm: Arm) -> np.ndarray:
     """The position rows of :func:`jacobian`: ``d(px, py, pz) / d(q1..q6)`` [m/rad], shape
     (3, 6) or (n, 3, 6) (Appendix C for the thesis arm, whose joint 6 column is zero)."""
     return jacobian(q, arm)[..., :3, :]
 
 
-def jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
+def jacobian(q, arm: Arm) -> np.ndarray:
     """Full 6x6 geometric Jacobian at the tool point.
 
     Rows 0-2 are the linear velocity [m/s per rad/s], rows 3-5 the angular velocity
@@ -179,7 +179,7 @@ def jacobian(q, arm: Arm = THESIS_ARM) -> np.ndarray:
     return _apply(q, k.jacobian_many, k.arm_data(arm).vector, (6, 6))
 
 
-def reach_bound(arm: Arm = THESIS_ARM) -> float:
+def reach_bound(arm: Arm) -> float:
     """An upper bound on the distance of the tool point from the base origin [m]
     (:attr:`iik.arm.Arm.reach`): a pose farther than this is out of reach."""
     return arm.reach

@@ -186,7 +186,7 @@ def singularity_set(k: int) -> SingularitySet:
     raise InvalidInputError("k", f"no singularity set s({k}); Appendix D has s(1)..s(117)")
 
 
-def sample_set(s: SingularitySet, n: int, rng: np.random.Generator, arm: Arm = THESIS_ARM) -> np.ndarray:
+def sample_set(s: SingularitySet, n: int, rng: np.random.Generator, arm: Arm) -> np.ndarray:
     """``n`` joint vectors (n, 6) [rad] on set ``s``: free joints uniform in Table I, joint 6 = 0."""
     q = rng.uniform(arm.q_min, arm.q_max, size=(n, 6))
     q[:, 5] = 0.0
@@ -195,7 +195,7 @@ def sample_set(s: SingularitySet, n: int, rng: np.random.Generator, arm: Arm = T
     return q
 
 
-def at_limit_mask(q, arm: Arm = THESIS_ARM, tol: float = 1e-9) -> np.ndarray:
+def at_limit_mask(q, arm: Arm, tol: float = 1e-9) -> np.ndarray:
     """Boolean (n, 5): is joint 1..5 of each ``q`` at a Table I limit (within ``tol`` rad)?"""
     q = np.atleast_2d(np.asarray(q, dtype=float))[:, :5]
     return (np.abs(q - arm.q_min[:5]) <= tol) | (np.abs(q - arm.q_max[:5]) <= tol)

@@ -55,6 +55,14 @@ link6    gripper (palm box + two finger boxes) ending     palm 0.08 x 0.08 x 0.0
          at the tool point E                              fingers 0.015 x 0.02 x 0.04
 ======== ================================================ =============================
 
+Collision geometry of any other arm (:func:`link_geometry`)
+----------------------------------------------------------
+An arm that is neither of the thesis's form nor read from a URDF with shapes gets cylinders of
+radius :func:`link_radius` (3 % of its reach, at least 1 cm) along the polyline of each link's DH
+chain: from the link's frame origin along the common normal ``a`` and then along the next joint
+axis by ``d`` to the next joint's frame (the tool frame after link 6). They are an assumption,
+not a drawing of the arm; :mod:`iik.planning.robot_model` says which body an arm gets.
+
 Shapes of non-adjacent links are separated by at least ``POWERCUBE.gap`` at home;
 adjacent links touch or overlap by construction (they share a joint module), so
 collision checking must skip the pairs of :func:`adjacent_pairs` (an SRDF
@@ -70,7 +78,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from .arm import THESIS_ARM, Arm
+from .arm import Arm
 from .dh import DHTable, dh_chain
 from .errors import InvalidInputError
 
@@ -82,6 +90,10 @@ __all__ = [
     "urdf_from_dh",
     "thesis_urdf",
     "thesis_geometry",
+    "link_geometry",
+    "link_radius",
+    "generated_urdf",
+    "arm_urdf",
     "link_names",
     "joint_names",
     "adjacent_pairs",
@@ -424,7 +436,7 @@ def _tube_along_x(F, x0, x1, z, d):
     return CylinderShape(radius=d / 2, length=x1 - x0, xyz=xyz, rpy=rpy)
 
 
-def thesis_geometry(arm: Arm = THESIS_ARM, sizes: PowerCubeSizes = POWERCUBE) -> dict[str, tuple[Shape, ...]]:
+def thesis_geometry(arm: Arm, sizes: PowerCubeSizes = POWERCUBE) -> dict[str, tuple[Shape, ...]]:
     """Collision shapes of ``arm`` per link, laid out along the home pose (module docstring).
 
     Raises:
@@ -485,7 +497,7 @@ def thesis_geometry(arm: Arm = THESIS_ARM, sizes: PowerCubeSizes = POWERCUBE) ->
     return geo
 
 
-def thesis_urdf(arm: Arm = THESIS_ARM, sizes: PowerCubeSizes = POWERCUBE) -> str:
+def thesis_urdf(arm: Arm, sizes: PowerCubeSizes = POWERCUBE) -> str:
     """URDF text of ``arm`` (Table II rows, Table I limits, speeds, efforts, collision shapes).
 
     ``iik urdf`` writes this to ``urdf/thesis_arm.urdf``; the ``tool`` frame is DH frame 6,
@@ -493,3 +505,67 @@ def thesis_urdf(arm: Arm = THESIS_ARM, sizes: PowerCubeSizes = POWERCUBE) -> str
     """
     return urdf_from_dh(arm.dh_table(), name="thesis_arm", links=thesis_geometry(arm, sizes),
                         effort=arm.effort)
+
+
+# ----------------------------------------------------------------------------- any arm
+
+
+def link_radius(arm: Arm) -> float:
+    """Radius [m] of the generated link cylinders of ``arm``: 3 % of its reach, at least 0.01 m."""
+    return max(0.01, 0.03 * arm.reach)
+
+
+def _cylinder(a: np.ndarray, b: np.ndarray, radius: float) -> CylinderShape:
+    """A cylinder of ``radius`` from point ``a`` to point ``b`` (in one link's frame) [m]."""
+    d = (b - a) / np.linalg.norm(b - a)
+    helper = np.array([1.0, 0.0, 0.0]) if abs(d[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    x = np.cross(helper, d)
+    x /= np.linalg.norm(x)
+    R = np.column_stack([x, np.cross(d, x), d])  # local z along the segment
+    return CylinderShape(radius=radius, length=float(np.linalg.norm(b - a)),
+                         xyz=tuple(float(v) for v in 0.5 * (a + b)), rpy=_rpy(R))
+
+
+def link_geometry(arm: Arm, radius: float | None = None) -> dict[str, tuple[Shape, ...]]:
+    """Cylinders along the links of ``arm``'s DH chain, per URDF link of :func:`generated_urdf`
+    (module docstring); ``radius`` [m] default :func:`link_radius`."""
+    r = link_radius(arm) if radius is None else float(radius)
+    if not (math.isfinite(r) and r > 0):
+        raise InvalidInputError("radius", f"must be a positive number of metres, got {radius!r}")
+    table = arm.dh_table()
+    origins = _fixed_parts(table, np.array(arm.base), np.array(arm.tool))
+    names = link_names(table.dof)
+    out: dict[str, tuple[Shape, ...]] = {}
+    for k, link in enumerate(names):
+        nxt = origins[k]  # the next joint's (or the tool's) frame in this link
+        if k < table.dof:
+            corner = (nxt @ _trans(z=-table.rows[k].d))[:3, 3]  # before the offset along the next axis
+        else:
+            corner = np.zeros(3)
+        pts = [np.zeros(3), corner, nxt[:3, 3]]
+        shapes = tuple(_cylinder(a, b, r) for a, b in zip(pts[:-1], pts[1:], strict=True)
+                       if np.linalg.norm(b - a) > 1e-6)
+        if shapes:
+            out[link] = shapes
+    return out
+
+
+def generated_urdf(arm: Arm, radius: float | None = None) -> str:
+    """URDF text of ``arm`` (its DH rows, base, tool, limits, efforts) with the cylinders of
+    :func:`link_geometry` as collision shapes."""
+    return urdf_from_dh(arm.dh_table(), name=_robot_name(arm), links=link_geometry(arm, radius),
+                        tool=np.array(arm.tool), base=np.array(arm.base), effort=arm.effort)
+
+
+def _robot_name(arm: Arm) -> str:
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in arm.name).strip("_") or "arm"
+
+
+def arm_urdf(arm: Arm) -> str:
+    """URDF text of ``arm`` as the project generates it: :func:`thesis_urdf` (PowerCube shapes) for an
+    arm of the thesis's Table II form, else :func:`generated_urdf` (cylinders along the links)."""
+    try:
+        arm.thesis_lengths  # noqa: B018 - raises for another form
+    except InvalidInputError:
+        return generated_urdf(arm)
+    return thesis_urdf(arm)

@@ -22,6 +22,13 @@ on every one of 14000 test points (and accepted all of 10^6 reachable sampled
 points); the numbers are in the ``iik verify`` report.
 
 Region 1 (Eq 37-38) is used as printed.
+
+Sec 3.4 is written for arms of the thesis's Table II form (:attr:`iik.Arm.thesis_lengths`). For any
+other arm of the class (a FANUC CRX, a constructed member) :func:`closest_reachable` runs the same
+bounded multi-start search over all six joints with the arm's own FK (:func:`iik.fk`), and
+:func:`in_workspace` asks it: a point counts as inside when the search reaches it within
+:data:`SEARCH_TOL` (a local search: a reachable point it fails to reach would be called outside;
+``tests/iik/test_workspace.py`` checks it reaches FK points of random configurations of the CRX).
 """
 
 from __future__ import annotations
@@ -33,16 +40,29 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.spatial import cKDTree
 
-from .arm import THESIS_ARM, Arm
+from .arm import Arm
 from .errors import InvalidInputError
-from .kinematics import eq4_position, eq4_terms, position_jacobian
+from .kinematics import eq4_position, eq4_terms, fk, position_jacobian
 from .validation import as_points
 
 __all__ = ["in_workspace", "closest_reachable", "ClosestReachable", "position_lm", "tool_positions",
-           "joint4_distance"]
+           "joint4_distance", "SEARCH_TOL"]
+
+#: For an arm not of the thesis's form, :func:`in_workspace` counts a point as inside when the search of
+#: :func:`closest_reachable` reaches it within this distance [m].
+SEARCH_TOL = 1e-6
 
 
-def tool_positions(q5: np.ndarray, arm: Arm = THESIS_ARM) -> np.ndarray:
+def _thesis_form(arm: Arm) -> bool:
+    """Is ``arm`` of the thesis's Table II form (the form Sec 3.4 is written for)?"""
+    try:
+        arm.thesis_lengths  # noqa: B018 - raises for another form
+    except InvalidInputError:
+        return False
+    return True
+
+
+def tool_positions(q5: np.ndarray, arm: Arm) -> np.ndarray:
     """Tool-point positions [m], (n, 3), for joint angles ``q5`` (n, 5) [rad] of joints 1-5.
 
     Eq 34 (the position column of Eq 4; joint 6 does not move the tool point), evaluated
@@ -84,7 +104,7 @@ def joint4_distance(p: np.ndarray, th1: float, arm: Arm) -> np.ndarray:
     return _norm3(p[:, 0] - x4, p[:, 1] - y4, p[:, 2] - z4)  # Eq 41
 
 
-def in_workspace(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-9) -> np.ndarray | bool:
+def in_workspace(p, arm: Arm, *, tol: float = 1e-9) -> np.ndarray | bool:
     """Is each point inside the workspace, by the (corrected) test of Sec 3.4.4?
 
     Args:
@@ -100,6 +120,9 @@ def in_workspace(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-9) -> np.ndarray |
         InvalidInputError: NaN/inf or a wrong shape.
     """
     pb, batched = as_points(p, "p")
+    if not _thesis_form(arm):
+        inside = _general_closest(pb, arm, SEARCH_TOL * 0.1)[2] <= max(tol, SEARCH_TOL)
+        return inside if batched else bool(inside[0])
     l1, l2, l3, l4, l5 = arm.lengths
     phi, r2, r3 = _regions(pb, arm)
     # Region 1 (Eq 37-38): joint 2 at l2 (cos phi, sin phi, l1), reach l3 + l4 + l5.
@@ -112,7 +135,7 @@ def in_workspace(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-9) -> np.ndarray |
     return inside if batched else bool(inside[0])
 
 
-def position_lm(p: np.ndarray, q0: np.ndarray, arm: Arm = THESIS_ARM, iters: int = 60,
+def position_lm(p: np.ndarray, q0: np.ndarray, arm: Arm, iters: int = 60,
                 tol: float = 1e-10) -> tuple[np.ndarray, np.ndarray]:
     """Batched bounded Levenberg-Marquardt on ``|fk(q)[:3,3] - p|`` over joints 1-5.
 
@@ -130,20 +153,28 @@ def position_lm(p: np.ndarray, q0: np.ndarray, arm: Arm = THESIS_ARM, iters: int
     Returns:
         ``(q (n, 5) [rad], residual (n,) [m])``.
     """
-    lo, hi = arm.q_min[:5], arm.q_max[:5]
+    def jac(q):
+        q6 = np.zeros((len(q), 6))
+        q6[:, :5] = q
+        return position_jacobian(q6, arm)[..., :5]
+
+    return _bounded_lm(p, q0, arm.q_min[:5], arm.q_max[:5], lambda q: tool_positions(q, arm), jac, iters, tol)
+
+
+def _bounded_lm(p, q0, lo, hi, positions, jac, iters: int, tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`position_lm` over the joints of ``lo``/``hi`` with ``positions(q)`` (n, 3) [m] and its
+    Jacobian ``jac(q)`` (n, 3, k)."""
     q = np.clip(np.array(q0, dtype=float), lo, hi)
-    r = tool_positions(q, arm) - p
+    r = positions(q) - p
     c = np.einsum("ni,ni->n", r, r)
     lam = np.full(len(p), 1e-3)
-    eye = np.eye(5)
-    q6 = np.zeros((len(p), 6))
+    eye = np.eye(len(lo))
     for _ in range(iters):
         act = c > tol * tol
         if not np.any(act):
             break
         ia = np.nonzero(act)[0]
-        q6[ia, :5] = q[ia]
-        J = position_jacobian(q6[ia], arm)[..., :5]
+        J = jac(q[ia])
         A = np.einsum("nij,nik->njk", J, J) + lam[ia, None, None] * eye
         g = np.einsum("nij,ni->nj", J, r[ia])
         step = -np.linalg.solve(A, g[..., None])[..., 0]
@@ -156,7 +187,7 @@ def position_lm(p: np.ndarray, q0: np.ndarray, arm: Arm = THESIS_ARM, iters: int
             gb = np.einsum("nij,ni->nj", Jb, r[ia[rb]])
             step[rb] = -np.linalg.solve(Ab, gb[..., None])[..., 0] * (~blocked[rb])
         qn = np.clip(qa + step, lo, hi)
-        rn = tool_positions(qn, arm) - p[ia]
+        rn = positions(qn) - p[ia]
         cn = np.einsum("ni,ni->n", rn, rn)
         acc = cn < c[ia]
         ib = ia[acc]
@@ -228,7 +259,7 @@ def _near_proxy(pb: np.ndarray) -> np.ndarray:
     return out
 
 
-def closest_reachable(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-7) -> ClosestReachable:
+def closest_reachable(p, arm: Arm, *, tol: float = 1e-7) -> ClosestReachable:
     """The reachable tool position nearest to ``p`` (App. G's relocation suggestion).
 
     Minimises ``|fk(q)[:3,3] - p|`` over joints 1-5 inside Table I by bounded
@@ -249,12 +280,25 @@ def closest_reachable(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-7) -> Closest
         arm: Arm parameters.
         tol: Residual [m] under which ``p`` counts as reachable.
 
+    For an arm not of the thesis's Table II form the search runs over all six joints with the arm's FK,
+    from the 12 configurations of a fixed 20000-sample whose tool points are nearest to ``p``.
+
     Raises:
         InvalidInputError: NaN/inf, wrong shape, or a non-positive ``tol``.
     """
     pb, batched = as_points(p, "p")
     if not (np.isfinite(tol) and tol > 0):
         raise InvalidInputError("tol", "must be a positive finite number of metres")
+    if not _thesis_form(arm):
+        given = pb
+        point, qbest, _ = _general_closest(_near_proxy(pb), arm, tol * 0.1)
+        dist = _norm3(*(point - given).T)
+        moved = dist > tol
+        point = np.where(moved[:, None], point, given)
+        dist = np.where(moved, dist, 0.0)
+        if not batched:
+            return ClosestReachable(point[0], qbest[0], float(dist[0]), bool(moved[0]))
+        return ClosestReachable(point, qbest, dist, moved)
     given, pb = pb, _near_proxy(pb)
     seeds = _seeds(pb, arm)
     n, k, _ = seeds.shape
@@ -286,3 +330,26 @@ def closest_reachable(p, arm: Arm = THESIS_ARM, *, tol: float = 1e-7) -> Closest
         return ClosestReachable(point[0], qbest[0], float(dist[0]), bool(moved[0]))
     return ClosestReachable(point, qbest, dist, moved)
 
+
+
+@lru_cache(maxsize=4)
+def _general_tree(arm: Arm, n: int = 20_000):
+    """A fixed (seeded) uniform sample of all six joints and a KD-tree of its tool positions (FK)."""
+    q = np.random.default_rng(20120101).uniform(arm.q_min, arm.q_max, size=(n, 6))
+    return q, cKDTree(fk(q, arm)[:, :3, 3])
+
+
+def _general_closest(pb: np.ndarray, arm: Arm, tol: float, k_near: int = 12):
+    """(point (n, 3), q (n, 6), distance (n,)) [m, rad]: the reachable tool point nearest to each of
+    ``pb`` found by bounded Levenberg-Marquardt over six joints from the ``k_near`` nearest samples."""
+    n = len(pb)
+    qs, tree = _general_tree(arm)
+    _, idx = tree.query(pb, k=k_near)
+    seeds = qs[idx.reshape(n, k_near)].reshape(n * k_near, 6)
+    q, res = _bounded_lm(np.repeat(pb, k_near, axis=0), seeds, arm.q_min, arm.q_max,
+                         lambda q: fk(q, arm)[:, :3, 3], lambda q: position_jacobian(q, arm), 80, tol)
+    q, res = q.reshape(n, k_near, 6), res.reshape(n, k_near)
+    best = np.argmin(res, axis=1)
+    qbest = q[np.arange(n), best]
+    point = fk(qbest, arm)[:, :3, 3]
+    return point, qbest, np.linalg.norm(point - pb, axis=1)

@@ -81,9 +81,10 @@ class UdpBus:
         baseline measured now, under whatever load the machine has: ``margin`` times the slowest of
         ten round trips to the running ``sim-arm`` (GETPOS of every module), at least ``floor``."""
         from hardware import PowerCubeArm
+        from iik import THESIS_ARM
 
         with PowerCubeArm.from_interface(interface="udp_multicast", channel=self.group, port=self.port,
-                                         timeout=30.0) as arm:
+                                         timeout=30.0, arm=THESIS_ARM) as arm:
             arm.get_pos()  # the first request may pay for imports and discovery
             worst = 0.0
             for _ in range(10):

@@ -25,11 +25,12 @@ def test_ci_runs_the_readme_test_command_verbatim():
 
 
 def test_readme_documents_the_limit_filter_of_solve():
-    """`iik.solve(T)` drops solutions outside Table I by default: the README says so where it shows it."""
+    """`iik.solve(T, arm)` drops solutions outside the limits by default: the README says so where it
+    shows it."""
     text = (ROOT / "README.md").read_text()
-    default = [ln for ln in text.splitlines() if re.search(r"iik\.solve\(T\)\s+#", ln)]
+    default = [ln for ln in text.splitlines() if re.search(r"iik\.solve\(T, arm\)\s+#", ln)]
     assert default and all("within the joint limits" in ln for ln in default), default
-    assert re.search(r"iik\.solve\(T, within_limits=False\)", text)
+    assert re.search(r"iik\.solve\(T, arm, within_limits=False\)", text)
 
 
 def test_files_the_docs_point_to_are_in_the_repository():

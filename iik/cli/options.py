@@ -8,6 +8,7 @@ import sys
 
 __all__ = ["add_pose_arguments", "warn_degrees", "warn_millimetres", "joint_angles", "millimetres"]
 
+
 #: The Euler angles option and its deprecated alias (the thesis calls Eq 42 "Z-X-Z"; it is Z-Y-Z).
 EULER, EULER_DEPRECATED = "--zyz", "--zxz"
 _EULER_NAMES = ("zyz", "alpha", "beta", "gamma")
@@ -76,7 +77,7 @@ def joint_angles(values, flag: str, deg: bool, arm):
     for j, (v, lo, hi) in enumerate(zip(q, arm.lower, arm.upper, strict=True)):
         if not (math.isfinite(v) and lo - LIMIT_TOL <= v <= hi + LIMIT_TOL):
             raise InvalidInputError(flag, f"q{j + 1} = {values[j]:g} {unit} is outside the joint limits "
-                                          f"[{show(lo):.4g}, {show(hi):.4g}] {unit} (Table I)")
+                                          f"[{show(lo):.4g}, {show(hi):.4g}] {unit} ({arm.limits_name})")
     return q
 
 

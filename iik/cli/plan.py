@@ -10,12 +10,15 @@ import math
 import sys
 from pathlib import Path
 
+from .arm_option import add_arm_argument, chosen_arm
+
 NAME = "plan"
 HELP = "plan a scenario (TOML): thesis planner + whole-arm Coal check + fallbacks + TOPP-RA timing"
 
 
 def add_arguments(p) -> None:
     p.add_argument("scenario", help="scenario file, e.g. scenarios/j.toml, or a shipped name, e.g. j")
+    add_arm_argument(p, data="the scenario's")
     p.add_argument("--out", type=Path, default=None, help="output folder (default: plan_<name>), replaced "
                    "only when every file is written")
     p.add_argument("--no-fallbacks", action="store_true",
@@ -40,8 +43,9 @@ def run(args) -> int:
     def progress(msg: str) -> None:
         print(f"  ... {msg}", file=sys.stderr, flush=True)
 
+    arm = chosen_arm(args, data=True)  # a bad --arm is refused before planning
     print(f"planning {args.scenario}", file=sys.stderr)
-    res = plan(args.scenario, opts, progress=progress)
+    res = plan(args.scenario, opts, arm=arm, progress=progress)
     out = args.out or Path(f"plan_{res.scenario.name}")
     files = write_outputs(res, out, figures=not args.no_figures)
     print(res.summary())

@@ -6,14 +6,14 @@ FILE.csv`` with columns ``t,q1..q6`` [s, rad] (``iik plan``'s ``steps.csv`` or `
 as written); ``--demo``, a straight line with 30 mm step-points (Sec 4.2.1). Without
 ``--interface`` the arm is simulated in-process; ``--interface udp_multicast`` talks to a
 separate ``iik sim-arm``; ``--interface socketcan --channel can0 --bitrate 500000`` (or any
-python-can interface) drives real modules, with their watchdog on (``--no-watchdog``).
-
-Writes a new run log ``OUT/<name>-<date>-<time>.jsonl`` (or the ``--out FILE.jsonl``) and
-three PNG figures, prints the end-effector error summary (Sec 4.3); its last stdout line is the
-status on every path (:func:`hardware.runner.failure_status` when the run raised). Exit 0: the
-run went to the end inside its safety zone; 1: it went to the end but its error left the zone;
-2: an error (nothing moved, or HALT after a fault); 128 + N: stopped by signal N (HALT sent).
-The work is :func:`hardware.runner.run`.
+python-can interface) drives real modules, with their watchdog on (``--no-watchdog``). Arm: the
+scenario's or ``--arm`` (default thesis for a trajectory file or the demo). Writes a new run log
+``OUT/<name>-<date>-<time>.jsonl`` (or the ``--out FILE.jsonl``) and three PNG figures, prints
+the end-effector error summary (Sec 4.3); its last stdout line is the status on every path
+(:func:`hardware.runner.failure_status` when the run raised). Exit 0: the run went to the end
+inside its safety zone; 1: it went to the end but its error left the zone; 2: an error (nothing
+moved, or HALT after a fault); 128 + N: stopped by signal N (HALT sent). The work is
+:func:`hardware.runner.run`.
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ import math
 import sys
 from pathlib import Path
 
+from .arm_option import add_arm_argument, chosen_arm
 from .options import millimetres
 
 NAME = "run"
@@ -35,6 +36,7 @@ def add_arguments(p) -> None:
     p.add_argument("--trajectory", type=Path, default=None, metavar="CSV",
                    help="joint trajectory file with columns t,q1..q6 [s, rad], e.g. iik plan's steps.csv")
     p.add_argument("--demo", action="store_true", help="a built-in straight-line demo trajectory")
+    add_arm_argument(p, data="the scenario's")
     p.add_argument("--interface", default=None, help="python-can interface (default: simulated arm)")
     p.add_argument("--channel", default=None, help="bus channel (e.g. can0, 239.74.163.2)")
     p.add_argument("--bitrate", type=int, default=None,
@@ -82,11 +84,9 @@ def _run(args):  # -> hardware.runner.RunReport
     from hardware.runner import MAX_ZONE, RunRequest
     from hardware.runner import run as run_request
 
-    given = {}  # the library's defaults unless typed
-    if args.margin_deg is not None:
-        given["margin"] = math.radians(args.margin_deg)
-    if args.zone_mm is not None:
-        given["zone"] = millimetres(args.zone_mm, "--zone-mm", MAX_ZONE)
+    given = {"arm": chosen_arm(args, data=args.scenario is not None)}  # the library's defaults unless typed
+    given |= {"margin": math.radians(args.margin_deg)} if args.margin_deg is not None else {}
+    given |= {"zone": millimetres(args.zone_mm, "--zone-mm", MAX_ZONE)} if args.zone_mm is not None else {}
     request = RunRequest(
         scenario=args.scenario, trajectory=args.trajectory, demo=args.demo, interface=args.interface,
         channel=args.channel, bitrate=args.bitrate, port=args.port, modules=tuple(args.modules),

@@ -15,6 +15,7 @@ import json
 
 import numpy as np
 
+from .arm_option import add_arm_argument, chosen_arm
 from .options import add_pose_arguments, joint_angles, warn_degrees, warn_millimetres
 
 NAME = "solve"
@@ -23,6 +24,7 @@ HELP = "all IK solutions of a pose given as --xyz X Y Z --zyz ALPHA BETA GAMMA (
 
 def add_arguments(p) -> None:
     add_pose_arguments(p, required=True)
+    add_arm_argument(p)
     p.add_argument("--deg", action="store_true", help="angles in and out in degrees")
     p.add_argument("--previous", nargs=6, type=float, default=None, metavar="Q",
                    help="previous joint angles, inside Table I (for the Eq 54 effort index)")
@@ -39,22 +41,23 @@ def run(args) -> int:
     from iik.ik import select_index
     from iik.kinematics import reach_bound
 
+    arm = chosen_arm(args)
     warn_degrees(NAME, args, ("--zyz", "--previous"))
-    warn_millimetres(NAME, args.xyz, reach_bound(iik.THESIS_ARM))
+    warn_millimetres(NAME, args.xyz, reach_bound(arm))
     conv_in = np.radians if args.deg else np.asarray
-    prev = None if args.previous is None else joint_angles(args.previous, "--previous", args.deg,
-                                                           iik.THESIS_ARM)
+    prev = None if args.previous is None else joint_angles(args.previous, "--previous", args.deg, arm)
     with np.errstate(all="ignore"):  # absurd inputs (--xyz 1e308) are unreachable, not warnings
         T = iik.pose_from_euler(np.array(args.xyz), *conv_in(args.zyz))
         with iik.ik.compile_notice():  # one line on stderr if the kernel compiles (not when it loads)
-            res = iik.solve(T, method=args.method, within_limits=not args.all)
+            res = iik.solve(T, arm, method=args.method, within_limits=not args.all)
         efforts = iik.effort_index(prev, res.q) if (prev is not None and res.count) else None
     best = None
     if prev is not None and np.any(res.within_limits):  # Eq 54: least effort inside the limits
-        best = int(np.flatnonzero(res.within_limits)[select_index(res, prev)[0]])
+        best = int(np.flatnonzero(res.within_limits)[select_index(res, prev, arm=arm)[0]])
     conv = np.degrees if args.deg else (lambda x: x)
     if args.json:
         out = res.to_dict(degrees=args.deg)
+        out["arm"] = arm.name
         out["pose"] = {"xyz_m": list(args.xyz), "zyz": list(args.zyz),
                        "zxz": list(args.zyz),  # deprecated duplicate of "zyz" (the old, wrong name)
                        "angle_unit": "deg" if args.deg else "rad"}
@@ -68,7 +71,7 @@ def run(args) -> int:
     if res.count == 0:
         print(f"no solution: {res.reason}")
         return 1
-    print(f"{res.count} solution(s) ({args.method}), joint angles in {unit}:")
+    print(f"{res.count} solution(s) ({args.method}, arm {arm.name}), joint angles in {unit}:")
     for i in range(res.count):
         q = " ".join(f"{v:9.4f}" for v in conv(res.q[i]))
         extra = ""

@@ -1,4 +1,6 @@
-"""``iik urdf``: the thesis arm's URDF (generated from Tables I and II by :func:`iik.urdf.thesis_urdf`).
+"""``iik urdf``: an arm's URDF as the project generates it (:func:`iik.urdf.arm_urdf`): for the thesis arm
+(the default) from Tables I and II with the PowerCube shapes (:func:`iik.urdf.thesis_urdf`); for
+another arm (``--arm``) from its DH chain, with cylinders along its links unless of the thesis's form.
 
 Works the same from any install: prints the URDF, or writes it where ``--out`` says;
 ``--check FILE`` compares a given file with the generator's output (exit 1 if it differs).
@@ -10,11 +12,14 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from .arm_option import add_arm_argument, chosen_arm
+
 NAME = "urdf"
-HELP = "the thesis arm's URDF (generated from Tables I/II): print it, write it (--out) or --check a file"
+HELP = "an arm's generated URDF (thesis: Tables I/II): print it, write it (--out) or --check a file"
 
 
 def add_arguments(p) -> None:
+    add_arm_argument(p)
     p.add_argument("--out", type=Path, default=None, help="write the URDF to this file (default: stdout)")
     p.add_argument("--check", nargs="?", type=Path, const=True, default=None, metavar="FILE",
                    help="do not write; exit 1 if FILE (or the --out file) differs from the generator output")
@@ -23,9 +28,9 @@ def add_arguments(p) -> None:
 def run(args) -> int:
     from iik.errors import InvalidInputError
     from iik.files import read_text, write_text
-    from iik.urdf import MAX_URDF_BYTES, thesis_urdf
+    from iik.urdf import MAX_URDF_BYTES, arm_urdf
 
-    text = thesis_urdf()
+    text = arm_urdf(chosen_arm(args))
     if args.check is not None:
         path = args.out if args.check is True else args.check
         if path is None:

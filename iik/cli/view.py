@@ -10,6 +10,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from .arm_option import add_arm_argument, chosen_arm
 from .options import add_pose_arguments, joint_angles, warn_degrees, warn_millimetres
 
 NAME = "view"
@@ -25,6 +26,7 @@ def add_arguments(p) -> None:
     p.add_argument("scenario", nargs="?", default=None,
                    help="scenario file or shipped name (e.g. j): plan it, play the plan, list its attempts; "
                         "a plan that fails or times out is shown with its reason and best attempt")
+    add_arm_argument(p, data="the scenario's or run log's")
     p.add_argument("--timeout", type=float, default=None, metavar="SECONDS",
                    help="with SCENARIO: stop planning after this many seconds (default 60)")
     p.add_argument("--no-fallbacks", action="store_true",
@@ -48,11 +50,10 @@ def add_arguments(p) -> None:
     p.add_argument("--force", action="store_true", help="with --export: replace a non-empty DIR")
 
 
-def _request(args):
+def _request(args, arm):
     """The :class:`~iik.planning.viewer.ViewRequest` of the command line (angles to rad)."""
     import numpy as np
 
-    from iik.arm import THESIS_ARM
     from iik.planning import PlanOptions
     from iik.planning.viewer import ViewRequest
 
@@ -60,30 +61,31 @@ def _request(args):
     plan = ({} if args.timeout is None else {"timeout": args.timeout}) | (
         {"fallbacks": False, "rrt": False} if args.no_fallbacks else {})
     previous = None if args.previous is None else tuple(joint_angles(args.previous, "--previous", args.deg,
-                                                                     THESIS_ARM))
-    return ViewRequest(scenario=args.scenario, planning=PlanOptions(**plan) if plan else None, q=ang(args.q),
+                                                                     arm or chosen_arm(args)))
+    return ViewRequest(arm=arm, scenario=args.scenario, planning=PlanOptions(**plan) if plan else None,
+                       q=ang(args.q),
                        xyz=None if args.xyz is None else tuple(args.xyz), zxz=ang(args.zyz),
                        previous=previous, interactive=args.interactive,
                        allow_outside_limits=args.allow_outside_limits)
 
 
 def run(args) -> int:
-    from iik.arm import THESIS_ARM
     from iik.errors import InvalidInputError
     from iik.kinematics import reach_bound
     from iik.planning.viewer import ExportResult, ViewOptions, view
 
+    arm = chosen_arm(args, data=args.scenario is not None or args.run is not None)  # None: the data's own
     warn_degrees(NAME, args, ("--q", "--zyz", "--previous"))
-    warn_millimetres(NAME, args.xyz, reach_bound(THESIS_ARM))
+    warn_millimetres(NAME, args.xyz, reach_bound(arm or chosen_arm(args)))
     opts = ViewOptions(host=args.host, port=args.port, export=args.export, force=args.force)
     if args.run is not None:
         if args.scenario or args.q or args.xyz or args.zyz:
             raise InvalidInputError("--run", "show a run log alone (no scenario or pose)")
         from hardware.view import view_run
 
-        shown = view_run(args.run, opts)
+        shown = view_run(args.run, opts, arm=arm)
     else:
-        shown = view(_request(args), opts)
+        shown = view(_request(args, arm), opts)
     for w in shown.warnings:
         print(f"iik view: warning: {w}", file=sys.stderr)
     print(shown.headline)

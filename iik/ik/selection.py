@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..arm import THESIS_ARM, Arm
+from ..arm import Arm
 from ..errors import UnreachablePoseError
 from ..joint_path import BRANCH_SWITCH_STEP, JointPath, branch_switches, path_effort
 from ..validation import as_joints, as_poses
@@ -19,7 +19,7 @@ from .path_events import path_events
 __all__ = ["select", "select_index", "follow_path", "branch_signature"]
 
 
-def select_index(result_or_q, previous_q, *, arm: Arm = THESIS_ARM) -> tuple[int, float]:
+def select_index(result_or_q, previous_q, *, arm: Arm) -> tuple[int, float]:
     """Index into the usable rows (:attr:`Candidates.q`; for arms whose joint ranges lie within
     (-pi, pi], the rows inside the limits) and the Eq 54 effort [rad] of the best solution,
     measured to its nearest configuration (a continuum's nearest member, a joint's nearest
@@ -37,7 +37,7 @@ def select_index(result_or_q, previous_q, *, arm: Arm = THESIS_ARM) -> tuple[int
     return i, float(E[i])
 
 
-def select(result_or_q, previous_q, *, arm: Arm = THESIS_ARM) -> np.ndarray:
+def select(result_or_q, previous_q, *, arm: Arm) -> np.ndarray:
     """The configuration (6,) [rad] inside the joint limits with the least Eq 54 effort from
     ``previous_q``: over every solution, each joint's windings and each continuum's members
     (:mod:`iik.ik.nearest`), so a previous configuration that reaches the pose is returned as
@@ -64,7 +64,7 @@ def branch_signature(q) -> np.ndarray:
     return (qb[:, 3] >= 0).astype(int) * 2 + (qb[:, 4] >= 0).astype(int)
 
 
-def follow_path(Ts, q0=None, *, method: str = "complete", arm: Arm = THESIS_ARM,
+def follow_path(Ts, q0=None, *, method: str = "complete", arm: Arm,
                 max_step: float = BRANCH_SWITCH_STEP) -> JointPath:
     """Follow a sequence of poses (n, 4, 4), keeping one branch by least Eq 54 effort.
 

@@ -22,7 +22,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from ..arm import LIMIT_TOL, THESIS_ARM, Arm
+from ..arm import LIMIT_TOL, Arm
 from ..errors import InvalidInputError
 from . import layout as L
 from . import poses as _poses
@@ -387,7 +387,7 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
 # ----------------------------------------------------------------------------- public API
 def solve(
     T,
-    arm: Arm = THESIS_ARM,
+    arm: Arm,
     *,
     method: str = "complete",
     within_limits: bool = True,
@@ -430,7 +430,7 @@ def solve(
 
 def solve_many(
     Ts,
-    arm: Arm = THESIS_ARM,
+    arm: Arm,
     *,
     method: str = "complete",
     within_limits: bool = True,
@@ -450,7 +450,7 @@ def solve_many(
 
 def solve_batch(
     Ts,
-    arm: Arm = THESIS_ARM,
+    arm: Arm,
     *,
     method: str = "complete",
     within_limits: bool = True,

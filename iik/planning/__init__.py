@@ -36,7 +36,7 @@ from .path import (
     straight_steps,
 )
 from .pipeline import VIA_POINT_TOLERANCE, Attempt, PlanOptions, PlanResult, plan
-from .robot_model import ThesisModel, thesis_model
+from .robot_model import ArmModel, ThesisModel, arm_model, thesis_model
 from .rrt import rrt_connect
 from .scenario import (
     MAX_ANGLE,
@@ -56,6 +56,7 @@ from .scenario_io import (
     scenario_from_dict,
     scenario_path,
     scenario_to_toml,
+    shipped_scenario_paths,
     thesis_scenario_paths,
     validate_scenario,
     write_scenario,
@@ -94,6 +95,7 @@ __all__ = [
     "write_scenario",
     "scenario_path",
     "thesis_scenario_paths",
+    "shipped_scenario_paths",
     "platform_box",
     "dexterity_notes",
     # bounds of a scenario (memory and time)
@@ -136,6 +138,8 @@ __all__ = [
     "track_branches",
     "track_dp",
     # collision, sampling, timing
+    "ArmModel",
+    "arm_model",
     "ThesisModel",
     "thesis_model",
     "SceneCollision",

@@ -1,9 +1,10 @@
 """Whole-arm collision checking with Coal: the URDF's collision shapes against the scene.
 
-The arm's collision shapes come from the URDF of the arm through
-:func:`iik.planning.robot_model.thesis_model` (the shipped ``urdf/thesis_arm.urdf``
-for :data:`iik.THESIS_ARM`, the generated :func:`iik.urdf.thesis_urdf` for any
-other arm); the environment is the scenario's boxes (obstacles and supports),
+The arm's collision shapes are the body of the arm in use,
+:func:`iik.planning.robot_model.arm_model`: its own URDF's shapes (the shipped
+``urdf/thesis_arm.urdf`` for the thesis arm, ``urdf/crx10ia.urdf`` for the CRX-10iA),
+the PowerCube shapes for another arm of the thesis's form, or cylinders generated
+along the links of any other arm; the environment is the scenario's boxes (obstacles and supports),
 the mobile platform and the floor of the scene (default
 :data:`iik.scene.THESIS_SCENE`; the floor is a half-space). Distances are exact Coal
 (GJK/EPA) distances between the shapes; a negative value is a penetration.
@@ -17,7 +18,7 @@ the segment is at least ``(d0 + d1 - B) / 2``; segments whose bound is below
 the required clearance are bisected until the bound holds or ``B`` is below
 ``resolution`` (then the sampled minimum minus ``B / 2`` is reported).
 
-Excluded pairs: ``base_link`` against the platform (it is bolted onto it).
+Excluded pairs: the arm's root link (``base_link``) against the platform (it is bolted onto it).
 Self-collisions between non-adjacent links are checked separately
 (:meth:`SceneCollision.self_distance`) with no safety zone. On a segment that
 violates ``required`` the bisection stops at the first sample below it, so the
@@ -34,14 +35,14 @@ import coal
 import numpy as np
 import pinocchio as pin
 
-from iik.arm import THESIS_ARM, Arm
+from iik.arm import Arm
 from iik.errors import InvalidInputError
 from iik.scene import THESIS_SCENE, Scene
 from iik.validation import as_joints
 
 from .budget import Budget
 from .obstacles import Obstacle
-from .robot_model import collision_link, thesis_model
+from .robot_model import arm_model, collision_link
 
 __all__ = ["SceneCollision", "PathClearance", "Nearest"]
 
@@ -107,18 +108,20 @@ class PathClearance:
 
 
 class SceneCollision:
-    """Coal distance queries between an arm of the thesis design and a scene.
+    """Coal distance queries between an arm and a scene.
 
     Args:
         boxes: Scenario boxes (:class:`iik.planning.Obstacle`), base frame.
-        arm: The arm (its URDF collision shapes, placed by its kinematics).
+        arm: The arm (its body, :func:`~iik.planning.robot_model.arm_model`, placed by its kinematics).
         scene: Platform and floor (default :data:`iik.scene.THESIS_SCENE`).
         platform, floor: Include them.
     """
 
-    def __init__(self, boxes: Sequence[Obstacle] = (), *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
+    def __init__(self, boxes: Sequence[Obstacle] = (), *, arm: Arm, scene: Scene = THESIS_SCENE,
                  platform: bool = True, floor: bool = True):
-        tm = thesis_model(arm)
+        tm = arm_model(arm)
+        self.arm = arm
+        self.geometry = tm.geometry
         self.model = tm.model
         self.data = self.model.createData()
         src = tm.collision_model
@@ -127,6 +130,7 @@ class SceneCollision:
             gm.addGeometryObject(obj.copy() if hasattr(obj, "copy") else obj)
         self.n_arm = len(src.geometryObjects)
         self.arm_link = np.array([collision_link(self.model, o) for o in src.geometryObjects])
+        root = [o.parentJoint == 0 for o in src.geometryObjects]  # shapes of the root link
         env: list[tuple[str, object, np.ndarray]] = []
         for b in boxes:
             env.append((b.name, coal.Box(*b.size), np.asarray(b.center, float)))
@@ -143,7 +147,7 @@ class SceneCollision:
         self.pairs: list[tuple[int, int]] = []
         for i in range(self.n_arm):
             for k, (name, _s, _c) in enumerate(env):
-                if name == "platform" and self.arm_link[i] == "base_link":
+                if name == "platform" and root[i]:
                     continue  # bolted onto the platform
                 j = self.n_arm + k
                 gm.addCollisionPair(pin.CollisionPair(i, j))
@@ -151,7 +155,7 @@ class SceneCollision:
         self.n_env_pairs = len(self.pairs)
         self.geom_model = gm
         self.geom_data = pin.GeometryData(gm)
-        self.self_model = src  # non-adjacent link pairs, registered by thesis_model()
+        self.self_model = src  # non-adjacent link pairs, registered by arm_model()
         self.self_data = pin.GeometryData(src)
         self._pair_arm = np.array([p[0] for p in self.pairs], int)
         self._pair_env = np.array([p[1] for p in self.pairs], int)

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from iik.arm import THESIS_ARM, Arm
+from iik.arm import Arm
 from iik.files import atomic_output
 
 from .obstacles import enclosing_radii
@@ -147,9 +147,10 @@ def collision_faces(model, collision_model, q) -> dict[str, list[np.ndarray]]:
     return out
 
 
-def draw_arm_bodies(ax, q, *, arm: Arm = THESIS_ARM, colour=(0.16, 0.35, 0.78), alpha: float = 0.3,
+def draw_arm_bodies(ax, q, *, arm: Arm, colour=(0.16, 0.35, 0.78), alpha: float = 0.3,
                     link_colours=None, zorder: float = 3.0) -> np.ndarray:
-    """Draw the arm's URDF collision shapes at ``q`` (6,) [rad] on a 3-D axes (base frame 0, m).
+    """Draw the body of ``arm`` (:func:`~iik.planning.robot_model.arm_model`) at ``q`` (6,) [rad] on a 3-D
+    axes (base frame 0, m).
 
     Args:
         colour: RGB (0-1) of every link, unless ``link_colours`` ({link name: RGB}) says otherwise.
@@ -160,9 +161,9 @@ def draw_arm_bodies(ax, q, *, arm: Arm = THESIS_ARM, colour=(0.16, 0.35, 0.78), 
     """
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    from .robot_model import thesis_model
+    from .robot_model import arm_model
 
-    tm = thesis_model(arm)
+    tm = arm_model(arm)
     verts = []
     for link, faces in collision_faces(tm.model, tm.collision_model, q).items():
         c = (link_colours or {}).get(link, colour)
@@ -249,7 +250,7 @@ def plot_scene(res: PlanResult, ax, *, n_arms: int = 5) -> None:
         worst = int(np.argmin(res.clearance.step)) if res.clearance is not None else 0
         for i in sorted(set(np.linspace(0, len(res.q) - 1, min(n_arms, len(res.q))).astype(int)) - {worst}):
             pts.append(draw_arm_bodies(ax, res.q[i], arm=res.arm, colour=rgb(style.ARM), alpha=0.07))
-        fc = frame_clearance(sc.obstacles, res.q[[worst]], scene=res.scene)
+        fc = frame_clearance(sc.obstacles, res.q[[worst]], arm=res.arm, scene=res.scene)
         near = rgb(style.UNSAFE if fc.distance[0] < sc.safety_zone else style.NEAREST)
         pts.append(draw_arm_bodies(ax, res.q[worst], arm=res.arm, colour=rgb(style.ARM), alpha=0.3,
                                    link_colours={fc.link[0]: near}, zorder=3.5))

@@ -44,8 +44,10 @@ each stage and candidate, and every second inside long loops); past the
 timeout :func:`plan` stops at the next check and returns a failed result with
 ``timed_out`` set, the attempts so far and the best of them.
 
-The arm (``arm=``) is used throughout: IK and joint limits, workspace checks,
-the collision model (its generated URDF) and the timing limits.
+The arm is the scenario's (its file's ``arm`` key) or the one given (``arm=``; the two must
+agree), and the result carries it (:attr:`PlanResult.arm`). It is used throughout: IK and joint
+limits, workspace checks, the collision model (:func:`~iik.planning.robot_model.arm_model`) and
+the timing limits.
 """
 
 from __future__ import annotations
@@ -58,7 +60,7 @@ from pathlib import Path
 
 import numpy as np
 
-from iik.arm import THESIS_ARM, Arm
+from iik.arm import Arm
 from iik.errors import InvalidInputError
 from iik.joint_path import JointPath, branch_switches, path_effort
 from iik.kinematics import fk
@@ -71,7 +73,7 @@ from .errors import PlanningTimeout, ScenarioError
 from .path import interpolate_joints, path_length
 from .rrt import rrt_connect
 from .scenario import Scenario
-from .scenario_io import dexterity_notes, load_scenario, scenario_path, validate_scenario
+from .scenario_io import dexterity_notes, load_scenario, scenario_arm, scenario_path, validate_scenario
 from .timing import Trajectory, thesis_timing, time_parameterize
 from .tracking import Tracking, all_solutions, track_branches, track_dp
 
@@ -255,20 +257,23 @@ class PlanResult:
                    if tr is not None and self.thesis_trajectory else ""))
 
 
-def plan(scenario: Scenario | str | Path, options: PlanOptions = PlanOptions(), *, arm: Arm = THESIS_ARM,
+def plan(scenario: Scenario | str | Path, options: PlanOptions = PlanOptions(), *, arm: Arm | None = None,
          scene: Scene = THESIS_SCENE, progress: Callable[[str], None] | None = None) -> PlanResult:
     """Plan, check and time one scenario for ``arm`` in ``scene``.
 
     Args:
         scenario: A :class:`Scenario`, a TOML file, or the name of a shipped scenario (``"j"``).
         options: :class:`PlanOptions`.
-        arm: The arm (IK, joint limits, workspace, collision shapes, timing limits).
+        arm: The arm (IK, joint limits, workspace, collision shapes, timing limits); None: the
+            scenario's own (its file's ``arm`` key, :attr:`Scenario.arm`). Both given, they must
+            be the same arm.
         scene: Platform and floor.
         progress: Called with a short message before each stage and candidate, and
             every second inside long loops (:class:`~iik.planning.Budget`).
 
     Raises:
-        ScenarioError: The file is malformed, or start/goal/requested via-points are
+        ScenarioError: The scenario names no arm and none is given, or names another one; the
+            file is malformed, or start/goal/requested via-points are
             impossible (inside an obstacle, the platform, below the floor, outside the
             workspace), or the path would exceed :data:`~iik.planning.MAX_STEP_POINTS`.
         TimingError, SamplingError: TOPP-RA or OMPL failed.
@@ -341,9 +346,11 @@ class _Candidate:
     branch: JointPath | None = None
 
 
-def _scenario(scenario, arm: Arm, scene: Scene) -> Scenario:
+def _scenario(scenario, arm: Arm | None, scene: Scene) -> Scenario:
+    """The scenario, validated, carrying the arm it is planned for (its own, or ``arm``)."""
     if isinstance(scenario, Scenario):
-        validate_scenario(scenario, arm=arm, scene=scene)
+        scenario = dataclasses.replace(scenario, arm=scenario_arm(scenario, arm))
+        validate_scenario(scenario, arm=scenario.arm, scene=scene)
         return scenario
     if isinstance(scenario, (str, Path)):
         return load_scenario(scenario_path(scenario), arm=arm, scene=scene)
@@ -353,11 +360,12 @@ def _scenario(scenario, arm: Arm, scene: Scene) -> Scenario:
 
 def _problem(scenario, options, arm, scene, progress) -> _Problem:
     """Check the arguments, load and validate the scenario, build the thesis path (bounded, not timed)."""
-    for name, value, kind in (("options", options, PlanOptions), ("arm", arm, Arm), ("scene", scene, Scene)):
+    for name, value, kind in (("options", options, PlanOptions), ("scene", scene, Scene)):
         if not isinstance(value, kind):
             raise InvalidInputError(name, f"expected {kind.__name__}, got {type(value).__name__}")
     budget = Budget(options.timeout, progress)
     sc = _scenario(scenario, arm, scene)
+    arm = sc.arm
     budget.say("thesis path (Sec 3.6)")
     thesis = build_path(sc, scene=scene)
     return _Problem(scenario=sc, options=options, arm=arm, scene=scene,

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from iik.arm import THESIS_ARM, Arm
+from iik.arm import Arm
 from iik.errors import IIKError, InvalidInputError
 from iik.validation import as_joints
 
@@ -23,7 +23,7 @@ from .errors import SamplingError
 __all__ = ["rrt_connect"]
 
 
-def rrt_connect(q_start, q_goal, checker: SceneCollision, *, required: float, arm: Arm = THESIS_ARM,
+def rrt_connect(q_start, q_goal, checker: SceneCollision, *, required: float, arm: Arm,
                 time_limit: float = 3.0, seed: int = 1, max_joint_step: float = 0.05,
                 margin: float = 0.003) -> np.ndarray | None:
     """Plan a joint path from ``q_start`` to ``q_goal`` [rad] keeping ``required`` clearance [m].

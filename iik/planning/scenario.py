@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..arm import Arm
 from ..errors import InvalidInputError
 from .errors import ScenarioError
 from .obstacles import SAFETY_ZONE, Obstacle
@@ -132,6 +133,8 @@ class Scenario:
         orientation: ``"euler"`` (gradual Euler change, thesis) or ``"slerp"``.
         mode: ``"LEI"`` (dense Cartesian steps) or ``"LJI"`` (joint interpolation).
         safety_zone: Ellipsoid padding and required whole-arm clearance [m].
+        arm: The arm the task is for (:class:`iik.Arm`; a file's ``arm =`` key names it), or None when
+            the scenario names none: :func:`~iik.planning.plan` then needs one given.
         source: Where it was loaded from (for messages).
 
     Raises:
@@ -153,6 +156,7 @@ class Scenario:
     orientation: str = "euler"
     mode: str = "LEI"
     safety_zone: float = SAFETY_ZONE
+    arm: Arm | None = None
     source: str = field(default="", compare=False)
 
     def __post_init__(self) -> None:
@@ -162,6 +166,8 @@ class Scenario:
                 raise ScenarioError(fld, f"expected a Waypoint, got {type(getattr(self, fld)).__name__}")
         self._check_obstacles()
         self._check_route()
+        if self.arm is not None and not isinstance(self.arm, Arm):
+            raise ScenarioError("arm", f"expected an iik.Arm or None, got {type(self.arm).__name__}")
         set_ = object.__setattr__
         set_(self, "max_step", finite_number(self.max_step, "planning.max_step", hi=0.5, unit=" m"))
         if self.max_step <= 0:

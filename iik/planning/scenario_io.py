@@ -3,6 +3,7 @@
 File format (all keys documented in ``scenarios/README.md``)::
 
     name = "j"
+    arm = "thesis"         # the arm: a shipped name (iik.arms.NAMES) or a URDF file (relative to this file)
     title = "Fig 42j: from the top of one table to another while avoiding an obstacle"
     reference = "Sec 4.2.2, Fig 42j, Figs 43-44"
     reconstruction = "What is reconstructed ..."
@@ -28,6 +29,10 @@ File format (all keys documented in ``scenarios/README.md``)::
     size = [0.2, 0.3, 0.3]          # full width (x), depth (y), height (z) [m]
     kind = "obstacle"               # or "support" (a table the object stands on)
 
+A scenario is for one arm: the file's ``arm`` key names it, or the caller gives it
+(``load_scenario(path, arm=...)``; a file that names another arm is refused). The loaded
+:class:`Scenario` carries it (:attr:`Scenario.arm`), and the workspace checks are that arm's.
+
 Every problem is a :class:`iik.planning.ScenarioError` naming the field: an
 unreadable file (missing, not a regular file, not UTF-8, over :data:`MAX_FILE_SIZE`:
 read by :func:`iik.files.read_text`, which stops there; nested too deeply), TOML syntax
@@ -45,12 +50,13 @@ same radians, else in radians (``beta = ...``).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 
 import numpy as np
 
-from iik.arm import THESIS_ARM, Arm
+from iik.arm import Arm
 from iik.errors import FileError, InvalidInputError
 from iik.files import read_text, write_text
 from iik.resources import scenarios_dir
@@ -77,21 +83,31 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 __all__ = ["load_scenario", "scenario_from_dict", "scenario_to_toml", "write_scenario", "scenario_path",
-           "thesis_scenario_paths", "platform_box", "validate_scenario", "dexterity_notes", "MAX_FILE_SIZE"]
+           "thesis_scenario_paths", "shipped_scenario_paths", "platform_box", "validate_scenario",
+           "dexterity_notes", "scenario_arm",
+           "MAX_FILE_SIZE"]
 
 #: Largest scenario file [bytes] (a shipped one is about 2 kB).
 MAX_FILE_SIZE = 1_000_000
 
-_TOP = {"name", "title", "reference", "reconstruction", "frame", "start", "goal", "planning", "obstacles"}
+_TOP = {"name", "arm", "title", "reference", "reconstruction", "frame", "start", "goal", "planning",
+        "obstacles"}
 _ANGLES = ("alpha", "beta", "gamma")
 _WP = {"position", *_ANGLES, *(f"{a}_deg" for a in _ANGLES)}
 _PLAN = {"via_points", "segments", "steps_per_segment", "max_step", "orientation", "safety_zone", "mode"}
 _OBS = {"name", "center", "size", "kind"}
 
 
-def thesis_scenario_paths() -> list[Path]:
-    """The shipped scenario files, sorted (predefined paths p1..p3, then a..j)."""
+def shipped_scenario_paths() -> list[Path]:
+    """Every shipped scenario file, sorted (predefined paths p1..p3, then the others by name)."""
     return sorted(scenarios_dir().glob("*.toml"), key=lambda p: (not p.stem.startswith("p"), p.stem))
+
+
+def thesis_scenario_paths() -> list[Path]:
+    """The shipped scenarios of the thesis (its arm: ``arm = "thesis"``), sorted (p1..p3, then a..j)."""
+    return [p for p in shipped_scenario_paths()
+            if tomllib.loads(read_text(p, "file", limit=MAX_FILE_SIZE, what="a scenario file")).get("arm")
+            == "thesis"]
 
 
 def scenario_path(scenario: str | Path) -> Path:
@@ -107,7 +123,7 @@ def scenario_path(scenario: str | Path) -> Path:
     shipped = scenarios_dir() / f"{path.name}.toml"
     if shipped.is_file():
         return shipped
-    names = ", ".join(p.stem for p in thesis_scenario_paths())
+    names = ", ".join(p.stem for p in shipped_scenario_paths())
     raise ScenarioError("scenario", f"{str(scenario)!r} is neither a scenario file nor a shipped scenario "
                                     f"({names})")
 
@@ -118,9 +134,21 @@ def platform_box(scene: Scene = THESIS_SCENE) -> Obstacle:
     return Obstacle(tuple(p.center), tuple(p.size), name="platform", kind="support")
 
 
-def load_scenario(path, *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
+def load_scenario(path, *, arm: Arm | None = None, scene: Scene = THESIS_SCENE,
                   check_workspace: bool = True) -> Scenario:
-    """Read and validate one scenario file (see the module docstring) for ``arm`` in ``scene``."""
+    """Read and validate one scenario file (see the module docstring) in ``scene``.
+
+    Args:
+        arm: The arm to plan for; None: the one the file names (its ``arm`` key). A file that names
+            another arm (other numbers, :func:`iik.arms.same_arm`) is refused.
+
+    Returns:
+        The :class:`Scenario`, carrying its arm (:attr:`Scenario.arm`).
+
+    Raises:
+        ScenarioError: see the module docstring; (field ``arm``) the file names no arm and none is
+            given, names an unknown arm or an unusable URDF, or names another arm than ``arm``.
+    """
     path = Path(path)
     try:
         text = read_text(path, "file", limit=MAX_FILE_SIZE, what="a scenario file")
@@ -132,15 +160,41 @@ def load_scenario(path, *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
         raise ScenarioError("file", f"{path.name} is not valid TOML: {exc}") from None
     except RecursionError:
         raise ScenarioError("file", f"{path.name} nests arrays or tables too deeply") from None
-    sc = scenario_from_dict(data, source=str(path), default_name=path.stem, scene=scene)
-    validate_scenario(sc, arm=arm, scene=scene, check_workspace=check_workspace,
+    sc = scenario_from_dict(data, source=str(path), default_name=path.stem, scene=scene,
+                            relative_to=path.parent)
+    sc = dataclasses.replace(sc, arm=scenario_arm(sc, arm))
+    validate_scenario(sc, arm=sc.arm, scene=scene, check_workspace=check_workspace,
                       frame=data.get("frame", "base"))
     return sc
 
 
-def validate_scenario(sc: Scenario, *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE,
+def scenario_arm(sc: Scenario, arm: Arm | None) -> Arm:
+    """The arm to plan ``sc`` for: ``arm`` if given, else the scenario's own; both given, they must be
+    the same arm (:func:`iik.arms.same_arm`).
+
+    Raises:
+        ScenarioError: (field ``arm``) neither is given, or they differ.
+    """
+    from iik.arms import same_arm
+
+    if arm is not None and not isinstance(arm, Arm):
+        raise InvalidInputError("arm", f"expected an iik.Arm, got {type(arm).__name__}")
+    if sc.arm is None and arm is None:
+        raise ScenarioError("arm", f"scenario {sc.name!r} names no arm and none was given: add arm = "
+                                   "\"NAME\" (a shipped arm, iik.arms.NAMES) or arm = \"path/to.urdf\" to "
+                                   "the file, or give one (iik plan --arm, plan(..., arm=...))")
+    if sc.arm is not None and arm is not None and not same_arm(sc.arm, arm):
+        raise ScenarioError("arm", f"scenario {sc.name!r} is for the arm {sc.arm.name!r}, not {arm.name!r} "
+                                   "(its positions, reach and obstacles were laid out for it)")
+    return sc.arm if arm is None else arm
+
+
+def validate_scenario(sc: Scenario, *, arm: Arm, scene: Scene = THESIS_SCENE,
                       check_workspace: bool = True, frame: str = "base") -> None:
     """Geometric and workspace (of ``arm``) checks of Sec 3.6.1 (raises :class:`ScenarioError`).
+
+    For an arm not of the thesis's Table II form the workspace test is the numerical search of
+    :func:`iik.workspace.in_workspace` (Sec 3.4.4 is written for the thesis's form).
 
     ``frame``: the frame of the file ``sc`` came from (``"base"`` or ``"floor"``); messages
     give points in it.
@@ -208,8 +262,11 @@ def _table(d, field: str, allowed: set[str]) -> dict:
 
 
 def scenario_from_dict(data: dict, *, source: str = "", default_name: str = "scenario",
-                       scene: Scene = THESIS_SCENE) -> Scenario:
-    """Build a :class:`Scenario` from parsed TOML (no validation against the workspace)."""
+                       scene: Scene = THESIS_SCENE, relative_to=None) -> Scenario:
+    """Build a :class:`Scenario` from parsed TOML (no validation against the workspace).
+
+    ``relative_to``: the folder a relative URDF path in the ``arm`` key is read from (the file's
+    folder; default: the working directory)."""
     _table(data, "", _TOP)
     frame = data.get("frame", "base")
     if not isinstance(frame, str) or frame not in FRAMES:
@@ -223,7 +280,22 @@ def scenario_from_dict(data: dict, *, source: str = "", default_name: str = "sce
     return Scenario(name=str(data.get("name", default_name)), start=start, goal=goal,
                     title=data.get("title", ""), reference=data.get("reference", ""),
                     reconstruction=data.get("reconstruction", ""), obstacles=_obstacles(data, dz),
-                    source=source, **_planning(plan, dz))
+                    arm=_arm(data, relative_to), source=source, **_planning(plan, dz))
+
+
+def _arm(data: dict, relative_to) -> Arm | None:
+    """The arm the file's ``arm`` key names (None without the key)."""
+    from iik.arms import resolve
+
+    if "arm" not in data:
+        return None
+    text = data["arm"]
+    if not isinstance(text, str) or not text:
+        raise ScenarioError("arm", f"expected a shipped arm's name or a URDF file, got {brief(text)}")
+    try:
+        return resolve(text, relative_to=relative_to)
+    except InvalidInputError as exc:  # unknown name, a URDF that does not parse or is outside the class
+        raise ScenarioError("arm", f"{text!r}: {exc}") from None
 
 
 def _position(v, field: str, dz: float) -> tuple[float, float, float]:
@@ -346,7 +418,10 @@ def scenario_to_toml(sc: Scenario) -> str:
         ScenarioError: A number is not finite (the field is named).
     """
     lines = [f"# Scenario {sc.name} (written by iik.planning.write_scenario). Units: m, degrees / rad.",
-             f"name = {_str(sc.name, 'name')}", f"title = {_str(sc.title, 'title')}",
+             f"name = {_str(sc.name, 'name')}"]
+    if sc.arm is not None:
+        lines.append(f"arm = {_str(_arm_reference(sc.arm), 'arm')}")
+    lines += [f"title = {_str(sc.title, 'title')}",
              f"reference = {_str(sc.reference, 'reference')}",
              f"reconstruction = {_str(sc.reconstruction, 'reconstruction')}", 'frame = "base"']
     for key, wp in (("start", sc.start), ("goal", sc.goal)):
@@ -370,6 +445,17 @@ def scenario_to_toml(sc: Scenario) -> str:
                   f"size = {_point(b.size, f'obstacles[{i}].size')}",
                   f"kind = {_str(b.kind, f'obstacles[{i}].kind')}"]
     return "\n".join(lines) + "\n"
+
+
+def _arm_reference(arm: Arm) -> str:
+    """What a file's ``arm`` key says for ``arm``: its shipped name, else its URDF file."""
+    from iik.arms import name_of
+
+    ref = name_of(arm) or arm.urdf
+    if not ref:
+        raise ScenarioError("arm", f"cannot be written: {arm.name!r} is neither a shipped arm nor read "
+                                   "from a URDF file")
+    return ref
 
 
 def write_scenario(sc: Scenario, path) -> Path:

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from iik.arm import THESIS_ARM, Arm
+from iik.arm import Arm
 from iik.validation import as_joints
 
 from .errors import TimingError
@@ -137,7 +137,7 @@ class _PchipPath:
         return self(ss, 2)
 
 
-def time_parameterize(qs, arm: Arm = THESIS_ARM, *, dt: float = 0.01,
+def time_parameterize(qs, arm: Arm, *, dt: float = 0.01,
                       gridpoints: int | None = None, margin: float = 0.95,
                       joint_margin: float = EXECUTION_MARGIN) -> Trajectory:
     """Time-optimal timing of the joint path ``qs`` (n, 6) [rad] by TOPP-RA within ``arm``'s limits.
@@ -173,7 +173,7 @@ def time_parameterize(qs, arm: Arm = THESIS_ARM, *, dt: float = 0.01,
     return tr
 
 
-def step_schedule(t, q, arm: Arm = THESIS_ARM, *, min_step: float = MIN_STEP,
+def step_schedule(t, q, arm: Arm, *, min_step: float = MIN_STEP,
                   resolution: float = STEP_RESOLUTION) -> np.ndarray:
     """Times [s] at which the arm executes the step-points ``q`` (n, 6) [rad] meant for times ``t``.
 
@@ -255,7 +255,7 @@ def _toppra(curve, kind: str, arm: Arm, margin: float, joint_margin: float, dt: 
                       step_t=step_schedule(t_wp, waypoints, arm))
 
 
-def thesis_timing(qs, arm: Arm = THESIS_ARM) -> Trajectory:
+def thesis_timing(qs, arm: Arm) -> Trajectory:
     """The thesis's timing: equal time per step, velocity proportional to the step's effort.
 
     Each step lasts ``max_i max_n |dq_n,i| / v_n``: the largest step just reaches

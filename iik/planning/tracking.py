@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..arm import THESIS_ARM, Arm
+from ..arm import Arm
 from ..ik import solve_many
 from ..ik.nearest import Candidates
 from ..joint_path import (
@@ -139,7 +139,7 @@ def _solve(points: np.ndarray, euler: np.ndarray, arm: Arm, budget: Budget) -> l
     return out
 
 
-def all_solutions(points: np.ndarray, euler: np.ndarray, *, arm: Arm = THESIS_ARM,
+def all_solutions(points: np.ndarray, euler: np.ndarray, *, arm: Arm,
                   beta_steps: tuple[float, ...] = BETA_STEPS, adapt_orientation: bool = True,
                   ramp: int = RAMP, budget: Budget | None = None) -> tuple[list[np.ndarray], np.ndarray]:
     """Usable IK solutions of ``arm`` at every step, with orientation changes where needed.
@@ -218,7 +218,7 @@ def _solve_with_offsets(points, euler, arm, beta_steps, adapt_orientation, budge
     return sols, offs
 
 
-def track_branches(path: CartesianPath, *, arm: Arm = THESIS_ARM, beta_steps: tuple[float, ...] = BETA_STEPS,
+def track_branches(path: CartesianPath, *, arm: Arm, beta_steps: tuple[float, ...] = BETA_STEPS,
                    switch_threshold: float = BRANCH_SWITCH_STEP, adapt_orientation: bool = True,
                    budget: Budget | None = None) -> Tracking:
     """Follow every IK branch along the path, choosing by the effort index (Eq 54).
@@ -310,7 +310,7 @@ def _dp_layers(path: CartesianPath, arm: Arm, offsets, half_turn: bool, budget: 
     return layers
 
 
-def track_dp(path: CartesianPath, *, arm: Arm = THESIS_ARM, offsets=DP_OFFSETS, w_change: float = 3.0,
+def track_dp(path: CartesianPath, *, arm: Arm, offsets=DP_OFFSETS, w_change: float = 3.0,
              w_offset: float = 0.05, w_switch: float = 2.0, half_turn: bool = True,
              w_half_turn: float = 1.0, switch_threshold: float = BRANCH_SWITCH_STEP,
              budget: Budget | None = None) -> Tracking:

@@ -8,6 +8,7 @@ import can
 import pytest
 
 from hardware import PowerCubeArm, SimulatedArm
+from iik import THESIS_ARM
 
 
 def unique_channel(prefix: str = "t") -> str:
@@ -34,7 +35,7 @@ def host_bus(channel):
 
 @pytest.fixture
 def sim(channel):
-    s = SimulatedArm.virtual(channel, (1, 2, 3, 4, 5, 6), lag=0.01)
+    s = SimulatedArm.virtual(channel, (1, 2, 3, 4, 5, 6), lag=0.01, arm=THESIS_ARM)
     yield s
     s.close()
     assert not s.errors, s.errors
@@ -42,7 +43,7 @@ def sim(channel):
 
 @pytest.fixture
 def arm(sim, host_bus):
-    a = PowerCubeArm(host_bus, (1, 2, 3, 4, 5, 6), timeout=0.2)
+    a = PowerCubeArm(host_bus, (1, 2, 3, 4, 5, 6), timeout=0.2, arm=THESIS_ARM)
     yield a
     a.stop_watchdog(disable=False)
 

@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 import iik
 from hardware import ValidatedTrajectory
 from hardware.sources import CSV_COLUMNS, csv_trajectory
+from iik import THESIS_ARM
 from iik.cli import main
 from iik.errors import IIKError
 
@@ -139,7 +140,7 @@ def hostile_file(draw):
 def _outcome(path) -> str:
     """'validated' or the typed error's class; anything else propagates and fails the test."""
     try:
-        tr = csv_trajectory(path).validate()
+        tr = csv_trajectory(path, THESIS_ARM).validate()
     except IIKError as exc:
         assert str(exc) and "Traceback" not in str(exc)
         return type(exc).__name__
@@ -199,7 +200,7 @@ def test_a_long_file_is_bounded(tmp_path):
             f.write(f"{k * 0.01:.2f},0,0,0,0,0,0\n")
     t0 = time.perf_counter()
     try:
-        csv_trajectory(path)
+        csv_trajectory(path, THESIS_ARM)
     except IIKError as exc:
         assert f"more than {sources.MAX_CSV_ROWS} data lines" in str(exc)
     else:

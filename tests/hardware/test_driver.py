@@ -19,7 +19,10 @@ from hardware.errors import (
     SafetyError,
     SecondControllerError,
 )
+from iik import THESIS_ARM
 from verification.testing.polling import wait_until
+
+ARM = THESIS_ARM  # the modules' limits in these tests
 
 
 def test_open_close_and_reads(arm, sim):
@@ -34,8 +37,8 @@ def test_open_close_and_reads(arm, sim):
 
 def test_from_interface_owns_and_closes_bus(new_channel):
     ch = new_channel()
-    with SimulatedArm.virtual(ch, (1, 2)):
-        with PowerCubeArm.from_interface((1, 2), interface="virtual", channel=ch, timeout=0.2) as a:
+    with SimulatedArm.virtual(ch, (1, 2), arm=ARM):
+        with PowerCubeArm.from_interface((1, 2), interface="virtual", channel=ch, timeout=0.2, arm=ARM) as a:
             assert len(a.open()) == 2
         with pytest.raises(Exception):  # noqa: B017 - python-can raises on a closed bus
             a.bus.send(can.Message(arbitration_id=1, data=[0]))
@@ -51,9 +54,9 @@ def test_set_max_cur_is_written(arm, sim):
 
 def test_home_and_home_all(new_channel):
     ch = new_channel()
-    with SimulatedArm.virtual(ch, (1, 2), homed=False, initial=[0.2, -0.1]) as sim, \
+    with SimulatedArm.virtual(ch, (1, 2), homed=False, initial=[0.2, -0.1], arm=ARM) as sim, \
             can.Bus(interface="virtual", channel=ch) as bus:
-        a = PowerCubeArm(bus, (1, 2), timeout=0.2)
+        a = PowerCubeArm(bus, (1, 2), timeout=0.2, arm=ARM)
         assert not any(s & P.State.HOME_OK for s in a.states())
         a.modules[0].home()
         a.modules[0].wait_homed(timeout=3.0)
@@ -103,7 +106,8 @@ def test_move_step_extended_reply(arm, sim):
 
 def test_speed_limit_of_sec_3_2_slows_a_too_fast_step(new_channel):
     ch = new_channel()
-    with SimulatedArm.virtual(ch, (1,), lag=0.0) as sim, can.Bus(interface="virtual", channel=ch) as bus:
+    with SimulatedArm.virtual(ch, (1,), lag=0.0, arm=ARM) as sim, \
+            can.Bus(interface="virtual", channel=ch) as bus:
         m = PowerCubeModule(bus, 1, timeout=0.2)  # no local limits given: the module's FMAXVEL is read
         vmax = iik.THESIS_ARM.velocity[0]
         with pytest.raises(SafetyError, match="FMAXVEL"):
@@ -197,7 +201,7 @@ def test_echo_rule_discards_non_matching_replies(new_channel):
     ch = new_channel()
     rogue = _Rogue(ch)
     try:
-        with SimulatedArm.virtual(ch, (1,), initial=[0.3]) as sim, \
+        with SimulatedArm.virtual(ch, (1,), initial=[0.3], arm=ARM) as sim, \
                 can.Bus(interface="virtual", channel=ch) as bus:
             sim.inject(1, "late_ack", delay=0.3, count=-1)
             m = PowerCubeModule(bus, 1, timeout=5.0)  # the echo rule is under test, not the timeout
@@ -235,7 +239,7 @@ def test_late_ack_is_discarded_by_the_next_request(arm, sim):
 
 def test_scan_finds_exactly_the_modules(new_channel):
     ch = new_channel()
-    with SimulatedArm.virtual(ch, (2, 5, 9)), can.Bus(interface="virtual", channel=ch) as bus:
+    with SimulatedArm.virtual(ch, (2, 5, 9), arm=ARM), can.Bus(interface="virtual", channel=ch) as bus:
         found = scan(bus, timeout=0.05)
     assert sorted(found) == [2, 5, 9]
     assert set(found.values()) == {0x5151}
@@ -266,7 +270,8 @@ def test_buffered_step_starts_when_the_current_one_ends(arm, sim):
 
 def test_soft_limits_default_to_table_i_and_refuse_targets(new_channel):
     ch = new_channel()
-    with SimulatedArm.virtual(ch, (1, 2, 3, 4, 5, 6)), can.Bus(interface="virtual", channel=ch) as bus:
+    with SimulatedArm.virtual(ch, (1, 2, 3, 4, 5, 6), arm=ARM), \
+            can.Bus(interface="virtual", channel=ch) as bus:
         m = PowerCubeModule(bus, 2, timeout=0.2)  # joint 2, no local check
         lo, hi = m.soft_limits()
         assert lo == pytest.approx(iik.THESIS_ARM.lower[1]) and hi == pytest.approx(iik.THESIS_ARM.upper[1])
@@ -316,8 +321,9 @@ def test_bad_arguments_are_typed_errors(arm, sim):
 def test_two_modules_with_one_id_are_a_fault_at_open(new_channel):
     """Two simulated arms on one channel (as two `iik sim-arm` on one bus): every id answers twice."""
     ch = new_channel()
-    with SimulatedArm.virtual(ch), SimulatedArm.virtual(ch), can.Bus(interface="virtual", channel=ch) as bus:
-        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0)
+    with SimulatedArm.virtual(ch, arm=ARM), SimulatedArm.virtual(ch, arm=ARM), \
+            can.Bus(interface="virtual", channel=ch) as bus:
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0, arm=ARM)
         with pytest.raises(DuplicateModuleError) as info:
             arm.open()
         assert info.value.module_id in range(1, 7) and "two answers to GETPARAM VERSION" in str(info.value)
@@ -327,9 +333,9 @@ def test_two_modules_with_one_id_are_a_fault_at_open(new_channel):
 
 def test_one_module_each_opens_cleanly(new_channel):
     ch = new_channel()
-    with SimulatedArm.virtual(ch, (1, 2, 3)), SimulatedArm.virtual(ch, (4, 5, 6)), \
+    with SimulatedArm.virtual(ch, (1, 2, 3), arm=ARM), SimulatedArm.virtual(ch, (4, 5, 6), arm=ARM), \
             can.Bus(interface="virtual", channel=ch) as bus:
-        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0)
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0, arm=ARM)
         assert len(arm.open()) == 6 and sorted(scan(bus, range(1, 8), timeout=0.2)) == [1, 2, 3, 4, 5, 6]
 
 
@@ -337,9 +343,9 @@ def test_two_controllers_on_one_bus_are_named_as_such(new_channel):
     """Two hosts driving one arm (two `iik run` on one channel): each sees requests it did not send,
     a SecondControllerError naming them, not "more than one module with id N"."""
     ch = new_channel()
-    with SimulatedArm.virtual(ch), can.Bus(interface="virtual", channel=ch) as bus_a, \
+    with SimulatedArm.virtual(ch, arm=ARM), can.Bus(interface="virtual", channel=ch) as bus_a, \
             can.Bus(interface="virtual", channel=ch) as bus_b:
-        a, b = (PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0) for bus in (bus_a, bus_b))
+        a, b = (PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0, arm=ARM) for bus in (bus_a, bus_b))
         a.open()
         with pytest.raises(SecondControllerError) as info:
             b.open()
@@ -356,8 +362,9 @@ def test_frames_a_host_sent_itself_are_not_another_controller(new_channel):
     periodic watchdog refresh included; a frame it never sent is another one."""
     ch = new_channel()
     loopback = can.Bus(interface="virtual", channel=ch, receive_own_messages=True)
-    with SimulatedArm.virtual(ch), loopback as bus, can.Bus(interface="virtual", channel=ch) as other:
-        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0)
+    with SimulatedArm.virtual(ch, arm=ARM), loopback as bus, \
+            can.Bus(interface="virtual", channel=ch) as other:
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0, arm=ARM)
         arm.open()
         arm.start_watchdog()
         time.sleep(0.2)  # a few refreshes come back
@@ -370,7 +377,7 @@ def test_frames_a_host_sent_itself_are_not_another_controller(new_channel):
 
 def test_a_second_answer_during_requests_is_a_fault(arm, sim, channel):
     arm.open()
-    with SimulatedArm.virtual(channel, (3,)):  # a module with id 3 appears on the bus
+    with SimulatedArm.virtual(channel, (3,), arm=ARM):  # a module with id 3 appears on the bus
         with pytest.raises(DuplicateModuleError) as info:
             for _ in range(20):
                 arm.get_pos()

@@ -23,6 +23,7 @@ from hardware.errors import (
     StopSignal,
 )
 from hardware.executor import ExecutionOptions, ValidatedTrajectory, ValidationOptions, time_steps
+from iik import THESIS_ARM
 from iik.files import PARTIAL_PREFIX
 
 ARM = iik.THESIS_ARM
@@ -32,7 +33,7 @@ QB = np.array([0.3, -0.1, 0.2, 0.6, 0.1, 0.5])
 
 def line(n=6, qa=QA, qb=QB, speed=0.5):
     q = qa + (qb - qa) * np.linspace(0, 1, n)[:, None]
-    return time_steps(q, speed_fraction=speed, min_step=0.05), q, iik.fk(q)
+    return time_steps(q, speed_fraction=speed, min_step=0.05, arm=ARM), q, iik.fk(q, THESIS_ARM)
 
 
 FAST = ExecutionOptions(settle=0.05, sample_period=0.005)
@@ -41,7 +42,7 @@ FAST = ExecutionOptions(settle=0.05, sample_period=0.005)
 # ----------------------------------------------------------------------------- validation
 def test_validate_accepts_a_planned_line():
     t, q, T = line()
-    tr = validate(t, q, T)
+    tr = validate(t, q, T, arm=ARM)
     assert isinstance(tr, ValidatedTrajectory) and len(tr) == 6
     assert tr.times[0] == 0 and np.all(tr.step_ms >= 50)
     with pytest.raises(ValueError):
@@ -69,9 +70,9 @@ def test_validate_rejects(mutate, step, joint):
     t, q, T = t.copy(), q.copy(), T.copy()
     mutate(t, q, T)
     if joint is not None and np.all(np.isfinite(q[step])):
-        T[step] = iik.fk(q[step])
+        T[step] = iik.fk(q[step], THESIS_ARM)
     with pytest.raises(SafetyError) as ei:
-        validate(t, q, T)
+        validate(t, q, T, arm=ARM)
     assert (ei.value.step, ei.value.joint) == (step, joint)
     named = f"step-point {step} (counting from 0)" + ("" if joint is None else f", joint q{joint + 1}")
     assert str(ei.value).startswith(named + ": ")
@@ -82,11 +83,11 @@ def test_step_times_are_compared_in_whole_milliseconds():
     "0.009985 s is shorter than 0.01 s"); 9.4 ms is 9 ms and refused, saying both."""
     t, q, T = line()
     q = q[0] + (q - q[0]) * 0.01  # slow enough for 10 ms steps
-    T = iik.fk(q)
-    tr = validate(np.arange(len(t)) * 0.009985, q, T)
+    T = iik.fk(q, THESIS_ARM)
+    tr = validate(np.arange(len(t)) * 0.009985, q, T, arm=ARM)
     assert list(tr.step_ms) == [10] * (len(t) - 1)
     with pytest.raises(SafetyError, match=r"9\.400 ms, 9 ms on the wire \(whole ms\): shorter than the 10"):
-        validate(np.arange(len(t)) * 0.0094, q, T)
+        validate(np.arange(len(t)) * 0.0094, q, T, arm=ARM)
 
 
 def test_validate_rejects_too_fast():
@@ -94,7 +95,7 @@ def test_validate_rejects_too_fast():
     t = t * 0.05  # 20x faster than half speed
     t[1:] = np.maximum(t[1:], np.arange(1, len(t)) * 0.011)
     with pytest.raises(SafetyError, match="rad/s"):
-        validate(t, q, T)
+        validate(t, q, T, arm=ARM)
 
 
 def test_execute_refuses_anything_else():
@@ -107,9 +108,10 @@ def test_execute_refuses_anything_else():
 @pytest.fixture
 def rig(new_channel, tmp_path):
     ch = new_channel()
-    sim = SimulatedArm.virtual(ch, lag=0.01, initial=QA)
+    sim = SimulatedArm.virtual(ch, lag=0.01, initial=QA, arm=ARM)
     bus = can.Bus(interface="virtual", channel=ch)
-    arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0)  # generous: load must not look like a fault
+    arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=1.0,  # generous: load must not look like a fault
+                       arm=ARM)
     yield sim, arm, tmp_path / "run.jsonl"
     sim.close()
     bus.shutdown()
@@ -122,10 +124,10 @@ def test_execute_streams_with_the_early_update(new_channel, tmp_path, virtual_cl
     clk = virtual_clock
     ch = new_channel()
     t, q, T = line()
-    tr = validate(t, q, T)
-    with SimulatedArm.virtual(ch, lag=0.01, initial=QA, clock=clk.clock) as sim, \
+    tr = validate(t, q, T, arm=ARM)
+    with SimulatedArm.virtual(ch, lag=0.01, initial=QA, clock=clk.clock, arm=ARM) as sim, \
             can.Bus(interface="virtual", channel=ch) as bus:
-        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=2.0)
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=2.0, arm=ARM)
         res = execute(arm, tr, tmp_path / "run.jsonl", options=FAST, clock=clk.clock, sleep=clk.sleep)
         run = read_run_log(tmp_path / "run.jsonl")
         assert run.status == "ok" and run.fault is None
@@ -143,10 +145,10 @@ def test_execute_streams_with_the_early_update(new_channel, tmp_path, virtual_cl
 
 def test_execute_approaches_the_start_first(new_channel, tmp_path):
     ch = new_channel()
-    with SimulatedArm.virtual(ch, lag=0.01) as sim, can.Bus(interface="virtual", channel=ch) as bus:
-        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=0.15)
+    with SimulatedArm.virtual(ch, lag=0.01, arm=ARM) as sim, can.Bus(interface="virtual", channel=ch) as bus:
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=0.15, arm=ARM)
         t, q, T = line(4, qa=np.full(6, 0.05), qb=np.full(6, 0.1))
-        tr = validate(t, q, T)
+        tr = validate(t, q, T, arm=ARM)
         with pytest.raises(SafetyError):
             execute(arm, tr, tmp_path / "a.jsonl", options=ExecutionOptions(approach=False))
         execute(arm, tr, tmp_path / "b.jsonl", options=ExecutionOptions(settle=0.05, approach_speed=0.5))
@@ -174,7 +176,7 @@ def assert_halted_and_logged(sim, log, error, skip=()):
 ])
 def test_fault_halts_all_and_logs(rig, kind, kw, error):
     sim, arm, log = rig
-    tr = validate(*line(8))
+    tr = validate(*line(8), arm=ARM)
     sim.inject(3, kind, after_moves=3, **kw)
     exc_type = CANTimeoutError if error == "CANTimeoutError" else ModuleFault
     with pytest.raises(exc_type):
@@ -187,7 +189,7 @@ def test_fault_halts_all_and_logs(rig, kind, kw, error):
 
 def test_vanished_module_others_halted_and_it_stops_by_itself(rig):
     sim, arm, log = rig
-    tr = validate(*line(8))
+    tr = validate(*line(8), arm=ARM)
     sim.inject(4, "vanish", after_moves=3)
     with pytest.raises(CANTimeoutError):
         execute(arm, tr, log, options=FAST)
@@ -198,7 +200,7 @@ def test_vanished_module_others_halted_and_it_stops_by_itself(rig):
 
 def test_keyboard_interrupt_halts_and_logs(rig):
     sim, arm, log = rig
-    tr = validate(*line(8))
+    tr = validate(*line(8), arm=ARM)
 
     def progress(k, n):
         if k == 3:
@@ -211,7 +213,7 @@ def test_keyboard_interrupt_halts_and_logs(rig):
 
 def test_can_error_halts_and_logs(rig):
     sim, arm, log = rig
-    tr = validate(*line(8))
+    tr = validate(*line(8), arm=ARM)
     real_send = arm.bus.send
     calls = {"n": 0}
 
@@ -229,12 +231,12 @@ def test_can_error_halts_and_logs(rig):
 
 def test_duplicate_module_mid_run_halts_and_logs(rig):
     sim, arm, log = rig
-    tr = validate(*line(8))
+    tr = validate(*line(8), arm=ARM)
     extra = []
 
     def progress(k, n):
         if k == 2:  # a second module with id 4 appears on the bus (a wiring fault)
-            extra.append(SimulatedArm.virtual(arm.bus.channel_id, (4,), initial=tr.q[2, 3:4]))
+            extra.append(SimulatedArm.virtual(arm.bus.channel_id, (4,), initial=tr.q[2, 3:4], arm=ARM))
 
     try:
         with pytest.raises(DuplicateModuleError) as info:
@@ -254,7 +256,7 @@ def test_stop_signal_halts_and_logs(rig):
     if threading.current_thread() is not threading.main_thread():
         pytest.skip("signal handlers can only be installed in the main thread")
     sim, arm, log = rig
-    tr = validate(*line(8))
+    tr = validate(*line(8), arm=ARM)
 
     def progress(k, n):
         if k == 3:
@@ -271,7 +273,7 @@ def test_stop_signal_halts_and_logs(rig):
 
 def test_a_trajectory_faster_than_a_modules_own_limit_is_refused_before_start(rig):
     sim, arm, log = rig
-    tr = validate(*line(6, speed=0.8))
+    tr = validate(*line(6, speed=0.8), arm=ARM)
     arm.modules[2].set_max_vel(0.05)  # module 3 configured far below Sec 3.2
     with pytest.raises(SafetyError, match=r"joint q3: the step to it needs more than module 3's speed limit"):
         execute(arm, tr, log, options=FAST)
@@ -280,7 +282,7 @@ def test_a_trajectory_faster_than_a_modules_own_limit_is_refused_before_start(ri
 
 def test_run_log_survives_without_end_record(rig):
     sim, arm, log = rig
-    tr = validate(*line(4))
+    tr = validate(*line(4), arm=ARM)
     execute(arm, tr, log, options=FAST)
     lines = log.read_text().splitlines()
     log.write_text("\n".join(lines[:-1]) + "\n")  # as if the process died
@@ -320,21 +322,22 @@ def test_no_out_of_limit_target_is_ever_sent(new_channel, tmp_path, data):
         scale = data.draw(st.sampled_from([0.9, 0.9, 0.9, 1.3]))
         q[k] = q[k - 1] + [data.draw(st.floats(-scale, scale)) * vmax[j] * dt for j in range(6)]
     t = np.arange(n) * dt
-    T = iik.fk(q)
+    T = iik.fk(q, THESIS_ARM)
     if data.draw(st.booleans()):
         T[-1, 2, 3] += data.draw(st.floats(-1e-3, 1e-3))  # sometimes a pose that q does not reach
     opts = ValidationOptions()
     try:
-        tr = validate(t, q, T, options=opts)
+        tr = validate(t, q, T, options=opts, arm=ARM)
     except SafetyError as exc:
         event(f"refused: {exc.reason.split()[-1] if 'FK' not in exc.reason else 'FK'}")
         return  # refused before any bus existed
     event("executed")
     ch = new_channel()
     sent = []
-    with SimulatedArm.virtual(ch, lag=0.0, initial=q[0]), can.Bus(interface="virtual", channel=ch) as bus:
+    with SimulatedArm.virtual(ch, lag=0.0, initial=q[0], arm=ARM), \
+            can.Bus(interface="virtual", channel=ch) as bus:
         _spy(bus, sent)
-        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=0.2)
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=0.2, arm=ARM)
         execute(arm, tr, tmp_path / f"{ch}.jsonl", options=ExecutionOptions(settle=0.0, sample_period=0.01))
     moves = [P.decode(f) for f in sent if (f.arbitration_id & ~0x1F) == P.ID_SET]
     moves = [m for m in moves if isinstance(m, P.SetMove)]
@@ -362,23 +365,23 @@ def test_orientation_free_steps_check_position_only():
     c, s = math.cos(0.2), math.sin(0.2)
     T[2, :3, :3] = T[2, :3, :3] @ np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])  # planner changed alpha here
     with pytest.raises(SafetyError, match="FK does not match"):
-        validate(t, q, T)
+        validate(t, q, T, arm=ARM)
     free = np.zeros(len(t), bool)
     free[2] = True
-    validate(t, q, T, orientation_free=free)
+    validate(t, q, T, orientation_free=free, arm=ARM)
     T[2, 0, 3] += 0.001  # the position is still checked
     with pytest.raises(SafetyError, match="FK does not match"):
-        validate(t, q, T, orientation_free=free)
+        validate(t, q, T, orientation_free=free, arm=ARM)
 
 
 def test_bus_open_failure_is_typed():
     with pytest.raises(BusError):
-        PowerCubeArm.from_interface(interface="no-such-interface", channel="x")
+        PowerCubeArm.from_interface(interface="no-such-interface", channel="x", arm=ARM)
 
 
 def test_can_error_frame_halts_and_logs(rig):
     sim, arm, log = rig
-    tr = validate(*line(8))
+    tr = validate(*line(8), arm=ARM)
     noisy = can.Bus(interface="virtual", channel=arm.bus.channel_id)  # another node on the same bus
 
     def progress(k, n):
@@ -395,7 +398,7 @@ def test_can_error_frame_halts_and_logs(rig):
 
 def test_watchdog_during_the_run(rig):
     sim, arm, log = rig
-    tr = validate(*line(6, speed=0.25))
+    tr = validate(*line(6, speed=0.25), arm=ARM)
     res = execute(arm, tr, log, options=ExecutionOptions(settle=0.05, sample_period=0.005, watchdog=True))
     wd = [m for _, m in sim.received() if isinstance(m, P.Broadcast) and m.cmd is P.Cmd.WATCHDOG]
     assert res.duration > 0.5 and len(wd) >= 6 * 5  # refreshed every 40 ms on every module
@@ -406,18 +409,20 @@ def test_watchdog_during_the_run(rig):
 
 
 _CRASH_SCRIPT = r"""
-import sys, time, can, numpy as np, iik
+import sys, time, can, numpy as np, iik, iik.arms
 from hardware import PowerCubeArm, SimulatedArm, execute, validate
 from hardware.executor import ExecutionOptions, time_steps
 ch = sys.argv[1]
 q = np.full(6, 0.1) + np.linspace(0, 1, 40)[:, None] * 0.3
-sim = SimulatedArm.virtual(ch, initial=q[0])
+A = iik.arms.get("thesis")
+sim = SimulatedArm.virtual(ch, initial=q[0], arm=A)
 bus = can.Bus(interface="virtual", channel=ch)
-arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=0.5)
+arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=0.5, arm=A)
 def progress(k, n):
     if k == 5:
         print("running", flush=True)
-execute(arm, validate(time_steps(q, min_step=0.1), q, iik.fk(q)), sys.argv[2], progress=progress,
+execute(arm, validate(time_steps(q, min_step=0.1, arm=A), q, iik.fk(q, A), arm=A), sys.argv[2],
+        progress=progress,
         options=ExecutionOptions(sample_period=0.005))
 """
 
@@ -452,14 +457,14 @@ def test_buffered_update_cuts_no_step(new_channel, tmp_path, virtual_clock):
     On one virtual clock shared by simulator and executor (round trips take no
     simulated time), so the machine's load cannot shift the two timelines apart."""
     qa, qb = QA, QA + np.array([0.25, -0.2, 0.15, 0.2, -0.25, 0.3])
-    tr = validate(*line(6, qa=qa, qb=qb, speed=0.8))
+    tr = validate(*line(6, qa=qa, qb=qb, speed=0.8), arm=ARM)
     out = {}
     clk = virtual_clock
     for update in ("thesis", "buffered"):
         ch = new_channel()
-        with SimulatedArm.virtual(ch, lag=0.0, initial=tr.q[0], clock=clk.clock) as sim, \
+        with SimulatedArm.virtual(ch, lag=0.0, initial=tr.q[0], clock=clk.clock, arm=ARM) as sim, \
                 can.Bus(interface="virtual", channel=ch) as bus:
-            arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=2.0)
+            arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=2.0, arm=ARM)
             execute(arm, tr, tmp_path / f"{update}.jsonl", clock=clk.clock, sleep=clk.sleep,
                     options=ExecutionOptions(update=update, settle=0.05, sample_period=0.003))
             starts = [m for _, m in sim.received() if isinstance(m, P.Broadcast) and m.cmd is P.Cmd.STARTMOVE]

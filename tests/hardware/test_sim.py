@@ -8,9 +8,11 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import iik
+import iik.arms
 from hardware import protocol as P
 from hardware.errors import SafetyError
 from hardware.sim import SimModule, SimulatedArm
+from iik import THESIS_ARM
 
 
 def module(**kw):
@@ -100,13 +102,18 @@ def test_watchdog_trips_on_silence():
     assert out and out[0].state & P.State.COMM_ERROR and m.state(0.2) & P.State.ERROR
 
 
-def test_defaults_come_from_the_arm():
-    sim = SimulatedArm(bus=None, module_ids=(1, 2, 3, 4, 5, 6), start=False)  # type: ignore[arg-type]
-    arm = iik.THESIS_ARM
+@pytest.mark.parametrize("name", ["thesis", "crx10ia"])
+def test_the_modules_are_the_arms(name):
+    """Soft limits, speeds and accelerations of the simulated modules are the given arm's (the CRX's
+    J3 reaches 251 deg and its joints 2.09-3.14 rad/s, the thesis arm's Table I and 1.2 rad/s)."""
+    arm = iik.arms.get(name)
+    sim = SimulatedArm(bus=None, module_ids=(1, 2, 3, 4, 5, 6), start=False, arm=arm)  # type: ignore[arg-type]
     for j, i in enumerate(sim.module_ids):
         m = sim.module(i)
         assert m.params[P.Param.FMINPOS] == arm.lower[j] and m.params[P.Param.FMAXPOS] == arm.upper[j]
-        assert m.vmax == arm.velocity[j]
+        assert m.vmax == arm.velocity[j] and m.params[P.Param.FMAXACC] == arm.acceleration[j]
+    with pytest.raises(SafetyError, match="outside its soft limits"):  # an initial position beyond the arm's
+        SimulatedArm(bus=None, start=False, arm=arm, initial=np.r_[0, 0, arm.upper[2] + 0.01, 0, 0, 0])  # type: ignore[arg-type]
 
 
 def test_bad_fault_kind():
@@ -180,13 +187,14 @@ def test_serve_until_stopped(new_channel):
 
     ch, stop, ready = new_channel(), threading.Event(), []
     th = threading.Thread(target=serve, args=("virtual", ch), daemon=True,
-                          kwargs={"stop": stop, "ready": ready.append, "initial": [0.1] * 6})
+                          kwargs={"stop": stop, "ready": ready.append, "initial": [0.1] * 6,
+                                  "arm": THESIS_ARM})
     th.start()
     deadline = time.monotonic() + 5.0
     while not ready and time.monotonic() < deadline:
         time.sleep(0.01)
     assert ready and ready[0].running
-    with PowerCubeArm.from_interface(interface="virtual", channel=ch, timeout=0.5) as arm:
+    with PowerCubeArm.from_interface(interface="virtual", channel=ch, timeout=0.5, arm=THESIS_ARM) as arm:
         assert len(arm.open()) == 6
         assert all(arm.get_pos() == np.float32(0.1))  # f32 on the wire
     stop.set()
@@ -201,10 +209,10 @@ def test_serve_refuses_bad_input_and_leaves_no_open_bus(new_channel, caplog):
     from hardware.sim import serve
 
     with pytest.raises(BusError, match="cannot open no-such-interface"):
-        serve("no-such-interface", "x", duration=0.1)
+        serve("no-such-interface", "x", duration=0.1, arm=THESIS_ARM)
     with pytest.raises(SafetyError, match="module_ids"):
-        serve("virtual", new_channel(), [0], duration=0.1)
+        serve("virtual", new_channel(), [0], duration=0.1, arm=THESIS_ARM)
     with pytest.raises(SafetyError, match="initial"):
-        serve("virtual", new_channel(), initial=[0.0, float("nan")], duration=0.1)
+        serve("virtual", new_channel(), initial=[0.0, float("nan")], duration=0.1, arm=THESIS_ARM)
     gc.collect()
     assert "not properly shut down" not in caplog.text

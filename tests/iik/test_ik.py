@@ -9,6 +9,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import iik
+from iik import THESIS_ARM
 from iik.errors import IIKError, InvalidInputError
 from iik.ik.angles import wrap_angle as _wrap
 from iik.ik.layout import MAX_SOLUTIONS
@@ -267,16 +268,16 @@ def test_outside_limits_reason():
 )
 def test_bad_input_typed_errors(bad, msg):
     with pytest.raises(InvalidInputError) as e:
-        iik.solve(bad)
+        iik.solve(bad, THESIS_ARM)
     assert msg in str(e.value)
     assert isinstance(e.value, IIKError)
 
 
 def test_batch_to_solve_and_bad_method():
     with pytest.raises(InvalidInputError):
-        iik.solve(np.stack([np.eye(4)] * 2))
+        iik.solve(np.stack([np.eye(4)] * 2), THESIS_ARM)
     with pytest.raises(InvalidInputError):
-        iik.solve(np.eye(4), method="magic")
+        iik.solve(np.eye(4), THESIS_ARM, method="magic")
 
 
 def test_pose_from_euler_round_trip():
@@ -296,9 +297,9 @@ def test_pose_beyond_any_reach_is_unreachable_without_warnings(method, position)
     T[:3, 3] = position
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # an overflow inside would raise here
-        r = iik.solve(T, method=method)
-        reachable = iik.fk(np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0]))
-        many = iik.solve_many(np.stack([T, reachable]), method=method)
+        r = iik.solve(T, THESIS_ARM, method=method)
+        reachable = iik.fk(np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0]), THESIS_ARM)
+        many = iik.solve_many(np.stack([T, reachable]), THESIS_ARM, method=method)
     assert r.count == 0 and r.reason.startswith("unreachable")
     assert many[0].count == 0 and many[1].count > 0
 
@@ -307,6 +308,6 @@ def test_reach_bound_bounds_the_tool_point():
     """The guard's bound: no q (not even outside Table I) puts the tool point beyond it, and it is
     not loose by more than the link offsets that cannot line up (here 9 %)."""
     q = np.random.default_rng(7).uniform(-np.pi, np.pi, size=(200_000, 6))
-    far = np.max(np.linalg.norm(iik.fk(q)[:, :3, 3], axis=1))
+    far = np.max(np.linalg.norm(iik.fk(q, THESIS_ARM)[:, :3, 3], axis=1))
     bound = ARM.reach
     assert far <= bound <= 1.1 * far

@@ -13,7 +13,7 @@ _PROGRAM = textwrap.dedent("""
     from iik.ik import compile_notice
     said = []
     with compile_notice(emit=said.append):
-        iik.fk(np.zeros((3, 6)))  # the kernel's fk_many: compiled, or loaded from NUMBA_CACHE_DIR
+        iik.fk(np.zeros((3, 6)), iik.THESIS_ARM)  # the kernel's fk_many: compiled, or loaded from the cache
         time.sleep(float(sys.argv[1]))  # as slow as a loaded machine: the block outlasts any timer
     print(json.dumps(said))
 """)

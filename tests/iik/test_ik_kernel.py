@@ -19,6 +19,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import iik
+from iik import THESIS_ARM
 from iik.errors import IIKError, InvalidInputError, NotOrthonormalError
 from iik.ik import bernstein as bz
 from iik.ik import ddarith as dd
@@ -41,7 +42,7 @@ def family_poses(n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
             q[:, j] = centre + sign * off
         blocks.append(q)
     q = np.concatenate(blocks)
-    return q, iik.fk(q)
+    return q, iik.fk(q, THESIS_ARM)
 
 
 # ----------------------------------------------------------------------------- certified isolation
@@ -121,11 +122,11 @@ def test_double_double_resolves_what_double_cannot():
 # ----------------------------------------------------------------------------- consistency
 def test_solve_many_and_solve_batch_match_solve():
     q, T = family_poses(20, seed=103)
-    many = iik.solve_many(T, within_limits=False)
-    batch = iik.ik.solve_batch(T, within_limits=False)
+    many = iik.solve_many(T, THESIS_ARM, within_limits=False)
+    batch = iik.ik.solve_batch(T, THESIS_ARM, within_limits=False)
     assert np.all(batch.count == [r.count for r in many])
     for i, r in enumerate(many):
-        one = iik.solve(T[i], within_limits=False)
+        one = iik.solve(T[i], THESIS_ARM, within_limits=False)
         assert np.array_equal(one.q, r.q) and one.free_joints == r.free_joints
         assert np.array_equal(batch.q[i, :r.count], r.q)
         assert np.array_equal(batch.position_residual[i, :r.count], r.position_residual)
@@ -134,8 +135,8 @@ def test_solve_many_and_solve_batch_match_solve():
 
 def test_parallel_option_gives_the_same_answers():
     _q, T = family_poses(30, seed=104)
-    serial = iik.ik.solve_batch(T)
-    par = iik.ik.solve_batch(T, options=iik.ik.IKOptions(parallel=True))
+    serial = iik.ik.solve_batch(T, THESIS_ARM)
+    par = iik.ik.solve_batch(T, THESIS_ARM, options=iik.ik.IKOptions(parallel=True))
     assert np.array_equal(serial.count, par.count)
     assert np.array_equal(np.nan_to_num(serial.q), np.nan_to_num(par.q))
 
@@ -143,8 +144,8 @@ def test_parallel_option_gives_the_same_answers():
 def test_reported_residuals_are_those_of_fk():
     """The residuals in the result are |fk(q) - T| and rotation_angle(fk(q), R), recomputed here."""
     _q, T = family_poses(10, seed=105)
-    for Ti, r in zip(T, iik.solve_many(T, within_limits=False), strict=True):
-        F = iik.fk(r.q)
+    for Ti, r in zip(T, iik.solve_many(T, THESIS_ARM, within_limits=False), strict=True):
+        F = iik.fk(r.q, THESIS_ARM)
         assert np.allclose(r.position_residual, np.linalg.norm(F[:, :3, 3] - Ti[:3, 3], axis=1), atol=1e-16)
         assert np.allclose(r.rotation_residual, iik.rotation_angle(F[:, :3, :3], Ti[:3, :3]), atol=1e-15)
         assert np.array_equal(r.within_limits, ARM.within_limits(r.q))  # the one limit test
@@ -169,18 +170,18 @@ def test_fast_path_and_reference_give_the_same_typed_errors(bad, word):
     errors = []
     for method in ("complete", "reference", "thesis"):
         with pytest.raises(InvalidInputError) as e:
-            iik.solve(bad, method=method)
+            iik.solve(bad, THESIS_ARM, method=method)
         assert word in str(e.value) and e.value.argument == "T" and isinstance(e.value, IIKError)
         errors.append((type(e.value), str(e.value)))
     assert len(set(errors)) == 1, errors
 
 
 def test_batch_errors_name_the_index():
-    Ts = iik.fk(np.zeros((3, 6)))
+    Ts = iik.fk(np.zeros((3, 6)), THESIS_ARM)
     Ts[2, :3, :3] *= 1.01
     for method in ("complete", "reference"):
         with pytest.raises(NotOrthonormalError) as e:
-            iik.solve_many(Ts, method=method)
+            iik.solve_many(Ts, THESIS_ARM, method=method)
         assert e.value.index == 2 and "index 2" in str(e.value) and e.value.argument == "Ts"
         assert e.value.deviation == pytest.approx(0.0201, rel=1e-3)
 
@@ -189,8 +190,8 @@ def test_batch_errors_name_the_index():
 _PROGRAM = textwrap.dedent("""
     import numpy as np, iik
     from iik.ik import kernel
-    T = iik.fk(np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0]))
-    assert iik.fk(np.zeros(6)).shape == (4, 4)
+    T = iik.fk(np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0]), iik.THESIS_ARM)
+    assert iik.fk(np.zeros(6), iik.THESIS_ARM).shape == (4, 4)
     s = kernel.fk_many.stats
     print(sum(s.cache_hits.values()), sum(s.cache_misses.values()), kernel.__file__)
 """)
@@ -248,7 +249,7 @@ def test_kernel_runs_as_python_under_numba_disable_jit():
     """NUMBA_DISABLE_JIT=1 (how one steps through the kernel in a debugger) gives plain Python
     functions: same solutions, no cache machinery (which needs a compiled dispatcher)."""
     code = ("import numpy as np, iik; q = np.array([0.3, -0.5, 0.7, 0.4, -0.6, 0.2]); "
-            "r = iik.solve(iik.fk(q)); "
+            "r = iik.solve(iik.fk(q, iik.THESIS_ARM), iik.THESIS_ARM); "
             "print(min(np.max(np.abs(np.angle(np.exp(1j * (row - q))))) for row in r.q))")
     env = dict(os.environ, NUMBA_DISABLE_JIT="1")
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300)

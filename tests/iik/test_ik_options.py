@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 import iik
+from iik import THESIS_ARM
 from iik.errors import InvalidInputError, NotOrthonormalError
 from iik.ik import DEFAULT_OPTIONS, ORTHONORMAL_TOL, IKOptions
 
@@ -39,28 +40,28 @@ def test_bad_options_are_typed_errors_naming_the_field(kw, field):
 
 
 def test_options_argument_and_old_call_forms():
-    T = iik.fk(np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0]))
-    a = iik.solve(T)
+    T = iik.fk(np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0]), THESIS_ARM)
+    a = iik.solve(T, THESIS_ARM)
     b = iik.solve(T, method="complete", within_limits=True, arm=ARM, options=DEFAULT_OPTIONS)
     assert np.array_equal(a.q, b.q)
     with pytest.raises(InvalidInputError) as e:
-        iik.solve(T, options={"position_tol": 1e-9})
+        iik.solve(T, THESIS_ARM, options={"position_tol": 1e-9})
     assert e.value.argument == "options"
     # a looser tolerance never loses a solution, a tighter one may reject less accurate rows
-    loose = iik.solve(T, options=IKOptions(position_tol=1e-6, rotation_tol=1e-6))
+    loose = iik.solve(T, THESIS_ARM, options=IKOptions(position_tol=1e-6, rotation_tol=1e-6))
     assert loose.count == a.count
 
 
 def test_near_orthonormal_rotation_is_projected_and_residuals_are_against_the_pose_as_given():
     q = np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0])
-    T = iik.fk(q)
+    T = iik.fk(q, THESIS_ARM)
     noisy = T.copy()
     noisy[:3, :3] += 3e-6 * np.random.default_rng(0).normal(size=(3, 3))
-    r = iik.solve(noisy)
+    r = iik.solve(noisy, THESIS_ARM)
     d = np.linalg.norm(noisy[:3, :3] - _nearest_rotation(noisy[:3, :3]))
     assert r.count > 0 and not r.is_approximate and r.reason == ""
     assert r.rotation_projection == pytest.approx(d, rel=1e-6)
-    F = iik.fk(r.q)
+    F = iik.fk(r.q, THESIS_ARM)
     assert np.allclose(r.rotation_residual, iik.rotation_angle(F[:, :3, :3], noisy[:3, :3]), atol=1e-15)
     assert np.all(r.rotation_residual >= 0.5 * d / np.sqrt(2))  # the projection is part of it ...
     Tp = noisy.copy()
@@ -70,16 +71,16 @@ def test_near_orthonormal_rotation_is_projected_and_residuals_are_against_the_po
 
 
 def test_beyond_the_tolerance_a_typed_error_says_how_far_and_which_option():
-    T = iik.fk(np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0]))
+    T = iik.fk(np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0]), THESIS_ARM)
     T[:3, :3] *= 1.001  # |R^T R - I| = 2e-3
     for method in ("complete", "reference", "thesis"):
         with pytest.raises(NotOrthonormalError) as e:
-            iik.solve(T, method=method)
+            iik.solve(T, THESIS_ARM, method=method)
         assert isinstance(e.value, InvalidInputError)
         assert e.value.deviation == pytest.approx(2.001e-3, rel=1e-3)
         assert e.value.tolerance == DEFAULT_OPTIONS.orthonormal_tol
         assert "IKOptions.orthonormal_tol" in str(e.value) and "= 0.002" in str(e.value)
-    r = iik.solve(T, options=IKOptions(orthonormal_tol=1e-2))  # the option named in the message
+    r = iik.solve(T, THESIS_ARM, options=IKOptions(orthonormal_tol=1e-2))  # the option named in the message
     assert r.count > 0 and r.rotation_projection > 1e-3
 
 
@@ -93,14 +94,14 @@ def test_the_default_takes_what_a_teach_pendant_shows_and_says_why_in_the_error(
     assert dev.max() <= bound < DEFAULT_OPTIONS.orthonormal_tol == ORTHONORMAL_TOL
     assert np.mean(dev > 1e-4) > 0.2  # what the old default refused
     q = np.random.default_rng(5).uniform(LO, HI, size=(400, 6))
-    T = iik.fk(q)
+    T = iik.fk(q, THESIS_ARM)
     T[:, :3, :3] = np.round(T[:, :3, :3], 4)
-    res = iik.solve_many(T, within_limits=False)  # no NotOrthonormalError
+    res = iik.solve_many(T, THESIS_ARM, within_limits=False)  # no NotOrthonormalError
     assert all(r.count > 0 and 0 < r.rotation_projection <= 2e-4 for r in res)
     scaled = T[0].copy()
     scaled[:3, :3] *= 1.001  # max |R^T R - I| = 2e-3
     with pytest.raises(NotOrthonormalError) as e:
-        iik.solve(scaled)
+        iik.solve(scaled, THESIS_ARM)
     assert "rounded to 4 decimals, which deviate by at most 1.7e-4" in str(e.value)
     assert "3 decimals deviate by up to 1.7e-3" in str(e.value)
 
@@ -109,20 +110,20 @@ def test_just_out_of_reach_is_approximate_far_out_is_unreachable():
     """A stretched arm (theta4 = 0) is on the boundary of the reachable poses: pushed out by
     1e-7 m it is 'approximate' (the least-residual configurations), by 1 cm 'unreachable'."""
     q = np.array([0.2, 0.3, 0.1, 0.0, 0.6, -0.4])
-    T = iik.fk(q)
-    out = iik.fk(q)[:3, 3] - iik.joint_frames(q)[1, :3, 3]  # away from joint 2
+    T = iik.fk(q, THESIS_ARM)
+    out = iik.fk(q, THESIS_ARM)[:3, 3] - iik.joint_frames(q, THESIS_ARM)[1, :3, 3]  # away from joint 2
     out /= np.linalg.norm(out)
     near, far = T.copy(), T.copy()
     near[:3, 3] += 1e-7 * out
     far[:3, 3] += 1e-2 * out
-    r = iik.solve(near, within_limits=False)
+    r = iik.solve(near, THESIS_ARM, within_limits=False)
     assert r.count > 0 and r.is_approximate and r.reason.startswith("approximate")
     assert np.all(r.position_residual <= DEFAULT_OPTIONS.approximate_tol)
     assert np.all(r.position_residual >= 0.5e-7 - 1e-12)  # honest: it does miss the pose
     assert _near(r.q, q, 1e-3)
-    strict = iik.solve(near, within_limits=False, options=IKOptions(approximate_tol=1e-9))
+    strict = iik.solve(near, THESIS_ARM, within_limits=False, options=IKOptions(approximate_tol=1e-9))
     assert strict.count == 0 and strict.reason.startswith("unreachable")
-    rf = iik.solve(far, within_limits=False)
+    rf = iik.solve(far, THESIS_ARM, within_limits=False)
     assert rf.count == 0 and rf.reason.startswith("unreachable")
 
 
@@ -148,7 +149,7 @@ def noisy_reachable(draw):
     q = np.array([draw(st.floats(float(lo), float(hi))) for lo, hi in zip(LO, HI, strict=True)])
     kind = draw(st.sampled_from(_NOISE))
     seed = draw(st.integers(0, 2**32 - 1))
-    return q, kind, noisy_pose(iik.fk(q), kind, np.random.default_rng(seed))
+    return q, kind, noisy_pose(iik.fk(q, THESIS_ARM), kind, np.random.default_rng(seed))
 
 
 def _scale(kind: str) -> float:
@@ -160,7 +161,7 @@ def _scale(kind: str) -> float:
 def test_noisy_reachable_poses_are_never_unreachable(case):
     """Issue 12 item 1: noise that real data carries does not make a reachable pose 'unreachable'."""
     q, kind, Tn = case
-    r = iik.solve(Tn, within_limits=False)
+    r = iik.solve(Tn, THESIS_ARM, within_limits=False)
     assert r.count > 0, (kind, r.reason)
     assert not r.reason.startswith("unreachable")
     s = _scale(kind)  # against the pose as given: the best row is as close as the noise ...
@@ -173,10 +174,10 @@ def test_noisy_poses_figures():
     """The same on a fixed sample, with the figures of the closing note (700 poses per kind)."""
     rng = np.random.default_rng(12)
     q = rng.uniform(LO, HI, size=(700, 6))
-    T = iik.fk(q)
+    T = iik.fk(q, THESIS_ARM)
     for kind in _NOISE:
         Tn = np.stack([noisy_pose(t, kind, rng) for t in T])
-        res = iik.solve_many(Tn, within_limits=False)
+        res = iik.solve_many(Tn, THESIS_ARM, within_limits=False)
         unreachable = sum(r.count == 0 for r in res)
         worst = max(max(r.position_residual.min(), r.rotation_residual.min()) for r in res if r.count)
         print(f"{kind}: {len(res) - unreachable}/{len(res)} solved "

@@ -5,6 +5,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import iik
+from iik import THESIS_ARM
 from iik.ik.angles import wrap_angle as _wrap
 from iik.ik.thesis import ACCEPT_TOL, thesis_candidates
 
@@ -21,9 +22,9 @@ def joints(draw):
 @given(joints())
 def test_complete_contains_thesis(q):
     """Every thesis solution is one of the complete solver's (to the thesis's 1e-6 deg scale)."""
-    T = iik.fk(q)
-    rt = iik.solve(T, method="thesis", within_limits=False)
-    rc = iik.solve(T, within_limits=False)
+    T = iik.fk(q, THESIS_ARM)
+    rt = iik.solve(T, THESIS_ARM, method="thesis", within_limits=False)
+    rc = iik.solve(T, THESIS_ARM, within_limits=False)
     for row in rt.q:
         # thesis rows are accurate to its 1e-6 deg bisection tolerance, hence the looser bound
         assert len(rc.q) and np.min(np.max(np.abs(_wrap(rc.q - row)), axis=1)) <= 1e-5, (row, rc.q)
@@ -32,7 +33,7 @@ def test_complete_contains_thesis(q):
 
 def test_thesis_finds_typical_pose():
     q = np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0])
-    rt = iik.solve(iik.fk(q), method="thesis")
+    rt = iik.solve(iik.fk(q, THESIS_ARM), THESIS_ARM, method="thesis")
     assert np.min(np.max(np.abs(_wrap(rt.q - q)), axis=1)) <= 1e-6
 
 
@@ -40,7 +41,7 @@ def test_only_two_of_four_configurations_per_root_satisfy_fk():
     """Sec 3.3.3 claims four configurations per theta1 root; only two reach the pose."""
     rng = np.random.default_rng(2)
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(200, 6))
-    d = thesis_candidates(iik.fk(q), ARM)
+    d = thesis_candidates(iik.fk(q, THESIS_ARM), ARM)
     per_root = np.bincount(d.root, weights=d.ok)
     real = per_root[per_root > 0]
     assert np.all(real <= 2)
@@ -51,9 +52,9 @@ def test_thesis_can_miss_roots_the_complete_solver_finds():
     """A coarse grid misses close root pairs; the complete solver does not."""
     rng = np.random.default_rng(8)
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(300, 6))
-    T = iik.fk(q)
-    thesis = iik.solve_many(T, method="thesis", within_limits=False)
-    complete = iik.solve_many(T, within_limits=False)
+    T = iik.fk(q, THESIS_ARM)
+    thesis = iik.solve_many(T, THESIS_ARM, method="thesis", within_limits=False)
+    complete = iik.solve_many(T, THESIS_ARM, within_limits=False)
     nt = np.array([r.count for r in thesis])
     nc = np.array([r.count for r in complete])
     assert np.all(nt <= nc)

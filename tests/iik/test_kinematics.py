@@ -9,7 +9,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import iik
-from iik import InvalidInputError
+from iik import THESIS_ARM, InvalidInputError
 from verification.testing.strategies import joint_batches, joint_vectors
 
 ARM = iik.THESIS_ARM
@@ -45,7 +45,7 @@ def table_ii_fk(q):
 
 @given(joint_vectors())
 def test_fk_matches_independent_table_ii(q):
-    T = iik.fk(q)
+    T = iik.fk(q, THESIS_ARM)
     ref = table_ii_fk(q)
     assert np.abs(T[:3, 3] - ref[:3, 3]).max() <= 1e-12
     assert np.abs(T[:3, :3] - ref[:3, :3]).max() <= 1e-12
@@ -54,11 +54,11 @@ def test_fk_matches_independent_table_ii(q):
 
 @given(joint_vectors())
 def test_fk_chain_matches_fk(q):
-    assert np.abs(iik.fk_chain(q) - iik.fk(q)).max() <= 1e-12
+    assert np.abs(iik.fk_chain(q, THESIS_ARM) - iik.fk(q, THESIS_ARM)).max() <= 1e-12
 
 
 def test_home_pose_is_stretched_along_x():
-    T = iik.fk(np.zeros(6))
+    T = iik.fk(np.zeros(6), THESIS_ARM)
     np.testing.assert_allclose(T[:3, 3], [ARM.l2 + ARM.l3 + ARM.l4 + ARM.l5, 0, ARM.l1], atol=1e-15)
 
 
@@ -74,7 +74,7 @@ def _fd(f, q, h=1e-6):
 @given(joint_vectors())
 def test_position_jacobian_matches_finite_differences(q):
     J_fd = _fd(lambda x: table_ii_fk(x)[:3, 3], q)
-    J = iik.position_jacobian(q)
+    J = iik.position_jacobian(q, THESIS_ARM)
     assert J.shape == (3, 6)
     np.testing.assert_allclose(J, J_fd, atol=1e-8, rtol=0)
     np.testing.assert_allclose(J_fd[:, 5], 0.0, atol=1e-8)  # Eq 34: joint 6 does not move p
@@ -82,7 +82,7 @@ def test_position_jacobian_matches_finite_differences(q):
 
 @given(joint_vectors())
 def test_jacobian_matches_finite_differences(q):
-    J = iik.jacobian(q)
+    J = iik.jacobian(q, THESIS_ARM)
     assert J.shape == (6, 6)
     np.testing.assert_allclose(J[:3], _fd(lambda x: table_ii_fk(x)[:3, 3], q), atol=1e-8, rtol=0)
     # angular part: dR/dq_i R^T = [w_i]x
@@ -97,8 +97,8 @@ def test_jacobian_matches_finite_differences(q):
 @given(joint_batches())
 def test_batch_equals_loop(qs):
     for f in (iik.fk, iik.fk_chain, iik.position_jacobian, iik.jacobian, iik.joint_frames):
-        batch = f(qs)
-        loop = np.stack([f(q) for q in qs])
+        batch = f(qs, THESIS_ARM)
+        loop = np.stack([f(q, THESIS_ARM) for q in qs])
         np.testing.assert_array_equal(batch, loop)
 
 
@@ -120,7 +120,7 @@ BAD = [
 @pytest.mark.parametrize("bad,word", BAD)
 def test_bad_input_is_a_typed_error_naming_q(f, bad, word):
     with pytest.raises(InvalidInputError) as exc:
-        f(bad)
+        f(bad, THESIS_ARM)
     assert exc.value.argument == "q"
     assert isinstance(exc.value, iik.IIKError)
 
@@ -130,7 +130,7 @@ def test_any_non_finite_entry_is_rejected(i, v):
     q = np.zeros(6)
     q[i] = v
     with pytest.raises(InvalidInputError, match="NaN or inf"):
-        iik.fk(q)
+        iik.fk(q, THESIS_ARM)
 
 
 @given(joint_batches())
@@ -145,7 +145,7 @@ def test_compiled_closed_forms_equal_the_same_formulas_run_by_numpy(qs):
     X1, X2, X3, Y1, Y2, Y3, Z1, Z2, Z3 = eq4_wrist_axes(c[0], s[0], c[1], s[1], c[2], s[2], c45, s45, A, B)
     r11, r21, r31, r12, r22, r32 = eq4_rotation(c[5], s[5], X1, X2, X3, Y1, Y2, Y3)
     p = eq4_position(c[0], s[0], c[1], s[1], c[2], A, B, W, V, ARM.l1, ARM.l2, ARM.l3)
-    T = iik.fk(qs)
+    T = iik.fk(qs, THESIS_ARM)
     np.testing.assert_allclose(T[:, :3, 3], np.stack(p, axis=1), atol=1e-15)
     R = np.stack([np.stack([r11, r12, Z1], 1), np.stack([r21, r22, Z2], 1), np.stack([r31, r32, Z3], 1)], 1)
     np.testing.assert_allclose(T[:, :3, :3], R, atol=1e-15)
@@ -153,10 +153,10 @@ def test_compiled_closed_forms_equal_the_same_formulas_run_by_numpy(qs):
 
 def test_one_q_fast_path_accepts_any_layout_and_dtype():
     q = np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0])
-    T = iik.fk(q)
+    T = iik.fk(q, THESIS_ARM)
     strided = np.zeros(12)
     strided[::2] = q
     for variant in (strided[::2], list(q), tuple(q), q.reshape(1, 6)[0]):
-        np.testing.assert_array_equal(iik.fk(variant), T)
-    assert np.abs(iik.fk(q.astype(np.float32)) - T).max() < 1e-6
-    np.testing.assert_array_equal(iik.jacobian(strided[::2]), iik.jacobian(q))
+        np.testing.assert_array_equal(iik.fk(variant, THESIS_ARM), T)
+    assert np.abs(iik.fk(q.astype(np.float32), THESIS_ARM) - T).max() < 1e-6
+    np.testing.assert_array_equal(iik.jacobian(strided[::2], THESIS_ARM), iik.jacobian(q, THESIS_ARM))

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import iik
+from iik import THESIS_ARM
 from iik.errors import InvalidInputError
 from iik.singularities import (
     ALL_SETS,
@@ -53,14 +54,14 @@ def test_table_vii_groups_use_distinct_triples():
 def test_all_listed_sets_are_singular():
     rng = np.random.default_rng(0)
     for s in ALL_SETS:
-        q = sample_set(s, 5, rng)
-        rank, _ = reduced_rank(iik.position_jacobian(q)[..., :5], at_limit_mask(q))
+        q = sample_set(s, 5, rng, THESIS_ARM)
+        rank, _ = reduced_rank(iik.position_jacobian(q, THESIS_ARM)[..., :5], at_limit_mask(q, THESIS_ARM))
         assert np.all(rank < 3), s.name
 
 
 def test_generic_configuration_not_singular():
     q = np.random.default_rng(1).uniform(ARM.q_min * 0.9, ARM.q_max * 0.9, size=(50, 6))
-    rank, smin = reduced_rank(iik.position_jacobian(q)[..., :5], at_limit_mask(q))
+    rank, smin = reduced_rank(iik.position_jacobian(q, THESIS_ARM)[..., :5], at_limit_mask(q, THESIS_ARM))
     assert np.all(rank == 3) and smin.min() > 1e-6
 
 

@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import iik
-from iik import InvalidInputError
+from iik import THESIS_ARM, InvalidInputError
 from iik.arm import thesis_arm
 from iik.cli import main
 from iik.dh import DHRow, DHTable, dh_chain
@@ -32,7 +32,7 @@ ARM = iik.THESIS_ARM
 
 
 def test_committed_urdf_equals_generator_output():
-    assert urdf_path().read_text(encoding="utf-8") == thesis_urdf(), (
+    assert urdf_path().read_text(encoding="utf-8") == thesis_urdf(THESIS_ARM), (
         "urdf/thesis_arm.urdf is stale: run `iik urdf`")
 
 
@@ -45,7 +45,7 @@ def test_cli_check_mode(tmp_path):
 
 
 def test_loads_in_pinocchio_with_table_i_limits():
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     m = tm.model
     assert m.nq == 6 and m.nv == 6 and m.njoints == 7
     assert [m.names[i] for i in range(1, 7)] == [f"joint{i}" for i in range(1, 7)]
@@ -59,7 +59,7 @@ def test_loads_in_pinocchio_with_table_i_limits():
 
 
 def test_every_link_has_collision_geometry_and_home_is_collision_free():
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     links = {tm.model.frames[g.parentFrame].name for g in tm.collision_model.geometryObjects}
     assert links == {"base_link"} | {f"link{i}" for i in range(1, 7)}
     data, gdata = tm.model.createData(), pin.GeometryData(tm.collision_model)
@@ -75,7 +75,7 @@ def test_every_link_has_collision_geometry_and_home_is_collision_free():
 
 def test_folded_arm_collides():
     """The collision model is not vacuous: folding the elbow back onto the upper arm collides."""
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     data, gdata = tm.model.createData(), pin.GeometryData(tm.collision_model)
     q = np.array([0.0, 0.0, 0.0, 2.9, 0.0, 0.0])  # beyond Table I: link 4 folded onto link 2
     assert pin.computeCollisions(tm.model, data, tm.collision_model, gdata, q, False)
@@ -120,7 +120,7 @@ def test_generator_base_transform():
     base[:3, :3] = pin.rpy.rpyToMatrix(0.1, 0.2, 0.3)
     qs = np.random.default_rng(3).uniform(-1, 1, (5, 6))
     got = _tool_fk(urdf_from_dh(table, name="r", base=base), qs)
-    assert np.abs(got - base @ iik.fk(qs)).max() <= 1e-12
+    assert np.abs(got - base @ iik.fk(qs, THESIS_ARM)).max() <= 1e-12
 
 
 def _corrupt(table, **fields):
@@ -238,14 +238,14 @@ def _distance_to_shapes(p, shapes):
 def test_collision_shapes_cover_the_kinematic_skeleton():
     """Points along base -> J1 -> J2 -> J34 -> J5 -> tool lie inside the shapes of the links that
     segment joins (a joint module belongs to the link before it), up to the clearance gap, at random q."""
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     data, gdata = tm.model.createData(), pin.GeometryData(tm.collision_model)
     owner = [tm.model.frames[g.parentFrame].name for g in tm.collision_model.geometryObjects]
     rng = np.random.default_rng(5)
     for q in rng.uniform(ARM.q_min, ARM.q_max, (20, 6)):
         pin.forwardKinematics(tm.model, data, q)
         pin.updateGeometryPlacements(tm.model, data, tm.collision_model, gdata)
-        F = iik.joint_frames(q)
+        F = iik.joint_frames(q, THESIS_ARM)
         O = [np.zeros(3)] + [F[i, :3, 3] for i in range(6)]
         palm_end = O[6] + (O[5] - O[6]) * POWERCUBE.finger[2] / ARM.l5  # between the fingers: open
         segments = [(O[0], O[1], ("base_link", "link1")), (O[1], O[2], ("link1",)),

@@ -10,6 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import iik
+import iik.arms
+from iik import THESIS_ARM
 from iik.errors import IIKError, InvalidInputError
 from iik.workspace import position_lm, tool_positions
 
@@ -26,35 +28,35 @@ def test_public_api():
 
 def test_tool_positions_equal_fk():
     q = np.random.default_rng(0).uniform(ARM.q_min, ARM.q_max, size=(500, 6))
-    assert np.abs(tool_positions(q[:, :5]) - iik.fk(q)[:, :3, 3]).max() < 1e-14
+    assert np.abs(tool_positions(q[:, :5], THESIS_ARM) - iik.fk(q, THESIS_ARM)[:, :3, 3]).max() < 1e-14
 
 
 def test_shapes_and_scalar():
-    assert iik.in_workspace([0.5, 0.0, 0.3]) is True
-    assert iik.in_workspace([2.0, 0.0, 0.3]) is False
-    out = iik.in_workspace(np.zeros((4, 3)))
+    assert iik.in_workspace([0.5, 0.0, 0.3], THESIS_ARM) is True
+    assert iik.in_workspace([2.0, 0.0, 0.3], THESIS_ARM) is False
+    out = iik.in_workspace(np.zeros((4, 3)), THESIS_ARM)
     assert out.shape == (4,) and out.dtype == bool
 
 
 @pytest.mark.parametrize("bad", [[np.nan, 0, 0], [0, 0], np.zeros((2, 2)), "abc", [[0, 0, np.inf]]])
 def test_bad_points(bad):
     with pytest.raises(InvalidInputError) as e:
-        iik.in_workspace(bad)
+        iik.in_workspace(bad, THESIS_ARM)
     assert e.value.argument == "p"
     with pytest.raises(IIKError):
-        iik.closest_reachable(bad)
+        iik.closest_reachable(bad, THESIS_ARM)
 
 
 def test_no_reachable_point_rejected_batch():
     """Measured property of the corrected test: every reachable point is inside (no false outside)."""
     q = np.random.default_rng(1).uniform(ARM.q_min, ARM.q_max, size=(100_000, 6))
-    assert iik.in_workspace(tool_positions(q[:, :5])).all()
+    assert iik.in_workspace(tool_positions(q[:, :5], THESIS_ARM), THESIS_ARM).all()
 
 
 @settings(max_examples=200, deadline=None)
 @given(joints)
 def test_reachable_points_inside(q):
-    assert iik.in_workspace(iik.fk(np.array(q))[:3, 3])
+    assert iik.in_workspace(iik.fk(np.array(q), THESIS_ARM)[:3, 3], THESIS_ARM)
 
 
 @settings(max_examples=100, deadline=None)
@@ -64,8 +66,8 @@ def test_region1_outside_sphere_is_outside(phi, el, extra):
     j2 = np.array([ARM.l2 * np.cos(phi), ARM.l2 * np.sin(phi), ARM.l1])
     u = np.array([np.cos(el) * np.cos(phi), np.cos(el) * np.sin(phi), np.sin(el)])
     p = j2 + (L + extra) * u
-    assert not iik.in_workspace(p)
-    r = iik.closest_reachable(p)
+    assert not iik.in_workspace(p, THESIS_ARM)
+    r = iik.closest_reachable(p, THESIS_ARM)
     assert r.moved
     assert r.distance == pytest.approx(extra, abs=1e-6)
 
@@ -73,41 +75,41 @@ def test_region1_outside_sphere_is_outside(phi, el, extra):
 def test_closest_reachable_is_reachable():
     rng = np.random.default_rng(2)
     P = rng.uniform([-1.2, -1.2, -0.8], [1.2, 1.2, 1.4], size=(40, 3))
-    r = iik.closest_reachable(P)
+    r = iik.closest_reachable(P, THESIS_ARM)
     assert r.point.shape == (40, 3) and r.q.shape == (40, 6)
     assert np.all(ARM.within_limits(r.q))
-    assert np.abs(iik.fk(r.q)[:, :3, 3] - r.point).max() < 1e-9
+    assert np.abs(iik.fk(r.q, THESIS_ARM)[:, :3, 3] - r.point).max() < 1e-9
     assert np.allclose(np.linalg.norm(r.point - P, axis=1), r.distance)
     # relocated points are reachable, so the corrected test (no false outside) accepts them
-    assert iik.in_workspace(r.point).all()
+    assert iik.in_workspace(r.point, THESIS_ARM).all()
     assert np.all(r.distance[~r.moved] == 0)
 
 
 def test_closest_reachable_unchanged_for_reachable():
     q = np.random.default_rng(3).uniform(ARM.q_min, ARM.q_max, size=(30, 6))
-    P = iik.fk(q)[:, :3, 3]
-    r = iik.closest_reachable(P)
+    P = iik.fk(q, THESIS_ARM)[:, :3, 3]
+    r = iik.closest_reachable(P, THESIS_ARM)
     assert not r.moved.any()
     assert np.array_equal(r.point, P)
 
 
 def test_closest_reachable_known_point():
-    r = iik.closest_reachable([1.0, 0.0, ARM.l1])  # straight ahead, 0.099 m too far
+    r = iik.closest_reachable([1.0, 0.0, ARM.l1], THESIS_ARM)  # straight ahead, 0.099 m too far
     assert r.point == pytest.approx([ARM.l2 + L, 0.0, ARM.l1], abs=1e-7)
     assert r.distance == pytest.approx(1.0 - ARM.l2 - L, abs=1e-7)
 
 
 def test_bad_tol():
     with pytest.raises(InvalidInputError):
-        iik.closest_reachable([0.5, 0, 0.3], tol=0.0)
+        iik.closest_reachable([0.5, 0, 0.3], THESIS_ARM, tol=0.0)
 
 
 def test_position_lm_converges():
     rng = np.random.default_rng(4)
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(50, 6))[:, :5]
-    P = tool_positions(q)
+    P = tool_positions(q, THESIS_ARM)
     q0 = np.clip(q + rng.normal(0, 0.05, q.shape), ARM.q_min[:5], ARM.q_max[:5])
-    _, res = position_lm(P, q0)
+    _, res = position_lm(P, q0, THESIS_ARM)
     assert res.max() < 1e-8
 
 
@@ -120,10 +122,29 @@ def test_closest_reachable_far_away_points(p):
     p = np.array(p)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        r = iik.closest_reachable(p)
-        assert not iik.in_workspace(p)
-    assert r.moved and np.allclose(iik.fk(r.q)[:3, 3], r.point, atol=1e-12)
+        r = iik.closest_reachable(p, THESIS_ARM)
+        assert not iik.in_workspace(p, THESIS_ARM)
+    assert r.moved and np.allclose(iik.fk(r.q, THESIS_ARM)[:3, 3], r.point, atol=1e-12)
     ray = p / np.hypot(np.hypot(p[0], p[1]), p[2]) * 1e6
-    assert np.max(np.abs(iik.closest_reachable(ray).point - r.point)) <= 1e-6
+    assert np.max(np.abs(iik.closest_reachable(ray, THESIS_ARM).point - r.point)) <= 1e-6
     d = (r.point - p) / np.max(np.abs(p))
     assert r.distance == pytest.approx(np.max(np.abs(p)) * np.sqrt(np.sum(d * d)), rel=1e-12)
+
+
+def test_another_arms_workspace_is_searched_with_its_own_fk():
+    """For an arm not of the thesis's form (the CRX-10iA) Sec 3.4.4 does not apply: in_workspace asks the
+    six-joint search of closest_reachable, which reaches FK points of random configurations inside the
+    CRX's limits, and refuses points beyond its reach bound with a reachable suggestion on the boundary."""
+    crx = iik.arms.get("crx10ia")
+    q = np.random.default_rng(11).uniform(crx.q_min, crx.q_max, (200, 6))
+    P = iik.fk(q, crx)[:, :3, 3]
+    assert iik.in_workspace(P, crx).all()
+    assert not iik.in_workspace(P, THESIS_ARM).all()  # the thesis arm's workspace is another
+    far = np.array([[crx.reach + 0.2, 0.0, 0.3], [0.0, 0.0, crx.reach + 0.5]])
+    assert not iik.in_workspace(far, crx).any()
+    c = iik.closest_reachable(far, crx)
+    assert c.moved.all() and np.all(c.distance > 0.19)
+    np.testing.assert_allclose(iik.fk(c.q, crx)[:, :3, 3], c.point, atol=1e-9)  # reached by its q
+    assert iik.closest_reachable(P[0], crx).distance == 0.0
+    with pytest.raises(InvalidInputError):
+        iik.in_workspace([np.nan, 0, 0], crx)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 import iik
+from iik import THESIS_ARM
 
 from ..assumptions import EXACT_GEOMETRY
 from ..numbers import fmt_matrix, fmt_vec
@@ -755,7 +756,7 @@ def eq69_surface(ctx, f1):
     arm = iik.THESIS_ARM
     q = rng.uniform(arm.q_min, arm.q_max, (ctx.n(400, 50), 6))
     q[:, 3:5] = 0.0  # on s(1)
-    err = np.linalg.norm(f1(q) - iik.fk(q)[:, :3, 3], axis=1)
+    err = np.linalg.norm(f1(q) - iik.fk(q, THESIS_ARM)[:, :3, 3], axis=1)
     m = (Measure("max |f(1) - tool point|", err.max(), 1e-12, "m"),)
     k = int(np.argmax(err))
     q69 = np.array([[-7 * np.pi / 9, 0.3, 0.0, 0.0, 0.0, 0.0]])
@@ -776,7 +777,8 @@ def eq69_surface(ctx, f1):
             "theta5 = 0, "
             "free theta1, theta2 as in u(1); the printed H*(2,2) = q_s2^2 (l3+l4+l5) needs this form)",
             f"at theta1 = -7pi/9, theta2 = 0.3 rad (theta3..5 = 0): Eq 69 gives "
-            f"{fmt_vec(f1(q69)[0] * 1e3, 1)} mm, the arm {fmt_vec(iik.fk(q69)[0, :3, 3] * 1e3, 1)} mm; "
+            f"{fmt_vec(f1(q69)[0] * 1e3, 1)} mm, the arm "
+            f"{fmt_vec(iik.fk(q69, THESIS_ARM)[0, :3, 3] * 1e3, 1)} mm; "
             f"worst sample {fmt_vec(q[k])} rad",
         ),
         domain=f"{len(q)} q uniform in Table I with theta4 = theta5 = 0 (the whole surface f(1))",

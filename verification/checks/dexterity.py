@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import iik
+from iik import THESIS_ARM
 from iik.dexterity import admissible, alpha_intervals, dexterity
 
 from ..assumptions import EXACT_GEOMETRY
@@ -41,7 +42,7 @@ from ..registry import (
 from ..second_reading import Kind, Reading, search
 from ..shorthand import wrap
 
-ARM = iik.THESIS_ARM
+ARM = THESIS_ARM
 _D = np.pi / 180
 L1, L2, L3, L4, L5 = ARM.lengths
 D_IN = np.sqrt(L3**2 + L4**2 - 2 * L3 * L4 * np.cos(np.pi - 119 * _D))  # Eq 45 / Eq 50 (d, phi)
@@ -1218,7 +1219,7 @@ def gamma_free(ctx, unaffected):
     """Sec 3.5.1: gamma only changes joint 6 (a full turn), so any gamma works; ``unaffected`` joints stay."""
     rng = ctx.rng("gamma")
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(ctx.n(40, 6), 6))
-    T = iik.fk(q)
+    T = iik.fk(q, THESIS_ARM)
     ang = np.array([iik.euler_from_matrix(t[:3, :3]) for t in T])
     gam = np.linspace(-np.pi, np.pi, 13)[:-1]
     ok, total, moved = 0, 0, 0.0
@@ -1226,7 +1227,7 @@ def gamma_free(ctx, unaffected):
     for t, (a, b, _) in zip(T, ang, strict=True):
         k = len(gam)
         poses = iik.pose_from_euler(np.tile(t[:3, 3], (k, 1)), np.full(k, a), np.full(k, b), gam)
-        res = iik.solve_many(poses)
+        res = iik.solve_many(poses, THESIS_ARM)
         ok += sum(len(r.q) > 0 for r in res)
         total += k
         base = res[0].q[:, cols] if len(res[0].q) else None

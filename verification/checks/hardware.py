@@ -48,6 +48,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from hardware.executor import EARLY_UPDATE
+from iik import THESIS_ARM
 from verification.registry import (
     Erratum,
     Forms,
@@ -236,7 +237,8 @@ def execute_scenario(
     with tempfile.TemporaryDirectory(prefix="iik-verify-hw-") as tmp:
         log_path = Path(tmp) / f"{name}.jsonl"
         t0 = time.perf_counter()
-        with simulated_arm(initial=traj.q[0], clock=clock, lag=lag, timeout=REQUEST_TIMEOUT) as (sim, arm):
+        with simulated_arm(initial=traj.q[0], clock=clock, lag=lag, timeout=REQUEST_TIMEOUT,
+                           arm=THESIS_ARM) as (sim, arm):
             arm.open()
             execute(
                 arm,
@@ -254,7 +256,7 @@ def execute_scenario(
     if errors:
         raise SimulatorError(f"simulated arm raised while serving {name}: {errors[:3]}")
     analysis = analyse(run)
-    checker = SceneCollision(scenario.obstacles)
+    checker = SceneCollision(scenario.obstacles, arm=THESIS_ARM)
     clearance = min(checker.clearance(q)[0] for q in run.samples_q)
     res = SimRun(
         name=name if limit is None else f"{name}[:{limit}]",
@@ -329,7 +331,7 @@ def check_table_v(ctx) -> Row:
             s & P.State.HOME_OK and not s & P.State.MOTION for i, s in enumerate(states) if i in ids
         )
 
-    with simulated_arm(initial=q0, clock=clock, timeout=REQUEST_TIMEOUT) as (sim, arm):
+    with simulated_arm(initial=q0, clock=clock, timeout=REQUEST_TIMEOUT, arm=THESIS_ARM) as (sim, arm):
         states = arm.open()  # PCube_openDevice: every module answers VERSION
         ok["openDevice"] = len(states) == 6 and all(m.version() == SIM_VERSION for m in arm.modules)
         ok["getPos"] = bool(np.allclose(arm.get_pos(), q0, atol=1e-6))
@@ -712,7 +714,7 @@ def check_set_max_cur(ctx, reading: LimitReading) -> Row:
 
     # PCube_setMaxCur(0.3) then a 0.6 rad/s velocity command for 1 s on the simulated modules
     clock, wait_for = fast_forward_clock(latency=LATENCY_SCALE)
-    with simulated_arm(clock=clock, timeout=REQUEST_TIMEOUT) as (sim, arm):
+    with simulated_arm(clock=clock, timeout=REQUEST_TIMEOUT, arm=THESIS_ARM) as (sim, arm):
         arm.open()
         m = arm.modules[0]
         p0 = m.get_pos()

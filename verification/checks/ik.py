@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import iik
+from iik import THESIS_ARM
 from iik.ik import solve_batch
 from iik.ik.thesis import solve_thesis_arrays, thesis_candidates
 
@@ -37,14 +38,14 @@ def _cached_solutions(ctx):
     key = ("ik.solutions", ctx.quick)
     if key not in ctx.cache:
         q = _sample(ctx, "ik-complete", 4000, 300)
-        T = iik.fk(q)
+        T = iik.fk(q, THESIS_ARM)
         ctx.cache[key] = (q, T, _complete_arrays(T))
     return ctx.cache[key]
 
 
 def _complete_arrays(T):
     """The complete solver (compiled kernel) as padded arrays ``(Q, V, F, P, R)``, limits ignored."""
-    b = solve_batch(T, within_limits=False)
+    b = solve_batch(T, THESIS_ARM, within_limits=False)
     V = np.arange(b.q.shape[1])[None, :] < b.count[:, None]
     return np.where(V[..., None], b.q, 0.0), V, b.free, b.position_residual, b.rotation_residual
 
@@ -63,7 +64,7 @@ def _complete_arrays(T):
 def four_configurations(ctx, per_root):
     """Sec 3.3.3: combining the signs of Eq 15 and Eq 21 gives ``per_root`` configurations per theta1 root."""
     q = _sample(ctx, "ik-four", 2000, 200)
-    d = thesis_candidates(iik.fk(q), ARM)
+    d = thesis_candidates(iik.fk(q, THESIS_ARM), ARM)
     valid = np.bincount(d.root, weights=d.ok, minlength=int(d.root.max()) + 1).astype(int)
     hist = np.bincount(valid, minlength=5)
     real = valid[valid > 0]
@@ -270,7 +271,7 @@ class Lookup:
 def benchmark(ctx, solver):
     """Sec 4.2.1 / 5.2: the IIK costs less computation per solution than pseudo-inverse Newton."""
     q = _sample(ctx, "ik-bench", 1000, 100)
-    c = compare_cost(iik.fk(q), q, solver, n_single=ctx.n(150, 30), repeats=5, seed=ctx.seed)
+    c = compare_cost(iik.fk(q, THESIS_ARM), q, solver, n_single=ctx.n(150, 30), repeats=5, seed=ctx.seed)
     s_med = float(np.median(c.single_ratio))
     b_max, b_min = max(c.batch_ratio), min(c.batch_ratio)
     m = (

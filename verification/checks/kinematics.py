@@ -499,7 +499,7 @@ def table_ii_encoding(ctx):
         for a, b in zip(printed.rows, ours.rows, strict=True)
         for k in ("alpha", "a", "d", "offset")
     )
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     lo, hi = tm.model.lowerPositionLimit, tm.model.upperPositionLimit
     d_lim = max(np.abs(lo - np.array(printed.lower)).max(), np.abs(hi - np.array(printed.upper)).max())
     revolute = [tm.model.joints[i].shortname() for i in range(1, tm.model.njoints)]
@@ -546,11 +546,11 @@ def table_ii_encoding(ctx):
 def urdf_is_generated(ctx):
     """The committed URDF is the generator's output (and a picture of its assumed shapes)."""
     committed = urdf_path().read_text(encoding="utf-8")
-    same = committed == thesis_urdf()
+    same = committed == thesis_urdf(THESIS_ARM)
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     fig = new_figure(figsize=(11, 5.6))
     for k, q in enumerate((np.zeros(6), np.array([0.5, -0.6, 0.4, 1.1, 0.7, 0.3]))):
         ax = fig.add_subplot(1, 2, k + 1, projection="3d")
@@ -661,7 +661,7 @@ def _arm_figure(ctx) -> str:
         ]
     )
     for k, q in enumerate(poses):
-        draw_arm_bodies(ax, q, colour=f"C{k}", alpha=0.25)
+        draw_arm_bodies(ax, q, colour=f"C{k}", alpha=0.25, arm=THESIS_ARM)
         draw_arm(ax, q, color=f"C{k}", label=fmt_q(q[:5]).replace(" rad", ""), markersize=3)
         ax.scatter(*tool_poses(q[None])[0, :3, 3], marker="x", color="k", s=40)
     ax.set_xlabel("x [m]")
@@ -1342,10 +1342,10 @@ def iik_kinematics(ctx, impl):
     fk_f, jac_f = impl
     qs, T_pin = _truth_poses(ctx, "appc", 3000, 200)
     J_pin = _cached(ctx, ("kin.appc.jpin6", ctx.quick), lambda: tool_jacobians(qs))
-    T = fk_f(qs)
+    T = fk_f(qs, THESIS_ARM)
     dp = np.linalg.norm(T[:, :3, 3] - T_pin[:, :3, 3], axis=1).max()
     dr = float(np.max(rotation_angle(T[:, :3, :3], T_pin[:, :3, :3])))
-    dj = np.abs(jac_f(qs) - J_pin).max()
+    dj = np.abs(jac_f(qs, THESIS_ARM) - J_pin).max()
     m = (
         Measure("max |dp|", dp, TOL_EXACT, "m"),
         Measure("max rotation angle", dr, TOL_EXACT, "rad"),
@@ -1705,7 +1705,7 @@ def _point_segment_distance(p, a, b):
 
 def _tool_to_upper_arm(qs):
     """Distance [m] from the tool point E to the upper-arm axis segment J2-J34, (n,)."""
-    F = joint_frames(qs)
+    F = joint_frames(qs, THESIS_ARM)
     return _point_segment_distance(F[:, 5, :3, 3], F[:, 1, :3, 3], F[:, 2, :3, 3])
 
 
@@ -1741,7 +1741,7 @@ def table_i_self_collision(ctx, limits):
     from scipy.optimize import minimize
 
     lo, hi = limits
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     data, gdata = tm.model.createData(), pin.GeometryData(tm.collision_model)
     qs = ctx.rng("selfcol").uniform(lo, hi, (ctx.n(10000, 500), 6))
     hit = np.array([pin.computeCollisions(tm.model, data, tm.collision_model, gdata, q, True) for q in qs])

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import iik
+from iik import THESIS_ARM
 from iik.joint_path import BRANCH_SWITCH_STEP, branch_switches
 from iik.planning import (
     REGIONS,
@@ -457,17 +458,18 @@ def joint_space_route(sc) -> tuple[np.ndarray, np.ndarray]:
     the middle segment (the nearest pair; orientation adapted where the nominal one has no solution),
     with the orientations FK gives."""
     pts, eul = straight_route(sc)
-    ends = all_solutions(pts[[0, -1]], eul[[0, -1]], ramp=0)[0]  # orientation adapted where needed
+    ends = all_solutions(pts[[0, -1]], eul[[0, -1]], ramp=0, arm=THESIS_ARM)[0]  # orientation adapted
+
     qa, qb = min(
         ((a, b) for a in ends[0] for b in ends[1]), key=lambda ab: float(np.abs(ab[0] - ab[1]).sum())
     )
     s = np.linspace(0.0, 1.0, len(pts))[:, None]
-    T = iik.fk(qa * (1 - s) + qb * s)
+    T = iik.fk(qa * (1 - s) + qb * s, THESIS_ARM)
     return T[:, :3, 3], euler_from_matrix(T[:, :3, :3])
 
 
 def _unsolved(points, euler) -> int:
-    sols, _ = all_solutions(points, euler, beta_steps=(), adapt_orientation=False, ramp=0)
+    sols, _ = all_solutions(points, euler, beta_steps=(), adapt_orientation=False, ramp=0, arm=THESIS_ARM)
     return sum(len(q) == 0 for q in sols)
 
 
@@ -594,7 +596,7 @@ def _tool_zone(sc, q) -> tuple[float, float]:
     obst = _obstacles(sc)
     if not obst:
         return math.inf, math.inf
-    tool = iik.fk(np.asarray(q, float))[:, :3, 3]
+    tool = iik.fk(np.asarray(q, float), THESIS_ARM)[:, :3, 3]
     ev = min(float(ellipsoid_value(tool, b.center, enclosing_radii(b) + sc.safety_zone).min()) for b in obst)
     return ev, min(float(b.distance(tool).min()) for b in obst)
 
@@ -619,16 +621,17 @@ def _planned(ctx) -> dict:
 def _checker(ctx, name: str) -> SceneCollision:
     key = ("planning.checker", name)
     if key not in ctx.cache:
-        ctx.cache[key] = SceneCollision(_planned(ctx)[name][0].scenario.obstacles, scene=THESIS_SCENE)
+        ctx.cache[key] = SceneCollision(_planned(ctx)[name][0].scenario.obstacles, scene=THESIS_SCENE,
+                                        arm=THESIS_ARM)
     return ctx.cache[key]
 
 
 def _branches(sc) -> tuple[np.ndarray, ...]:
     """Joint paths of the complete IK branches of the Sec 3.6 path of ``sc``, in the planner's order."""
     cp = build_path(sc, scene=THESIS_SCENE)
-    tr = track_branches(cp, adapt_orientation=False)
+    tr = track_branches(cp, adapt_orientation=False, arm=THESIS_ARM)
     if not tr.complete:
-        tr = track_dp(cp)
+        tr = track_dp(cp, arm=THESIS_ARM)
     return tuple(b.q for b in tr.complete)
 
 

@@ -17,6 +17,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 import iik
+from iik import THESIS_ARM
 from iik.workspace import in_workspace, tool_positions
 
 from ..assumptions import EXACT_GEOMETRY
@@ -204,7 +205,7 @@ def _map_figure(ctx, name: str) -> str:
             truth.reshape(shape), origin="lower", extent=ext, cmap="Greys", alpha=0.35, vmin=0, vmax=1.6
         )
         printed = eq36_41_printed(P)
-        corrected = in_workspace(P)
+        corrected = in_workspace(P, THESIS_ARM)
         for pred, col, lab in (
             (printed, "red", "Eq 36-41 as printed"),
             (corrected, "blue", "iik.in_workspace (corrected)"),
@@ -337,7 +338,7 @@ _COMPOSITE = (
     40.0,
     forms=Forms(
         printed=eq36_41_printed,
-        good=in_workspace,
+        good=partial(in_workspace, arm=ARM),
         good_is="iik.in_workspace (Eq 39 and Eq 40 corrected)",
         slips=(
             Slip(SlipKind.SIGN, "Eq 40 with l2 - l3 c2 (Eq 39 corrected)", partial(eq36_41_test,
@@ -607,7 +608,7 @@ def _nearest_joint4_theta2(P, th1) -> np.ndarray:
     def dist(t):
         q = np.zeros((t.size, 6))
         q[:, 0], q[:, 1] = th1, t.ravel()
-        j4 = iik.joint_frames(q)[:, 2, :3, 3]
+        j4 = iik.joint_frames(q, THESIS_ARM)[:, 2, :3, 3]
         return np.linalg.norm(np.repeat(P, t.shape[1], axis=0) - j4, axis=1).reshape(t.shape)
 
     grid = np.linspace(lo, hi, 2001)[None, :].repeat(len(P), 0)
@@ -905,11 +906,11 @@ def _distance_to_surface(B: np.ndarray, spec: tuple, n: int) -> np.ndarray:
     lo = np.array([a for a, _ in spec[1].values()]) * _D
     hi = np.array([b for _, b in spec[1].values()]) * _D
     for _ in range(25):
-        G = tool_positions(q)
-        J = iik.position_jacobian(np.column_stack([q, np.zeros(len(q))]))[:, :, :5][:, :, free]
+        G = tool_positions(q, THESIS_ARM)
+        J = iik.position_jacobian(np.column_stack([q, np.zeros(len(q))]), THESIS_ARM)[:, :, :5][:, :, free]
         dq = np.einsum("nij,nj->ni", np.linalg.pinv(J, rcond=1e-9), B - G)
         q[:, free] = np.clip(q[:, free] + dq, lo, hi)
-    return np.linalg.norm(B - tool_positions(q), axis=1)
+    return np.linalg.norm(B - tool_positions(q, THESIS_ARM), axis=1)
 
 
 @SECTION.check(
@@ -992,7 +993,7 @@ def _side_test(ctx) -> list[str]:
     for name in ("f(2)", "f(3)"):
         pts, q = surface_points(name, ctx.n(390, 100), ctx.n(82, 21))
         k = rng.choice(len(pts), size=min(len(pts), ctx.n(300, 40)), replace=False)
-        J = iik.position_jacobian(np.column_stack([q[k], np.zeros(len(k))]))[:, :, :5]
+        J = iik.position_jacobian(np.column_stack([q[k], np.zeros(len(k))]), THESIS_ARM)[:, :, :5]
         n0 = np.cross(J[:, :, 1], J[:, :, 3])
         n0 /= np.linalg.norm(n0, axis=1, keepdims=True)
         both = oracle.classify(pts[k] + 2e-3 * n0).reachable & oracle.classify(pts[k] - 2e-3 * n0).reachable
@@ -1111,7 +1112,7 @@ def _region1_only(P) -> np.ndarray:
 
 
 def _closest(P) -> np.ndarray:
-    return iik.closest_reachable(P).point
+    return iik.closest_reachable(P, THESIS_ARM).point
 
 
 def _pushed_out(P) -> np.ndarray:
@@ -1132,8 +1133,8 @@ def _outside_points(ctx) -> np.ndarray:
         d[back, 1] = np.sin(az[back]) * np.hypot(d[back, 0], d[back, 1])
         d /= np.linalg.norm(d, axis=1, keepdims=True)
         P = np.array([0.0, 0.0, ARM.l1]) + d * rng.uniform(0.5, 1.3, size=(m, 1))
-        P = P[~in_workspace(P)]
-        ctx.cache[key] = (P, iik.closest_reachable(P))
+        P = P[~in_workspace(P, THESIS_ARM)]
+        ctx.cache[key] = (P, iik.closest_reachable(P, THESIS_ARM))
     return ctx.cache[key]
 
 
@@ -1164,7 +1165,7 @@ def app_g_relocation(ctx, relocate):
         Measure("share of relocated points that are unreachable", 1 - ok.mean(), 0.0),
         Measure("max |relocation distance - closest distance|", np.abs(extra).max(), 1e-3, "m"),
     )
-    fk_err = np.abs(iik.fk(closest.q)[:, :3, 3] - closest.point).max()
+    fk_err = np.abs(iik.fk(closest.q, THESIS_ARM)[:, :3, 3] - closest.point).max()
     ok_all = all(x.holds for x in m)
     return Row(
         "A point outside the workspace is relocated to the closest position inside it.",

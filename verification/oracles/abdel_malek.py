@@ -30,6 +30,7 @@ import numpy as np
 import pinocchio as pin
 
 import iik
+from iik import THESIS_ARM
 
 __all__ = ["NormalAcceleration", "normal_acceleration", "position_and_jacobian", "hessian", "eq58_rates",
            "eq59_normal", "eq61_h_star", "eq63_b", "eq65_q_star", "eq67_dq", "eq68_kbar"]
@@ -40,7 +41,7 @@ _H = 1e-6
 def _model():
     from iik.planning.robot_model import thesis_model
 
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     return tm.model, tm.tool_frame_id
 
 

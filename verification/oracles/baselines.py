@@ -65,7 +65,7 @@ class NumericIKResult:
 
 class _Model:
     def __init__(self):
-        tm = thesis_model()
+        tm = thesis_model(THESIS_ARM)
         self.model = tm.model
         self.data = tm.model.createData()
         self.fid = tm.tool_frame_id

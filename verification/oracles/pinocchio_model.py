@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
+from iik import THESIS_ARM
 from iik.planning.robot_model import thesis_model
 
 __all__ = ["thesis_model", "tool_frame_id", "tool_poses", "tool_jacobians", "joint_placements"]
@@ -16,12 +17,12 @@ __all__ = ["thesis_model", "tool_frame_id", "tool_poses", "tool_jacobians", "joi
 
 def tool_frame_id() -> int:
     """Frame id of ``tool`` in :func:`thesis_model`."""
-    return thesis_model().tool_frame_id
+    return thesis_model(THESIS_ARM).tool_frame_id
 
 
 def tool_poses(qs: np.ndarray) -> np.ndarray:
     """Pinocchio pose of frame ``tool`` for each q in ``qs`` (n, 6) [rad]: (n, 4, 4) [m]."""
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     data = tm.model.createData()
     out = np.empty((len(qs), 4, 4))
     for k, q in enumerate(qs):
@@ -33,7 +34,7 @@ def tool_poses(qs: np.ndarray) -> np.ndarray:
 def tool_jacobians(qs: np.ndarray) -> np.ndarray:
     """Pinocchio frame Jacobian of ``tool`` in LOCAL_WORLD_ALIGNED for each q in ``qs`` (n, 6):
     (n, 6, 6), rows [v; w] in base-frame axes."""
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     data = tm.model.createData()
     out = np.empty((len(qs), 6, 6))
     for k, q in enumerate(qs):
@@ -44,7 +45,7 @@ def tool_jacobians(qs: np.ndarray) -> np.ndarray:
 def joint_placements(qs: np.ndarray) -> np.ndarray:
     """Pinocchio placements ``oMi`` of the joint frames 0..6 for each q in ``qs`` (n, 6):
     (n, 7, 4, 4) [m]. Joint frame i of the URDF is DH frame i of Table II (frame 0 the base)."""
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     data = tm.model.createData()
     out = np.empty((len(qs), tm.model.njoints, 4, 4))
     for k, q in enumerate(qs):

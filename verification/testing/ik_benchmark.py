@@ -38,6 +38,8 @@ import time
 
 import numpy as np
 
+from iik import THESIS_ARM
+
 METHODS = ("kernel", "reference", "thesis", "newton", "dls")
 FAMILIES = ("generic", "theta4 ~ 0", "theta5 ~ 0", "theta4 + theta5 ~ 0", "theta4 + theta5 ~ pi",
             "theta3 ~ +-90 deg", "theta1 at +-160 deg", "wrist point on joint-1 axis")
@@ -109,8 +111,8 @@ def _solver(method: str):
 
     if method in ("kernel", "reference", "thesis"):
         m = "complete" if method == "kernel" else method
-        return (lambda T, q0: iik.solve(T, method=m, within_limits=False),
-                lambda Ts, Q0: iik.solve_many(Ts, method=m, within_limits=False))
+        return (lambda T, q0: iik.solve(T, THESIS_ARM, method=m, within_limits=False),
+                lambda Ts, Q0: iik.solve_many(Ts, THESIS_ARM, method=m, within_limits=False))
     fn = newton_pinv if method == "newton" else damped_least_squares
     return (lambda T, q0: fn(T, q0), lambda Ts, Q0: [fn(T, q0) for T, q0 in zip(Ts, Q0, strict=True)])
 
@@ -168,7 +170,7 @@ def run(n: int = 2000, n_single: int = 500, n_newton: int = 200, seed: int = 201
     for fam in families:
         rng = np.random.default_rng([seed, FAMILIES.index(fam)])
         q = family_joints(fam, n, rng, arm)
-        T = iik.fk(q)
+        T = iik.fk(q, THESIS_ARM)
         q0 = q + rng.normal(0.0, 0.1, q.shape)
         rows[fam] = {}
         for m in methods:
@@ -176,7 +178,7 @@ def run(n: int = 2000, n_single: int = 500, n_newton: int = 200, seed: int = 201
             ks = min(n_single, k)
             rows[fam][m] = measure(m, q[:k], T[:k], q0[:k], ks, arm)
         if "kernel" in methods:
-            best = _best_time(lambda T=T: iik.ik.solve_batch(T, within_limits=False), 3)
+            best = _best_time(lambda T=T: iik.ik.solve_batch(T, THESIS_ARM, within_limits=False), 3)
             rows[fam]["kernel"]["solve_batch_poses_per_s"] = n / best
     _print(rows, n, n_single, n_newton, out)
     return rows
@@ -223,8 +225,9 @@ def kinematics_timings(n: int = 20000, out=sys.stdout) -> dict:
     q = np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0])
     Q = np.random.default_rng(0).uniform(iik.THESIS_ARM.q_min, iik.THESIS_ARM.q_max, size=(10000, 6))
     res = {}
-    for name, f in (("fk(q)", lambda: iik.fk(q)), ("jacobian(q)", lambda: iik.jacobian(q)),
-                    ("position_jacobian(q)", lambda: iik.position_jacobian(q))):
+    for name, f in (("fk(q)", lambda: iik.fk(q, THESIS_ARM)),
+                    ("jacobian(q)", lambda: iik.jacobian(q, THESIS_ARM)),
+                    ("position_jacobian(q)", lambda: iik.position_jacobian(q, THESIS_ARM))):
         f()
         ts = []
         for _ in range(n // 100):
@@ -233,9 +236,9 @@ def kinematics_timings(n: int = 20000, out=sys.stdout) -> dict:
                 f()
             ts.append((time.perf_counter() - t0) / 100)
         res[name] = 1e6 * float(np.median(ts))
-    iik.fk(Q)
+    iik.fk(Q, THESIS_ARM)
     t0 = time.perf_counter()
-    iik.fk(Q)
+    iik.fk(Q, THESIS_ARM)
     res["fk batch, per q"] = 1e6 * (time.perf_counter() - t0) / len(Q)
     print("| kinematics | median us |\n|---|---|", file=out)
     for k, v in res.items():
@@ -303,7 +306,7 @@ def recovery_sweep(n: int, seed: int = 20120101, out=sys.stdout) -> dict:
             off = np.where(rng.random(n) < 0.2, 0.0, 10 ** rng.uniform(-12, -2, n))
             sign = -np.sign(centre) if j == 0 else rng.choice([-1.0, 1.0], n)
             q[:, j] = centre + sign * off
-        T = iik.fk(q)
+        T = iik.fk(q, THESIS_ARM)
         results = iik.solve_many(T, arm, within_limits=False)
         hit = sum(contains(r, q[i], T[i], arm) for i, r in enumerate(results))
         res[name] = (hit, n, max(float(np.max(r.position_residual, initial=0.0)) for r in results),

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import iik
+from iik.arm import Arm
 from iik.errors import InvalidInputError
 
 from ..errors import OutsideLimitsError, ViewRequestError
@@ -42,10 +43,14 @@ HOME_TARGET = ((0.4, 0.0, 0.2), (0.0, np.pi, 0.0))
 class ViewRequest:
     """What to show (see the module docstring); angles in rad, positions in m.
 
+    ``arm``: the arm shown (its FK, IK, limits and body); with a scenario None means the scenario's own
+    arm (:func:`iik.planning.plan`), without one it is required.
     ``planning`` (:class:`~iik.planning.PlanOptions`, default options when None) only with a scenario;
-    ``allow_outside_limits``: show a ``q`` outside Table I (red, with a warning) instead of refusing it.
+    ``allow_outside_limits``: show a ``q`` outside the arm's limits (red, with a warning) instead of
+    refusing it.
     """
 
+    arm: Arm | None = None
     scenario: str | None = None
     planning: PlanOptions | None = None
     q: tuple[float, ...] | None = None
@@ -72,21 +77,25 @@ class Shown:
 
 
 def _pose_view(req: ViewRequest) -> PoseView:
+    arm = req.arm
+    if not isinstance(arm, Arm):
+        raise ViewRequestError("arm", "a pose is shown on an arm: give one (iik.arms.get(NAME), iik view "
+                               "--arm)" if arm is None else f"expected an iik.Arm, got {type(arm).__name__}")
     if (req.xyz is None) != (req.zxz is None):
         raise InvalidInputError("--xyz/--zxz", "give both the position and the Eq 42 angles")
     if req.q is not None and req.xyz is not None:
         raise InvalidInputError("--q", "give either --q or --xyz/--zxz, not both")
     if req.q is not None:
-        outside = outside_limits_text(req.q)
+        outside = outside_limits_text(req.q, arm)
         if outside and not req.allow_outside_limits:
             raise OutsideLimitsError("q", f"{outside}; not shown (to show it with those links in red: iik "
                                           "view --allow-outside-limits, ViewRequest.allow_outside_limits)",
-                                     joints_outside_limits(req.q))
-        return PoseView(q=req.q, previous=req.previous, interactive=req.interactive)
+                                     joints_outside_limits(req.q, arm))
+        return PoseView(q=req.q, previous=req.previous, interactive=req.interactive, arm=arm)
     xyz, zxz = (req.xyz, req.zxz) if req.xyz is not None else HOME_TARGET
     T = iik.pose_from_euler(np.asarray(xyz, float), *np.asarray(zxz, float))
     interactive = req.interactive or req.xyz is None
-    return PoseView(T, previous=req.previous, interactive=interactive)
+    return PoseView(T, previous=req.previous, interactive=interactive, arm=arm)
 
 
 def show(view, options: ViewOptions | None = None, *, headline: str = "", details: tuple[str, ...] = (),
@@ -114,7 +123,7 @@ def view(request: ViewRequest, options: ViewOptions | None = None) -> Shown:
     if request.scenario is not None:
         if request.q is not None or request.xyz is not None:
             raise InvalidInputError("SCENARIO", "give a scenario or a pose, not both")
-        plan = plan_for_view(request.scenario, request.planning)
+        plan = plan_for_view(request.scenario, request.planning, arm=request.arm)
         return show(PlanScene(plan), options, headline=plan.headline, details=plan_log(plan), ok=plan.success)
     if request.planning is not None:
         raise ViewRequestError("--timeout/--no-fallbacks", "planning options need a SCENARIO")

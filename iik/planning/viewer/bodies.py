@@ -1,9 +1,10 @@
-"""The arm's body in the viewer: the URDF's collision shapes, drawn by Pinocchio's ViserVisualizer.
+"""The arm's body in the viewer: its collision shapes, drawn by Pinocchio's ViserVisualizer.
 
 Every arm on screen (the planned arm, each IK solution, the commanded and the
 measured arm of a run) is one :class:`ArmBody`: a
 :class:`pinocchio.visualize.ViserVisualizer` on the shared :class:`viser.ViserServer`,
-loaded from ``urdf/thesis_arm.urdf`` (:func:`iik.planning.robot_model.thesis_model`)
+loaded from the model of the arm in use (:func:`iik.planning.robot_model.arm_model`: its
+URDF's shapes, e.g. ``urdf/thesis_arm.urdf``, or shapes generated along its links)
 with the collision shapes as the visible body. Frame: the arm's base frame 0 [m];
 ``offset`` shifts the whole arm (to put two arms side by side).
 """
@@ -17,22 +18,17 @@ import pinocchio as pin
 import viser
 from pinocchio.visualize import ViserVisualizer
 
-from iik import THESIS_ARM, Arm
+from iik import Arm
 from iik.errors import InvalidInputError
 from iik.validation import as_joints
 
-from ..robot_model import ThesisModel, collision_link, thesis_model
+from ..robot_model import ArmModel, collision_link, link_of_joint
 from .style import Colour, rgb01
 
 __all__ = ["ArmBody", "joints_outside_limits", "outside_limits_text", "link_of_joint"]
 
 
-def link_of_joint(j: int) -> str:
-    """Name of the URDF link moved by joint ``j`` (0-based): ``link{j+1}``."""
-    return f"link{j + 1}"
-
-
-def joints_outside_limits(q, arm: Arm = THESIS_ARM) -> tuple[int, ...]:
+def joints_outside_limits(q, arm: Arm) -> tuple[int, ...]:
     """0-based indices of the joints of ``q`` (6,) [rad] outside the arm's limits (Table I).
 
     Uses the project's one limit test (:meth:`iik.Arm.within_limits`) joint by
@@ -46,7 +42,7 @@ def joints_outside_limits(q, arm: Arm = THESIS_ARM) -> tuple[int, ...]:
     return tuple(int(j) for j in np.flatnonzero(~arm.within_limits(rows)))
 
 
-def outside_limits_text(q, arm: Arm = THESIS_ARM) -> str:
+def outside_limits_text(q, arm: Arm) -> str:
     """One line naming each joint of ``q`` (6,) [rad] outside Table I with its value and limits; "" if none.
 
     Joints are named ``q1`` .. ``q6`` (as in the thesis); values in rad and deg.
@@ -54,8 +50,9 @@ def outside_limits_text(q, arm: Arm = THESIS_ARM) -> str:
     qv = as_joints(q, "q")[0][0]
     deg = np.degrees
     return "; ".join(
-        f"q{j + 1} = {qv[j]:.4f} rad ({deg(qv[j]):.1f} deg) is outside Table I [{arm.q_min[j]:.4f}, "
-        f"{arm.q_max[j]:.4f}] rad ([{deg(arm.q_min[j]):.1f}, {deg(arm.q_max[j]):.1f}] deg)"
+        f"q{j + 1} = {qv[j]:.4f} rad ({deg(qv[j]):.1f} deg) is outside {arm.limits_name} "
+        f"[{arm.q_min[j]:.4f}, {arm.q_max[j]:.4f}] rad "
+        f"([{deg(arm.q_min[j]):.1f}, {deg(arm.q_max[j]):.1f}] deg)"
         for j in joints_outside_limits(qv, arm))
 
 
@@ -68,12 +65,13 @@ class ArmBody:
         colour: RGB 0-255.
         opacity: 0 (invisible) .. 1 (opaque).
         offset: Translation [m] of the arm's base in the scene (base frame 0 otherwise).
-        model: The Pinocchio model (default: the shipped thesis URDF).
+        model: The arm's Pinocchio model and body (:func:`iik.planning.robot_model.arm_model`).
     """
 
-    def __init__(self, server: viser.ViserServer, name: str, *, colour: Colour, opacity: float = 1.0,
-                 offset=(0.0, 0.0, 0.0), model: ThesisModel | None = None):
-        tm = model or thesis_model()
+    def __init__(self, server: viser.ViserServer, name: str, *, colour: Colour, model: ArmModel,
+                 opacity: float = 1.0, offset=(0.0, 0.0, 0.0)):
+        tm = model
+        self.model = model
         self.name = name.rstrip("/")
         self.colour = colour
         self.opacity = float(opacity)

@@ -13,11 +13,11 @@ from dataclasses import dataclass
 import numpy as np
 import viser
 
-from iik import Arm
+from iik.arm import Arm
 from iik.errors import InvalidInputError
 from iik.scene import THESIS_SCENE, Scene
 
-from ..robot_model import thesis_model
+from ..robot_model import arm_model
 from .bodies import ArmBody
 from .environment import add_view_presets, draw_environment, fit_camera, legend_html, workspace_points
 from .session import Animation
@@ -45,7 +45,8 @@ class Track:
 
 @dataclass(frozen=True)
 class Motion:
-    """Frame times ``t`` (k,) [s], the arms' tracks, and an optional note per frame (shown with the time).
+    """Frame times ``t`` (k,) [s], the tracks of ``arm`` (every track is that arm: its FK, its body), and an
+    optional note per frame (shown with the time).
 
     ``warnings``: what the view cannot show faithfully (printed by ``iik view``, shown in the panel).
     ``obstacles``: the scenario's boxes (:class:`~iik.planning.Obstacle`), drawn around every arm.
@@ -54,6 +55,7 @@ class Motion:
     title: str
     t: np.ndarray
     tracks: tuple[Track, ...]
+    arm: Arm
     notes: tuple[str, ...] = ()
     headline: str = ""
     warnings: tuple[str, ...] = ()
@@ -67,16 +69,18 @@ class Motion:
             raise InvalidInputError("tracks", "every track needs one configuration per frame time")
         if self.notes and len(self.notes) != len(t):
             raise InvalidInputError("notes", "must be empty or one per frame")
+        if not isinstance(self.arm, Arm):
+            raise InvalidInputError("arm", f"expected an iik.Arm, got {type(self.arm).__name__}")
         object.__setattr__(self, "t", t)
 
 
 class MotionView:
     """A :class:`Motion` as a view: every arm on its own platform, a label per arm, a note per frame."""
 
-    def __init__(self, motion: Motion, *, arm: Arm, scene: Scene = THESIS_SCENE):
+    def __init__(self, motion: Motion, *, scene: Scene = THESIS_SCENE):
         self.motion = motion
-        self.arm = arm
-        self.model = thesis_model(arm)
+        self.arm = motion.arm
+        self.model = arm_model(motion.arm)
         self.scene = scene
         self.camera = None
         self.title = motion.title

@@ -20,7 +20,7 @@ import viser
 
 from iik import fk
 
-from ..robot_model import thesis_model
+from ..robot_model import arm_model
 from . import style
 from .attempts import attempt_lines, attempt_table
 from .bodies import ArmBody
@@ -125,7 +125,7 @@ class PlanScene:
         add_view_presets(server, pts)
         s.add_label("/plan/caption", self.caption, position=tuple(view_top(*self.camera)),
                     anchor="top-center", font_screen_scale=0.85)
-        arm = ArmBody(server, "/plan/arm", colour=style.ARM, model=thesis_model(p.arm))
+        arm = ArmBody(server, "/plan/arm", colour=style.ARM, model=arm_model(p.arm))
         gap = s.add_line_segments("/plan/nearest/line", np.zeros((1, 2, 3)), colors=style.NEAREST,
                                   thickness=0.004)
         tag = s.add_label("/plan/nearest/label", "", anchor="bottom-left")

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import iik
-from iik import THESIS_ARM, Arm, fk
+from iik import Arm, fk
 from iik.errors import IIKError
 from iik.scene import THESIS_SCENE, Scene
 
@@ -54,7 +54,7 @@ class PlanView:
         via_points: (m, 3) via-points [m].
         switch_steps: Step indices where the IK branch switched.
         switch_times: Frame time [s] of each switch (the frame nearest that step's configuration).
-        arm: The arm planned for (its URDF collision shapes are drawn).
+        arm: The arm planned for (its body, :func:`~iik.planning.robot_model.arm_model`, is drawn).
         scene: Platform and floor planned in.
         certified_clearance: The planner's certified lower bound on the whole-arm clearance along the
             accepted path, between steps included [m] (nan without an accepted path).
@@ -79,7 +79,7 @@ class PlanView:
     via_points: np.ndarray
     switch_steps: tuple[int, ...]
     switch_times: tuple[float, ...]
-    arm: Arm = THESIS_ARM
+    arm: Arm
     scene: Scene = THESIS_SCENE
     certified_clearance: float = float("nan")
 
@@ -160,9 +160,11 @@ def plan_scene(result: PlanResult) -> PlanView:
         certified_clearance=float(result.min_clearance) if result.success and len(step_q) else float("nan"))
 
 
-def plan_for_view(scenario, options: PlanOptions | None = None, *, arm: Arm = THESIS_ARM,
+def plan_for_view(scenario, options: PlanOptions | None = None, *, arm: Arm | None = None,
                   scene: Scene = THESIS_SCENE) -> PlanView:
     """Plan a scenario (a file, a shipped name or a :class:`~iik.planning.Scenario`) and adapt the result.
+
+    ``arm``: the arm to plan for; None: the scenario's own (:func:`iik.planning.plan`).
 
     A plan that fails or times out is returned as a view (``success`` False), not raised.
 
@@ -173,7 +175,7 @@ def plan_for_view(scenario, options: PlanOptions | None = None, *, arm: Arm = TH
     return plan_scene(plan(scenario, options or PlanOptions(), arm=arm, scene=scene))
 
 
-def frame_clearance(obstacles, q, *, arm: Arm = THESIS_ARM, scene: Scene = THESIS_SCENE) -> FrameClearance:
+def frame_clearance(obstacles, q, *, arm: Arm, scene: Scene = THESIS_SCENE) -> FrameClearance:
     """Nearest arm link and scene object, their distance and nearest points at each ``q`` (k, 6) [rad]."""
     checker = SceneCollision(tuple(obstacles), arm=arm, scene=scene)
     near = [checker.nearest(qk) for qk in np.asarray(q, float).reshape(-1, 6)]

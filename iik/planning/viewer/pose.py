@@ -18,9 +18,10 @@ import numpy as np
 import viser
 
 import iik
-from iik import THESIS_ARM, Arm
+from iik import Arm
 from iik.validation import as_joints, as_poses
 
+from ..robot_model import arm_model
 from . import style
 from .bodies import ArmBody, joints_outside_limits, link_of_joint, outside_limits_text
 from .environment import add_view_presets, draw_environment, fit_camera, legend_html, workspace_points
@@ -58,13 +59,14 @@ class PoseView:
             joints outside Table I move are red, and :attr:`warnings` has one line naming them).
         previous: Reference configuration of the effort index (default: ``q``, else zeros).
         interactive: Add a draggable gizmo for the tool pose (live viewer only).
-        arm: Arm parameters (limits, FK).
+        arm: The arm (limits, FK, IK, its body: :func:`~iik.planning.robot_model.arm_model`).
     """
 
-    def __init__(self, T=None, *, q=None, previous=None, interactive: bool = False, arm: Arm = THESIS_ARM):
+    def __init__(self, T=None, *, q=None, previous=None, interactive: bool = False, arm: Arm):
         if (T is None) == (q is None):
             raise iik.InvalidInputError("pose", "give exactly one of T (a pose) or q (a configuration)")
         self.arm = arm
+        self.model = arm_model(arm)
         self.given = None if q is None else as_joints(q, "q")[0][0]
         if self.given is not None:
             T = iik.fk(self.given, arm)
@@ -111,7 +113,8 @@ class PoseView:
         T = iik.fk(q, arm)
         dp = np.linalg.norm(T[:3, 3] - self.T[:3, 3])
         dR = iik.rotation_angle(T[:3, :3], self.T[:3, :3])
-        return (f"| joint | q [deg] | Table I [deg] | limits |\n|---|---|---|---|\n{rows}\n\n"
+        limits = arm.limits_name.removeprefix("the ")
+        return (f"| joint | q [deg] | {limits} [deg] | limits |\n|---|---|---|---|\n{rows}\n\n"
                 f"Effort index (Eq 54) from {self.reference}: **{E:.4f} rad** ({np.degrees(E):.2f} deg); "
                 f"FK residuals {dp:.1e} m, {dR:.1e} rad")
 
@@ -131,7 +134,7 @@ class PoseView:
         r = self.result
         head = (f"Tool at ({p[0]:.4g}, {p[1]:.4g}, {p[2]:.4g}) m, Eq 42 angles "
                 f"({a[0]:.1f}, {a[1]:.1f}, {a[2]:.1f}) deg: **{r.count} IK solution(s)**, "
-                f"{int(np.sum(r.within_limits))} within Table I")
+                f"{int(np.sum(r.within_limits))} within {self.arm.limits_name}")
         if r.count == 0:
             head += f" ({r.reason})"
         if self.solve_time:
@@ -202,7 +205,8 @@ class PoseView:
         def body(k: int) -> ArmBody:
             while len(bodies) <= k:
                 n = len(bodies)
-                bodies.append(ArmBody(server, f"/pose/arm{n}", colour=self.colour(n), opacity=0.25))
+                bodies.append(ArmBody(server, f"/pose/arm{n}", colour=self.colour(n), model=self.model,
+                                      opacity=0.25))
                 labels.append(server.scene.add_label(f"/pose/label{n}", f"#{n}", font_screen_scale=0.8))
                 with toggle_folder:
                     tg = server.gui.add_checkbox(f"#{n}", initial_value=True)
@@ -218,7 +222,8 @@ class PoseView:
                     f"#{k - (self.given is not None)}"
                 toggles[k].label = name
                 shown = bool(toggles[k].value)
-                red = {link_of_joint(j): style.OUT_OF_LIMITS for j in joints_outside_limits(q, self.arm)}
+                red = {link_of_joint(self.model, j): style.OUT_OF_LIMITS
+                       for j in joints_outside_limits(q, self.arm)}
                 b.show(q)
                 b.paint(red, opacity=1.0 if k == self.selected else 0.35)
                 b.visible = shown

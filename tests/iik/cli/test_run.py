@@ -15,6 +15,7 @@ import pytest
 import iik
 from hardware import protocol as P
 from hardware import read_run_log
+from iik import THESIS_ARM
 from iik.cli import main
 from iik.files import PARTIAL_PREFIX
 
@@ -204,7 +205,7 @@ def test_a_signal_to_iik_run_halts_the_arm_and_completes_the_log(udp_bus, tmp_pa
     from hardware import PowerCubeArm
 
     with PowerCubeArm.from_interface(interface="udp_multicast", channel=udp_bus.group, port=udp_bus.port,
-                                     timeout=float(timeout)) as arm:
+                                     timeout=float(timeout), arm=THESIS_ARM) as arm:
         assert all(s & P.State.HALTED for s in arm.states())  # latched until --reset
     again = udp_bus.process("run", "--demo", *udp_bus.args, "--timeout", timeout, "--out",
                             str(tmp_path / "a"))

@@ -6,12 +6,13 @@ import numpy as np
 import pytest
 
 import iik
+from iik import THESIS_ARM
 from iik.cli import main
 
 
 def test_solve_json_round_trip(capsys):
     q = np.array([0.3, -0.5, 0.7, 1.0, -0.4, 2.0])
-    T = iik.fk(q)
+    T = iik.fk(q, THESIS_ARM)
     a, b, g = iik.euler_from_matrix(T[:3, :3])
     x, y, z = T[:3, 3]
     rc = main(["solve", "--xyz", str(x), str(y), str(z), "--zyz", *(str(float(v)) for v in (a, b, g)),

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 import iik
+from iik import THESIS_ARM
 from iik.arm import thesis_arm
 from iik.planning import Obstacle
 from iik.planning.collision import SceneCollision
@@ -12,7 +13,7 @@ from iik.planning.collision import SceneCollision
 
 @pytest.fixture(scope="module")
 def checker():
-    return SceneCollision([Obstacle((0.55, 0.0, 0.0), (0.2, 0.2, 0.4), name="box")])
+    return SceneCollision([Obstacle((0.55, 0.0, 0.0), (0.2, 0.2, 0.4), name="box")], arm=THESIS_ARM)
 
 
 @pytest.mark.parametrize("required", [0.0, 0.03, 0.1])
@@ -36,7 +37,7 @@ def test_motion_clearance_is_certified_or_a_witnessed_violation(checker, require
 
 def test_penetration_is_negative_and_named(checker):
     q = np.zeros(6)  # arm stretched along +x at z = l1 through the box's top region
-    tall = SceneCollision([Obstacle((0.6, 0.0, 0.3), (0.1, 0.1, 0.1), name="hit")])
+    tall = SceneCollision([Obstacle((0.6, 0.0, 0.3), (0.1, 0.1, 0.1), name="hit")], arm=THESIS_ARM)
     d, link, obj = tall.clearance(q)
     assert d < 0 and obj == "hit" and link.startswith("link")
     d2, _, _ = checker.clearance(q)
@@ -44,14 +45,14 @@ def test_penetration_is_negative_and_named(checker):
 
 
 def test_floor_distance_matches_geometry():
-    sc = SceneCollision([], platform=False)
+    sc = SceneCollision([], platform=False, arm=THESIS_ARM)
     # home pose: lowest collision point is the base_link bottom at z = 0, floor at z = -0.45
     d = sc.link_clearances(np.zeros(6))
     assert abs(d["base_link"] - 0.45) < 1e-6
 
 
 def test_base_is_not_reported_against_the_platform():
-    sc = SceneCollision([], floor=False)
+    sc = SceneCollision([], floor=False, arm=THESIS_ARM)
     assert "base_link" not in {sc.arm_link[i] for i, k in sc.pairs if sc.env_names[k] == "platform"}
     assert sc.clearance(np.zeros(6))[0] > 0.1
 
@@ -82,7 +83,7 @@ def test_another_arm_gets_its_own_collision_model():
     longer = thesis_arm(a.l1, a.l2, a.l3 * 1.2, a.l4 * 1.2, a.l5)
     q = np.zeros(6)  # stretched along +x: the longer arm's gripper is further out
     box = [Obstacle((1.3, 0.0, 0.3), (0.1, 0.4, 0.4), name="far")]
-    d_thesis = SceneCollision(box, floor=False, platform=False).clearance(q)[0]
+    d_thesis = SceneCollision(box, floor=False, platform=False, arm=THESIS_ARM).clearance(q)[0]
     d_longer = SceneCollision(box, arm=longer, floor=False, platform=False).clearance(q)[0]
     reach = (longer.l3 + longer.l4) - (a.l3 + a.l4)
     assert d_thesis - d_longer == pytest.approx(reach, abs=1e-6)
@@ -95,7 +96,8 @@ def _coal_nearest(q, boxes, scene=iik.scene.THESIS_SCENE):
 
     from iik.planning.robot_model import thesis_model
 
-    model, gm = pin.buildModelsFromUrdf(str(thesis_model().path), geometry_types=pin.GeometryType.COLLISION)
+    model, gm = pin.buildModelsFromUrdf(str(thesis_model(THESIS_ARM).path),
+                                        geometry_types=pin.GeometryType.COLLISION)
     data, gd = model.createData(), pin.GeometryData(gm)
     pin.forwardKinematics(model, data, np.asarray(q, float))
     pin.updateGeometryPlacements(model, data, gm, gd)
@@ -130,7 +132,7 @@ def test_nearest_is_coals_closest_pair_with_its_points():
     tol = coal.DistanceRequest().gjk_tolerance
     boxes = [Obstacle((0.55, 0.0, 0.45), (0.1, 0.8, 0.1), name="shelf"),
              Obstacle((0.0, 0.45, 0.3), (0.3, 0.1, 0.3), name="post")]
-    sc = SceneCollision(boxes)
+    sc = SceneCollision(boxes, arm=THESIS_ARM)
     rng = np.random.default_rng(11)
     lo, hi = iik.THESIS_ARM.q_min, iik.THESIS_ARM.q_max
     objects = set()
@@ -155,4 +157,4 @@ def test_nearest_is_coals_closest_pair_with_its_points():
 
 def test_nearest_takes_one_configuration():
     with pytest.raises(iik.InvalidInputError, match="one configuration"):
-        SceneCollision([]).nearest(np.zeros((2, 6)))
+        SceneCollision([], arm=THESIS_ARM).nearest(np.zeros((2, 6)))

@@ -10,6 +10,7 @@ from matplotlib.figure import Figure
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 import iik
+from iik import THESIS_ARM
 from iik.planning import plan
 from iik.planning.output import collision_faces, plot_scene
 from iik.planning.robot_model import thesis_model
@@ -20,7 +21,7 @@ from iik.planning.robot_model import thesis_model
 def test_collision_faces_are_the_shapes_placed_by_pinocchio(values):
     """link2's one box: its 24 face corners are the box's +-half sides around Pinocchio's oMg placement."""
     q = np.clip(np.array(values), iik.THESIS_ARM.q_min, iik.THESIS_ARM.q_max)
-    tm = thesis_model()
+    tm = thesis_model(THESIS_ARM)
     faces = collision_faces(tm.model, tm.collision_model, q)
     k = next(i for i, g in enumerate(tm.collision_model.geometryObjects) if g.name == "link2_0")
     data, gdata = tm.model.createData(), pin.GeometryData(tm.collision_model)

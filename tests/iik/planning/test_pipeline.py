@@ -1,6 +1,7 @@
 """End to end: ``iik.planning.plan`` and ``iik plan`` (iik.planning.pipeline)."""
 
 import csv
+import dataclasses
 import time
 
 import coal
@@ -12,7 +13,16 @@ import iik.planning.budget as budget_module
 from iik import THESIS_ARM, fk, joint_frames
 from iik.cli import main
 from iik.errors import InvalidInputError
-from iik.planning import VIA_POINT_TOLERANCE, Attempt, PlanOptions, PlanResult, load_scenario, plan
+from iik.planning import (
+    VIA_POINT_TOLERANCE,
+    Attempt,
+    PlanOptions,
+    PlanResult,
+    ScenarioError,
+    load_scenario,
+    plan,
+    scenario_path,
+)
 from iik.resources import scenarios_dir
 from iik.urdf import BoxShape, thesis_geometry
 
@@ -186,7 +196,7 @@ def test_a_requested_via_point_that_cannot_be_passed_fails_and_says_so(tmp_path)
 def test_accepted_plans_pass_every_requested_via_point(name):
     r = plan(name, PlanOptions(timing=False))
     assert r.success and r.scenario.via_points
-    tool = fk(r.q)[:, :3, 3]
+    tool = fk(r.q, THESIS_ARM)[:, :3, 3]
     for v in r.scenario.via_points:
         assert np.linalg.norm(tool - v, axis=1).min() <= VIA_POINT_TOLERANCE
 
@@ -298,8 +308,12 @@ class _CoalArm:
 
 @pytest.fixture(scope="module")
 def scaled_plan():
+    """Scene j laid out for a scaled arm (the shipped file names the thesis arm, so it refuses another)."""
     arm = _scaled(THESIS_ARM, 1.15)
-    return arm, plan("j", arm=arm)
+    with pytest.raises(ScenarioError, match="is for the arm") as info:
+        plan("j", arm=arm)
+    assert info.value.field == "arm"
+    return arm, plan(dataclasses.replace(load_scenario(scenario_path("j")), arm=arm))
 
 
 def test_a_scaled_arm_plans_with_its_own_ik_limits_and_timing(scaled_plan):

@@ -15,11 +15,11 @@ from iik.planning.rrt import rrt_connect
 
 
 def test_rrt_connect_goes_around_a_box_with_certified_clearance():
-    chk = SceneCollision([Obstacle((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")])
+    chk = SceneCollision([Obstacle((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")], arm=THESIS_ARM)
     q0 = np.array([0.8, 0.3, 0.0, 0.5, -1.0, 0.0])
     q1 = np.array([-0.8, 0.3, 0.0, 0.5, -1.0, 0.0])
     assert chk.path_clearance(np.array([q0, q1]), 0.03).minimum < 0.03  # the direct motion collides
-    P = rrt_connect(q0, q1, chk, required=0.03, time_limit=5.0, seed=7)
+    P = rrt_connect(q0, q1, chk, required=0.03, time_limit=5.0, seed=7, arm=THESIS_ARM)
     assert P is not None
     assert np.allclose(P[0], q0) and np.allclose(P[-1], q1)
     assert np.abs(np.diff(P, axis=0)).max() <= 0.05 + 1e-12
@@ -30,12 +30,13 @@ def test_rrt_connect_goes_around_a_box_with_certified_clearance():
 
 _ATTEMPT = textwrap.dedent("""
     import sys, numpy as np
+    from iik import THESIS_ARM
     from iik.planning import Obstacle
     from iik.planning.collision import SceneCollision
     from iik.planning.rrt import rrt_connect
-    chk = SceneCollision([Obstacle((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")])
+    chk = SceneCollision([Obstacle((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")], arm=THESIS_ARM)
     q0, q1 = np.array([0.8, 0.3, 0.0, 0.5, -1.0, 0.0]), np.array([-0.8, 0.3, 0.0, 0.5, -1.0, 0.0])
-    np.save(sys.argv[1], rrt_connect(q0, q1, chk, required=0.03, time_limit=30.0, seed=7))
+    np.save(sys.argv[1], rrt_connect(q0, q1, chk, required=0.03, time_limit=30.0, seed=7, arm=THESIS_ARM))
 """)
 
 
@@ -46,10 +47,10 @@ def test_one_seed_gives_one_path_whatever_ran_before_and_ompl_says_nothing(tmp_p
     fresh = subprocess.run([sys.executable, "-c", _ATTEMPT, str(tmp_path / "fresh.npy")], capture_output=True,
                            text=True, timeout=300)
     assert fresh.returncode == 0, fresh.stderr
-    chk = SceneCollision([Obstacle((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")])
+    chk = SceneCollision([Obstacle((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")], arm=THESIS_ARM)
     q0, q1 = np.array([0.8, 0.3, 0.0, 0.5, -1.0, 0.0]), np.array([-0.8, 0.3, 0.0, 0.5, -1.0, 0.0])
-    other = rrt_connect(q0, q1, chk, required=0.03, time_limit=30.0, seed=3)
-    again = rrt_connect(q0, q1, chk, required=0.03, time_limit=30.0, seed=7)
+    other = rrt_connect(q0, q1, chk, required=0.03, time_limit=30.0, seed=3, arm=THESIS_ARM)
+    again = rrt_connect(q0, q1, chk, required=0.03, time_limit=30.0, seed=7, arm=THESIS_ARM)
     np.testing.assert_array_equal(again, np.load(tmp_path / "fresh.npy"))
     assert not (other.shape == again.shape and np.array_equal(other, again))  # the seed does matter
     err = capfd.readouterr().err + fresh.stderr
@@ -58,7 +59,7 @@ def test_one_seed_gives_one_path_whatever_ran_before_and_ompl_says_nothing(tmp_p
 
 @pytest.mark.parametrize("seed", [0, -5, 2**32, 1.5, True])
 def test_a_seed_ompl_would_ignore_or_wrap_is_refused(seed):
-    chk = SceneCollision([])
+    chk = SceneCollision([], arm=THESIS_ARM)
     with pytest.raises(InvalidInputError) as info:
-        rrt_connect(np.zeros(6), np.ones(6) * 0.1, chk, required=0.03, seed=seed)
+        rrt_connect(np.zeros(6), np.ones(6) * 0.1, chk, required=0.03, seed=seed, arm=THESIS_ARM)
     assert info.value.argument == "seed"

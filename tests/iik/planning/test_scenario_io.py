@@ -8,6 +8,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from iik import THESIS_ARM
 from iik.planning import (
     Obstacle,
     Scenario,
@@ -23,6 +24,7 @@ from iik.resources import scenarios_dir
 
 GOOD = """
 name = "x"
+arm = "thesis"
 frame = "floor"
 [start]
 position = [0.30, 0.25, 0.10]
@@ -117,7 +119,7 @@ def test_angles_in_rad_are_read_and_written_when_degrees_cannot_round_trip(tmp_p
         near += [lo, hi]
     assert all(math.radians(c) != x for c in near)
     sc = Scenario(name="r", start=Waypoint((0.3, 0.25, -0.35), x, math.radians(30.0), -0.2),
-                  goal=Waypoint((0.3, -0.25, -0.35), None, 0.2))
+                  goal=Waypoint((0.3, -0.25, -0.35), None, 0.2), arm=THESIS_ARM)
     text = scenario_to_toml(sc)
     assert "alpha = 1.24539\n" in text and "beta_deg = 30.0\n" in text
     assert load_scenario(write_scenario(sc, tmp_path / "r.toml"), check_workspace=False) == sc
@@ -136,7 +138,8 @@ def test_any_scenario_round_trips_exactly(tmp_path_factory, start, angles, alpha
                   start=Waypoint((0.45 + start[0], start[1], 0.1), None if alpha_free else a, b, g),
                   goal=Waypoint((0.35, -0.3, 0.05), a, b, 0.0), steps_per_segment=steps, safety_zone=zone,
                   via_points=((0.5, 0.0, 0.4),), segments=("line", "arc"), orientation="slerp", mode="LJI",
-                  obstacles=(Obstacle((1.0, 0.0, 0.1), (0.1, 0.2, 0.3), name='b"ox', kind="support"),))
+                  obstacles=(Obstacle((1.0, 0.0, 0.1), (0.1, 0.2, 0.3), name='b"ox', kind="support"),),
+                  arm=THESIS_ARM)
     path = write_scenario(sc, tmp_path_factory.mktemp("rt") / "s.toml")
     assert load_scenario(path, check_workspace=False) == sc
 
@@ -224,7 +227,7 @@ def test_the_suggested_point_is_in_the_file_frame_and_pasting_it_back_passes(tmp
     assert f"m ({frame} frame) (" in exc.value.reason.split("closest reachable point", 1)[1]
     sc = load_scenario(_write(tmp_path, text.replace(far, _suggested(exc.value.reason)), "fixed.toml"))
     pasted = sc.goal.position if where == "goal" else sc.via_points[0]  # base frame, as loaded
-    closest = closest_reachable([2.0, -0.25, 0.9 + THESIS_SCENE.floor.z]).point
+    closest = closest_reachable([2.0, -0.25, 0.9 + THESIS_SCENE.floor.z], THESIS_ARM).point
     assert np.linalg.norm(np.subtract(pasted, closest)) <= 0.011  # the same point (mm rounding, <= 10 mm in)
 
 

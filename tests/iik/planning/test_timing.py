@@ -29,12 +29,12 @@ def test_every_sample_respects_the_arms_limits(scale):
 def test_slower_limits_take_longer():
     slow = THESIS_ARM.with_limits(velocity=tuple(v / 4 for v in THESIS_ARM.velocity),
                                   acceleration=tuple(a / 4 for a in THESIS_ARM.acceleration))
-    assert time_parameterize(PATH, slow).duration > 2 * time_parameterize(PATH).duration
-    assert thesis_timing(PATH, slow).duration == pytest.approx(4 * thesis_timing(PATH).duration)
+    assert time_parameterize(PATH, slow).duration > 2 * time_parameterize(PATH, THESIS_ARM).duration
+    assert thesis_timing(PATH, slow).duration == pytest.approx(4 * thesis_timing(PATH, THESIS_ARM).duration)
 
 
 def test_a_single_configuration_is_a_static_trajectory():
-    tr = time_parameterize(np.zeros((3, 6)))
+    tr = time_parameterize(np.zeros((3, 6)), THESIS_ARM)
     assert tr.duration == 0.0 and tr.method == "static"
 
 
@@ -43,14 +43,14 @@ def test_toppra_failures_are_timing_errors(monkeypatch):
 
     monkeypatch.setattr(algo.TOPPRA, "compute_trajectory", lambda self, *a, **k: None)
     with pytest.raises(TimingError, match="no feasible parameterisation"):
-        time_parameterize(PATH)
+        time_parameterize(PATH, THESIS_ARM)
 
     def boom(self, *a, **k):
         raise ValueError("solver exploded")
 
     monkeypatch.setattr(algo.TOPPRA, "compute_trajectory", boom)
     with pytest.raises(TimingError, match="solver exploded") as exc:
-        time_parameterize(PATH)
+        time_parameterize(PATH, THESIS_ARM)
     assert isinstance(exc.value.__cause__, ValueError) and isinstance(exc.value, RuntimeError)
 
 
@@ -60,11 +60,11 @@ def test_samples_keep_the_execution_margin_inside_table_i():
     lo = THESIS_ARM.q_min[1] + EXECUTION_MARGIN + 0.001
     path = np.array([[0.0, lo + 0.6, 0, 0, 0, 0], [0.1, lo, 0, 0, 0, 0], [0.5, lo, 0, 0, 0, 0],
                      [0.6, lo + 0.1, 0, 0, 0, 0]])  # steeply down to the stop, then along it
-    tr = time_parameterize(path)
+    tr = time_parameterize(path, THESIS_ARM)
     assert not tr.violations, tr.violations
     assert np.all(tr.q >= THESIS_ARM.q_min + EXECUTION_MARGIN - 1e-12)
     assert np.all(tr.q <= THESIS_ARM.q_max - EXECUTION_MARGIN + 1e-12)
-    loose = time_parameterize(path, joint_margin=0.0)  # only Table I itself: a curve that ...
+    loose = time_parameterize(path, THESIS_ARM, joint_margin=0.0)  # only Table I itself: a curve that ...
     assert not loose.violations and loose.q[:, 1].min() < lo - 1e-3  # ... overshoots the waypoints
     assert tr.method != loose.method
 
@@ -72,12 +72,12 @@ def test_samples_keep_the_execution_margin_inside_table_i():
 def test_a_path_on_the_margin_is_a_named_violation():
     path = PATH.copy()
     path[1, 3] = THESIS_ARM.q_max[3] - 0.5 * EXECUTION_MARGIN  # a waypoint inside the margin
-    tr = time_parameterize(path)
+    tr = time_parameterize(path, THESIS_ARM)
     assert any(v.startswith("joint q4 comes") and "execution margin of 0.5 deg" in v for v in tr.violations)
 
 
 def test_step_times_are_the_curves_passing_times_on_the_fstep_clock():
-    tr = time_parameterize(PATH, dt=0.001)
+    tr = time_parameterize(PATH, THESIS_ARM, dt=0.001)
     assert tr.step_q.shape == PATH.shape and np.array_equal(tr.step_q, PATH)
     st = tr.step_t
     assert st[0] == 0 and np.all(np.diff(st) >= MIN_STEP)
@@ -98,7 +98,7 @@ def test_step_schedule_is_executable_and_as_early_as_allowed(data):
     dq = np.array(data.draw(st.lists(st.lists(st.floats(-0.3, 0.3), min_size=6, max_size=6),
                                      min_size=n - 1, max_size=n - 1)))
     q = np.concatenate([np.zeros((1, 6)), np.cumsum(dq, axis=0)])
-    out = step_schedule(t, q)
+    out = step_schedule(t, q, THESIS_ARM)
     steps = np.diff(out)
     assert out[0] == 0 and np.all(steps >= MIN_STEP - 1e-12)
     np.testing.assert_allclose(out * 1000, np.rint(out * 1000), atol=1e-6)

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 import iik
+from iik import THESIS_ARM
 from iik.arm import thesis_arm
 from iik.planning import (
     LIMIT_MARGIN,
@@ -25,10 +26,10 @@ def line():
 
 
 def test_branches_follow_the_poses_and_report_eq54_effort(line):
-    tr = track_branches(line, adapt_orientation=False)
+    tr = track_branches(line, adapt_orientation=False, arm=THESIS_ARM)
     assert isinstance(tr, Tracking) and tr.complete and tr.failed_steps == ()
     b = tr.branches[0]
-    T = iik.fk(b.q)
+    T = iik.fk(b.q, THESIS_ARM)
     P = poses_of(line.points, line.euler)
     assert np.abs(T[:, :3, 3] - P[:, :3, 3]).max() < 1e-8
     assert np.abs(T[:, :3, :3] - P[:, :3, :3]).max() < 1e-6
@@ -42,9 +43,9 @@ def test_branches_follow_the_poses_and_report_eq54_effort(line):
 
 
 def test_each_step_takes_the_least_effort_candidate(line):
-    b = track_branches(line, adapt_orientation=False).branches[0]
+    b = track_branches(line, adapt_orientation=False, arm=THESIS_ARM).branches[0]
     for i in range(1, line.n):
-        r = iik.solve(poses_of(line.points[i:i + 1], line.euler[i:i + 1])[0])
+        r = iik.solve(poses_of(line.points[i:i + 1], line.euler[i:i + 1])[0], THESIS_ARM)
         cands = r.q[r.within_limits]
         cands = cands[iik.THESIS_ARM.within_limits(cands, tol=-LIMIT_MARGIN)]
         assert b.effort[i] == pytest.approx(iik.effort_index(b.q[i - 1], cands).min(), abs=1e-12)
@@ -54,11 +55,11 @@ def test_dynamic_programme_reaches_every_step_within_limits():
     sc = Scenario(name="t", start=Waypoint((0.30, -0.27, 0.45), None, np.radians(45)),
                   goal=Waypoint((0.30, 0.27, 0.45), None, np.radians(45)))
     cp = build_path(sc)
-    tr = track_dp(cp)
+    tr = track_dp(cp, arm=THESIS_ARM)
     assert tr.orientation_search and tr.branches
     b = tr.branches[0]
     assert np.all(iik.THESIS_ARM.within_limits(b.q, tol=-LIMIT_MARGIN))
-    assert np.abs(iik.fk(b.q)[:, :3, 3] - cp.points).max() < 1e-8  # position always exact
+    assert np.abs(iik.fk(b.q, THESIS_ARM)[:, :3, 3] - cp.points).max() < 1e-8  # position always exact
     assert tr.beta_changed_steps == b.changed_steps("beta")
     assert tr.alpha_changed_steps == b.changed_steps("alpha")
     assert np.allclose(b.effort[1:], np.abs(np.diff(b.q, axis=0)).sum(1) / 6)  # Eq 54
@@ -67,7 +68,7 @@ def test_dynamic_programme_reaches_every_step_within_limits():
 def test_the_arm_sets_the_ik_and_the_joint_limits(line):
     a = iik.THESIS_ARM
     lo, hi = np.array(a.lower), np.array(a.upper)
-    free = track_branches(line, adapt_orientation=False)
+    free = track_branches(line, adapt_orientation=False, arm=THESIS_ARM)
     q1 = np.concatenate([b.q[:, 0] for b in free.complete])
     narrow = a.with_limits(lower=tuple(np.r_[q1.min() + 0.05, lo[1:]]), upper=tuple(hi))
     assert not all(np.all(narrow.within_limits(b.q, tol=-LIMIT_MARGIN)) for b in free.complete)
@@ -78,7 +79,7 @@ def test_the_arm_sets_the_ik_and_the_joint_limits(line):
     longer = thesis_arm(a.l1, a.l2, a.l3 * 1.1, a.l4 * 1.1, a.l5)
     b = track_branches(line, arm=longer, adapt_orientation=False).complete[0]
     assert np.abs(iik.fk(b.q, longer)[:, :3, 3] - line.points).max() < 1e-8
-    assert np.abs(iik.fk(b.q)[:, :3, 3] - line.points).max() > 0.01  # a different arm's solutions
+    assert np.abs(iik.fk(b.q, THESIS_ARM)[:, :3, 3] - line.points).max() > 0.01  # a different arm's solutions
 
 
 def _path_of(qs, arm):

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import iik
+from iik import THESIS_ARM
 from verification.checks import singularities as S
 from verification.checks import workspace as W
 from verification.oracles.reachability import ReachabilityOracle
@@ -24,7 +25,7 @@ def ctx(tmp_path_factory):
 def test_oracle_agrees_with_fk():
     o = ReachabilityOracle(n_samples=20000, rng=np.random.default_rng(0))
     q = np.random.default_rng(1).uniform(iik.THESIS_ARM.q_min, iik.THESIS_ARM.q_max, size=(50, 6))
-    P = iik.fk(q)[:, :3, 3]
+    P = iik.fk(q, THESIS_ARM)[:, :3, 3]
     assert o.classify(P).reachable.all()
     far = P * 0 + [2.0, 0.0, 0.3]
     assert not o.classify(far).reachable.any()
@@ -33,15 +34,15 @@ def test_oracle_agrees_with_fk():
 def test_printed_eq40_rejects_a_reachable_point():
     """Printed Eq 40 (l2 - l3 c2) calls a reachable point behind the arm 'outside'."""
     q = np.array([160 * D, 0.0, 90 * D, -0.3, 0.0, 0.0])  # joint 1 at its limit, wrist bent sideways
-    p = iik.fk(q)[:3, 3]
+    p = iik.fk(q, THESIS_ARM)[:3, 3]
     assert abs(np.degrees(np.arctan2(p[1], p[0]))) >= 160
     assert not W.eq36_41_printed(p)[0]
-    assert iik.in_workspace(p)
+    assert iik.in_workspace(p, THESIS_ARM)
 
 
 def test_cartesian_test_verdicts_follow_the_form(ctx):
     assert W.eq36_41(ctx, W.eq36_41_printed).verdict is Verdict.ERRATUM
-    assert W.eq36_41(ctx, iik.in_workspace).verdict is Verdict.HOLDS
+    assert W.eq36_41(ctx, partial(iik.in_workspace, arm=THESIS_ARM)).verdict is Verdict.HOLDS
     assert W.eq38_region1(ctx, W.eq36_41_test).verdict is Verdict.HOLDS
     regions23 = partial(W.eq36_41_test, eq39="corrected", eq40_sign=1.0)
     assert W.eq41_regions23(ctx, regions23).verdict is Verdict.HOLDS

@@ -13,6 +13,7 @@ import pytest
 from matplotlib.colors import rgb_to_hsv
 
 import iik
+from iik import THESIS_ARM
 from iik.planning import PlanOptions
 from iik.planning.viewer import PlanScene, PoseView, export, plan_for_view, serve
 from iik.planning.viewer.environment import view_top
@@ -56,7 +57,7 @@ def _in_canvas(mask: np.ndarray, rect) -> np.ndarray:
 
 def _arm_points(q: np.ndarray) -> np.ndarray:
     """Joint-frame origins and the tool point of every configuration [m]."""
-    return iik.joint_frames(np.asarray(q).reshape(-1, 6))[:, :, :3, 3].reshape(-1, 3)
+    return iik.joint_frames(np.asarray(q).reshape(-1, 6), THESIS_ARM)[:, :, :3, 3].reshape(-1, 3)
 
 
 def _open_export(browser, view, folder: Path, shot: str) -> tuple[np.ndarray, tuple]:
@@ -99,7 +100,7 @@ def test_exported_plan_opens_from_disk_and_draws_arm_and_obstacle(browser, plan_
 
 def test_exported_pose_shows_every_solution(browser, tmp_path):
     T = iik.pose_from_euler([0.4, 0.3, 0.2], np.pi, np.radians(120), 0.0)
-    view = PoseView(T)
+    view = PoseView(T, arm=THESIS_ARM)
     assert view.result.count >= 2
     img, rect = _open_export(browser, view, tmp_path / "pose", "pose_all_solutions.png")
     blue = _in_canvas(hue_mask(img, *BLUE, min_sat=0.25), rect)
@@ -141,7 +142,7 @@ def test_a_q_outside_the_limits_is_drawn_red(browser, tmp_path):
     """The links moved by a joint outside Table I are red; the same pose with that joint inside is not."""
     counts = {}
     for name, q4 in (("outside", 2.6), ("inside", 2.0)):
-        view = PoseView(q=[0.3, -0.5, 0.4, q4, 0.2, 0.0])
+        view = PoseView(q=[0.3, -0.5, 0.4, q4, 0.2, 0.0], arm=THESIS_ARM)
         assert bool(view.warnings) == (name == "outside")
         img, rect = _open_export(browser, view, tmp_path / name, f"pose_q4_{name}_limits.png")
         counts[name] = 0

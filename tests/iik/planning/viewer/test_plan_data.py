@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import iik
+from iik import THESIS_ARM
 from iik.planning import PlanOptions, plan, scenario_path
 from iik.planning.errors import ScenarioError
 from iik.planning.viewer import frame_clearance, plan_for_view, plan_scene
@@ -24,7 +25,7 @@ def test_plan_scene_reads_the_timed_trajectory_and_the_path(result_j):
     assert np.array_equal(view.t, result_j.trajectory.t) and np.array_equal(view.q, result_j.trajectory.q)
     assert np.all(np.diff(view.t) > 0)
     # The step-points are the planned tool points; the joint path reaches them (Eq 4 FK).
-    assert np.allclose(iik.fk(view.step_q)[:, :3, 3], view.step_points, atol=1e-6)
+    assert np.allclose(iik.fk(view.step_q, THESIS_ARM)[:, :3, 3], view.step_points, atol=1e-6)
     # The trajectory starts and ends at the path's ends.
     assert np.allclose(view.q[0], view.step_q[0], atol=1e-6)
     assert np.allclose(view.q[-1], view.step_q[-1], atol=1e-6)
@@ -45,7 +46,7 @@ def test_switch_times_point_at_the_switching_steps(result_j):
     assert view.switch_steps == (3,)
     assert view.switch_times == (1.5,)
     assert view.via_points.shape == (0, 3)
-    assert np.allclose(view.step_points, iik.fk(q)[:, :3, 3])
+    assert np.allclose(view.step_points, iik.fk(q, THESIS_ARM)[:, :3, 3])
 
 
 def test_a_failed_plan_is_a_view_with_its_best_attempt_and_the_start_pose():
@@ -56,7 +57,7 @@ def test_a_failed_plan_is_a_view_with_its_best_attempt_and_the_start_pose():
     assert view.attempts == res.attempts and view.best == res.best_attempt and view.best is not None
     # Without an accepted path the arm stands at the start pose: one frame, IK of the scenario's start.
     assert view.q.shape == (1, 6) and view.t.shape == (1,) and "start pose" in view.arm_shows
-    assert np.allclose(iik.fk(view.q[0])[:3, 3], res.scenario.start.position, atol=1e-6)
+    assert np.allclose(iik.fk(view.q[0], THESIS_ARM)[:3, 3], res.scenario.start.position, atol=1e-6)
     assert iik.THESIS_ARM.within_limits(view.q[0])
     # The rejected thesis path's step-points are still drawn.
     assert np.array_equal(view.step_points, res.cartesian.points) and len(view.step_q) == 0
@@ -81,7 +82,7 @@ def test_frame_clearance_nearest_points_are_consistent(result_j):
     """Coal's nearest points lie on the obstacle and are ``distance`` apart (checked by Obstacle.distance)."""
     view = plan_scene(result_j)
     q = view.q[:: max(1, len(view.q) // 25)]
-    c = frame_clearance(view.obstacles, q)
+    c = frame_clearance(view.obstacles, q, arm=THESIS_ARM)
     assert c.distance.shape == (len(q),) and len(c.link) == len(q)
     boxes = {b.name: b for b in view.obstacles}
     for k in range(len(q)):

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import iik
+from iik import THESIS_ARM
 from iik.cli import main
 from iik.planning.viewer import (
     ExportError,
@@ -28,7 +29,7 @@ from iik.planning.viewer.session import ViewOptions
 
 @pytest.fixture(scope="module")
 def pose_view():
-    return PoseView(q=[0.3, -0.5, 0.4, 0.8, 0.2, 0.0])
+    return PoseView(q=[0.3, -0.5, 0.4, 0.8, 0.2, 0.0], arm=THESIS_ARM)
 
 
 def test_serves_on_localhost_by_default(pose_view):
@@ -118,13 +119,13 @@ def test_sigterm_while_exporting_leaves_the_previous_page_and_no_temporary(tmp_p
 def test_an_animation_is_recorded_frame_by_frame(tmp_path):
     t = np.linspace(0.0, 2.0, 201)
     q = np.outer(t / 2.0, [1.0, -0.5, 0.5, 0.3, 0.2, 0.1])
-    motion = Motion("m", t, (Track("a", q, (40, 90, 200)),))
-    res = export(MotionView(motion, arm=iik.THESIS_ARM), tmp_path / "m", fps=25)
+    motion = Motion("m", t, (Track("a", q, (40, 90, 200)),), THESIS_ARM)
+    res = export(MotionView(motion), tmp_path / "m", fps=25)
     assert res.frames == 51  # every 4th of 201 samples at 100 Hz, last kept
 
 
 def test_interactive_ik_cannot_be_exported(tmp_path):
-    view = PoseView(iik.fk(np.zeros(6)), interactive=True)
+    view = PoseView(iik.fk(np.zeros(6), THESIS_ARM), interactive=True, arm=THESIS_ARM)
     with pytest.raises(ViewerError, match="live server"):
         show(view, ViewOptions(export=tmp_path / "x"))
     assert not (tmp_path / "x").exists()
