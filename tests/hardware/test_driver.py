@@ -85,9 +85,9 @@ def test_move_step_takes_its_time(new_channel, virtual_clock):
     """FSTEP moves at constant speed over its time: half way at half time, there at the end. Time is
     the simulator's injectable clock, advanced by hand, so the machine's load cannot move a sample."""
     ch, ids = new_channel(), (1, 2, 3, 4, 5, 6)
-    with SimulatedArm.virtual(ch, ids, lag=0.01, clock=virtual_clock.clock) as sim, \
+    with SimulatedArm.virtual(ch, ids, lag=0.01, clock=virtual_clock.clock, arm=ARM) as sim, \
             can.Bus(interface="virtual", channel=ch) as bus:
-        arm = PowerCubeArm(bus, ids, timeout=2.0)
+        arm = PowerCubeArm(bus, ids, timeout=2.0, arm=ARM)
         arm.move_step(np.full(6, 0.1), 0.3)
         virtual_clock.sleep(0.15)
         mid = arm.get_pos()
