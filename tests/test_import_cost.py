@@ -88,12 +88,17 @@ except ImportError as exc:
     assert message.startswith(f"{package} needs the '{extra}' extra (missing: {', '.join(blocked)})")
 
 
-def test_the_cli_prints_a_missing_extra_as_one_line_and_exits_2():
-    out = _run_blocked(("ompl",), "from iik.cli import main; sys.exit(main(['plan', 'j']))")
+@pytest.mark.parametrize("argv, blocked, needs", [
+    (["plan", "j"], ("ompl",), "iik.planning needs the 'planning' extra"),
+    (["view", "--q", "0", "0", "0", "0", "0", "0"], ("ompl", "viser"), "iik view needs the 'viewer' extra"),
+    (["run", "j"], ("can",), "hardware needs the 'hardware' extra"),
+    (["verify", "--quick"], ("viser",), "verification needs the 'verify' extra"),
+])
+def test_the_cli_prints_a_missing_extra_as_one_line_and_exits_2(argv, blocked, needs):
+    out = _run_blocked(blocked, f"from iik.cli import main; sys.exit(main({argv!r}))")
     assert out.returncode == 2
     assert out.stderr.count("\n") == 1
-    assert out.stderr.startswith("iik plan: error: MissingExtraError: "
-                                 "iik.planning needs the 'planning' extra")
+    assert out.stderr.startswith(f"iik {argv[0]}: error: MissingExtraError: {needs}")
 
 
 def test_the_core_solves_without_any_extra():

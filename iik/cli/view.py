@@ -68,6 +68,9 @@ def _request(args):
 
 
 def run(args) -> int:
+    from iik.extras import require
+
+    require("viewer", "iik view")  # first: importing iik.planning would name only its own extra
     from iik.arm import THESIS_ARM
     from iik.errors import InvalidInputError
     from iik.kinematics import reach_bound
