@@ -1,7 +1,8 @@
 """iik: kinematics, inverse kinematics, workspace, dexterity and planning for
 the six-joint PowerCube arm of Mondragon Sanchez (2012).
 
-Pure NumPy/SciPy; no I/O. Units are SI (m, rad, s) throughout.
+Pure NumPy/SciPy; no I/O. Units are SI (m, rad, s) throughout. Each name is imported when first
+used (:mod:`iik.lazy`): ``import iik`` itself loads no NumPy.
 """
 
 from .lazy import lazy_exports
