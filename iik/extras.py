@@ -28,8 +28,8 @@ from .errors import MissingExtraError
 
 __all__ = ["EXTRAS", "require", "missing_modules"]
 
-_PLANNING = ("pinocchio", "coal", "ompl", "toppra", "matplotlib") + (("tomli",) if sys.version_info < (3, 11)
-                                                                    else ())
+_TOML = ("tomli",) if sys.version_info < (3, 11) else ()  # scenario files, before Python 3.11's tomllib
+_PLANNING = ("pinocchio", "coal", "ompl", "toppra", "matplotlib", *_TOML)
 _VIEWER = ("viser", "trimesh")
 _HARDWARE = ("can", "msgpack", "ruckig")
 

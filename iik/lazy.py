@@ -23,7 +23,7 @@ def lazy_exports(package: str, exports: Mapping[str, tuple[str, ...]]
                  ) -> tuple[Callable[[str], object], Callable[[], list[str]]]:
     """``(__getattr__, __dir__)`` of ``package``, re-exporting ``exports``: a module relative to
     the package (``".arm"``) -> the names taken from it (the package's ``__all__``, which
-    ``tests/test_lazy_exports.py`` holds equal to them).
+    ``tests/test_import_cost.py`` holds equal to them).
 
     ``__getattr__`` also imports the package's submodules (``iik.rotations`` after ``import iik``).
     A name taken from the submodule of the same name (the function ``iik.dexterity`` from

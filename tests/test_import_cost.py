@@ -13,6 +13,7 @@ import importlib
 import subprocess
 import sys
 import textwrap
+import types
 from pathlib import Path
 
 import pytest
@@ -132,9 +133,13 @@ PACKAGES = ("iik", "iik.ik", "iik.planning", "iik.planning.viewer", "hardware", 
 def test_lazy_exports_are_the_packages_all(name):
     """Every name of ``__all__`` resolves, ``dir()`` lists it, and nothing else is re-exported."""
     package = importlib.import_module(name)
-    exported = [n for n in package.__all__ if getattr(package, n, None) is None]
-    assert exported == []
+    unresolved = [n for n in package.__all__ if getattr(package, n, None) is None]
+    assert unresolved == []
     assert set(package.__all__) <= set(dir(package))
+    helpers = {"lazy_exports", "require"}
+    beyond_all = [n for n in dir(package) if not n.startswith("_") and n not in package.__all__
+                  and n not in helpers and not isinstance(getattr(package, n), types.ModuleType)]
+    assert beyond_all == []
     with pytest.raises(AttributeError, match="no attribute 'not_a_name'"):
         package.not_a_name  # noqa: B018
 
