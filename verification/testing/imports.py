@@ -1,4 +1,4 @@
-"""What importing a module costs in a fresh interpreter: wall time and the modules it loads.
+"""What an import statement costs in a fresh interpreter: wall time and the modules it loads.
 
 Used by ``tests/test_import_cost.py`` (which asserts on the modules, never on the time) and
 ``benchmarks/bench_imports.py`` (which prints median times against a baseline measured in the
@@ -20,7 +20,7 @@ _PROBE = """
 import json, sys, time
 before = set(sys.modules)
 t0 = time.perf_counter()
-import {module}
+{statement}
 seconds = time.perf_counter() - t0
 print(json.dumps({{"seconds": seconds, "modules": sorted(set(sys.modules) - before)}}))
 """
@@ -28,15 +28,15 @@ print(json.dumps({{"seconds": seconds, "modules": sorted(set(sys.modules) - befo
 
 @dataclass(frozen=True)
 class ImportCost:
-    """The cost of ``import module`` in a fresh interpreter.
+    """The cost of an import statement in a fresh interpreter.
 
     Attributes:
-        module: The module imported.
-        seconds: Wall time of the import statement [s] (the interpreter's start-up excluded).
+        statement: The statement (``"import iik"``, ``"from iik import solve"``).
+        seconds: Its wall time [s] (the interpreter's start-up excluded).
         modules: Every module it loaded (names in ``sys.modules`` after, not before it).
     """
 
-    module: str
+    statement: str
     seconds: float
     modules: frozenset[str]
 
@@ -45,18 +45,19 @@ class ImportCost:
         return any(m == top or m.startswith(top + ".") for m in self.modules)
 
 
-def import_cost(module: str, *, python: str = sys.executable, path: str | None = None,
+def import_cost(statement: str, *, python: str = sys.executable, path: str | None = None,
                 timeout: float = 300.0) -> ImportCost:
-    """Import ``module`` in a fresh ``python`` process and measure it.
+    """Run the import ``statement`` in a fresh ``python`` process and measure it.
 
-    ``path`` is put first on ``PYTHONPATH`` (measure a source tree that is not installed).
-    Raises ``RuntimeError`` with the child's stderr if the import fails."""
+    ``path`` is put first on ``PYTHONPATH`` and made the working directory (``python -c`` puts the
+    working directory first on ``sys.path``), to measure a source tree that is not installed.
+    Raises ``RuntimeError`` with the last line of the child's stderr if the statement fails."""
     env = dict(os.environ)
     if path is not None:
         env["PYTHONPATH"] = os.pathsep.join(p for p in (path, env.get("PYTHONPATH")) if p)
-    out = subprocess.run([python, "-c", _PROBE.format(module=module)], capture_output=True, text=True,
-                         timeout=timeout, env=env)
+    out = subprocess.run([python, "-c", _PROBE.format(statement=statement)], capture_output=True, text=True,
+                         timeout=timeout, env=env, cwd=path)
     if out.returncode != 0:
-        raise RuntimeError(f"import {module} failed: {out.stderr.strip().splitlines()[-1:]}")
+        raise RuntimeError(f"{statement}: {out.stderr.strip().splitlines()[-1:]}")
     data = json.loads(out.stdout.strip().splitlines()[-1])
-    return ImportCost(module, data["seconds"], frozenset(data["modules"]))
+    return ImportCost(statement, data["seconds"], frozenset(data["modules"]))
