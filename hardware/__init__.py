@@ -13,15 +13,23 @@ for planned scenarios.
 * :mod:`hardware.errors`: every error of the layer, under :class:`iik.errors.IIKError`.
 """
 
-from . import errors
-from .analysis import RunAnalysis, analyse
-from .driver import PowerCubeArm, PowerCubeModule, open_bus, scan
-from .errors import *  # noqa: F403 - the layer's errors, listed in errors.__all__
-from .executor import ExecutionOptions, ValidatedTrajectory, ValidationOptions, execute, validate
-from .runlog import read_run_log
-from .runner import RunReport, RunRequest, run
-from .sim import SimulatedArm
-from .sources import StepTargets
+from iik.extras import require
+from iik.lazy import lazy_exports
+
+from . import errors  # light: the layer's errors, re-exported
+
+require("hardware", __name__)
+
+__getattr__, __dir__ = lazy_exports(__name__, {
+    ".analysis": ("RunAnalysis", "analyse"),
+    ".driver": ("PowerCubeArm", "PowerCubeModule", "open_bus", "scan"),
+    ".errors": tuple(errors.__all__),
+    ".executor": ("ExecutionOptions", "ValidatedTrajectory", "ValidationOptions", "execute", "validate"),
+    ".runlog": ("read_run_log",),
+    ".runner": ("RunReport", "RunRequest", "run"),
+    ".sim": ("SimulatedArm",),
+    ".sources": ("StepTargets",),
+})
 
 __all__ = [
     "PowerCubeModule",

@@ -1,33 +1,27 @@
 """iik: kinematics, inverse kinematics, workspace, dexterity and planning for
 the six-joint PowerCube arm of Mondragon Sanchez (2012).
 
-Pure NumPy/SciPy; no I/O. Units are SI (m, rad, s) throughout.
+Pure NumPy/SciPy; no I/O. Units are SI (m, rad, s) throughout. Each name is imported when first
+used (:mod:`iik.lazy`): ``import iik`` itself loads no NumPy.
 """
 
-from .arm import THESIS_ARM, Arm
-from .dexterity import Dexterity, dexterity
-from .dh import DHRow, DHTable, dh_chain
-from .errors import DexterityError, IIKError, InvalidInputError, NotOrthonormalError, UnreachablePoseError
-from .ik import (
-    IKResult,
-    follow_path,
-    select,
-    solve,
-    solve_many,
-)
-from .joint_path import BRANCH_SWITCH_STEP, JointPath, PathEvent, branch_switches, effort_index, path_effort
-from .kinematics import fk, fk_chain, jacobian, joint_frames, position_jacobian
-from .rotations import (
-    euler_from_matrix,
-    euler_matrix,
-    pose_from_euler,
-    pose_from_zxz,
-    rotation_angle,
-    zxz_from_matrix,
-    zxz_matrix,
-)
-from .scene import THESIS_SCENE, Scene
-from .workspace import ClosestReachable, closest_reachable, in_workspace
+from .lazy import lazy_exports
+
+__getattr__, __dir__ = lazy_exports(__name__, {
+    ".arm": ("Arm", "THESIS_ARM"),
+    ".dh": ("DHRow", "DHTable", "dh_chain"),
+    ".kinematics": ("fk", "fk_chain", "jacobian", "joint_frames", "position_jacobian"),
+    ".ik": ("IKResult", "solve", "solve_many", "select", "follow_path"),
+    ".joint_path": ("JointPath", "PathEvent", "path_effort", "branch_switches", "BRANCH_SWITCH_STEP",
+                    "effort_index"),
+    ".rotations": ("pose_from_euler", "euler_matrix", "euler_from_matrix", "rotation_angle",
+                   "pose_from_zxz", "zxz_from_matrix", "zxz_matrix"),  # the zxz names: deprecated aliases
+    ".scene": ("Scene", "THESIS_SCENE"),
+    ".errors": ("IIKError", "InvalidInputError", "UnreachablePoseError", "NotOrthonormalError",
+                "DexterityError", "MissingExtraError"),
+    ".dexterity": ("dexterity", "Dexterity"),
+    ".workspace": ("in_workspace", "closest_reachable", "ClosestReachable"),
+})
 
 __all__ = [
     "Arm",
@@ -64,6 +58,7 @@ __all__ = [
     "InvalidInputError",
     "UnreachablePoseError",
     "NotOrthonormalError",
+    "MissingExtraError",
     "dexterity",
     "Dexterity",
     "DexterityError",

@@ -17,11 +17,29 @@ __all__ = [
     "DexterityError",
     "NotOrthonormalError",
     "FileError",
+    "MissingExtraError",
 ]
 
 
 class IIKError(Exception):
     """Root of every error this project raises on purpose."""
+
+
+class MissingExtraError(IIKError, ImportError):
+    """A part of the project is imported without the extra that installs its libraries
+    (``pyproject.toml``'s optional dependencies; :mod:`iik.extras`).
+
+    Attributes:
+        package: The package that needs the extra (``"iik.planning"``).
+        extra: The extra to install (``"planning"``).
+        missing: The top-level modules of the extra that are not installed.
+    """
+
+    def __init__(self, package: str, extra: str, missing: tuple[str, ...]):
+        self.package, self.extra, self.missing = package, extra, missing
+        super().__init__(f"{package} needs the {extra!r} extra (missing: {', '.join(missing)}): "
+                         f"pip install 'iik[{extra}]' (in a checkout: pip install '.[{extra}]')",
+                         name=missing[0] if missing else None)
 
 
 class InvalidInputError(IIKError, ValueError):

@@ -1,7 +1,13 @@
 """The README keeps exactly two set-up commands, and .ci/run runs the test one verbatim."""
 
 import re
+import sys
 from pathlib import Path
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -15,8 +21,20 @@ def _setup_commands() -> list[str]:
 def test_readme_has_exactly_two_setup_commands():
     cmds = _setup_commands()
     assert len(cmds) == 2, cmds
-    assert cmds[0].endswith("iik verify") and "pip install ." in cmds[0]
+    assert cmds[0].endswith("iik verify") and 'pip install ".[verify]"' in cmds[0]
     assert '".[test]"' in cmds[1] and cmds[1].endswith("pytest")
+
+
+def test_readme_extras_are_the_distributions():
+    """The extras the README names are pyproject's, and the main job's extra installs what
+    ``iik verify`` imports (``verification`` checks the ``verify`` extra when imported)."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    declared = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    extras = set(declared["project"]["optional-dependencies"])
+    named = set(re.findall(r'"\.\[(\w+)\]"', text))
+    assert named and named <= extras, named - extras
+    assert {"planning", "viewer", "hardware", "verify", "test", "all"} <= named
+    assert "iik[planning,viewer,hardware]" in declared["project"]["optional-dependencies"]["verify"]
 
 
 def test_ci_runs_the_readme_test_command_verbatim():

@@ -1,7 +1,7 @@
-"""The main job (`pip install .` then `iik verify`) needs no test-only package.
+"""The main job (`pip install ".[verify]"` then `iik verify`) needs no test-only package.
 
 Imports every module of the three packages and loads every registered check in a
-subprocess in which the test extras (pytest, nbmake, ruff) cannot be imported.
+subprocess in which the test extra's libraries (pytest, nbmake, ruff, Hypothesis) cannot be imported.
 """
 
 import subprocess
@@ -9,7 +9,7 @@ import sys
 
 CODE = r"""
 import importlib, pkgutil, sys
-for name in ("pytest", "nbmake", "ruff", "_pytest"):
+for name in ("pytest", "nbmake", "ruff", "_pytest", "hypothesis"):
     sys.modules[name] = None  # any import of them now raises ImportError
 import iik, verification, hardware
 for pkg in (iik, verification, hardware):

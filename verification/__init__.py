@@ -8,36 +8,20 @@ them all and writes ``reports/verification.json`` (one record per row, see
 before it is called wrong.
 """
 
-from .errors import RegistrationError, ReportError, RowError, VerificationError
-from .registry import (
-    Check,
-    Context,
-    Erratum,
-    Forms,
-    Measure,
-    Row,
-    Scope,
-    Section,
-    Slip,
-    SlipKind,
-    Verdict,
-    epsilon,
-    load_checks,
-    register,
-    registered_checks,
-    verdict_of,
-)
-from .report import (
-    CheckResult,
-    Verification,
-    read_report,
-    report_document,
-    run_checks,
-    summary,
-    verify,
-    write_report,
-)
-from .self_test import SelfTestOutcome, run_self_test, self_test
+from iik.extras import require
+from iik.lazy import lazy_exports
+
+require("verify", __name__)
+
+__getattr__, __dir__ = lazy_exports(__name__, {
+    ".errors": ("RegistrationError", "ReportError", "RowError", "VerificationError"),
+    ".registry": ("Check", "Context", "Erratum", "Forms", "Measure", "Row", "Scope", "Section", "Slip",
+                  "SlipKind", "Verdict", "epsilon", "load_checks", "register", "registered_checks",
+                  "verdict_of"),
+    ".report": ("CheckResult", "Verification", "read_report", "report_document", "run_checks", "summary",
+                "verify", "write_report"),
+    ".self_test": ("SelfTestOutcome", "run_self_test", "self_test"),
+})
 
 __all__ = [
     "Check",

@@ -45,7 +45,6 @@ PACKAGES = (
     "ompl",
     "ruckig",
     "matplotlib",
-    "hypothesis",
 )
 
 

@@ -70,6 +70,9 @@ def _request(args, arm):
 
 
 def run(args) -> int:
+    from iik.extras import require
+
+    require("viewer", "iik view")  # first: importing iik.planning would name only its own extra
     from iik.errors import InvalidInputError
     from iik.kinematics import reach_bound
     from iik.planning.viewer import ExportResult, ViewOptions, view

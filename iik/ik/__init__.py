@@ -6,11 +6,15 @@
 * :func:`select` (least Eq 54 effort within Table I), :func:`follow_path`.
 """
 
-from .nearest import Candidates
-from .options import DEFAULT_OPTIONS, ORTHONORMAL_TOL, IKOptions
-from .result import Continuum, IKBatch, IKResult
-from .selection import branch_signature, follow_path, select, select_index
-from .solve import COMPILE_MESSAGE, METHODS, compile_notice, solve, solve_batch, solve_many
+from ..lazy import lazy_exports
+
+__getattr__, __dir__ = lazy_exports(__name__, {
+    ".nearest": ("Candidates",),
+    ".options": ("DEFAULT_OPTIONS", "ORTHONORMAL_TOL", "IKOptions"),
+    ".result": ("Continuum", "IKBatch", "IKResult"),
+    ".selection": ("branch_signature", "follow_path", "select", "select_index"),
+    ".solve": ("COMPILE_MESSAGE", "METHODS", "compile_notice", "solve", "solve_batch", "solve_many"),
+})
 
 __all__ = [
     "IKResult",

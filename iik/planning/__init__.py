@@ -17,62 +17,36 @@
 Units: m, rad, s; frames: the arm's base frame 0.
 """
 
-from .budget import Budget
-from .cartesian import CartesianPath, build_path, poses_of
-from .collision import PathClearance, SceneCollision
-from .errors import PlanningError, PlanningFailed, PlanningTimeout, SamplingError, ScenarioError, TimingError
-from .obstacles import SAFETY_ZONE, Obstacle, ellipsoid_value, enclosing_radii, repel_points, repulsion_normal
-from .output import PLAN_FILES, plot_effort, plot_joints, plot_scene, write_outputs
-from .path import (
-    MAX_STEP,
-    MAX_STEP_POINTS,
-    arc_steps,
-    densify,
-    interpolate_joints,
-    interpolate_orientation,
-    path_length,
-    segment_length,
-    segment_steps,
-    straight_steps,
-)
-from .pipeline import VIA_POINT_TOLERANCE, Attempt, PlanOptions, PlanResult, plan
-from .robot_model import ArmModel, ThesisModel, arm_model, thesis_model
-from .rrt import rrt_connect
-from .scenario import (
-    MAX_ANGLE,
-    MAX_COORDINATE,
-    MAX_OBSTACLES,
-    MAX_STEPS_PER_SEGMENT,
-    Scenario,
-    Waypoint,
-    check_scenario,
-    check_step_points,
-)
-from .scenario_io import (
-    MAX_FILE_SIZE,
-    dexterity_notes,
-    load_scenario,
-    platform_box,
-    scenario_from_dict,
-    scenario_path,
-    scenario_to_toml,
-    shipped_scenario_paths,
-    thesis_scenario_paths,
-    validate_scenario,
-    write_scenario,
-)
-from .timing import Trajectory, thesis_timing, time_parameterize
-from .tracking import LIMIT_MARGIN, Tracking, all_solutions, track_branches, track_dp
-from .viapoints import (
-    REGIONS,
-    TABLE_IV,
-    TABLE_IV_PRINTED,
-    VIA_POINTS,
-    region_bounds,
-    region_of,
-    via_point_path,
-    via_points_for,
-)
+from ..extras import require
+from ..lazy import lazy_exports
+
+require("planning", __name__)
+
+__getattr__, __dir__ = lazy_exports(__name__, {
+    ".budget": ("Budget",),
+    ".cartesian": ("CartesianPath", "build_path", "poses_of"),
+    ".collision": ("PathClearance", "SceneCollision"),
+    ".errors": ("PlanningError", "PlanningFailed", "PlanningTimeout", "SamplingError", "ScenarioError",
+                "TimingError"),
+    ".obstacles": ("SAFETY_ZONE", "Obstacle", "ellipsoid_value", "enclosing_radii", "repel_points",
+                   "repulsion_normal"),
+    ".output": ("PLAN_FILES", "plot_effort", "plot_joints", "plot_scene", "write_outputs"),
+    ".path": ("MAX_STEP", "MAX_STEP_POINTS", "arc_steps", "densify", "interpolate_joints",
+              "interpolate_orientation", "path_length", "segment_length", "segment_steps", "straight_steps"),
+    ".pipeline": ("VIA_POINT_TOLERANCE", "Attempt", "PlanOptions", "PlanResult", "plan"),
+    ".robot_model": ("ArmModel", "ThesisModel", "arm_model", "thesis_model"),
+    ".rrt": ("rrt_connect",),
+    ".scenario": ("MAX_ANGLE", "MAX_COORDINATE", "MAX_OBSTACLES", "MAX_STEPS_PER_SEGMENT", "Scenario",
+                  "Waypoint", "check_scenario", "check_step_points"),
+    ".scenario_io": ("MAX_FILE_SIZE", "dexterity_notes", "load_scenario", "platform_box",
+                     "scenario_from_dict", "scenario_path", "scenario_to_toml", "shipped_scenario_paths",
+                     "thesis_scenario_paths",
+                     "validate_scenario", "write_scenario"),
+    ".timing": ("Trajectory", "thesis_timing", "time_parameterize"),
+    ".tracking": ("LIMIT_MARGIN", "Tracking", "all_solutions", "track_branches", "track_dp"),
+    ".viapoints": ("REGIONS", "TABLE_IV", "TABLE_IV_PRINTED", "VIA_POINTS", "region_bounds", "region_of",
+                   "via_point_path", "via_points_for"),
+})
 
 __all__ = [
     # planning a scenario

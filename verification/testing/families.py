@@ -25,6 +25,7 @@ import numpy as np
 
 import iik
 from iik.arm import Arm
+from iik.extras import require
 
 __all__ = [
     "Family",
@@ -360,6 +361,7 @@ def family(name: str) -> Family:
 
 def family_configurations(fam: Family, arm: Arm):
     """Hypothesis strategy: one configuration q* (6,) of ``fam`` for ``arm`` (seeded draws)."""
+    require("test", "verification.testing.families.family_configurations")
     from hypothesis import strategies as st
 
     return st.integers(0, 2**32 - 1).map(lambda seed: fam.sample(arm, np.random.default_rng(seed), 1)[0])

@@ -20,25 +20,22 @@ Errors (:class:`ViewerError` and its subclasses) live in :mod:`iik.planning.erro
 layer's one errors module; they are re-exported here.
 """
 
-from ..errors import ExportError, OutsideLimitsError, PortInUseError, ViewerError, ViewRequestError
-from .app import Shown, ViewRequest, show, view
-from .attempts import attempt_table
-from .motion import Motion, MotionView, Track
-from .plan import PlanScene
-from .plan_data import FrameClearance, PlanView, frame_clearance, plan_for_view, plan_scene
-from .pose import PoseView
-from .session import (
-    Animation,
-    ExportResult,
-    LiveView,
-    View,
-    ViewOptions,
-    export,
-    inline,
-    present,
-    record,
-    serve,
-)
+from ...extras import require
+from ...lazy import lazy_exports
+
+require("viewer", __name__)
+
+__getattr__, __dir__ = lazy_exports(__name__, {
+    "..errors": ("ExportError", "OutsideLimitsError", "PortInUseError", "ViewerError", "ViewRequestError"),
+    ".app": ("Shown", "ViewRequest", "show", "view"),
+    ".attempts": ("attempt_table",),
+    ".motion": ("Motion", "MotionView", "Track"),
+    ".plan": ("PlanScene",),
+    ".plan_data": ("FrameClearance", "PlanView", "frame_clearance", "plan_for_view", "plan_scene"),
+    ".pose": ("PoseView",),
+    ".session": ("Animation", "ExportResult", "LiveView", "View", "ViewOptions", "export", "inline",
+                 "present", "record", "serve"),
+})
 
 __all__ = [
     "ViewRequest",
