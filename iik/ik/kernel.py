@@ -1178,16 +1178,25 @@ def _same(cand, ia, ib, v, Ru, T, opt, ws, wm):
     if cand[ia, _C_FREE] == L.FREE_NUMERICAL and cand[ib, _C_FREE] == L.FREE_NUMERICAL:
         if _one_tube(cand[ia], cand[ib], v, Ru, T, opt, ws, wm):
             return True
-    if dmax <= CONNECTED:
-        q = ws[_W_QT : _W_QT + 6]
-        for s in (0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875):
-            for k in range(6):
-                q[k] = cand[ia, k] + s * wrap(cand[ib, k] - cand[ia, k])
-            pr, rr = _residuals(q, v, Ru, T)
-            if pr > opt[L.OPT_POSITION_TOL] or rr > opt[L.OPT_ROTATION_TOL]:
-                return False
-        return True
-    return False
+    return _connected(cand[ia], cand[ib], v, Ru, T, opt, ws)
+
+
+@_inner
+def _connected(a, b, v, Ru, T, opt, ws):
+    """Are configurations a and b (rows whose first 6 entries are user joints) within CONNECTED
+    rad of each other in every joint and joined by a straight segment that stays within the
+    tolerance of the pose (checked at 7 points)?"""
+    for k in range(6):
+        if abs(wrap(b[k] - a[k])) > CONNECTED:
+            return False
+    q = ws[_W_QT : _W_QT + 6]
+    for s in (0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875):
+        for k in range(6):
+            q[k] = a[k] + s * wrap(b[k] - a[k])
+        pr, rr = _residuals(q, v, Ru, T)
+        if pr > opt[L.OPT_POSITION_TOL] or rr > opt[L.OPT_ROTATION_TOL]:
+            return False
+    return True
 
 
 @_inner
@@ -1220,20 +1229,26 @@ def _tube_member(qa, phi, v, Ru, T, opt, ws, wm, out):
 def _one_tube(a, b, v, Ru, T, opt, ws, wm):
     """Are the near-continuum rows a and b on one tube of configurations within the tolerance
     (the continuum broken by the pose's distance from it)? Joints 1 and 2 (solver numbering)
-    agree to CONNECTED, and the tube's members at a quarter, half and three quarters of the
-    arc of joint 3 between them reach the pose."""
+    agree to CONNECTED, the tube's members at a quarter, half, three quarters and the whole of
+    the arc of joint 3 from a to b (each refit from the previous one) reach the pose, and the
+    last member is connected to b (:func:`_connected`): rows with the same joint 3 on two
+    different branches near the continuum are not one tube."""
     for jj in (0, 1):
         k = _user_col(v, jj)
         if abs(wrap(a[k] - b[k])) > CONNECTED:
             return False
     j = _user_col(v, 2)
     d = wrap(b[j] - a[j])
-    q = ws[_W_Q2 : _W_Q2 + 6]
-    for f in (0.5, 0.25, 0.75):
-        pr, rr = _tube_member(a, wrap(a[j] + f * d), v, Ru, T, opt, ws, wm, q)
+    prev, q = ws[_W_Q : _W_Q + 6], ws[_W_Q2 : _W_Q2 + 6]
+    for k in range(6):
+        prev[k] = a[k]
+    for f in (0.25, 0.5, 0.75, 1.0):  # continuation: each member refit from the previous one
+        pr, rr = _tube_member(prev, wrap(a[j] + f * d), v, Ru, T, opt, ws, wm, q)
         if pr > opt[L.OPT_POSITION_TOL] or rr > opt[L.OPT_ROTATION_TOL]:
             return False
-    return True
+        for k in range(6):
+            prev[k] = q[k]
+    return _connected(prev, b, v, Ru, T, opt, ws)  # ... and the tube arrives at b
 
 
 @_inner

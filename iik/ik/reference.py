@@ -402,9 +402,10 @@ def _same(a, b, kb, ka, T, arm, tol_p, tol_r) -> bool:
 
 
 def _one_tube(a, b, T, arm: Arm, tol_p, tol_r) -> bool:
-    """Near-continuum rows a and b on one tube within the tolerance: the members at 1/4, 1/2 and
-    3/4 of the arc of joint 3 between them (joint 6 moved with it, the other joints refit
-    with joint 3 held) reach the pose."""
+    """Near-continuum rows a and b on one tube within the tolerance: the members at 1/4, 1/2,
+    3/4 and the whole of the arc of joint 3 from a to b (joint 6 moved with it, the other joints
+    refit with joint 3 held, each member from the previous one) reach the pose, and the last
+    member is connected to b (rows with one joint 3 on two branches are not one tube)."""
     rev = arm.solver.reversed
     j, j6 = (3, 0) if rev else (2, 5)
     s = (
@@ -413,10 +414,14 @@ def _one_tube(a, b, T, arm: Arm, tol_p, tol_r) -> bool:
         else -1.0
     )
     d = _wrap(b[j] - a[j])
-    f = np.array([0.25, 0.5, 0.75])
-    pts = np.repeat(a[None], 3, axis=0)
-    pts[:, j] = a[j] + f * d
-    pts[:, j6] = a[j6] + s * f * d
     cols = [k for k in range(6) if k != j]
-    _, pr, rr = _polish(arm, pts, np.broadcast_to(T, (3, 4, 4)), iters=12, cols=cols)
-    return bool(np.all(pr <= tol_p) and np.all(rr <= tol_r))
+    prev = np.array(a, dtype=float)
+    for f in (0.25, 0.5, 0.75, 1.0):
+        pt = prev.copy()
+        pt[j] = a[j] + f * d
+        pt[j6] = prev[j6] + s * (pt[j] - prev[j])
+        out, pr, rr = _polish(arm, pt[None], T[None], iters=12, cols=cols)
+        if not (pr[0] <= tol_p and rr[0] <= tol_r):
+            return False
+        prev = out[0]
+    return _connected(prev, b, T, arm, tol_p, tol_r)

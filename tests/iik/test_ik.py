@@ -5,7 +5,7 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 import iik
@@ -59,7 +59,10 @@ def _check_recovers(q):
         assert contains(iik.solve(T, ARM), q, T, ARM)
 
 
+# CI's failing case: near the collinear continuum, two rows with the same theta3 on different
+# branches were taken for one tube of the numerical continuum and q* was dropped
 @given(joints())
+@example(np.array([0.0, 0.0, 0.0, 0.00010450465573719843, 0.0, 0.0]))
 def test_recovers_generating_q(q):
     _check_recovers(q)
 
