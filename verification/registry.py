@@ -48,6 +48,7 @@ import importlib
 import inspect
 import pkgutil
 import re
+import sys
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field, replace
 from enum import Enum
@@ -69,6 +70,7 @@ __all__ = [
     "Erratum",
     "Measure",
     "verdict_of",
+    "numbers_of",
     "Row",
     "SlipKind",
     "Slip",
@@ -196,6 +198,11 @@ def verdict_of(measures: Iterable[Measure], *, fail: Verdict = Verdict.ERRATUM) 
     return Verdict.HOLDS if all(m.holds for m in measures) else fail
 
 
+def numbers_of(measures: Iterable[Measure]) -> str:
+    """The measures as a row's numbers: ``"name = value unit (<= limit unit); ..."``."""
+    return "; ".join(str(m) for m in measures)
+
+
 _ID = re.compile(r"^[a-z0-9][a-z0-9_.-]*$")
 
 
@@ -287,7 +294,7 @@ class Row:
         claim: str,
         reference: str,
         method: str,
-        numbers: str,
+        numbers: str | None,
         measures: Iterable[Measure],
         *,
         fail: Verdict = Verdict.ERRATUM,
@@ -298,8 +305,10 @@ class Row:
     ) -> Row:
         """A row whose verdict follows its ``measures``: ``holds_as`` (HOLDS, or IDENTITY /
         RECONSTRUCTION for a row that is not evidence, with its ``basis``) if every measure is within
-        its bound, else ``fail``; the ``erratum`` and the ``reason`` are recorded only if it fails."""
+        its bound, else ``fail``; the ``erratum`` and the ``reason`` are recorded only if it fails.
+        ``numbers`` None: the measures themselves (:func:`numbers_of`)."""
         measures = tuple(measures)
+        numbers = numbers_of(measures) if numbers is None else numbers
         failed = verdict_of(measures, fail=fail) is not Verdict.HOLDS
         return cls(
             claim,
@@ -644,43 +653,76 @@ def register(
 class Section:
     """A report section and what its checks have in common.
 
-    A check module declares its section once and registers each check through it::
+    A check module declares its section once and registers each check through it, at the place of the
+    thesis index item it grades (or at an explicit ``order``)::
 
-        SECTION = Section("Kinematics (...)", depends_on=("l1", "lengths", "pinocchio"))
+        SECTION = Section("Kinematics (...)", depends_on=("l1", "lengths", "pinocchio"), order=10)
 
-        @SECTION.check(12.0, forms=Forms(...))
+        @SECTION.check("Eq 4", forms=Forms(...))
         def eq4_vs_pinocchio(ctx, eq4) -> Row: ...
+
+    and a family of printed formulas in bulk (:meth:`formulas`).
 
     Attributes:
         title: The section's heading in the report (:attr:`Check.section`).
         depends_on: Default assumptions of its checks' rows.
         prefix: Row-id prefix of its checks; default: each check's module name.
+        order: The section's place among the sections; a check declared by an index key sorts at
+            ``order`` plus its key's place in the thesis index (ties: in the order declared).
     """
 
     title: str
     depends_on: tuple[str, ...] = ()
     prefix: str | None = None
+    order: float = 0.0
+
+    def place(self, order: float | str) -> float:
+        """The sort key of a check declared at ``order``: a number as given, or an index key's place
+        after the section's ``order`` (:func:`verification.thesis_index.rank_of`; ties keep the order
+        of declaration)."""
+        if not isinstance(order, str):
+            return float(order)
+        from .thesis_index import rank_of
+
+        try:
+            rank = rank_of(order)
+        except KeyError as exc:
+            raise RegistrationError(order, str(exc)) from None
+        return self.order + (rank + 1) * 1e-3 + len(_REGISTRY) * 1e-7
 
     def check(
         self,
-        order: float,
+        order: float | str,
         *,
         forms: Forms | None = None,
         by_construction: str = "",
         depends_on: Iterable[str] | None = None,
         name: str | None = None,
     ):
-        """Decorator: :func:`register` a check of this section (``depends_on``, if given, replaces the
-        section's default)."""
+        """Decorator: :func:`register` a check of this section at ``order`` (a number or an index key,
+        :meth:`place`); ``depends_on``, if given, replaces the section's default."""
         return register(
             self.title,
-            order,
+            self.place(order),
             name,
             forms=forms,
             by_construction=by_construction,
             depends_on=self.depends_on if depends_on is None else depends_on,
             prefix=self.prefix,
         )
+
+    def formulas(self, sample: Callable, *formulas) -> dict[str, Callable]:
+        """Register each :class:`~verification.formula.Formula` as a check of this section measured on
+        ``sample(ctx)``, at its key's place in the index; return the check functions by row id.
+
+        The checks belong to the calling module (their names, row-id prefix and report entries)."""
+        module = sys._getframe(1).f_globals.get("__name__", __name__)
+        out = {}
+        for f in formulas:
+            func = f.check(sample)
+            func.__module__ = module
+            out[f.rid] = self.check(f.key, forms=f.forms, depends_on=f.depends_on)(func)
+        return out
 
 
 def load_checks() -> None:

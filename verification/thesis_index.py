@@ -31,6 +31,8 @@ __all__ = [
     "parse_refs",
     "chapter_of",
     "chapter_of_reference",
+    "title_of",
+    "rank_of",
 ]
 
 _HW = "verification.checks.hardware"
@@ -108,14 +110,15 @@ EQUATIONS: tuple[Item, ...] = _equations(
         "Sec 3.2": {"4": "0_6T: the twelve entries r11..r33, px, py, pz of the forward kinematics"},
         "Sec 3.3.1": {
             "5": "[ED x DC] . BC = 0 (B, C, D, E coplanar)",
-            "6": "p_B = [l2 c1, l2 s1, 0] (origin moved up by l1)",
-            "7": "p_C = [l2 c1 + l3 c2 c1, l2 s1 + l3 c2 s1, -l3 s2]",
+            "6": "p_B = [l2 c1, l2 s1, 0] is joint 2 (B; the base origin moved up by l1)",
+            "7": "p_C = [l2 c1 + l3 c2 c1, l2 s1 + l3 c2 s1, -l3 s2] is joint 4 (C)",
             "8": "first simultaneous equation in theta1, theta2",
-            "9": "tan(theta2) = [(r23 zD - r33 yD) c1 + (r33 xD - r13 zD) s1] / +-[...]",
+            "9": "tan(theta2) = [(r23 zD - r33 yD) c1 + (r33 xD - r13 zD) s1] / +-[(r23 xD - r13 yD) + r13 "
+                 "l2 s1 - r23 l2 c1] gives theta2 from theta1",
             "9a": "x_D = p_x - r13 l5",
             "9b": "y_D = p_y - r23 l5",
             "9c": "z_D = p_z - l1 - r33 l5",
-            "10": "|BC| + |DC| - l3 - l4 = 0",
+            "10": "|BC| + |DC| - l3 - l4 = 0 at the solution",
             "11": "||E|| = xD^2 + yD^2 + zD^2 + l2^2 + l3^2 - l4^2 - 2 (l2 + l3 c2)(xD c1 + yD s1) + 2 l3 "
                   "(zD s2 + l2 c2)",
             "12": "the minimum of ||E|| is at theta1 = atan2(py, px)",
@@ -123,20 +126,20 @@ EQUATIONS: tuple[Item, ...] = _equations(
         },
         "Sec 3.3.2": {
             "14": "c4 by the law of cosines",
-            "15": "s4 = +-sqrt(1 - c4^2)",
+            "15": "s4 = +-sqrt(1 - c4^2): one of the two signs is sin(theta4)",
             "16": "theta4 = atan2(s4, c4)",
         },
         "Sec 3.3.3": {
             "17": "0_5T = 0_2T 2_5T",
             "18": "0_2T^-1 0_5T = 2_5T with 0_2T^-1 and 2_5T printed",
-            "19": "(0_2T^-1 0_5T)_34 = c1 yD - s1 xD = -l4 s3 s4",
+            "19": "(0_2T^-1 0_5T)_34 = c1 yD - s1 xD = -l4 s3 s4 = (2_5T)_34",
             "20": "s3 = (s1 xD - c1 yD) / (l4 s4)",
-            "21": "c3 = +-sqrt(1 - s3^2)",
+            "21": "c3 = +-sqrt(1 - s3^2): one sign is cos(theta3)",
             "22": "theta3 = atan2(s3, c3)",
         },
         "Sec 3.3.4": {
             "23": "0_6T = 0_2T 2_6T",
-            "24": "0_2T^-1 0_6T = 2_6T with the used entries of 2_6T printed",
+            "24": "0_2T^-1 0_6T = 2_6T, whose entries used by Eq 25-26 are (1,3) = -c3 s45 and (2,3) = -c45",
             "25": "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45",
             "26": "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45",
             "27": "s45 = (r13 c1 s2 + r23 s1 s2 + r33 c2) / (-c3)",
@@ -571,3 +574,30 @@ def chapter_of_reference(reference: str) -> str:
 
 
 _BY_KEY = {it.key: it for it in ITEMS}
+_RANK = {it.key: k for k, it in enumerate(ITEMS)}
+
+
+def _item(reference: str) -> Item:
+    keys = parse_refs(reference) or (reference,)
+    if keys[0] not in _BY_KEY:
+        raise KeyError(f"{reference!r} names no item of the thesis index")
+    return _BY_KEY[keys[0]]
+
+
+def title_of(reference: str) -> str:
+    """The index title of the first item a reference names (``"Eq 16"`` -> ``"theta4 = atan2(s4, c4)"``):
+    what a check of it claims, written once.
+
+    Raises:
+        KeyError: the reference names no index item.
+    """
+    return _item(reference).title
+
+
+def rank_of(reference: str) -> int:
+    """The position in the index (report order) of the first item a reference names.
+
+    Raises:
+        KeyError: the reference names no index item.
+    """
+    return _RANK[_item(reference).key]

@@ -136,13 +136,13 @@ def test_section_defaults_reach_its_checks():
     from verification.checks import ik_equations
 
     checks = {c.name: c for c in registered_checks()}
-    step = checks["verification.checks.ik_equations.eq6_point_b"]
+    step = checks["verification.checks.ik_equations.eq6"]
     assert (step.section, step.prefix, step.depends_on) == (
         ik_equations.SECTION.title,
         "ik",
         ik_equations.SECTION.depends_on,
     )
-    assert step.where == "verification.checks.ik_equations:eq6_point_b"
+    assert step.where == "verification.checks.ik_equations:eq6"
     assert checks["verification.checks.ik.four_configurations"].depends_on == ("l1", "lengths")  # its own
     with pytest.raises(RegistrationError, match="assumption"):  # the section's default is checked too
         Section("S", depends_on=("nope",)).check(1.0)(lambda ctx: _row())

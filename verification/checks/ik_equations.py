@@ -20,7 +20,6 @@ when fed the true values (Eq 10, 15-17, 21-23, 28, 29, 33) hold by construction 
 (``Row.basis``). Each erratum is re-derived by a second reading (Table II chains by
 ``iik.dh``, not Pinocchio) over the nearby readings of its inputs.
 """
-
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -31,9 +30,10 @@ import iik
 from iik.dh import dh_link_transform
 
 from ..assumptions import EXACT_GEOMETRY
-from ..numbers import fmt_q, worst
+from ..formula import Formula, error_row
+from ..numbers import fmt_q
 from ..oracles.pinocchio_model import joint_placements
-from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon
 from ..second_reading import Kind, Reading, search
 from ..shorthand import cos_sin, wrap
 
@@ -46,8 +46,8 @@ SECTION = Section(
     "Inverse kinematics (Sec 3.3 IIK, Eq 5-33, solution counts, cost)",
     depends_on=EXACT_GEOMETRY,
     prefix="ik",
+    order=20.0,
 )
-
 
 @dataclass(frozen=True)
 class Sample:
@@ -85,6 +85,12 @@ class Sample:
     @property
     def p(self) -> np.ndarray:
         return self.F[:, 6, :3, 3]
+
+    def __len__(self) -> int:
+        return len(self.q)
+
+    def at(self, k: int) -> str:
+        return fmt_q(self.q[k])
 
     def c(self, j: int) -> np.ndarray:
         return np.cos(self.q[:, j - 1])
@@ -143,122 +149,6 @@ def sample(ctx) -> Sample:
     return ctx.cache[key]
 
 
-def _row(
-    s: Sample,
-    key: str,
-    rid: str,
-    claim: str,
-    method: str,
-    err: np.ndarray,
-    tol: float,
-    unit: str,
-    *,
-    printed: str,
-    corrected: str,
-    note: str = "",
-    fail: Verdict = Verdict.ERRATUM,
-    basis: str = "",
-    scale: tuple[str, np.ndarray] | None = None,
-) -> Row:
-    """A row graded on ``max |err| <= tol`` (or, with ``scale = (name, x)``, on ``max |err| |x| <= tol``:
-    the conditioning of a division by x); otherwise an erratum with its counterexample (or, with ``fail``
-    DOES_NOT_HOLD, the failing q as the reason). With ``basis`` (why it is an identity) a passing row
-    holds by construction."""
-    raw = np.abs(err)
-    graded = raw if scale is None else np.where(np.isnan(raw), np.inf, raw) * np.abs(scale[1])
-    w, k = worst(graded)
-    at = fmt_q(s.q[k])
-    erratum = Erratum(key, printed, corrected, f"{at}: |form - truth| = {err[k]:.3g} {unit}")
-    what = "max |form - truth|" + (f" x |{scale[0]}|" if scale else "")
-    numbers = f"{what} = {w:.2g} {unit} over {len(err)} q"
-    if scale is not None:
-        at = np.abs(scale[1][int(np.argmax(raw))])
-        numbers += f" (raw: max {worst(raw)[0]:.2g} {unit}, at |{scale[0]}| = {at:.1g})"
-    return Row.graded(
-        claim,
-        key,
-        method,
-        numbers + (f"; {note}" if note else ""),
-        (Measure(what, w, tol, unit),),
-        fail=fail,
-        holds_as=Verdict.IDENTITY if basis else Verdict.HOLDS,
-        basis=basis,
-        erratum=erratum if fail is Verdict.ERRATUM else None,
-        reason=f"fails at {at}" if fail is Verdict.DOES_NOT_HOLD else "",
-        id=rid,
-        domain=s.domain,
-    )
-
-
-def _step(
-    order: float,
-    name: str,
-    key: str,
-    *,
-    claim: str,
-    method: str,
-    error,
-    tol: float,
-    unit: str,
-    printed: str,
-    forms: Forms,
-    corrected: str = "-",
-    note=None,
-    rid: str = "",
-    basis: str = "",
-    scale=None,
-    reread=None,
-):
-    """Register check ``name`` of the printed step ``key`` (Eq N) on its own: ``error(sample, form)`` is
-    the (n,) error of the form against the truth, graded on ``max |error| <= tol`` [``unit``];
-    ``method`` may name the sample size as ``{n}``; ``note(sample, error)`` adds a remark to the numbers.
-    The row id is ``rid``, default ``key`` in lower case without spaces (``"eq16"``). ``basis``: why the
-    step is an identity with true inputs (then it holds by construction); ``scale = (name, f)``: grade
-    ``|error| |f(sample)|`` (a division by f); ``reread(ctx, sample, form)``: the second reading of an
-    erratum. Returns the check function ``check(ctx, form) -> Row``."""
-
-    def check(ctx, form):
-        s = sample(ctx)
-        err = error(s, form)
-        row = _row(
-            s,
-            key,
-            rid or key.lower().replace(" ", ""),
-            claim,
-            method.format(n=len(s.q)),
-            err,
-            tol,
-            unit,
-            printed=printed,
-            corrected=corrected,
-            note=note(s, err) if note else "",
-            basis=basis,
-            scale=None if scale is None else (scale[0], scale[1](s)),
-        )
-        return row.reread(reread(ctx, s, form)) if reread and row.verdict is Verdict.ERRATUM else row
-
-    check.__name__ = check.__qualname__ = name
-    check.__doc__ = f"{key}: {claim}"
-    return SECTION.check(order, forms=forms)(check)
-
-
-def _printed_is_right(form, *slips: Slip, eps: float = 1e-9, good_is: str = "the printed form (it is right)"):
-    """Forms of a step printed right: the printed form is also the good one; the tolerance test is it
-    + ``eps``."""
-    return Forms.right(form, slips, tolerance=epsilon(form, eps), good_is=good_is)
-
-
-_ATAN2 = Forms(
-    np.arctan2,
-    lambda sn, cs: np.angle(cs + 1j * sn),
-    "the argument of c + i s",
-    slips=(
-        Slip(SlipKind.SWAP, "atan2(c, s): the arguments exchanged", lambda sn, cs: np.arctan2(cs, sn)),
-        Slip(SlipKind.FUNCTION, "atan(s / c) for atan2 (the quadrant lost)", lambda sn,
-            cs: np.arctan(sn / cs)),
-    ),
-    tolerance=epsilon(np.arctan2, 1e-6, "atan2 + 1 urad"),
-)
 #: Why the one-line steps hold by construction when fed the true sine and cosine.
 _ATAN2_BASIS = ("atan2 of the true sine and cosine returns the angle: an identity of atan2, not a fact about "
                 "the arm")
@@ -290,7 +180,7 @@ def _eq5_ab(E, D, C, B):
 
 
 @SECTION.check(
-    20.0,
+    "Eq 5",
     forms=Forms(
         printed=eq5_printed,
         good=_eq5_det,
@@ -305,25 +195,23 @@ def _eq5_ab(E, D, C, B):
 def eq5_coplanar(ctx, triple):
     """Eq 5: B, C, D, E coplanar; ED along z6 = [r13 r23 r33]."""
     s = sample(ctx)
-    val = triple(s.E, s.D, s.C, s.B)
     ed = (s.D - s.E) / np.linalg.norm(s.D - s.E, axis=1, keepdims=True)
-    d_z = np.abs(ed - s.R[:, :, 2]).max()
     m = (
-        Measure("max |[ED x DC] . BC|", np.abs(val).max(), TOL, "m^3"),
-        Measure("max |ED/|ED| - z6|", d_z, TOL),
+        Measure("max |[ED x DC] . BC|", np.abs(triple(s.E, s.D, s.C, s.B)).max(), TOL, "m^3"),
+        Measure("max |ED/|ED| - z6|", np.abs(ed - s.R[:, :, 2]).max(), TOL),
     )
-    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
-    return Row(
+    return Row.graded(
         "B, C, D and E lie in one plane for every q: [ED x DC] . BC = 0, with ED along the end-effector "
         "z axis [r13 r23 r33].",
         "Eq 5 (Sec 3.3.1)",
         f"Eq 5 with the true joint points (Pinocchio) at {len(s.q)} random q in Table I",
-        f"max |[ED x DC] . BC| = {np.abs(val).max():.1e} m^3; max |unit(ED) - z6| = {d_z:.1e}",
-        verdict,
+        None,
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="eq5",
-        measures=m,
         domain=s.domain,
     )
+
 
 
 def eq6_printed(th1):
@@ -333,28 +221,6 @@ def eq6_printed(th1):
 def _eq6_rot(th1):
     return np.einsum("nij,j->ni", iik.euler_matrix(th1, np.zeros_like(th1), np.zeros_like(th1)), [L2, 0, 0])
 
-
-eq6_point_b = _step(
-    20.1,
-    "eq6_point_b",
-    "Eq 6",
-    claim="p_B = [l2 c1, l2 s1, 0] is joint 2 (Sec 3.3.1 frame).",
-    method="printed p_B vs the origin of frame 2 (Pinocchio) minus l1 e_z",
-    error=lambda s, p_b: np.linalg.norm(p_b(s.q[:, 0]) - s.B, axis=1),
-    tol=TOL,
-    unit="m",
-    printed="p_B = [l2 c1, l2 s1, 0]",
-    forms=Forms(
-        eq6_printed,
-        _eq6_rot,
-        "Rz(theta1) [l2 0 0]",
-        slips=(
-            Slip(SlipKind.SWAP, "[l2 s1, l2 c1, 0]", lambda t: eq6_printed(t)[:, [1, 0, 2]]),
-            Slip(SlipKind.LENGTH, "l3 for l2", lambda t: eq6_printed(t) * (L3 / L2)),
-        ),
-        tolerance=epsilon(eq6_printed, 1e-9, "each coordinate moved by 1 nm"),
-    ),
-)
 
 
 def eq7_printed(th1, th2):
@@ -366,33 +232,6 @@ def _eq7_geom(th1, th2):
     u = np.stack([np.cos(th2) * np.cos(th1), np.cos(th2) * np.sin(th1), -np.sin(th2)], 1)
     return _eq6_rot(th1) + L3 * u
 
-
-eq7_point_c = _step(
-    20.2,
-    "eq7_point_c",
-    "Eq 7",
-    claim="p_C = [l2 c1 + l3 c2 c1, l2 s1 + l3 c2 s1, -l3 s2] is joint 4 (C).",
-    method="printed p_C vs the origin of frames 3-4 (Pinocchio) minus l1 e_z",
-    error=lambda s, p_c: np.linalg.norm(p_c(s.q[:, 0], s.q[:, 1]) - s.C, axis=1),
-    tol=TOL,
-    unit="m",
-    printed="p_C as printed",
-    forms=Forms(
-        eq7_printed,
-        _eq7_geom,
-        "p_B + l3 (unit vector of link 3)",
-        slips=(
-            Slip(SlipKind.SIGN, "z_C = +l3 s2", lambda t1, t2: eq7_printed(t1, t2) * np.array([1.0, 1.0,
-                -1.0])),
-            Slip(SlipKind.SWAP, "c1 and s1 exchanged in the l3 terms", lambda t1, t2: eq7_printed(t1, t2) + L3
-                 * np.stack([np.cos(t2) * (np.sin(t1) - np.cos(t1)), np.cos(t2) * (np.cos(t1) - np.sin(t1)),
-                             0 * t1], 1)),
-            Slip(SlipKind.LENGTH, "l4 for l3", lambda t1, t2: _eq6_rot(t1) + (eq7_printed(t1, t2)
-                                                                              - _eq6_rot(t1)) * (L4 / L3)),
-        ),
-        tolerance=epsilon(eq7_printed, 1e-9, "each coordinate moved by 1 nm"),
-    ),
-)
 
 
 def eq8_printed(R, D, th1, th2):
@@ -426,7 +265,7 @@ def _eq8_swap(R, D, th1, th2):
 
 
 @SECTION.check(
-    20.3,
+    "Eq 8",
     forms=Forms(
         printed=eq8_printed,
         good=eq8_geometric,
@@ -559,37 +398,6 @@ def eq9_reading(ctx, s: Sample, eq9):
                       measure="max over q of the gap between the printed and the true pair [rad]")
 
 
-eq9_theta2 = _step(
-    21.0,
-    "eq9_theta2",
-    "Eq 9",
-    claim="tan(theta2) = [(r23 zD - r33 yD) c1 + (r33 xD - r13 zD) s1] / +-[(r23 xD - r13 yD) + r13 l2 s1 - "
-    "r23 l2 c1] gives theta2 from theta1.",
-    method="both branches, read as theta2 = atan2(numerator, +-denominator), with the true D and theta1, vs "
-    "the generating theta2; {n} random q",
-    error=_eq9_miss,
-    tol=TOL_ANGLE,
-    unit="rad",
-    printed="tan(theta2) = P / (+-Q)",
-    corrected="tan(theta2) = -P / Q, i.e. (c2, s2) = +-(Q, -P) / sqrt(P^2 + Q^2) (Eq 8 reads "
-    "P c2 + Q s2 = 0); as tangents the printed '-' branch is right and the '+' branch spurious",
-    note=lambda s, err: f"theta2 missed in {np.mean(err > TOL_ANGLE):.1%} of q",
-    forms=Forms(
-        eq9_printed,
-        eq9_corrected,
-        "tan(theta2) = -P/Q (both branches)",
-        slips=(
-            Slip(SlipKind.SIGN, "tan(theta2) = +P/Q", lambda R, D, t: -eq9_corrected(R, D, t)),
-            Slip(SlipKind.SWAP, "numerator and denominator exchanged",
-                 lambda R, D, t: np.stack([np.arctan2(_pq(R, D, t)[1], -_pq(R, D, t)[0]),
-                                           np.arctan2(-_pq(R, D, t)[1], _pq(R, D, t)[0])])),
-            Slip(SlipKind.BRANCH, "one branch only", lambda R, D, t: eq9_corrected(R, D, t)[[0, 0]]),
-        ),
-        tolerance=epsilon(eq9_corrected, 1e-6, "the good branches moved by 1 urad"),
-    ),
-    reread=eq9_reading,
-)
-
 
 def eq9abc_printed(p, z6):
     """Eq 9a-c: D = [px - r13 l5, py - r23 l5, pz - l1 - r33 l5] (Sec 3.3.1 frame)."""
@@ -636,7 +444,7 @@ def _wrist_no_shift(p, z6):
 
 
 @SECTION.check(
-    20.5,
+    "Eq 9a",
     forms=Forms(
         eq9abc_printed,
         eq9abc_corrected,
@@ -655,26 +463,19 @@ def wrist_point(ctx, eq9abc):
     Dp = eq9abc(s.p, s.R[:, :, 2])
     rows = []
     for k, (key, name, sym) in enumerate((("9a", "x_D", "r13"), ("9b", "y_D", "r23"), ("9c", "z_D", "r33"))):
-        pr = f"{name} = p_{name[-1].lower()} {'- l1 ' if key == '9c' else ''}- {sym} l5"
-        co = (
-            f"{name} = p_{name[-1].lower()} {'- l1 ' if key == '9c' else ''}+ {sym} l5 (Table II has d6 = "
-            "-l5: z6 points from the tool back to the wrist)"
-        )
-        row = _row(
-            s,
-            f"Eq {key}",
-            f"eq{key}",
-            f"Eq {key}: {pr} is the {name} coordinate of joint 5.",
-            "printed coordinate vs the origin of frame 5 (Pinocchio) minus l1 e_z",
-            Dp[:, k] - s.D[:, k],
-            TOL,
-            "m",
+        pr = f"{name} = p_{name[0]} {'- l1 ' if key == '9c' else ''}- {sym} l5"
+        row = error_row(
+            s, Dp[:, k] - s.D[:, k], TOL, "m", key=f"Eq {key}", id=f"eq{key}",
+            claim=f"Eq {key}: {pr} is the {name} coordinate of joint 5.",
+            method="printed coordinate vs the origin of frame 5 (Pinocchio) minus l1 e_z",
             printed=pr,
-            corrected=co,
+            corrected=f"{pr.replace('- r', '+ r')} (Table II has d6 = -l5: z6 points from the tool back to "
+            "the wrist)",
             note=f"max |error| = 2 l5 |{sym}| <= 2 l5 = {2 * L5:.3f} m",
         )
         rows.append(row.reread(wrist_reading(s, eq9abc, k, pr)) if row.verdict is Verdict.ERRATUM else row)
     return rows
+
 
 
 def eq10_printed(B, C, D):
@@ -695,33 +496,6 @@ def _eq10_off(s: Sample, err) -> str:
         "discriminates"
     )
 
-
-eq10_lengths = _step(
-    21.1,
-    "eq10_lengths",
-    "Eq 10",
-    claim="|BC| + |DC| - l3 - l4 = 0 at the solution.",
-    method="Eq 10 with the true points B, C, D",
-    error=lambda s, eq10: eq10(s.B, s.C, s.D),
-    tol=TOL,
-    unit="m",
-    printed="|BC| + |DC| - l3 - l4 = 0",
-    note=_eq10_off,
-    basis="the distances between Pinocchio's joint points are the link lengths by construction of the model "
-    "(Table II), so Eq 10 at the true points is zero identically: it shows the condition is written right, "
-    "not a fact about the arm (the note shows it discriminates)",
-    forms=Forms(
-        eq10_printed,
-        _eq10_lengths,
-        "the two length conditions |BC| = l3, |DC| = l4",
-        slips=(
-            Slip(SlipKind.LENGTH, "l5 for l4", lambda B, C, D: eq10_printed(B, C, D) + L4 - L5),
-            Slip(SlipKind.SIGN, "|BC| - |DC| - l3 - l4",
-                 lambda B, C, D: eq10_printed(B, C, D) - 2 * np.linalg.norm(D - C, axis=1)),
-        ),
-        tolerance=epsilon(eq10_printed, 1e-6, "the sum moved by 1 um"),
-    ),
-)
 
 
 def eq11_printed(D, th1, th2):
@@ -755,7 +529,7 @@ def _eq11_swap(D, th1, th2):
 
 
 @SECTION.check(
-    21.2,
+    "Eq 11",
     forms=Forms(
         eq11_printed,
         eq11_geometric,
@@ -1023,7 +797,7 @@ def _eq12_wrist(p, D):
 
 
 @SECTION.check(
-    21.5,
+    "Eq 12",
     forms=Forms(
         eq12_printed,
         NumericArgmin(1.0),
@@ -1042,7 +816,7 @@ def eq12_minimum(ctx, form):
 
 
 @SECTION.check(
-    21.6,
+    "Eq 13",
     forms=Forms(
         eq13_printed,
         eq13_corrected,
@@ -1112,31 +886,6 @@ def eq14_reading(s: Sample, eq14):
                   route=_DH_ROUTE, measure="max(|form - cos(theta4)|, |Eq 11| / (2 l3 l4))")
 
 
-eq14_c4 = _step(
-    22.0,
-    "eq14_c4",
-    "Eq 14",
-    claim="c4 by the law of cosines (Eq 14).",
-    method="printed c4 with the true D and theta1 vs cos(theta4) of the generating q",
-    error=lambda s, eq14: eq14(s.D, s.q[:, 0]) - s.c(4),
-    tol=TOL,
-    unit="-",
-    printed="c4 = (xD^2 + yD^2 + zD^2 + l2^2 - l3^2 - l4^2 - 2 l2 (xD c1 - yD s1)) / (2 l3 l4)",
-    corrected="... - 2 l2 (xD c1 + yD s1) (|D - B|^2 = |D|^2 + l2^2 - 2 l2 (xD c1 + yD s1))",
-    forms=Forms(
-        eq14_printed,
-        eq14_corrected,
-        "the law of cosines on triangle B, C, D: ... - 2 l2 (xD c1 + yD s1)",
-        slips=(
-            Slip(SlipKind.SIGN, "... - 2 l2 (xD c1 - yD s1)", eq14_printed),
-            Slip(SlipKind.SIGN, "+ l3^2 for - l3^2", lambda D, t: eq14_corrected(D, t) + L3 / L4),
-            Slip(SlipKind.LENGTH, "2 l3 l5 in the denominator", lambda D, t: eq14_corrected(D, t) * L4 / L5),
-        ),
-        tolerance=epsilon(eq14_corrected, 1e-9, "good + 1e-9"),
-    ),
-    reread=lambda ctx, s, form: eq14_reading(s, form),
-)
-
 
 def eq15_printed(c4):
     r = np.sqrt(1 - c4**2)
@@ -1163,27 +912,6 @@ _ROOT_SLIPS = (
 TOL_SCALED = 1e-14
 
 
-eq15_s4 = _step(
-    22.1,
-    "eq15_s4",
-    "Eq 15",
-    claim="s4 = +-sqrt(1 - c4^2): one of the two signs is sin(theta4).",
-    method="both signs with the true c4 vs sin(theta4)",
-    error=lambda s, eq15: _branches(eq15, s.c(4), s.s(4)),
-    tol=TOL_SCALED,
-    unit="-",
-    printed="s4 = +-sqrt(1 - c4^2)",
-    basis=_PYTHAGORAS,
-    scale=("s4", lambda s: s.s(4)),
-    forms=Forms(
-        eq15_printed,
-        _eq15_good,
-        "+-sin(acos(c4))",
-        slips=_ROOT_SLIPS,
-        tolerance=epsilon(eq15_printed, 1e-9, "both branches moved by 1e-9"),
-    ),
-)
-
 
 # ----------------------------------------------------------------------------- Eq 17-22
 def _links(q: np.ndarray, first: int, last: int) -> np.ndarray:
@@ -1195,64 +923,11 @@ def _links(q: np.ndarray, first: int, last: int) -> np.ndarray:
     return T
 
 
-def _compose(a, b):
-    return a @ b
-
-
-def _compose_einsum(a, b):
-    return np.einsum("nij,njk->nik", a, b)
-
-
-def _compose_reversed(a, b):
-    return b @ a
-
-
-def _compose_transposed(a, b):
-    return a @ _rot_t(b)
-
-
 def _rot_t(T):
     T = np.array(T, copy=True)
     T[:, :3, :3] = np.swapaxes(T[:, :3, :3], -1, -2)
     return T
 
-
-_COMPOSE = Forms(
-    _compose,
-    _compose_einsum,
-    "the same product written with einsum",
-    slips=(
-        Slip(SlipKind.SWAP, "the factors in the wrong order", _compose_reversed),
-        Slip(SlipKind.TRANSPOSE, "the second factor's rotation transposed", _compose_transposed),
-    ),
-    tolerance=epsilon(_compose, 1e-9),
-)
-
-
-def _composition(ctx, form, key, rid, split, upto) -> Row:
-    s = sample(ctx)
-    T = form(_links(s.q, 1, split), _links(s.q, split + 1, upto))
-    err = np.abs(T - s.F[:, upto]).max(axis=(1, 2))
-    return _row(
-        s,
-        key,
-        rid,
-        f"0_{upto}T = 0_{split}T {split}_{upto}T.",
-        f"products of the Table II link transforms 1..{split} and {split + 1}..{upto} composed as printed vs "
-        f"Pinocchio's 0_{upto}T",
-        err,
-        TOL,
-        "m or -",
-        printed=f"0_{upto}T = 0_{split}T {split}_{upto}T",
-        corrected="-",
-        fail=Verdict.DOES_NOT_HOLD,
-        basis=_SAME_TABLE,
-    )
-
-
-@SECTION.check(22.5, forms=_COMPOSE)
-def eq17_composition(ctx, form):
-    return _composition(ctx, form, "Eq 17", "eq17", 2, 5)
 
 
 def eq18_inverse_printed(q):
@@ -1309,7 +984,7 @@ def _eq18_t25_sign(q):
 
 
 @SECTION.check(
-    23.0,
+    "Eq 18",
     forms=Forms(
         lambda q: (eq18_inverse_printed(q), eq18_t25_printed(q)),
         _eq18_dh,
@@ -1326,35 +1001,18 @@ def eq18_matrices(ctx, mats):
     """Eq 18: the printed 0_2T^-1 and 2_5T (base frame) vs Pinocchio."""
     s = sample(ctx)
     inv, t25 = mats(s.q)
-    e_inv = np.abs(inv - np.linalg.inv(s.F[:, 2])).max(axis=(1, 2))
-    e25 = np.abs(t25 - s.rel(2, 5)).max(axis=(1, 2))
     return [
-        _row(
-            s,
-            "Eq 18",
-            "eq18.inverse",
-            "The printed 0_2T^-1 is the inverse of the frame-2 pose.",
-            "printed matrix vs inv(0_2T) from Pinocchio (base frame at the mounting plane, z = 0)",
-            e_inv,
-            TOL,
-            "m or -",
-            printed="0_2T^-1 as printed",
-            corrected="-",
-            note="it contains l1: it belongs to the unshifted base frame (see eq18.frame)",
-        ),
-        _row(
-            s,
-            "Eq 18",
-            "eq18.t25",
-            "The printed 2_5T is the transform from frame 2 to frame 5.",
-            "printed matrix vs (0_2T)^-1 0_5T from Pinocchio",
-            e25,
-            TOL,
-            "m or -",
-            printed="2_5T as printed",
-            corrected="-",
-        ),
+        error_row(s, np.abs(inv - np.linalg.inv(s.F[:, 2])).max(axis=(1, 2)), TOL, "m or -", key="Eq 18",
+                  id="eq18.inverse", claim="The printed 0_2T^-1 is the inverse of the frame-2 pose.",
+                  method="printed matrix vs inv(0_2T) from Pinocchio (base frame at the mounting plane, z = "
+                  "0)",
+                  printed="0_2T^-1 as printed",
+                  note="it contains l1: it belongs to the unshifted base frame (see eq18.frame)"),
+        error_row(s, np.abs(t25 - s.rel(2, 5)).max(axis=(1, 2)), TOL, "m or -", key="Eq 18", id="eq18.t25",
+                  claim="The printed 2_5T is the transform from frame 2 to frame 5.",
+                  method="printed matrix vs (0_2T)^-1 0_5T from Pinocchio", printed="2_5T as printed"),
     ]
+
 
 
 def _d_shifted(s: Sample) -> np.ndarray:
@@ -1401,36 +1059,6 @@ def _eq18_frame_error(s: Sample, wrist) -> np.ndarray:
     return np.abs(lhs - eq18_t25_printed(s.q)).max(axis=(1, 2))
 
 
-eq18_frame = _step(
-    23.1,
-    "eq18_frame",
-    "Eq 18",
-    rid="eq18.frame",
-    claim="Eq 18 holds with 0_5T built from the D of Eq 9 (x_D, y_D, z_D 'known from Equation 9b').",
-    method="printed 0_2T^-1 times 0_5T with the true rotation and D in the frame of Sec 3.3.1 (Eq 9c: "
-    "origin moved up by l1), vs the printed 2_5T",
-    error=_eq18_frame_error,
-    tol=TOL,
-    unit="m",
-    printed="0_2T^-1 with -l1 c2 - l2 s2 and l1 s2 - l2 c2 in column 4, applied to Eq 9's D",
-    corrected="in the frame of Eq 9 the column is [-l2 s2, -l2 c2, 0] (drop the l1 terms), or D must "
-    "keep z_D = p_z + r33 l5; harmless: only the (3,4) entry, which has no l1 term, is used "
-    "(Eq 19)",
-    note=lambda s, err: f"entries (1,4), (2,4) are off by l1 c2, l1 s2 (max {L1 * np.abs(s.c(2)).max():.3f} "
-    "m); the (3,4) entry used by Eq 19 is exact",
-    forms=Forms(
-        _d_shifted,
-        _d_base,
-        "D in the base frame (z = 0 at the mounting plane), the frame of the printed 0_2T^-1",
-        slips=(
-            Slip(SlipKind.SIGN, "D moved up by l1 the wrong way (z_D + 2 l1)", lambda s: s.D + 2 * L1 * _EZ),
-            Slip(SlipKind.LENGTH, "D shifted by l2 for l1", lambda s: s.D + L2 * _EZ),
-        ),
-        tolerance=Slip(SlipKind.EPSILON, "the good D moved by 1 nm", _d_base_slip),
-    ),
-    reread=eq18_frame_reading,
-)
-
 
 def eq19_printed(q, D):
     c1, s1 = cos_sin(q[:, 0])
@@ -1442,111 +1070,17 @@ def _eq19_good(q, D):
     return np.stack([np.einsum("ni,ni->n", row3, D), -L4 * np.sin(q[:, 2]) * np.sin(q[:, 3])])
 
 
-eq19_element = _step(
-    23.2,
-    "eq19_element",
-    "Eq 19",
-    claim="(0_2T^-1 0_5T)_34 = c1 yD - s1 xD = -l4 s3 s4 = (2_5T)_34.",
-    method="both printed expressions with the true D and q vs the (3,4) entry of 2_5T from Pinocchio",
-    error=lambda s, eq19: np.abs(eq19(s.q, s.D) - s.rel(2, 5)[:, 2, 3]).max(axis=0),
-    tol=TOL,
-    unit="m",
-    printed="c1 yD - s1 xD = -l4 s3 s4",
-    forms=Forms(
-        eq19_printed,
-        _eq19_good,
-        "row 3 of 0_2T^-1 times D, and -l4 s3 s4",
-        slips=(
-            Slip(SlipKind.SWAP, "c1 xD - s1 yD", lambda q, D: np.stack(
-                [np.cos(q[:, 0]) * D[:, 0] - np.sin(q[:, 0]) * D[:, 1], eq19_printed(q, D)[1]])),
-            Slip(SlipKind.SIGN, "+l4 s3 s4", lambda q, D: eq19_printed(q, D) * np.array([[1.0], [-1.0]])),
-        ),
-        tolerance=epsilon(eq19_printed, 1e-9, "both sides moved by 1 nm"),
-    ),
-)
-
 
 def eq20_printed(q, D):
     c1, s1 = cos_sin(q[:, 0])
     return (s1 * D[:, 0] - c1 * D[:, 1]) / (L4 * np.sin(q[:, 3]))
 
 
-eq20_s3 = _step(
-    23.3,
-    "eq20_s3",
-    "Eq 20",
-    claim="s3 = (s1 xD - c1 yD) / (l4 s4).",
-    method="with the true D, theta1, theta4 vs sin(theta3)",
-    error=lambda s, eq20: eq20(s.q, s.D) - s.s(3),
-    tol=TOL_SCALED,
-    unit="-",
-    printed="s3 = (s1 xD - c1 yD) / (l4 s4)",
-    note=lambda s, err: f"smallest |s4| sampled {np.abs(s.s(4)).min():.1e} (s4 = 0, theta4 = 0, is 0/0: the "
-    "wrist on the link-3 axis, singular set s(1)); graded on |error| |s4|: the division by s4 costs eps / "
-    "|s4|",
-    scale=("s4", lambda s: s.s(4)),
-    forms=_printed_is_right(
-        eq20_printed,
-        Slip(SlipKind.SIGN, "(c1 yD - s1 xD) / (l4 s4)", lambda q, D: -eq20_printed(q, D)),
-        Slip(SlipKind.LENGTH, "l3 s4 in the denominator", lambda q, D: eq20_printed(q, D) * L4 / L3),
-        Slip(SlipKind.FUNCTION, "l4 c4 for l4 s4", lambda q, D: eq20_printed(q, D) * np.sin(q[:, 3])
-             / np.cos(q[:, 3])),
-    ),
-)
-
-
-eq21_c3 = _step(
-    23.4,
-    "eq21_c3",
-    "Eq 21",
-    claim="c3 = +-sqrt(1 - s3^2): one sign is cos(theta3).",
-    method="both signs with the true s3 vs cos(theta3)",
-    error=lambda s, eq21: _branches(eq21, s.s(3), s.c(3)),
-    tol=TOL_SCALED,
-    unit="-",
-    printed="c3 = +-sqrt(1 - s3^2)",
-    basis=_PYTHAGORAS,
-    scale=("c3", lambda s: s.c(3)),
-    forms=Forms(
-        eq15_printed,
-        _eq15_good,
-        "+-sin(acos(s3)) read as cosines",
-        slips=_ROOT_SLIPS,
-        tolerance=epsilon(eq15_printed, 1e-9, "both branches moved by 1e-9"),
-    ),
-)
-
-
-# ----------------------------------------------------------------------------- Eq 23-28
-@SECTION.check(24.0, forms=_COMPOSE)
-def eq23_composition(ctx, form):
-    return _composition(ctx, form, "Eq 23", "eq23", 2, 6)
-
 
 def eq24_printed(q):
     c3, c45, s45 = np.cos(q[:, 2]), np.cos(q[:, 3] + q[:, 4]), np.sin(q[:, 3] + q[:, 4])
     return np.stack([-c3 * s45, -c45], 1)
 
-
-eq24_entries = _step(
-    24.1,
-    "eq24_entries",
-    "Eq 24",
-    claim="2_6T has (1,3) = -c3 s45 and (2,3) = -c45 (the entries Eq 25-26 use).",
-    method="printed entries vs (0_2T)^-1 0_6T from Pinocchio",
-    error=lambda s, eq24: np.abs(eq24(s.q) - s.rel(2, 6)[:, :2, 2]).max(axis=1),
-    tol=TOL,
-    unit="-",
-    printed="(2_6T)_13 = -c3 s45, (2_6T)_23 = -c45",
-    forms=_printed_is_right(
-        eq24_printed,
-        Slip(SlipKind.SWAP, "(1,3) = -s3 s45", lambda q: np.stack([-np.sin(q[:, 2]) * np.sin(q[:, 3] + q[:,
-            4]),
-                                                                  eq24_printed(q)[:, 1]], 1)),
-        Slip(SlipKind.SIGN, "(2,3) = +c45", lambda q: eq24_printed(q) * np.array([1.0, -1.0])),
-        good_is="the printed entries (they are right)",
-    ),
-)
 
 
 def eq25_lhs(R, q):
@@ -1623,7 +1157,7 @@ _EQ27 = Forms(
 )
 
 
-@SECTION.check(25.0, forms=_EQ27)
+@SECTION.check("Eq 27", forms=_EQ27)
 def eq27_s45(ctx, eq27):
     """Eq 27-28 on random q, including |c3| down to 1e-10 (theta3 within 1e-3..1e-10 rad of +-90 deg), graded
     on |error| |c3| (the division by c3 costs eps / |c3|; at c3 = 0 exactly see eq27.c3_zero)."""
@@ -1638,30 +1172,24 @@ def eq27_s45(ctx, eq27):
     small = np.abs(c3[len(s.q):])
     ok = raw_near <= TOL_ANGLE
     bound = float(small[~ok].max()) if (~ok).any() else 0.0
-    row = _row(
-        both,
-        "Eq 27",
-        "eq27",
-        "s45 = (r13 c1 s2 + r23 s1 s2 + r33 c2) / (-c3), then theta5 by Eq 28.",
-        f"theta5 through Eq 27 and Eq 28 (c45 from Eq 26) with the true pose and theta1..theta4, vs the "
-        f"generating theta5; {len(s.q)} q of the IK sample plus {len(near.q)} with |c3| = 10^U{_C3_EXP}; "
-        "graded "
-        "on |error| |c3|: an exact formula that divides by c3 loses eps / |c3| in floating point, so a raw "
-        "tolerance would flip with the sampling (at c3 = 0 itself it is 0/0: row eq27.c3_zero)",
-        err,
-        TOL_SCALED,
-        "rad",
+    return error_row(
+        both, err, TOL_SCALED, "rad", key="Eq 27", id="eq27",
+        claim="s45 = (r13 c1 s2 + r23 s1 s2 + r33 c2) / (-c3), then theta5 by Eq 28.",
+        method=f"theta5 through Eq 27 and Eq 28 (c45 from Eq 26) with the true pose and theta1..theta4, vs "
+        f"the generating theta5; {len(s.q)} q of the IK sample plus {len(near.q)} with |c3| = 10^U{_C3_EXP}; "
+        "graded on |error| |c3|: an exact formula that divides by c3 loses eps / |c3| in floating point, so "
+        "a raw tolerance would flip with the sampling (at c3 = 0 itself it is 0/0: row eq27.c3_zero)",
         printed="s45 = (...) / (-c3)",
         corrected="s45 = -c3 (...) + s3 (-s1 r13 + c1 r23)",
         note=f"raw error on the near-singular set: max {np.max(raw_near):.1e} rad at |c3| = "
         f"{small[int(np.argmax(raw_near))]:.1e}; the raw error exceeds {TOL_ANGLE:g} rad only where |c3| <= "
         f"{bound:.1e} (smallest |c3| sampled {small.min():.1e})",
         scale=("c3", c3),
+        domain=both.domain + f"; plus {len(near.q)} with |c3| = 10^U{_C3_EXP}",
     )
-    return row.replace(domain=both.domain + f"; plus {len(near.q)} with |c3| = 10^U{_C3_EXP}")
 
 
-@SECTION.check(25.1, forms=_EQ27)
+@SECTION.check("Eq 27", forms=_EQ27)
 def eq27_c3_zero(ctx, eq27):
     """The exact case c3 = 0 (theta3 = +-90 deg; Eq 21 gives c3 = 0 exactly when s3 = +-1): Eq 27 is 0/0."""
     rng = ctx.rng("eq27-exact")
@@ -1672,22 +1200,21 @@ def eq27_c3_zero(ctx, eq27):
     s = make_sample(q)
     err = np.abs(wrap(_theta5(eq27, s.R, q, np.zeros(n), sgn) - q[:, 4]))
     err = np.where(np.isnan(err), np.inf, err)
-    share = float(np.mean(err <= TOL_ANGLE))
-    m = (Measure("share of poses whose theta5 is recovered", share, 1.0, bound=">="),)
     k = int(np.argmax(err))
     return Row.graded(
         "Eq 27-28 give theta5 also at theta3 = +-90 deg (c3 = 0).",
         "Eq 27 (c3 = 0)",
         f"{n} poses with theta3 = +-90 deg; c3 = 0 and s3 = +-1 exactly (what Eq 21 returns there); theta5 "
-        "through Eq 27-28 with the true pose and theta1, theta2, theta4",
-        f"theta5 recovered (within {TOL_ANGLE:g} rad) on {share:.1%} of the poses; worst at {fmt_q(q[k])}",
-        m,
+        f"through Eq 27-28 with the true pose and theta1, theta2, theta4; worst at {fmt_q(q[k])}",
+        None,
+        (Measure("share of poses whose theta5 is recovered", np.mean(err <= TOL_ANGLE), 1.0, bound=">="),),
         fail=Verdict.DOES_NOT_HOLD,
         id="eq27.c3_zero",
         domain=f"{n} q uniform in Table I with theta3 = +-90 deg exactly",
         reason="Eq 27 divides by c3: at theta3 = +-90 deg it is 0/0 (the numerator is -c3 s45 = 0) and "
         "theta5 is lost; s45 = -c3 (Eq 25 left side) + s3 (-s1 r13 + c1 r23) holds for every theta3",
     )
+
 
 
 def _atan2_minus(sn, cs, th4):
@@ -1702,35 +1229,6 @@ def _eq28_error(s: Sample, eq28) -> np.ndarray:
     t45 = s.q[:, 3] + s.q[:, 4]
     return wrap(eq28(np.sin(t45), np.cos(t45), s.q[:, 3]) - s.q[:, 4])
 
-
-eq28_theta5 = _step(
-    25.2,
-    "eq28_theta5",
-    "Eq 28",
-    claim="theta5 = atan2(s45, c45) - theta4.",
-    method="with the true s45, c45, theta4 vs theta5",
-    error=_eq28_error,
-    tol=TOL,
-    unit="rad",
-    printed="theta5 = atan2(s45, c45) - theta4",
-    basis=_ATAN2_BASIS + " (minus the true theta4)",
-    forms=Forms(
-        _atan2_minus,
-        _eq28_good,
-        "arg(c45 + i s45) - theta4",
-        slips=(
-            Slip(SlipKind.SIGN, "atan2(s45, c45) + theta4", lambda sn, cs, t4: np.arctan2(sn, cs) + t4),
-            Slip(SlipKind.SWAP, "atan2(c45, s45) - theta4", lambda sn, cs, t4: np.arctan2(cs, sn) - t4),
-        ),
-        tolerance=epsilon(_atan2_minus, 1e-6, "the printed form + 1 urad"),
-    ),
-)
-
-
-# ----------------------------------------------------------------------------- Eq 29-33
-@SECTION.check(26.0, forms=_COMPOSE)
-def eq29_composition(ctx, form):
-    return _composition(ctx, form, "Eq 29", "eq29", 5, 6)
 
 
 def eq30_row3_printed(q):
@@ -1773,7 +1271,7 @@ def _eq30_t56_transposed(q):
 
 
 @SECTION.check(
-    26.1,
+    "Eq 30",
     forms=Forms(
         lambda q: (eq30_row3_printed(q), eq30_t56_printed(q)),
         lambda q: (eq30_row3_printed(q), eq30_t56_corrected(q)),
@@ -1791,38 +1289,22 @@ def eq30_matrices(ctx, mats):
 
     s = sample(ctx)
     row3, t56 = mats(s.q)
-    e3 = np.abs(row3 - np.linalg.inv(s.F[:, 5])[:, 2, :3]).max(axis=1)
-    e56 = np.abs(t56 - s.rel(5, 6)).max(axis=(1, 2))
     rows = [
-        _row(
-            s,
-            "Eq 30",
-            "eq30.row3",
-            "Row 3 of 0_5T^-1 is [s1 c3 - c1 s2 s3, -c1 c3 - s1 s2 s3, -c2 s3, x].",
-            "printed row vs inv(0_5T) from Pinocchio",
-            e3,
-            TOL,
-            "-",
-            printed="row 3 of 0_5T^-1 as printed",
-            corrected="-",
-        ),
-        _row(
-            s,
-            "Eq 30",
-            "eq30.t56",
-            "The printed 5_6T is the transform from frame 5 to frame 6.",
-            "printed matrix vs (0_5T)^-1 0_6T from Pinocchio",
-            e56,
-            TOL,
-            "m or -",
-            printed="5_6T = [c6 -s6 0 0; 0 0 1 0; -s6 -c6 0 -l5; 0 0 0 1]",
-            corrected="5_6T = [c6 -s6 0 0; 0 0 1 -l5; -s6 -c6 0 0; 0 0 0 1] (the offset d6 = -l5 lies along "
-            "y5, row 2); harmless for Eq 31-32, which use only entries (3,1) and (3,2)",
-        ),
+        error_row(s, np.abs(row3 - np.linalg.inv(s.F[:, 5])[:, 2, :3]).max(axis=1), TOL, "-", key="Eq 30",
+                  id="eq30.row3",
+                  claim="Row 3 of 0_5T^-1 is [s1 c3 - c1 s2 s3, -c1 c3 - s1 s2 s3, -c2 s3, x].",
+                  method="printed row vs inv(0_5T) from Pinocchio", printed="row 3 of 0_5T^-1 as printed"),
+        error_row(s, np.abs(t56 - s.rel(5, 6)).max(axis=(1, 2)), TOL, "m or -", key="Eq 30", id="eq30.t56",
+                  claim="The printed 5_6T is the transform from frame 5 to frame 6.",
+                  method="printed matrix vs (0_5T)^-1 0_6T from Pinocchio",
+                  printed="5_6T = [c6 -s6 0 0; 0 0 1 0; -s6 -c6 0 -l5; 0 0 0 1]",
+                  corrected="5_6T = [c6 -s6 0 0; 0 0 1 -l5; -s6 -c6 0 0; 0 0 0 1] (the offset d6 = -l5 lies "
+                  "along y5, row 2); harmless for Eq 31-32, which use only entries (3,1) and (3,2)"),
     ]
     if rows[1].verdict is Verdict.ERRATUM:
         rows[1] = rows[1].reread(appb_reading(5, t56, s.q, "5_6T of Eq 30 as printed"))
     return rows
+
 
 
 def eq31_lhs(R, q, col=0):
@@ -1834,85 +1316,165 @@ def eq32_lhs(R, q):
     return eq31_lhs(R, q, col=1)
 
 
-# ----------------------------------------------------------------------------- one-line steps
-def _atan2_step(order: float, number: int, joint: int):
+
+
+# ----------------------------------------------------------------------------- the printed steps, declared
+def _angle(sn, cs):
+    return np.angle(cs + 1j * sn)
+
+
+_ATAN2_SLIPS = (
+    Slip(SlipKind.SWAP, "atan2(c, s): the arguments exchanged", lambda sn, cs: np.arctan2(cs, sn)),
+    Slip(SlipKind.FUNCTION, "atan(s / c) for atan2 (the quadrant lost)", lambda sn, cs: np.arctan(sn / cs)),
+)
+_COMPOSE_SLIPS = (
+    Slip(SlipKind.SWAP, "the factors in the wrong order", lambda a, b: b @ a),
+    Slip(SlipKind.TRANSPOSE, "the second factor's rotation transposed", lambda a, b: a @ _rot_t(b)),
+)
+
+
+def _atan2_step(number: int, j: int) -> Formula:
     """Eq 16, 22, 33: theta_j = atan2(s_j, c_j) with the true sine and cosine."""
-    j = joint
-    return _step(
-        order,
-        f"eq{number}_theta{j}",
-        f"Eq {number}",
-        claim=f"theta{j} = atan2(s{j}, c{j}).",
-        method=f"with the true s{j}, c{j} vs theta{j}",
-        error=lambda s, f: wrap(f(s.s(j), s.c(j)) - s.q[:, j - 1]),
-        tol=TOL,
-        unit="rad",
-        printed=f"theta{j} = atan2(s{j}, c{j})",
-        forms=_ATAN2,
-        basis=_ATAN2_BASIS,
-    )
+    return Formula(f"Eq {number}", np.arctan2, lambda s, f: wrap(f(s.s(j), s.c(j)) - s.q[:, j - 1]), TOL,
+                   "rad", _ATAN2_SLIPS, good=_angle, good_is="the argument of c + i s", eps=1e-6,
+                   eps_is="atan2 + 1 urad", method=f"with the true s{j}, c{j} vs theta{j}",
+                   basis=_ATAN2_BASIS)
 
 
-eq16_theta4 = _atan2_step(22.2, 16, 4)
-eq22_theta3 = _atan2_step(23.5, 22, 3)
-eq33_theta6 = _atan2_step(26.4, 33, 6)
+def _composition(number: int, split: int, upto: int) -> Formula:
+    """Eq 17, 23, 29: 0_uptoT = 0_splitT split_uptoT, the Table II link products composed by the form."""
+    def error(s, f):
+        return np.abs(f(_links(s.q, 1, split), _links(s.q, split + 1, upto)) - s.F[:, upto]).max(axis=(1, 2))
+
+    return Formula(
+        f"Eq {number}", lambda a, b: a @ b, error, TOL, "m or -", _COMPOSE_SLIPS,
+        good=lambda a, b: np.einsum("nij,njk->nik", a, b), good_is="the same product written with einsum",
+        fail=Verdict.DOES_NOT_HOLD, basis=_SAME_TABLE,
+        method=f"products of the Table II link transforms 1..{split} and {split + 1}..{upto} composed as "
+        f"printed vs Pinocchio's 0_{upto}T")
 
 
-_LHS = "printed left side with the true pose and joint angles vs"
+def _element(number: int, lhs, rhs_is: str, rhs) -> Formula:
+    """Eq 25, 26, 31, 32: an element of the rotation printed as ``lhs(R, q) = right side``, the left side
+    right; its slips: the right side's sign, theta1 and theta2 exchanged in the left side."""
 
-
-def _element_slips(lhs) -> tuple[Slip, ...]:
-    """The slips of a printed element ``lhs(R, q) = right side``: its sign, theta1 and theta2 exchanged."""
     def swapped(R, q):
-        q2 = q.copy()
-        q2[:, [0, 1]] = q[:, [1, 0]]
-        return lhs(R, q2)
+        return lhs(R, q[:, [1, 0, 2, 3, 4, 5]])
 
-    return (
+    return Formula(f"Eq {number}", lhs, lambda s, f: f(s.R, s.q) - rhs(s), TOL, "-", (
         Slip(SlipKind.SIGN, "the right side's sign flipped", lambda R, q: -lhs(R, q)),
         Slip(SlipKind.SWAP, "theta1 and theta2 exchanged in the left side", swapped),
-    )
+    ), good_is="the printed left side (it is right)", eps_is="the left side moved by 1e-9",
+        method=f"printed left side with the true pose and joint angles vs {rhs_is}")
 
 
-def _element_step(order: float, number: int, name: str, claim: str, printed: str, rhs_is: str, rhs, lhs):
-    """Eq 25, 26, 31, 32: an element of the rotation printed as ``left side = right side``, the printed
-    left side ``lhs(R, q)`` right; graded on max |lhs(R, q) - rhs(sample)| <= TOL."""
-    return _step(
-        order,
-        name,
-        f"Eq {number}",
-        claim=claim,
-        method=f"{_LHS} {rhs_is}",
-        error=lambda s, f: f(s.R, s.q) - rhs(s),
-        tol=TOL,
-        unit="-",
-        printed=printed,
-        forms=Forms.right(lhs, _element_slips(lhs), tolerance=epsilon(lhs, 1e-9,
-            "the left side moved by 1e-9"),
-                          good_is="the printed left side (it is right)"),
-    )
-
-
-def _s45(s):
-    return np.sin(s.q[:, 3] + s.q[:, 4])
-
-
-def _c45(s):
-    return np.cos(s.q[:, 3] + s.q[:, 4])
-
-
-# Eq 25: r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45
-eq25_element = _element_step(24.2, 25, "eq25_element", "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45.",
-                             "r13 c1 s2 + r23 s1 s2 + r33 c2 = -c3 s45", "-c3 s45",
-                             lambda s: -s.c(3) * _s45(s), eq25_lhs)
-# Eq 26: r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45
-eq26_element = _element_step(24.3, 26, "eq26_element", "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45.",
-                             "r13 c1 c2 + r23 s1 c2 - r33 s2 = -c45", "-c45", lambda s: -_c45(s), eq26_lhs)
-# Eq 31: r11 (s1 c3 - c1 s2 s3) - r21 (c1 c3 + s1 s2 s3) - r31 (c2 s3) = -s6
-eq31_s6 = _element_step(26.2, 31, "eq31_s6",
-                        "r11 (s1 c3 - c1 s2 s3) - r21 (c1 c3 + s1 s2 s3) - r31 (c2 s3) = -s6.",
-                        "... = -s6", "-sin(theta6)", lambda s: -s.s(6), eq31_lhs)
-# Eq 32: r12 (s1 c3 - c1 s2 s3) - r22 (c1 c3 + s1 s2 s3) - r32 (c2 s3) = -c6
-eq32_c6 = _element_step(26.3, 32, "eq32_c6",
-                        "r12 (s1 c3 - c1 s2 s3) - r22 (c1 c3 + s1 s2 s3) - r32 (c2 s3) = -c6.",
-                        "... = -c6", "-cos(theta6)", lambda s: -s.c(6), eq32_lhs)
+CHECKS = SECTION.formulas(
+    sample,
+    Formula("Eq 6", eq6_printed, lambda s, f: np.linalg.norm(f(s.q[:, 0]) - s.B, axis=1), TOL, "m", (
+        Slip(SlipKind.SWAP, "[l2 s1, l2 c1, 0]", lambda t: eq6_printed(t)[:, [1, 0, 2]]),
+        Slip(SlipKind.LENGTH, "l3 for l2", lambda t: eq6_printed(t) * (L3 / L2)),
+    ), good=_eq6_rot, good_is="Rz(theta1) [l2 0 0]", eps_is="each coordinate moved by 1 nm",
+        method="printed p_B vs the origin of frame 2 (Pinocchio) minus l1 e_z"),
+    Formula("Eq 7", eq7_printed, lambda s, f: np.linalg.norm(f(s.q[:, 0], s.q[:, 1]) - s.C, axis=1), TOL,
+            "m", (
+        Slip(SlipKind.SIGN, "z_C = +l3 s2", lambda t1, t2: eq7_printed(t1, t2) * np.array([1.0, 1.0, -1.0])),
+        Slip(SlipKind.SWAP, "c1 and s1 exchanged in the l3 terms", lambda t1, t2: eq7_printed(t1, t2) + L3
+             * np.stack([np.cos(t2) * (np.sin(t1) - np.cos(t1)), np.cos(t2) * (np.cos(t1) - np.sin(t1)),
+                         0 * t1], 1)),
+        Slip(SlipKind.LENGTH, "l4 for l3",
+             lambda t1, t2: _eq6_rot(t1) + (eq7_printed(t1, t2) - _eq6_rot(t1)) * (L4 / L3)),
+    ), good=_eq7_geom, good_is="p_B + l3 (unit vector of link 3)", eps_is="each coordinate moved by 1 nm",
+        method="printed p_C vs the origin of frames 3-4 (Pinocchio) minus l1 e_z"),
+    Formula("Eq 9", eq9_printed, _eq9_miss, TOL_ANGLE, "rad", (
+        Slip(SlipKind.SIGN, "tan(theta2) = +P/Q", lambda R, D, t: -eq9_corrected(R, D, t)),
+        Slip(SlipKind.SWAP, "numerator and denominator exchanged", lambda R, D, t: np.stack(
+            [np.arctan2(_pq(R, D, t)[1], -_pq(R, D, t)[0]), np.arctan2(-_pq(R, D, t)[1], _pq(R, D, t)[0])])),
+        Slip(SlipKind.BRANCH, "one branch only", lambda R, D, t: eq9_corrected(R, D, t)[[0, 0]]),
+    ), good=eq9_corrected, good_is="tan(theta2) = -P/Q (both branches)", eps=1e-6,
+        eps_is="the good branches moved by 1 urad", text="tan(theta2) = P / (+-Q)",
+        corrected="tan(theta2) = -P / Q, i.e. (c2, s2) = +-(Q, -P) / sqrt(P^2 + Q^2) (Eq 8 reads P c2 + Q s2 "
+        "= 0); as tangents the printed '-' branch is right and the '+' branch spurious",
+        method="both branches, read as theta2 = atan2(numerator, +-denominator), with the true D and theta1, "
+        "vs the generating theta2; {n} random q",
+        note=lambda s, err: f"theta2 missed in {np.mean(err > TOL_ANGLE):.1%} of q", reread=eq9_reading),
+    Formula("Eq 10", eq10_printed, lambda s, f: f(s.B, s.C, s.D), TOL, "m", (
+        Slip(SlipKind.LENGTH, "l5 for l4", lambda B, C, D: eq10_printed(B, C, D) + L4 - L5),
+        Slip(SlipKind.SIGN, "|BC| - |DC| - l3 - l4",
+             lambda B, C, D: eq10_printed(B, C, D) - 2 * np.linalg.norm(D - C, axis=1)),
+    ), good=_eq10_lengths, good_is="the two length conditions |BC| = l3, |DC| = l4", eps=1e-6,
+        eps_is="the good form moved by 1 um", method="Eq 10 with the true points B, C, D", note=_eq10_off,
+        basis="the distances between Pinocchio's joint points are the link lengths by construction of the "
+        "model (Table II), so Eq 10 at the true points is zero identically: it shows the condition is "
+        "written right, not a fact about the arm (the note shows it discriminates)"),
+    Formula("Eq 14", eq14_printed, lambda s, f: f(s.D, s.q[:, 0]) - s.c(4), TOL, "-", (
+        Slip(SlipKind.SIGN, "... - 2 l2 (xD c1 - yD s1)", eq14_printed),
+        Slip(SlipKind.SIGN, "+ l3^2 for - l3^2", lambda D, t: eq14_corrected(D, t) + L3 / L4),
+        Slip(SlipKind.LENGTH, "2 l3 l5 in the denominator", lambda D, t: eq14_corrected(D, t) * L4 / L5),
+    ), good=eq14_corrected, good_is="the law of cosines on triangle B, C, D: ... - 2 l2 (xD c1 + yD s1)",
+        eps_is="good + 1e-9",
+        text="c4 = (xD^2 + yD^2 + zD^2 + l2^2 - l3^2 - l4^2 - 2 l2 (xD c1 - yD s1)) / (2 l3 l4)",
+        corrected="... - 2 l2 (xD c1 + yD s1) (|D - B|^2 = |D|^2 + l2^2 - 2 l2 (xD c1 + yD s1))",
+        method="printed c4 with the true D and theta1 vs cos(theta4) of the generating q",
+        reread=lambda ctx, s, form: eq14_reading(s, form)),
+    Formula("Eq 15", eq15_printed, lambda s, f: _branches(f, s.c(4), s.s(4)), TOL_SCALED, "-", _ROOT_SLIPS,
+            good=_eq15_good, good_is="+-sin(acos(c4))", eps_is="both branches moved by 1e-9",
+            method="both signs with the true c4 vs sin(theta4)", basis=_PYTHAGORAS,
+            scale=("s4", lambda s: s.s(4))),
+    _atan2_step(16, 4),
+    _composition(17, 2, 5),
+    Formula("Eq 18", _d_shifted, _eq18_frame_error, TOL, "m", (
+        Slip(SlipKind.SIGN, "D moved up by l1 the wrong way (z_D + 2 l1)", lambda s: s.D + 2 * L1 * _EZ),
+        Slip(SlipKind.LENGTH, "D shifted by l2 for l1", lambda s: s.D + L2 * _EZ),
+    ), good=_d_base,
+        good_is="D in the base frame (z = 0 at the mounting plane), the frame of the printed 0_2T^-1",
+        eps=Slip(SlipKind.EPSILON, "the good D moved by 1 nm", _d_base_slip), id="eq18.frame",
+        claim="Eq 18 holds with 0_5T built from the D of Eq 9 (x_D, y_D, z_D 'known from Equation 9b').",
+        method="printed 0_2T^-1 times 0_5T with the true rotation and D in the frame of Sec 3.3.1 (Eq 9c: "
+        "origin moved up by l1), vs the printed 2_5T",
+        text="0_2T^-1 with -l1 c2 - l2 s2 and l1 s2 - l2 c2 in column 4, applied to Eq 9's D",
+        corrected="in the frame of Eq 9 the column is [-l2 s2, -l2 c2, 0] (drop the l1 terms), or D must "
+        "keep z_D = p_z + r33 l5; harmless: only the (3,4) entry, which has no l1 term, is used (Eq 19)",
+        note=lambda s, err: "entries (1,4), (2,4) are off by l1 c2, l1 s2 (max "
+        f"{L1 * np.abs(s.c(2)).max():.3f} m); the (3,4) entry used by Eq 19 is exact",
+        reread=eq18_frame_reading),
+    Formula("Eq 19", eq19_printed, lambda s, f: np.abs(f(s.q, s.D) - s.rel(2, 5)[:, 2, 3]).max(axis=0), TOL,
+            "m", (
+        Slip(SlipKind.SWAP, "c1 xD - s1 yD", lambda q, D: np.stack(
+            [np.cos(q[:, 0]) * D[:, 0] - np.sin(q[:, 0]) * D[:, 1], eq19_printed(q, D)[1]])),
+        Slip(SlipKind.SIGN, "+l4 s3 s4", lambda q, D: eq19_printed(q, D) * np.array([[1.0], [-1.0]])),
+    ), good=_eq19_good, good_is="row 3 of 0_2T^-1 times D, and -l4 s3 s4", eps_is="both sides moved by 1 nm",
+        method="both printed expressions with the true D and q vs the (3,4) entry of 2_5T from Pinocchio"),
+    Formula("Eq 20", eq20_printed, lambda s, f: f(s.q, s.D) - s.s(3), TOL_SCALED, "-", (
+        Slip(SlipKind.SIGN, "(c1 yD - s1 xD) / (l4 s4)", lambda q, D: -eq20_printed(q, D)),
+        Slip(SlipKind.LENGTH, "l3 s4 in the denominator", lambda q, D: eq20_printed(q, D) * L4 / L3),
+        Slip(SlipKind.FUNCTION, "l4 c4 for l4 s4",
+             lambda q, D: eq20_printed(q, D) * np.sin(q[:, 3]) / np.cos(q[:, 3])),
+    ), method="with the true D, theta1, theta4 vs sin(theta3)", scale=("s4", lambda s: s.s(4)),
+        note=lambda s, err: f"smallest |s4| sampled {np.abs(s.s(4)).min():.1e} (s4 = 0, theta4 = 0, is 0/0: "
+        "the wrist on the link-3 axis, singular set s(1)); graded on |error| |s4|: the division by s4 costs "
+        "eps / |s4|"),
+    Formula("Eq 21", eq15_printed, lambda s, f: _branches(f, s.s(3), s.c(3)), TOL_SCALED, "-", _ROOT_SLIPS,
+            good=_eq15_good, good_is="+-sin(acos(s3)) read as cosines", eps_is="both branches moved by 1e-9",
+            method="both signs with the true s3 vs cos(theta3)", basis=_PYTHAGORAS,
+            scale=("c3", lambda s: s.c(3))),
+    _atan2_step(22, 3),
+    _composition(23, 2, 6),
+    Formula("Eq 24", eq24_printed, lambda s, f: np.abs(f(s.q) - s.rel(2, 6)[:, :2, 2]).max(axis=1), TOL,
+            "-", (
+        Slip(SlipKind.SWAP, "(1,3) = -s3 s45",
+             lambda q: np.stack([-np.sin(q[:, 2]) * np.sin(q[:, 3] + q[:, 4]), eq24_printed(q)[:, 1]], 1)),
+        Slip(SlipKind.SIGN, "(2,3) = +c45", lambda q: eq24_printed(q) * np.array([1.0, -1.0])),
+    ), good_is="the printed entries (they are right)",
+        method="printed entries vs (0_2T)^-1 0_6T from Pinocchio"),
+    _element(25, eq25_lhs, "-c3 s45", lambda s: -s.c(3) * np.sin(s.q[:, 3] + s.q[:, 4])),
+    _element(26, eq26_lhs, "-c45", lambda s: -np.cos(s.q[:, 3] + s.q[:, 4])),
+    Formula("Eq 28", _atan2_minus, _eq28_error, TOL, "rad", (
+        Slip(SlipKind.SIGN, "atan2(s45, c45) + theta4", lambda sn, cs, t4: np.arctan2(sn, cs) + t4),
+        Slip(SlipKind.SWAP, "atan2(c45, s45) - theta4", lambda sn, cs, t4: np.arctan2(cs, sn) - t4),
+    ), good=_eq28_good, good_is="arg(c45 + i s45) - theta4", eps=1e-6, eps_is="the good form + 1 urad",
+        method="with the true s45, c45, theta4 vs theta5", basis=_ATAN2_BASIS + " (minus the true theta4)"),
+    _composition(29, 5, 6),
+    _element(31, eq31_lhs, "-sin(theta6)", lambda s: -s.s(6)),
+    _element(32, eq32_lhs, "-cos(theta6)", lambda s: -s.c(6)),
+    _atan2_step(33, 6),
+)

@@ -29,8 +29,8 @@ def test_errata_found_per_equation(ctx):
         assert rows[k].verdict is Verdict.INPUT_SLIP and rows[k].errata, k
         assert "d6 = +l5" in rows[k].second_reading.explanation.text
     assert Q.wrist_point(ctx, Q._wrist_length)[0].verdict is Verdict.ERRATUM  # no reading explains l4 for l5
-    assert Q.eq14_c4(ctx, Q.eq14_printed).verdict is Verdict.ERRATUM
-    assert Q.eq14_c4(ctx, Q.eq14_corrected).verdict is Verdict.HOLDS
+    assert Q.CHECKS["eq14"](ctx, Q.eq14_printed).verdict is Verdict.ERRATUM
+    assert Q.CHECKS["eq14"](ctx, Q.eq14_corrected).verdict is Verdict.HOLDS
     t56 = {r.id: r for r in Q.eq30_matrices(ctx, lambda q: (Q.eq30_row3_printed(q), Q.eq30_t56_printed(q)))}
     assert t56["eq30.row3"].verdict is Verdict.HOLDS and t56["eq30.t56"].verdict is Verdict.ERRATUM
     assert t56["eq30.t56"].second_reading.slip.name == "TYPO"  # the -l5 printed one row down
