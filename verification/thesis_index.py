@@ -171,23 +171,28 @@ EQUATIONS: tuple[Item, ...] = _equations(
         },
         "Sec 3.5.1": {"42": "Euler-angle orientation matrix ('Z-X-Z convention of [2]')"},
         "Sec 3.5.2.1": {
-            "43": "beta' = atan((pz - z2) / sqrt((px - x2)^2 + (py - y2)^2))",
-            "44": "beta_max/min = beta' +- acos((l5^2 + rho^2 - (l3 + l4)^2) / (2 l5 rho))",
+            "43": "beta' = atan((pz - z2) / sqrt((px - x2)^2 + (py - y2)^2)) is the inclination of the line "
+                  "from joint 2 to the end-effector",
+            "44": "beta_max/min = beta' +- acos((l5^2 + rho^2 - (l3 + l4)^2) / (2 l5 rho)): the "
+                  "inclinations of link 5 with links 3 and 4 aligned (outer SLJ boundary)",
         },
         "Sec 3.5.2.2": {
-            "45": "beta_max/min = beta' +- acos((l5^2 + rho^2 - d^2) / (2 l5 rho)), joint 4 at 119 deg",
+            "45": "beta_max/min = beta' +- acos((l5^2 + rho^2 - d^2) / (2 l5 rho)), d^2 = l3^2 + l4^2 - 2 "
+                  "l3 l4 cos(180 - 119 deg): links 3 and 4 contracted",
         },
         "Sec 3.5.3.1": {
-            "46": "alpha' = atan2(py, px)",
+            "46": "alpha' = atan2(py, px) is the azimuth of the end-effector (link 5) when the entire arm "
+                  "lies in one vertical plane: with beta' +- delta of Eq 43-45 it gives link 5's direction",
             "47": "h_SLJ = pz - l5 sin(beta)",
-            "48": "delta = atan((h_SLJ - l1) / (l3 + l4))",
-            "49": "alpha_max/min = alpha' +- acos((rho^2 + (l5 cos b)^2 - ((l3 + l4) cos d + l2)^2) / (2 rho "
-                  "l5 cos b))",
+            "48": "delta = atan((h_SLJ - l1) / (l3 + l4)): the inclination of links 3-4 (aligned)",
+            "49": "alpha_max/min = alpha' +- sigma, sigma = acos((rho^2 + (l5 cos b)^2 - ((l3 + l4) cos d + "
+                  "l2)^2) / (2 rho l5 cos b)): links 3-4 aligned",
         },
         "Sec 3.5.3.2": {
-            "50": "delta = atan((h_SLJ - l1) / phi), phi the contracted length of links 3-4",
-            "51": "alpha_max/min = alpha' +- acos((rho^2 + (l5 cos b)^2 - (phi cos d + l2)^2) / (2 rho l5 "
-                  "cos b))",
+            "50": "delta = atan((h_SLJ - l1) / phi): the inclination of links 3-4 (contracted, theta4 = "
+                  "+-119 deg), phi their contracted length",
+            "51": "alpha_max/min = alpha' +- sigma, sigma = acos((rho^2 + (l5 cos b)^2 - (phi cos d + "
+                  "l2)^2) / (2 rho l5 cos b)): links 3-4 contracted",
         },
         "Sec 3.6.2.1": {
             "52": "ellipsoid (x - xc)^2/xr^2 + (y - yc)^2/yr^2 + (z - zc)^2/zr^2 = 1",

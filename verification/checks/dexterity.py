@@ -23,22 +23,11 @@ from iik import THESIS_ARM
 from iik.dexterity import admissible, alpha_intervals, dexterity
 
 from ..assumptions import EXACT_GEOMETRY
-from ..numbers import fmt_q, worst
+from ..formula import Formula
+from ..numbers import fmt_q
 from ..oracles.pinocchio_model import joint_placements
 from ..plotting import new_figure
-from ..registry import (
-    Erratum,
-    Forms,
-    Measure,
-    Row,
-    Scope,
-    Section,
-    Slip,
-    SlipKind,
-    Verdict,
-    epsilon,
-    off_by,
-)
+from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict
 from ..second_reading import Kind, Reading, search
 from ..shorthand import wrap
 
@@ -47,7 +36,7 @@ _D = np.pi / 180
 L1, L2, L3, L4, L5 = ARM.lengths
 D_IN = np.sqrt(L3**2 + L4**2 - 2 * L3 * L4 * np.cos(np.pi - 119 * _D))  # Eq 45 / Eq 50 (d, phi)
 TOL = 1e-9  # [rad or -]: an exact geometric identity through acos/atan
-SECTION = Section("Dexterity (Sec 3.5, Eq 42-51)", depends_on=EXACT_GEOMETRY)
+SECTION = Section("Dexterity (Sec 3.5, Eq 42-51)", depends_on=EXACT_GEOMETRY, order=50.0)
 
 
 # ----------------------------------------------------------------------------- printed forms
@@ -105,12 +94,15 @@ def printed_admits(p, alpha35, beta35, arm=ARM) -> np.ndarray:
 @dataclass(frozen=True)
 class Pose35:
     """Sec 3.5 quantities of configurations q (Pinocchio): tool point p, SLJ S, joint 2 J2, link-5 unit
-    vector a = (p - S)/l5, its inclination beta and azimuth alpha."""
+    vector a = (p - S)/l5, its inclination beta and azimuth alpha; ``kind`` (:data:`_KIND_TEXT`) and, for
+    the planar families, ``r`` the side of their triangle (l3 + l4 or d) per configuration."""
 
     q: np.ndarray
     p: np.ndarray
     S: np.ndarray
     J2: np.ndarray
+    kind: str = ""
+    r: np.ndarray | None = None
 
     @property
     def a(self) -> np.ndarray:
@@ -129,22 +121,42 @@ class Pose35:
         return np.arctan2(self.p[:, 1], self.p[:, 0])
 
     def keep(self, mask) -> Pose35:
-        return Pose35(self.q[mask], self.p[mask], self.S[mask], self.J2[mask])
+        return Pose35(self.q[mask], self.p[mask], self.S[mask], self.J2[mask], self.kind)
+
+    def __len__(self) -> int:
+        return len(self.q)
+
+    def at(self, k: int) -> str:
+        return fmt_q(self.q[k])
+
+    @property
+    def domain(self) -> str:
+        t2 = np.degrees(self.q[:, 1])
+        return (f"{len(self.q)} configurations with {_KIND_TEXT[self.kind]}; the other joints uniform in "
+                f"Table I, theta2 over the whole range ({t2.min():.0f}..{t2.max():.0f} deg), a third within "
+                "10^U(-6, -1.5) rad of +-90 deg (link 3 vertical)")
 
 
-def _pose35(q) -> Pose35:
+def _pose35(q, kind: str = "") -> Pose35:
     F = joint_placements(q)
-    return Pose35(q, F[:, 6, :3, 3], F[:, 5, :3, 3], F[:, 2, :3, 3])
+    return Pose35(q, F[:, 6, :3, 3], F[:, 5, :3, 3], F[:, 2, :3, 3], kind)
 
 
 def configurations(ctx, kind: str) -> Pose35:
     """Configurations the text describes (cached): ``"aligned-planar"`` (theta3 = theta4 = 0),
     ``"contracted-planar"`` (theta3 = 0, theta4 = +-119 deg), ``"aligned"`` (theta4 = 0), ``"contracted"``
-    (theta4 = +-119 deg); theta2 over the whole of Table I, a third of the samples within 10^U(-6, -1.5)
-    rad of theta2 = +-90 deg (link 3 vertical: where the inclination formulas are hardest); the planar ones
-    keep p in front of the base axis (its azimuth is theta1)."""
+    (theta4 = +-119 deg), ``"planar"`` (both planar families, with their ``r``); theta2 over the whole of
+    Table I, a third of the samples within 10^U(-6, -1.5) rad of theta2 = +-90 deg (link 3 vertical: where
+    the inclination formulas are hardest); the planar ones keep p in front of the base axis (its azimuth is
+    theta1)."""
     key = ("dex.conf", kind, ctx.quick)
     if key in ctx.cache:
+        return ctx.cache[key]
+    if kind == "planar":
+        c, c2 = configurations(ctx, "aligned-planar"), configurations(ctx, "contracted-planar")
+        both = (np.concatenate([getattr(c, f), getattr(c2, f)]) for f in ("q", "p", "S", "J2"))
+        r = np.concatenate([np.full(len(c.q), L3 + L4), np.full(len(c2.q), D_IN)])
+        ctx.cache[key] = Pose35(*both, kind, r)
         return ctx.cache[key]
     rng = ctx.rng(f"dex-{kind}")
     n = ctx.n(3000, 300)
@@ -159,7 +171,7 @@ def configurations(ctx, kind: str) -> Pose35:
         q[:, 3] = rng.choice([-1.0, 1.0], n) * 119 * _D
     if kind.endswith("planar"):
         q[:, 2] = 0.0
-    c = _pose35(q)
+    c = _pose35(q, kind)
     if kind.endswith("planar"):
         c = c.keep(np.abs(wrap(c.phi - q[:, 0])) < 1e-9)
     ctx.cache[key] = c
@@ -171,18 +183,16 @@ _KIND_TEXT = {
                        "p in front of the axis)"),
     "contracted-planar": ("theta3 = 0, theta4 = +-119 deg (links 3-4 contracted, one vertical plane; "
                           "p in front of the axis)"),
+    "planar": "theta3 = 0 and theta4 = 0 or +-119 deg",
     "aligned": "theta4 = 0 (links 3-4 aligned), theta3 free",
     "contracted": "theta4 = +-119 deg (links 3-4 contracted), theta3 free",
+    "": "the joints uniform in Table I",
 }
 
 
-def _conf_domain(ctx, kind: str, n: int | None = None) -> str:
-    c = configurations(ctx, kind)
-    t2 = np.degrees(c.q[:, 1])
-    count = n if n is not None else len(c.q)
-    return (f"{count} configurations with {_KIND_TEXT[kind]}; the other joints uniform in "
-            f"Table I, theta2 over the whole range ({t2.min():.0f}..{t2.max():.0f} deg), a third within "
-            "10^U(-6, -1.5) rad of +-90 deg (link 3 vertical)")
+def _family(kind: str):
+    """The sampler of one family of configurations (:func:`configurations`)."""
+    return lambda ctx: configurations(ctx, kind)
 
 
 def _direction(c: Pose35, incl: np.ndarray) -> np.ndarray:
@@ -193,46 +203,20 @@ def _direction(c: Pose35, incl: np.ndarray) -> np.ndarray:
     return np.cos(incl)[:, None] * h + np.sin(incl)[:, None] * np.array([0.0, 0.0, 1.0])
 
 
-def _geometry_row(rid, key, claim, method, err, tol, printed, corrected, q, note="", unit="rad", basis="",
-                  domain="") -> Row:
-    """A row graded on ``max err <= tol`` (NaN counts as infinite); an erratum at the worst q otherwise; with
-    ``basis`` (why it is an identity) a passing row holds by construction."""
-    if not len(err):
-        w, erratum = 0.0, None
-    else:
-        w, k = worst(err)
-        erratum = Erratum(key, printed, corrected, f"{fmt_q(q[k])}: |form - geometry| = {err[k]:.3g} {unit}")
-    return Row.graded(
-        claim,
-        key,
-        method,
-        f"max |form - geometry| = {w:.3g} {unit} over {len(err)} configurations"
-        + (f"; {note}" if note else ""),
-        (Measure("max |form - exact geometry|", w, tol, unit),),
-        id=rid,
-        erratum=erratum,
-        holds_as=Verdict.IDENTITY if basis else Verdict.HOLDS,
-        basis=basis,
-        domain=domain,
-    )
+def _length(v: np.ndarray) -> np.ndarray:
+    return np.linalg.norm(v, axis=1)
 
 
+def _inclination(v: np.ndarray) -> np.ndarray:
+    """The inclination [rad] of vectors (n, 3) from the horizontal."""
+    return np.arcsin(v[:, 2] / np.linalg.norm(v, axis=1))
+
+
+# ----------------------------------------------------------------------------- Eq 43-47
 def eq43_printed(p):
     phi = np.arctan2(p[:, 1], p[:, 0])
     x2, y2, z2 = L2 * np.cos(phi), L2 * np.sin(phi), L1  # Eq 37
     return np.arctan((p[:, 2] - z2) / np.sqrt((p[:, 0] - x2) ** 2 + (p[:, 1] - y2) ** 2))
-
-
-def _eq43_asin(p):
-    phi = np.arctan2(p[:, 1], p[:, 0])
-    v = p - np.stack([L2 * np.cos(phi), L2 * np.sin(phi), np.full(len(p), L1)], 1)
-    return np.arcsin(v[:, 2] / np.linalg.norm(v, axis=1))
-
-
-def _eq43_swapped(p):
-    phi = np.arctan2(p[:, 1], p[:, 0])
-    x2, y2, z2 = L2 * np.cos(phi), L2 * np.sin(phi), L1
-    return np.arctan(np.sqrt((p[:, 0] - x2) ** 2 + (p[:, 1] - y2) ** 2) / (p[:, 2] - z2))
 
 
 def _eq43_l3(p):
@@ -241,39 +225,10 @@ def _eq43_l3(p):
     return np.arctan((p[:, 2] - z2) / np.sqrt((p[:, 0] - x2) ** 2 + (p[:, 1] - y2) ** 2))
 
 
-@SECTION.check(
-    50.1,
-    forms=Forms(
-        eq43_printed,
-        _eq43_asin,
-        "asin of the rise over |p - J2|",
-        slips=(
-            Slip(SlipKind.SWAP, "rise and run exchanged", _eq43_swapped),
-            Slip(SlipKind.LENGTH, "joint 2 at l3 from the axis (l3 for l2)", _eq43_l3),
-        ),
-        tolerance=epsilon(eq43_printed, 1e-6, "the printed beta' + 1 urad"),
-    ),
-)
-def eq43_nominal_beta(ctx, eq43):
-    """Eq 43: beta' is the inclination of the line from joint 2 to the end-effector."""
-    c = configurations(ctx, "aligned-planar")
-    v = c.p - c.J2
-    truth = np.arcsin(v[:, 2] / np.linalg.norm(v, axis=1))
-    return _geometry_row(
-        "eq43",
-        "Eq 43",
-        "beta' = atan((pz - z2) / sqrt((px - x2)^2 + (py - y2)^2)) is the "
-        "inclination of the line from joint 2 to the end-effector.",
-        "printed beta' vs the inclination of p - J2 with J2 from Pinocchio (theta1 = phi)",
-        np.abs(eq43(c.p) - truth),
-        TOL,
-        "beta' as printed",
-        "-",
-        c.q,
-        basis="beta' = atan(rise / run) and the reference asin(rise / |p - J2|) are two expressions of the "
-        "inclination of the same vector (joint 2 by Eq 37, graded in workspace.eq37): an identity",
-        domain=_conf_domain(ctx, "aligned-planar"),
-    )
+def _from_joint2(p):
+    """p - joint 2 (Eq 37: joint 2 at azimuth atan2(py, px)) -> (n, 3) [m]."""
+    phi = np.arctan2(p[:, 1], p[:, 0])
+    return p - np.stack([L2 * np.cos(phi), L2 * np.sin(phi), np.full(len(p), L1)], 1)
 
 
 def eq44_delta(rho, r):
@@ -281,28 +236,14 @@ def eq44_delta(rho, r):
     return np.arccos(np.clip((L5**2 + rho**2 - r**2) / (2 * L5 * rho), -1, 1))
 
 
-def _delta_sign(rho, r):
-    return np.arccos(np.clip((L5**2 - rho**2 - r**2) / (2 * L5 * rho), -1, 1))
-
-
-def _delta_swapped(rho, r):
-    return np.arccos(np.clip((r**2 + rho**2 - L5**2) / (2 * L5 * rho), -1, 1))
-
-
-def _delta_asin(rho, r):
-    return np.arcsin(np.clip((L5**2 + rho**2 - r**2) / (2 * L5 * rho), -1, 1))
-
-
-#: Eq 44 and Eq 45 share the printed triangle.
-_DELTA = Forms.right(
-    eq44_delta,
-    (
-        Slip(SlipKind.SIGN, "l5^2 - rho^2 - r^2 in the numerator", _delta_sign),
-        Slip(SlipKind.SWAP, "l5^2 and r^2 exchanged (the angle at the other vertex)", _delta_swapped),
-        Slip(SlipKind.FUNCTION, "asin for acos", _delta_asin),
-    ),
-    tolerance=epsilon(eq44_delta, 1e-6, "delta + 1 urad"),
-    good_is="the printed triangle (it is right)",
+#: The slips of the printed triangle of Eq 44 and Eq 45.
+_DELTA_SLIPS = (
+    Slip(SlipKind.SIGN, "l5^2 - rho^2 - r^2 in the numerator",
+         lambda rho, r: np.arccos(np.clip((L5**2 - rho**2 - r**2) / (2 * L5 * rho), -1, 1))),
+    Slip(SlipKind.SWAP, "l5^2 and r^2 exchanged (the angle at the other vertex)",
+         lambda rho, r: np.arccos(np.clip((r**2 + rho**2 - L5**2) / (2 * L5 * rho), -1, 1))),
+    Slip(SlipKind.FUNCTION, "asin for acos",
+         lambda rho, r: np.arcsin(np.clip((L5**2 + rho**2 - r**2) / (2 * L5 * rho), -1, 1))),
 )
 
 
@@ -316,50 +257,11 @@ def _extreme_direction_error(c: Pose35, delta_form, r) -> np.ndarray:
     )
 
 
-@SECTION.check(50.2, forms=_DELTA)
-def eq44_beta_outer(ctx, delta):
-    """Eq 44: with links 3-4 aligned in one vertical plane, link 5 is inclined at beta' +- delta."""
-    c = configurations(ctx, "aligned-planar")
-    return _geometry_row(
-        "eq44",
-        "Eq 44",
-        "beta_max/min = beta' +- acos((l5^2 + rho^2 - (l3 + l4)^2) / (2 l5 rho)): "
-        "the inclinations of link 5 with links 3 and 4 aligned (outer SLJ boundary).",
-        "configurations with theta3 = theta4 = 0 (links 3-4 aligned, the arm in one vertical plane, "
-        "random theta1, theta2, theta5; Pinocchio): the link-5 direction vs the two directions at "
-        "beta' +- delta in the plane of J2 and p (compared as unit vectors, so inclinations past "
-        "90 deg need no special case)",
-        _extreme_direction_error(c, delta, L3 + L4),
-        TOL,
-        "beta' +- delta_out",
-        "-",
-        c.q,
-        unit="-",
-        domain=_conf_domain(ctx, "aligned-planar"),
-    )
-
-
-@SECTION.check(50.3, forms=_DELTA)
-def eq45_beta_inner(ctx, delta):
-    """Eq 45: links 3-4 contracted (theta4 = +-119 deg) in one vertical plane: link 5 is at beta' +- delta."""
-    c = configurations(ctx, "contracted-planar")
-    d_err = np.abs(np.linalg.norm(c.S - c.J2, axis=1) - D_IN)
-    return _geometry_row(
-        "eq45",
-        "Eq 45",
-        "beta_max/min = beta' +- acos((l5^2 + rho^2 - d^2) / (2 l5 rho)), "
-        "d^2 = l3^2 + l4^2 - 2 l3 l4 cos(180 - 119 deg): links 3 and 4 contracted.",
-        "configurations with theta3 = 0, theta4 = +-119 deg (Pinocchio): the link-5 direction vs the "
-        "directions at beta' +- delta_in",
-        _extreme_direction_error(c, delta, D_IN),
-        TOL,
-        "beta' +- delta_in",
-        "-",
-        c.q,
-        unit="-",
-        note=f"|J2 - SLJ| = d to {d_err.max():.1e} m",
-        domain=_conf_domain(ctx, "contracted-planar"),
-    )
+def _beta_limits(key: str, r: float, method: str, note=None) -> Formula:
+    """Eq 44 / Eq 45: link 5 at beta' +- delta (the printed triangle with side ``r``), as unit vectors."""
+    return Formula(key, eq44_delta, lambda c, f: _extreme_direction_error(c, f, r), TOL, "-", _DELTA_SLIPS,
+                   good_is="the printed triangle (it is right)", eps=1e-6, eps_is="delta + 1 urad",
+                   measure=_GEOMETRY, method=method, note=note)
 
 
 #: q [rad] of the counterexample that made Eq 46 an erratum before issue 19 (links 3-4 aligned, link 5 facing
@@ -374,17 +276,8 @@ def eq46_printed(p):
 def _dir(alpha: np.ndarray, beta: np.ndarray) -> np.ndarray:
     """The unit vector at azimuth ``alpha`` and inclination ``beta`` in that vertical plane (Sec 3.5's angles:
     beta past 90 deg tilts it back over the vertical) -> (n, 3)."""
-    return np.cos(beta)[:, None] * np.stack([np.cos(alpha), np.sin(alpha), 0 * alpha], 1) + np.sin(beta)[:,
-        None] \
-        * np.array([0.0, 0.0, 1.0])
-
-
-def _planar(ctx) -> tuple[Pose35, np.ndarray]:
-    """Both planar families (aligned and contracted) and the r of their triangle (l3 + l4 or d)."""
-    c, c2 = configurations(ctx, "aligned-planar"), configurations(ctx, "contracted-planar")
-    both = Pose35(np.concatenate([c.q, c2.q]), np.concatenate([c.p, c2.p]), np.concatenate([c.S, c2.S]),
-                  np.concatenate([c.J2, c2.J2]))
-    return both, np.concatenate([np.full(len(c.q), L3 + L4), np.full(len(c2.q), D_IN)])
+    horizontal = np.stack([np.cos(alpha), np.sin(alpha), 0 * alpha], 1)
+    return np.cos(beta)[:, None] * horizontal + np.sin(beta)[:, None] * np.array([0.0, 0.0, 1.0])
 
 
 def eq43_signed_run(p):
@@ -400,8 +293,6 @@ def _eq46_error(c: Pose35, r: np.ndarray, alpha: np.ndarray, nominal=eq43_printe
     bp, d = nominal(c.p), eq44_delta(rho, r)
     return np.minimum(np.linalg.norm(_dir(alpha, bp + d) - c.a, axis=1),
                       np.linalg.norm(_dir(alpha, bp - d) - c.a, axis=1))
-
-
 def eq46_reading(ctx, c: Pose35, r: np.ndarray, eq46):
     """Second reading of Eq 46 (the form): link 5 against the direction the thesis's angles describe, under
     the stated convention (beta the inclination in the arm's vertical plane, past 90 deg as Eq 44 gives it,
@@ -440,122 +331,37 @@ def eq46_reading(ctx, c: Pose35, r: np.ndarray, eq46):
 def eq46_from_joint2(p):
     """alpha' as the azimuth of p seen from joint 2 (Eq 37's point at azimuth atan2(py, px)): the direction of
     Eq 43's run."""
-    phi = np.arctan2(p[:, 1], p[:, 0])
-    return np.arctan2(p[:, 1] - L2 * np.sin(phi), p[:, 0] - L2 * np.cos(phi))
+    v = _from_joint2(p)
+    return np.arctan2(v[:, 1], v[:, 0])
 
 
-def _eq46_swapped(p):
-    return np.arctan2(p[:, 0], p[:, 1])
-
-
-def _eq46_atan(p):
-    return np.arctan(p[:, 1] / p[:, 0])
-
-
-def _eq46_turned(p):
-    return eq46_printed(p) + np.pi
-
-
-@SECTION.check(
-    50.4,
-    forms=Forms(
-        eq46_printed,
-        eq46_from_joint2,
-        "the azimuth of p seen from joint 2 (the direction of Eq 43's run)",
-        (
-            Slip(SlipKind.SWAP, "atan2(px, py): the arguments exchanged", _eq46_swapped),
-            Slip(SlipKind.FUNCTION, "atan(py / px) for atan2 (the quadrant lost)", _eq46_atan),
-            Slip(SlipKind.BRANCH, "atan2(py, px) + pi (the opposite azimuth)", _eq46_turned),
-        ),
-        tolerance=epsilon(eq46_from_joint2, 1e-3, "that azimuth + 1 mrad"),
-    ),
-)
-def eq46_nominal_alpha(ctx, eq46):
-    """Eq 46: with the whole arm in one vertical plane, link 5 points at azimuth alpha' = atan2(py, px) and
-    inclination beta' +- delta (Eq 43-45; beta past 90 deg when it faces the base axis)."""
-    both, r = _planar(ctx)
-    err = _eq46_error(both, r, np.asarray(eq46(both.p), float))
-    inward = np.einsum("ni,ni->n", both.a[:, :2], both.p[:, :2]) < 0
-    rho = np.linalg.norm(both.p - both.J2, axis=1)
-    beta = np.degrees(eq43_printed(both.p) + eq44_delta(rho, r))
-    past = beta > 90
-    close = np.hypot(both.p[:, 0], both.p[:, 1]) < L2
+def _eq46_note(c: Pose35, err) -> str:
+    """Where link 5 faces the base axis, where p lies between the axis and joint 2, the former erratum."""
+    inward = np.einsum("ni,ni->n", c.a[:, :2], c.p[:, :2]) < 0
+    beta = np.degrees(eq43_printed(c.p) + eq44_delta(np.linalg.norm(c.p - c.J2, axis=1), c.r))
+    close = np.hypot(c.p[:, 0], c.p[:, 1]) < L2
     far = ~close
     old = _pose35(OLD_EQ46_COUNTEREXAMPLE[None])  # the configuration that made Eq 46 an erratum (issue 19)
     old_r = np.array([L3 + L4])
     old_beta = eq43_printed(old.p) + eq44_delta(np.linalg.norm(old.p - old.J2, axis=1), old_r)
-    old_err = _eq46_error(old, old_r, np.asarray(eq46(old.p), float))[0]
-    row = _geometry_row(
-        "eq46",
-        "Eq 46",
-        "alpha' = atan2(py, px) is the azimuth of the end-effector (link 5) when the entire arm lies in one "
-        "vertical plane: with beta' +- delta of Eq 43-45 it gives link 5's direction.",
-        "configurations with theta3 = 0 (links 3-4 aligned or contracted; Pinocchio): link 5 (p - SLJ) vs "
-        "the unit "
-        "vector at azimuth alpha' and inclination beta' +- delta in that vertical plane (Sec 3.5's angles: "
-        "beta runs past 90 deg when link 5 tilts back over the vertical, Figs 21c, 24c)",
-        err,
-        TOL,
-        "alpha' = atan2(py, px) paired with beta' of Eq 43 (run without its sign)",
-        "Eq 46 stands; Eq 43's run keeps its sign: beta' = atan2(pz - z2, |p_xy| - l2) (equivalently "
-        "alpha' the azimuth of p seen from joint 2); the two differ only where p lies horizontally between "
-        "the base axis and joint 2",
-        both.q,
-        unit="-",
-        note=f"link 5 faces the base axis in {inward.mean():.0%} of these configurations (beta' + delta up "
-        f"to {beta.max():.1f} deg; past 90 deg in {past.mean():.0%}): there too the angles describe link 5 "
-        "exactly "
-        f"(max {err[far & inward].max() if (far & inward).any() else 0:.1e}; at the configuration that made "
-        f"Eq 46 an erratum before issue 19, {fmt_q(OLD_EQ46_COUNTEREXAMPLE)}, beta' + delta = "
-        f"{np.degrees(old_beta[0]):.2f} deg and (alpha', beta) is link 5 to {old_err:.1e}); where p is "
-        "horizontally within l2 of "
-        f"the axis (between the axis and joint 2, {close.mean():.0%} of them) Eq 43's beta' is measured "
-        "toward the "
-        f"axis and the pair misses by {err[close].max() if close.any() else 0:.2g}; beyond joint 2 max "
-        f"{err[far].max() if far.any() else 0:.1e}",
-        domain=_conf_domain(ctx, "aligned-planar", len(both.q)).replace(_KIND_TEXT["aligned-planar"],
-                                                                       "theta3 = 0 and theta4 = 0 or +-119 "
-                                                                       "deg"),
-    )
-    return row.reread(eq46_reading(ctx, both, r, eq46))
+    old_err = _eq46_error(old, old_r, eq46_printed(old.p))[0]
+    return (
+        f"link 5 faces the base axis in {inward.mean():.0%} of these configurations (beta' + delta up to "
+        f"{beta.max():.1f} deg; past 90 deg in {(beta > 90).mean():.0%}): there too the angles describe "
+        f"link 5 exactly (max {err[far & inward].max() if (far & inward).any() else 0:.1e}; at the "
+        f"configuration that made Eq 46 an erratum before issue 19, {fmt_q(OLD_EQ46_COUNTEREXAMPLE)}, beta' "
+        f"+ delta = {np.degrees(old_beta[0]):.2f} deg and (alpha', beta) is link 5 to {old_err:.1e}); where "
+        f"p is horizontally within l2 of the axis (between the axis and joint 2, {close.mean():.0%} of "
+        "them) Eq 43's beta' is measured toward the axis and the pair misses by "
+        f"{err[close].max() if close.any() else 0:.2g}; beyond joint 2 max "
+        f"{err[far].max() if far.any() else 0:.1e}")
 
 
 def eq47_printed(pz, beta):
     return pz - L5 * np.sin(beta)
 
 
-@SECTION.check(
-    50.5,
-    forms=Forms.right(
-        eq47_printed,
-        (
-            Slip(SlipKind.FUNCTION, "l5 cos(beta) for l5 sin(beta)", lambda pz, b: pz - L5 * np.cos(b)),
-            Slip(SlipKind.LENGTH, "l4 for l5", lambda pz, b: pz - L4 * np.sin(b)),
-        ),
-        tolerance=epsilon(eq47_printed, 1e-9, "h + 1 nm"),
-    ),
-)
-def eq47_slj_height(ctx, eq47):
-    """Eq 47: the SLJ is at height pz - l5 sin(beta)."""
-    c = configurations(ctx, "aligned")
-    return _geometry_row(
-        "eq47",
-        "Eq 47",
-        "h_SLJ = pz - l5 sin(beta).",
-        "random configurations with links 3-4 aligned (Pinocchio): z of joint 5 vs the form with the "
-        "link-5 inclination beta",
-        np.abs(eq47(c.p[:, 2], c.beta) - c.S[:, 2]),
-        1e-12,
-        "h_SLJ = pz - l5 sin(beta)",
-        "-",
-        c.q,
-        unit="m",
-        basis="beta is read from the same link-5 vector (asin of its rise over l5) whose rise the formula "
-        "subtracts: pz - l5 sin(beta) is the SLJ's height by construction",
-        domain=_conf_domain(ctx, "aligned"),
-    )
-
-
+# ----------------------------------------------------------------------------- Eq 48-51
 def eq48_printed(h, r):
     """Eq 48 / Eq 50: delta = atan((h_SLJ - l1) / r), r = l3 + l4 (aligned) or phi (contracted)."""
     return np.arctan((h - L1) / r)
@@ -565,26 +371,8 @@ def eq48_corrected(h, r):
     return np.arcsin(np.clip((h - L1) / r, -1, 1))
 
 
-def _inclination_forms(good_is: str) -> Forms:
-    """Eq 48 and Eq 50: the printed atan, the corrected asin (described by ``good_is``), asin + 1 urad."""
-    return Forms(
-        printed=eq48_printed,
-        good=eq48_corrected,
-        good_is=good_is,
-        slips=(
-            Slip(SlipKind.FUNCTION, "atan for asin (as printed)", eq48_printed),
-            Slip(SlipKind.LENGTH, "l3 for the segment's length", lambda h, r: eq48_corrected(h, L3 + 0 * r)),
-            Slip(SlipKind.SIGN, "h_SLJ + l1 (the base height added)", lambda h, r: eq48_corrected(h + 2 * L1,
-                r)),
-        ),
-        tolerance=Slip(SlipKind.EPSILON, "the good delta + 1 urad", off_by(eq48_corrected, 1e-6)),
-    )
-
-
 #: d (Eq 45) = phi (Eq 50, 51) with its angle 180 - 119 = 61 taken as radians.
 D_IN_RAD = float(np.sqrt(L3**2 + L4**2 - 2 * L3 * L4 * np.cos(61.0)))
-
-
 def inclination_reading(c: Pose35, truth: np.ndarray, r: float, form, printed: str):
     """Second reading of Eq 48 / Eq 50 (the form): the inclination of links 3-4 under each nearby reading of
     its stated inputs (the height measured from the base, delta measured downward, and for the contracted
@@ -607,56 +395,26 @@ def inclination_reading(c: Pose35, truth: np.ndarray, r: float, form, printed: s
                   measure="max |form - inclination| [rad]")
 
 
-def _inclination_rows(ctx, form, kind, key, rid, r, printed, corrected) -> Row:
-    c = configurations(ctx, kind)
-    v = c.S - c.J2
-    truth = np.arcsin(v[:, 2] / np.linalg.norm(v, axis=1))
-    what = "aligned" if kind == "aligned" else "contracted (theta4 = +-119 deg)"
-    row = _geometry_row(
-        rid,
-        key,
-        f"{printed}: the inclination of links 3-4 ({what}).",
-        f"random configurations with links 3-4 {what} (Pinocchio): inclination of J2 -> SLJ vs the "
+
+
+def _links34(c: Pose35) -> np.ndarray:
+    """The true inclination [rad] of links 3-4 (joint 2 -> SLJ)."""
+    return _inclination(c.S - c.J2)
+
+
+def _delta(key: str, r: float, text: str, good_is: str, corrected: str) -> Formula:
+    """Eq 48 / Eq 50: the inclination of links 3-4 (the segment of length ``r``) from the true h_SLJ."""
+    what = "aligned" if r > D_IN else "contracted (theta4 = +-119 deg)"
+    return Formula(key, eq48_printed, lambda c, f: np.abs(f(c.S[:, 2], r) - _links34(c)), TOL, "rad", (
+        Slip(SlipKind.FUNCTION, "atan for asin (as printed)", eq48_printed),
+        Slip(SlipKind.LENGTH, "l3 for the segment's length", lambda h, r: eq48_corrected(h, L3 + 0 * r)),
+        Slip(SlipKind.SIGN, "h_SLJ + l1 (the base height added)", lambda h, r: eq48_corrected(h + 2 * L1, r)),
+    ), good=eq48_corrected, good_is=good_is, eps=1e-6, eps_is="the good delta + 1 urad", text=text,
+        corrected=corrected, measure=_GEOMETRY,
+        method=f"random configurations with links 3-4 {what} (Pinocchio): inclination of J2 -> SLJ vs the "
         "form with the true h_SLJ",
-        np.abs(form(c.S[:, 2], r) - truth),
-        TOL,
-        printed,
-        corrected,
-        c.q,
-        note=f"|J2 - SLJ| = {r:.4f} m: the rise over the segment's length is a sine, not a tangent",
-        domain=_conf_domain(ctx, kind),
-    )
-    if row.verdict is not Verdict.ERRATUM:
-        return row
-    return row.reread(inclination_reading(c, truth, r, form, printed))
-
-
-@SECTION.check(50.6, forms=_inclination_forms("delta = asin((h_SLJ - l1) / (l3 + l4))"))
-def eq48_inclination(ctx, form):
-    return _inclination_rows(
-        ctx,
-        form,
-        "aligned",
-        "Eq 48",
-        "eq48",
-        L3 + L4,
-        "delta = atan((h_SLJ - l1) / (l3 + l4))",
-        "delta = asin((h_SLJ - l1) / (l3 + l4)) (l3 + l4 is the segment's length, not its run)",
-    )
-
-
-@SECTION.check(50.8, forms=_inclination_forms("delta = asin((h_SLJ - l1) / phi)"))
-def eq50_inclination(ctx, form):
-    return _inclination_rows(
-        ctx,
-        form,
-        "contracted",
-        "Eq 50",
-        "eq50",
-        D_IN,
-        "delta = atan((h_SLJ - l1) / phi)",
-        "delta = asin((h_SLJ - l1) / phi) (phi = d is the segment's length)",
-    )
+        note=lambda c, err: f"|J2 - SLJ| = {r:.4f} m: the rise over the segment's length is a sine, not a "
+        "tangent", reread=lambda ctx, c, f: inclination_reading(c, _links34(c), r, f, text))
 
 
 def eq49_sigma(rho, beta, delta, r, reach=None):
@@ -674,69 +432,39 @@ def _sigma_true(rho, beta, delta, r, reach):
     return np.arccos(np.clip((rho**2 + lb**2 - reach**2) / (2 * rho * lb), -1, 1))
 
 
-def _sigma_sign(rho, beta, delta, r, reach=None):
-    lb = L5 * np.cos(beta)
-    return np.arccos(np.clip((rho**2 - lb**2 - (r * np.cos(delta) + L2) ** 2) / (2 * rho * lb), -1, 1))
-
-
-def _sigma_sin(rho, beta, delta, r, reach=None):
-    return eq49_sigma(rho, np.pi / 2 - beta, delta, r)
-
-
-def _sigma_no_l2(rho, beta, delta, r, reach=None):
-    lb = L5 * np.cos(beta)
-    return np.arccos(np.clip((rho**2 + lb**2 - (r * np.cos(delta)) ** 2) / (2 * rho * lb), -1, 1))
-
-
-#: Eq 49 and Eq 51 share the printed law of cosines.
-_SIGMA = Forms(
-    eq49_sigma,
-    _sigma_true,
-    "the law of cosines with the SLJ's true horizontal distance",
-    slips=(
-        Slip(SlipKind.SIGN, "rho^2 - (l5 cos b)^2 in the numerator", _sigma_sign),
-        Slip(SlipKind.FUNCTION, "l5 sin(b) for l5 cos(b)", _sigma_sin),
-        Slip(SlipKind.LENGTH, "the SLJ's distance without l2", _sigma_no_l2),
-    ),
-    tolerance=epsilon(_sigma_true, 1e-6, "that sigma + 1 urad"),
+#: The slips of the printed law of cosines of Eq 49 and Eq 51.
+_SIGMA_SLIPS = (
+    Slip(SlipKind.SIGN, "rho^2 - (l5 cos b)^2 in the numerator",
+         lambda rho, beta, delta, r, reach=None: np.arccos(np.clip(
+            (rho**2 - (L5 * np.cos(beta))**2 - (r * np.cos(delta) + L2) ** 2) / (2 * rho * L5 * np.cos(beta)),
+            -1, 1))),
+    Slip(SlipKind.FUNCTION, "l5 sin(b) for l5 cos(b)",
+         lambda rho, beta, delta, r, reach=None: eq49_sigma(rho, np.pi / 2 - beta, delta, r)),
+    Slip(SlipKind.LENGTH, "the SLJ's distance without l2", lambda rho, beta, delta, r, reach=None: np.arccos(
+        np.clip((rho**2 + (L5 * np.cos(beta))**2 - (r * np.cos(delta)) ** 2) / (2 * rho * L5 * np.cos(beta)),
+                -1, 1))),
 )
 
 
-def _sigma_rows(ctx, form, kind, key, rid, r, claim, corrected) -> Row:
-    c = configurations(ctx, kind)
+def _sigma_inputs(c: Pose35):
+    """rho = |p_xy|, the true delta (the inclination of links 3-4 in joint 1's vertical plane, Sec 3.5's
+    convention: past 90 deg when link 3 leans over the axis; with link 3 leaning forward it is Eq 48/50
+    corrected) and the SLJ's true horizontal distance."""
     v = c.S - c.J2
     out = np.stack([np.cos(c.q[:, 0]), np.sin(c.q[:, 0])], 1)  # joint 1's vertical plane, outward
-    # the true inclination of links 3-4 in that plane (Sec 3.5's convention: past 90 deg when link 3 leans
-    # over the axis); with link 3 leaning forward it is Eq 48/50 corrected (asin)
     delta = np.arctan2(v[:, 2], np.einsum("ni,ni->n", v[:, :2], out))
-    rho = np.hypot(c.p[:, 0], c.p[:, 1])
-    reach = np.hypot(c.S[:, 0], c.S[:, 1])
-    sig = form(rho, c.beta, delta, r, reach)
-    err = np.abs(np.abs(wrap(c.alpha - c.phi)) - sig)
-    chained = np.abs(np.abs(wrap(c.alpha - c.phi)) - eq49_sigma(rho, c.beta, eq48_printed(c.S[:, 2], r), r))
-    row = _geometry_row(
-        rid,
-        key,
-        claim,
-        "random configurations with links 3-4 "
-        f"{'aligned (theta4 = 0)' if r > D_IN else 'contracted (theta4 = +-119 deg)'} "
-        "and any theta3 (link 5 leaves the vertical plane; Pinocchio): the deviation |alpha - alpha'| of "
-        "link 5's azimuth from the point's vs sigma, with the true delta fed in (the inclination of links "
-        "3-4 in "
-        "joint 1's vertical plane: Eq 48/50 corrected where link 3 leans forward, past 90 deg where it leans "
-        "back over the axis)",
-        err,
-        TOL,
-        claim.split(":")[0],
-        corrected,
-        c.q,
-        note=f"with the printed Eq {48 if r > D_IN else 50} delta chained in: max {chained.max():.3g} rad; "
-        f"link 3 leaning back over the axis (delta past 90 deg) in {np.mean(np.abs(delta) > np.pi / 2):.0%} "
-        "of the configurations",
-        domain=_conf_domain(ctx, kind),
-    )
-    if row.verdict is not Verdict.ERRATUM:
-        return row
+    return np.hypot(c.p[:, 0], c.p[:, 1]), delta, np.hypot(c.S[:, 0], c.S[:, 1])
+
+
+def _sigma_error(c: Pose35, form, r: float) -> np.ndarray:
+    rho, delta, reach = _sigma_inputs(c)
+    return np.abs(np.abs(wrap(c.alpha - c.phi)) - form(rho, c.beta, delta, r, reach))
+
+
+def sigma_reading(c: Pose35, form, r: float, printed: str):
+    """Second reading of Eq 49 / Eq 51 (the form): link 5's azimuth deviation under each nearby reading of
+    delta's and beta's sign and of phi's 61 deg taken as radians."""
+    rho, delta, reach = _sigma_inputs(c)
     target = np.abs(wrap(c.alpha - c.phi))
     stated = {"delta": delta, "r": r, "beta": c.beta}
 
@@ -748,44 +476,112 @@ def _sigma_rows(ctx, form, kind, key, rid, r, claim, corrected) -> Row:
         Reading(Kind.SIGN, "beta measured the other way", {"beta": -c.beta}),
         Reading(Kind.UNIT, "phi with 180 - 119 = 61 taken as rad", {"r": D_IN_RAD}),
     ]
-    return row.reread(search(stated, readings, misfit, TOL, printed=claim.split(":")[0],
-                             stated_text="rho = |p_xy|, beta of link 5, delta of links 3-4, the segment's "
-                             "length",
-                             route="link 5's azimuth from Pinocchio joint placements",
-                             measure="max ||alpha - alpha'| - sigma| [rad]"))
+    return search(stated, readings, misfit, TOL, printed=printed,
+                  stated_text="rho = |p_xy|, beta of link 5, delta of links 3-4, the segment's length",
+                  route="link 5's azimuth from Pinocchio joint placements",
+                  measure="max ||alpha - alpha'| - sigma| [rad]")
 
 
-@SECTION.check(50.7, forms=_SIGMA)
-def eq49_alpha_outer(ctx, sigma):
-    return _sigma_rows(
-        ctx,
-        sigma,
-        "aligned",
-        "Eq 49",
-        "eq49",
-        L3 + L4,
-        "alpha_max/min = alpha' +- sigma, sigma = acos((rho^2 + (l5 cos b)^2 - ((l3 + l4) cos d + l2)^2) "
-        "/ (2 rho l5 cos b)): links 3-4 aligned",
-        "-",
-    )
+def _alpha_limits(key: str, r: float, text: str, corrected: str = "-") -> Formula:
+    """Eq 49 / Eq 51: link 5's azimuth deviation |alpha - alpha'| is sigma, with the true delta fed in."""
+    def note(c, err):
+        rho, delta, _ = _sigma_inputs(c)
+        printed_delta = eq48_printed(c.S[:, 2], r)
+        chained = np.abs(np.abs(wrap(c.alpha - c.phi)) - eq49_sigma(rho, c.beta, printed_delta, r))
+        return (f"with the printed Eq {48 if r > D_IN else 50} delta chained in: max {chained.max():.3g} "
+                "rad; link 3 leaning back over the axis (delta past 90 deg) in "
+                f"{np.mean(np.abs(delta) > np.pi / 2):.0%} of the configurations")
+
+    return Formula(key, eq49_sigma, lambda c, f: _sigma_error(c, f, r), TOL, "rad", _SIGMA_SLIPS,
+                   good=_sigma_true, good_is="the law of cosines with the SLJ's true horizontal distance",
+                   eps=1e-6,
+                   eps_is="that sigma + 1 urad", text=text, corrected=corrected, measure=_GEOMETRY, note=note,
+                   method="random configurations with links 3-4 "
+                   f"{'aligned (theta4 = 0)' if r > D_IN else 'contracted (theta4 = +-119 deg)'} and any "
+                   "theta3 (link 5 leaves the vertical plane; Pinocchio): the deviation |alpha - alpha'| "
+                   "of link 5's azimuth from the point's vs sigma, with the true delta fed in (the "
+                   "inclination of links 3-4 in joint 1's vertical plane: Eq 48/50 corrected where link 3 "
+                   "leans forward, past 90 deg where it leans back over the axis)",
+                   reread=lambda ctx, c, f: sigma_reading(c, f, r, text))
 
 
-@SECTION.check(50.9, forms=_SIGMA)
-def eq51_alpha_inner(ctx, sigma):
-    return _sigma_rows(
-        ctx,
-        sigma,
-        "contracted",
-        "Eq 51",
-        "eq51",
-        D_IN,
-        "alpha_max/min = alpha' +- sigma, sigma = acos((rho^2 + (l5 cos b)^2 - (phi cos d + l2)^2) / "
-        "(2 rho l5 cos b)): links 3-4 contracted",
-        "no closed form of this shape: with theta4 = +-119 deg link 5 leaves the vertical plane of joint "
-        "1 only if theta3 != 0, which takes link 4 and the SLJ out of it too, so the SLJ is not at "
-        "horizontal distance phi cos(delta) + l2 from the base axis (Fig 26 is not a configuration of "
-        "this arm); the admissible alpha range follows from the SLJ's true position (iik.dexterity)",
-    )
+_GEOMETRY = "max |form - exact geometry|"
+_SIGMA_TEXT = ("alpha_max/min = alpha' +- sigma, sigma = acos((rho^2 + (l5 cos b)^2 - ({} cos d + l2)^2) / "
+               "(2 rho l5 cos b))")
+
+CHECKS = {
+    **SECTION.formulas(
+        _family("aligned-planar"),
+        Formula("Eq 43", eq43_printed, lambda c, f: np.abs(f(c.p) - _inclination(c.p - c.J2)), TOL, "rad", (
+            Slip(SlipKind.SWAP, "rise and run exchanged",
+                 lambda p: np.arctan(np.linalg.norm(_from_joint2(p)[:, :2], axis=1) / _from_joint2(p)[:, 2])),
+            Slip(SlipKind.LENGTH, "joint 2 at l3 from the axis (l3 for l2)", _eq43_l3),
+        ), good=lambda p: _inclination(_from_joint2(p)), good_is="asin of the rise over |p - J2|", eps=1e-6,
+            eps_is="that beta' + 1 urad", measure=_GEOMETRY,
+            method="printed beta' vs the inclination of p - J2 with J2 from Pinocchio (theta1 = phi)",
+            basis="beta' = atan(rise / run) and the reference asin(rise / |p - J2|) are two expressions of "
+            "the inclination of the same vector (joint 2 by Eq 37, graded in workspace.eq37): an identity"),
+        _beta_limits("Eq 44", L3 + L4, "configurations with theta3 = theta4 = 0 (links 3-4 aligned, the arm "
+                     "in one vertical plane, random theta1, theta2, theta5; Pinocchio): the link-5 "
+                     "direction vs the two directions at beta' +- delta in the plane of J2 and p (compared "
+                     "as unit vectors, so inclinations past 90 deg need no special case)"),
+    ),
+    **SECTION.formulas(
+        _family("contracted-planar"),
+        _beta_limits("Eq 45", D_IN, "configurations with theta3 = 0, theta4 = +-119 deg (Pinocchio): the "
+                     "link-5 direction vs the directions at beta' +- delta_in",
+                     note=lambda c, err: f"|J2 - SLJ| = d to {np.abs(_length(c.S - c.J2) - D_IN).max():.1e} "
+                     "m"),
+    ),
+    **SECTION.formulas(
+        _family("planar"),
+        Formula("Eq 46", eq46_printed, lambda c, f: _eq46_error(c, c.r, np.asarray(f(c.p), float)), TOL,
+                "-", (
+            Slip(SlipKind.SWAP, "atan2(px, py): the arguments exchanged",
+                 lambda p: np.arctan2(p[:, 0], p[:, 1])),
+            Slip(SlipKind.FUNCTION, "atan(py / px) for atan2 (the quadrant lost)",
+                 lambda p: np.arctan(p[:, 1] / p[:, 0])),
+            Slip(SlipKind.BRANCH, "atan2(py, px) + pi (the opposite azimuth)",
+                 lambda p: eq46_printed(p) + np.pi),
+        ), good=eq46_from_joint2, good_is="the azimuth of p seen from joint 2 (the direction of Eq 43's run)",
+            eps=1e-3, eps_is="that azimuth + 1 mrad", measure=_GEOMETRY, note=_eq46_note,
+            text="alpha' = atan2(py, px) paired with beta' of Eq 43 (run without its sign)",
+            corrected="Eq 46 stands; Eq 43's run keeps its sign: beta' = atan2(pz - z2, |p_xy| - l2) "
+            "(equivalently alpha' the azimuth of p seen from joint 2); the two differ only where p lies "
+            "horizontally between the base axis and joint 2",
+            method="configurations with theta3 = 0 (links 3-4 aligned or contracted; Pinocchio): link 5 (p "
+            "- SLJ) vs the unit vector at azimuth alpha' and inclination beta' +- delta in that vertical "
+            "plane (Sec 3.5's angles: beta runs past 90 deg when link 5 tilts back over the vertical, Figs "
+            "21c, 24c)",
+            reread=lambda ctx, c, f: eq46_reading(ctx, c, c.r, f)),
+    ),
+    **SECTION.formulas(
+        _family("aligned"),
+        Formula("Eq 47", eq47_printed, lambda c, f: np.abs(f(c.p[:, 2], c.beta) - c.S[:, 2]), 1e-12, "m", (
+            Slip(SlipKind.FUNCTION, "l5 cos(beta) for l5 sin(beta)", lambda pz, b: pz - L5 * np.cos(b)),
+            Slip(SlipKind.LENGTH, "l4 for l5", lambda pz, b: pz - L4 * np.sin(b)),
+        ), eps_is="h + 1 nm", measure=_GEOMETRY,
+            method="random configurations with links 3-4 aligned (Pinocchio): z of joint 5 vs the form with "
+            "the link-5 inclination beta",
+            basis="beta is read from the same link-5 vector (asin of its rise over l5) whose rise the "
+            "formula subtracts: pz - l5 sin(beta) is the SLJ's height by construction"),
+        _delta("Eq 48", L3 + L4, "delta = atan((h_SLJ - l1) / (l3 + l4))",
+               "delta = asin((h_SLJ - l1) / (l3 + l4))",
+               "delta = asin((h_SLJ - l1) / (l3 + l4)) (l3 + l4 is the segment's length, not its run)"),
+        _alpha_limits("Eq 49", L3 + L4, _SIGMA_TEXT.format("(l3 + l4)")),
+    ),
+    **SECTION.formulas(
+        _family("contracted"),
+        _delta("Eq 50", D_IN, "delta = atan((h_SLJ - l1) / phi)", "delta = asin((h_SLJ - l1) / phi)",
+               "delta = asin((h_SLJ - l1) / phi) (phi = d is the segment's length)"),
+        _alpha_limits("Eq 51", D_IN, _SIGMA_TEXT.format("phi"),
+                      "no closed form of this shape: with theta4 = +-119 deg link 5 leaves the vertical "
+                      "plane of joint 1 only if theta3 != 0, which takes link 4 and the SLJ out of it too, "
+                      "so the SLJ is not at horizontal distance phi cos(delta) + l2 from the base axis (Fig "
+                      "26 is not a configuration of this arm); the admissible alpha range follows from the "
+                      "SLJ's true position (iik.dexterity)"),
+    ),
+}
 
 
 # ----------------------------------------------------------------------------- convention, admitted sets
@@ -804,7 +600,7 @@ def _sec35_half(alpha35, beta35):
 
 
 @SECTION.check(
-    50.0,
+    "Eq 42",
     forms=Forms(
         printed=sec35_as_printed,
         good=sec35_to_eq42,
@@ -846,7 +642,7 @@ def beta_convention(ctx, to_eq42):
             "angles",
             f"{fmt_q(c.q[int(np.argmax(err))])}: angles differ by {err.max():.3f} rad",
         ),
-        domain=_conf_domain(ctx, "aligned"),
+        domain=c.domain,
     )
     return row.reread(convention_reading(c, to_eq42)) if row.verdict is Verdict.ERRATUM else row
 

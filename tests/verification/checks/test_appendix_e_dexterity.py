@@ -77,28 +77,28 @@ def test_dexterity_is_graded_from_the_printed_equations(ctx):
     assert X.beta_convention(ctx, X.sec35_as_printed).verdict is Verdict.ERRATUM
     assert X.beta_convention(ctx, X.sec35_to_eq42).verdict is Verdict.HOLDS
     for check, ok in (
-        (X.eq44_beta_outer, X.eq44_delta),
-        (X.eq45_beta_inner, X.eq44_delta),
-        (X.eq49_alpha_outer, X.eq49_sigma),
+        (X.CHECKS["eq44"], X.eq44_delta),
+        (X.CHECKS["eq45"], X.eq44_delta),
+        (X.CHECKS["eq49"], X.eq49_sigma),
     ):
         assert check(ctx, ok).verdict is Verdict.HOLDS, check.__name__
-    for check, ok in ((X.eq43_nominal_beta, X.eq43_printed), (X.eq47_slj_height, X.eq47_printed)):
+    for check, ok in ((X.CHECKS["eq43"], X.eq43_printed), (X.CHECKS["eq47"], X.eq47_printed)):
         assert check(ctx, ok).verdict is Verdict.IDENTITY, check.__name__
     # Eq 49 is sampled over the whole theta2 range (the row says so), link 3 leaning back included
-    assert "whole range" in X.eq49_alpha_outer(ctx, X.eq49_sigma).domain
+    assert "whole range" in X.CHECKS["eq49"](ctx, X.eq49_sigma).domain
     # Eq 46: beta past 90 deg describes link 5 exactly (137.05 deg at the configuration that made it an
     # erratum); only where p lies between the axis and joint 2 the pair misses, because Eq 43's square root
     # drops the run's sign: an input slip, Eq 46 as printed
-    eq46 = X.eq46_nominal_alpha(ctx, X.eq46_printed)
+    eq46 = X.CHECKS["eq46"](ctx, X.eq46_printed)
     assert eq46.verdict is Verdict.INPUT_SLIP and "run with its sign" in eq46.second_reading.explanation.text
     assert "137.05 deg" in eq46.numbers
     trial = {t.text: t for t in eq46.second_reading.trials}
     assert any("made Eq 46 an erratum" in k and not t.reproduces for k, t in trial.items())
     assert any("joint 2" in k and t.reproduces for k, t in trial.items())  # the equivalent reading
     # Eq 48 and Eq 50 use atan where the geometry needs asin
-    assert X.eq48_inclination(ctx, X.eq48_printed).verdict is Verdict.ERRATUM
-    assert X.eq48_inclination(ctx, X.eq48_corrected).verdict is Verdict.HOLDS
-    assert X.eq50_inclination(ctx, X.eq48_printed).verdict is Verdict.ERRATUM
+    assert X.CHECKS["eq48"](ctx, X.eq48_printed).verdict is Verdict.ERRATUM
+    assert X.CHECKS["eq48"](ctx, X.eq48_corrected).verdict is Verdict.HOLDS
+    assert X.CHECKS["eq50"](ctx, X.eq48_printed).verdict is Verdict.ERRATUM
     row = X.printed_admitted_set(ctx, X.admitted_printed)
     assert row.verdict is Verdict.DOES_NOT_HOLD
     assert "false admits" in row.numbers and "false rejects" in row.numbers
