@@ -206,16 +206,20 @@ EQUATIONS: tuple[Item, ...] = _equations(
         "App. E": {
             "57": "eta = a_n - v_t^2 / rho_0",
             "58": "q_i(lambda_i) = (qU + qL)/2 + (qU - qL)/2 sin(lambda_i)",
-            "59": "N0^T = null[G_q q_s]^T",
+            "59": "N0 = null[G_q q_s]^T is the normal of the singular surface at the point",
             "60": "a_n = s'^T H* s'",
-            "61": "H* = q_s^T [N0^T G]_qq q_s + sum_i d(N0^T G)/dq_i [q_i]_ss",
+            "61": "H* = q_s^T [N0 G]_qq q_s + sum_i d(N0 G)/dq_i [q_i]_ss is the second derivative in s of "
+                  "the normal component N0.G(q(s)) (a_n = s'^T H* s', Eq 60)",
             "62": "v_t^2/rho_0 = s'^T q_s^T G_q^T B^T [N0^T f]_uu B G_q q_s s'",
-            "63": "B = [E f_u]^-1 E with E picking two independent rows",
+            "63": "B = [E f_u]^-1 E (E two independent rows of f_u) maps the tool's motion to the surface's "
+                  "parameters: B G_q q_s = du*/ds",
             "64": "eta = s'^T Q* s'",
             "65": "Q* = H* - q_s^T G_q^T B^T [N0^T f]_uu B G_q q_s; the sign of its eigenvalues",
             "66": "sigma = N0^T G_qi delta q_i",
             "67": "delta q_i = +1 at a lower limit, -1 at an upper limit",
-            "68": "K-bar = G_qi^T B^T [N0^T G]_uu B G_qi - [N0^T G]_qiqi",
+            "68": "K-bar = G_qi^T B^T [N0 G]_uu B G_qi - [N0 G]_qiqi, the difference in normal curvature, is "
+                  "minus the second derivative of the tool's normal distance from the surface along joint i "
+                  "(where Eq 66 = 0)",
             "69": "f(1) at A1: [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; ...; l5 c3 s5 + l1]",
         },
     }

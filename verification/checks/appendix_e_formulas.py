@@ -21,6 +21,7 @@ import numpy as np
 
 import iik
 
+from ..formula import Formula
 from ..numbers import fmt_vec
 from ..oracles.abdel_malek import (
     eq58_rates,
@@ -41,7 +42,7 @@ from .appendix_e import SECTION as _POINTS
 
 ARM = iik.THESIS_ARM
 _D = np.pi / 180
-SECTION = Section(_POINTS.title, depends_on=("lengths", "pinocchio"), prefix="appendix_e")
+SECTION = Section(_POINTS.title, depends_on=("lengths", "pinocchio"), prefix="appendix_e", order=47.5)
 TOL = 1e-3  # [mm]: a formula vs its meaning (both in floating point, central differences: ~1e-5 mm)
 _ROUTE = (
     "vs what it means: verification.oracles.normal_distance (Table II chain by iik.dh, central differences), "
@@ -112,7 +113,23 @@ _SETS = (
 )
 
 
-def probes(ctx) -> list[Probe]:
+class Probes(tuple):
+    """Probes, or ``(joint, probe)`` pairs, with the sampled domain in words (a sample of
+    :class:`~verification.formula.Formula`)."""
+
+    domain: str
+
+    def __new__(cls, items, domain: str):
+        out = super().__new__(cls, items)
+        out.domain = domain
+        return out
+
+    def at(self, k: int) -> str:
+        p = self[k][1] if isinstance(self[k], tuple) else self[k]
+        return f"at {p.name}, q0 = {fmt_vec(p.q0)} rad"
+
+
+def probes(ctx) -> Probes:
     """A1, A2, A6 and random points of s(1), s(2), s(26) (free joints uniform in Table I), cached."""
     key = ("appendix_e.probes", ctx.quick)
     if key not in ctx.cache:
@@ -124,7 +141,8 @@ def probes(ctx) -> list[Probe]:
                 for j, v in fixed.items():
                     q[j - 1] = v
                 out.append(_probe(f"{name} #{k + 1}", q, free))
-        ctx.cache[key] = [p for p in out if p is not None]
+        out = [p for p in out if p is not None]
+        ctx.cache[key] = Probes(out, _domain(out))
     return ctx.cache[key]
 
 
@@ -136,23 +154,6 @@ def _domain(ps) -> str:
     )
 
 
-def _formula_row(rid, key, claim, measures, numbers, printed, corrected, worst: Probe, domain) -> Row:
-    return Row.graded(
-        claim,
-        key,
-        _ROUTE,
-        numbers,
-        measures,
-        id=rid,
-        domain=domain,
-        erratum=Erratum(key, printed, corrected, f"at {worst.name}, q0 = {fmt_vec(worst.q0)} rad"),
-    )
-
-
-def _worst(ps, errs) -> Probe:
-    return ps[int(np.argmax(errs))]
-
-
 # ----------------------------------------------------------------------------- Eq 58
 def eq58_printed(lo, hi, lam):
     """Eq 58: q = (qU + qL)/2 + (qU - qL)/2 sin(lambda) [rad]."""
@@ -160,7 +161,7 @@ def eq58_printed(lo, hi, lam):
 
 
 @SECTION.check(
-    47.5,
+    "Eq 58",
     forms=Forms.right(
         eq58_printed,
         (
@@ -211,180 +212,64 @@ def eq58_parameterisation(ctx, eq58):
     )
 
 
-# ----------------------------------------------------------------------------- Eq 59
-@SECTION.check(
-    47.6,
-    forms=Forms.right(
-        eq59_normal,
-        (
-            Slip(
-                SlipKind.MODEL,
-                "the null vector of G_q alone (q_s left out: the joint limits ignored)",
-                lambda Gq, qs: eq59_normal(Gq, np.ones(5)),
-            ),
-            Slip(
-                SlipKind.BRANCH,
-                "the first left singular vector (the largest) for the null one",
-                lambda Gq, qs: np.linalg.svd(Gq * qs[None, :])[0][:, 0],
-            ),
-        ),
-        tolerance=epsilon(eq59_normal, 1e-6),
-    ),
-)
-def eq59_null(ctx, eq59):
-    """Eq 59: N0 = null[G_q q_s]^T is the unit normal of the singular surface."""
-    ps = probes(ctx)
-    errs = np.array(
-        [
-            min(np.abs(n - p.N0).max(), np.abs(n + p.N0).max())
-            for p in ps
-            for n in [np.asarray(eq59(p.Gq, p.qs), float)]
-        ]
-    )
-    m = (Measure("max |N0 of Eq 59 - surface normal| (up to sign)", errs.max(), 1e-6),)
-    return _formula_row(
-        "eq59",
-        "Eq 59",
-        "Eq 59: N0 = null[G_q q_s]^T is the normal of the singular surface at the point.",
-        m,
-        f"max |Eq 59 - normal from the surface's tangents| = {errs.max():.1e} over {len(ps)} points",
-        "N0 = null[G_q q_s]^T",
-        "-",
-        _worst(ps, errs),
-        _domain(ps),
-    )
-
-
-# ----------------------------------------------------------------------------- Eq 61
-def _h_no_second(N0, Hq, Gq, qs, qss):
-    return eq61_h_star(N0, Hq, Gq, qs, np.zeros_like(qss))
-
-
-def _h_minus_second(N0, Hq, Gq, qs, qss):
-    return eq61_h_star(N0, Hq, Gq, qs, -qss)
-
-
-@SECTION.check(
-    47.7,
-    forms=Forms.right(
-        eq61_h_star,
-        (
-            Slip(SlipKind.TERM, "without the sum of d(N0.G)/dq_i [q_i]_ss", _h_no_second),
-            Slip(SlipKind.SIGN, "minus the sum of d(N0.G)/dq_i [q_i]_ss", _h_minus_second),
-        ),
-        tolerance=epsilon(eq61_h_star, 1e-6),
-    ),
-)
-def eq61_h(ctx, eq61):
-    """Eq 61: H* is the Hessian in s of the normal component N0.G(q(s))."""
-    ps = probes(ctx)
-    errs = np.array(
-        [
-            np.abs(np.asarray(eq61(p.N0, p.Hq, p.Gq, p.qs, p.qss)) - p.meaning("h_star")).max() * 1e3
-            for p in ps
-        ]
-    )
-    m = (Measure("max |H* of Eq 61 - Hessian of N0.G(q(s))|", errs.max(), TOL, "mm"),)
-    return _formula_row(
-        "eq61",
-        "Eq 61",
-        "Eq 61: H* = q_s^T [N0 G]_qq q_s + sum_i d(N0 G)/dq_i [q_i]_ss is the second derivative "
-        "in s of the normal component N0.G(q(s)) (a_n = s'^T H* s', Eq 60).",
-        m,
-        f"max difference {errs.max():.2g} mm over {len(ps)} points",
-        "H* = ...",
-        "-",
-        _worst(ps, errs),
-        _domain(ps),
-    )
-
-
-# ----------------------------------------------------------------------------- Eq 63
+# ----------------------------------------------------------------------------- Eq 59, 61, 63, 62-65
 def _b_transposed(f_u, rows):
     E = np.zeros((2, 3))
     E[0, rows[0]] = E[1, rows[1]] = 1.0
     return np.linalg.inv(E @ f_u).T @ E
 
 
-@SECTION.check(
-    47.8,
-    forms=Forms.right(
-        eq63_b,
-        (
-            Slip(SlipKind.TRANSPOSE, "[E f_u]^-T E (the inverse transposed)", _b_transposed),
-            Slip(SlipKind.SIGN, "-[E f_u]^-1 E", lambda f_u, rows: -eq63_b(f_u, rows)),
-        ),
-        tolerance=epsilon(eq63_b, 1e-6),
-    ),
+def _eq59_error(p: Probe, eq59) -> float:
+    """|N0 of the form - the surface normal|, up to the sign."""
+    n = np.asarray(eq59(p.Gq, p.qs), float)
+    return min(np.abs(n - p.N0).max(), np.abs(n + p.N0).max())
+
+
+def _eq65_error(p: Probe, eq65) -> float:
+    H = eq61_h_star(p.N0, p.Hq, p.Gq, p.qs, p.qss)
+    B = eq63_b(p.f_u, p.rows)
+    return np.abs(np.asarray(eq65(H, B, p.Gq, p.qs, p.nf_uu())) - p.meaning("q_star", p.rows)).max() * 1e3
+
+
+def _per_probe(error):
+    """The error function of a formula measured at each probe: ``error(probe, form)`` -> float."""
+    return lambda ps, form: np.array([error(p, form) for p in ps])
+
+
+FORMULAS = SECTION.formulas(
+    probes,
+    Formula("Eq 59", eq59_normal, _per_probe(_eq59_error), 1e-6, "", (
+        Slip(SlipKind.MODEL, "the null vector of G_q alone (q_s left out: the joint limits ignored)",
+             lambda Gq, qs: eq59_normal(Gq, np.ones(5))),
+        Slip(SlipKind.BRANCH, "the first left singular vector (the largest) for the null one",
+             lambda Gq, qs: np.linalg.svd(Gq * qs[None, :])[0][:, 0]),
+    ), eps=1e-6, text="N0 = null[G_q q_s]^T", method=_ROUTE,
+        measure="max |N0 of Eq 59 - surface normal| (up to sign)"),
+    Formula("Eq 61", eq61_h_star, _per_probe(
+        lambda p, f: np.abs(np.asarray(f(p.N0, p.Hq, p.Gq, p.qs, p.qss)) - p.meaning("h_star")).max() * 1e3),
+            TOL, "mm", (
+        Slip(SlipKind.TERM, "without the sum of d(N0.G)/dq_i [q_i]_ss",
+             lambda N0, Hq, Gq, qs, qss: eq61_h_star(N0, Hq, Gq, qs, np.zeros_like(qss))),
+        Slip(SlipKind.SIGN, "minus the sum of d(N0.G)/dq_i [q_i]_ss",
+             lambda N0, Hq, Gq, qs, qss: eq61_h_star(N0, Hq, Gq, qs, -qss)),
+    ), eps=1e-6, text="H* = ...", method=_ROUTE, measure="max |H* of Eq 61 - Hessian of N0.G(q(s))|"),
+    Formula("Eq 63", eq63_b, _per_probe(
+        lambda p, f: np.abs(np.asarray(f(p.f_u, p.rows)) @ (p.Gq * p.qs[None, :])
+                            - p.meaning("du_ds", p.rows)).max()),
+            1e-6, "", (
+        Slip(SlipKind.TRANSPOSE, "[E f_u]^-T E (the inverse transposed)", _b_transposed),
+        Slip(SlipKind.SIGN, "-[E f_u]^-1 E", lambda f_u, rows: -eq63_b(f_u, rows)),
+    ), eps=1e-6, text="B = [E f_u]^-1 E", method=_ROUTE + " (E the best-conditioned row pair)",
+        measure="max |B G_q q_s - du*/ds|"),
+    Formula("Eq 62-65", eq65_q_star, _per_probe(_eq65_error), TOL, "mm", (
+        Slip(SlipKind.SIGN, "H* + q_s^T G_q^T B^T [N0 f]_uu B G_q q_s",
+             lambda H, B, Gq, qs, Nf_uu: 2 * H - eq65_q_star(H, B, Gq, qs, Nf_uu)),
+        Slip(SlipKind.TERM, "Q* = H* (the curvature term of Eq 62 left out)", lambda H, B, Gq, qs, Nf: H),
+    ), eps=1e-6, id="eq65", text="Q* = ...", method=_ROUTE,
+        claim="Eq 62-65: Q* = H* - q_s^T G_q^T B^T [N0 f]_uu B G_q q_s is the second derivative in s of the "
+        "tool's normal distance from the singular surface (the normal acceleration eta = s'^T Q* s', Eq 57).",
+        measure="max |Q* of Eq 65 - Hessian of the normal distance|"),
 )
-def eq63_generalised_inverse(ctx, eq63):
-    """Eq 63: B G_q q_s is the rate du*/ds at which the surface point follows the tool (E f(u*) = E G)."""
-    ps = probes(ctx)
-    errs = np.array(
-        [
-            np.abs(
-                np.asarray(eq63(p.f_u, p.rows)) @ (p.Gq * p.qs[None, :]) - p.meaning("du_ds", p.rows)
-            ).max()
-            for p in ps
-        ]
-    )
-    m = (Measure("max |B G_q q_s - du*/ds|", errs.max(), 1e-6),)
-    return _formula_row(
-        "eq63",
-        "Eq 63",
-        "Eq 63: B = [E f_u]^-1 E (E two independent rows of f_u) maps the tool's motion to the "
-        "surface's parameters: B G_q q_s = du*/ds.",
-        m,
-        f"max difference {errs.max():.2g} over {len(ps)} points (E the best-conditioned row pair)",
-        "B = [E f_u]^-1 E",
-        "-",
-        _worst(ps, errs),
-        _domain(ps),
-    )
-
-
-# ----------------------------------------------------------------------------- Eq 62, 64, 65
-def _q_plus(H, B, Gq, qs, Nf_uu):
-    return 2 * H - eq65_q_star(H, B, Gq, qs, Nf_uu)
-
-
-@SECTION.check(
-    47.9,
-    forms=Forms.right(
-        eq65_q_star,
-        (
-            Slip(SlipKind.SIGN, "H* + q_s^T G_q^T B^T [N0 f]_uu B G_q q_s", _q_plus),
-            Slip(SlipKind.TERM, "Q* = H* (the curvature term of Eq 62 left out)", lambda H, B, Gq, qs, Nf: H),
-        ),
-        tolerance=epsilon(eq65_q_star, 1e-6),
-    ),
-)
-def eq65_q(ctx, eq65):
-    """Eq 62, 64, 65: Q* = H* - q_s^T G_q^T B^T [N0 f]_uu B G_q q_s is the Hessian in s of the tool's normal
-    distance from the surface (eta = s'^T Q* s')."""
-    ps = probes(ctx)
-    errs = []
-    for p in ps:
-        H = eq61_h_star(p.N0, p.Hq, p.Gq, p.qs, p.qss)
-        B = eq63_b(p.f_u, p.rows)
-        errs.append(
-            np.abs(np.asarray(eq65(H, B, p.Gq, p.qs, p.nf_uu())) - p.meaning("q_star", p.rows)).max() * 1e3
-        )
-    errs = np.array(errs)
-    m = (Measure("max |Q* of Eq 65 - Hessian of the normal distance|", errs.max(), TOL, "mm"),)
-    return _formula_row(
-        "eq65",
-        "Eq 62-65",
-        "Eq 62-65: Q* = H* - q_s^T G_q^T B^T [N0 f]_uu B G_q q_s is the second derivative in s "
-        "of the tool's normal distance from the singular surface (the normal acceleration eta = s'^T Q* s', "
-        "Eq 57).",
-        m,
-        f"max difference {errs.max():.2g} mm over {len(ps)} points",
-        "Q* = ...",
-        "-",
-        _worst(ps, errs),
-        _domain(ps),
-    )
 
 
 # ----------------------------------------------------------------------------- Eq 66-67
@@ -402,7 +287,7 @@ def _sigma_next_joint(N0, Gq, q0):
 
 
 @SECTION.check(
-    48.0,
+    "Eq 66",
     forms=Forms.right(
         eq66_67_printed,
         (
@@ -439,7 +324,7 @@ def eq66_67_sigma(ctx, eq66):
 
 
 # ----------------------------------------------------------------------------- Eq 68
-def _sigma_zero_points(ctx) -> list[Probe]:
+def _sigma_zero_points(ctx) -> Probes:
     """Points of s(24)-s(27) (theta2 and theta4 at limits, theta3 = 0, free theta1, theta5) where Eq 66
     vanishes for one of the joints at a limit: theta5 = 0 (sigma_4 = 0) and the roots of sigma_2(theta5), at
     random theta1 (cached)."""
@@ -485,8 +370,10 @@ def _sigma_zero_points(ctx) -> list[Probe]:
         # a sign change of the unnormalised normal through zero (tangents parallel) is not a root of sigma
         if p is not None and abs(p.sp.sigma(j, 1.0)) < 1e-7:
             res.append((j, p))
-    ctx.cache[key] = res
-    return res
+    ctx.cache[key] = Probes(res, f"{len(res)} points of s(24)-s(27) (theta2, theta4 at limits, theta3 = 0) "
+                            "where sigma_4 = 0 (theta5 = 0) or sigma_2 = 0 (roots in theta5), theta1 "
+                            "random in Table I")
+    return ctx.cache[key]
 
 
 def _s2_grid(q_at, grid) -> np.ndarray:
@@ -505,52 +392,25 @@ def eq68_printed(g, B, Nf_uu, NG_ii):
     return eq68_kbar(g, B, Nf_uu, NG_ii)
 
 
-def _kbar_swapped(g, B, Nf_uu, NG_ii):
-    return -eq68_kbar(g, B, Nf_uu, NG_ii)
-
-
-def _kbar_no_b(g, B, Nf_uu, NG_ii):
-    return float(-NG_ii)
-
-
 def _kbar_at(p: Probe, j: int, form) -> float:
     NG_qq = np.einsum("k,kij->ij", p.N0, p.Hq)
     return float(form(p.Gq[:, j - 1], eq63_b(p.f_u, p.rows), p.nf_uu(), NG_qq[j - 1, j - 1]))
 
 
-@SECTION.check(
-    48.1,
-    forms=Forms.right(
-        eq68_printed,
-        (
-            Slip(SlipKind.SIGN, "the two terms of Eq 68 exchanged", _kbar_swapped),
-            Slip(SlipKind.TERM, "without the G_qi^T B^T [N0 G]_uu B G_qi term", _kbar_no_b),
-        ),
-        tolerance=epsilon(eq68_printed, 1e-6),
-    ),
-)
-def eq68_kbar_value(ctx, eq68):
-    """Eq 68 evaluated where the text applies it (Eq 66 = 0): K-bar is minus the second derivative of the
-    tool's normal distance from the surface as joint i alone leaves its limit."""
-    pts = _sigma_zero_points(ctx)
-    errs = np.array([abs(_kbar_at(p, j, eq68) - p.meaning("kbar", j, p.rows)) * 1e3 for j, p in pts])
-    vals = [f"{_kbar_at(p, j, eq68_printed) * 1e3:.1f}" for j, p in pts]
-    m = (Measure("max |K-bar of Eq 68 - (-d2 phi/dq_i^2)|", errs.max(), TOL, "mm"),)
-    return Row.graded(
-        "Eq 68: K-bar = G_qi^T B^T [N0 G]_uu B G_qi - [N0 G]_qiqi, the difference in normal curvature, is "
-        "minus "
-        "the second derivative of the tool's normal distance from the surface along joint i (where Eq 66 = "
-        "0).",
-        "Eq 68",
-        "Eq 68 as printed (Pinocchio) vs the second derivative of the normal distance phi along joint i "
-        "alone (verification.oracles.normal_distance), at the points where sigma_i = 0",
-        f"{len(pts)} points, K-bar = {', '.join(vals)} mm; max difference {errs.max():.2g} mm",
-        m,
-        id="eq68",
-        domain=f"{len(pts)} points of s(24)-s(27) (theta2, theta4 at limits, theta3 = 0) where sigma_4 = 0 "
-        "(theta5 = 0) or sigma_2 = 0 (roots in theta5), theta1 random in Table I",
-        erratum=Erratum("Eq 68", "K-bar = ...", "-", f"max difference {errs.max():.3g} mm"),
-    )
+FORMULAS.update(SECTION.formulas(
+    _sigma_zero_points,
+    Formula("Eq 68", eq68_printed, lambda pts, f: np.array(
+        [abs(_kbar_at(p, j, f) - p.meaning("kbar", j, p.rows)) * 1e3 for j, p in pts]), TOL, "mm", (
+        Slip(SlipKind.SIGN, "the two terms of Eq 68 exchanged",
+             lambda g, B, Nf, NG: -eq68_kbar(g, B, Nf, NG)),
+        Slip(SlipKind.TERM, "without the G_qi^T B^T [N0 G]_uu B G_qi term", lambda g, B, Nf, NG: float(-NG)),
+    ), eps=1e-6, text="K-bar = ...",
+        method="Eq 68 as printed (Pinocchio) vs the second derivative of the normal distance phi along "
+        "joint i alone (verification.oracles.normal_distance), at the points where sigma_i = 0",
+        note=lambda pts, err: "K-bar = "
+        + ", ".join(f"{_kbar_at(p, j, eq68_printed) * 1e3:.1f}" for j, p in pts) + " mm",
+        measure="max |K-bar of Eq 68 - (-d2 phi/dq_i^2)|"),
+))
 
 
 def rule_printed(kbar: float) -> float:
@@ -606,7 +466,7 @@ def rule_reading(pts, rule):
 
 
 @SECTION.check(
-    48.2,
+    "Eq 68",
     forms=Forms(
         rule_printed,
         rule_corrected,
