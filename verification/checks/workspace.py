@@ -11,6 +11,7 @@ transcribed in :func:`eq36_41_printed`.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
@@ -21,6 +22,7 @@ from iik import THESIS_ARM
 from iik.workspace import in_workspace, tool_positions
 
 from ..assumptions import EXACT_GEOMETRY
+from ..formula import Formula, Points
 from ..numbers import fmt_vec
 from ..oracles.pinocchio_model import joint_placements
 from ..oracles.reachability import oracle_for
@@ -35,7 +37,6 @@ from ..registry import (
     SlipKind,
     Verdict,
     epsilon,
-    off_by,
     verdict_of,
 )
 from ..second_reading import Kind, Reading, search
@@ -44,7 +45,7 @@ from ..shorthand import cos_sin, wrap
 _D = np.pi / 180
 ARM = iik.THESIS_ARM
 _DEP = ("l1", "lengths", "reachability")
-SECTION = Section("Workspace (Sec 3.4.3-3.4.4, Eq 36-41, App. G)", depends_on=_DEP)
+SECTION = Section("Workspace (Sec 3.4.3-3.4.4, Eq 36-41, App. G)", depends_on=_DEP, order=40.0)
 #: IK residuals in (1e-6, AMBIGUOUS) m mark the oracle's boundary band: such points are not graded.
 AMBIGUOUS = 1e-4
 
@@ -335,7 +336,7 @@ _COMPOSITE = (
 
 
 @SECTION.check(
-    40.0,
+    "Eq 36",
     forms=Forms(
         printed=eq36_41_printed,
         good=partial(in_workspace, arm=ARM),
@@ -443,7 +444,7 @@ def _joint2_nearest_theta1(P: np.ndarray, n: int = 3600) -> np.ndarray:
 
 
 @SECTION.check(
-    40.05,
+    "Eq 36",
     depends_on=EXACT_GEOMETRY,
     forms=Forms.right(
         eq36_printed,
@@ -509,37 +510,19 @@ def _joint(q: np.ndarray, frame: int) -> np.ndarray:
     return joint_placements(q)[:, frame, :3, 3]
 
 
-@SECTION.check(
-    40.1,
-    depends_on=EXACT_GEOMETRY,
-    forms=Forms.right(
-        eq37_printed,
-        (
-            Slip(SlipKind.SWAP, "[l2 sin(phi), l2 cos(phi), l1]", lambda phi: eq37_printed(phi)[:, [1, 0,
-                2]]),
-            Slip(SlipKind.LENGTH, "l3 for l2",
-                lambda phi: eq37_printed(phi) * np.array([ARM.l3 / ARM.l2] * 2 + [1])),
-        ),
-        tolerance=epsilon(eq37_printed, 1e-9, "each coordinate moved by 1 nm"),
-    ),
-)
-def eq37_joint2(ctx, eq37):
-    """Eq 37: joint 2 when theta1 = phi, vs Pinocchio."""
-    phi = ctx.rng("eq37").uniform(-np.pi, np.pi, ctx.n(500, 50))
-    q = np.zeros((len(phi), 6))
-    q[:, 0] = phi
-    err = np.linalg.norm(eq37(phi) - _joint(q, 2), axis=1)
-    m = (Measure("max |printed - joint 2|", err.max(), 1e-12, "m"),)
-    return Row.graded(
-        "Joint 2 is at [l2 cos(phi), l2 sin(phi), l1] when theta1 = phi.",
-        "Eq 37",
-        f"printed point vs the origin of frame 2 (Pinocchio) at theta1 = phi, {len(phi)} phi",
-        f"max |printed - Pinocchio| = {err.max():.1e} m",
-        m,
-        id="eq37",
-        domain=f"{len(phi)} phi uniform over the whole turn (theta1 = phi, the other joints 0)",
-        erratum=Erratum("Eq 37", "as printed", "frame 2 origin", f"error {err.max():.3g} m"),
-    )
+def _phi_sample(ctx) -> Points:
+    n = ctx.n(500, 50)
+    return Points(ctx.rng("eq37").uniform(-np.pi, np.pi, n), f"{n} phi uniform over the whole turn (theta1 "
+        "= phi, "
+                  "the other joints 0)", "rad", "phi")
+
+
+def _joints_at(th1, th2, frame: int) -> np.ndarray:
+    """Joint ``frame``'s position (Pinocchio) with joints 1-2 at ``th1``, ``th2`` and the others 0 [m]."""
+    th1, th2 = np.broadcast_arrays(th1, th2)
+    q = np.zeros((len(th1), 6))
+    q[:, 0], q[:, 1] = th1, th2
+    return _joint(q, frame)
 
 
 def _region_forms(good_is: str, bad_is: str, slips: tuple, **test) -> Forms:
@@ -555,7 +538,7 @@ def _region_forms(good_is: str, bad_is: str, slips: tuple, **test) -> Forms:
 
 
 @SECTION.check(
-    40.2,
+    "Eq 38",
     forms=_region_forms(
         "the printed test (it is right)",
         "the reach l3 + l4 + l5 shortened by 5 mm",
@@ -686,55 +669,24 @@ def _eq39_atan(P, th1):
     return clip_angle(-np.arctan((P[:, 2] - ARM.l1) / (u - ARM.l2)), ARM.lower[1], ARM.upper[1])
 
 
-@SECTION.check(
-    40.3,
-    depends_on=("l1", "lengths"),
-    forms=Forms(
-        printed=eq39_printed,
-        good=eq39_corrected,
-        good_is="theta2 = -atan2(pz - l1, u - l2), u along the joint-1 limit direction, limited to Table I "
-        "by the nearer limit on the circle",
-        slips=(
-            Slip(SlipKind.SIGN, "+atan2(pz - l1, u - l2)", _eq39_plus),
-            Slip(SlipKind.SWAP, "atan2's arguments exchanged", _eq39_swapped),
-            Slip(SlipKind.FUNCTION, "atan((pz - l1) / (u - l2)) for atan2 (the quadrant lost)", _eq39_atan),
-        ),
-        tolerance=Slip(SlipKind.EPSILON, "the good theta2 + 1 mrad", off_by(eq39_corrected, 1e-3)),
-    ),
-)
-def eq39_theta2(ctx, eq39):
-    """Eq 39: the theta2 at which joint 4 comes nearest to the point (joint 1 at 160 deg)."""
-    P, th1 = _rear_points(ctx)
+@dataclass(frozen=True)
+class RearPoints(Points):
+    """Points behind the arm (regions 2/3) with joint 1 at ``th1`` [rad] and ``best``, the theta2 [rad] that
+    brings joint 4 nearest to each (grid and golden-section search)."""
+
+    th1: float = 160 * _D
+    best: np.ndarray | None = None
+
+
+def _rear_sample(ctx) -> RearPoints:
     key = ("workspace.eq39_nearest", ctx.quick)
+    P, th1 = _rear_points(ctx)
     if key not in ctx.cache:
         ctx.cache[key] = _nearest_joint4_theta2(P, th1)
-    best = ctx.cache[key]
-    err = np.abs(eq39(P, th1) - best)
-    m = (Measure("max |theta2 of the form - nearest-joint-4 theta2|", err.max(), 1e-6, "rad"),)
-    k = int(np.argmax(err))
-    row = Row.graded(
-        "Regions 2/3: the farthest reach toward the point is at theta2 = -atan2(pz - l1, sqrt(px^2 + py^2)) "
-        "(link 3 aimed at the point's height).",
-        "Eq 39",
-        f"{len(P)} points behind the arm (azimuth 160-200 deg): the theta2 within Table I that puts joint 4 "
-        "(joint 1 at 160 deg) nearest to the point, by grid and golden-section search, vs the form",
-        f"max |form - nearest| = {err.max():.3g} rad (median {np.median(err):.3g})",
-        m,
-        id="eq39",
-        erratum=Erratum(
-            "Eq 39",
-            "theta2 = -atan2(pz - l1, sqrt(px^2 + py^2)) (link 3 aimed from the base axis)",
-            "theta2 = -atan2(pz - l1, u - l2), u = px cos(th1) + py sin(th1), limited to Table I by the "
-            "nearer limit on the circle (aimed "
-            "from joint 2: the nearest joint-4 position)",
-            f"p = {fmt_vec(P[k])} m: Eq 39 gives theta2 = {eq39(P[k : k + 1], th1)[0]:.4f} rad, the "
-            f"nearest joint 4 is at theta2 = {best[k]:.4f} rad",
-        ),
-        domain=f"{len(P)} points at azimuth 160-200 deg, radius 0.05-0.9 m (a quarter 0.01-0.2 m: within l2 "
-        "of the "
-        "axis, where u - l2 changes sign), z from -0.5 to 1.1 m (theta2 clipped at both Table I limits)",
-    )
-    return row.reread(eq39_reading(ctx, P, th1, eq39)) if row.verdict is Verdict.ERRATUM else row
+    return RearPoints(P, f"{len(P)} points at azimuth 160-200 deg, radius 0.05-0.9 m (a quarter 0.01-0.2 m: "
+                      "within l2 of the axis, where u - l2 changes sign), z from -0.5 to 1.1 m (theta2 "
+                      "clipped at "
+                      "both Table I limits)", th1=th1, best=ctx.cache[key])
 
 
 def eq40_printed(th1, th2):
@@ -789,54 +741,60 @@ def _eq40_cos_sin(th1, th2):
     return out
 
 
-@SECTION.check(
-    40.4,
-    depends_on=EXACT_GEOMETRY,
-    forms=Forms(
-        eq40_printed,
-        eq40_corrected,
-        "(l2 + l3 c2) (cos th1, sin th1), l1 - l3 s2",
-        slips=(
+def _theta2_sample(ctx) -> Points:
+    n = ctx.n(500, 50)
+    return Points(ctx.rng("eq40").uniform(ARM.lower[1], ARM.upper[1], n),
+                  f"{n} theta2 uniform over Table I (-120..95 deg), joint 1 at 160 deg", "rad", "theta2")
+
+
+CHECKS = {
+    **SECTION.formulas(_phi_sample, Formula(
+        "Eq 37", eq37_printed, lambda s, f: np.linalg.norm(f(s.values) - _joints_at(s.values, 0.0, 2),
+                                                           axis=1), 1e-12, "m", (
+            Slip(SlipKind.SWAP, "[l2 sin(phi), l2 cos(phi), l1]",
+                 lambda phi: eq37_printed(phi)[:, [1, 0, 2]]),
+            Slip(SlipKind.LENGTH, "l3 for l2",
+                 lambda phi: eq37_printed(phi) * np.array([ARM.l3 / ARM.l2] * 2 + [1])),
+        ), eps_is="each coordinate moved by 1 nm", depends_on=EXACT_GEOMETRY,
+        method="printed point vs the origin of frame 2 (Pinocchio) at theta1 = phi, {n} phi")),
+    **SECTION.formulas(_rear_sample, Formula(
+        "Eq 39", eq39_printed, lambda s, f: np.abs(f(s.values, s.th1) - s.best), 1e-6, "rad", (
+            Slip(SlipKind.SIGN, "+atan2(pz - l1, u - l2)", _eq39_plus),
+            Slip(SlipKind.SWAP, "atan2's arguments exchanged", _eq39_swapped),
+            Slip(SlipKind.FUNCTION, "atan((pz - l1) / (u - l2)) for atan2 (the quadrant lost)", _eq39_atan),
+        ), good=eq39_corrected, good_is="theta2 = -atan2(pz - l1, u - l2), u along the joint-1 limit "
+            "direction, "
+        "limited to Table I by the nearer limit on the circle", eps=1e-3, eps_is="the good theta2 + 1 mrad",
+        depends_on=("l1", "lengths"),
+        text="theta2 = -atan2(pz - l1, sqrt(px^2 + py^2)) (link 3 aimed from the base axis)",
+        corrected="theta2 = -atan2(pz - l1, u - l2), u = px cos(th1) + py sin(th1), limited to Table I by "
+        "the nearer limit on the circle (aimed from joint 2: the nearest joint-4 position)",
+        method="{n} points behind the arm (azimuth 160-200 deg): the theta2 within Table I that puts joint 4 "
+        "(joint 1 at 160 deg) nearest to the point, by grid and golden-section search, vs the form",
+        note=lambda s, err: f"median |form - nearest| {np.median(err):.3g} rad",
+        reread=lambda ctx, s, f: eq39_reading(ctx, s.values, s.th1, f))),
+    **SECTION.formulas(_theta2_sample, Formula(
+        "Eq 40", eq40_printed, lambda s, f: np.linalg.norm(f(np.full(len(s), 160 * _D), s.values)
+                                                           - _joints_at(160 * _D, s.values, 3), axis=1),
+        1e-12, "m", (
             Slip(SlipKind.SIGN, "(l2 - l3 c2)", eq40_printed),
             Slip(SlipKind.FUNCTION, "s2 for c2 in x4", _eq40_cos_sin),
             Slip(SlipKind.LENGTH, "l4 for l3", lambda t1, t2: eq40_corrected(t1, t2) + np.stack(
                 [(ARM.l4 - ARM.l3) * np.cos(t2) * np.cos(t1), (ARM.l4 - ARM.l3) * np.cos(t2) * np.sin(t1),
                  -(ARM.l4 - ARM.l3) * np.sin(t2)], 1)),
-        ),
-        tolerance=epsilon(eq40_corrected, 1e-9, "the good point moved by 1 nm"),
-    ),
-)
-def eq40_joint4(ctx, eq40):
-    """Eq 40: joint 4 with joint 1 at 160 deg, vs Pinocchio."""
-    th2 = ctx.rng("eq40").uniform(ARM.lower[1], ARM.upper[1], ctx.n(500, 50))
-    q = np.zeros((len(th2), 6))
-    q[:, 0], q[:, 1] = 160 * _D, th2
-    err = np.linalg.norm(eq40(q[:, 0], th2) - _joint(q, 3), axis=1)
-    m = (Measure("max |printed - joint 4|", err.max(), 1e-12, "m"),)
-    k = int(np.argmax(err))
-    row = Row.graded(
-        "Joint 4 is at [(l2 - l3 c2) cos 160, (l2 - l3 c2) sin 160, l1 - l3 s2] with joint 1 at 160 deg.",
-        "Eq 40",
-        f"printed point vs the origin of frames 3-4 (Pinocchio), theta1 = 160 deg, {len(th2)} theta2 "
-        "within Table I",
-        f"max |printed - Pinocchio| = {err.max():.3g} m (= 2 l3 |c2| at most)",
-        m,
-        id="eq40",
-        erratum=Erratum(
-            "Eq 40",
-            "x4 = (l2 - l3 c2) cos(160 deg), y4 = (l2 - l3 c2) sin(160 deg)",
-            "x4 = (l2 + l3 c2) cos(th1), y4 = (l2 + l3 c2) sin(th1) (joint 4 is l3 beyond joint 2 along "
-            "link 3, Table II / Eq 4; th1 = -160 deg in region 3)",
-            f"theta1 = 160 deg, theta2 = {th2[k]:.4f} rad: printed joint 4 is {err[k] * 1e3:.0f} mm from "
-            "the true one",
-        ),
-        domain=f"{len(th2)} theta2 uniform over Table I (-120..95 deg), joint 1 at 160 deg",
-    )
-    return row.reread(eq40_reading(th2, eq40)) if row.verdict is Verdict.ERRATUM else row
+        ), good=eq40_corrected, good_is="(l2 + l3 c2) (cos th1, sin th1), l1 - l3 s2",
+        eps_is="the good point moved by 1 nm", depends_on=EXACT_GEOMETRY,
+        text="x4 = (l2 - l3 c2) cos(160 deg), y4 = (l2 - l3 c2) sin(160 deg)",
+        corrected="x4 = (l2 + l3 c2) cos(th1), y4 = (l2 + l3 c2) sin(th1) (joint 4 is l3 beyond joint 2 "
+        "along link 3, Table II / Eq 4; th1 = -160 deg in region 3)",
+        method="printed point vs the origin of frames 3-4 (Pinocchio), theta1 = 160 deg, {n} theta2 within "
+        "Table I", note=lambda s, err: "= 2 l3 |c2| at most",
+        reread=lambda ctx, s, f: eq40_reading(s.values, f))),
+}
 
 
 @SECTION.check(
-    40.5,
+    "Eq 41",
     forms=_region_forms(
         "the printed test (with Eq 39-40 corrected it is right)",
         "the reach l4 + l5 shortened by 5 mm",

@@ -56,12 +56,12 @@ def test_eq36_has_its_own_row(ctx):
 
 
 def test_eq39_eq40_errata_against_exact_geometry(ctx):
-    r39 = W.eq39_theta2(ctx, W.eq39_printed)
+    r39 = W.CHECKS["eq39"](ctx, W.eq39_printed)
     assert r39.verdict is Verdict.ERRATUM and r39.errata[0].equation == "Eq 39"
-    assert W.eq39_theta2(ctx, W.eq39_corrected).verdict is Verdict.HOLDS
-    r40 = W.eq40_joint4(ctx, W.eq40_printed)
+    assert W.CHECKS["eq39"](ctx, W.eq39_corrected).verdict is Verdict.HOLDS
+    r40 = W.CHECKS["eq40"](ctx, W.eq40_printed)
     assert r40.verdict is Verdict.ERRATUM and r40.measures[0].value > 0.1  # metres off
-    assert W.eq40_joint4(ctx, W.eq40_corrected).verdict is Verdict.HOLDS
+    assert W.CHECKS["eq40"](ctx, W.eq40_corrected).verdict is Verdict.HOLDS
 
 
 def test_boundary_claims(ctx):
