@@ -322,6 +322,11 @@ class Row:
             **fields,
         )
 
+    def reread_if_erratum(self, second: Callable[[], SecondReading]) -> Row:
+        """:meth:`reread` by ``second()`` if this row is an erratum (the search runs only then), else the
+        row itself."""
+        return self.reread(second()) if self.verdict is Verdict.ERRATUM else self
+
     def reread(self, second: SecondReading) -> Row:
         """This row after the second reading ``second`` of its printed value.
 

@@ -27,6 +27,7 @@ from iik.rotations import rotation_angle
 from iik.urdf import thesis_urdf, urdf_from_dh
 
 from ..assumptions import EXACT_GEOMETRY
+from ..formula import Points, error_row
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements, thesis_model, tool_jacobians, tool_poses
 from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
@@ -59,7 +60,8 @@ _DEG = np.pi / 180
 #: The joint vector [rad] used as counterexample where any generic q would do.
 Q_COUNTEREXAMPLE = np.array([0.3, -0.4, 0.5, 0.6, -0.7, 0.8])
 SECTION = Section(
-    "Kinematics (Tables I-II, Eq 1, Eq 4, Eq 34-35, App. B, App. C, Eq 42)", depends_on=EXACT_GEOMETRY
+    "Kinematics (Tables I-II, Eq 1, Eq 4, Eq 34-35, App. B, App. C, Eq 42)", depends_on=EXACT_GEOMETRY,
+    order=10.0,
 )
 
 
@@ -594,7 +596,7 @@ def urdf_is_generated(ctx):
 
 
 @SECTION.check(
-    12.0,
+    "Eq 4",
     forms=Forms(
         printed=eq4_printed,
         good=eq4_from_table_ii,
@@ -630,8 +632,7 @@ def eq4_vs_pinocchio(ctx, eq4):
         f"Eq 4 transcribed as printed; {len(qs)} q (uniform in Table I widened by {BEYOND} rad, plus the 729 "
         "corners {lower, 0, upper}^6 in full runs); vs Pinocchio framesForwardKinematics of "
         "urdf/thesis_arm.urdf (frame 'tool')",
-        f"max |dp| = {dp.max():.1e} m (at {fmt_q(qs[k])}), max |dR_ij| = {dR.max():.1e}; tolerance "
-        f"{TOL_EXACT:g}",
+        None,
         m,
         id="eq4",
         domain=_JOINT_DOMAIN.format(n=len(qs)),
@@ -717,7 +718,7 @@ def _table_offsets_shifted() -> DHTable:
 
 
 @SECTION.check(
-    13.0,
+    "Eq 1",
     forms=Forms(
         printed=table_ii_printed(),
         good=THESIS_ARM.dh_table(),
@@ -740,17 +741,15 @@ def table_ii_vs_eq4(ctx, table):
         Measure("max |T_TableII - T_Eq4|", d4.max(), TOL_EXACT),
         Measure("max |T_TableII - T_Pinocchio|", dpin.max(), TOL_EXACT),
     )
-    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
-    return Row(
+    return Row.graded(
         "Eq 4 is the product 0_1T ... 5_6T (Eq 1) of the Table II link transforms.",
         "Eq 1, Table II, Eq 4",
         f"Modified-DH product (Craig) of the printed Table II vs Eq 4 as printed and vs Pinocchio, {len(qs)} "
-        "q",
-        f"max over q and entries |T_TableII - T_Eq4| = {d4.max():.1e}, |T_TableII - T_Pinocchio| = "
-        f"{dpin.max():.1e} (m for p, - for R)",
-        verdict,
+        "q (m for p, - for R)",
+        None,
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="table_ii_product",
-        measures=m,
         domain=_JOINT_DOMAIN.format(n=len(qs)),
     )
 
@@ -881,7 +880,7 @@ def _pin_links(qs) -> np.ndarray:
 
 
 @SECTION.check(
-    14.0,
+    "App. B",
     depends_on=EXACT_GEOMETRY + ("text",),
     forms=Forms(
         printed=appb_modified_printed,
@@ -897,100 +896,55 @@ def appendix_b(ctx, appb):
     qs = _samples(ctx, "appb", 2000, 100)
     pin_links = _cached(ctx, ("kin.appb.links", ctx.quick), lambda: _pin_links(qs))
     printed = np.stack([np.stack(appb(q), 0) for q in qs], 0)  # (n, 6, 4, 4)
+    P_q, T_q = appb(Q_COUNTEREXAMPLE), _pin_links(Q_COUNTEREXAMPLE[None])[0]
     rows = []
     for i, nm in enumerate(_APPB_NAMES):
-        d_pin = np.abs(printed[:, i] - pin_links[:, i]).max(axis=(1, 2))
         det = np.linalg.det(printed[:, i, :3, :3])
-        garbled = i in (1, 3)
-        meas = (Measure(f"max |{nm} - Pinocchio|", d_pin.max(), TOL_EXACT),)
-        verdict = verdict_of(meas)
-        method = (
-            "Printed matrix ("
-            + ("read from garbled extracted text" if garbled else "cleanly printed")
-            + f") vs Pinocchio's joint-to-joint placement oMi[{i}]^-1 oMi[{i + 1}], {len(qs)} q"
-        )
-        numbers = (
-            f"max |printed - Pinocchio| = {d_pin.max():.2g}; det of printed rotation in "
-            f"[{det.min():.3f}, {det.max():.3f}]"
-        )
-        errata = ()
-        if verdict is not Verdict.HOLDS:
-            q = Q_COUNTEREXAMPLE
-            P_q = appb(q)[i]
-            T_q = _pin_links(q[None])[0, i]
-            diff = np.argwhere(np.abs(P_q - T_q) > 1e-9)
-            entries = (
-                ", ".join(
-                    f"({r + 1},{c + 1}): printed {P_q[r, c]:+.4f}, true {T_q[r, c]:+.4f}" for r, c in diff
-                )
-                or "differences below 1e-9"
-            )
-            errata = (
-                Erratum(
-                    f"App. B {nm}",
-                    APPB_TEXT[i],
-                    APPB_CORRECTED[i],
-                    f"{fmt_q(q)}: {entries}. {_APPB_WHAT.get(i, '')}".strip(),
-                ),
-            )
-        row = Row(
+        diff = np.argwhere(np.abs(P_q[i] - T_q[i]) > 1e-9)
+        entries = ", ".join(f"({r + 1},{c + 1}): printed {P_q[i][r, c]:+.4f}, true {T_q[i][r, c]:+.4f}"
+                            for r, c in diff) or "differences below 1e-9"
+        rows.append(Row.graded(
             f"Appendix B (home-pose set) {nm} is the Table II link transform.",
             f"App. B, {nm}",
-            method,
-            numbers,
-            verdict,
+            f"Printed matrix ({'read from garbled extracted text' if i in (1, 3) else 'cleanly printed'}) vs "
+            f"Pinocchio's joint-to-joint placement oMi[{i}]^-1 oMi[{i + 1}], {len(qs)} q; det of the printed "
+            f"rotation in [{det.min():.3f}, {det.max():.3f}]",
+            None,
+            (Measure(f"max |{nm} - Pinocchio|", np.abs(printed[:, i] - pin_links[:, i]).max(), TOL_EXACT),),
             id=f"appb.t{nm[0]}{nm[2]}",
-            measures=meas,
-            errata=errata,
-            reason="may partly be a text-extraction loss of a minus sign; the printed product does "
-            "not reproduce Eq 4 either (next row)"
-            if (i == 2 and errata)
-            else "",
+            erratum=Erratum(f"App. B {nm}", APPB_TEXT[i], APPB_CORRECTED[i],
+                            f"{fmt_q(Q_COUNTEREXAMPLE)}: {entries}. {_APPB_WHAT.get(i, '')}".strip()),
+            reason="may partly be a text-extraction loss of a minus sign; the printed product does not "
+            "reproduce Eq 4 either (next row)" if i == 2 else "",
             domain=_JOINT_DOMAIN.format(n=len(qs)),
-        )
-        rows.append(row.reread(appb_reading(i, printed[:, i], qs)) if errata else row)
+        ).reread_if_erratum(lambda i=i: appb_reading(i, printed[:, i], qs)))
     prod = printed[:, 0]
     for i in range(1, 6):
         prod = prod @ printed[:, i]
-    e4 = eq4_printed(qs)
-    d_prod = np.abs(prod - e4).max(axis=(1, 2))
-    meas = (Measure("max |product - Eq 4|", d_prod.max(), TOL_EXACT),)
-    verdict = verdict_of(meas)
-    q0 = np.zeros(6)
-    p_home = np.linalg.multi_dot(appb(q0))[:3, 3]
-    p_ce = np.round(np.linalg.multi_dot(appb(Q_COUNTEREXAMPLE))[:3, 3], 4).tolist()
+    p_home = np.linalg.multi_dot(appb(np.zeros(6)))[:3, 3]
+    p_ce = np.round(np.linalg.multi_dot(P_q)[:3, 3], 4).tolist()
     p_ce4 = np.round(eq4_printed(Q_COUNTEREXAMPLE)[0, :3, 3], 4).tolist()
-    product_row = (
-        Row(
-            "The product of the Appendix B (home-pose set) matrices gives Eq 4.",
-            "App. B, Eq 4",
-            f"Product of the six matrices vs Eq 4 as printed, {len(qs)} q",
-            f"max |dT| = {d_prod.max():.3g}; at q = 0 the product puts the tool point at "
-            f"{np.round(p_home, 3).tolist()} m, Eq 4 at {np.round(eq4_printed(q0)[0, :3, 3], 3).tolist()} m",
-            verdict,
-            id="appb.product",
-            measures=meas,
-            errata=()
-            if verdict is Verdict.HOLDS
-            else (
-                Erratum(
-                    "App. B (product 0_1T..5_6T)",
-                    "product of the printed matrices (2_3T, 5_6T as printed)",
-                    "product with the corrected 2_3T and 5_6T (= Table II, = Eq 4)",
-                    f"{fmt_q(Q_COUNTEREXAMPLE)}: the product puts the tool point at {p_ce} m, Eq 4 at "
-                    f"{p_ce4} m",
-                ),
-            ),
-            domain=_JOINT_DOMAIN.format(n=len(qs)),
-        )
-    )
-    rows.append(product_row if verdict is Verdict.HOLDS else product_row.reread(appb_product_reading(printed,
-        qs)))
+    rows.append(Row.graded(
+        "The product of the Appendix B (home-pose set) matrices gives Eq 4.",
+        "App. B, Eq 4",
+        f"Product of the six matrices vs Eq 4 as printed, {len(qs)} q; at q = 0 the product puts the tool "
+        f"point at {np.round(p_home, 3).tolist()} m, Eq 4 at "
+        f"{np.round(eq4_printed(np.zeros(6))[0, :3, 3], 3).tolist()} m",
+        None,
+        (Measure("max |product - Eq 4|", np.abs(prod - eq4_printed(qs)).max(), TOL_EXACT),),
+        id="appb.product",
+        erratum=Erratum("App. B (product 0_1T..5_6T)",
+                        "product of the printed matrices (2_3T, 5_6T as printed)",
+                        "product with the corrected 2_3T and 5_6T (= Table II, = Eq 4)",
+                        f"{fmt_q(Q_COUNTEREXAMPLE)}: the product puts the tool point at {p_ce} m, Eq 4 at "
+                        f"{p_ce4} m"),
+        domain=_JOINT_DOMAIN.format(n=len(qs)),
+    ).reread_if_erratum(lambda: appb_product_reading(printed, qs)))
     return rows
 
 
 @SECTION.check(
-    14.5,
+    "App. B",
     depends_on=EXACT_GEOMETRY + ("text",),
     forms=Forms(
         printed=appb_first_printed,
@@ -1015,28 +969,18 @@ def appendix_b_first_set(ctx, first):
     T01, R12 = first(qs)
     t01_pin = joint_placements(qs)[:, 1]  # joint 1 has no offset: 0_1T is the same in both sets
     d = max(np.abs(T01 - t01_pin).max(), np.abs(R12 - _first_r12_truth(qs)).max())
-    meas = (Measure("max |printed - truth|", d, TOL_EXACT),)
     return [
-        Row(
+        Row.graded(
             "Appendix B first set ('original transformations', no home offsets): the legible entries.",
             "App. B, first set (legible part)",
             f"0_1T (fully legible) vs Pinocchio's frame 1; the rotation rows 1-2 of 1_2T ('c2 -s2 0', "
             f"'0 0 1') vs Craig's formula on Table II row 2 without its -90 deg offset, {len(qs)} q",
-            f"max |printed - truth| = {d:.1e}",
-            verdict_of(meas),
+            None,
+            (Measure("max |printed - truth|", d, TOL_EXACT),),
             id="appb.first_legible",
             domain=_JOINT_DOMAIN.format(n=len(qs)),
-            measures=meas,
-            errata=()
-            if meas[0].holds
-            else (
-                Erratum(
-                    "App. B, first set",
-                    "0_1T and rows 1-2 of 1_2T as read",
-                    "Craig's formula on Table II rows 1-2, no offsets",
-                    f"max entry error {d:.3g}",
-                ),
-            ),
+            erratum=Erratum("App. B, first set", "0_1T and rows 1-2 of 1_2T as read",
+                            "Craig's formula on Table II rows 1-2, no offsets", f"max entry error {d:.3g}"),
         ),
         Row(
             "Appendix B first set ('original transformations', Craig's convention without the home offsets).",
@@ -1066,7 +1010,7 @@ def _first_r12_truth(qs) -> np.ndarray:
 
 
 @SECTION.check(
-    14.8,
+    "Eq 34a",
     forms=Forms(
         eq55_printed,
         position_from_table_ii,
@@ -1084,56 +1028,27 @@ def _first_r12_truth(qs) -> np.ndarray:
 def eq34_position(ctx, g_theta):
     """Eq 34a-c and Eq 55 (printed identically): the coordinate functions f1, f2, f3 vs Pinocchio."""
     qs, T_pin = _truth_poses(ctx, "appc", 3000, 200)
+    s = Points(qs, _JOINT_DOMAIN.format(n=len(qs)), "rad", "q")
     G = g_theta(qs)
-    rows = []
-    for k, (key, coord) in enumerate((("34a", "px"), ("34b", "py"), ("34c", "pz"))):
-        e = np.abs(G[:, k] - T_pin[:, k, 3])
-        m = (Measure(f"max |f{k + 1} - {coord}|", e.max(), TOL_EXACT, "m"),)
-        v = verdict_of(m)
-        rows.append(
-            Row(
-                f"Eq {key}: f{k + 1}(theta) is the {coord} of the end-effector point (Eq 4)."
-                + (" The f1 line carries no tag in the extracted text." if key == "34a" else ""),
-                f"Eq {key}",
-                f"f{k + 1} transcribed as printed vs Pinocchio's 'tool' position, {len(qs)} q",
-                f"max |f{k + 1} - {coord}_Pinocchio| = {e.max():.1e} m",
-                v,
-                id=f"eq{key}",
-                domain=_JOINT_DOMAIN.format(n=len(qs)),
-                measures=m,
-                errata=()
-                if v is Verdict.HOLDS
-                else (
-                    Erratum(
-                        f"Eq {key}", f"f{k + 1} as printed", f"{coord} of Eq 4", f"max error {e.max():.3g} m"
-                    ),
-                ),
-            )
-        )
-    d55 = np.linalg.norm(G - T_pin[:, :3, 3], axis=1)
-    m = (Measure("max |G_theta - p|", d55.max(), TOL_EXACT, "m"),)
-    v = verdict_of(m)
-    rows.append(
-        Row(
-            "Appendix C: the global position vector G_theta = [f1, f2, f3] is the Eq 4 position.",
-            "Eq 55 (App. C)",
-            f"Eq 55 transcribed as printed (the same functions as Eq 34a-c) vs "
-            f"Pinocchio's 'tool' position, {len(qs)} q",
-            f"max |G_theta - p_Pinocchio| = {d55.max():.1e} m",
-            v,
-            id="eq55",
-            domain=_JOINT_DOMAIN.format(n=len(qs)),
-            measures=m,
-            errata=()
-            if v is Verdict.HOLDS
-            else (Erratum("Eq 55", "G_theta as printed", "p of Eq 4", f"max error {d55.max():.3g} m"),),
-        )
-    )
-    return rows
+    rows = [
+        error_row(s, np.abs(G[:, k] - T_pin[:, k, 3]), TOL_EXACT, "m", key=f"Eq {key}", id=f"eq{key}",
+                  claim=f"Eq {key}: f{k + 1}(theta) is the {coord} of the end-effector point (Eq 4)."
+                  + (" The f1 line carries no tag in the extracted text." if key == "34a" else ""),
+                  method=f"f{k + 1} transcribed as printed vs Pinocchio's 'tool' position, {len(qs)} q",
+                  printed=f"f{k + 1} as printed", corrected=f"{coord} of Eq 4", measure=f"max |f{k + 1} - "
+                      f"{coord}|")
+        for k, (key, coord) in enumerate((("34a", "px"), ("34b", "py"), ("34c", "pz")))
+    ]
+    return rows + [error_row(
+        s, np.linalg.norm(G - T_pin[:, :3, 3], axis=1), TOL_EXACT, "m", key="Eq 55 (App. C)", id="eq55",
+        claim="Appendix C: the global position vector G_theta = [f1, f2, f3] is the Eq 4 position.",
+        method="Eq 55 transcribed as printed (the same functions as Eq 34a-c) vs Pinocchio's 'tool' "
+            "position, "
+        f"{len(qs)} q", printed="G_theta as printed", corrected="p of Eq 4", measure="max |G_theta - p|")]
 
 
 @SECTION.check(
-    14.9,
+    "Eq 34",
     depends_on=("pinocchio",),
     forms=Forms(
         printed=EQ34_ARGUMENTS,
@@ -1183,7 +1098,7 @@ def eq34_arguments(ctx, arguments):
 
 
 @SECTION.check(
-    15.0,
+    "Eq 56",
     forms=Forms(
         printed=appc_printed,
         good=appc_from_iik,
@@ -1383,7 +1298,7 @@ def _eq42_compare(ctx, eq42):
 
 
 @SECTION.check(
-    16.0,
+    "Eq 42",
     depends_on=("text",),
     forms=Forms(
         printed=eq42_printed,
@@ -1449,7 +1364,7 @@ def eq42_matrix(ctx, eq42):
 
 
 @SECTION.check(
-    16.1,
+    "Eq 42",
     depends_on=("text",),
     forms=Forms(
         printed=eq42_printed,
