@@ -281,30 +281,28 @@ def eq8_plane(ctx, eq8):
     """Eq 8: the expansion of Eq 5, as an identity in (theta1, theta2) and zero at the solution."""
     s = sample(ctx)
     rng = ctx.rng("eq8-any")
-    th1, th2 = rng.uniform(-np.pi, np.pi, len(s.q)), rng.uniform(-np.pi, np.pi, len(s.q))
-    ident = np.abs(eq8(s.R, s.D, th1, th2) - eq8_geometric(s.R, s.D, th1, th2))
-    at_q = np.abs(eq8(s.R, s.D, s.q[:, 0], s.q[:, 1]))
-    m = (
-        Measure("max |Eq 8 - z6.((D-B) x u)| at any (theta1, theta2)", ident.max(), TOL, "m^2"),
-        Measure("max |Eq 8| at the generating q", at_q.max(), TOL, "m^2"),
-    )
+    th = np.stack([rng.uniform(-np.pi, np.pi, len(s.q)), rng.uniform(-np.pi, np.pi, len(s.q))], 1)
+    return _identity_row(
+        s, "Eq 8", "Substituting Eq 6 and 7 into Eq 5 gives Eq 8, which vanishes at the solution.",
+        f"Eq 8 as printed with the true D and z6 of {len(s.q)} random poses: (a) against the triple product "
+        "of Eq 5 with Eq 6-7 at random (theta1, theta2) (Eq 8 = -[ED x DC].BC / l3), (b) at the generating "
+        "(theta1, theta2)", lambda t1, t2: eq8(s.R, s.D, t1, t2), th,
+        eq8_geometric(s.R, s.D, th[:, 0], th[:, 1]), "z6 . ((D - B) x u)", "[-pi, pi]^2")
+
+
+def _identity_row(s: Sample, key: str, claim: str, method: str, form, th, truth, corrected: str,
+                  where: str) -> Row:
+    """A printed equation E(theta1, theta2) = 0 graded (a) as an identity: ``form`` against ``truth`` at the
+    angles ``th`` (n, 2) uniform in ``where``, (b) at the solution: ``form`` at the generating angles."""
+    ident = np.abs(form(th[:, 0], th[:, 1]) - truth)
     k = int(np.argmax(ident))
     return Row.graded(
-        "Substituting Eq 6 and 7 into Eq 5 gives Eq 8, which vanishes at the solution.",
-        "Eq 8",
-        f"Eq 8 as printed with the true D and z6 of {len(s.q)} random poses: (a) against the triple product "
-        "of Eq 5 with Eq 6-7 at random (theta1, theta2), (b) at the generating (theta1, theta2)",
-        f"(a) max difference {ident.max():.1e} m^2 (Eq 8 = -[ED x DC].BC / l3); (b) max |Eq 8| = "
-        f"{at_q.max():.1e} m^2",
-        m,
-        id="eq8",
-        domain=s.domain + "; (a) at (theta1, theta2) uniform in [-pi, pi]^2",
-        erratum=Erratum(
-            "Eq 8",
-            "Eq 8 as printed",
-            "z6 . ((D - B) x u)",
-            f"{fmt_q(s.q[k])}, theta1 = {th1[k]:.4f}, theta2 = {th2[k]:.4f}: difference {ident[k]:.3g}",
-        ),
+        claim, key, method, None,
+        (Measure(f"max |{key} - ({corrected})| at any (theta1, theta2)", ident.max(), TOL, "m^2"),
+         Measure(f"max |{key}| at the generating q", np.abs(form(s.q[:, 0], s.q[:, 1])).max(), TOL, "m^2")),
+        id=key.lower().replace(" ", ""), domain=s.domain + f"; (a) at (theta1, theta2) uniform in {where}",
+        erratum=Erratum(key, f"{key} as printed", corrected, f"{fmt_q(s.q[k])}, theta1 = {th[k, 0]:.4f}, "
+                        f"theta2 = {th[k, 1]:.4f}: difference {ident[k]:.3g} m^2"),
     )
 
 
@@ -545,37 +543,16 @@ def _eq11_swap(D, th1, th2):
 def eq11_error(ctx, eq11):
     """Eq 11 as an identity in (theta1, theta2) (|D - C|^2 - l4^2, C from Pinocchio), zero at the solution."""
     s = sample(ctx)
-    rng = ctx.rng("eq11-any")
-    th = rng.uniform(ARM.q_min[:2], ARM.q_max[:2], (len(s.q), 2))
+    th = ctx.rng("eq11-any").uniform(ARM.q_min[:2], ARM.q_max[:2], (len(s.q), 2))
     q_any = np.zeros((len(s.q), 6))
     q_any[:, :2] = th
     C_any = joint_placements(q_any)[:, 3, :3, 3] - L1 * _EZ
-    truth = np.sum((s.D - C_any) ** 2, axis=1) - L4**2
-    ident = np.abs(eq11(s.D, th[:, 0], th[:, 1]) - truth)
-    at_q = np.abs(eq11(s.D, s.q[:, 0], s.q[:, 1]))
-    m = (
-        Measure("max |Eq 11 - (|D - C|^2 - l4^2)| at any (theta1, theta2)", ident.max(), TOL, "m^2"),
-        Measure("max |Eq 11| at the generating q", at_q.max(), TOL, "m^2"),
-    )
-    k = int(np.argmax(ident))
-    return Row.graded(
-        "||E|| (Eq 11) is the length error |DC|^2 - l4^2 of Eq 10; it vanishes at the solution.",
-        "Eq 11",
-        f"Eq 11 as printed with the true D of {len(s.q)} random poses: (a) at random (theta1, theta2) "
-        "within Table I against |D - C|^2 - l4^2 with C the frame-3 origin from Pinocchio, (b) at the "
-        "generating (theta1, theta2)",
-        f"(a) max difference {ident.max():.1e} m^2; (b) max |Eq 11| = {at_q.max():.1e} m^2",
-        m,
-        id="eq11",
-        domain=s.domain + "; (a) at (theta1, theta2) uniform in Table I",
-        erratum=Erratum(
-            "Eq 11",
-            "Eq 11 as printed",
-            "|D - C|^2 - l4^2",
-            f"{fmt_q(s.q[k])}: difference {ident[k]:.3g} m^2 at theta1, theta2 = {th[k, 0]:.4f}, "
-            f"{th[k, 1]:.4f}",
-        ),
-    )
+    return _identity_row(
+        s, "Eq 11", "||E|| (Eq 11) is the length error |DC|^2 - l4^2 of Eq 10; it vanishes at the solution.",
+        f"Eq 11 as printed with the true D of {len(s.q)} random poses: (a) at random (theta1, theta2) within "
+        "Table I against |D - C|^2 - l4^2 with C the frame-3 origin from Pinocchio, (b) at the generating "
+        "(theta1, theta2)", lambda t1, t2: eq11(s.D, t1, t2), th, np.sum((s.D - C_any) ** 2, axis=1) - L4**2,
+        "|D - C|^2 - l4^2", "Table I")
 
 
 # ----------------------------------------------------------------------------- Eq 12-13
