@@ -14,12 +14,15 @@ wrong link length, degrees for radians, a transposed rotation, the other branch 
 square root, an off-by-one in a table index), plus, where a tolerance is graded, the good
 form moved by a tiny epsilon -- and takes the form as its second argument::
 
-    @SECTION.check(12, forms=Forms(printed=eq4_printed, good=eq4_from_dh, good_is="...",
+    @SECTION.check("Eq 4", forms=Forms(printed=eq4_printed, good=eq4_from_dh, good_is="...",
                    slips=(Slip(SIGN, "p_z with -l3 s2 as +l3 s2", eq4_sign_slip),),
                    tolerance=epsilon(eq4_printed, 1e-9)))
     def eq4_vs_pinocchio(ctx, eq4) -> Row: ...
 
-(``SECTION`` is the module's :class:`Section`; :func:`register` is the general form.)
+(``SECTION`` is the module's :class:`Section`, the check sits at the index item ``"Eq 4"``'s place in
+the report; :func:`register` is the general form.) A printed formula graded on ``max |form - truth|``
+is declared as data instead, :class:`verification.formula.Formula`, and registered in bulk with
+:meth:`Section.formulas`.
 
 ``iik verify`` calls it with ``forms.printed``; :func:`verification.self_test` calls it
 again with ``forms.good`` (it must pass: :attr:`Verdict.passes`), with each slip and with

@@ -1,0 +1,108 @@
+"""verification.formula: printed formulas declared as data, registered in bulk at their index places."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from verification import registry
+from verification.errors import RegistrationError
+from verification.formula import RIGHT, Formula, Points
+from verification.registry import Context, Erratum, Measure, Row, Section, Slip, SlipKind, Verdict
+from verification.second_reading import search
+from verification.self_test import self_test_check
+from verification.thesis_index import rank_of, title_of
+
+
+def _sample(ctx) -> Points:
+    x = np.linspace(-1.0, 1.0, 101)
+    return Points(x, "101 x uniform in [-1, 1]", "m", "x")
+
+
+def _sine(x):
+    return np.sin(x)
+
+
+#: Eq 16 (a real index key) stands in for a formula printed as sin(x), graded against np.sin.
+SINE = Formula("Eq 16", _sine, lambda s, f: f(s.values) - np.sin(s.values), 1e-12, "-", (
+    Slip(SlipKind.FUNCTION, "cos for sin", np.cos),
+    Slip(SlipKind.SIGN, "-sin", lambda x: -np.sin(x)),
+), method="the form vs numpy's sine at {n} points")
+
+
+@pytest.fixture
+def ctx(tmp_path: Path) -> Context:
+    return Context(out_dir=tmp_path, quick=True)
+
+
+def test_forms_follow_from_the_declaration():
+    f = SINE.forms
+    assert f.printed is _sine and f.good is _sine and f.good_is == RIGHT  # printed right: it is the good one
+    assert [s.what for s in f.slips] == ["cos for sin", "-sin"]
+    assert f.tolerance.kind is SlipKind.EPSILON and f.tolerance.form(0.0) == pytest.approx(1e-9)
+    other = Formula("Eq 16", _sine, SINE.error, 1e-12, "-", SINE.slips, good=np.sin, good_is="np", eps=None)
+    assert other.forms.good is np.sin and other.forms.tolerance is None
+    assert SINE.rid == "eq16" and Formula("Eq 9a", None, None, 1, "", ()).rid == "eq9a"
+
+
+def test_a_formula_row_is_graded_on_its_error(ctx):
+    check = SINE.check(_sample)
+    ok = check(ctx, _sine)
+    assert ok.verdict is Verdict.HOLDS and ok.id == "eq16" and ok.reference == "Eq 16"
+    assert ok.claim == title_of("Eq 16") + "." and ok.method == "the form vs numpy's sine at 101 points"
+    assert ok.numbers.startswith(str(ok.measures[0])) and ok.domain == "101 x uniform in [-1, 1]"
+    bad = check(ctx, np.cos)
+    assert bad.verdict is Verdict.ERRATUM
+    assert bad.measures[0].value == pytest.approx(np.max(np.abs(np.cos(_sample(ctx).values) - np.sin(
+        _sample(ctx).values))))
+    assert bad.errata[0].counterexample.startswith("x = -0.7800 m")  # the worst sample: near -pi/4
+    assert check.__name__ == "eq16"
+
+
+def test_scaled_identity_and_refutation(ctx):
+    """``scale``: graded on |error| |x| (a division by x); ``basis``: a pass holds by construction;
+    ``fail``: a claim fails as DOES_NOT_HOLD, naming the worst sample."""
+    f = Formula("Eq 20", lambda x: 1.0 / x, lambda s, f: f(s.values) * s.values - 1.0, 1e-14, "-", SINE.slips,
+                scale=("x", lambda s: s.values), basis="an identity", fail=Verdict.DOES_NOT_HOLD)
+    s = Points(np.array([1e-9, 0.5, 1.0]), "three x", "-", "x")
+    row = f.row(s, f.error(s, f.printed))
+    assert row.verdict is Verdict.IDENTITY and row.measures[0].name.endswith("x |x|")
+    wrong = f.row(s, np.array([0.0, 0.0, 1.0]))
+    assert wrong.verdict is Verdict.DOES_NOT_HOLD and "x = 1.0000" in wrong.reason and not wrong.errata
+
+
+def test_the_self_test_catches_each_slip(ctx):
+    check = registry.Check("t.eq16", "S", 0.0, SINE.check(_sample), forms=SINE.forms, prefix="t")
+    out = self_test_check(check, ctx)
+    assert out.status == "flips" and all(s.caught for s in out.slips) and out.tolerance.caught
+
+
+def test_sections_place_checks_at_their_index_items(monkeypatch):
+    monkeypatch.setattr(registry, "_REGISTRY", {})
+    s = Section("S", order=30.0)
+    assert s.place(2.5) == 2.5
+    assert 30.0 < s.place("Eq 5") < s.place("Eq 9") < s.place("Eq 9a") < s.place("Claim 3.2") < 31.0
+    assert rank_of("Eq 9a-c") == rank_of("Eq 9a") and rank_of("Sec 5.2 (1)") > rank_of("Eq 69")
+    with pytest.raises(RegistrationError, match="no item"):
+        s.place("Eq 99")
+    with pytest.raises(KeyError):
+        title_of("Table IX")
+    checks = s.formulas(_sample, SINE, Formula("Eq 6", _sine, SINE.error, 1e-12, "-", SINE.slips))
+    assert list(checks) == ["eq16", "eq6"]
+    reg = registry._REGISTRY
+    first, second = reg[f"{__name__}.eq16"], reg[f"{__name__}.eq6"]
+    assert second.order < first.order  # Eq 6 comes before Eq 16 in the index, whatever the declaration order
+    assert first.where == f"{__name__}:eq16" and first.prefix == "test_formula" and first.forms is not None
+
+
+def test_rows_derive_numbers_and_reread_only_errata():
+    m = (Measure("a", 1.0, 2.0, "m"), Measure("b", 3.0, 2.0))
+    row = Row.graded("c", "Eq 4", "m", None, m, fail=Verdict.DOES_NOT_HOLD)
+    assert row.numbers == "a = 1 m (<= 2 m); b = 3 (<= 2)" and row.verdict is Verdict.DOES_NOT_HOLD
+    called = []
+    assert row.reread_if_erratum(lambda: called.append(1)) is row and not called  # not an erratum: no search
+    wrong = Row.graded("c", "Eq 4", "m", None, m, erratum=Erratum("Eq 4", "p", "c", "x"))
+    reading = search({"x": 1.0}, [], lambda x: 0.0, 0.0, printed="p", stated_text="s", route="r", measure="m")
+    assert wrong.reread_if_erratum(lambda: reading).verdict is Verdict.HOLDS  # right as stated: withdrawn
