@@ -165,33 +165,19 @@ def eq5_printed(E, D, C, B):
     return np.einsum("ni,ni->n", np.cross(D - E, C - D), C - B)
 
 
-def _eq5_det(E, D, C, B):
-    return np.linalg.det(np.stack([D - E, C - D, C - B], 1))
+def _triple(E, D, C, v):
+    """[ED x DC] . v, row by row."""
+    return np.einsum("ni,ni->n", np.cross(D - E, C - D), v)
 
 
-def _eq5_base_axis(E, D, C, B):
-    """[ED x DC] . z0: the base axis written for BC."""
-    return np.einsum("ni,ni->n", np.cross(D - E, C - D), np.broadcast_to(_EZ, B.shape))
-
-
-def _eq5_ab(E, D, C, B):
-    """[ED x DC] . AB: the segment from the base A written for BC (the letters one off)."""
-    return np.einsum("ni,ni->n", np.cross(D - E, C - D), B)
-
-
-@SECTION.check(
-    "Eq 5",
-    forms=Forms(
-        printed=eq5_printed,
-        good=_eq5_det,
-        good_is="det[ED, DC, BC] (numpy)",
-        slips=(
-            Slip(SlipKind.SWAP, "the base axis z0 written for BC", _eq5_base_axis),
-            Slip(SlipKind.OFF_BY_ONE, "AB (from the base) for BC (the letters one off)", _eq5_ab),
-        ),
-        tolerance=epsilon(eq5_printed, 1e-9),
-    ),
-)
+@SECTION.check("Eq 5", forms=Forms(
+    eq5_printed, lambda E, D, C, B: np.linalg.det(np.stack([D - E, C - D, C - B], 1)),
+    "det[ED, DC, BC] (numpy)",
+    (Slip(SlipKind.SWAP, "the base axis z0 written for BC",
+          lambda E, D, C, B: _triple(E, D, C, np.broadcast_to(_EZ, B.shape))),
+     Slip(SlipKind.OFF_BY_ONE, "AB (from the base) for BC (the letters one off)",
+          lambda E, D, C, B: _triple(E, D, C, B))),
+    epsilon(eq5_printed, 1e-9)))
 def eq5_coplanar(ctx, triple):
     """Eq 5: B, C, D, E coplanar; ED along z6 = [r13 r23 r33]."""
     s = sample(ctx)
@@ -253,10 +239,6 @@ def eq8_geometric(R, D, th1, th2):
     return np.einsum("ni,ni->n", R[:, :, 2], np.cross(D - eq6_printed(th1), u))
 
 
-def _eq8_slip(R, D, th1, th2):
-    return eq8_printed(R, D, th1, th2) - 2 * R[:, 0, 2] * L2 * np.sin(th1) * np.sin(th2)
-
-
 def _eq8_swap(R, D, th1, th2):
     """Eq 8 with r13 and r23 exchanged in its last two terms."""
     r13, r23 = R[:, 0, 2], R[:, 1, 2]
@@ -264,19 +246,12 @@ def _eq8_swap(R, D, th1, th2):
     return eq8_printed(R, D, th1, th2) - (r13 - r23) * L2 * s1 * s2 + (r23 - r13) * L2 * c1 * s2
 
 
-@SECTION.check(
-    "Eq 8",
-    forms=Forms(
-        printed=eq8_printed,
-        good=eq8_geometric,
-        good_is="z6 . ((D - B) x u) (Eq 5 with Eq 6-7 substituted)",
-        slips=(
-            Slip(SlipKind.SIGN, "the r13 l2 s1 s2 term with its sign flipped", _eq8_slip),
-            Slip(SlipKind.SWAP, "r13 and r23 exchanged in the l2 terms", _eq8_swap),
-        ),
-        tolerance=epsilon(eq8_printed, 1e-9),
-    ),
-)
+@SECTION.check("Eq 8", forms=Forms(
+    eq8_printed, eq8_geometric, "z6 . ((D - B) x u) (Eq 5 with Eq 6-7 substituted)",
+    (Slip(SlipKind.SIGN, "the r13 l2 s1 s2 term with its sign flipped",
+          lambda R, D, t1, t2: eq8_printed(R, D, t1, t2) - 2 * R[:, 0, 2] * L2 * np.sin(t1) * np.sin(t2)),
+     Slip(SlipKind.SWAP, "r13 and r23 exchanged in the l2 terms", _eq8_swap)),
+    epsilon(eq8_printed, 1e-9)))
 def eq8_plane(ctx, eq8):
     """Eq 8: the expansion of Eq 5, as an identity in (theta1, theta2) and zero at the solution."""
     s = sample(ctx)
@@ -437,24 +412,12 @@ def _wrist_length(p, z6):
     return p + L4 * z6 - L1 * _EZ
 
 
-def _wrist_no_shift(p, z6):
-    return p + L5 * z6
-
-
-@SECTION.check(
-    "Eq 9a",
-    forms=Forms(
-        eq9abc_printed,
-        eq9abc_corrected,
-        "D = p + l5 z6 - l1 e_z (Table II: d6 = -l5)",
-        slips=(
-            Slip(SlipKind.SIGN, "D = p - l5 z6 (the sign of l5)", eq9abc_printed),
-            Slip(SlipKind.LENGTH, "l4 for l5", _wrist_length),
-            Slip(SlipKind.TERM, "z_D without its -l1", _wrist_no_shift),
-        ),
-        tolerance=epsilon(eq9abc_corrected, 1e-9, "each coordinate moved by 1 nm"),
-    ),
-)
+@SECTION.check("Eq 9a", forms=Forms(
+    eq9abc_printed, eq9abc_corrected, "D = p + l5 z6 - l1 e_z (Table II: d6 = -l5)",
+    (Slip(SlipKind.SIGN, "D = p - l5 z6 (the sign of l5)", eq9abc_printed),
+     Slip(SlipKind.LENGTH, "l4 for l5", _wrist_length),
+     Slip(SlipKind.TERM, "z_D without its -l1", lambda p, z6: p + L5 * z6)),
+    epsilon(eq9abc_corrected, 1e-9, "each coordinate moved by 1 nm")))
 def wrist_point(ctx, eq9abc):
     """Eq 9a, 9b, 9c: the wrist point D (joint 5) from the pose, one row per coordinate."""
     s = sample(ctx)
@@ -516,30 +479,19 @@ def eq11_geometric(D, th1, th2):
     return np.sum((D - eq7_printed(th1, th2)) ** 2, axis=1) - L4**2
 
 
-def _eq11_sign(D, th1, th2):
-    return eq11_printed(D, th1, th2) - 4 * L3 * (D[:, 2] * np.sin(th2) + L2 * np.cos(th2))
-
-
 def _eq11_swap(D, th1, th2):
     x, y = D[:, 0], D[:, 1]
     c1, s1, c2, _ = cos_sin(th1, th2)
     return eq11_printed(D, th1, th2) + 2 * (L2 + L3 * c2) * ((x * c1 + y * s1) - (x * s1 + y * c1))
 
 
-@SECTION.check(
-    "Eq 11",
-    forms=Forms(
-        eq11_printed,
-        eq11_geometric,
-        "|D - C|^2 - l4^2 with C of Eq 7",
-        slips=(
-            Slip(SlipKind.SIGN, "- 2 l3 (zD s2 + l2 c2) for + 2 l3 (...)", _eq11_sign),
-            Slip(SlipKind.SWAP, "xD s1 + yD c1 for xD c1 + yD s1", _eq11_swap),
-            Slip(SlipKind.LENGTH, "l5^2 for l4^2", lambda D, t1, t2: eq11_printed(D, t1, t2) + L4**2 - L5**2),
-        ),
-        tolerance=epsilon(eq11_printed, 1e-9, "the printed value moved by 1e-9 m^2"),
-    ),
-)
+@SECTION.check("Eq 11", forms=Forms(
+    eq11_printed, eq11_geometric, "|D - C|^2 - l4^2 with C of Eq 7",
+    (Slip(SlipKind.SIGN, "- 2 l3 (zD s2 + l2 c2) for + 2 l3 (...)", lambda D, t1, t2: eq11_printed(D, t1, t2)
+          - 4 * L3 * (D[:, 2] * np.sin(t2) + L2 * np.cos(t2))),
+     Slip(SlipKind.SWAP, "xD s1 + yD c1 for xD c1 + yD s1", _eq11_swap),
+     Slip(SlipKind.LENGTH, "l5^2 for l4^2", lambda D, t1, t2: eq11_printed(D, t1, t2) + L4**2 - L5**2)),
+    epsilon(eq11_printed, 1e-9, "the printed value moved by 1e-9 m^2")))
 def eq11_error(ctx, eq11):
     """Eq 11 as an identity in (theta1, theta2) (|D - C|^2 - l4^2, C from Pinocchio), zero at the solution."""
     s = sample(ctx)
@@ -769,43 +721,24 @@ def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
     return row.reread(extremum_reading(ctx, form, sign, rows)) if row.verdict is Verdict.ERRATUM else row
 
 
-def _eq12_wrist(p, D):
-    return np.arctan2(D[:, 1], D[:, 0])
-
-
-@SECTION.check(
-    "Eq 12",
-    forms=Forms(
-        eq12_printed,
-        NumericArgmin(1.0),
-        "the minimiser found by a 3600-point grid and successive parabolic interpolation",
-        slips=(
-            Slip(SlipKind.BRANCH, "atan2(yD, xD) + pi (the maximum's side)", eq13_corrected),
-            Slip(SlipKind.SWAP, "atan2(xD, yD): the arguments exchanged",
-                 lambda p, D: np.arctan2(D[:, 0], D[:, 1])),
-        ),
-        tolerance=Slip(SlipKind.EPSILON, "the good minimiser + 1 mrad", NumericArgmin(1.0, 1e-3)),
-    ),
-)
+@SECTION.check("Eq 12", forms=Forms(
+    eq12_printed, NumericArgmin(1.0), "the minimiser found by a 3600-point grid and successive parabolic "
+    "interpolation",
+    (Slip(SlipKind.BRANCH, "atan2(yD, xD) + pi (the maximum's side)", eq13_corrected),
+     Slip(SlipKind.SWAP, "atan2(xD, yD): the arguments exchanged",
+          lambda p, D: np.arctan2(D[:, 0], D[:, 1]))),
+    Slip(SlipKind.EPSILON, "the good minimiser + 1 mrad", NumericArgmin(1.0, 1e-3))))
 def eq12_minimum(ctx, form):
     """Eq 12: the minimum of ||E|| (not of |E|) over theta1."""
     return _extremum_row(ctx, form, 1.0, "Eq 12", "eq12")
 
 
-@SECTION.check(
-    "Eq 13",
-    forms=Forms(
-        eq13_printed,
-        eq13_corrected,
-        "atan2(yD, xD) + pi (the wrist point's opposite azimuth)",
-        slips=(
-            Slip(SlipKind.BRANCH, "atan2(yD, xD) without the pi (the minimum's side)", _eq12_wrist),
-            Slip(SlipKind.SIGN, "-atan2(yD, xD) + pi", lambda p, D: wrap(np.pi - np.arctan2(D[:, 1], D[:,
-                0]))),
-        ),
-        tolerance=epsilon(eq13_corrected, 1e-3, "the good form + 1 mrad"),
-    ),
-)
+@SECTION.check("Eq 13", forms=Forms(
+    eq13_printed, eq13_corrected, "atan2(yD, xD) + pi (the wrist point's opposite azimuth)",
+    (Slip(SlipKind.BRANCH, "atan2(yD, xD) without the pi (the minimum's side)",
+          lambda p, D: np.arctan2(D[:, 1], D[:, 0])),
+     Slip(SlipKind.SIGN, "-atan2(yD, xD) + pi", lambda p, D: wrap(np.pi - np.arctan2(D[:, 1], D[:, 0])))),
+    epsilon(eq13_corrected, 1e-3, "the good form + 1 mrad")))
 def eq13_maximum(ctx, form):
     """Eq 13: the maximum of ||E|| over theta1."""
     return _extremum_row(ctx, form, -1.0, "Eq 13", "eq13")
@@ -940,11 +873,6 @@ def _eq18_dh(q):
     return np.linalg.inv(_links(q, 1, 2)), _links(q, 3, 5)
 
 
-def _eq18_slip(q):
-    inv, t25 = _eq18_dh(q)
-    return inv + 1e-9, t25 + 1e-9
-
-
 def _eq18_not_transposed(q):
     """0_2T^-1 written with R for R^T (the translation -R^T p kept)."""
     inv, t25 = _eq18_dh(q)
@@ -960,20 +888,13 @@ def _eq18_t25_sign(q):
     return inv, t25
 
 
-@SECTION.check(
-    "Eq 18",
-    forms=Forms(
-        lambda q: (eq18_inverse_printed(q), eq18_t25_printed(q)),
-        _eq18_dh,
-        "inverse of the Table II product 0_2T, and 2_5T from Table II",
-        slips=(
-            Slip(SlipKind.TRANSPOSE, "0_2T^-1 with R for R^T", _eq18_not_transposed),
-            Slip(SlipKind.SIGN, "2_5T's (2,4) entry l4 c4 - l3", _eq18_t25_sign),
-        ),
-        tolerance=Slip(SlipKind.EPSILON, "both moved by 1e-9", _eq18_slip),
-        rows=("eq18.inverse", "eq18.t25"),
-    ),
-)
+@SECTION.check("Eq 18", forms=Forms(
+    lambda q: (eq18_inverse_printed(q), eq18_t25_printed(q)), _eq18_dh,
+    "inverse of the Table II product 0_2T, and 2_5T from Table II",
+    (Slip(SlipKind.TRANSPOSE, "0_2T^-1 with R for R^T", _eq18_not_transposed),
+     Slip(SlipKind.SIGN, "2_5T's (2,4) entry l4 c4 - l3", _eq18_t25_sign)),
+    Slip(SlipKind.EPSILON, "both moved by 1e-9", lambda q: tuple(M + 1e-9 for M in _eq18_dh(q))),
+    rows=("eq18.inverse", "eq18.t25")))
 def eq18_matrices(ctx, mats):
     """Eq 18: the printed 0_2T^-1 and 2_5T (base frame) vs Pinocchio."""
     s = sample(ctx)
@@ -990,18 +911,6 @@ def eq18_matrices(ctx, mats):
                   method="printed matrix vs (0_2T)^-1 0_5T from Pinocchio", printed="2_5T as printed"),
     ]
 
-
-
-def _d_shifted(s: Sample) -> np.ndarray:
-    return s.D
-
-
-def _d_base(s: Sample) -> np.ndarray:
-    return s.D + L1 * _EZ
-
-
-def _d_base_slip(s: Sample) -> np.ndarray:
-    return s.D + L1 * _EZ + 1e-9
 
 
 def eq18_frame_reading(ctx, s: Sample, wrist):
@@ -1233,33 +1142,21 @@ def eq30_t56_corrected(q):
     return T
 
 
-def _eq30_slip(q):
-    return eq30_row3_printed(q) + 1e-9, eq30_t56_corrected(q) + 1e-9
-
-
-def _eq30_row3_sign(q):
-    return eq30_row3_printed(q) * np.array([1.0, 1.0, -1.0]), eq30_t56_corrected(q)
-
-
 def _eq30_t56_transposed(q):
     T = eq30_t56_corrected(q)
     T[:, :3, :3] = np.swapaxes(T[:, :3, :3], -1, -2)
     return eq30_row3_printed(q), T
 
 
-@SECTION.check(
-    "Eq 30",
-    forms=Forms(
-        lambda q: (eq30_row3_printed(q), eq30_t56_printed(q)),
-        lambda q: (eq30_row3_printed(q), eq30_t56_corrected(q)),
-        "row 3 as printed and 5_6T with -l5 in entry (2,4) (Table II: d6 = -l5 along y5)",
-        slips=(
-            Slip(SlipKind.SIGN, "row 3's -c2 s3 written +c2 s3", _eq30_row3_sign),
-            Slip(SlipKind.TRANSPOSE, "5_6T's rotation transposed", _eq30_t56_transposed),
-        ),
-        tolerance=Slip(SlipKind.EPSILON, "the good matrices moved by 1e-9", _eq30_slip),
-    ),
-)
+@SECTION.check("Eq 30", forms=Forms(
+    lambda q: (eq30_row3_printed(q), eq30_t56_printed(q)),
+    lambda q: (eq30_row3_printed(q), eq30_t56_corrected(q)),
+    "row 3 as printed and 5_6T with -l5 in entry (2,4) (Table II: d6 = -l5 along y5)",
+    (Slip(SlipKind.SIGN, "row 3's -c2 s3 written +c2 s3",
+          lambda q: (eq30_row3_printed(q) * np.array([1.0, 1.0, -1.0]), eq30_t56_corrected(q))),
+     Slip(SlipKind.TRANSPOSE, "5_6T's rotation transposed", _eq30_t56_transposed)),
+    Slip(SlipKind.EPSILON, "the good matrices moved by 1e-9",
+         lambda q: (eq30_row3_printed(q) + 1e-9, eq30_t56_corrected(q) + 1e-9))))
 def eq30_matrices(ctx, mats):
     """Eq 30: the printed row 3 of 0_5T^-1 and the printed 5_6T vs Pinocchio."""
     from .kinematics import appb_reading
@@ -1399,12 +1296,13 @@ CHECKS = SECTION.formulas(
             scale=("s4", lambda s: s.s(4))),
     _atan2_step(16, 4),
     _composition(17, 2, 5),
-    Formula("Eq 18", _d_shifted, _eq18_frame_error, TOL, "m", (
+    Formula("Eq 18", lambda s: s.D, _eq18_frame_error, TOL, "m", (
         Slip(SlipKind.SIGN, "D moved up by l1 the wrong way (z_D + 2 l1)", lambda s: s.D + 2 * L1 * _EZ),
         Slip(SlipKind.LENGTH, "D shifted by l2 for l1", lambda s: s.D + L2 * _EZ),
-    ), good=_d_base,
+    ), good=lambda s: s.D + L1 * _EZ,
         good_is="D in the base frame (z = 0 at the mounting plane), the frame of the printed 0_2T^-1",
-        eps=Slip(SlipKind.EPSILON, "the good D moved by 1 nm", _d_base_slip), id="eq18.frame",
+        eps=Slip(SlipKind.EPSILON, "the good D moved by 1 nm", lambda s: s.D + L1 * _EZ + 1e-9),
+        id="eq18.frame",
         claim="Eq 18 holds with 0_5T built from the D of Eq 9 (x_D, y_D, z_D 'known from Equation 9b').",
         method="printed 0_2T^-1 times 0_5T with the true rotation and D in the frame of Sec 3.3.1 (Eq 9c: "
         "origin moved up by l1), vs the printed 2_5T",
