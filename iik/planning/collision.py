@@ -37,11 +37,10 @@ import pinocchio as pin
 
 from iik.arm import Arm
 from iik.errors import InvalidInputError
-from iik.scene import THESIS_SCENE, Scene
+from iik.scene import THESIS_SCENE, Box, Scene
 from iik.validation import as_joints
 
 from .budget import Budget
-from .obstacles import Obstacle
 from .robot_model import arm_model, collision_link
 
 __all__ = ["SceneCollision", "PathClearance", "Nearest"]
@@ -111,13 +110,13 @@ class SceneCollision:
     """Coal distance queries between an arm and a scene.
 
     Args:
-        boxes: Scenario boxes (:class:`iik.planning.Obstacle`), base frame.
+        boxes: Scenario boxes (:class:`iik.scene.Box`), base frame.
         arm: The arm (its body, :func:`~iik.planning.robot_model.arm_model`, placed by its kinematics).
         scene: Platform and floor (default :data:`iik.scene.THESIS_SCENE`).
         platform, floor: Include them.
     """
 
-    def __init__(self, boxes: Sequence[Obstacle] = (), *, arm: Arm, scene: Scene = THESIS_SCENE,
+    def __init__(self, boxes: Sequence[Box] = (), *, arm: Arm, scene: Scene = THESIS_SCENE,
                  platform: bool = True, floor: bool = True):
         tm = arm_model(arm)
         self.arm = arm

@@ -17,11 +17,10 @@ import numpy as np
 import iik
 from iik import Arm, fk
 from iik.errors import IIKError
-from iik.scene import THESIS_SCENE, Scene
+from iik.scene import THESIS_SCENE, Box, Scene
 
 from ..cartesian import poses_of
 from ..collision import SceneCollision
-from ..obstacles import Obstacle
 from ..pipeline import Attempt, PlanOptions, PlanResult, plan
 
 __all__ = ["PlanView", "FrameClearance", "plan_scene", "plan_for_view", "frame_clearance", "UNTIMED_STEP"]
@@ -70,7 +69,7 @@ class PlanView:
     best: Attempt | None
     notes: tuple[str, ...]
     arm_shows: str
-    obstacles: tuple[Obstacle, ...]
+    obstacles: tuple[Box, ...]
     safety_zone: float
     t: np.ndarray
     q: np.ndarray

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 import iik
 from iik import THESIS_ARM
-from iik.planning import Obstacle, SceneCollision
+from iik.planning import Box, SceneCollision
 from verification import Context, Scope, Verdict
 from verification.checks import planning as pl
 
@@ -20,7 +20,7 @@ def ctx(tmp_path_factory):
     return Context(out_dir=tmp_path_factory.mktemp("planning"), quick=True)
 
 
-_CHECKER = SceneCollision((Obstacle((0.45, 0.0, 0.1), (0.1, 0.4, 0.2), name="box"),), arm=THESIS_ARM)
+_CHECKER = SceneCollision((Box((0.45, 0.0, 0.1), (0.1, 0.4, 0.2), name="box"),), arm=THESIS_ARM)
 
 
 @settings(max_examples=15, deadline=None)

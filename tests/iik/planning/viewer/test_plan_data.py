@@ -79,7 +79,7 @@ def test_a_plan_cut_by_its_timeout_is_still_a_view():
 
 
 def test_frame_clearance_nearest_points_are_consistent(result_j):
-    """Coal's nearest points lie on the obstacle and are ``distance`` apart (checked by Obstacle.distance)."""
+    """Coal's nearest points lie on the obstacle and are ``distance`` apart (checked by Box.distance)."""
     view = plan_scene(result_j)
     q = view.q[:: max(1, len(view.q) // 25)]
     c = frame_clearance(view.obstacles, q, arm=THESIS_ARM)
@@ -91,8 +91,8 @@ def test_frame_clearance_nearest_points_are_consistent(result_j):
             assert gap == pytest.approx(c.distance[k], abs=1e-6)
         if c.obstacle[k] in boxes:
             box = boxes[c.obstacle[k]]
-            assert box.distance(c.on_obstacle[k])[0] == pytest.approx(0.0, abs=1e-6)
-            assert box.distance(c.on_link[k])[0] == pytest.approx(max(c.distance[k], 0.0), abs=1e-6)
+            assert box.distance(c.on_obstacle[k]) == pytest.approx(0.0, abs=1e-6)
+            assert box.distance(c.on_link[k]) == pytest.approx(max(c.distance[k], 0.0), abs=1e-6)
     # No frame of the accepted plan enters the safety zone.
     assert c.distance.min() >= view.safety_zone - 1e-9
 
