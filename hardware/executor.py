@@ -144,15 +144,14 @@ def validate(times, q, poses, *, arm: Arm,
         if len(bad):
             k, j = int(bad[0][0]), (int(bad[0][1]) if name == "q" else None)
             raise SafetyError(target_name(k, j), f"{name} not finite", step=k, joint=j)
-    # Table I with a margin
-    lo = arm.q_min + options.margin
-    hi = arm.q_max - options.margin
-    out = np.argwhere((qa < lo) | (qa > hi))
-    if len(out):
-        k, j = (int(v) for v in out[0])
-        raise SafetyError(target_name(k, j), f"{qa[k, j]:.6f} rad outside {arm.limits_name} "
-                          f"[{arm.q_min[j]:.4f}, {arm.q_max[j]:.4f}] rad less the margin of "
-                          f"{options.margin:.4f} rad ({math.degrees(options.margin):g} deg)", step=k, joint=j)
+    if not (isinstance(options.margin, (int, float)) and math.isfinite(options.margin)):
+        raise SafetyError("options.margin", f"must be a finite angle [rad], got {options.margin!r}")
+    out = arm.limit_violations(qa, options.margin)  # Table I with a margin
+    if out:
+        v = out[0]
+        raise SafetyError(target_name(v.sample, v.joint), f"{v.value:.6f} rad outside {arm.limits_name} "
+                          f"[{v.lower:.4f}, {v.upper:.4f}] rad less the margin of {v.margin:.4f} rad "
+                          f"({math.degrees(v.margin):g} deg)", step=v.sample, joint=v.joint)
     step_ms = _step_ms(t, options.min_step)
     vel = np.abs(np.diff(qa, axis=0)) / (step_ms[:, None] / 1000.0)
     vmax = np.asarray(arm.velocity) * options.velocity_fraction

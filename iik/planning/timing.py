@@ -78,13 +78,12 @@ class Trajectory:
 
 def _check(q, qd, qdd, arm: Arm, joint_margin: float, tol: float = 1e-9) -> tuple[str, ...]:
     out = []
-    lo, hi = arm.q_min + joint_margin, arm.q_max - joint_margin
     v, a = np.asarray(arm.velocity), np.asarray(arm.acceleration)
-    over = np.maximum(lo - q, q - hi)
-    if np.any(over > tol):
-        k, j = np.unravel_index(int(np.argmax(over)), over.shape)
-        out.append(f"joint q{j + 1} comes {math.degrees(over[k, j]):.3f} deg beyond Table I less the "
-                   f"execution margin of {math.degrees(joint_margin):g} deg (sample {k}, counting from 0)")
+    worst = arm.limit_violations(q, joint_margin).worst
+    if worst is not None and worst.amount > tol:
+        out.append(f"joint q{worst.joint + 1} comes {math.degrees(worst.amount):.3f} deg beyond Table I less "
+                   f"the execution margin of {math.degrees(joint_margin):g} deg (sample {worst.sample}, "
+                   "counting from 0)")
     if np.any(np.abs(qd) > v * (1 + 1e-9)):
         out.append(f"velocity limit exceeded: max |qd|/v = {(np.abs(qd) / v).max():.4f}")
     if np.any(np.abs(qdd) > a * (1 + 1e-9)):
