@@ -48,7 +48,9 @@ __all__ = ["SceneCollision", "PathClearance", "Nearest"]
 
 @dataclass(frozen=True)
 class Nearest:
-    """The closest arm-environment pair at one configuration (Coal distance; base frame 0, m).
+    """The closest arm-environment pair at one configuration (Coal distance; base frame 0, m): the
+    project's one nearest-pair result (:meth:`SceneCollision.nearest`; the viewer's per-frame
+    clearance, :func:`iik.planning.viewer.frame_clearance`, is one per frame).
 
     Attributes:
         distance: Distance between the pair [m]; negative: penetration depth.
@@ -192,12 +194,6 @@ class SceneCollision:
         self._update(qb[0])
         return np.array([self.geom_data.distanceResults[i].min_distance
                          for i in range(self.n_env_pairs)])
-
-    def clearance(self, q) -> tuple[float, str, str]:
-        """``(distance [m], link, object)`` of the closest arm-environment pair at ``q`` [rad]."""
-        qb, _ = as_joints(q, "q")
-        d, i = self._closest(qb[0])
-        return d, str(self.arm_link[self._pair_arm[i]]), str(self.env_names[self._pair_env[i]])
 
     def nearest(self, q) -> Nearest:
         """The closest arm-environment pair at ``q`` (6,) [rad]: distance, link, object, nearest points."""

@@ -207,8 +207,8 @@ def plot_scene(res: PlanResult, ax, *, n_arms: int = 5) -> None:
     clearance (amber, magenta inside the safety zone) with that clearance in mm."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
+    from .collision import SceneCollision
     from .viewer import style
-    from .viewer.plan_data import frame_clearance
 
     rgb = style.rgb01
     sc = res.scenario
@@ -250,16 +250,15 @@ def plot_scene(res: PlanResult, ax, *, n_arms: int = 5) -> None:
         worst = int(np.argmin(res.clearance.step)) if res.clearance is not None else 0
         for i in sorted(set(np.linspace(0, len(res.q) - 1, min(n_arms, len(res.q))).astype(int)) - {worst}):
             pts.append(draw_arm_bodies(ax, res.q[i], arm=res.arm, colour=rgb(style.ARM), alpha=0.07))
-        fc = frame_clearance(sc.obstacles, res.q[[worst]], arm=res.arm, scene=res.scene)
-        near = rgb(style.UNSAFE if fc.distance[0] < sc.safety_zone else style.NEAREST)
+        n = SceneCollision(sc.obstacles, arm=res.arm, scene=res.scene).nearest(res.q[worst])
+        near = rgb(style.UNSAFE if n.distance < sc.safety_zone else style.NEAREST)
         pts.append(draw_arm_bodies(ax, res.q[worst], arm=res.arm, colour=rgb(style.ARM), alpha=0.3,
-                                   link_colours={fc.link[0]: near}, zorder=3.5))
-        seg = np.stack([fc.on_link[0], fc.on_obstacle[0]])
+                                   link_colours={n.link: near}, zorder=3.5))
+        seg = np.stack([n.on_link, n.on_object])
         ax.plot(seg[:, 0], seg[:, 1], seg[:, 2], "-o", color=near, lw=2.0, ms=3, zorder=5)
-        d_mm = fc.distance[0] * 1e3
+        d_mm = n.distance * 1e3
         ax.text(*seg.mean(axis=0), f" {d_mm:.1f} mm", color="k", fontsize=8, zorder=6)
-        entries += [(f"nearest link at step {worst}: {fc.link[0]} to {fc.obstacle[0]}, {d_mm:.1f} mm", near,
-                     "line")]
+        entries += [(f"nearest link at step {worst}: {n.link} to {n.object}, {d_mm:.1f} mm", near, "line")]
         title += (f"\nleast clearance at the step-points {d_mm:.1f} mm "
                   f"(safety zone {sc.safety_zone * 1e3:.0f} mm)")
     set_equal_axes(ax, np.vstack(pts))

@@ -574,8 +574,8 @@ def measure_clearance(checker: SceneCollision, q, limit: float) -> Clearance:
         steps += [i] * k
     samples.append(Q[-1])
     steps.append(len(Q) - 1)
-    found = [checker.clearance(qk) for qk in samples]  # (distance [m], link, object)
-    d = np.array([f[0] for f in found])
+    found = [checker.nearest(qk) for qk in samples]
+    d = np.array([f.distance for f in found])
     j = int(np.argmin(d))
     # between two samples no arm point moves more than the gap: the distance stays >= (d0 + d1 - gap) / 2
     lower = float(min(d[j], np.min(0.5 * (d[:-1] + d[1:] - np.array(gaps))) if gaps else np.inf))
@@ -583,7 +583,7 @@ def measure_clearance(checker: SceneCollision, q, limit: float) -> Clearance:
     if lower < limit <= value and len(Q) > 1:
         certified = checker.path_clearance(Q, limit, resolution=1e-5, check_self=False).minimum
         value = value if certified >= limit else float(certified)
-    return Clearance(value, lower, found[j][1], found[j][2], steps[j])
+    return Clearance(value, lower, found[j].link, found[j].object, steps[j])
 
 
 def _obstacles(sc) -> tuple[Box, ...]:
