@@ -32,6 +32,7 @@ from iik.errors import InvalidInputError
 from iik.files import read_text
 from iik.ik import select, solve
 from iik.kinematics import fk
+from iik.trajectory_csv import REQUIRED
 
 from .errors import SafetyError, target_name
 from .executor import ValidatedTrajectory, ValidationOptions, time_steps, validate
@@ -44,8 +45,9 @@ DEMO_STEP = 0.030
 #: Fraction of the joint speed limits the demo line is timed at: gentle, so that the simulated run
 #: (20 ms tracking lag) stays inside the 10 mm zone of Sec 4.3.1 it is judged by.
 DEMO_SPEED = 0.25
-#: Columns a trajectory CSV must name in its header line (others are ignored).
-CSV_COLUMNS = ("t", "q1", "q2", "q3", "q4", "q5", "q6")
+#: Columns a trajectory CSV must name in its header line (others are ignored): the schema's
+#: :data:`iik.trajectory_csv.REQUIRED`, the columns ``iik plan`` writes.
+CSV_COLUMNS = REQUIRED
 #: A number in a trajectory CSV: plain decimal, optional exponent (no "1_000", no non-ASCII digits).
 NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 #: Bounds of a trajectory CSV (memory and time stay bounded): rows of step-points and file size.

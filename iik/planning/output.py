@@ -6,6 +6,7 @@
   :attr:`~iik.planning.Trajectory.step_t`; only for a successful plan), tool point [m],
   joints [rad], effort index (Eq 54) [rad], whole-arm clearance [m] with the closest link
   and object, and the certified clearance of the motion to the next step [m];
+  (the columns of both: :mod:`iik.trajectory_csv`, which the reader uses too)
 
 ``iik run SCENARIO`` executes exactly the ``t, q1..q6`` of ``steps.csv``, and
 ``iik run --trajectory`` accepts either CSV as written (:mod:`iik.planning.timing`).
@@ -28,6 +29,7 @@ import numpy as np
 
 from iik.arm import Arm
 from iik.files import atomic_output
+from iik.trajectory_csv import TRAJECTORY_COLUMNS, steps_columns
 
 from .obstacles import enclosing_radii
 
@@ -62,8 +64,7 @@ def _write_files(res: PlanResult, out: Path, figures: bool) -> list[Path]:
         p = out / "trajectory.csv"
         with p.open("w", newline="") as f:
             w = csv.writer(f)
-            w.writerow(["t"] + [f"q{i}" for i in range(1, 7)] + [f"qd{i}" for i in range(1, 7)]
-                       + [f"qdd{i}" for i in range(1, 7)])
+            w.writerow(TRAJECTORY_COLUMNS)
             for k in range(len(tr.t)):
                 row = np.concatenate([tr.q[k], tr.qd[k], tr.qdd[k]])
                 w.writerow([f"{tr.t[k]:.6f}"] + [f"{v:.9f}" for v in row])
@@ -74,9 +75,7 @@ def _write_files(res: PlanResult, out: Path, figures: bool) -> list[Path]:
         timed = res.success and res.trajectory is not None and res.trajectory.step_t is not None
         with p.open("w", newline="") as f:
             w = csv.writer(f)
-            w.writerow(["step"] + (["t"] if timed else []) + ["x", "y", "z"] + [f"q{i}" for i in range(1, 7)]
-                       + ["effort", "clearance", "closest_link", "closest_object",
-                          "motion_clearance_to_next"])
+            w.writerow(steps_columns(timed))
             for i in range(len(res.q)):
                 mot = c.motion[i] if i < len(c.motion) else float("nan")
                 w.writerow([i] + ([f"{res.trajectory.step_t[i]:.3f}"] if timed else [])
