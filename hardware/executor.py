@@ -39,8 +39,8 @@ from iik.arm import Arm
 from iik.arms import same_arm, to_record
 from iik.errors import InvalidInputError
 from iik.kinematics import fk
-from iik.planning.timing import EXECUTION_MARGIN, MIN_STEP
 from iik.rotations import rotation_angle
+from iik.safety import EXECUTION_MARGIN, MIN_STEP
 from iik.signals import stop_on_signals
 
 from . import protocol as P
@@ -65,7 +65,7 @@ class ValidationOptions:
 
     Attributes:
         margin: Keep targets this far inside Table I [rad] (default
-            :data:`iik.planning.timing.EXECUTION_MARGIN`, 0.5 deg, which planned trajectories keep).
+            :data:`iik.safety.EXECUTION_MARGIN`, 0.5 deg, which planned trajectories keep).
         velocity_fraction: Allowed fraction of each joint's speed limit.
         fk_position_tol: Max distance between FK(target) and the planned position [m].
         fk_rotation_tol: Max angle between FK(target) and the planned orientation [rad].

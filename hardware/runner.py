@@ -34,7 +34,7 @@ from pathlib import Path
 
 from iik.arm import Arm
 from iik.errors import InvalidInputError
-from iik.planning.timing import EXECUTION_MARGIN
+from iik.safety import EXECUTION_MARGIN
 from iik.signals import stop_on_signals
 
 from . import protocol as P

@@ -29,6 +29,7 @@ import numpy as np
 
 from iik.arm import Arm
 from iik.errors import InvalidInputError
+from iik.extras import require
 from iik.files import read_text
 from iik.ik import select, solve
 from iik.kinematics import fk
@@ -255,7 +256,12 @@ def scenario_trajectory(name: str | Path, speed: float = 1.0, *, arm: Arm | None
 
     The arm is the scenario's own; ``arm``, if given, must be the same arm (:func:`iik.planning.plan`).
     The step targets carry the arm the plan was made for.
+
+    Raises:
+        MissingExtraError: the 'planning' extra is not installed (a trajectory file or the demo
+            needs only 'hardware').
     """
+    require("planning", "a scenario run (hardware.sources.scenario_trajectory)")
     from iik.planning import poses_of, scenario_path
 
     res = _plan(scenario_path(name), arm)

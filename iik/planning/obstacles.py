@@ -30,6 +30,7 @@ import warnings
 
 import numpy as np
 
+from ..safety import SAFETY_ZONE  # re-exported: its home is iik.safety
 from ..scene import Box
 from ..validation import as_points
 
@@ -41,9 +42,6 @@ __all__ = [
     "repulsion_normal",
     "repel_points",
 ]
-
-#: Sec 3.6.2.2 / Sec 4.3.2: thickness of the safety zone around each ellipsoid [m].
-SAFETY_ZONE = 0.030
 
 _A = math.pi / 4  # Eq 53: alpha
 _B = math.atan(math.cos(_A))  # Eq 53: beta, elevation of a cube's corner

@@ -36,19 +36,13 @@ import numpy as np
 from iik.arm import Arm
 from iik.validation import as_joints
 
+from ..safety import EXECUTION_MARGIN, MIN_STEP, STEP_RESOLUTION  # re-exported: their home is iik.safety
 from .errors import TimingError
 from .path import interpolate_joints
 
 __all__ = ["Trajectory", "time_parameterize", "thesis_timing", "step_schedule", "EXECUTION_MARGIN",
            "STEP_RESOLUTION", "MIN_STEP"]
 
-#: Margin inside Table I [rad] that every timed sample keeps (0.5 deg): the default
-#: margin of :func:`hardware.validate`, so a planned trajectory is never refused for it.
-EXECUTION_MARGIN = math.radians(0.5)
-#: Resolution of an executed step time [s]: FSTEP carries whole milliseconds (docs/POWERCUBE.md).
-STEP_RESOLUTION = 0.001
-#: Shortest executed step [s] (the default of :func:`hardware.validate`).
-MIN_STEP = 0.010
 
 
 @dataclass(frozen=True)
