@@ -37,7 +37,7 @@ import numpy as np
 
 from iik.arm import Arm
 from iik.arms import same_arm, to_record
-from iik.errors import InvalidInputError
+from iik.errors import InvalidInputError, Remedy
 from iik.kinematics import fk
 from iik.rotations import rotation_angle
 from iik.safety import EXECUTION_MARGIN, MIN_STEP
@@ -343,7 +343,8 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
     for m, s in zip(arm.modules, arm.states(), strict=True):
         if s & (P.State.ERROR | P.State.HALTED):
             what = "halted (HALT latches)" if s & P.State.HALTED else "in error"
-            raise ModuleFault(m.id, s, f"before start: {what}; reset it first: iik run --reset")
+            raise ModuleFault(m.id, s, f"before start: {what}",
+                              Remedy("reset it first: {}", "reset", True, rerun=True))
     limits = arm.speed_limits()  # the modules' own FMAXVEL may be below the Sec 3.2 limits
     over = np.argwhere(np.abs(np.diff(tr.q, axis=0)) / (tr.step_ms[:, None] / 1000.0)
                        > limits * (1.0 + SPEED_TOLERANCE))

@@ -122,8 +122,8 @@ except ImportError as exc:
     assert out.returncode == 0, out.stderr
     ok, error = out.stdout.strip().splitlines()
     assert ok == "True" and "coal" in planning_only
-    assert error.startswith("MissingExtraError|planning|a scenario run (hardware.sources.scenario_trajectory) "
-                            "needs the 'planning' extra")
+    assert error.startswith("MissingExtraError|planning|a scenario run "
+                            "(hardware.sources.scenario_trajectory) needs the 'planning' extra")
 
 
 def test_the_core_solves_without_any_extra():

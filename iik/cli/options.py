@@ -11,7 +11,7 @@ __all__ = ["add_pose_arguments", "warn_degrees", "warn_millimetres", "joint_angl
 
 #: The Euler angles option and its deprecated alias (the thesis calls Eq 42 "Z-X-Z"; it is Z-Y-Z).
 EULER, EULER_DEPRECATED = "--zyz", "--zxz"
-_EULER_NAMES = ("zyz", "alpha", "beta", "gamma")
+_EULER_NAMES = ("zyz", "zxz", "alpha", "beta", "gamma")  # zxz: ViewRequest's field
 
 
 class _EulerAngles(argparse.Action):

@@ -57,7 +57,7 @@ from pathlib import Path
 import numpy as np
 
 from iik.arm import Arm
-from iik.errors import FileError, InvalidInputError
+from iik.errors import FileError, InvalidInputError, Remedy
 from iik.files import read_text, write_text
 from iik.resources import scenarios_dir
 from iik.scene import THESIS_SCENE, Box, Scene
@@ -175,7 +175,7 @@ def scenario_arm(sc: Scenario, arm: Arm | None) -> Arm:
     if sc.arm is None and arm is None:
         raise ScenarioError("arm", f"scenario {sc.name!r} names no arm and none was given: add arm = "
                                    "\"NAME\" (a shipped arm, iik.arms.NAMES) or arm = \"path/to.urdf\" to "
-                                   "the file, or give one (iik plan --arm, plan(..., arm=...))")
+                                   "the file", Remedy("or give one as {}", "arm"))
     if sc.arm is not None and arm is not None and not same_arm(sc.arm, arm):
         raise ScenarioError("arm", f"scenario {sc.name!r} is for the arm {sc.arm.name!r}, not {arm.name!r} "
                                    "(its positions, reach and obstacles were laid out for it)")
