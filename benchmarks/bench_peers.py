@@ -55,6 +55,7 @@ import numpy as np
 
 import iik
 import iik.arms
+from iik.ik.angles import angle_distance
 
 TOL = 1e-6  # [m] and [rad]: a configuration reaches the pose; two configurations are distinct
 
@@ -252,8 +253,7 @@ def peers_for(arm_name: str, arm: iik.Arm, chosen: set[str]) -> list[Peer]:
 # ----------------------------------------------------------------------------- measuring
 def _wrapped(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """max |a - b| over the joints, modulo 2 pi: (len(a), len(b))."""
-    d = np.mod(a[:, None, :] - b[None, :, :] + np.pi, 2 * np.pi) - np.pi
-    return np.abs(d).max(axis=2)
+    return angle_distance(a[:, None, :], b[None, :, :])
 
 
 def _residuals(qs: np.ndarray, T: np.ndarray, arm: iik.Arm) -> np.ndarray:

@@ -11,7 +11,7 @@ was calculated by inputting the obtained experimental joint angles into the forw
 kinematics expression"), compared with the planned pose's position.
 
 Sec 4.3.1 chose a 10 mm safety zone from the predefined paths; Sec 4.3.2 suggests
-30 mm in motion (the planner's zone, :data:`iik.planning.obstacles.SAFETY_ZONE`).
+30 mm in motion (the planner's zone, :data:`iik.safety.SAFETY_ZONE`).
 :attr:`RunAnalysis.max_ee_error` is compared with both.
 """
 
@@ -25,16 +25,13 @@ import numpy as np
 from iik.arm import Arm
 from iik.files import atomic_output
 from iik.kinematics import fk
-from iik.planning.obstacles import SAFETY_ZONE
+from iik.safety import SAFETY_ZONE, SAFETY_ZONE_PREDEFINED
 
 from .errors import RunLogError
 from .runlog import Run, run_arm
 
 __all__ = ["RunAnalysis", "analyse", "plot_run", "summary_text", "SAFETY_ZONE_PREDEFINED"]
 
-#: Sec 4.3.1: minimum safety zone chosen from the predefined paths [m]. (The 30 mm zone
-#: suggested for motion in Sec 4.3.2 is the planner's :data:`iik.planning.obstacles.SAFETY_ZONE`.)
-SAFETY_ZONE_PREDEFINED = 0.010
 
 
 @dataclass(frozen=True)

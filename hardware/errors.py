@@ -10,7 +10,7 @@ not an error, so that no ``except Exception`` swallows it before the arm is halt
 
 from __future__ import annotations
 
-from iik.errors import IIKError
+from iik.errors import IIKError, Remedy
 from iik.signals import StopSignal
 
 __all__ = [
@@ -72,11 +72,13 @@ class SafetyError(HardwareError, ValueError):
         joint: Index of the refused joint (from 0; joint ``q{joint + 1}``), or None.
     """
 
-    def __init__(self, argument: str, reason: str, *, step: int | None = None, joint: int | None = None):
+    def __init__(self, argument: str, reason: str, *, step: int | None = None, joint: int | None = None,
+                 remedy: Remedy | None = None):
         self.argument = argument
         self.reason = reason
         self.step = step
         self.joint = joint
+        self.remedy = remedy
         super().__init__(f"{argument}: {reason}")
 
 
@@ -95,11 +97,12 @@ class ModuleFault(HardwareError):
         state: Its state bits (:class:`hardware.protocol.State`).
     """
 
-    def __init__(self, module_id: int, state: int, detail: str = ""):
+    def __init__(self, module_id: int, state: int, detail: str = "", remedy: Remedy | None = None):
         from .protocol import State
 
         self.module_id = module_id
         self.state = State(state)
+        self.remedy = remedy
         msg = f"module {module_id}: fault, state {self.state!r}"
         super().__init__(msg + (f" ({detail})" if detail else ""))
 
@@ -109,12 +112,13 @@ class ModuleHalted(SafetyError):
 
     def __init__(self, module_id: int):
         self.module_id = module_id
-        super().__init__(f"module {module_id}", "halted; call reset() before moving again (iik run --reset)")
+        super().__init__(f"module {module_id}", "halted",
+                         remedy=Remedy("call reset() before moving again ({})", "reset", True, rerun=True))
 
 
 class DuplicateModuleError(HardwareError):
     """Two answers to one request: two modules with the same id on the bus (a wiring or
-    configuration fault; also two ``iik sim-arm`` on one channel). Stops the run.
+    configuration fault; also two simulated arms on one channel). Stops the run.
 
     Attributes:
         module_id: The id that answered twice.
@@ -143,7 +147,7 @@ class SecondControllerError(HardwareError):
         self.request = request
         super().__init__(f"two controllers on one bus: another host sent {request} (CAN id "
                          f"0x{frame_id:03x}), which this host did not send; stop the other controller "
-                         "(another iik run on this channel?) and run again")
+                         "(another run on this channel?) and run again")
 
 
 class BusError(HardwareError, OSError):

@@ -37,10 +37,10 @@ import numpy as np
 
 from iik.arm import Arm
 from iik.arms import same_arm, to_record
-from iik.errors import InvalidInputError
+from iik.errors import InvalidInputError, Remedy
 from iik.kinematics import fk
-from iik.planning.timing import EXECUTION_MARGIN, MIN_STEP
 from iik.rotations import rotation_angle
+from iik.safety import EXECUTION_MARGIN, MIN_STEP
 from iik.signals import stop_on_signals
 
 from . import protocol as P
@@ -65,7 +65,7 @@ class ValidationOptions:
 
     Attributes:
         margin: Keep targets this far inside Table I [rad] (default
-            :data:`iik.planning.timing.EXECUTION_MARGIN`, 0.5 deg, which planned trajectories keep).
+            :data:`iik.safety.EXECUTION_MARGIN`, 0.5 deg, which planned trajectories keep).
         velocity_fraction: Allowed fraction of each joint's speed limit.
         fk_position_tol: Max distance between FK(target) and the planned position [m].
         fk_rotation_tol: Max angle between FK(target) and the planned orientation [rad].
@@ -144,15 +144,14 @@ def validate(times, q, poses, *, arm: Arm,
         if len(bad):
             k, j = int(bad[0][0]), (int(bad[0][1]) if name == "q" else None)
             raise SafetyError(target_name(k, j), f"{name} not finite", step=k, joint=j)
-    # Table I with a margin
-    lo = arm.q_min + options.margin
-    hi = arm.q_max - options.margin
-    out = np.argwhere((qa < lo) | (qa > hi))
-    if len(out):
-        k, j = (int(v) for v in out[0])
-        raise SafetyError(target_name(k, j), f"{qa[k, j]:.6f} rad outside {arm.limits_name} "
-                          f"[{arm.q_min[j]:.4f}, {arm.q_max[j]:.4f}] rad less the margin of "
-                          f"{options.margin:.4f} rad ({math.degrees(options.margin):g} deg)", step=k, joint=j)
+    if not (isinstance(options.margin, (int, float)) and math.isfinite(options.margin)):
+        raise SafetyError("options.margin", f"must be a finite angle [rad], got {options.margin!r}")
+    out = arm.limit_violations(qa, options.margin)  # Table I with a margin
+    if out:
+        v = out[0]
+        raise SafetyError(target_name(v.sample, v.joint), f"{v.value:.6f} rad outside {arm.limits_name} "
+                          f"[{v.lower:.4f}, {v.upper:.4f}] rad less the margin of {v.margin:.4f} rad "
+                          f"({math.degrees(v.margin):g} deg)", step=v.sample, joint=v.joint)
     step_ms = _step_ms(t, options.min_step)
     vel = np.abs(np.diff(qa, axis=0)) / (step_ms[:, None] / 1000.0)
     vmax = np.asarray(arm.velocity) * options.velocity_fraction
@@ -344,7 +343,8 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
     for m, s in zip(arm.modules, arm.states(), strict=True):
         if s & (P.State.ERROR | P.State.HALTED):
             what = "halted (HALT latches)" if s & P.State.HALTED else "in error"
-            raise ModuleFault(m.id, s, f"before start: {what}; reset it first: iik run --reset")
+            raise ModuleFault(m.id, s, f"before start: {what}",
+                              Remedy("reset it first: {}", "reset", True, rerun=True))
     limits = arm.speed_limits()  # the modules' own FMAXVEL may be below the Sec 3.2 limits
     over = np.argwhere(np.abs(np.diff(tr.q, axis=0)) / (tr.step_ms[:, None] / 1000.0)
                        > limits * (1.0 + SPEED_TOLERANCE))

@@ -37,7 +37,7 @@ import numpy as np
 
 from iik.arm import Arm
 from iik.arms import from_record, same_arm
-from iik.errors import FileError, InvalidInputError
+from iik.errors import FileError, InvalidInputError, Remedy
 from iik.files import AtomicOutput, read_text
 
 from .errors import RunLogError
@@ -202,7 +202,9 @@ def run_arm(run: Run, arm: Arm | None = None) -> Arm:
         raise InvalidInputError("arm", f"expected an iik.Arm, got {type(arm).__name__}")
     if run.arm is None:
         if arm is None:
-            raise RunLogError("the run log records no arm: give the arm it was run on (--arm)")
+            err = RunLogError("the run log records no arm")
+            err.remedy = Remedy("give the arm it was run on as {}", "arm")
+            raise err
         return arm
     if arm is not None and not same_arm(arm, run.arm):
         raise InvalidInputError("arm", f"{arm.name!r} is not the arm the run log records ({run.arm.name!r})")

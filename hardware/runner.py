@@ -33,8 +33,8 @@ from datetime import datetime
 from pathlib import Path
 
 from iik.arm import Arm
-from iik.errors import InvalidInputError
-from iik.planning.timing import EXECUTION_MARGIN
+from iik.errors import InvalidInputError, Remedy
+from iik.safety import EXECUTION_MARGIN
 from iik.signals import stop_on_signals
 
 from . import protocol as P
@@ -133,7 +133,8 @@ class RunRequest:
 
     def __post_init__(self) -> None:
         if sum(x is not None for x in (self.scenario, self.trajectory, self.demo or None)) != 1:
-            raise InvalidInputError("run", "give exactly one of SCENARIO, --trajectory FILE or --demo")
+            raise InvalidInputError("run", "no trajectory or more than one",
+                                    Remedy("give exactly one of {}", ("scenario", "trajectory", "demo")))
         mods = tuple(self.modules)
         if len(mods) != 6 or len(set(mods)) != 6 or any(
                 isinstance(i, bool) or not isinstance(i, int) or i not in P.MODULE_IDS for i in mods):
@@ -165,8 +166,8 @@ class RunRequest:
         if self.arm is not None and not isinstance(self.arm, Arm):
             raise InvalidInputError("arm", f"expected an iik.Arm, got {type(self.arm).__name__}")
         if self.arm is None and self.scenario is None:
-            raise InvalidInputError("arm", "a trajectory file or the demo does not say which arm it is for: "
-                                           "give the arm (RunRequest.arm, iik run --arm)")
+            raise InvalidInputError("arm", "a trajectory file or the demo does not say which arm it is for",
+                                    Remedy("give it as {}", "arm"))
 
     @property
     def simulated(self) -> bool:
@@ -355,10 +356,7 @@ def _halted_note(request: RunRequest, log_path: Path) -> str | None:
     """What to tell after a run stopped by a fault, if it had started (its log has records)."""
     if not log_path.exists() or log_path.stat().st_size == 0:
         return None
-    note = f"HALT broadcast to every module; the run log {log_path} ends with the fault"
-    if not request.simulated:
-        note += "; the modules stay halted until reset: run again with --reset"
-    return note
+    return f"HALT broadcast to every module; the run log {log_path} ends with the fault"
 
 
 def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
@@ -411,6 +409,8 @@ def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
             if (note := _halted_note(request, log_path)) is not None:
                 exc.add_note(note)
                 exc.run_log = log_path  # the run started: HALT sent, the log ends with the fault
+                if not request.simulated and getattr(exc, "remedy", None) is None:
+                    exc.remedy = Remedy("the modules stay halted until reset: run again with {}", "reset")
             elif request.out.suffix != ".jsonl":
                 log_path.unlink(missing_ok=True)  # reserved, never written: the run did not start
             raise

@@ -450,6 +450,12 @@ class SimModule:
 
 
 # ----------------------------------------------------------------------------- server
+def _module_joints(n: int) -> tuple[int, ...]:
+    """The arm joint (from 0) whose limits, speed and acceleration each of ``n`` simulated modules
+    takes, in order: joints 1..6 for the first six, joint 1 for any further module."""
+    return tuple(j if j < 6 else 0 for j in range(n))
+
+
 def _checked_modules(module_ids, initial, arm: Arm, lag) -> tuple[list[int], np.ndarray]:
     """Module ids (distinct, 1..31), initial positions [rad] (finite, one per module, inside the
     modules' soft limits: Table I for the first six) and the lag ([0, 1] s)."""
@@ -465,12 +471,10 @@ def _checked_modules(module_ids, initial, arm: Arm, lag) -> tuple[list[int], np.
         q0 = np.full(0, np.nan)
     if q0.shape != (len(ids),) or not np.all(np.isfinite(q0)):
         raise SafetyError("initial", f"need {len(ids)} finite positions [rad], one per module")
-    for j, p in enumerate(q0):
-        k = j if j < 6 else 0  # as SimulatedArm assigns the limits
-        lo, hi = arm.lower[k], arm.upper[k]
-        if not lo <= p <= hi:
+    for j, (p, k) in enumerate(zip(q0, _module_joints(len(ids)), strict=True)):
+        for v in arm.limit_violations([p], joints=(k,)):  # the soft limits SimulatedArm gives module j
             raise SafetyError("initial", f"joint q{j + 1} at {p:g} rad is outside its soft limits "
-                              f"[{lo:.4f}, {hi:.4f}] rad ({arm.limits_name})")
+                              f"[{v.lower:.4f}, {v.upper:.4f}] rad ({arm.limits_name})")
     if isinstance(lag, bool) or not isinstance(lag, (int, float)) or not (math.isfinite(lag)
                                                                            and 0 <= lag <= 1):
         raise InvalidInputError("lag", f"must be a finite number in [0, 1] s, got {lag!r}")
@@ -508,8 +512,7 @@ class SimulatedArm:
         self.tick = float(tick)
         now = clock()
         self.modules: dict[int, SimModule] = {}
-        for j, i in enumerate(ids):
-            k = j if j < 6 else 0
+        for j, (i, k) in enumerate(zip(ids, _module_joints(len(ids)), strict=True)):
             self.modules[i] = SimModule(
                 i, lower=arm.lower[k], upper=arm.upper[k], vmax=arm.velocity[k],
                 amax=arm.acceleration[k], lag=lag, initial=float(q0[j]), homed=homed,

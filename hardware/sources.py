@@ -29,9 +29,11 @@ import numpy as np
 
 from iik.arm import Arm
 from iik.errors import InvalidInputError
+from iik.extras import require
 from iik.files import read_text
 from iik.ik import select, solve
 from iik.kinematics import fk
+from iik.trajectory_csv import REQUIRED
 
 from .errors import SafetyError, target_name
 from .executor import ValidatedTrajectory, ValidationOptions, time_steps, validate
@@ -44,8 +46,9 @@ DEMO_STEP = 0.030
 #: Fraction of the joint speed limits the demo line is timed at: gentle, so that the simulated run
 #: (20 ms tracking lag) stays inside the 10 mm zone of Sec 4.3.1 it is judged by.
 DEMO_SPEED = 0.25
-#: Columns a trajectory CSV must name in its header line (others are ignored).
-CSV_COLUMNS = ("t", "q1", "q2", "q3", "q4", "q5", "q6")
+#: Columns a trajectory CSV must name in its header line (others are ignored): the schema's
+#: :data:`iik.trajectory_csv.REQUIRED`, the columns ``iik plan`` writes.
+CSV_COLUMNS = REQUIRED
 #: A number in a trajectory CSV: plain decimal, optional exponent (no "1_000", no non-ASCII digits).
 NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 #: Bounds of a trajectory CSV (memory and time stay bounded): rows of step-points and file size.
@@ -253,7 +256,12 @@ def scenario_trajectory(name: str | Path, speed: float = 1.0, *, arm: Arm | None
 
     The arm is the scenario's own; ``arm``, if given, must be the same arm (:func:`iik.planning.plan`).
     The step targets carry the arm the plan was made for.
+
+    Raises:
+        MissingExtraError: the 'planning' extra is not installed (a trajectory file or the demo
+            needs only 'hardware').
     """
+    require("planning", "a scenario run (hardware.sources.scenario_trajectory)")
     from iik.planning import poses_of, scenario_path
 
     res = _plan(scenario_path(name), arm)

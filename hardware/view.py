@@ -25,9 +25,9 @@ import os
 import numpy as np
 
 from iik import Arm, fk
-from iik.planning import Obstacle
 from iik.planning.viewer import Shown, ViewOptions, show, style
 from iik.planning.viewer.motion import Motion, MotionView, Track
+from iik.scene import Box
 
 from .errors import RunLogError
 from .runlog import READ_VERSIONS, RUN_LOG_VERSION, Run, read_run_log, run_arm
@@ -114,10 +114,10 @@ def run_motion(run: Run, *, name: str = "run", arm: Arm | None = None) -> Motion
                                 style.MEASURED, (0.0, side_by_side(arm), 0.0))), arm=arm)
 
 
-def run_obstacles(run: Run, name: str = "run") -> tuple[Obstacle, ...]:
+def run_obstacles(run: Run, name: str = "run") -> tuple[Box, ...]:
     """The scenario's boxes recorded in the log's header (none for a CSV or demo run)."""
-    def box(b: dict) -> Obstacle:
-        return Obstacle(center=tuple(float(v) for v in b["center"]), size=tuple(float(v) for v in b["size"]),
+    def box(b: dict) -> Box:
+        return Box(center=tuple(float(v) for v in b["center"]), size=tuple(float(v) for v in b["size"]),
                         name=str(b["name"]), kind=str(b["kind"]))
 
     try:

@@ -16,7 +16,7 @@ __getattr__, __dir__ = lazy_exports(__name__, {
                     "effort_index"),
     ".rotations": ("pose_from_euler", "euler_matrix", "euler_from_matrix", "rotation_angle",
                    "pose_from_zxz", "zxz_from_matrix", "zxz_matrix"),  # the zxz names: deprecated aliases
-    ".scene": ("Scene", "THESIS_SCENE"),
+    ".scene": ("Box", "Scene", "THESIS_SCENE"),
     ".errors": ("IIKError", "InvalidInputError", "UnreachablePoseError", "NotOrthonormalError",
                 "DexterityError", "MissingExtraError"),
     ".dexterity": ("dexterity", "Dexterity"),
@@ -52,6 +52,7 @@ __all__ = [
     "pose_from_zxz",  # deprecated aliases (they warn): Eq 42 is Z-Y-Z
     "zxz_from_matrix",
     "zxz_matrix",
+    "Box",
     "Scene",
     "THESIS_SCENE",
     "IIKError",

@@ -39,6 +39,7 @@ from .kinematic_class import (
     chain_from_lines,
     solver_chain,
 )
+from .limits import LimitViolations, excess
 
 __all__ = [
     "Arm",
@@ -350,15 +351,44 @@ class Arm:
     def within_limits(self, q, tol: float = LIMIT_TOL) -> np.ndarray:
         """Boolean (n,) or scalar: is each ``q`` [rad] inside the limits (Table I)?
 
-        The one joint-limit test of the project. ``tol`` [rad] widens the limits
-        (default :data:`LIMIT_TOL`, rounding at a stop); a negative ``tol`` is a
-        margin inside them (the planner's and the executor's margins).
+        ``limit_violations(q, margin=-tol).within``, without listing the violations: the same
+        test (:func:`iik.limits.excess`). ``tol`` [rad] widens the limits (default
+        :data:`LIMIT_TOL`, rounding at a stop); a negative ``tol`` is a margin inside them.
         """
         from .validation import as_joints
 
         qb, batched = as_joints(q, "q")
-        ok = np.all((qb >= self.q_min - tol) & (qb <= self.q_max + tol), axis=1)
+        ok = np.all(excess(qb, self.q_min, self.q_max, -tol) <= 0.0, axis=1)
         return ok if batched else bool(ok[0])
+
+    def limit_violations(self, q, margin: float = 0.0, *, joints=None) -> LimitViolations:
+        """The joint values of ``q`` [rad] beyond the limits (Table I) less ``margin`` [rad].
+
+        The project's one joint-limit test (:mod:`iik.limits`): the executor's margin, the
+        simulated modules' start, the timing's samples and the viewer ask it. A negative
+        ``margin`` is a tolerance outside the limits.
+
+        Args:
+            q: One configuration (k,) or a batch (n, k) [rad].
+            margin: Kept inside each limit [rad].
+            joints: The joint (from 0) of each of the k columns; default all six, in order.
+
+        Returns:
+            :class:`~iik.limits.LimitViolations`: a sequence of
+            :class:`~iik.limits.LimitViolation` (sample, joint, value, limits, amount), true if
+            any; ``.within`` per configuration.
+        """
+        from .validation import as_joints
+
+        cols = tuple(range(6)) if joints is None else tuple(int(j) for j in joints)
+        if not cols or any(j not in range(6) for j in cols):
+            raise InvalidInputError("joints", f"expected joint indices in 0..5, got {joints!r}")
+        if not (isinstance(margin, (int, float)) and math.isfinite(margin)):
+            raise InvalidInputError("margin", f"expected a finite number [rad], got {margin!r}")
+        qb, batched = as_joints(q, "q", dof=len(cols))
+        lower, upper = self.q_min[list(cols)], self.q_max[list(cols)]
+        return LimitViolations(q=qb, excess=excess(qb, lower, upper, float(margin)), joints=cols, lower=lower,
+                               upper=upper, margin=float(margin), batched=batched)
 
     # ------------------------------------------------------------------ geometry
     @property

@@ -38,6 +38,7 @@ import numpy as np
 
 from .arm import Arm
 from .errors import DexterityError, InvalidInputError, UnreachablePoseError
+from .ik.angles import wrap_angle
 from .ik.solve import solve_batch
 from .rotations import pose_from_euler
 from .validation import as_float_array, as_points
@@ -236,7 +237,8 @@ def _bisect(pred, inside: np.ndarray, outside: np.ndarray, tol: float) -> np.nda
 
 
 def _intervals_on_circle(x: np.ndarray, ok: np.ndarray, pred, tol: float) -> tuple[tuple[float, float], ...]:
-    """Admissible intervals of a periodic parameter sampled at sorted ``x`` (in [-pi, pi)) with ``ok``."""
+    """Admissible intervals of a periodic parameter sampled at sorted ``x`` (in [-pi, pi)) with ``ok``;
+    the intervals start in (-pi, pi]."""
     if ok.all():
         return ((-math.pi, math.pi),)
     if not ok.any():
@@ -246,7 +248,7 @@ def _intervals_on_circle(x: np.ndarray, ok: np.ndarray, pred, tol: float) -> tup
     down = np.nonzero(okn[:-1] & ~okn[1:])[0]  # x[i] in, x[i+1] out: an end
     starts = _bisect(pred, xn[up + 1], xn[up], tol)
     ends = _bisect(pred, xn[down], xn[down + 1], tol)
-    starts = (starts + math.pi) % _TWO_PI - math.pi
+    starts = wrap_angle(starts)
     out = []
     for s in np.sort(starts):
         e = ends[np.argmin((ends - s) % _TWO_PI)]
@@ -312,7 +314,7 @@ def _beta_end(p, free, opts, b_in: float, b_out: float) -> tuple[float, float]:
             spans += _runs(f, ok[at:at + f.size], f[1] - f[0])
             at += f.size
         spans = _merged(spans)
-    return b_in, float((witness + math.pi) % _TWO_PI - math.pi)
+    return b_in, float(wrap_angle(witness))
 
 
 def _beta_set(p, free: Arm, opts: DexterityOptions) -> tuple[tuple, tuple]:

@@ -4,13 +4,19 @@ Every error raised on bad input by ``iik``, ``verification`` or ``hardware``
 derives from :class:`IIKError`. Subclasses also inherit the matching built-in
 (``ValueError``, ``TimeoutError``) so generic handlers keep working. Each layer
 keeps its own errors module under this root (planning: :mod:`iik.planning.errors`).
+
+Errors speak the library's terms: they name the library argument (``port``, ``allow_outside_limits``)
+and carry what to do about them as data (:class:`Remedy`), never a command-line flag; the CLI
+(:mod:`iik.cli`) shows the option it maps that argument to.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 __all__ = [
+    "Remedy",
     "IIKError",
     "InvalidInputError",
     "UnreachablePoseError",
@@ -21,8 +27,57 @@ __all__ = [
 ]
 
 
+@dataclass(frozen=True)
+class Remedy:
+    """What to do about an error, in library terms: an instruction naming the argument it concerns.
+
+    The library's message shows the argument as ``argument`` (or ``argument=value``); the CLI shows
+    the option it maps the argument to (``port`` -> ``--port``), with ``rerun`` as the whole command
+    line to run again (``iik run --reset``).
+
+    Attributes:
+        action: The instruction, ``{}`` where the argument goes: ``"choose another {}"``.
+        arguments: The library argument(s) it concerns (a keyword or a request's field): ``("port",)``;
+            several are named as "a, b or c".
+        value: The value to give it, if the instruction is to set it (``True`` for a switch).
+        rerun: The instruction is to call again with the argument set.
+    """
+
+    action: str
+    arguments: tuple[str, ...]
+    value: object = None
+    rerun: bool = False
+
+    def __post_init__(self) -> None:
+        if isinstance(self.arguments, str):
+            object.__setattr__(self, "arguments", (self.arguments,))
+
+    def text(self, spelled=None) -> str:
+        """The instruction, each argument as ``spelled(argument)`` (the CLI's option) or, by default,
+        as the library's ``argument`` / ``argument=value``."""
+        shown = [spelled(a) if spelled else a if self.value is None else f"{a}={self.value!r}"
+                 for a in self.arguments]
+        named = shown[0] if len(shown) == 1 else f"{', '.join(shown[:-1])} or {shown[-1]}"
+        return self.action.format(named)
+
+
 class IIKError(Exception):
-    """Root of every error this project raises on purpose."""
+    """Root of every error this project raises on purpose.
+
+    Attributes:
+        remedy: What to do about it (:class:`Remedy`), or None; the message ends with it, in
+            library terms (:attr:`problem` is the message without it).
+    """
+
+    remedy: Remedy | None = None
+
+    def __str__(self) -> str:
+        return self.problem if self.remedy is None else f"{self.problem}; {self.remedy.text()}"
+
+    @property
+    def problem(self) -> str:
+        """The message without the remedy."""
+        return super().__str__()
 
 
 class MissingExtraError(IIKError, ImportError):
@@ -48,11 +103,13 @@ class InvalidInputError(IIKError, ValueError):
     Attributes:
         argument: Name of the offending argument.
         reason: Human-readable reason.
+        remedy: What to do about it (:class:`Remedy`), or None.
     """
 
-    def __init__(self, argument: str, reason: str):
+    def __init__(self, argument: str, reason: str, remedy: Remedy | None = None):
         self.argument = argument
         self.reason = reason
+        self.remedy = remedy
         super().__init__(f"{argument}: {reason}")
 
 
@@ -67,9 +124,9 @@ class FileError(InvalidInputError, OSError):
         path: The path as given.
     """
 
-    def __init__(self, argument: str, reason: str, path=None):
+    def __init__(self, argument: str, reason: str, path=None, remedy: Remedy | None = None):
         self.path = path
-        super().__init__(argument, reason)
+        super().__init__(argument, reason, remedy)
 
 
 class UnreachablePoseError(IIKError, ValueError):

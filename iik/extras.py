@@ -8,7 +8,7 @@ extra       package                     adds
 ==========  ==========================  =====================================================
 planning    ``iik.planning``            Coal, OMPL, TOPP-RA, matplotlib
 viewer      ``iik.planning.viewer``     planning, viser, trimesh
-hardware    ``hardware``                planning, python-can (and msgpack for udp_multicast), ruckig
+hardware    ``hardware``                python-can (and msgpack for udp_multicast), ruckig, matplotlib
 verify      ``verification``            planning, viewer, hardware, example-robot-data
 test        the test suite              everything, Hypothesis, pytest, ...
 all         everything above but test
@@ -38,7 +38,7 @@ _HARDWARE = ("can", "msgpack", "ruckig")
 EXTRAS: dict[str, tuple[str, ...]] = {
     "planning": _PLANNING,
     "viewer": _PLANNING + _VIEWER,
-    "hardware": _PLANNING + _HARDWARE,
+    "hardware": _HARDWARE + ("matplotlib",),  # a scenario run also needs planning (hardware.sources)
     "verify": _PLANNING + _VIEWER + _HARDWARE,
     "test": ("hypothesis",),
 }

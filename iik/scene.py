@@ -20,17 +20,20 @@ Decisions (the thesis gives only the heights):
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from .errors import InvalidInputError
-from .validation import as_points
+from .validation import as_float_array, as_points
 
 __all__ = [
     "PLATFORM_HEIGHT",
     "TABLE_HEIGHT",
-    "AxisBox",
+    "KINDS",
+    "Box",
+    "AxisBox",  # deprecated: Box.from_corners
     "Floor",
     "Scene",
     "THESIS_SCENE",
@@ -40,46 +43,95 @@ __all__ = [
 PLATFORM_HEIGHT = 0.45
 #: Sec 4.2.1: height of a standard dining table above the floor [m].
 TABLE_HEIGHT = 0.80
+#: What a box is to the planner (:attr:`Box.kind`).
+KINDS = ("obstacle", "support")
 
 
 @dataclass(frozen=True)
-class AxisBox:
-    """An axis-aligned box in the base frame, from corner ``lower`` to corner ``upper`` [m]."""
+class Box:
+    """An axis-aligned box in the base frame: the platform, a scenario's obstacle or support (Sec 3.6.2).
 
-    name: str
-    lower: tuple[float, float, float]
-    upper: tuple[float, float, float]
+    The one box type of the project (:data:`THESIS_SCENE`'s platform, :mod:`iik.planning`'s
+    scenario boxes, the viewer's and the run log's).
+
+    Attributes:
+        center: Centre (3,) [m], base frame.
+        size: Full dimensions (width along x, depth along y, height along z) [m], each positive.
+        name: Label for reports.
+        kind: ``"obstacle"`` (repels the path, Sec 3.6.2) or ``"support"`` (a table, a shelf or
+            the platform something stands on: collision-checked for the whole arm but not
+            enclosed in an ellipsoid, since start/goal lie on it).
+    """
+
+    center: tuple[float, float, float]
+    size: tuple[float, float, float]
+    name: str = "box"
+    kind: str = "obstacle"
 
     def __post_init__(self) -> None:
-        lo, hi = np.asarray(self.lower, float), np.asarray(self.upper, float)
-        if lo.shape != (3,) or hi.shape != (3,) or not np.all(np.isfinite([lo, hi])):
-            raise InvalidInputError(self.name, "box corners must be 3 finite numbers each")
-        if not np.all(lo < hi):
-            raise InvalidInputError(self.name, f"lower corner {self.lower} is not below upper {self.upper}")
+        if not isinstance(self.name, str):
+            raise InvalidInputError("name", f"expected a string, got {type(self.name).__name__}")
+        c = as_float_array(self.center, f"{self.name}.center").reshape(-1)
+        s = as_float_array(self.size, f"{self.name}.size").reshape(-1)
+        if c.shape != (3,):
+            raise InvalidInputError(f"{self.name}.center", "expected three coordinates [m]")
+        if s.shape != (3,) or np.any(s <= 0):
+            raise InvalidInputError(f"{self.name}.size", "expected three positive dimensions [m]")
+        if self.kind not in KINDS:
+            raise InvalidInputError(f"{self.name}.kind", "expected 'obstacle' or 'support'")
+        object.__setattr__(self, "center", tuple(float(v) for v in c))
+        object.__setattr__(self, "size", tuple(float(v) for v in s))
+
+    @classmethod
+    def from_corners(cls, name: str, lower, upper, kind: str = "obstacle") -> Box:
+        """The box from corner ``lower`` to corner ``upper`` [m] (each below the other on every axis)."""
+        lo = as_float_array(lower, f"{name}.lower").reshape(-1)
+        hi = as_float_array(upper, f"{name}.upper").reshape(-1)
+        if lo.shape != (3,) or hi.shape != (3,):
+            raise InvalidInputError(name, "box corners must be 3 finite numbers each")
+        return cls(tuple((lo + hi) / 2), tuple(hi - lo), name=name, kind=kind)
 
     @property
-    def center(self) -> np.ndarray:
-        """Centre [m], shape (3,)."""
-        return (np.asarray(self.lower) + np.asarray(self.upper)) / 2
+    def half(self) -> np.ndarray:
+        """Half dimensions [m], shape (3,)."""
+        return 0.5 * np.asarray(self.size)
 
     @property
-    def size(self) -> np.ndarray:
-        """Edge lengths along x, y, z [m], shape (3,)."""
-        return np.asarray(self.upper) - np.asarray(self.lower)
+    def lower(self) -> np.ndarray:
+        """The corner of least x, y, z [m], shape (3,)."""
+        return np.asarray(self.center) - self.half
+
+    @property
+    def upper(self) -> np.ndarray:
+        """The corner of greatest x, y, z [m], shape (3,)."""
+        return np.asarray(self.center) + self.half
+
+    @property
+    def corners(self) -> np.ndarray:
+        """The eight corners (8, 3) [m]."""
+        signs = np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)], float)
+        return np.asarray(self.center) + signs * self.half
 
     def contains(self, p, margin: float = 0.0):
-        """Is each point ``p`` [m] ((3,) or (n, 3)) inside the box grown by ``margin`` [m]?"""
+        """Is each point ``p`` [m] ((3,) or (n, 3)) inside the box grown by ``margin`` [m]?
+        A bool for one point, (n,) bools for n."""
         pb, batched = as_points(p, "p")
-        inside = np.all((pb >= np.asarray(self.lower) - margin)
-                        & (pb <= np.asarray(self.upper) + margin), axis=1)
+        inside = np.all(np.abs(pb - np.asarray(self.center)) <= self.half + margin, axis=1)
         return inside if batched else bool(inside[0])
 
     def distance(self, p):
-        """Euclidean distance [m] from each point to the box (0 inside), (n,) or scalar."""
+        """Euclidean distance [m] from each point ``p`` ((3,) or (n, 3)) to the box (0 inside):
+        a float for one point, (n,) for n."""
         pb, batched = as_points(p, "p")
-        d = np.maximum(np.maximum(np.asarray(self.lower) - pb, pb - np.asarray(self.upper)), 0.0)
-        out = np.linalg.norm(d, axis=1)
-        return out if batched else float(out[0])
+        d = np.linalg.norm(np.maximum(np.abs(pb - np.asarray(self.center)) - self.half, 0.0), axis=1)
+        return d if batched else float(d[0])
+
+
+def AxisBox(name: str, lower, upper) -> Box:  # noqa: N802 (the old class name)
+    """Deprecated: :meth:`Box.from_corners` (the scene's box is now the project's one :class:`Box`)."""
+    warnings.warn("iik.scene.AxisBox is deprecated: use iik.scene.Box.from_corners(name, lower, upper)",
+                  DeprecationWarning, stacklevel=2)
+    return Box.from_corners(name, lower, upper)
 
 
 @dataclass(frozen=True)
@@ -97,9 +149,9 @@ class Floor:
 
 @dataclass(frozen=True)
 class Scene:
-    """The fixed surroundings of the arm: the mobile platform it stands on and the floor."""
+    """The fixed surroundings of the arm: the mobile platform it stands on (a support box), the floor."""
 
-    platform: AxisBox
+    platform: Box
     floor: Floor
 
     def z_at_height(self, height: float) -> float:
@@ -111,6 +163,7 @@ class Scene:
 
 #: The scene of Sec 4.2.1 with the assumed platform footprint (module docstring).
 THESIS_SCENE = Scene(
-    platform=AxisBox("platform", lower=(-0.55, -0.25, -PLATFORM_HEIGHT), upper=(0.10, 0.25, 0.0)),
+    platform=Box.from_corners("platform", lower=(-0.55, -0.25, -PLATFORM_HEIGHT), upper=(0.10, 0.25, 0.0),
+                              kind="support"),
     floor=Floor(z=-PLATFORM_HEIGHT),  # arm base on the platform top (decision above)
 )

@@ -125,9 +125,9 @@ def test_the_plan_is_the_given_arms(journey):
     # collision: the clearances are the arm's body (its links; the thesis arm's body measures otherwise)
     assert set(res.clearance.step_link) <= _links(arm)
     own = SceneCollision(res.scenario.obstacles, arm=arm, scene=res.scene)
-    assert np.allclose([own.clearance(q)[0] for q in res.q], res.clearance.step, atol=1e-9)
+    assert np.allclose([own.nearest(q).distance for q in res.q], res.clearance.step, atol=1e-9)
     thesis = SceneCollision(res.scenario.obstacles, arm=THESIS_ARM, scene=res.scene)
-    assert np.abs(np.array([thesis.clearance(q)[0] for q in res.q]) - res.clearance.step).max() > 0.005
+    assert np.abs(np.array([thesis.nearest(q).distance for q in res.q]) - res.clearance.step).max() > 0.005
     # timing: the arm's limits (TOPP-RA with them gives the plan's duration; with the thesis arm's, another)
     qd = np.abs(res.trajectory.qd)
     assert np.all(qd <= np.asarray(arm.velocity) * (1 + 1e-9))
@@ -186,7 +186,7 @@ def test_the_views_draw_the_given_arm(journey, tmp_path, monkeypatch):
     pv = plan_scene(res)
     assert pv.arm is arm and np.allclose(fk(pv.step_q, arm)[:, :3, 3], pv.step_points, atol=1e-8)
     scene = PlanScene(pv)
-    assert set(scene.clearance.link) <= _links(arm)
+    assert {n.link for n in scene.clearance} <= _links(arm)
     show(scene, ViewOptions(export=tmp_path / "plan"))
     assert (tmp_path / "plan" / "index.html").is_file()
     assert len(bodies) == 3 and all(_is_body_of(b, arm) for b in bodies)

@@ -103,6 +103,29 @@ def test_the_cli_prints_a_missing_extra_as_one_line_and_exits_2(argv, blocked, n
     assert out.stderr.startswith(f"iik {argv[0]}: error: MissingExtraError: {needs}")
 
 
+def test_a_trajectory_file_or_the_demo_runs_without_the_planning_extra():
+    """``hardware`` needs only its own extra for a trajectory file or the demo (the safety numbers live
+    in ``iik.safety``); a scenario run names the 'planning' extra it needs."""
+    planning_only = tuple(m for m in EXTRAS["planning"] if m not in EXTRAS["hardware"])
+    out = _run_blocked(planning_only + ("iik.planning", "pinocchio", "viser"), """
+import iik.arms
+from hardware.runner import RunRequest
+from hardware.sources import demo_trajectory, scenario_trajectory
+arm = iik.arms.get("thesis")
+RunRequest(demo=True, arm=arm)
+print(len(demo_trajectory(arm).validate()) > 2)
+try:
+    scenario_trajectory("j")
+except ImportError as exc:
+    print(type(exc).__name__, exc.extra, str(exc), sep="|")
+""")
+    assert out.returncode == 0, out.stderr
+    ok, error = out.stdout.strip().splitlines()
+    assert ok == "True" and "coal" in planning_only
+    assert error.startswith("MissingExtraError|planning|a scenario run "
+                            "(hardware.sources.scenario_trajectory) needs the 'planning' extra")
+
+
 def test_the_core_solves_without_any_extra():
     """``iik.solve`` and ``iik.fk`` with every optional library missing (core only), on an arm read
     from its URDF (the registry's CRX-10iA)."""

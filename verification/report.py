@@ -395,7 +395,7 @@ def read_report(path) -> dict:
     """
     p = Path(path)
     if not p.exists():
-        raise ReportError(str(path), "no such file (run `iik verify` first)")
+        raise ReportError(str(path), "no such file (write one first: verification.verify(out_dir))")
     try:
         doc = json.loads(read_text(p, "path", limit=MAX_REPORT_BYTES, what="a report"))
     except FileError as exc:

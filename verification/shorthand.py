@@ -1,9 +1,11 @@
 """Shorthand of the checks' transcriptions: the thesis's ``c1 = cos(theta1)``, ``s1 = sin(theta1)``,
-``ca = cos(alpha)``, ..., and angle differences wrapped to one turn."""
+``ca = cos(alpha)``, ..., and angle differences wrapped to one turn (:func:`iik.ik.angles.wrap_angle`)."""
 
 from __future__ import annotations
 
 import numpy as np
+
+from iik.ik.angles import wrap_angle
 
 __all__ = ["cos_sin", "wrap"]
 
@@ -13,6 +15,6 @@ def cos_sin(*angles) -> tuple:
     return tuple(f(a) for a in angles for f in (np.cos, np.sin))
 
 
-def wrap(a):
-    """Angles [rad] (floats or arrays) wrapped to [-pi, pi): how far apart two joint angles are."""
-    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
+#: Angles [rad] (floats or arrays) wrapped to (-pi, pi]: how far apart two joint angles are. The
+#: project's one wrap, :func:`iik.ik.angles.wrap_angle`, under the checks' short name.
+wrap = wrap_angle

@@ -3,8 +3,9 @@
 Each subcommand is a module in this package defining ``NAME``, ``HELP``,
 ``add_arguments(parser)`` and ``run(args) -> int``; it parses, calls one library function
 and prints (``parser.spelling`` maps a library argument to the option as typed, e.g.
-``p`` -> ``--xyz``). Modules are discovered automatically; heavy packages (pinocchio,
-coal, python-can, verification, hardware) are imported lazily inside ``run``.
+``p`` -> ``--xyz``; :mod:`iik.cli.messages` shows errors with it). Modules are discovered
+automatically; heavy packages (pinocchio, coal, python-can, verification, hardware) are imported
+lazily inside ``run``.
 
 Every expected failure (an ``IIKError``, a bad argument, an unwritable file) ends the
 command with one line on stderr naming the option as typed, and exit code 2, never a
@@ -21,6 +22,7 @@ import signal
 import sys
 
 from ..errors import IIKError
+from .messages import as_typed, remedies
 
 __all__ = ["main", "build_parser"]
 
@@ -70,16 +72,6 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _as_typed(exc: BaseException, parser: _Parser) -> str:
-    """``Type: message``, naming the option as typed (``--margin-deg`` for ``margin``), with
-    the exception's notes (e.g. where the run log is) after it on the same line."""
-    name, reason = getattr(exc, "argument", None), getattr(exc, "reason", None)
-    shown = next((typed for dest, typed in parser.spelling.items() if name and reason and (
-        dest == name or dest.startswith(f"{name}_"))), None)
-    text = f"{type(exc).__name__}: " + (f"{shown}: {reason}" if shown else str(exc))
-    return "; ".join([text, *getattr(exc, "__notes__", ())])
-
-
 def main(argv: list[str] | None = None) -> int:
     try:
         args, extra = build_parser().parse_known_args(argv)
@@ -91,14 +83,14 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return int(args._run(args) or 0)
     except IIKError as exc:
-        print(f"iik {args.command}: error: {_as_typed(exc, args._parser)}", file=sys.stderr)
+        print(f"iik {args.command}: error: {as_typed(exc, args._parser)}", file=sys.stderr)
         return 2
     except OSError as exc:  # an output file or folder that cannot be written
         print(f"iik {args.command}: error: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt as exc:  # Ctrl-C, or SIGTERM/SIGHUP as iik.signals.StopSignal
         signum = getattr(exc, "signum", signal.SIGINT)
-        notes = "".join(f"; {n}" for n in getattr(exc, "__notes__", ()))
+        notes = "".join(f"; {n}" for n in [*getattr(exc, "__notes__", ()), *remedies(exc, args._parser)])
         print(f"iik {args.command}: interrupted by {signal.Signals(signum).name}{notes}", file=sys.stderr,
               flush=True)
         return 128 + int(signum)

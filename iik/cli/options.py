@@ -11,7 +11,7 @@ __all__ = ["add_pose_arguments", "warn_degrees", "warn_millimetres", "joint_angl
 
 #: The Euler angles option and its deprecated alias (the thesis calls Eq 42 "Z-X-Z"; it is Z-Y-Z).
 EULER, EULER_DEPRECATED = "--zyz", "--zxz"
-_EULER_NAMES = ("zyz", "alpha", "beta", "gamma")
+_EULER_NAMES = ("zyz", "zxz", "alpha", "beta", "gamma")  # zxz: ViewRequest's field
 
 
 class _EulerAngles(argparse.Action):
@@ -74,10 +74,13 @@ def joint_angles(values, flag: str, deg: bool, arm):
     with np.errstate(over="ignore"):
         q = np.radians(values) if deg else np.asarray(values, float)
     unit, show = ("deg", np.degrees) if deg else ("rad", lambda v: v)
-    for j, (v, lo, hi) in enumerate(zip(q, arm.lower, arm.upper, strict=True)):
-        if not (math.isfinite(v) and lo - LIMIT_TOL <= v <= hi + LIMIT_TOL):
-            raise InvalidInputError(flag, f"q{j + 1} = {values[j]:g} {unit} is outside the joint limits "
-                                          f"[{show(lo):.4g}, {show(hi):.4g}] {unit} ({arm.limits_name})")
+    finite = np.isfinite(q)
+    outside = arm.limit_violations(np.where(finite, q, 0.0), -LIMIT_TOL)  # the arm's one limit test
+    bad = sorted({*np.flatnonzero(~finite).tolist(), *(v.joint for v in outside)})
+    if bad:
+        j, lo, hi = bad[0], arm.lower[bad[0]], arm.upper[bad[0]]
+        raise InvalidInputError(flag, f"q{j + 1} = {values[j]:g} {unit} is outside the joint limits "
+                                      f"[{show(lo):.4g}, {show(hi):.4g}] {unit} ({arm.limits_name})")
     return q
 
 

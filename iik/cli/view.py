@@ -48,6 +48,7 @@ def add_arguments(p) -> None:
     p.add_argument("--export", type=Path, default=None, metavar="DIR",
                    help="write a self-contained page DIR/index.html instead of serving")
     p.add_argument("--force", action="store_true", help="with --export: replace a non-empty DIR")
+    p.spelling.update(planning="--timeout/--no-fallbacks")  # ViewRequest.planning: what these options set
 
 
 def _request(args, arm):

@@ -23,6 +23,7 @@ import numpy as np
 from ..arm import Arm
 from ..joint_path import PathEvent, branch_switches
 from ..kinematics import fk, jacobian
+from .angles import angle_distance
 
 __all__ = ["path_events", "SAME_POSE", "SAME_CONFIGURATION", "SINGULAR", "SMOOTH_STEP", "CONTRACTION",
            "MAX_BISECTIONS"]
@@ -49,10 +50,6 @@ def _pose_keys(q: np.ndarray, arm: Arm) -> np.ndarray:
     return np.concatenate([T[:, :3, 3] / arm.reach, T[:, :3, :3].reshape(-1, 9)], axis=1)
 
 
-def _differ(a: np.ndarray, b: np.ndarray) -> float:
-    return float(np.max(np.abs(np.mod(a - b + np.pi, 2 * np.pi) - np.pi)))
-
-
 def _between(Ta: np.ndarray, Tb: np.ndarray) -> np.ndarray:
     """The pose halfway between two poses: the position's midpoint, the rotation's half turn."""
     from scipy.spatial.transform import Rotation
@@ -73,7 +70,7 @@ def _continues(qa, Ta, qb, Tb, arm: Arm, method: str, depth: int = 0) -> bool:
     from .nearest import Candidates
     from .solve import solve
 
-    d = _differ(qa, qb)
+    d = angle_distance(qa, qb)
     if d <= SMOOTH_STEP or depth >= MAX_BISECTIONS:
         return True
     Tm = _between(Ta, Tb)
@@ -82,7 +79,7 @@ def _continues(qa, Ta, qb, Tb, arm: Arm, method: str, depth: int = 0) -> bool:
         return False  # no configuration halfway: the path left the reachable set
     Q, E = cand.nearest(qa)
     qm = Q[int(np.argmin(E))]
-    if max(_differ(qa, qm), _differ(qm, qb)) > CONTRACTION * d:
+    if max(angle_distance(qa, qm), angle_distance(qm, qb)) > CONTRACTION * d:
         return False
     return _continues(qa, Ta, qm, Tm, arm, method, depth + 1) and _continues(qm, Tm, qb, Tb, arm, method,
                                                                            depth + 1)
@@ -99,7 +96,7 @@ def _cusps(q, sign, switched, arm: Arm) -> list[PathEvent]:
                        key=lambda ij: (ij[1], ij[0])):
         if out and out[-1].step == j:
             continue  # one event per step: the earliest revisited step
-        gap = _differ(q[i], q[j])
+        gap = angle_distance(q[i], q[j])
         if gap > SAME_CONFIGURATION and dirty[j] == dirty[i] and sign[i] != 0:
             text = (f"cusp: branch change without singularity (back at the pose of step {i} at another "
                     f"configuration, {gap:.3g} rad away in a joint; det J kept its sign, no switch between)")

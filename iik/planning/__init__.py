@@ -28,7 +28,7 @@ __getattr__, __dir__ = lazy_exports(__name__, {
     ".collision": ("PathClearance", "SceneCollision"),
     ".errors": ("PlanningError", "PlanningFailed", "PlanningTimeout", "SamplingError", "ScenarioError",
                 "TimingError"),
-    ".obstacles": ("SAFETY_ZONE", "Obstacle", "ellipsoid_value", "enclosing_radii", "repel_points",
+    ".obstacles": ("SAFETY_ZONE", "Box", "Obstacle", "ellipsoid_value", "enclosing_radii", "repel_points",
                    "repulsion_normal"),
     ".output": ("PLAN_FILES", "plot_effort", "plot_joints", "plot_scene", "write_outputs"),
     ".path": ("MAX_STEP", "MAX_STEP_POINTS", "arc_steps", "densify", "interpolate_joints",
@@ -38,7 +38,7 @@ __getattr__, __dir__ = lazy_exports(__name__, {
     ".rrt": ("rrt_connect",),
     ".scenario": ("MAX_ANGLE", "MAX_COORDINATE", "MAX_OBSTACLES", "MAX_STEPS_PER_SEGMENT", "Scenario",
                   "Waypoint", "check_scenario", "check_step_points"),
-    ".scenario_io": ("MAX_FILE_SIZE", "dexterity_notes", "load_scenario", "platform_box",
+    ".scenario_io": ("MAX_FILE_SIZE", "dexterity_notes", "load_scenario",
                      "scenario_from_dict", "scenario_path", "scenario_to_toml", "shipped_scenario_paths",
                      "thesis_scenario_paths",
                      "validate_scenario", "write_scenario"),
@@ -59,7 +59,8 @@ __all__ = [
     # scenarios and their files
     "Scenario",
     "Waypoint",
-    "Obstacle",
+    "Box",
+    "Obstacle",  # deprecated alias of Box (it warns)
     "check_scenario",
     "check_step_points",
     "load_scenario",
@@ -70,7 +71,6 @@ __all__ = [
     "scenario_path",
     "thesis_scenario_paths",
     "shipped_scenario_paths",
-    "platform_box",
     "dexterity_notes",
     # bounds of a scenario (memory and time)
     "MAX_STEP_POINTS",

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import InvalidInputError
 from ..rotations import euler_from_matrix, pose_from_euler
-from ..scene import AxisBox, Scene
+from ..scene import Box, Scene
 from .errors import ScenarioError
 from .obstacles import ellipsoid_value, enclosing_radii, repel_points
 from .path import MAX_STEP_POINTS, arc_steps, densify, interpolate_orientation, straight_steps
@@ -89,7 +89,7 @@ def _alpha_auto(points: np.ndarray) -> np.ndarray:
     return np.arctan2(points[:, 1], points[:, 0]) + np.pi  # Eq 46, expressed for z6
 
 
-def _lift(points: np.ndarray, platform: AxisBox | None, floor_z: float | None, s: float, keep: set[int]):
+def _lift(points: np.ndarray, platform: Box | None, floor_z: float | None, s: float, keep: set[int]):
     """Platform/floor avoidance: lift step-points into the safety level ``s`` [m] above them."""
     pts = points.copy()
     lifted = np.zeros(len(pts), bool)
@@ -97,7 +97,7 @@ def _lift(points: np.ndarray, platform: AxisBox | None, floor_z: float | None, s
         if i in keep:
             continue
         if platform is not None:
-            c, h = platform.center, platform.size / 2
+            c, h = np.asarray(platform.center), platform.half
             if np.all(np.abs(pts[i, :2] - c[:2]) <= h[:2] + s) and pts[i, 2] < c[2] + h[2] + s:
                 pts[i, 2] = c[2] + h[2] + s
                 lifted[i] = True

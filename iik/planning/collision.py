@@ -37,11 +37,10 @@ import pinocchio as pin
 
 from iik.arm import Arm
 from iik.errors import InvalidInputError
-from iik.scene import THESIS_SCENE, Scene
+from iik.scene import THESIS_SCENE, Box, Scene
 from iik.validation import as_joints
 
 from .budget import Budget
-from .obstacles import Obstacle
 from .robot_model import arm_model, collision_link
 
 __all__ = ["SceneCollision", "PathClearance", "Nearest"]
@@ -49,7 +48,9 @@ __all__ = ["SceneCollision", "PathClearance", "Nearest"]
 
 @dataclass(frozen=True)
 class Nearest:
-    """The closest arm-environment pair at one configuration (Coal distance; base frame 0, m).
+    """The closest arm-environment pair at one configuration (Coal distance; base frame 0, m): the
+    project's one nearest-pair result (:meth:`SceneCollision.nearest`; the viewer's per-frame
+    clearance, :func:`iik.planning.viewer.frame_clearance`, is one per frame).
 
     Attributes:
         distance: Distance between the pair [m]; negative: penetration depth.
@@ -111,13 +112,13 @@ class SceneCollision:
     """Coal distance queries between an arm and a scene.
 
     Args:
-        boxes: Scenario boxes (:class:`iik.planning.Obstacle`), base frame.
+        boxes: Scenario boxes (:class:`iik.scene.Box`), base frame.
         arm: The arm (its body, :func:`~iik.planning.robot_model.arm_model`, placed by its kinematics).
         scene: Platform and floor (default :data:`iik.scene.THESIS_SCENE`).
         platform, floor: Include them.
     """
 
-    def __init__(self, boxes: Sequence[Obstacle] = (), *, arm: Arm, scene: Scene = THESIS_SCENE,
+    def __init__(self, boxes: Sequence[Box] = (), *, arm: Arm, scene: Scene = THESIS_SCENE,
                  platform: bool = True, floor: bool = True):
         tm = arm_model(arm)
         self.arm = arm
@@ -193,12 +194,6 @@ class SceneCollision:
         self._update(qb[0])
         return np.array([self.geom_data.distanceResults[i].min_distance
                          for i in range(self.n_env_pairs)])
-
-    def clearance(self, q) -> tuple[float, str, str]:
-        """``(distance [m], link, object)`` of the closest arm-environment pair at ``q`` [rad]."""
-        qb, _ = as_joints(q, "q")
-        d, i = self._closest(qb[0])
-        return d, str(self.arm_link[self._pair_arm[i]]), str(self.env_names[self._pair_env[i]])
 
     def nearest(self, q) -> Nearest:
         """The closest arm-environment pair at ``q`` (6,) [rad]: distance, link, object, nearest points."""

@@ -24,7 +24,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..errors import IIKError, InvalidInputError
+from ..errors import IIKError, InvalidInputError, Remedy
 
 if TYPE_CHECKING:  # pragma: no cover
     from .pipeline import PlanResult
@@ -109,9 +109,9 @@ class OutsideLimitsError(ViewRequestError):
         joints: 0-based indices of the joints outside the limits (joint ``q{j + 1}``).
     """
 
-    def __init__(self, argument: str, reason: str, joints: tuple[int, ...]):
+    def __init__(self, argument: str, reason: str, joints: tuple[int, ...], remedy: Remedy | None = None):
         self.joints = tuple(joints)
-        super().__init__(argument, reason)
+        super().__init__(argument, reason, remedy)
 
 
 class PortInUseError(ViewerError, OSError):
@@ -126,7 +126,8 @@ class PortInUseError(ViewerError, OSError):
         self.host = host
         self.port = port
         super().__init__(f"port {port} on {host} is in use or not available"
-                         + (f" ({detail})" if detail else "") + "; choose another with --port")
+                         + (f" ({detail})" if detail else ""))
+        self.remedy = Remedy("choose another {}", "port")
 
 
 class ExportError(ViewerError, OSError):
@@ -137,7 +138,8 @@ class ExportError(ViewerError, OSError):
         reason: Why.
     """
 
-    def __init__(self, path: Path | str, reason: str):
+    def __init__(self, path: Path | str, reason: str, remedy: Remedy | None = None):
         self.path = Path(path)
         self.reason = reason
+        self.remedy = remedy
         super().__init__(f"{path}: {reason}")

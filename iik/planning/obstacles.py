@@ -1,4 +1,4 @@
-"""Box obstacles (:class:`Obstacle`), enclosing ellipsoids (Eq 52-53), step-point repulsion (Sec 3.6.2).
+"""Box obstacles (:class:`iik.scene.Box`), enclosing ellipsoids (Eq 52-53), step-point repulsion (Sec 3.6.2).
 
 Frames and units: every point is in the arm's base frame 0 [m].
 
@@ -26,85 +26,28 @@ undefined and we use ``(goal - start) x e_y`` (our choice).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import warnings
 
 import numpy as np
 
-from ..errors import InvalidInputError
-from ..validation import as_float_array, as_points
+from ..safety import SAFETY_ZONE  # re-exported: its home is iik.safety
+from ..scene import Box
+from ..validation import as_points
 
 __all__ = [
     "SAFETY_ZONE",
-    "Obstacle",
+    "Box",
     "enclosing_radii",
     "ellipsoid_value",
     "repulsion_normal",
     "repel_points",
 ]
 
-#: Sec 3.6.2.2 / Sec 4.3.2: thickness of the safety zone around each ellipsoid [m].
-SAFETY_ZONE = 0.030
-
 _A = math.pi / 4  # Eq 53: alpha
 _B = math.atan(math.cos(_A))  # Eq 53: beta, elevation of a cube's corner
 
 
-@dataclass(frozen=True)
-class Obstacle:
-    """A rectangular-prism obstacle (Sec 3.6.2), axis-aligned in the base frame.
-
-    Attributes:
-        center: Centre (3,) [m], base frame.
-        size: Full dimensions (width along x, depth along y, height along z) [m].
-        name: Label for reports.
-        kind: ``"obstacle"`` (repels the path, Sec 3.6.2) or ``"support"`` (a
-            table or shelf an object stands on: collision-checked for the whole
-            arm but not enclosed in an ellipsoid, since start/goal lie on it).
-    """
-
-    center: tuple[float, float, float]
-    size: tuple[float, float, float]
-    name: str = "box"
-    kind: str = "obstacle"
-
-    def __post_init__(self) -> None:
-        if not isinstance(self.name, str):
-            raise InvalidInputError("name", f"expected a string, got {type(self.name).__name__}")
-        c = as_float_array(self.center, f"{self.name}.center").reshape(-1)
-        s = as_float_array(self.size, f"{self.name}.size").reshape(-1)
-        if c.shape != (3,):
-            raise InvalidInputError(f"{self.name}.center", "expected three coordinates [m]")
-        if s.shape != (3,) or np.any(s <= 0):
-            raise InvalidInputError(f"{self.name}.size", "expected three positive dimensions [m]")
-        if self.kind not in ("obstacle", "support"):
-            raise InvalidInputError(f"{self.name}.kind", "expected 'obstacle' or 'support'")
-        object.__setattr__(self, "center", tuple(float(v) for v in c))
-        object.__setattr__(self, "size", tuple(float(v) for v in s))
-
-    @property
-    def half(self) -> np.ndarray:
-        """Half dimensions [m]."""
-        return 0.5 * np.asarray(self.size)
-
-    @property
-    def corners(self) -> np.ndarray:
-        """The eight corners (8, 3) [m]."""
-        signs = np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)], float)
-        return np.asarray(self.center) + signs * self.half
-
-    def contains(self, points, margin: float = 0.0) -> np.ndarray:
-        """Is each point inside the box grown by ``margin`` [m]? (n,) bool."""
-        p, _ = as_points(points, "points")
-        return np.all(np.abs(p - np.asarray(self.center)) <= self.half + margin, axis=1)
-
-    def distance(self, points) -> np.ndarray:
-        """Euclidean distance [m] from each point to the box (0 inside), (n,)."""
-        p, _ = as_points(points, "points")
-        d = np.maximum(np.abs(p - np.asarray(self.center)) - self.half, 0.0)
-        return np.linalg.norm(d, axis=1)
-
-
-def enclosing_radii(box: Obstacle) -> np.ndarray:
+def enclosing_radii(box: Box) -> np.ndarray:
     """Radii (x_r, y_r, z_r) [m] of the ellipsoid through the box's corners (Eq 53, corrected).
 
     ``w, d, h`` are the box's *half* dimensions and ``z_r`` uses ``sin(beta)``
@@ -163,7 +106,7 @@ def repel_points(points, boxes, start, goal, *, safety_zone: float = SAFETY_ZONE
 
     Args:
         points: (n, 3) step-points [m].
-        boxes: Iterable of :class:`Obstacle`; only ``kind == "obstacle"`` ones repel.
+        boxes: Iterable of :class:`~iik.scene.Box`; only ``kind == "obstacle"`` ones repel.
         start, goal: The path's start and goal (3,) [m] defining the push direction.
         safety_zone: Added to every radius [m] (30 mm in the thesis).
         keep_ends: Leave the first and last points in place (they are the
@@ -193,3 +136,12 @@ def repel_points(points, boxes, start, goal, *, safety_zone: float = SAFETY_ZONE
         if not changed:
             break
     return pts, moved
+
+
+def __getattr__(name: str):
+    """``Obstacle``: the deprecated name of :class:`iik.scene.Box` (the project's one box type)."""
+    if name == "Obstacle":
+        warnings.warn("iik.planning.Obstacle is deprecated: it is iik.scene.Box (also iik.planning.Box)",
+                      DeprecationWarning, stacklevel=2)
+        return Box
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

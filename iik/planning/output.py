@@ -6,6 +6,7 @@
   :attr:`~iik.planning.Trajectory.step_t`; only for a successful plan), tool point [m],
   joints [rad], effort index (Eq 54) [rad], whole-arm clearance [m] with the closest link
   and object, and the certified clearance of the motion to the next step [m];
+  (the columns of both: :mod:`iik.trajectory_csv`, which the reader uses too)
 
 ``iik run SCENARIO`` executes exactly the ``t, q1..q6`` of ``steps.csv``, and
 ``iik run --trajectory`` accepts either CSV as written (:mod:`iik.planning.timing`).
@@ -28,6 +29,7 @@ import numpy as np
 
 from iik.arm import Arm
 from iik.files import atomic_output
+from iik.trajectory_csv import TRAJECTORY_COLUMNS, steps_columns
 
 from .obstacles import enclosing_radii
 
@@ -62,8 +64,7 @@ def _write_files(res: PlanResult, out: Path, figures: bool) -> list[Path]:
         p = out / "trajectory.csv"
         with p.open("w", newline="") as f:
             w = csv.writer(f)
-            w.writerow(["t"] + [f"q{i}" for i in range(1, 7)] + [f"qd{i}" for i in range(1, 7)]
-                       + [f"qdd{i}" for i in range(1, 7)])
+            w.writerow(TRAJECTORY_COLUMNS)
             for k in range(len(tr.t)):
                 row = np.concatenate([tr.q[k], tr.qd[k], tr.qdd[k]])
                 w.writerow([f"{tr.t[k]:.6f}"] + [f"{v:.9f}" for v in row])
@@ -74,9 +75,7 @@ def _write_files(res: PlanResult, out: Path, figures: bool) -> list[Path]:
         timed = res.success and res.trajectory is not None and res.trajectory.step_t is not None
         with p.open("w", newline="") as f:
             w = csv.writer(f)
-            w.writerow(["step"] + (["t"] if timed else []) + ["x", "y", "z"] + [f"q{i}" for i in range(1, 7)]
-                       + ["effort", "clearance", "closest_link", "closest_object",
-                          "motion_clearance_to_next"])
+            w.writerow(steps_columns(timed))
             for i in range(len(res.q)):
                 mot = c.motion[i] if i < len(c.motion) else float("nan")
                 w.writerow([i] + ([f"{res.trajectory.step_t[i]:.3f}"] if timed else [])
@@ -207,8 +206,8 @@ def plot_scene(res: PlanResult, ax, *, n_arms: int = 5) -> None:
     clearance (amber, magenta inside the safety zone) with that clearance in mm."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
+    from .collision import SceneCollision
     from .viewer import style
-    from .viewer.plan_data import frame_clearance
 
     rgb = style.rgb01
     sc = res.scenario
@@ -250,16 +249,15 @@ def plot_scene(res: PlanResult, ax, *, n_arms: int = 5) -> None:
         worst = int(np.argmin(res.clearance.step)) if res.clearance is not None else 0
         for i in sorted(set(np.linspace(0, len(res.q) - 1, min(n_arms, len(res.q))).astype(int)) - {worst}):
             pts.append(draw_arm_bodies(ax, res.q[i], arm=res.arm, colour=rgb(style.ARM), alpha=0.07))
-        fc = frame_clearance(sc.obstacles, res.q[[worst]], arm=res.arm, scene=res.scene)
-        near = rgb(style.UNSAFE if fc.distance[0] < sc.safety_zone else style.NEAREST)
+        n = SceneCollision(sc.obstacles, arm=res.arm, scene=res.scene).nearest(res.q[worst])
+        near = rgb(style.UNSAFE if n.distance < sc.safety_zone else style.NEAREST)
         pts.append(draw_arm_bodies(ax, res.q[worst], arm=res.arm, colour=rgb(style.ARM), alpha=0.3,
-                                   link_colours={fc.link[0]: near}, zorder=3.5))
-        seg = np.stack([fc.on_link[0], fc.on_obstacle[0]])
+                                   link_colours={n.link: near}, zorder=3.5))
+        seg = np.stack([n.on_link, n.on_object])
         ax.plot(seg[:, 0], seg[:, 1], seg[:, 2], "-o", color=near, lw=2.0, ms=3, zorder=5)
-        d_mm = fc.distance[0] * 1e3
+        d_mm = n.distance * 1e3
         ax.text(*seg.mean(axis=0), f" {d_mm:.1f} mm", color="k", fontsize=8, zorder=6)
-        entries += [(f"nearest link at step {worst}: {fc.link[0]} to {fc.obstacle[0]}, {d_mm:.1f} mm", near,
-                     "line")]
+        entries += [(f"nearest link at step {worst}: {n.link} to {n.object}, {d_mm:.1f} mm", near, "line")]
         title += (f"\nleast clearance at the step-points {d_mm:.1f} mm "
                   f"(safety zone {sc.safety_zone * 1e3:.0f} mm)")
     set_equal_axes(ax, np.vstack(pts))

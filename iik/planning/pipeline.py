@@ -310,8 +310,8 @@ def _best(attempts) -> Attempt | None:
 
 def _timeout_reason(exc: PlanningTimeout, log: list[Attempt]) -> str:
     best = _best(log)
-    return (f"timed out after {exc.elapsed:.1f} s (timeout {exc.timeout:g} s: PlanOptions.timeout, "
-            f"iik plan --timeout) during {exc.stage}; "
+    return (f"timed out after {exc.elapsed:.1f} s (timeout {exc.timeout:g} s: PlanOptions.timeout) "
+            f"during {exc.stage}; "
             + (f"best attempt so far: {best}" if best else "no candidate path was checked"))
 
 

@@ -32,8 +32,9 @@ import numpy as np
 
 from ..arm import Arm
 from ..errors import InvalidInputError
+from ..scene import Box
 from .errors import ScenarioError
-from .obstacles import SAFETY_ZONE, Obstacle
+from .obstacles import SAFETY_ZONE
 from .path import MAX_STEP, MAX_STEP_POINTS, segment_length, segment_steps
 from .viapoints import via_point_path
 
@@ -148,7 +149,7 @@ class Scenario:
     title: str = ""
     reference: str = ""
     reconstruction: str = ""
-    obstacles: tuple[Obstacle, ...] = ()
+    obstacles: tuple[Box, ...] = ()
     via_points: tuple[tuple[float, float, float], ...] | None = None
     segments: tuple[str, ...] | None = None
     steps_per_segment: int | None = None
@@ -193,8 +194,8 @@ class Scenario:
         if not isinstance(self.obstacles, (tuple, list)) or len(self.obstacles) > MAX_OBSTACLES:
             raise ScenarioError("obstacles", f"expected at most {MAX_OBSTACLES} boxes")
         for k, b in enumerate(self.obstacles):
-            if not isinstance(b, Obstacle):
-                raise ScenarioError(f"obstacles[{k}]", f"expected an Obstacle, got {type(b).__name__}")
+            if not isinstance(b, Box):
+                raise ScenarioError(f"obstacles[{k}]", f"expected a Box, got {type(b).__name__}")
             point3(b.center, f"obstacles[{k}].center")
             point3(b.size, f"obstacles[{k}].size", 2 * MAX_COORDINATE)
         object.__setattr__(self, "obstacles", tuple(self.obstacles))
@@ -296,8 +297,8 @@ class _Frame:
 class _Placement:
     """The checks of one point of a scenario (start, goal, a via-point)."""
 
-    obstacles: tuple[Obstacle, ...]
-    platform: Obstacle | None
+    obstacles: tuple[Box, ...]
+    platform: Box | None
     floor_z: float | None
     in_workspace: Callable | None
     frame: _Frame
@@ -305,9 +306,9 @@ class _Placement:
     def blocked(self, p: np.ndarray) -> str | None:
         """Why ``p`` [m] cannot be a point of the path (inside a box, the platform, below the floor)."""
         for k, box in enumerate(self.obstacles):
-            if box.contains(p)[0]:
+            if box.contains(p):
                 return f"{self.frame.show(p)} lies inside {box.kind} {brief(box.name)} (obstacles[{k}])"
-        if self.platform is not None and self.platform.contains(p)[0]:
+        if self.platform is not None and self.platform.contains(p):
             return f"{self.frame.show(p)} lies inside the mobile platform"
         if self.floor_z is not None and p[2] < self.floor_z:
             z = self.frame.to_file([0.0, 0.0, self.floor_z])[2]
@@ -332,7 +333,7 @@ class _Placement:
                 + (f"({away * 1000:.0f} mm away)" if away < 1 else f"({away:.3f} m away)"))
 
 
-def check_scenario(sc: Scenario, *, platform: Obstacle | None = None, floor_z: float | None = None,
+def check_scenario(sc: Scenario, *, platform: Box | None = None, floor_z: float | None = None,
                    in_workspace: Callable | None = None, closest_reachable: Callable | None = None,
                    frame: str = "base") -> None:
     """Raise :class:`~iik.planning.ScenarioError` if the task is impossible as stated.

@@ -57,13 +57,12 @@ from pathlib import Path
 import numpy as np
 
 from iik.arm import Arm
-from iik.errors import FileError, InvalidInputError
+from iik.errors import FileError, InvalidInputError, Remedy
 from iik.files import read_text, write_text
 from iik.resources import scenarios_dir
-from iik.scene import THESIS_SCENE, Scene
+from iik.scene import THESIS_SCENE, Box, Scene
 
 from .errors import ScenarioError
-from .obstacles import Obstacle
 from .scenario import (
     FRAMES,
     MAX_ANGLE,
@@ -83,7 +82,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 __all__ = ["load_scenario", "scenario_from_dict", "scenario_to_toml", "write_scenario", "scenario_path",
-           "thesis_scenario_paths", "shipped_scenario_paths", "platform_box", "validate_scenario",
+           "thesis_scenario_paths", "shipped_scenario_paths", "validate_scenario",
            "dexterity_notes", "scenario_arm",
            "MAX_FILE_SIZE"]
 
@@ -126,12 +125,6 @@ def scenario_path(scenario: str | Path) -> Path:
     names = ", ".join(p.stem for p in shipped_scenario_paths())
     raise ScenarioError("scenario", f"{str(scenario)!r} is neither a scenario file nor a shipped scenario "
                                     f"({names})")
-
-
-def platform_box(scene: Scene = THESIS_SCENE) -> Obstacle:
-    """The scene's platform as a planning :class:`Obstacle` (kind ``support``)."""
-    p = scene.platform
-    return Obstacle(tuple(p.center), tuple(p.size), name="platform", kind="support")
 
 
 def load_scenario(path, *, arm: Arm | None = None, scene: Scene = THESIS_SCENE,
@@ -182,7 +175,7 @@ def scenario_arm(sc: Scenario, arm: Arm | None) -> Arm:
     if sc.arm is None and arm is None:
         raise ScenarioError("arm", f"scenario {sc.name!r} names no arm and none was given: add arm = "
                                    "\"NAME\" (a shipped arm, iik.arms.NAMES) or arm = \"path/to.urdf\" to "
-                                   "the file, or give one (iik plan --arm, plan(..., arm=...))")
+                                   "the file", Remedy("or give one as {}", "arm"))
     if sc.arm is not None and arm is not None and not same_arm(sc.arm, arm):
         raise ScenarioError("arm", f"scenario {sc.name!r} is for the arm {sc.arm.name!r}, not {arm.name!r} "
                                    "(its positions, reach and obstacles were laid out for it)")
@@ -205,7 +198,7 @@ def validate_scenario(sc: Scenario, *, arm: Arm, scene: Scene = THESIS_SCENE,
 
         kw = {"in_workspace": lambda p: in_workspace(p, arm),
               "closest_reachable": lambda p: closest_reachable(p, arm).point}
-    check_scenario(sc, platform=platform_box(scene), floor_z=scene.floor.z, frame=frame, **kw)
+    check_scenario(sc, platform=scene.platform, floor_z=scene.floor.z, frame=frame, **kw)
 
 
 def dexterity_notes(sc: Scenario, arm: Arm) -> list[str]:
@@ -348,7 +341,7 @@ def _planning(plan: dict, dz: float) -> dict:
     return kw
 
 
-def _obstacles(data: dict, dz: float) -> tuple[Obstacle, ...]:
+def _obstacles(data: dict, dz: float) -> tuple[Box, ...]:
     obs = data.get("obstacles", [])
     if not isinstance(obs, list):
         raise ScenarioError("obstacles", "expected an array of tables ([[obstacles]])")
@@ -367,7 +360,7 @@ def _obstacles(data: dict, dz: float) -> tuple[Obstacle, ...]:
         center = _position(o["center"], f"{f}.center", dz)
         size = tuple(_vec(o["size"], f"{f}.size", 2 * MAX_COORDINATE))
         try:
-            out.append(Obstacle(center, size, name=o.get("name", f"obstacle{i}"),
+            out.append(Box(center, size, name=o.get("name", f"obstacle{i}"),
                                 kind=o.get("kind", "obstacle")))
         except InvalidInputError as exc:  # the box's own checks (positive size, kind)
             raise ScenarioError(f, exc.reason) from None

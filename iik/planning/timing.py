@@ -36,19 +36,13 @@ import numpy as np
 from iik.arm import Arm
 from iik.validation import as_joints
 
+from ..safety import EXECUTION_MARGIN, MIN_STEP, STEP_RESOLUTION  # re-exported: their home is iik.safety
 from .errors import TimingError
 from .path import interpolate_joints
 
 __all__ = ["Trajectory", "time_parameterize", "thesis_timing", "step_schedule", "EXECUTION_MARGIN",
            "STEP_RESOLUTION", "MIN_STEP"]
 
-#: Margin inside Table I [rad] that every timed sample keeps (0.5 deg): the default
-#: margin of :func:`hardware.validate`, so a planned trajectory is never refused for it.
-EXECUTION_MARGIN = math.radians(0.5)
-#: Resolution of an executed step time [s]: FSTEP carries whole milliseconds (docs/POWERCUBE.md).
-STEP_RESOLUTION = 0.001
-#: Shortest executed step [s] (the default of :func:`hardware.validate`).
-MIN_STEP = 0.010
 
 
 @dataclass(frozen=True)
@@ -78,13 +72,12 @@ class Trajectory:
 
 def _check(q, qd, qdd, arm: Arm, joint_margin: float, tol: float = 1e-9) -> tuple[str, ...]:
     out = []
-    lo, hi = arm.q_min + joint_margin, arm.q_max - joint_margin
     v, a = np.asarray(arm.velocity), np.asarray(arm.acceleration)
-    over = np.maximum(lo - q, q - hi)
-    if np.any(over > tol):
-        k, j = np.unravel_index(int(np.argmax(over)), over.shape)
-        out.append(f"joint q{j + 1} comes {math.degrees(over[k, j]):.3f} deg beyond Table I less the "
-                   f"execution margin of {math.degrees(joint_margin):g} deg (sample {k}, counting from 0)")
+    worst = arm.limit_violations(q, joint_margin).worst
+    if worst is not None and worst.amount > tol:
+        out.append(f"joint q{worst.joint + 1} comes {math.degrees(worst.amount):.3f} deg beyond Table I less "
+                   f"the execution margin of {math.degrees(joint_margin):g} deg (sample {worst.sample}, "
+                   "counting from 0)")
     if np.any(np.abs(qd) > v * (1 + 1e-9)):
         out.append(f"velocity limit exceeded: max |qd|/v = {(np.abs(qd) / v).max():.4f}")
     if np.any(np.abs(qdd) > a * (1 + 1e-9)):

@@ -145,3 +145,26 @@ def test_the_step_targets_carry_the_arm_they_are_for(tmp_path):
     with pytest.raises(SafetyError, match=r"outside the joint limits \[-1.2392, 4.3808\]") as info:
         csv_trajectory(beyond, crx).validate()  # the CRX's J3 limits, not called Table I
     assert "Table I" not in str(info.value)
+
+
+@pytest.mark.parametrize("timed", [True, False])
+def test_the_reader_takes_the_files_the_planner_writes_by_their_one_schema(tmp_path, timed):
+    """iik.trajectory_csv names the columns once: a file with the columns of trajectory.csv or of a
+    timed steps.csv is executed as written; steps.csv without its t is refused for lack of it."""
+    from iik.trajectory_csv import REQUIRED, TRAJECTORY_COLUMNS, steps_columns
+
+    for columns in (TRAJECTORY_COLUMNS, steps_columns(timed)):
+        rows = []
+        for k in range(4):
+            value = {"t": k * 0.1, "step": k, "closest_link": "link3", "closest_object": "floor",
+                     **{f"q{j + 1}": Q[k, j] for j in range(6)}}
+            rows.append(",".join(str(value.get(c, 0.5)) for c in columns))
+        path = write(tmp_path / "f.csv", rows, header=",".join(columns))
+        if set(REQUIRED) <= set(columns):
+            t = csv_trajectory(path, THESIS_ARM)
+            np.testing.assert_allclose(t.q, Q)
+            np.testing.assert_allclose(t.times, 0.1 * np.arange(4))
+        else:
+            assert not timed
+            with pytest.raises(InvalidInputError, match="lacks the column"):
+                csv_trajectory(path, THESIS_ARM)

@@ -5,7 +5,7 @@ import pytest
 
 import iik
 from iik import InvalidInputError
-from iik.scene import PLATFORM_HEIGHT, TABLE_HEIGHT, THESIS_SCENE, AxisBox
+from iik.scene import PLATFORM_HEIGHT, TABLE_HEIGHT, THESIS_SCENE, AxisBox, Box
 
 
 def test_heights_of_sec_4_2_1():
@@ -35,7 +35,19 @@ def test_box_queries_and_batches():
 @pytest.mark.parametrize("lo,hi", [((0, 0, 0), (1, 1, 0)), ((0, 0), (1, 1)), ((0, 0, np.nan), (1, 1, 1))])
 def test_bad_box(lo, hi):
     with pytest.raises(InvalidInputError):
-        AxisBox("b", lo, hi)
+        Box.from_corners("b", lo, hi)
+
+
+def test_one_box_type():
+    """The platform is a Box like any scenario box; the old names are deprecated aliases of it."""
+    p = THESIS_SCENE.platform
+    assert isinstance(p, Box) and p.kind == "support" and p.name == "platform"
+    np.testing.assert_allclose(p.lower, (-0.55, -0.25, -0.45))
+    np.testing.assert_allclose(p.upper, (0.10, 0.25, 0.0))
+    assert p.contains([0.0, 0.0, -0.1]) is True and isinstance(p.distance([1.0, 0.0, 0.0]), float)
+    with pytest.warns(DeprecationWarning, match="Box.from_corners"):
+        old = AxisBox("platform", p.lower, p.upper)
+    assert isinstance(old, Box) and np.allclose(old.center, p.center) and np.allclose(old.size, p.size)
 
 
 def test_bad_points():

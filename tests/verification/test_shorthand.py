@@ -18,5 +18,11 @@ def test_cos_sin_pairs_each_angle_in_order():
 def test_wrap_keeps_angles_within_one_turn():
     a = np.array([-np.pi, 0.5, np.pi, 3 * np.pi + 0.25, -7.0])
     w = wrap(a)
-    assert np.all((w >= -np.pi) & (w < np.pi))
+    assert np.all((w > -np.pi) & (w <= np.pi))  # the project's one convention, (-pi, pi]
     assert np.allclose(np.cos(w), np.cos(a)) and np.allclose(np.sin(w), np.sin(a))
+
+
+def test_wrap_is_the_projects_one_wrap():
+    from iik.ik.angles import wrap_angle
+
+    assert wrap is wrap_angle

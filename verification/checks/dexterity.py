@@ -80,7 +80,7 @@ def printed_admits(p, alpha35, beta35, arm=ARM) -> np.ndarray:
         arg = (rxy**2 + L5**2 - (reach * np.cos(delta) + l2) ** 2) / (2 * rxy * L5)  # Eq 49 / 51
         return np.where(arg < -1, np.pi, np.where(arg > 1, -1.0, np.arccos(np.clip(arg, -1, 1))))
 
-    dev = np.abs((a - alpha_p + np.pi) % (2 * np.pi) - np.pi)
+    dev = np.abs(wrap(a - alpha_p))
     if has_out and not has_in:
         ok_a = dev <= sigma(l3 + l4)
     elif has_out:
@@ -896,7 +896,7 @@ def _near_end(intervals, a, eps):
     near = np.zeros(np.shape(a), bool)
     for lo, hi in intervals:
         for e in (lo, hi):
-            near |= np.abs((a - e + np.pi) % (2 * np.pi) - np.pi) <= eps
+            near |= np.abs(wrap(a - e)) <= eps
     return near
 
 

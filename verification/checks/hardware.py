@@ -257,7 +257,7 @@ def execute_scenario(
         raise SimulatorError(f"simulated arm raised while serving {name}: {errors[:3]}")
     analysis = analyse(run)
     checker = SceneCollision(scenario.obstacles, arm=THESIS_ARM)
-    clearance = min(checker.clearance(q)[0] for q in run.samples_q)
+    clearance = min(checker.nearest(q).distance for q in run.samples_q)
     res = SimRun(
         name=name if limit is None else f"{name}[:{limit}]",
         update=update,

@@ -19,6 +19,7 @@ import numpy as np
 import iik
 from iik import THESIS_ARM
 from iik.ik import solve_batch
+from iik.ik.angles import angle_distance
 from iik.ik.thesis import solve_thesis_arrays, thesis_candidates
 
 from ..registry import Forms, Measure, Row, Section, Slip, SlipKind, Verdict, verdict_of
@@ -197,8 +198,7 @@ _RECOVER_TOL = 1e-6  # [rad]: the thesis's bisection tolerance is 1e-6 deg (Sec 
 
 def _recovered(rows: np.ndarray, q: np.ndarray) -> bool:
     """Is q among the rows to _RECOVER_TOL (uniform poses in Table I: no continua)?"""
-    return bool(len(rows)) and float(np.min(np.max(np.abs(np.mod(rows - q + np.pi, 2 * np.pi) - np.pi),
-                                                     axis=1))) <= _RECOVER_TOL
+    return bool(len(rows)) and float(np.min(angle_distance(rows, q))) <= _RECOVER_TOL
 
 
 @SECTION.check(

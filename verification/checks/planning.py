@@ -48,7 +48,7 @@ from iik.planning import (
     REGIONS,
     TABLE_IV_PRINTED,
     VIA_POINTS,
-    Obstacle,
+    Box,
     SceneCollision,
     all_solutions,
     build_path,
@@ -126,12 +126,12 @@ def check_eq53_ellipsoid(ctx, readings) -> Row:
     for name, radii in readings.items():
         dev = []
         for s in sizes:
-            box = Obstacle((0.0, 0.0, 0.0), tuple(s))
+            box = Box((0.0, 0.0, 0.0), tuple(s))
             dev.append(np.abs(ellipsoid_value(box.corners, box.center, radii(box.half)) - 1.0).max())  # Eq 52
         worst[name], at_example[name] = float(max(dev)), float(dev[0])
     best = min(worst, key=worst.get)
     m = (Measure("max |Eq 52 at the 8 corners - 1|, best reading", worst[best], 1e-9),)
-    example = Obstacle((0.0, 0.0, 0.0), (0.30, 0.20, 0.50))
+    example = Box((0.0, 0.0, 0.0), (0.30, 0.20, 0.50))
     values = {
         n: float(ellipsoid_value(example.corners[:1], example.center, r(example.half))[0])
         for n, r in readings.items()
@@ -182,7 +182,7 @@ def eq53_reading(sizes):
     def misfit(x) -> float:
         worst = 0.0
         for s in sizes:
-            box = Obstacle((0.0, 0.0, 0.0), tuple(s))
+            box = Box((0.0, 0.0, 0.0), tuple(s))
             worst = max(worst, float(np.abs(ellipsoid_value(box.corners, box.center, radii(box.half,
                 x)) - 1).max()))
         return worst
@@ -574,8 +574,8 @@ def measure_clearance(checker: SceneCollision, q, limit: float) -> Clearance:
         steps += [i] * k
     samples.append(Q[-1])
     steps.append(len(Q) - 1)
-    found = [checker.clearance(qk) for qk in samples]  # (distance [m], link, object)
-    d = np.array([f[0] for f in found])
+    found = [checker.nearest(qk) for qk in samples]
+    d = np.array([f.distance for f in found])
     j = int(np.argmin(d))
     # between two samples no arm point moves more than the gap: the distance stays >= (d0 + d1 - gap) / 2
     lower = float(min(d[j], np.min(0.5 * (d[:-1] + d[1:] - np.array(gaps))) if gaps else np.inf))
@@ -583,10 +583,10 @@ def measure_clearance(checker: SceneCollision, q, limit: float) -> Clearance:
     if lower < limit <= value and len(Q) > 1:
         certified = checker.path_clearance(Q, limit, resolution=1e-5, check_self=False).minimum
         value = value if certified >= limit else float(certified)
-    return Clearance(value, lower, found[j][1], found[j][2], steps[j])
+    return Clearance(value, lower, found[j].link, found[j].object, steps[j])
 
 
-def _obstacles(sc) -> tuple[Obstacle, ...]:
+def _obstacles(sc) -> tuple[Box, ...]:
     return tuple(b for b in sc.obstacles if b.kind == "obstacle")
 
 

@@ -465,7 +465,7 @@ def eq36_azimuth(ctx, eq36):
     P, best = _eq36_points(ctx)
     phi = np.asarray(eq36(P), float)
     r = np.hypot(P[:, 0], P[:, 1])
-    d_angle = np.abs((phi - best + np.pi) % (2 * np.pi) - np.pi)
+    d_angle = np.abs(wrap(phi - best))
     # graded as the joint-2 distance it costs: an azimuth error at radius r moves joint 2's nearest point by
     # l2 * angle, but changes its distance to p only to second order near the axis
     qq = np.zeros((len(P), 6))

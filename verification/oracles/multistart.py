@@ -20,6 +20,7 @@ import numpy as np
 
 from iik.arm import Arm
 from iik.dh import dh_chain
+from iik.ik.angles import wrap_angle
 
 __all__ = ["OracleOptions", "OracleSolutions", "multistart_ik", "pose_residuals_np", "project"]
 
@@ -59,10 +60,6 @@ class OracleSolutions:
     rotation_residual: np.ndarray
     hits: np.ndarray
     converged: int
-
-
-def _wrap(x):
-    return np.pi - np.mod(np.pi - x, 2 * np.pi)
 
 
 def _chain(arm: Arm, q: np.ndarray):
@@ -143,7 +140,7 @@ def multistart_ik(T, arm: Arm, options: OracleOptions = OracleOptions(), seeds=N
         q = np.concatenate([np.atleast_2d(np.asarray(seeds, float)), q])
     q, pres, rres = _lm(arm, q, target, options.iterations, options.tol)
     ok = (pres <= options.tol) & (rres <= options.tol)
-    return _clusters(_wrap(q[ok]), pres[ok], rres[ok], options.cluster)
+    return _clusters(wrap_angle(q[ok]), pres[ok], rres[ok], options.cluster)
 
 
 def _clusters(q, pres, rres, radius) -> OracleSolutions:
@@ -151,7 +148,7 @@ def _clusters(q, pres, rres, radius) -> OracleSolutions:
     reps, hits = [], []
     for i in order:
         for k, r in enumerate(reps):
-            if np.max(np.abs(_wrap(q[i] - q[r]))) <= radius:
+            if np.max(np.abs(wrap_angle(q[i] - q[r]))) <= radius:
                 hits[k] += 1
                 break
         else:

@@ -39,6 +39,7 @@ import time
 import numpy as np
 
 from iik import THESIS_ARM
+from iik.ik.angles import angle_distance
 
 METHODS = ("kernel", "reference", "thesis", "newton", "dls")
 FAMILIES = ("generic", "theta4 ~ 0", "theta5 ~ 0", "theta4 + theta5 ~ 0", "theta4 + theta5 ~ pi",
@@ -121,11 +122,9 @@ def _recovered(method, res, q, T, arm) -> bool:
     from verification.testing.completeness import contains
 
     if method in ("newton", "dls"):
-        d = np.abs((res.q - q + np.pi) % (2 * np.pi) - np.pi)
-        return bool(res.converged and np.max(d) <= 1e-6)
+        return bool(res.converged and angle_distance(res.q, q) <= 1e-6)
     if method == "thesis":  # the thesis's 1e-6 deg bisection: its rows are that accurate
-        return bool(len(res.q)) and float(np.min(np.max(np.abs((res.q - q + np.pi) % (2 * np.pi) - np.pi),
-                                                             axis=1))) <= 1e-6
+        return bool(len(res.q)) and float(np.min(angle_distance(res.q, q))) <= 1e-6
     return contains(res, q, T, arm)
 
 

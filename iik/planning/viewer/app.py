@@ -22,7 +22,7 @@ import numpy as np
 
 import iik
 from iik.arm import Arm
-from iik.errors import InvalidInputError
+from iik.errors import InvalidInputError, Remedy
 
 from ..errors import OutsideLimitsError, ViewRequestError
 from ..pipeline import PlanOptions
@@ -79,18 +79,22 @@ class Shown:
 def _pose_view(req: ViewRequest) -> PoseView:
     arm = req.arm
     if not isinstance(arm, Arm):
-        raise ViewRequestError("arm", "a pose is shown on an arm: give one (iik.arms.get(NAME), iik view "
-                               "--arm)" if arm is None else f"expected an iik.Arm, got {type(arm).__name__}")
+        raise ViewRequestError("arm", "a pose is shown on an arm" if arm is None else
+                               f"expected an iik.Arm, got {type(arm).__name__}",
+                               Remedy("give one as {} (e.g. iik.arms.get(NAME))", "arm"))
     if (req.xyz is None) != (req.zxz is None):
-        raise InvalidInputError("--xyz/--zxz", "give both the position and the Eq 42 angles")
+        missing = "zxz" if req.zxz is None else "xyz"
+        raise InvalidInputError(missing, "a pose needs both the position and the Eq 42 angles",
+                                Remedy("give {} too", missing))
     if req.q is not None and req.xyz is not None:
-        raise InvalidInputError("--q", "give either --q or --xyz/--zxz, not both")
+        raise InvalidInputError("q", "a configuration and a pose were both given",
+                                Remedy("give either {}", ("q", "xyz")))
     if req.q is not None:
         outside = outside_limits_text(req.q, arm)
         if outside and not req.allow_outside_limits:
-            raise OutsideLimitsError("q", f"{outside}; not shown (to show it with those links in red: iik "
-                                          "view --allow-outside-limits, ViewRequest.allow_outside_limits)",
-                                     joints_outside_limits(req.q, arm))
+            raise OutsideLimitsError("q", f"{outside}; not shown", joints_outside_limits(req.q, arm),
+                                     Remedy("to show it with those links in red: {}", "allow_outside_limits",
+                                            True, rerun=True))
         return PoseView(q=req.q, previous=req.previous, interactive=req.interactive, arm=arm)
     xyz, zxz = (req.xyz, req.zxz) if req.xyz is not None else HOME_TARGET
     T = iik.pose_from_euler(np.asarray(xyz, float), *np.asarray(zxz, float))
@@ -103,8 +107,8 @@ def show(view, options: ViewOptions | None = None, *, headline: str = "", detail
     """Present any view (:func:`~.session.present`), refusing to export a live-only one."""
     options = options or ViewOptions()
     if options.export is not None and getattr(view, "live_only", False):
-        raise ViewRequestError("export", "interactive IK needs the live server; give a pose (--q or "
-                                         "--xyz/--zxz), a scenario or a run log to export")
+        raise ViewRequestError("export", "interactive IK needs the live server",
+                               Remedy("give {} to export", ("q", "xyz", "scenario", "run")))
     result = present(view, options)
     return Shown(result=result, warnings=tuple(getattr(view, "warnings", ())), headline=headline,
                  details=tuple(details), ok=ok)
@@ -122,10 +126,12 @@ def view(request: ViewRequest, options: ViewOptions | None = None) -> Shown:
     """
     if request.scenario is not None:
         if request.q is not None or request.xyz is not None:
-            raise InvalidInputError("SCENARIO", "give a scenario or a pose, not both")
+            raise InvalidInputError("scenario", "a scenario and a pose were both given",
+                                    Remedy("give either {}", ("scenario", "q", "xyz")))
         plan = plan_for_view(request.scenario, request.planning, arm=request.arm)
         return show(PlanScene(plan), options, headline=plan.headline, details=plan_log(plan), ok=plan.success)
     if request.planning is not None:
-        raise ViewRequestError("--timeout/--no-fallbacks", "planning options need a SCENARIO")
+        raise ViewRequestError("planning", "planning options without a scenario",
+                               Remedy("they need a {}", "scenario"))
     pv = _pose_view(request)
     return show(pv, options, headline=pv.summary().split("\n")[0].replace("**", ""))

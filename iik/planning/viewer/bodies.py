@@ -19,6 +19,7 @@ import viser
 from pinocchio.visualize import ViserVisualizer
 
 from iik import Arm
+from iik.arm import LIMIT_TOL
 from iik.errors import InvalidInputError
 from iik.validation import as_joints
 
@@ -28,18 +29,17 @@ from .style import Colour, rgb01
 __all__ = ["ArmBody", "joints_outside_limits", "outside_limits_text", "link_of_joint"]
 
 
-def joints_outside_limits(q, arm: Arm) -> tuple[int, ...]:
-    """0-based indices of the joints of ``q`` (6,) [rad] outside the arm's limits (Table I).
-
-    Uses the project's one limit test (:meth:`iik.Arm.within_limits`) joint by
-    joint: row ``j`` of the batch is the mid-range pose with joint ``j`` set to ``q[j]``.
-    """
-    qb, batched = as_joints(q, "q")
-    if batched:
+def _outside(q, arm: Arm):
+    """The violations of one configuration ``q`` (6,) [rad] (:meth:`iik.Arm.limit_violations`, with the
+    rounding tolerance :data:`iik.arm.LIMIT_TOL` of :meth:`iik.Arm.within_limits`)."""
+    if as_joints(q, "q")[1]:
         raise InvalidInputError("q", f"expected one configuration (6,), got shape {np.shape(q)}")
-    rows = np.tile(0.5 * (arm.q_min + arm.q_max), (6, 1))
-    rows[np.arange(6), np.arange(6)] = qb[0]
-    return tuple(int(j) for j in np.flatnonzero(~arm.within_limits(rows)))
+    return arm.limit_violations(q, -LIMIT_TOL)
+
+
+def joints_outside_limits(q, arm: Arm) -> tuple[int, ...]:
+    """0-based indices of the joints of ``q`` (6,) [rad] outside the arm's limits (Table I)."""
+    return tuple(v.joint for v in _outside(q, arm))
 
 
 def outside_limits_text(q, arm: Arm) -> str:
@@ -47,13 +47,11 @@ def outside_limits_text(q, arm: Arm) -> str:
 
     Joints are named ``q1`` .. ``q6`` (as in the thesis); values in rad and deg.
     """
-    qv = as_joints(q, "q")[0][0]
     deg = np.degrees
     return "; ".join(
-        f"q{j + 1} = {qv[j]:.4f} rad ({deg(qv[j]):.1f} deg) is outside {arm.limits_name} "
-        f"[{arm.q_min[j]:.4f}, {arm.q_max[j]:.4f}] rad "
-        f"([{deg(arm.q_min[j]):.1f}, {deg(arm.q_max[j]):.1f}] deg)"
-        for j in joints_outside_limits(qv, arm))
+        f"q{v.joint + 1} = {v.value:.4f} rad ({deg(v.value):.1f} deg) is outside {arm.limits_name} "
+        f"[{v.lower:.4f}, {v.upper:.4f}] rad ([{deg(v.lower):.1f}, {deg(v.upper):.1f}] deg)"
+        for v in _outside(q, arm))
 
 
 class ArmBody:

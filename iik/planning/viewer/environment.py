@@ -2,7 +2,7 @@
 
 Everything comes from the objects the planner and the collision checker use:
 the platform and the floor of :class:`iik.scene.Scene` (default
-:data:`iik.scene.THESIS_SCENE`), the scenario's :class:`iik.planning.Obstacle`
+:data:`iik.scene.THESIS_SCENE`), the scenario's :class:`iik.scene.Box`
 boxes (obstacles and supports) and their enclosing ellipsoids
 (:func:`iik.planning.obstacles.enclosing_radii`, Eq 52-53 corrected). Frame:
 the arm's base frame 0, z up [m]; the grid on the floor has 0.1 m cells.
@@ -15,9 +15,9 @@ from collections.abc import Sequence
 import numpy as np
 import viser
 
-from iik.scene import THESIS_SCENE, Scene
+from iik.scene import THESIS_SCENE, Box, Scene
 
-from ..obstacles import Obstacle, enclosing_radii
+from ..obstacles import enclosing_radii
 from . import style
 
 __all__ = ["draw_environment", "configure_server", "aim_camera", "camera_pose", "view_top", "legend_html",
@@ -37,7 +37,7 @@ VIEW_PRESETS = {"fit": (style.CAMERA_AZIMUTH_DEG, style.CAMERA_ELEVATION_DEG), "
                 "side": (-90.0, 8.0), "top": (-90.0, 89.0)}
 
 
-def workspace_points(arm, q, obstacles: Sequence[Obstacle] = (), offset=(0.0, 0.0, 0.0)) -> np.ndarray:
+def workspace_points(arm, q, obstacles: Sequence[Box] = (), offset=(0.0, 0.0, 0.0)) -> np.ndarray:
     """Points [m] a view frames: the base, ``arm``'s joint origins and tool point at every ``q`` (k, 6)
     [rad] it shows (the workspace the motion sweeps) and the corners of the scenario's boxes."""
     from iik.kinematics import joint_frames
@@ -138,7 +138,7 @@ def legend_html(arms: Sequence[tuple[str, style.Colour]] = ()) -> str:
     return f'<div style="font-size:0.8em;padding:0 0.5em">{rows}</div>'
 
 
-def draw_environment(server: viser.ViserServer, obstacles: Sequence[Obstacle] = (), *,
+def draw_environment(server: viser.ViserServer, obstacles: Sequence[Box] = (), *,
                      scene: Scene = THESIS_SCENE, ellipsoids: bool = True,
                      safety_zone: float | None = None, offset=(0.0, 0.0, 0.0), root: str = "/scene") -> None:
     """Draw the platform, the floor (with a 0.1 m grid), the base frame and the scenario's boxes.

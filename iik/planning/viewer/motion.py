@@ -49,7 +49,7 @@ class Motion:
     optional note per frame (shown with the time).
 
     ``warnings``: what the view cannot show faithfully (printed by ``iik view``, shown in the panel).
-    ``obstacles``: the scenario's boxes (:class:`~iik.planning.Obstacle`), drawn around every arm.
+    ``obstacles``: the scenario's boxes (:class:`~iik.scene.Box`), drawn around every arm.
     """
 
     title: str

@@ -32,7 +32,7 @@ from .environment import (
     view_top,
     workspace_points,
 )
-from .plan_data import PlanView, frame_clearance
+from .plan_data import PlanView, frame_clearance, least_clearance
 from .session import Animation
 
 __all__ = ["PlanScene"]
@@ -45,34 +45,35 @@ class PlanScene:
         self.plan = plan
         self.title = f"iik view: scenario {plan.name}"
         self.camera = None  # (eye, target, vertical fov [deg]) once built
+        #: The nearest pair at each frame (:class:`~iik.planning.collision.Nearest`); the frame of the least.
         self.clearance = frame_clearance(plan.obstacles, plan.q, arm=plan.arm, scene=plan.scene)
+        self.least = least_clearance(self.clearance)
         #: The scene's caption: units and frame, the verdict and the attempt log (an export has no panel).
         self.caption = (f"scenario {plan.name}: clearances in mm (zone {plan.safety_zone * 1000:.0f} mm); "
                         f"base frame 0, m\n{attempt_lines(plan)}")
 
     def label(self, i: int) -> str:
         """Clearance text of frame ``i``: nearest link, object, distance in mm."""
-        c, zone = self.clearance, self.plan.safety_zone
-        d = c.distance[i]
-        warn = " - INSIDE THE SAFETY ZONE" if d < zone else ""
-        return f"{c.link[i]} to {c.obstacle[i]}: {d * 1000:.1f} mm (zone {zone * 1000:.0f} mm){warn}"
+        n, zone = self.clearance[i], self.plan.safety_zone
+        warn = " - INSIDE THE SAFETY ZONE" if n.distance < zone else ""
+        return f"{n.link} to {n.object}: {n.distance * 1000:.1f} mm (zone {zone * 1000:.0f} mm){warn}"
 
     def clearance_summary(self) -> str:
         """Markdown: the actual minimum along the motion (where, when) beside the certified lower bound."""
-        p, c = self.plan, self.clearance
-        k = c.minimum
+        p, k = self.plan, self.least
+        n = self.clearance[k]
         zone = p.safety_zone * 1000
         bound = (f"**{p.certified_clearance * 1000:.1f} mm** (the planner's certified lower bound, between "
                  "the frames included)" if np.isfinite(p.certified_clearance) else "none (no accepted path)")
-        return (f"Actual minimum along the motion: **{c.distance[k] * 1000:.1f} mm** at t = {p.t[k]:.2f} s "
-                f"(frame {k} of {len(p.t)}), {c.link[k]} to {c.obstacle[k]}.  \nCertified: {bound}.  \n"
+        return (f"Actual minimum along the motion: **{n.distance * 1000:.1f} mm** at t = {p.t[k]:.2f} s "
+                f"(frame {k} of {len(p.t)}), {n.link} to {n.object}.  \nCertified: {bound}.  \n"
                 f"Safety zone {zone:.0f} mm.")
 
     def _clearance_panel(self, server: viser.ViserServer) -> None:
         import viser.uplot as uplot
 
-        p, c = self.plan, self.clearance
-        mm = c.distance * 1000
+        p = self.plan
+        mm = np.array([n.distance for n in self.clearance]) * 1000
         cert = np.full_like(mm, p.certified_clearance * 1000)
         zone = np.full_like(mm, p.safety_zone * 1000)
         with server.gui.add_folder("Clearance"):
@@ -131,17 +132,17 @@ class PlanScene:
         tag = s.add_label("/plan/nearest/label", "", anchor="bottom-left")
 
         def show(i: int) -> None:
-            c = self.clearance
+            n = self.clearance[i]
             arm.show(p.q[i])
-            unsafe = c.distance[i] < p.safety_zone
-            arm.paint({c.link[i]: style.UNSAFE if unsafe else style.NEAREST})
-            gap.points = np.stack([c.on_link[i], c.on_obstacle[i]])[None].astype(np.float32)
+            unsafe = n.distance < p.safety_zone
+            arm.paint({n.link: style.UNSAFE if unsafe else style.NEAREST})
+            gap.points = np.stack([n.on_link, n.on_object])[None].astype(np.float32)
             gap.colors = np.array([[style.UNSAFE if unsafe else style.NEAREST] * 2], np.uint8)
-            tag.position = tuple(0.5 * (c.on_link[i] + c.on_obstacle[i]))
+            tag.position = tuple(0.5 * (n.on_link + n.on_object))
             tag.text = self.label(i)
 
         marks = tuple((t, "switch") for t in p.switch_times)
-        k = self.clearance.minimum
+        k = self.least
         jumps = ((f"Jump to the minimum clearance (t = {p.t[k]:.2f} s)", float(p.t[k])),) \
             if len(p.t) > 1 else ()
         return Animation(times=p.t, show=show, marks=marks, status=self.status, jumps=jumps)

@@ -17,14 +17,13 @@ import numpy as np
 import iik
 from iik import Arm, fk
 from iik.errors import IIKError
-from iik.scene import THESIS_SCENE, Scene
+from iik.scene import THESIS_SCENE, Box, Scene
 
 from ..cartesian import poses_of
-from ..collision import SceneCollision
-from ..obstacles import Obstacle
+from ..collision import Nearest, SceneCollision
 from ..pipeline import Attempt, PlanOptions, PlanResult, plan
 
-__all__ = ["PlanView", "FrameClearance", "plan_scene", "plan_for_view", "frame_clearance", "UNTIMED_STEP"]
+__all__ = ["PlanView", "plan_scene", "plan_for_view", "frame_clearance", "least_clearance", "UNTIMED_STEP"]
 
 #: Seconds per step when a plan has no timed trajectory (the joint path is shown step by step).
 UNTIMED_STEP = 0.2
@@ -70,7 +69,7 @@ class PlanView:
     best: Attempt | None
     notes: tuple[str, ...]
     arm_shows: str
-    obstacles: tuple[Obstacle, ...]
+    obstacles: tuple[Box, ...]
     safety_zone: float
     t: np.ndarray
     q: np.ndarray
@@ -82,29 +81,6 @@ class PlanView:
     arm: Arm
     scene: Scene = THESIS_SCENE
     certified_clearance: float = float("nan")
-
-
-@dataclass(frozen=True)
-class FrameClearance:
-    """Whole-arm clearance at each frame (Coal distances, :meth:`SceneCollision.nearest`).
-
-    Attributes:
-        distance: (k,) smallest arm-to-scene distance [m] (negative: penetration).
-        link: (k,) link attaining it.
-        obstacle: (k,) scene object attaining it (a box name, ``platform`` or ``floor``).
-        on_link, on_obstacle: (k, 3) the two nearest points [m].
-    """
-
-    distance: np.ndarray
-    link: tuple[str, ...]
-    obstacle: tuple[str, ...]
-    on_link: np.ndarray
-    on_obstacle: np.ndarray
-
-    @property
-    def minimum(self) -> int:
-        """Index of the frame of least clearance (the first, on a tie)."""
-        return int(np.argmin(self.distance))
 
 
 def _start_pose(result: PlanResult) -> tuple[np.ndarray, str]:
@@ -175,11 +151,13 @@ def plan_for_view(scenario, options: PlanOptions | None = None, *, arm: Arm | No
     return plan_scene(plan(scenario, options or PlanOptions(), arm=arm, scene=scene))
 
 
-def frame_clearance(obstacles, q, *, arm: Arm, scene: Scene = THESIS_SCENE) -> FrameClearance:
-    """Nearest arm link and scene object, their distance and nearest points at each ``q`` (k, 6) [rad]."""
+def frame_clearance(obstacles, q, *, arm: Arm, scene: Scene = THESIS_SCENE) -> tuple[Nearest, ...]:
+    """The nearest arm link and scene object, their distance and nearest points at each ``q`` (k, 6) [rad]
+    (:meth:`SceneCollision.nearest`, one per frame)."""
     checker = SceneCollision(tuple(obstacles), arm=arm, scene=scene)
-    near = [checker.nearest(qk) for qk in np.asarray(q, float).reshape(-1, 6)]
-    return FrameClearance(distance=np.array([n.distance for n in near]), link=tuple(n.link for n in near),
-                          obstacle=tuple(n.object for n in near),
-                          on_link=np.array([n.on_link for n in near]).reshape(-1, 3),
-                          on_obstacle=np.array([n.on_object for n in near]).reshape(-1, 3))
+    return tuple(checker.nearest(qk) for qk in np.asarray(q, float).reshape(-1, 6))
+
+
+def least_clearance(frames: tuple[Nearest, ...]) -> int:
+    """Index of the frame of least clearance (the first, on a tie)."""
+    return int(np.argmin([n.distance for n in frames]))

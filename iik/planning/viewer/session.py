@@ -32,7 +32,7 @@ from typing import Protocol
 import numpy as np
 import viser
 
-from iik.errors import FileError
+from iik.errors import FileError, Remedy
 from iik.files import atomic_output, check_output
 
 from ..errors import ExportError, PortInUseError, ViewRequestError
@@ -274,7 +274,8 @@ def _frames(anim: Animation, fps: float) -> Sequence[int]:
 def _export_errors(directory: Path, force: bool) -> Iterator[None]:
     """Refuse a non-empty folder without ``force``; :class:`iik.errors.FileError` as :class:`ExportError`."""
     if directory.is_dir() and any(directory.iterdir()) and not force:
-        raise ExportError(directory, "folder is not empty (use --force to replace its contents)")
+        raise ExportError(directory, "folder is not empty",
+                          Remedy("use {} to replace its contents", "force", True))
     try:
         yield
     except FileError as exc:

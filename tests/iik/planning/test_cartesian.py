@@ -4,7 +4,7 @@ import dataclasses
 
 import numpy as np
 
-from iik.planning import Obstacle, Scenario, Waypoint, build_path, ellipsoid_value, enclosing_radii, poses_of
+from iik.planning import Box, Scenario, Waypoint, build_path, ellipsoid_value, enclosing_radii, poses_of
 from iik.rotations import euler_matrix, pose_from_euler
 from iik.scene import THESIS_SCENE
 
@@ -12,7 +12,7 @@ from iik.scene import THESIS_SCENE
 def _scenario(**kw):
     base = dict(name="t", start=Waypoint((0.30, 0.25, -0.35), None, 0.0),
                 goal=Waypoint((0.30, -0.25, -0.35), None, 0.0),
-                obstacles=(Obstacle((0.32, 0.0, -0.35), (0.12, 0.12, 0.2)),))
+                obstacles=(Box((0.32, 0.0, -0.35), (0.12, 0.12, 0.2)),))
     base.update(kw)
     return Scenario(**base)
 

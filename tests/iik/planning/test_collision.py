@@ -7,13 +7,13 @@ import pytest
 import iik
 from iik import THESIS_ARM
 from iik.arm import thesis_arm
-from iik.planning import Obstacle
+from iik.planning import Box
 from iik.planning.collision import SceneCollision
 
 
 @pytest.fixture(scope="module")
 def checker():
-    return SceneCollision([Obstacle((0.55, 0.0, 0.0), (0.2, 0.2, 0.4), name="box")], arm=THESIS_ARM)
+    return SceneCollision([Box((0.55, 0.0, 0.0), (0.2, 0.2, 0.4), name="box")], arm=THESIS_ARM)
 
 
 @pytest.mark.parametrize("required", [0.0, 0.03, 0.1])
@@ -25,7 +25,7 @@ def test_motion_clearance_is_certified_or_a_witnessed_violation(checker, require
         q0 = rng.uniform(lo, hi) * 0.6
         q1 = np.clip(q0 + rng.normal(0, 0.15, 6), lo, hi)
         pc = checker.path_clearance(np.array([q0, q1]), required=required, resolution=0.002)
-        samples = [checker.clearance(q0 + s * (q1 - q0))[0] for s in np.linspace(0, 1, 201)]
+        samples = [checker.nearest(q0 + s * (q1 - q0)).distance for s in np.linspace(0, 1, 201)]
         if pc.motion[0] >= required:  # a lower bound of the whole motion
             assert min(samples) >= pc.motion[0] - 1e-9
             certified += 1
@@ -37,11 +37,10 @@ def test_motion_clearance_is_certified_or_a_witnessed_violation(checker, require
 
 def test_penetration_is_negative_and_named(checker):
     q = np.zeros(6)  # arm stretched along +x at z = l1 through the box's top region
-    tall = SceneCollision([Obstacle((0.6, 0.0, 0.3), (0.1, 0.1, 0.1), name="hit")], arm=THESIS_ARM)
-    d, link, obj = tall.clearance(q)
-    assert d < 0 and obj == "hit" and link.startswith("link")
-    d2, _, _ = checker.clearance(q)
-    assert d2 > 0
+    tall = SceneCollision([Box((0.6, 0.0, 0.3), (0.1, 0.1, 0.1), name="hit")], arm=THESIS_ARM)
+    n = tall.nearest(q)
+    assert n.distance < 0 and n.object == "hit" and n.link.startswith("link")
+    assert checker.nearest(q).distance > 0
 
 
 def test_floor_distance_matches_geometry():
@@ -54,7 +53,7 @@ def test_floor_distance_matches_geometry():
 def test_base_is_not_reported_against_the_platform():
     sc = SceneCollision([], floor=False, arm=THESIS_ARM)
     assert "base_link" not in {sc.arm_link[i] for i, k in sc.pairs if sc.env_names[k] == "platform"}
-    assert sc.clearance(np.zeros(6))[0] > 0.1
+    assert sc.nearest(np.zeros(6)).distance > 0.1
 
 
 def test_keeps_is_the_clearance_and_self_contact_rule(checker):
@@ -62,7 +61,7 @@ def test_keeps_is_the_clearance_and_self_contact_rule(checker):
     lo, hi = iik.THESIS_ARM.q_min, iik.THESIS_ARM.q_max
     seen = set()
     for q in rng.uniform(lo, hi, size=(40, 6)):
-        d = checker.clearance(q)[0]
+        d = checker.nearest(q).distance
         expected = d >= 0.03 and checker.self_distance(q) > 0
         assert checker.keeps(q, 0.03) == expected
         seen.add(expected)
@@ -82,9 +81,9 @@ def test_another_arm_gets_its_own_collision_model():
     a = iik.THESIS_ARM
     longer = thesis_arm(a.l1, a.l2, a.l3 * 1.2, a.l4 * 1.2, a.l5)
     q = np.zeros(6)  # stretched along +x: the longer arm's gripper is further out
-    box = [Obstacle((1.3, 0.0, 0.3), (0.1, 0.4, 0.4), name="far")]
-    d_thesis = SceneCollision(box, floor=False, platform=False, arm=THESIS_ARM).clearance(q)[0]
-    d_longer = SceneCollision(box, arm=longer, floor=False, platform=False).clearance(q)[0]
+    box = [Box((1.3, 0.0, 0.3), (0.1, 0.4, 0.4), name="far")]
+    d_thesis = SceneCollision(box, floor=False, platform=False, arm=THESIS_ARM).nearest(q).distance
+    d_longer = SceneCollision(box, arm=longer, floor=False, platform=False).nearest(q).distance
     reach = (longer.l3 + longer.l4) - (a.l3 + a.l4)
     assert d_thesis - d_longer == pytest.approx(reach, abs=1e-6)
 
@@ -130,8 +129,8 @@ def _gap(point, shape_tf) -> float:
 def test_nearest_is_coals_closest_pair_with_its_points():
     """Distances and points agree within Coal's GJK tolerance (1e-6 m; it warm-starts from the last call)."""
     tol = coal.DistanceRequest().gjk_tolerance
-    boxes = [Obstacle((0.55, 0.0, 0.45), (0.1, 0.8, 0.1), name="shelf"),
-             Obstacle((0.0, 0.45, 0.3), (0.3, 0.1, 0.3), name="post")]
+    boxes = [Box((0.55, 0.0, 0.45), (0.1, 0.8, 0.1), name="shelf"),
+             Box((0.0, 0.45, 0.3), (0.3, 0.1, 0.3), name="post")]
     sc = SceneCollision(boxes, arm=THESIS_ARM)
     rng = np.random.default_rng(11)
     lo, hi = iik.THESIS_ARM.q_min, iik.THESIS_ARM.q_max
@@ -147,10 +146,8 @@ def test_nearest_is_coals_closest_pair_with_its_points():
             assert np.linalg.norm(n.on_link - n.on_object) == pytest.approx(n.distance, abs=tol)
         if n.object in ("shelf", "post") and n.distance > tol:  # and by the box's own distance
             box = next(b for b in boxes if b.name == n.object)
-            assert box.distance(n.on_object)[0] == pytest.approx(0.0, abs=tol)
-            assert box.distance(n.on_link)[0] == pytest.approx(n.distance, abs=tol)
-        d_c, link_c, object_c = sc.clearance(q)
-        assert (link_c, object_c) == (n.link, n.object) and d_c == pytest.approx(n.distance, abs=tol)
+            assert box.distance(n.on_object) == pytest.approx(0.0, abs=tol)
+            assert box.distance(n.on_link) == pytest.approx(n.distance, abs=tol)
         objects.add((n.object, n.distance > tol))
     assert {("shelf", True), ("post", True), ("platform", True), ("floor", True)} <= objects
 

@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 from iik.errors import InvalidInputError
 from iik.planning.obstacles import (
     SAFETY_ZONE,
-    Obstacle,
+    Box,
     ellipsoid_value,
     enclosing_radii,
     repel_points,
@@ -21,7 +21,7 @@ dim = st.floats(0.02, 1.5)
 
 @given(dim, dim, dim)
 def test_corrected_ellipsoid_touches_every_corner(w, d, h):
-    box = Obstacle((0.1, -0.2, 0.3), (w, d, h))
+    box = Box((0.1, -0.2, 0.3), (w, d, h))
     v = ellipsoid_value(box.corners, box.center, enclosing_radii(box))
     assert np.allclose(v, 1.0, atol=1e-12)
     # and contains the whole box: face centres and the centre are inside
@@ -43,7 +43,7 @@ def test_repulsion_normal_is_normal_to_the_plane_through_start_goal_and_x_infini
 
 
 def test_repelled_points_are_outside_every_padded_ellipsoid():
-    boxes = [Obstacle((0.3, 0.0, 0.0), (0.1, 0.1, 0.2)), Obstacle((0.3, 0.25, 0.05), (0.1, 0.1, 0.1))]
+    boxes = [Box((0.3, 0.0, 0.0), (0.1, 0.1, 0.2)), Box((0.3, 0.25, 0.05), (0.1, 0.1, 0.1))]
     s, g = np.array([0.3, 0.5, 0.0]), np.array([0.3, -0.4, 0.0])
     p = straight_steps(s, g)
     q, moved = repel_points(p, boxes, s, g)
@@ -59,7 +59,7 @@ def test_repelled_points_are_outside_every_padded_ellipsoid():
 
 
 def test_support_boxes_do_not_repel():
-    b = Obstacle((0.3, 0.0, 0.0), (0.3, 0.3, 0.3), kind="support")
+    b = Box((0.3, 0.0, 0.0), (0.3, 0.3, 0.3), kind="support")
     p = straight_steps([0.3, 0.5, 0], [0.3, -0.5, 0])
     q, moved = repel_points(p, [b], p[0], p[-1])
     assert not moved.any() and np.array_equal(p, q)
@@ -71,4 +71,18 @@ def test_support_boxes_do_not_repel():
 def test_bad_boxes_are_named(kw, field):
     args = {"center": (0, 0, 0), "size": (0.1, 0.1, 0.1)} | kw
     with pytest.raises(InvalidInputError, match=field):
-        Obstacle(**args)
+        Box(**args)
+
+
+def test_obstacle_is_a_deprecated_name_of_the_one_box():
+    import iik.planning
+    import iik.planning.obstacles as obstacles
+    from iik.scene import Box
+
+    with pytest.warns(DeprecationWarning, match="iik.scene.Box"):
+        assert obstacles.Obstacle is Box
+    assert iik.planning.Box is Box
+    b = Box((0.3, 0.0, 0.0), (0.2, 0.2, 0.2))
+    assert b.contains([0.3, 0.0, 0.05]) is True
+    np.testing.assert_array_equal(b.contains([[0.3, 0.0, 0.05], [1.0, 0.0, 0.0]]), [True, False])
+    assert b.distance([0.6, 0.0, 0.0]) == pytest.approx(0.2)

@@ -9,13 +9,13 @@ import pytest
 
 from iik import THESIS_ARM
 from iik.errors import InvalidInputError
-from iik.planning import Obstacle
+from iik.planning import Box
 from iik.planning.collision import SceneCollision
 from iik.planning.rrt import rrt_connect
 
 
 def test_rrt_connect_goes_around_a_box_with_certified_clearance():
-    chk = SceneCollision([Obstacle((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")], arm=THESIS_ARM)
+    chk = SceneCollision([Box((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")], arm=THESIS_ARM)
     q0 = np.array([0.8, 0.3, 0.0, 0.5, -1.0, 0.0])
     q1 = np.array([-0.8, 0.3, 0.0, 0.5, -1.0, 0.0])
     assert chk.path_clearance(np.array([q0, q1]), 0.03).minimum < 0.03  # the direct motion collides
@@ -31,10 +31,10 @@ def test_rrt_connect_goes_around_a_box_with_certified_clearance():
 _ATTEMPT = textwrap.dedent("""
     import sys, numpy as np
     from iik import THESIS_ARM
-    from iik.planning import Obstacle
+    from iik.planning import Box
     from iik.planning.collision import SceneCollision
     from iik.planning.rrt import rrt_connect
-    chk = SceneCollision([Obstacle((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")], arm=THESIS_ARM)
+    chk = SceneCollision([Box((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")], arm=THESIS_ARM)
     q0, q1 = np.array([0.8, 0.3, 0.0, 0.5, -1.0, 0.0]), np.array([-0.8, 0.3, 0.0, 0.5, -1.0, 0.0])
     np.save(sys.argv[1], rrt_connect(q0, q1, chk, required=0.03, time_limit=30.0, seed=7, arm=THESIS_ARM))
 """)
@@ -47,7 +47,7 @@ def test_one_seed_gives_one_path_whatever_ran_before_and_ompl_says_nothing(tmp_p
     fresh = subprocess.run([sys.executable, "-c", _ATTEMPT, str(tmp_path / "fresh.npy")], capture_output=True,
                            text=True, timeout=300)
     assert fresh.returncode == 0, fresh.stderr
-    chk = SceneCollision([Obstacle((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")], arm=THESIS_ARM)
+    chk = SceneCollision([Box((0.5, 0.0, 0.1), (0.2, 0.2, 0.4), name="pillar")], arm=THESIS_ARM)
     q0, q1 = np.array([0.8, 0.3, 0.0, 0.5, -1.0, 0.0]), np.array([-0.8, 0.3, 0.0, 0.5, -1.0, 0.0])
     other = rrt_connect(q0, q1, chk, required=0.03, time_limit=30.0, seed=3, arm=THESIS_ARM)
     again = rrt_connect(q0, q1, chk, required=0.03, time_limit=30.0, seed=7, arm=THESIS_ARM)

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from iik.planning import Obstacle, Scenario, ScenarioError, Waypoint, check_scenario
+from iik.planning import Box, Scenario, ScenarioError, Waypoint, check_scenario
 
 S, G = Waypoint((0.3, 0.25, -0.35), None, 0.0), Waypoint((0.3, -0.25, -0.35), None, 0.0)
 
@@ -23,7 +23,7 @@ def test_invalid_options_name_the_field(kw, field):
 
 
 def test_start_inside_a_box_is_rejected_with_its_name():
-    crate = Obstacle((0.3, 0.25, -0.35), (0.1, 0.1, 0.1), name="crate")
+    crate = Box((0.3, 0.25, -0.35), (0.1, 0.1, 0.1), name="crate")
     sc = Scenario(name="t", start=S, goal=G, obstacles=(crate,))
     with pytest.raises(ScenarioError, match="crate") as exc:
         check_scenario(sc)
@@ -67,9 +67,9 @@ P = (0.3, 0.25, -0.35)
     (lambda: Scenario(name="../out", start=S, goal=G), "name"),
     (lambda: Scenario(name="t", start=S, goal=G, title=b"x"), "title"),
     (lambda: Scenario(name="t", start=S, goal=G, obstacles=("box",)), "obstacles[0]"),
-    (lambda: Scenario(name="t", start=S, goal=G, obstacles=[Obstacle((0.5, 0, 0), (1, 1, 1))] * 101),
+    (lambda: Scenario(name="t", start=S, goal=G, obstacles=[Box((0.5, 0, 0), (1, 1, 1))] * 101),
      "obstacles"),
-    (lambda: Scenario(name="t", start=S, goal=G, obstacles=(Obstacle((500.0, 0, 0), (1, 1, 1)),)),
+    (lambda: Scenario(name="t", start=S, goal=G, obstacles=(Box((500.0, 0, 0), (1, 1, 1)),)),
      "obstacles[0].center[0]"),
 ])
 def test_waypoint_and_scenario_reject_nan_strings_and_absurd_values_naming_the_field(make, field):
@@ -97,12 +97,12 @@ def _placed(**kw):
     ((0.5, 0.5, 0.0), "outside the workspace; closest reachable point [0.100, 0.000, 0.000] m (base frame)"),
 ])
 def test_requested_via_points_are_checked_like_start_and_goal(via, needle):
-    from iik.planning import platform_box
+    from iik.scene import THESIS_SCENE
 
-    crate = Obstacle((0.3, 0.0, -0.35), (0.1, 0.1, 0.1), name="crate")
+    crate = Box((0.3, 0.0, -0.35), (0.1, 0.1, 0.1), name="crate")
     sc = _placed(via_points=((0.4, 0.1, 0.0), via), obstacles=(crate,))
     with pytest.raises(ScenarioError) as exc:
-        check_scenario(sc, platform=platform_box(), floor_z=-0.45, in_workspace=lambda p: p[1] < 0.4,
+        check_scenario(sc, platform=THESIS_SCENE.platform, floor_z=-0.45, in_workspace=lambda p: p[1] < 0.4,
                        closest_reachable=lambda p: np.array([0.1, 0.0, 0.0]))
     assert exc.value.field == "planning.via_points[1]" and needle in exc.value.reason
 
@@ -134,5 +134,5 @@ def test_an_obstacle_name_is_a_string():
     from iik.errors import InvalidInputError
 
     with pytest.raises(InvalidInputError) as exc:
-        Obstacle((0.5, 0.0, 0.0), (0.1, 0.1, 0.1), name=7)
+        Box((0.5, 0.0, 0.0), (0.1, 0.1, 0.1), name=7)
     assert exc.value.argument == "name"

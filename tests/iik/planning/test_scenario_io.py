@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from iik import THESIS_ARM
 from iik.planning import (
-    Obstacle,
+    Box,
     Scenario,
     ScenarioError,
     Waypoint,
@@ -138,7 +138,7 @@ def test_any_scenario_round_trips_exactly(tmp_path_factory, start, angles, alpha
                   start=Waypoint((0.45 + start[0], start[1], 0.1), None if alpha_free else a, b, g),
                   goal=Waypoint((0.35, -0.3, 0.05), a, b, 0.0), steps_per_segment=steps, safety_zone=zone,
                   via_points=((0.5, 0.0, 0.4),), segments=("line", "arc"), orientation="slerp", mode="LJI",
-                  obstacles=(Obstacle((1.0, 0.0, 0.1), (0.1, 0.2, 0.3), name='b"ox', kind="support"),),
+                  obstacles=(Box((1.0, 0.0, 0.1), (0.1, 0.2, 0.3), name='b"ox', kind="support"),),
                   arm=THESIS_ARM)
     path = write_scenario(sc, tmp_path_factory.mktemp("rt") / "s.toml")
     assert load_scenario(path, check_workspace=False) == sc

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 import iik
 from iik import THESIS_ARM
-from iik.planning import Obstacle, SceneCollision
+from iik.planning import Box, SceneCollision
 from verification import Context, Scope, Verdict
 from verification.checks import planning as pl
 
@@ -20,7 +20,7 @@ def ctx(tmp_path_factory):
     return Context(out_dir=tmp_path_factory.mktemp("planning"), quick=True)
 
 
-_CHECKER = SceneCollision((Obstacle((0.45, 0.0, 0.1), (0.1, 0.4, 0.2), name="box"),), arm=THESIS_ARM)
+_CHECKER = SceneCollision((Box((0.45, 0.0, 0.1), (0.1, 0.4, 0.2), name="box"),), arm=THESIS_ARM)
 
 
 @settings(max_examples=15, deadline=None)
@@ -33,7 +33,7 @@ def test_clearance_brackets_the_minimum(values):
     c = pl.measure_clearance(_CHECKER, np.stack([q0, q1]), -np.inf)
     bound = _CHECKER.motion_bound(q0, q1)  # no arm point moves more than this from q0 to q1 [m]
     k = max(2, int(np.ceil(10 * bound / 0.002)))
-    dense = min(_CHECKER.clearance(q0 + s * (q1 - q0))[0] for s in np.linspace(0, 1, k + 1))
+    dense = min(_CHECKER.nearest(q0 + s * (q1 - q0)).distance for s in np.linspace(0, 1, k + 1))
     assert c.lower <= dense + 1e-6  # Coal (GJK) distances to ~1e-7 m
     assert dense <= c.value + 0.5 * bound / k + 1e-6
     assert c.value - c.lower <= 0.5 * 0.002 + 1e-9  # within half a sample step
@@ -41,9 +41,9 @@ def test_clearance_brackets_the_minimum(values):
 
 def test_clearance_of_one_configuration_is_coal_distance():
     q = np.array([0.2, -0.4, 0.5, 0.1, 0.3, 0.0])
-    d, link, obj = _CHECKER.clearance(q)
+    n = _CHECKER.nearest(q)
     c = pl.measure_clearance(_CHECKER, q[None], 0.0)
-    assert (c.value, c.link, c.obj) == (d, link, obj) and c.lower == d
+    assert (c.value, c.link, c.obj) == (n.distance, n.link, n.object) and c.lower == n.distance
 
 
 def test_scenarios_graded_on_the_thesis_criterion(ctx):

@@ -71,12 +71,13 @@ def test_the_clearance_panel_plots_the_motion_and_jumps_to_its_minimum(browser, 
     from selenium.webdriver.common.by import By
 
     view = PlanScene(plan_j)
-    c = view.clearance
-    k = c.minimum
+    k = view.least
+    n = view.clearance[k]
     text = view.clearance_summary()
-    assert f"{c.distance[k] * 1000:.1f} mm** at t = {plan_j.t[k]:.2f} s" in text
-    assert f"{plan_j.certified_clearance * 1000:.1f} mm" in text and c.link[k] in text
-    assert plan_j.certified_clearance <= c.distance.min() + 1e-9  # a lower bound is below what is seen
+    assert f"{n.distance * 1000:.1f} mm** at t = {plan_j.t[k]:.2f} s" in text
+    assert f"{plan_j.certified_clearance * 1000:.1f} mm" in text and n.link in text
+    assert n.distance == min(m.distance for m in view.clearance)
+    assert plan_j.certified_clearance <= n.distance + 1e-9  # a lower bound is below what is seen
     live = serve(view, host="127.0.0.1", port=0)
     try:
         browser.get(live.url)

@@ -9,8 +9,9 @@ import pytest
 import iik
 from iik import THESIS_ARM
 from iik.planning import PlanOptions, plan, scenario_path
+from iik.planning.collision import Nearest
 from iik.planning.errors import ScenarioError
-from iik.planning.viewer import frame_clearance, plan_for_view, plan_scene
+from iik.planning.viewer import frame_clearance, least_clearance, plan_for_view, plan_scene
 from iik.planning.viewer.plan_data import UNTIMED_STEP
 
 
@@ -79,22 +80,23 @@ def test_a_plan_cut_by_its_timeout_is_still_a_view():
 
 
 def test_frame_clearance_nearest_points_are_consistent(result_j):
-    """Coal's nearest points lie on the obstacle and are ``distance`` apart (checked by Obstacle.distance)."""
+    """Coal's nearest points lie on the obstacle and are ``distance`` apart (checked by Box.distance)."""
     view = plan_scene(result_j)
     q = view.q[:: max(1, len(view.q) // 25)]
     c = frame_clearance(view.obstacles, q, arm=THESIS_ARM)
-    assert c.distance.shape == (len(q),) and len(c.link) == len(q)
+    assert len(c) == len(q) and all(isinstance(n, Nearest) for n in c)
     boxes = {b.name: b for b in view.obstacles}
-    for k in range(len(q)):
-        gap = np.linalg.norm(c.on_link[k] - c.on_obstacle[k])
-        if c.distance[k] > 1e-6:
-            assert gap == pytest.approx(c.distance[k], abs=1e-6)
-        if c.obstacle[k] in boxes:
-            box = boxes[c.obstacle[k]]
-            assert box.distance(c.on_obstacle[k])[0] == pytest.approx(0.0, abs=1e-6)
-            assert box.distance(c.on_link[k])[0] == pytest.approx(max(c.distance[k], 0.0), abs=1e-6)
+    for n in c:
+        gap = np.linalg.norm(n.on_link - n.on_object)
+        if n.distance > 1e-6:
+            assert gap == pytest.approx(n.distance, abs=1e-6)
+        if n.object in boxes:
+            box = boxes[n.object]
+            assert box.distance(n.on_object) == pytest.approx(0.0, abs=1e-6)
+            assert box.distance(n.on_link) == pytest.approx(max(n.distance, 0.0), abs=1e-6)
     # No frame of the accepted plan enters the safety zone.
-    assert c.distance.min() >= view.safety_zone - 1e-9
+    assert min(n.distance for n in c) >= view.safety_zone - 1e-9
+    assert c[least_clearance(c)].distance == min(n.distance for n in c)
 
 
 def test_unknown_scenario_names_the_argument():
