@@ -7,7 +7,7 @@ function of the thesis's Appendix A, Table V (``PCube_*``) under Pythonic names:
 Table V                     here
 ==========================  =====================================================
 PCube_openDevice/close      :meth:`PowerCubeArm.open` / :meth:`PowerCubeArm.close`
-                            (and :meth:`PowerCubeArm.from_interface` to open a bus)
+                            (and :meth:`PowerCubeArm.from_config` to open a bus)
 PCube_getPos/getVel/getCur  ``get_pos`` / ``get_vel`` / ``get_cur``
 PCube_setMaxCur             ``set_max_cur`` (A; Table V prints "rad/s", a typo)
 PCube_homeModule/homeAll    ``home`` / ``home_all``
@@ -47,8 +47,10 @@ import can
 import numpy as np
 
 from iik.arm import Arm
+from iik.errors import InvalidInputError
 
 from . import protocol as P
+from .bus import BUS_TIMEOUT, BusConfig, check_module_id, check_module_ids, check_timeout
 from .errors import (
     BusError,
     CANTimeoutError,
@@ -59,11 +61,11 @@ from .errors import (
     SecondControllerError,
 )
 
-__all__ = ["PowerCubeModule", "PowerCubeArm", "Link", "scan", "open_bus", "DEFAULT_TIMEOUT",
+__all__ = ["PowerCubeModule", "PowerCubeArm", "Link", "scan", "DEFAULT_TIMEOUT",
            "WATCHDOG_PERIOD", "DUPLICATE_WINDOW", "SPEED_TOLERANCE"]
 
-#: Default time to wait for an ACK [s].
-DEFAULT_TIMEOUT = 0.1
+#: Default time to wait for an ACK [s] (:data:`hardware.bus.BUS_TIMEOUT`).
+DEFAULT_TIMEOUT = BUS_TIMEOUT
 #: Watchdog refresh period [s]: a WATCHDOG broadcast every 40 ms, as the C drivers send it
 #: (docs/POWERCUBE.md). The modules stop by themselves when it stays away longer than
 #: their watchdog time (not in the public sources; the simulator uses 1 s).
@@ -74,26 +76,6 @@ DUPLICATE_WINDOW = 2.0
 OPEN_LISTEN = 0.05
 #: Relative tolerance of the speed, acceleration and current checks (f32 values on the wire).
 SPEED_TOLERANCE = 1e-6
-
-
-def open_bus(interface: str, channel, *, bitrate: int | None = None, port: int | None = None,
-             **kwargs) -> can.BusABC:
-    """Open a python-can bus (``PCube_openDevice``'s first half).
-
-    ``bitrate`` [bit/s] and ``port`` (``udp_multicast``) are passed only when given.
-
-    Raises:
-        BusError: the interface is unknown or could not be opened (python-can's
-            ``CanError``, ``OSError``, ``ValueError`` or a missing backend).
-    """
-    if bitrate is not None:
-        kwargs["bitrate"] = int(bitrate)
-    if port is not None:
-        kwargs["port"] = int(port)
-    try:
-        return can.Bus(interface=interface, channel=channel, **kwargs)
-    except (can.CanError, OSError, ValueError, ImportError) as exc:
-        raise BusError(f"cannot open {interface}:{channel}: {exc}") from exc
 
 
 class Link:
@@ -109,10 +91,9 @@ class Link:
 
     def __init__(self, bus: can.BusABC, timeout: float = DEFAULT_TIMEOUT):
         if not isinstance(bus, can.BusABC):
-            raise SafetyError("bus", f"expected a can.BusABC, got {type(bus).__name__}")
-        _check_positive(timeout, "timeout")
+            raise InvalidInputError("bus", f"expected a can.BusABC, got {type(bus).__name__}")
         self.bus = bus
-        self.timeout = float(timeout)
+        self.timeout = check_timeout(timeout)
         self.faults: dict[int, P.State] = {}
         self.discarded = 0
         self.error_frames = 0  # CAN error frames seen (bus errors reported by the interface)
@@ -249,10 +230,7 @@ class PowerCubeModule:
     def __init__(self, bus: can.BusABC, module_id: int, *, timeout: float = DEFAULT_TIMEOUT,
                  limits: tuple[float, float] | None = None, max_vel: float | None = None,
                  link: Link | None = None):
-        if isinstance(module_id, bool) or not isinstance(module_id, (int, np.integer)) \
-                or int(module_id) not in P.MODULE_IDS:
-            raise SafetyError("module_id", f"must be an int in 1..31, got {module_id!r}")
-        self.id = int(module_id)
+        self.id = check_module_id(module_id)
         self.link = link if link is not None else Link(bus, timeout)
         self.limits = None
         if limits is not None:
@@ -504,16 +482,14 @@ class PowerCubeArm:
         arm: Joint limits for the local target check (Table I for the thesis arm);
             used when there are six modules. ``None`` disables the local check.
         timeout: Time to wait for each ACK [s].
-        owns_bus: Shut the bus down in :meth:`close` (set by :meth:`from_interface`).
+        owns_bus: Shut the bus down in :meth:`close` (set by :meth:`from_config`).
 
     Vector methods take and return arrays in joint order (rad, rad/s, A, s).
     """
 
     def __init__(self, bus: can.BusABC, module_ids: Sequence[int], *, arm: Arm | None,
                  timeout: float = DEFAULT_TIMEOUT, owns_bus: bool = False):
-        ids = [int(i) for i in module_ids]
-        if not ids or len(set(ids)) != len(ids):
-            raise SafetyError("module_ids", f"need distinct ids, got {module_ids!r}")
+        ids = check_module_ids(module_ids)
         self.bus = bus
         self.link = Link(bus, timeout)
         lims, vels = [None] * len(ids), [None] * len(ids)
@@ -527,18 +503,25 @@ class PowerCubeArm:
         self._watchdog = None
 
     @classmethod
-    def from_interface(cls, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), *, interface: str,
-                       channel: str, bitrate: int | None = None, **kwargs) -> PowerCubeArm:
-        """Open a python-can bus (:func:`open_bus`, ``PCube_openDevice``) and an arm on it;
-        :meth:`close` shuts it. Other keyword arguments go to the bus, except ``arm`` and
-        ``timeout``. If the arm cannot be built the bus is shut down before the error propagates."""
-        bus_kw = {k: kwargs.pop(k) for k in list(kwargs) if k not in ("arm", "timeout")}
-        bus = open_bus(interface, channel, bitrate=bitrate, **bus_kw)
+    def from_config(cls, config: BusConfig, *, arm: Arm | None) -> PowerCubeArm:
+        """Open the bus ``config`` names (:meth:`hardware.bus.BusConfig.open`, ``PCube_openDevice``'s first
+        half) and an arm of its modules on it, with its ACK timeout; :meth:`close` shuts the bus. Simulated
+        modules the config describes are not attached here (:func:`hardware.sim.connect` does that)."""
+        bus = config.open()
         try:
-            return cls(bus, module_ids, owns_bus=True, **kwargs)
+            return cls(bus, config.module_ids, arm=arm, timeout=config.ack_timeout, owns_bus=True)
         except BaseException:
             bus.shutdown()
             raise
+
+    @classmethod
+    def from_interface(cls, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), *, interface: str,
+                       channel: str | int | None, bitrate: int | None = None, port: int | None = None,
+                       timeout: float | None = None, arm: Arm | None) -> PowerCubeArm:
+        """:meth:`from_config` of ``BusConfig(interface, channel, bitrate, port, module_ids, timeout)``
+        (validated there: :class:`~iik.errors.InvalidInputError` naming the argument)."""
+        config = BusConfig(interface, channel, bitrate, port, tuple(module_ids), timeout)
+        return cls.from_config(config, arm=arm)
 
     def __repr__(self) -> str:
         return f"PowerCubeArm(module_ids={self.module_ids})"

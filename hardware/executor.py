@@ -42,6 +42,7 @@ from iik.kinematics import fk
 from iik.rotations import rotation_angle
 from iik.safety import EXECUTION_MARGIN, MIN_STEP
 from iik.signals import stop_on_signals
+from iik.validation import bounded_number
 
 from . import protocol as P
 from .driver import SPEED_TOLERANCE, PowerCubeArm
@@ -52,10 +53,12 @@ from .runlog import RUN_LOG_VERSION, RunLog
 SOFT_LIMIT_TOL = 1e-6
 
 __all__ = ["ValidationOptions", "ValidatedTrajectory", "validate", "check_poses", "ExecutionOptions",
-           "RunResult", "execute", "time_steps", "EARLY_UPDATE"]
+           "RunResult", "execute", "time_steps", "EARLY_UPDATE", "UPDATES"]
 
 #: Sec 4.3: the next command is sent after 95 % of the previous one's time.
 EARLY_UPDATE = 0.95
+#: The update modes of :class:`ExecutionOptions`.
+UPDATES = ("thesis", "buffered")
 _TOKEN = object()
 
 
@@ -64,7 +67,7 @@ class ValidationOptions:
     """Limits applied by :func:`validate`.
 
     Attributes:
-        margin: Keep targets this far inside Table I [rad] (default
+        margin: Keep targets this far inside Table I [rad], [0, 90) deg (checked when built; default
             :data:`iik.safety.EXECUTION_MARGIN`, 0.5 deg, which planned trajectories keep).
         velocity_fraction: Allowed fraction of each joint's speed limit.
         fk_position_tol: Max distance between FK(target) and the planned position [m].
@@ -77,6 +80,12 @@ class ValidationOptions:
     fk_position_tol: float = 1e-5
     fk_rotation_tol: float = 1e-4
     min_step: float = MIN_STEP
+
+    def __post_init__(self) -> None:
+        number = isinstance(self.margin, (int, float)) and not isinstance(self.margin, bool)
+        if not (number and 0.0 <= self.margin < math.pi / 2):
+            shown = f"{math.degrees(self.margin):g} deg" if number else repr(self.margin)
+            raise InvalidInputError("margin", f"must be a finite angle in [0, 90) deg, got {shown}")
 
 
 class ValidatedTrajectory:
@@ -226,7 +235,8 @@ def time_steps(q, *, arm: Arm, speed_fraction: float = 0.5, min_step: float = 0.
 
 @dataclass(frozen=True)
 class ExecutionOptions:
-    """How :func:`execute` streams.
+    """How :func:`execute` streams; validated when built (:class:`~iik.errors.InvalidInputError` naming
+    the field).
 
     Attributes:
         early: Send the next command after this fraction of the previous step (Sec 4.3: 0.95).
@@ -257,6 +267,19 @@ class ExecutionOptions:
     sync: bool = True
     update: str = "thesis"
     watchdog: bool = False
+
+    def __post_init__(self) -> None:
+        bounded_number(self.early, "early", 0.0, 1.0, unit=" (fraction of a step)", open_lo=True)
+        bounded_number(self.approach_speed, "approach_speed", 0.0, 1.0,
+                       unit=" (fraction of the speed limits)", open_lo=True)
+        for name, hi, unit in (("sample_period", 1.0, " s"), ("settle", 10.0, " s"),
+                               ("start_tolerance", math.pi, " rad")):
+            bounded_number(getattr(self, name), name, 0.0, hi, unit=unit)
+        if self.update not in UPDATES:
+            raise InvalidInputError("update", f"must be one of {', '.join(UPDATES)}, got {self.update!r}")
+        for name in ("approach", "sync", "watchdog"):
+            if not isinstance(getattr(self, name), bool):
+                raise InvalidInputError(name, f"must be True or False, got {getattr(self, name)!r}")
 
 
 @dataclass(frozen=True)
@@ -334,10 +357,8 @@ def execute(arm: PowerCubeArm, trajectory: ValidatedTrajectory, log_path, *,
     if len(arm.modules) != trajectory.q.shape[1]:
         raise SafetyError("arm", f"has {len(arm.modules)} modules, the trajectory "
                           f"{trajectory.q.shape[1]} joints")
-    if not 0.0 < options.early <= 1.0:
-        raise SafetyError("options.early", "must be in (0, 1]")
-    if options.update not in ("thesis", "buffered"):
-        raise SafetyError("options.update", f"must be 'thesis' or 'buffered', got {options.update!r}")
+    if not isinstance(options, ExecutionOptions):
+        raise InvalidInputError("options", f"expected ExecutionOptions, got {type(options).__name__}")
     tr = trajectory
     # Refusals before anything moves: no HALT needed, no log written.
     for m, s in zip(arm.modules, arm.states(), strict=True):

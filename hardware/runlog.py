@@ -30,7 +30,9 @@ from __future__ import annotations
 
 import json
 import os
+from collections.abc import Collection
 from dataclasses import dataclass, field
+from datetime import datetime
 from pathlib import Path
 
 import numpy as np
@@ -42,8 +44,8 @@ from iik.files import AtomicOutput, read_text
 
 from .errors import RunLogError
 
-__all__ = ["RunLog", "Run", "read_run_log", "run_arm", "MAX_RUN_LOG_BYTES", "RUN_LOG_VERSION",
-           "READ_VERSIONS"]
+__all__ = ["RunLog", "Run", "read_run_log", "run_arm", "log_path", "reserve_log_path", "MAX_RUN_LOG_BYTES",
+           "RUN_LOG_VERSION", "READ_VERSIONS", "MAX_SAME_NAME"]
 
 #: The run-log format written (header ``version``): 2 records the arm (:func:`iik.arms.to_record`).
 RUN_LOG_VERSION = 2
@@ -52,6 +54,57 @@ READ_VERSIONS = (1, 2)
 
 #: Largest run log :func:`read_run_log` reads [bytes] (a simulated run logs about 45 kB/s: over an hour).
 MAX_RUN_LOG_BYTES = 200_000_000
+#: Most logs of one name started in one second in one folder (:func:`log_path` numbers them).
+MAX_SAME_NAME = 9999
+
+
+def log_path(out: str | os.PathLike, name: str, when: datetime, existing: Collection[str] = ()) -> Path:
+    """Where a run's log goes. Pure: nothing is read or written.
+
+    ``out`` itself if it names a ``.jsonl`` file; else a new file in the folder ``out`` named for the run
+    and the time ``when`` started it, ``<name>-<YYYYmmdd>-<HHMMSS>.jsonl``, or with ``-2``, ``-3``... while
+    that name is among ``existing`` (the names of the files in ``out``).
+
+    Raises:
+        InvalidInputError: (``out``) the folder holds :data:`MAX_SAME_NAME` logs of that name and second.
+    """
+    out = Path(out)
+    if out.suffix == ".jsonl":
+        return out
+    stem = f"{name}-{when.strftime('%Y%m%d-%H%M%S')}"
+    taken = set(existing)
+    for k in range(1, MAX_SAME_NAME + 1):
+        file = f"{stem}.jsonl" if k == 1 else f"{stem}-{k}.jsonl"
+        if file not in taken:
+            return out / file
+    raise InvalidInputError("out", f"{out} already holds {MAX_SAME_NAME} logs named {stem}-N.jsonl")
+
+
+def reserve_log_path(out: str | os.PathLike, name: str, when: datetime | None = None) -> Path:
+    """:func:`log_path` in the folder ``out`` as it is now (created if missing), at ``when`` (default now):
+    the file is created empty here, so that no other run takes its name; for a ``.jsonl`` ``out`` only its
+    folder is created (an earlier log of that name stays until the new one replaces it whole).
+
+    Raises:
+        InvalidInputError: (``out``) the folder cannot be created or written, or every name is taken.
+    """
+    out = Path(out)
+    folder = out.parent if out.suffix == ".jsonl" else out
+    when = datetime.now() if when is None else when
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        if out.suffix == ".jsonl":
+            return out
+        existing = set(os.listdir(folder))
+        while True:
+            path = log_path(out, name, when, existing)
+            try:
+                path.open("x").close()
+                return path
+            except FileExistsError:  # another run took it meanwhile
+                existing.add(path.name)
+    except OSError as exc:
+        raise InvalidInputError("out", f"cannot write the run log in {folder}: {exc.strerror}") from None
 
 
 class RunLog:

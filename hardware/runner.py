@@ -1,190 +1,96 @@
-"""One run end to end: step targets -> validation -> arm (simulated or on a bus) -> execution
+"""One run end to end, python-can style: step targets -> validation -> the modules on a bus -> execution
 -> analysis -> figures. The library behind ``iik run``.
 
-:func:`run` takes a :class:`RunRequest` (what to execute and how) and returns a
-:class:`RunReport`. The trajectory comes from one source (:mod:`hardware.sources`):
-a scenario planned by the project's planner (Sec 3.6) and timed as ``iik plan`` times
-it, a CSV file (``iik plan``'s files qualify as written), or the demo line; ``speed``
-slows any of them. The arm is the scenario's own, or the one given (``RunRequest.arm``,
-required for a CSV file or the demo); the simulated modules, the host's limit checks,
-the validation, the run log's header and the analysis all use it. Every target is
-validated (:func:`hardware.validate`: Table I with a margin, Sec 3.2 speeds, FK vs the
-planned pose) before the arm is opened. Without an
-``interface`` the arm is simulated in-process (:func:`hardware.sim.simulated_arm`);
-otherwise the modules are reached through python-can (``udp_multicast`` to a separate
-``iik sim-arm``, ``socketcan`` for real modules), with the modules' watchdog on unless
-turned off. The run log (``OUT/<name>-<date>-<time>.jsonl``, never overwritten; or the
-file ``out`` names) is analysed as in Sec 4.3 (:func:`hardware.analyse`), and the run
-is ``ok`` only if its end-effector error stays inside its safety zone.
+``run(targets, bus, options, log)`` returns a :class:`RunReport`:
 
-SIGTERM and SIGHUP stop a run like Ctrl-C (:mod:`iik.signals`): HALT, fault and
-end records, log on disk. Nothing here prints: notes and executed steps are reported
-through callbacks.
+* ``targets``: :class:`hardware.sources.StepTargets` from one source (``iik run`` picks it:
+  :func:`~hardware.sources.scenario_trajectory`, :func:`~hardware.sources.csv_trajectory` or
+  :func:`~hardware.sources.demo_trajectory`, :meth:`~hardware.sources.StepTargets.slowed` to a speed).
+  They carry the arm they are for: the simulated modules, the host's limit checks, the validation, the
+  run log's header and the analysis all use it; a scenario's targets carry the scenario (its safety
+  zone, its boxes for the log).
+* ``bus``: :class:`hardware.bus.BusConfig`, where the modules are. The simulated arm is just another bus:
+  with a :class:`~hardware.bus.SimConfig` the simulated modules are attached to the bus in this process
+  (``BusConfig.simulated()``: a private ``virtual`` channel), and their clock is the executor's too (a
+  :class:`~hardware.clock.VirtualClock` runs exactly and as fast as the requests go). Otherwise the modules
+  are reached through python-can (``udp_multicast`` to a separate ``iik sim-arm``, ``socketcan`` for real
+  modules).
+* ``options``: :class:`RunOptions` (validation margin, execution: early and buffered update, the
+  modules' watchdog; the safety zone; RESET and HOME first; figures).
+* ``log``: a folder (a new ``<name>-<date>-<time>.jsonl`` each run, :func:`hardware.runlog.log_path`,
+  never overwritten) or the ``.jsonl`` file to write.
+
+Every target is validated (:func:`hardware.validate`: the arm's limits with a margin, Sec 3.2 speeds, FK
+vs the planned pose) before the bus is opened. The run log is analysed as in Sec 4.3
+(:func:`hardware.analyse`), and the run is ``ok`` only if its end-effector error stays inside its safety
+zone. SIGTERM and SIGHUP stop a run like Ctrl-C (:mod:`iik.signals`): HALT, fault and end records, log
+on disk. Nothing here prints: notes and executed steps are reported through callbacks.
 """
 
 from __future__ import annotations
 
 import contextlib
 import math
+import os
 import signal
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from datetime import datetime
 from pathlib import Path
 
-from iik.arm import Arm
 from iik.errors import InvalidInputError, Remedy
-from iik.safety import EXECUTION_MARGIN
 from iik.signals import stop_on_signals
+from iik.validation import bounded_number
 
 from . import protocol as P
 from .analysis import SAFETY_ZONE_PREDEFINED, RunAnalysis, analyse, plot_run, summary_text
+from .bus import BusConfig
+from .clock import REAL_TIME
 from .driver import WATCHDOG_PERIOD, PowerCubeArm
-from .executor import EARLY_UPDATE, ExecutionOptions, RunResult, ValidationOptions, execute
-from .runlog import read_run_log
-from .sim import SimulatedArm, simulated_arm
-from .sources import DEMO_SPEED, StepTargets, csv_trajectory, demo_trajectory, scenario_trajectory
+from .executor import ExecutionOptions, RunResult, ValidationOptions, execute
+from .runlog import read_run_log, reserve_log_path
+from .sim import SimulatedArm, connect
+from .sources import StepTargets
 
-__all__ = ["RunRequest", "RunReport", "run", "failure_status", "SIM_TIMEOUT", "BUS_TIMEOUT", "MAX_TIMEOUT",
-           "MAX_ZONE"]
+__all__ = ["RunOptions", "RunReport", "run", "failure_status", "MAX_ZONE"]
 
-#: ACK timeout [s] for the in-process simulation: generous, since its threads share one interpreter
-#: (and a loaded machine) with the host; it never goes silent unless a fault is injected.
-SIM_TIMEOUT = 2.0
-#: ACK timeout [s] on a real bus (or a simulator in another process).
-BUS_TIMEOUT = 0.1
-#: Longest ACK timeout accepted [s] (a reply takes milliseconds; more only hides a dead bus).
-MAX_TIMEOUT = 10.0
-#: Largest safety zone of an ``ok`` run [m] (:attr:`RunRequest.zone`).
+#: Largest safety zone of an ``ok`` run [m] (:attr:`RunOptions.zone`).
 MAX_ZONE = 1.0
-UPDATES = ("thesis", "buffered")
-SIM_STARTS = ("home", "plan")
-
-
-def _number(value, name: str, lo: float, hi: float, unit: str, *, open_lo: bool = True) -> float:
-    """``value`` as a float in (lo, hi] (or [lo, hi] if not ``open_lo``); else InvalidInputError."""
-    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value) \
-        and (value > lo if open_lo else value >= lo) and value <= hi
-    if not ok:
-        where = f"({lo:g}, {hi:g}]" if open_lo else f"[{lo:g}, {hi:g}]"
-        raise InvalidInputError(name, f"must be a finite number in {where}{unit}, got {value!r}")
-    return float(value)
-
-
-def _integer(value, name: str, allowed, what: str) -> None:
-    if isinstance(value, bool) or not isinstance(value, int) or value not in allowed:
-        raise InvalidInputError(name, f"must be {what}, got {value!r}")
 
 
 @dataclass(frozen=True)
-class RunRequest:
-    """What :func:`run` executes, and how. Give exactly one of ``scenario``, ``trajectory``, ``demo``.
+class RunOptions:
+    """How :func:`run` validates, executes and judges a run; validated when built
+    (:class:`~iik.errors.InvalidInputError` naming the field).
 
     Attributes:
-        scenario: A scenario TOML file, or the name of a shipped scenario (e.g. ``"j"``).
-        trajectory: A CSV file with columns ``t,q1..q6`` [s, rad].
-        demo: The built-in straight-line demo (:func:`hardware.sources.demo_trajectory`).
-        arm: The arm run (:class:`iik.Arm`). With a scenario None means the scenario's own arm (a
-            given one must be the same arm); a trajectory file or the demo needs one.
-        interface, channel, bitrate, port: The python-can bus; ``interface=None`` simulates
-            the arm in-process. ``bitrate`` [bit/s] is a PowerCube rate (125k, 250k, 500k, 1M).
-        modules: The six module ids in joint order.
-        timeout: ACK timeout (0, 10] s; None: :data:`SIM_TIMEOUT` simulated, :data:`BUS_TIMEOUT` on a bus.
-        early, update: See :class:`hardware.executor.ExecutionOptions` (Sec 4.3).
-        watchdog: The modules' watchdog (a WATCHDOG broadcast every
-            :data:`hardware.driver.WATCHDOG_PERIOD` = 40 ms; they stop if it stays away);
-            None: on for a bus interface, off for the in-process simulation.
-        speed: Run at this fraction (0, 1] of the source's speed: every step lasts 1/speed as
-            long (scenario: as ``iik plan`` times it; CSV: as written; demo: timed at
-            :data:`hardware.sources.DEMO_SPEED` of the joint speed limits).
-        margin: Keep targets this far inside Table I [rad] (0 to 90 deg; default 0.5 deg).
-        zone: Largest end-effector error of an ``ok`` run [m]; None: the scenario's safety
-            zone (Sec 4.3.2), or the 10 mm of Sec 4.3.1 for a file or the demo.
-        lag: Tracking lag of the simulated arm [0, 1] s.
-        sim_start: The simulated arm starts at q = 0 (``"home"``) or at the first target (``"plan"``).
-        reset: RESET every module first. home: HOME the modules whose HOME_OK is clear.
-        out: Folder of the run log (a new ``<name>-<date>-<time>.jsonl`` each run) and figures,
-            or a ``.jsonl`` file to write exactly (figures beside it).
-        figures: Write the three PNG figures.
+        validation: :class:`hardware.executor.ValidationOptions` (the margin inside the joint limits).
+        execution: :class:`hardware.executor.ExecutionOptions` (early and buffered update, Sec 4.3; the
+            modules' watchdog: a WATCHDOG broadcast every :data:`hardware.driver.WATCHDOG_PERIOD` = 40 ms,
+            they stop if it stays away; ``iik run`` turns it on for a bus, off for the in-process simulation).
+        zone: Largest end-effector error of an ``ok`` run, (0, 1] m; None: the scenario's safety zone
+            (Sec 4.3.2), or the 10 mm of Sec 4.3.1 for a file or the demo.
+        reset: RESET every module first (after a HALT). home: HOME the modules whose HOME_OK is clear.
+        figures: Write the three PNG figures beside the run log.
     """
 
-    scenario: str | Path | None = None
-    trajectory: Path | None = None
-    demo: bool = False
-    arm: Arm | None = None
-    interface: str | None = None
-    channel: str | None = None
-    bitrate: int | None = None
-    port: int | None = None
-    modules: tuple[int, ...] = (1, 2, 3, 4, 5, 6)
-    timeout: float | None = None
-    early: float = EARLY_UPDATE
-    update: str = "thesis"
-    speed: float = 1.0
-    margin: float = EXECUTION_MARGIN
+    validation: ValidationOptions = field(default_factory=ValidationOptions)
+    execution: ExecutionOptions = field(default_factory=ExecutionOptions)
     zone: float | None = None
-    lag: float = 0.02
-    sim_start: str = "home"
-    watchdog: bool | None = None
     reset: bool = False
     home: bool = False
-    out: Path = Path("runs")
     figures: bool = True
 
     def __post_init__(self) -> None:
-        if sum(x is not None for x in (self.scenario, self.trajectory, self.demo or None)) != 1:
-            raise InvalidInputError("run", "no trajectory or more than one",
-                                    Remedy("give exactly one of {}", ("scenario", "trajectory", "demo")))
-        mods = tuple(self.modules)
-        if len(mods) != 6 or len(set(mods)) != 6 or any(
-                isinstance(i, bool) or not isinstance(i, int) or i not in P.MODULE_IDS for i in mods):
-            raise InvalidInputError("modules", f"need six distinct ids in 1..31, got {list(mods)}")
-        object.__setattr__(self, "modules", mods)
-        if self.timeout is not None:
-            _number(self.timeout, "timeout", 0.0, MAX_TIMEOUT, " s")
-        if self.bitrate is not None:
-            _integer(self.bitrate, "bitrate", P.BAUD_CODES, "a PowerCube bit rate, one of "
-                     + ", ".join(f"{b}" for b in P.BAUD_CODES) + " bit/s (docs/POWERCUBE.md)")
-        if self.port is not None:
-            _integer(self.port, "port", range(1, 65536), "a UDP port in 1..65535")
-        _number(self.early, "early", 0.0, 1.0, " (fraction of a step)")
-        _number(self.speed, "speed", 0.0, 1.0, " (fraction of the planned speed)")
-        number = isinstance(self.margin, (int, float)) and not isinstance(self.margin, bool)
-        if not (number and 0.0 <= self.margin < math.pi / 2):
-            shown = f"{math.degrees(self.margin):g} deg" if number else repr(self.margin)
-            raise InvalidInputError("margin", f"must be a finite angle in [0, 90) deg, got {shown}")
+        for name, kind in (("validation", ValidationOptions), ("execution", ExecutionOptions)):
+            given = getattr(self, name)
+            if not isinstance(given, kind):
+                raise InvalidInputError(name, f"expected {kind.__name__}, got {type(given).__name__}")
         if self.zone is not None:
-            _number(self.zone, "zone", 0.0, MAX_ZONE, " m")
-        _number(self.lag, "lag", 0.0, 1.0, " s", open_lo=False)
-        if self.watchdog not in (None, True, False):
-            raise InvalidInputError("watchdog", f"must be True, False or None, got {self.watchdog!r}")
-        for name, allowed in (("update", UPDATES), ("sim_start", SIM_STARTS)):
-            value = getattr(self, name)
-            if value not in allowed:
-                raise InvalidInputError(name, f"must be one of {', '.join(allowed)}, got {value!r}")
-        object.__setattr__(self, "out", Path(self.out))
-        if self.arm is not None and not isinstance(self.arm, Arm):
-            raise InvalidInputError("arm", f"expected an iik.Arm, got {type(self.arm).__name__}")
-        if self.arm is None and self.scenario is None:
-            raise InvalidInputError("arm", "a trajectory file or the demo does not say which arm it is for",
-                                    Remedy("give it as {}", "arm"))
-
-    @property
-    def simulated(self) -> bool:
-        """True if the arm is simulated in-process."""
-        return self.interface is None
-
-    @property
-    def watchdog_on(self) -> bool:
-        """Whether the run enables the modules' watchdog (default: on a bus interface)."""
-        return (not self.simulated) if self.watchdog is None else self.watchdog
-
-    @property
-    def where(self) -> str:
-        """Where the run executes, for messages."""
-        if self.simulated:
-            return "simulated arm (in-process, virtual bus)"
-        return f"{self.interface}:{self.channel}"
+            object.__setattr__(self, "zone", bounded_number(self.zone, "zone", 0.0, MAX_ZONE, unit=" m",
+                                                            open_lo=True))
+        for name in ("reset", "home", "figures"):
+            if not isinstance(getattr(self, name), bool):
+                raise InvalidInputError(name, f"must be True or False, got {getattr(self, name)!r}")
 
 
 @dataclass(frozen=True)
@@ -192,8 +98,8 @@ class RunReport:
     """Outcome of :func:`run` (a fault raises instead, after HALT and with the log on disk).
 
     Attributes:
-        request: What was run. targets: The step targets (before validation).
-        result: The executor's counts (log path, commands, samples, duration [s]).
+        targets: The step targets (before validation). bus: Where they ran. options: How.
+        result: The executor's counts (log path, commands, samples, duration [s] on the run's clock).
         analysis: Step-point joint and end-effector errors (Sec 4.3).
         zone: The safety zone the end-effector error had to stay in [m].
         rests: Simulated runs: times a joint came to rest between two planned steps (the rest at the
@@ -201,8 +107,9 @@ class RunReport:
         figures: Paths of the PNG figures written.
     """
 
-    request: RunRequest
     targets: StepTargets
+    bus: BusConfig
+    options: RunOptions
     result: RunResult
     analysis: RunAnalysis
     zone: float = SAFETY_ZONE_PREDEFINED
@@ -221,16 +128,16 @@ class RunReport:
 
     @property
     def step_changes(self) -> int:
-        """Joint step changes between planned steps (6 x (n - 2)), the denominator of :attr:`rests`."""
-        return len(self.request.modules) * max(len(self.targets) - 2, 0)
+        """Joint step changes between planned steps (joints x (n - 2)), the denominator of :attr:`rests`."""
+        return self.targets.q.shape[1] * max(len(self.targets) - 2, 0)
 
     def summary(self) -> str:
         """The run's summary for a terminal (mm and degrees for display); its last line is the status."""
-        r, req = self.result, self.request
+        r, ex = self.result, self.options.execution
         lines = [summary_text(self.analysis, self.targets.name)]
         if self.rests is not None and self.step_changes:
             lines.append(f"  simulated joints came to rest between two planned steps {self.rests} times (of "
-                         f"{self.step_changes} step changes; update {req.update}, early {req.early})")
+                         f"{self.step_changes} step changes; update {ex.update}, early {ex.early})")
         elif self.rests is not None:
             lines.append("  one planned step: no step change for a joint to rest at")
         lines.append(f"run log: {r.log_path} ({r.commands} commands, {r.samples} samples, "
@@ -242,85 +149,43 @@ class RunReport:
         return "\n".join(lines)
 
 
-def _targets(request: RunRequest) -> StepTargets:
-    if request.demo:
-        targets = demo_trajectory(request.arm, DEMO_SPEED)
-    elif request.trajectory is not None:
-        targets = csv_trajectory(request.trajectory, request.arm)
-    else:
-        targets = scenario_trajectory(request.scenario, arm=request.arm)
-    return targets.slowed(request.speed)
+def _check(targets: StepTargets, bus: BusConfig, options: RunOptions) -> None:
+    """The arguments' types, and one module per joint of the targets' arm."""
+    for name, value, kind in (("targets", targets, StepTargets), ("bus", bus, BusConfig),
+                              ("options", options, RunOptions)):
+        if not isinstance(value, kind):
+            raise InvalidInputError(name, f"expected {kind.__name__}, got {type(value).__name__}")
+    joints = targets.q.shape[1]
+    if len(bus.module_ids) != joints:
+        raise InvalidInputError("module_ids", f"need one module per joint of the arm {targets.arm.name!r}: "
+                                              f"{joints} ids, got {list(bus.module_ids)}")
 
 
-def _scenario_header(request: RunRequest, arm: Arm) -> dict:
+def _zone(targets: StepTargets, options: RunOptions) -> float:
+    """The safety zone of the run [m] (:attr:`RunOptions.zone`)."""
+    if options.zone is not None:
+        return options.zone
+    if targets.scenario is not None:
+        return float(targets.scenario.safety_zone)
+    return SAFETY_ZONE_PREDEFINED
+
+
+def _scenario_header(targets: StepTargets) -> dict:
     """The scenario and its boxes [m, base frame] for the run log's header (``iik view --run`` draws them)."""
-    if request.scenario is None:
+    sc = targets.scenario
+    if sc is None:
         return {}
-    from iik.planning import load_scenario, scenario_path
-
-    sc = load_scenario(scenario_path(request.scenario), arm=arm)
     return {"scenario": sc.name, "obstacles": [{"name": b.name, "kind": b.kind, "center": list(b.center),
                                                 "size": list(b.size)} for b in sc.obstacles]}
 
 
-def _zone(request: RunRequest, arm: Arm) -> float:
-    """The safety zone of the run [m] (:attr:`RunRequest.zone`)."""
-    if request.zone is not None:
-        return request.zone
-    if request.scenario is not None:
-        from iik.planning import load_scenario, scenario_path
-
-        return float(load_scenario(scenario_path(request.scenario), arm=arm).safety_zone)
-    return SAFETY_ZONE_PREDEFINED
-
-
-def _log_path(request: RunRequest, name: str) -> Path:
-    """The run log's path: ``out`` if it names a ``.jsonl`` file, else a new file in the folder
-    ``out`` (``<name>-<date>-<time>.jsonl``, ``-2``, ``-3``... if taken), created here so no
-    other run takes it."""
-    out = request.out
-    folder = out.parent if out.suffix == ".jsonl" else out
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-        if out.suffix == ".jsonl":
-            return out
-        stem = f"{name}-{datetime.now().strftime('%Y%m%d-%H%M%S')}"
-        for k in range(1, 10_000):
-            path = folder / (stem if k == 1 else f"{stem}-{k}")
-            path = path.with_name(path.name + ".jsonl")
-            try:
-                path.open("x").close()
-                return path
-            except FileExistsError:
-                continue
-    except OSError as exc:
-        raise InvalidInputError("out", f"cannot write the run log in {folder}: {exc.strerror}") from None
-    raise InvalidInputError("out", f"{folder} already holds 9999 logs named {stem}-N.jsonl")
-
-
-@contextlib.contextmanager
-def _open_arm(request: RunRequest, initial, arm: Arm) -> Iterator[tuple[SimulatedArm | None, PowerCubeArm]]:
-    """``(sim, host)``: an in-process simulated ``arm``, or ``(None, host)`` on the request's bus; the
-    host checks targets against ``arm``'s limits."""
-    if request.simulated:
-        with simulated_arm(request.modules, arm=arm, lag=request.lag, initial=initial,
-                           timeout=request.timeout or SIM_TIMEOUT) as (sim, host):
-            yield sim, host
-        return
-    kw = {"port": request.port} if request.port is not None else {}
-    with PowerCubeArm.from_interface(request.modules, interface=request.interface, channel=request.channel,
-                                     bitrate=request.bitrate, timeout=request.timeout or BUS_TIMEOUT, arm=arm,
-                                     **kw) as host:
-        yield None, host
-
-
-def _prepare(arm: PowerCubeArm, request: RunRequest) -> None:
-    """Open the arm (every module answers, once), RESET and HOME as requested; HALT if that fails."""
+def _prepare(arm: PowerCubeArm, options: RunOptions) -> None:
+    """Open the arm (every module answers, once), RESET and HOME as asked; HALT if that fails."""
     try:
         arm.open()
-        if request.reset:
+        if options.reset:
             arm.reset()
-        if request.home:
+        if options.home:
             for m, s in zip(arm.modules, arm.states(), strict=True):
                 if not s & P.State.HOME_OK:
                     m.home()
@@ -352,20 +217,26 @@ class _Rests:
         return None if self.sim is None else self._count() - self.before
 
 
-def _halted_note(request: RunRequest, log_path: Path) -> str | None:
+def _halted_note(bus: BusConfig, log_path: Path) -> str | None:
     """What to tell after a run stopped by a fault, if it had started (its log has records)."""
     if not log_path.exists() or log_path.stat().st_size == 0:
         return None
     return f"HALT broadcast to every module; the run log {log_path} ends with the fault"
 
 
-def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
+def run(targets: StepTargets, bus: BusConfig, options: RunOptions = RunOptions(),
+        log: str | os.PathLike = "runs", *, notify: Callable[[str], None] | None = None,
         progress: Callable[[int, int], None] | None = None) -> RunReport:
-    """Plan or read the trajectory, validate it, execute it and analyse the run log.
+    """Validate ``targets``, execute them on the modules ``bus`` names and analyse the run log.
 
     Args:
-        request: What to run (:class:`RunRequest`).
-        notify: Called with a line of text at each stage before execution (planned,
+        targets: What to run, with the arm it is for (:class:`hardware.sources.StepTargets`).
+        bus: Where the modules are (:class:`hardware.bus.BusConfig`; with ``sim``, simulated in this
+            process on the simulator's clock); one module per joint.
+        options: How (:class:`RunOptions`).
+        log: A folder (a new ``<name>-<date>-<time>.jsonl`` each run, figures beside it) or the ``.jsonl``
+            file to write.
+        notify: Called with a line of text at each stage before execution (the source's note,
             validated, watchdog).
         progress: Called with ``(k, n)`` after step ``k`` of ``n`` was commanded.
 
@@ -374,49 +245,47 @@ def run(request: RunRequest, *, notify: Callable[[str], None] | None = None,
         the safety zone (the run itself went to the end).
 
     Raises:
-        IIKError: bad input (``InvalidInputError``, ``ScenarioError``), a plan that
-            failed, a target refused by validation (``SafetyError``), or a hardware
-            fault during the run (``CANTimeoutError``, ``ModuleFault``, ``BusError``,
+        IIKError: bad input (``InvalidInputError``), a target refused by validation (``SafetyError``),
+            or a hardware fault during the run (``CANTimeoutError``, ``ModuleFault``, ``BusError``,
             ``DuplicateModuleError``...), after HALT was broadcast and the fault logged
             (the exception's note says where the log is).
         KeyboardInterrupt, StopSignal: Ctrl-C, SIGTERM or SIGHUP, handled the same way.
 
     An exception raised after the run started carries ``run_log`` (the log's path) besides its note.
     """
+    _check(targets, bus, options)
     say = notify or (lambda text: None)
     with stop_on_signals():
-        targets = _targets(request)
         if targets.note:
             say(targets.note)
-        traj = targets.validate(ValidationOptions(margin=request.margin))
+        traj = targets.validate(options.validation)
         say(f"{targets.name}: {len(traj)} step-points, {traj.times[-1]:.3f} s, validated for the arm "
-            f"{targets.arm.name!r} (joint limits - {math.degrees(request.margin):g} deg, speed limits, FK vs "
-            "planned poses)")
-        zone = _zone(request, targets.arm)
-        log_path = _log_path(request, targets.name)
-        if request.watchdog_on:
+            f"{targets.arm.name!r} (joint limits - {math.degrees(options.validation.margin):g} deg, speed "
+            "limits, FK vs planned poses)")
+        zone = _zone(targets, options)
+        log_path = reserve_log_path(log, targets.name)
+        if options.execution.watchdog:
             say(f"watchdog on: WATCHDOG broadcast every {WATCHDOG_PERIOD * 1e3:.0f} ms; the modules stop "
                 "if it stays away (--no-watchdog to turn it off)")
-        options = ExecutionOptions(early=request.early, update=request.update, watchdog=request.watchdog_on)
-        initial = traj.q[0] if request.sim_start == "plan" else None
+        clock = bus.sim.clock if bus.sim is not None else REAL_TIME
         try:
-            with _open_arm(request, initial, targets.arm) as (sim, arm):
-                _prepare(arm, request)
+            with connect(bus, arm=targets.arm) as (host, sim):
+                _prepare(host, options)
                 rests = _Rests(sim, progress)
-                result = execute(arm, traj, log_path, options=options, progress=rests.progress,
-                                 header=_scenario_header(request, targets.arm))
+                result = execute(host, traj, log_path, options=options.execution, progress=rests.progress,
+                                 header=_scenario_header(targets), clock=clock.now, sleep=clock.sleep)
         except BaseException as exc:
-            if (note := _halted_note(request, log_path)) is not None:
+            if (note := _halted_note(bus, log_path)) is not None:
                 exc.add_note(note)
                 exc.run_log = log_path  # the run started: HALT sent, the log ends with the fault
-                if not request.simulated and getattr(exc, "remedy", None) is None:
+                if bus.sim is None and getattr(exc, "remedy", None) is None:
                     exc.remedy = Remedy("the modules stay halted until reset: run again with {}", "reset")
-            elif request.out.suffix != ".jsonl":
+            elif Path(log).suffix != ".jsonl":
                 log_path.unlink(missing_ok=True)  # reserved, never written: the run did not start
             raise
     analysis = analyse(read_run_log(result.log_path), targets.arm)  # the log's arm, checked against it
-    figures = tuple(plot_run(analysis, log_path.parent, log_path.stem)) if request.figures else ()
-    return RunReport(request, targets, result, analysis, zone, rests.between_steps(), figures)
+    figures = tuple(plot_run(analysis, log_path.parent, log_path.stem)) if options.figures else ()
+    return RunReport(targets, bus, options, result, analysis, zone, rests.between_steps(), figures)
 
 
 def failure_status(exc: BaseException) -> str:

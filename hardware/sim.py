@@ -44,8 +44,7 @@ import math
 import sys
 import threading
 import time
-import uuid
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 
 import can
@@ -56,10 +55,12 @@ from iik.arm import Arm
 from iik.errors import InvalidInputError
 
 from . import protocol as P
-from .driver import PowerCubeArm, open_bus
+from .bus import SIM_TIMEOUT, BusConfig, SimConfig, check_module_ids, open_bus
+from .clock import FunctionClock
+from .driver import PowerCubeArm
 from .errors import ProtocolError, SafetyError
 
-__all__ = ["SimulatedArm", "SimModule", "FAULTS", "SIM_VERSION", "simulated_arm", "serve"]
+__all__ = ["SimulatedArm", "SimModule", "FAULTS", "SIM_VERSION", "connect", "simulated_arm", "serve"]
 
 #: VERSION reported by simulated modules (an arbitrary marker, not a real firmware).
 SIM_VERSION = 0x5151
@@ -456,28 +457,18 @@ def _module_joints(n: int) -> tuple[int, ...]:
     return tuple(j if j < 6 else 0 for j in range(n))
 
 
-def _checked_modules(module_ids, initial, arm: Arm, lag) -> tuple[list[int], np.ndarray]:
-    """Module ids (distinct, 1..31), initial positions [rad] (finite, one per module, inside the
-    modules' soft limits: Table I for the first six) and the lag ([0, 1] s)."""
-    try:
-        ids = [int(i) for i in module_ids]
-    except (TypeError, ValueError):
-        raise SafetyError("module_ids", f"need distinct ids in 1..31, got {module_ids!r}") from None
-    if not ids or len(set(ids)) != len(ids) or any(i not in P.MODULE_IDS for i in ids):
-        raise SafetyError("module_ids", f"need distinct ids in 1..31, got {module_ids!r}")
-    try:
-        q0 = np.zeros(len(ids)) if initial is None else np.asarray(initial, dtype=float)
-    except (TypeError, ValueError):
-        q0 = np.full(0, np.nan)
-    if q0.shape != (len(ids),) or not np.all(np.isfinite(q0)):
-        raise SafetyError("initial", f"need {len(ids)} finite positions [rad], one per module")
+def _checked_modules(module_ids, sim: SimConfig, arm: Arm) -> tuple[tuple[int, ...], np.ndarray]:
+    """Module ids (:func:`hardware.bus.check_module_ids`) and the initial positions [rad] of ``sim`` (one
+    per module, inside the modules' soft limits: the arm's limits for the first six)."""
+    ids = check_module_ids(module_ids)
+    q0 = np.zeros(len(ids)) if sim.initial is None else np.array(sim.initial, dtype=float)
+    if q0.shape != (len(ids),):
+        raise InvalidInputError("initial", f"need {len(ids)} finite positions [rad], one per module, got "
+                                           f"{len(q0)}")
     for j, (p, k) in enumerate(zip(q0, _module_joints(len(ids)), strict=True)):
         for v in arm.limit_violations([p], joints=(k,)):  # the soft limits SimulatedArm gives module j
-            raise SafetyError("initial", f"joint q{j + 1} at {p:g} rad is outside its soft limits "
-                              f"[{v.lower:.4f}, {v.upper:.4f}] rad ({arm.limits_name})")
-    if isinstance(lag, bool) or not isinstance(lag, (int, float)) or not (math.isfinite(lag)
-                                                                           and 0 <= lag <= 1):
-        raise InvalidInputError("lag", f"must be a finite number in [0, 1] s, got {lag!r}")
+            raise InvalidInputError("initial", f"joint q{j + 1} at {p:g} rad is outside its soft limits "
+                                               f"[{v.lower:.4f}, {v.upper:.4f}] rad ({arm.limits_name})")
     return ids, q0
 
 
@@ -502,8 +493,9 @@ class SimulatedArm:
                  clock: Callable[[], float] = time.monotonic, owns_bus: bool = False,
                  start: bool = True):
         try:
-            ids, q0 = _checked_modules(module_ids, initial, arm, lag)
-        except (SafetyError, InvalidInputError):
+            sim = SimConfig(lag, initial, homed)  # validated as a simulated bus's modules are
+            ids, q0 = _checked_modules(module_ids, sim, arm)
+        except InvalidInputError:
             if owns_bus:
                 bus.shutdown()
             raise
@@ -515,7 +507,7 @@ class SimulatedArm:
         for j, (i, k) in enumerate(zip(ids, _module_joints(len(ids)), strict=True)):
             self.modules[i] = SimModule(
                 i, lower=arm.lower[k], upper=arm.upper[k], vmax=arm.velocity[k],
-                amax=arm.acceleration[k], lag=lag, initial=float(q0[j]), homed=homed,
+                amax=arm.acceleration[k], lag=sim.lag, initial=float(q0[j]), homed=homed,
                 watchdog_timeout=watchdog_timeout, now=now)
         self.module_ids = tuple(ids)
         self.malformed = 0
@@ -537,6 +529,17 @@ class SimulatedArm:
         """A simulated arm on its own ``virtual`` bus object on ``channel``."""
         return cls(open_bus("virtual", channel, receive_own_messages=False), module_ids, owns_bus=True,
                    **kwargs)
+
+    @classmethod
+    def attach(cls, config: BusConfig, *, arm: Arm, **kwargs) -> SimulatedArm:
+        """The simulated modules ``config.sim`` describes (default :class:`~hardware.bus.SimConfig`), with
+        ``config.module_ids`` and ``arm``'s limits, on their own bus object on ``config``'s bus (which
+        :meth:`close` shuts down). Their ids and initial positions are checked before the bus is opened.
+        ``kwargs``: ``tick``, ``watchdog_timeout``."""
+        sim = config.sim if config.sim is not None else SimConfig()
+        _checked_modules(config.module_ids, sim, arm)
+        return cls(config.open(), config.module_ids, arm=arm, lag=sim.lag, initial=sim.initial,
+                   homed=sim.homed, clock=sim.clock.now, owns_bus=True, **kwargs)
 
     def __enter__(self) -> SimulatedArm:
         return self
@@ -681,62 +684,73 @@ class SimulatedArm:
 
 
 @contextlib.contextmanager
-def simulated_arm(module_ids=(1, 2, 3, 4, 5, 6), *, arm: Arm, lag: float = 0.02, initial=None,
-                  timeout: float = 2.0, clock=time.monotonic):
-    """Yield ``(sim, arm)``: an in-process :class:`hardware.sim.SimulatedArm` of ``arm`` (its limits,
-    speeds and accelerations) on a private ``virtual`` channel and a :class:`hardware.PowerCubeArm`
-    talking to it (its local target check with the same limits).
-
-    Host and simulated modules are threads of this process, so the interpreter's
-    switch interval is shortened meanwhile (request round trips stay short) and
-    restored on exit; both the arm's bus and the simulator are closed on exit.
-    ``clock`` is the simulator's time source [s] (pass the same one to ``execute``). ``timeout``
-    is the arm's ACK timeout [s], generous because host and modules share one interpreter.
-    """
-    channel = f"iik-run-{uuid.uuid4().hex}"
+def _short_switch_interval(seconds: float = 0.0005) -> Iterator[None]:
+    """Host and simulated modules are threads of one interpreter: switch between them often meanwhile, so
+    request round trips stay short."""
     switch = sys.getswitchinterval()
-    sys.setswitchinterval(0.0005)
+    sys.setswitchinterval(seconds)
     try:
-        with SimulatedArm.virtual(channel, module_ids, arm=arm, lag=lag, initial=initial,
-                                  clock=clock) as sim, \
-                PowerCubeArm.from_interface(module_ids, interface="virtual", channel=channel, arm=arm,
-                                            timeout=timeout) as host:
-            yield sim, host
+        yield
     finally:
         sys.setswitchinterval(switch)
 
 
-def serve(interface: str, channel, module_ids: Sequence[int] = (1, 2, 3, 4, 5, 6), *, arm: Arm,
-          bitrate: int | None = None, port: int | None = None, lag: float = 0.02, initial=None,
-          homed: bool = True, duration: float | None = None, stop: threading.Event | None = None,
+@contextlib.contextmanager
+def connect(config: BusConfig, *, arm: Arm) -> Iterator[tuple[PowerCubeArm, SimulatedArm | None]]:
+    """Yield ``(host, sim)``: a :class:`hardware.PowerCubeArm` of ``config``'s modules on its bus (its
+    local target check with ``arm``'s limits), and the simulated modules ``config.sim`` attaches to that
+    bus in this process (:meth:`SimulatedArm.attach`, ``arm``'s limits, speeds and accelerations), or
+    None if the modules are elsewhere. With simulated modules on ``virtual`` and no channel, the channel
+    is a private one (:meth:`hardware.bus.BusConfig.private`). Everything is closed on exit.
+    """
+    config = config.private()
+    with contextlib.ExitStack() as stack:
+        sim = None
+        if config.sim is not None:
+            stack.enter_context(_short_switch_interval())
+            sim = stack.enter_context(SimulatedArm.attach(config, arm=arm))
+        host = stack.enter_context(PowerCubeArm.from_config(config, arm=arm))
+        yield host, sim
+
+
+@contextlib.contextmanager
+def simulated_arm(module_ids=(1, 2, 3, 4, 5, 6), *, arm: Arm, lag: float = 0.02, initial=None,
+                  timeout: float = SIM_TIMEOUT, clock: Callable[[], float] = time.monotonic):
+    """Yield ``(sim, arm)``: an in-process :class:`hardware.sim.SimulatedArm` of ``arm`` (its limits,
+    speeds and accelerations) on a private ``virtual`` channel and a :class:`hardware.PowerCubeArm`
+    talking to it (its local target check with the same limits): :func:`connect` of
+    ``BusConfig.simulated(SimConfig(lag, initial, clock=...), module_ids=..., timeout=...)``.
+
+    ``clock`` is the simulator's time source [s] (pass the same one to ``execute``). ``timeout``
+    is the arm's ACK timeout [s], generous because host and modules share one interpreter.
+    """
+    sim = SimConfig(lag, initial, clock=FunctionClock(clock))
+    config = BusConfig.simulated(sim, module_ids=tuple(module_ids), timeout=timeout)
+    with connect(config, arm=arm) as (host, modules):
+        yield modules, host
+
+
+def serve(config: BusConfig, *, arm: Arm, duration: float | None = None, stop: threading.Event | None = None,
           ready: Callable[[SimulatedArm], None] | None = None) -> None:
-    """Serve simulated modules on a python-can bus in real time until ``stop`` is set or
-    ``duration`` [s] has passed (blocking; Ctrl-C propagates). The bus is opened here
-    (:func:`hardware.driver.open_bus`) and shut down on return.
+    """Serve simulated modules on the bus ``config`` names (e.g. ``udp_multicast`` on 239.74.163.2, so a
+    host in another process can reach them) in real time until ``stop`` is set or ``duration`` [s] has
+    passed (blocking; Ctrl-C propagates). The modules are ``config.module_ids`` of ``arm`` (its limits,
+    speeds and accelerations, e.g. ``iik.arms.get("crx10ia")``) as ``config.sim`` describes them (lag,
+    initial positions, homed; default :class:`~hardware.bus.SimConfig`); :meth:`SimulatedArm.attach`
+    opens the bus and :meth:`SimulatedArm.close` shuts it down on return.
 
     Args:
-        interface, channel, bitrate, port: The bus (e.g. ``udp_multicast`` on 239.74.163.2,
-            so a host in another process can reach the modules).
-        module_ids, arm, lag, initial, homed: As for :class:`SimulatedArm` (``arm``: the simulated
-            arm's limits, speeds and accelerations, e.g. ``iik.arms.get("crx10ia")``).
         ready: Called with the running arm once it serves.
 
     Raises:
-        BusError: the bus could not be opened. SafetyError: bad ids or initial positions
-        (outside Table I). InvalidInputError: a lag outside [0, 1] s, a duration that is not
-        a positive finite number of seconds, a bit rate or port that is not one.
+        InvalidInputError: initial positions outside the arm's limits, or a duration that is not a
+            positive finite number of seconds (before any bus is opened). BusError: the bus could not be
+            opened.
     """
-    _checked_modules(module_ids, initial, arm, lag)  # before any bus is opened
     if duration is not None and (isinstance(duration, bool) or not isinstance(duration, (int, float))
                                  or not (math.isfinite(duration) and duration > 0)):
         raise InvalidInputError("duration", f"must be a positive finite number of seconds, got {duration!r}")
-    if bitrate is not None and bitrate not in P.BAUD_CODES:
-        raise InvalidInputError("bitrate", "must be a PowerCube bit rate, one of "
-                                + ", ".join(map(str, P.BAUD_CODES)) + f" bit/s, got {bitrate!r}")
-    if port is not None and (isinstance(port, bool) or not isinstance(port, int) or not 1 <= port <= 65535):
-        raise InvalidInputError("port", f"must be a UDP port in 1..65535, got {port!r}")
-    bus = open_bus(interface, channel, bitrate=bitrate, port=port)
-    with SimulatedArm(bus, module_ids, arm=arm, lag=lag, initial=initial, homed=homed, owns_bus=True) as sim:
+    with SimulatedArm.attach(config, arm=arm) as sim:
         if ready is not None:
             ready(sim)
         (stop if stop is not None else threading.Event()).wait(duration)

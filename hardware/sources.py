@@ -24,6 +24,7 @@ import re
 from array import array
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -34,12 +35,16 @@ from iik.files import read_text
 from iik.ik import select, solve
 from iik.kinematics import fk
 from iik.trajectory_csv import REQUIRED
+from iik.validation import bounded_number
 
 from .errors import SafetyError, target_name
 from .executor import ValidatedTrajectory, ValidationOptions, time_steps, validate
 
-__all__ = ["StepTargets", "demo_trajectory", "csv_trajectory", "scenario_trajectory", "CSV_COLUMNS",
-           "MAX_CSV_ROWS", "MAX_CSV_BYTES", "DEMO_SPEED"]
+if TYPE_CHECKING:  # the planning layer is imported only when a scenario is planned
+    from iik.planning import Scenario
+
+__all__ = ["StepTargets", "demo_trajectory", "csv_trajectory", "scenario_trajectory", "check_speed",
+           "CSV_COLUMNS", "MAX_CSV_ROWS", "MAX_CSV_BYTES", "DEMO_SPEED"]
 
 #: Largest Cartesian step between two step-points of the demo line [m] (Sec 4.2.1).
 DEMO_STEP = 0.030
@@ -71,6 +76,8 @@ class StepTargets:
         note: What the source reports about itself (e.g. the planner's method), or "".
         origin: The file the step-points were read from ("" otherwise).
         lines: (n,) the line of ``origin`` (counting from 1) of each step-point, or None.
+        scenario: The planned scenario (:class:`iik.planning.Scenario`: its safety zone, Sec 4.3.2, and
+            its boxes, which the run log records), or None for a file or the demo.
     """
 
     name: str
@@ -82,6 +89,7 @@ class StepTargets:
     note: str = ""
     origin: str = ""
     lines: np.ndarray | None = None
+    scenario: Scenario | None = None
 
     def __len__(self) -> int:
         return len(self.times)
@@ -106,12 +114,21 @@ class StepTargets:
 
     def slowed(self, speed: float) -> StepTargets:
         """The same step-points at ``speed`` (0, 1] of their speed: every step lasts
-        1/``speed`` as long, rounded up to whole ms (so no joint goes faster than before)."""
-        if speed == 1.0:
+        1/``speed`` as long, rounded up to whole ms (so no joint goes faster than before).
+
+        Raises:
+            InvalidInputError: (``speed``) not a finite number in (0, 1].
+        """
+        if check_speed(speed) == 1.0:
             return self
         with np.errstate(over="ignore", invalid="ignore"):  # absurd times: validation refuses them
             dt = np.ceil(np.diff(self.times) / speed * 1000.0 - 1e-6) / 1000.0
         return replace(self, times=self.times[0] + np.concatenate([[0.0], np.cumsum(dt)]))
+
+
+def check_speed(speed) -> float:
+    """A speed factor (a finite number in (0, 1]) as a float; else InvalidInputError (``speed``)."""
+    return bounded_number(speed, "speed", 0.0, 1.0, unit=" (fraction of the planned speed)", open_lo=True)
 
 
 def demo_trajectory(arm: Arm, speed: float = DEMO_SPEED) -> StepTargets:
@@ -264,6 +281,7 @@ def scenario_trajectory(name: str | Path, speed: float = 1.0, *, arm: Arm | None
     require("planning", "a scenario run (hardware.sources.scenario_trajectory)")
     from iik.planning import poses_of, scenario_path
 
+    check_speed(speed)  # before planning
     res = _plan(scenario_path(name), arm)
     q = np.asarray(res.q, dtype=float)
     cart = res.cartesian
@@ -282,4 +300,5 @@ def scenario_trajectory(name: str | Path, speed: float = 1.0, *, arm: Arm | None
                  f"step-points, {times[-1]:.3f} s "
                  f"as iik plan times them, whole-arm clearance certified >= "
                  f"{res.min_clearance * 1e3:.1f} mm)")
-    return StepTargets(res.scenario.name, times, q, poses, res.arm, free, "\n".join(notes)).slowed(speed)
+    return StepTargets(res.scenario.name, times, q, poses, res.arm, free, "\n".join(notes),
+                       scenario=res.scenario).slowed(speed)

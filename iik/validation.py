@@ -7,11 +7,13 @@ Nothing here lets an exception from inside NumPy escape.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .errors import InvalidInputError, NotOrthonormalError
 
-__all__ = ["as_float_array", "as_joints", "as_points", "as_poses"]
+__all__ = ["as_float_array", "as_joints", "as_points", "as_poses", "bounded_number"]
 
 
 def as_float_array(value, name: str) -> np.ndarray:
@@ -81,3 +83,16 @@ def as_poses(T, name: str = "T", *, orthonormal_tol: float = 1e-6) -> tuple[np.n
     if np.any(det < 0):
         raise InvalidInputError(name, "rotation block has det -1 (a reflection)")
     return Ts, batched
+
+
+def bounded_number(value, name: str, lo: float, hi: float, *, unit: str = "", open_lo: bool = False) -> float:
+    """``value`` as a float if it is a finite real number (not a bool) in ``[lo, hi]`` (``(lo, hi]`` with
+    ``open_lo``); else :class:`~iik.errors.InvalidInputError` naming ``name``, the interval and ``unit``
+    (e.g. ``" s"``)."""
+    real = isinstance(value, (int, float, np.integer, np.floating)) \
+        and not isinstance(value, (bool, np.bool_))
+    ok = real and math.isfinite(value) and (value > lo if open_lo else value >= lo) and value <= hi
+    if not ok:
+        where = f"({lo:g}, {hi:g}]" if open_lo else f"[{lo:g}, {hi:g}]"
+        raise InvalidInputError(name, f"must be a finite number in {where}{unit}, got {value!r}")
+    return float(value)

@@ -22,6 +22,29 @@ settings.load_profile(
 )
 
 
+# --------------------------------------------------------------------------- real-time margins
+def timeout_from_baseline(request, *, margin: float, floor: float, ceiling: float = 10.0,
+                          n: int = 10) -> float:
+    """A timeout [s] for a test that must wait in real time, derived from a baseline measured now, under
+    whatever load the machine has: ``margin`` times the slowest of ``n`` calls of ``request`` (a round
+    trip that succeeds), at least ``floor`` and at most ``ceiling``. The first call is not counted (it
+    may pay for imports and discovery)."""
+    request()
+    worst = 0.0
+    for _ in range(n):
+        t0 = time.monotonic()
+        request()
+        worst = max(worst, time.monotonic() - t0)
+    return min(max(floor, margin * worst), ceiling)
+
+
+@pytest.fixture
+def baseline_timeout():
+    """:func:`timeout_from_baseline`, for tests whose waits are real time (a scan waits out every absent
+    id; a watchdog is refreshed by python-can's own thread)."""
+    return timeout_from_baseline
+
+
 # --------------------------------------------------------------------------- processes on udp_multicast
 class UdpBus:
     """A private udp_multicast bus (its own port) for ``iik`` processes: ``start_sim()`` launches
@@ -79,19 +102,16 @@ class UdpBus:
     def request_timeout(self, floor: float = 1.0, margin: float = 25.0) -> str:
         """A CAN request timeout [s] for ``iik run`` on this bus (as ``--timeout`` text), derived from a
         baseline measured now, under whatever load the machine has: ``margin`` times the slowest of
-        ten round trips to the running ``sim-arm`` (GETPOS of every module), at least ``floor``."""
+        ten round trips to the running ``sim-arm`` (GETPOS of every module), at least ``floor`` and at
+        most the longest timeout accepted (:data:`hardware.bus.MAX_TIMEOUT`)."""
         from hardware import PowerCubeArm
+        from hardware.bus import MAX_TIMEOUT
         from iik import THESIS_ARM
 
         with PowerCubeArm.from_interface(interface="udp_multicast", channel=self.group, port=self.port,
-                                         timeout=30.0, arm=THESIS_ARM) as arm:
-            arm.get_pos()  # the first request may pay for imports and discovery
-            worst = 0.0
-            for _ in range(10):
-                t0 = time.monotonic()
-                arm.get_pos()
-                worst = max(worst, time.monotonic() - t0)
-        return f"{max(floor, margin * worst):.3f}"
+                                         timeout=MAX_TIMEOUT, arm=THESIS_ARM) as arm:
+            timeout = timeout_from_baseline(arm.get_pos, margin=margin, floor=floor, ceiling=MAX_TIMEOUT)
+        return f"{timeout:.3f}"
 
     def close(self) -> None:
         import subprocess

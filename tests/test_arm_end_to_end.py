@@ -33,9 +33,10 @@ import hardware.runner as runner
 import iik.arms
 import iik.planning.viewer.motion as motion_module
 import iik.planning.viewer.plan as plan_module
+from hardware import BusConfig, ExecutionOptions, RunOptions, SimConfig, VirtualClock, read_run_log
 from hardware import protocol as P
-from hardware import read_run_log
-from hardware.runner import RunRequest, run
+from hardware.runner import run
+from hardware.sources import csv_trajectory, scenario_trajectory
 from hardware.view import run_motion, view_run
 from iik import THESIS_ARM, fk
 from iik.arms import same_arm
@@ -83,32 +84,38 @@ def _spy(monkeypatch, module, name: str, seen: list):
     yield seen
 
 
+def _run_simulated(targets, out):
+    """``hardware.run`` on modules simulated in-process from the first target, on a virtual clock."""
+    sim = SimConfig(initial=tuple(targets.q[0]), clock=VirtualClock())
+    options = RunOptions(execution=ExecutionOptions(sample_period=0.03), figures=False)
+    return run(targets, BusConfig.simulated(sim), options, out)
+
+
 @pytest.fixture(scope="module", params=["crx10ia", "scaled"])
 def journey(request, tmp_path_factory):
     """Plan, run (in-process simulated arm), analyse: the results of each layer, and the arm given."""
     tmp = tmp_path_factory.mktemp(request.param)
     mp = pytest.MonkeyPatch()
     sims: list = []
-    real_sim = runner.simulated_arm
+    real_connect = runner.connect
 
     @contextlib.contextmanager
-    def simulated(*args, **kwargs):  # the sim and the host the runner opens, recorded
-        with real_sim(*args, **kwargs) as (sim, host):
+    def connect(*args, **kwargs):  # the host and the sim the runner opens, recorded
+        with real_connect(*args, **kwargs) as (host, sim):
             sims.append((sim, host))
-            yield sim, host
+            yield host, sim
 
-    mp.setattr(runner, "simulated_arm", simulated)
+    mp.setattr(runner, "connect", connect)
     try:
         if request.param == "crx10ia":
             arm = iik.arms.get("crx10ia")
             planned = plan("crx_j")  # the file names its arm
-            report = run(RunRequest(scenario="crx_j", sim_start="plan", out=tmp / "runs", figures=False))
+            report = _run_simulated(scenario_trajectory("crx_j"), tmp / "runs")
         else:
             arm = SCALED
             planned = plan(dataclasses.replace(load_scenario(scenario_path("j")), arm=arm))
             write_outputs(planned, tmp / "plan", figures=False)
-            report = run(RunRequest(trajectory=tmp / "plan" / "steps.csv", arm=arm, sim_start="plan",
-                                    out=tmp / "runs", figures=False))
+            report = _run_simulated(csv_trajectory(tmp / "plan" / "steps.csv", arm), tmp / "runs")
     finally:
         mp.undo()
     return arm, planned, report, sims

@@ -109,10 +109,11 @@ def test_a_trajectory_file_or_the_demo_runs_without_the_planning_extra():
     planning_only = tuple(m for m in EXTRAS["planning"] if m not in EXTRAS["hardware"])
     out = _run_blocked(planning_only + ("iik.planning", "pinocchio", "viser"), """
 import iik.arms
-from hardware.runner import RunRequest
+from hardware.bus import BusConfig
+from hardware.runner import RunOptions, run
 from hardware.sources import demo_trajectory, scenario_trajectory
 arm = iik.arms.get("thesis")
-RunRequest(demo=True, arm=arm)
+RunOptions(), BusConfig.simulated()
 print(len(demo_trajectory(arm).validate()) > 2)
 try:
     scenario_trajectory("j")

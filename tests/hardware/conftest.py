@@ -1,14 +1,23 @@
-"""Fixtures for the hardware tests: a simulated arm and a host arm on a private virtual bus."""
+"""Fixtures for the hardware tests: a simulated arm and a host arm on a private virtual bus.
 
-import threading
-import time
+The simulated modules of ``sim`` run on ``virtual_clock`` (:class:`hardware.clock.VirtualClock`): time
+passes only when a test waits on it (``virtual_clock.sleep``), so what they measure cannot depend on the
+machine's load. Replies still travel through real threads: the host's ACK timeout is generous
+(:data:`REPLY_TIMEOUT`), as replies are not what these tests time.
+"""
+
 import uuid
 
 import can
 import pytest
 
 from hardware import PowerCubeArm, SimulatedArm
+from hardware.clock import VirtualClock
 from iik import THESIS_ARM
+
+#: ACK timeout [s] of host arms whose replies are not under test: a reply takes well under a millisecond
+#: on an idle machine, but the simulator's thread may wait its turn on a loaded one.
+REPLY_TIMEOUT = 5.0
 
 
 def unique_channel(prefix: str = "t") -> str:
@@ -27,6 +36,17 @@ def channel():
 
 
 @pytest.fixture
+def reply_timeout():
+    """:data:`REPLY_TIMEOUT`, for host arms built in a test."""
+    return REPLY_TIMEOUT
+
+
+@pytest.fixture
+def virtual_clock():
+    return VirtualClock()
+
+
+@pytest.fixture
 def host_bus(channel):
     bus = can.Bus(interface="virtual", channel=channel)
     yield bus
@@ -34,8 +54,8 @@ def host_bus(channel):
 
 
 @pytest.fixture
-def sim(channel):
-    s = SimulatedArm.virtual(channel, (1, 2, 3, 4, 5, 6), lag=0.01, arm=THESIS_ARM)
+def sim(channel, virtual_clock):
+    s = SimulatedArm.virtual(channel, (1, 2, 3, 4, 5, 6), lag=0.01, arm=THESIS_ARM, clock=virtual_clock.now)
     yield s
     s.close()
     assert not s.errors, s.errors
@@ -43,33 +63,6 @@ def sim(channel):
 
 @pytest.fixture
 def arm(sim, host_bus):
-    a = PowerCubeArm(host_bus, (1, 2, 3, 4, 5, 6), timeout=0.2, arm=THESIS_ARM)
+    a = PowerCubeArm(host_bus, (1, 2, 3, 4, 5, 6), timeout=REPLY_TIMEOUT, arm=THESIS_ARM)
     yield a
     a.stop_watchdog(disable=False)
-
-
-class VirtualClock:
-    """A deterministic time base for the simulator and the executor together: ``clock()``
-    [s] stands still except in ``sleep(s)``, which advances it by ``s`` at once.
-
-    Bus round trips then take no simulated time, so host and modules share one exact
-    timeline whatever the machine's load (the executor's waits are the only time that passes).
-    """
-
-    def __init__(self, start: float = 1000.0):
-        self.now = float(start)
-        self._lock = threading.Lock()
-
-    def clock(self) -> float:
-        with self._lock:
-            return self.now
-
-    def sleep(self, seconds: float) -> None:
-        with self._lock:
-            self.now += max(float(seconds), 0.0)
-        time.sleep(0)  # let the simulator's thread run
-
-
-@pytest.fixture
-def virtual_clock():
-    return VirtualClock()

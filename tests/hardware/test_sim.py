@@ -13,6 +13,7 @@ from hardware import protocol as P
 from hardware.errors import SafetyError
 from hardware.sim import SimModule, SimulatedArm
 from iik import THESIS_ARM
+from iik.errors import InvalidInputError
 
 
 def module(**kw):
@@ -112,7 +113,7 @@ def test_the_modules_are_the_arms(name):
         m = sim.module(i)
         assert m.params[P.Param.FMINPOS] == arm.lower[j] and m.params[P.Param.FMAXPOS] == arm.upper[j]
         assert m.vmax == arm.velocity[j] and m.params[P.Param.FMAXACC] == arm.acceleration[j]
-    with pytest.raises(SafetyError, match="outside its soft limits"):  # an initial position beyond the arm's
+    with pytest.raises(InvalidInputError, match="initial: joint q3 at .* outside its soft limits"):
         SimulatedArm(bus=None, start=False, arm=arm, initial=np.r_[0, 0, arm.upper[2] + 0.01, 0, 0, 0])  # type: ignore[arg-type]
 
 
@@ -178,41 +179,45 @@ def test_any_request_sequence_is_served(seq):
 
 
 def test_serve_until_stopped(new_channel):
-    """`serve` (behind `iik sim-arm`) opens its bus, serves until stopped, shuts the bus down."""
+    """`serve` (behind `iik sim-arm`) opens the bus its config names, serves until stopped, shuts it down."""
     import threading
-    import time
 
-    from hardware import PowerCubeArm
+    from hardware import BusConfig, PowerCubeArm, SimConfig
     from hardware.sim import serve
+    from verification.testing.polling import wait_until
 
     ch, stop, ready = new_channel(), threading.Event(), []
-    th = threading.Thread(target=serve, args=("virtual", ch), daemon=True,
-                          kwargs={"stop": stop, "ready": ready.append, "initial": [0.1] * 6,
-                                  "arm": THESIS_ARM})
+    config = BusConfig("virtual", ch, sim=SimConfig(initial=(0.1,) * 6))
+    th = threading.Thread(target=serve, args=(config,), daemon=True,
+                          kwargs={"stop": stop, "ready": ready.append, "arm": THESIS_ARM})
     th.start()
-    deadline = time.monotonic() + 5.0
-    while not ready and time.monotonic() < deadline:
-        time.sleep(0.01)
-    assert ready and ready[0].running
-    with PowerCubeArm.from_interface(interface="virtual", channel=ch, timeout=0.5, arm=THESIS_ARM) as arm:
+    assert wait_until(lambda: ready, 30.0, 0.01) and ready[0].running
+    with PowerCubeArm.from_interface(interface="virtual", channel=ch, timeout=5.0, arm=THESIS_ARM) as arm:
         assert len(arm.open()) == 6
         assert all(arm.get_pos() == np.float32(0.1))  # f32 on the wire
     stop.set()
-    th.join(5.0)
+    th.join(30.0)
     assert not th.is_alive() and not ready[0].running
 
 
 def test_serve_refuses_bad_input_and_leaves_no_open_bus(new_channel, caplog):
     import gc
 
-    from hardware.errors import BusError, SafetyError
+    from hardware import BusConfig, SimConfig
+    from hardware.errors import BusError
     from hardware.sim import serve
 
     with pytest.raises(BusError, match="cannot open no-such-interface"):
-        serve("no-such-interface", "x", duration=0.1, arm=THESIS_ARM)
-    with pytest.raises(SafetyError, match="module_ids"):
-        serve("virtual", new_channel(), [0], duration=0.1, arm=THESIS_ARM)
-    with pytest.raises(SafetyError, match="initial"):
-        serve("virtual", new_channel(), initial=[0.0, float("nan")], duration=0.1, arm=THESIS_ARM)
+        serve(BusConfig("no-such-interface", "x"), duration=0.1, arm=THESIS_ARM)
+    with pytest.raises(InvalidInputError, match="module_ids"):
+        serve(BusConfig("virtual", new_channel(), module_ids=[0]), duration=0.1, arm=THESIS_ARM)
+    with pytest.raises(InvalidInputError, match="initial"):
+        serve(BusConfig("virtual", new_channel(), sim=SimConfig(initial=[0.0, float("nan")])), duration=0.1,
+              arm=THESIS_ARM)
+    with pytest.raises(InvalidInputError, match="initial: joint q2 at 3 rad is outside its soft limits"):
+        serve(BusConfig("virtual", new_channel(), sim=SimConfig(initial=[0.0, 3.0, 0, 0, 0, 0])),
+              duration=0.1, arm=THESIS_ARM)
+    with pytest.raises(InvalidInputError, match="duration"):
+        serve(BusConfig("virtual", new_channel()), duration=-1.0, arm=THESIS_ARM)
     gc.collect()
     assert "not properly shut down" not in caplog.text

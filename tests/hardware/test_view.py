@@ -14,7 +14,7 @@ import pytest
 
 import iik
 import iik.arms
-from hardware import PowerCubeArm, SimulatedArm, execute, validate
+from hardware import PowerCubeArm, SimulatedArm, VirtualClock, execute, validate
 from hardware.executor import ExecutionOptions, time_steps
 from hardware.runlog import RunLog, RunLogError, read_run_log
 from hardware.view import (
@@ -82,18 +82,20 @@ def test_a_run_exports_as_two_arms(tmp_path):
 
 @pytest.fixture(scope="module", params=["thesis", "buffered"])
 def executed(request, tmp_path_factory):
-    """A run log written by :func:`hardware.execute` on a simulated arm (virtual bus), per update mode."""
-    ch = f"view-{uuid.uuid4().hex}"
+    """A run log written by :func:`hardware.execute` on a simulated arm (virtual bus), per update mode,
+    on a virtual clock shared by the modules and the executor: its samples fall where the schedule puts
+    them, however loaded the machine (on real time a loaded host sampled too seldom)."""
+    ch, clock = f"view-{uuid.uuid4().hex}", VirtualClock()
     qa, qb = np.array([0.1, -0.3, 0.4, 0.5, -0.2, 0.7]), np.array([0.3, -0.1, 0.2, 0.6, 0.1, 0.5])
     q = qa + (qb - qa) * np.linspace(0, 1, 8)[:, None]
     tr = validate(time_steps(q, speed_fraction=0.5, min_step=0.05, arm=THESIS_ARM), q, iik.fk(q, THESIS_ARM),
                   arm=THESIS_ARM)
     log = tmp_path_factory.mktemp("run") / f"{request.param}.jsonl"
-    sim = SimulatedArm.virtual(ch, lag=0.01, initial=qa, arm=THESIS_ARM)
+    sim = SimulatedArm.virtual(ch, lag=0.01, initial=qa, arm=THESIS_ARM, clock=clock.now)
     bus = can.Bus(interface="virtual", channel=ch)
     try:
-        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=2.0, arm=THESIS_ARM)  # ACK timeout not under test
-        execute(arm, tr, log,
+        arm = PowerCubeArm(bus, (1, 2, 3, 4, 5, 6), timeout=5.0, arm=THESIS_ARM)  # ACK timeout not under test
+        execute(arm, tr, log, clock=clock.now, sleep=clock.sleep,
                 options=ExecutionOptions(settle=0.05, sample_period=0.005, update=request.param))
     finally:
         sim.close()

@@ -1,6 +1,13 @@
-"""``iik run`` end to end: on the in-process simulated arm, and as a process against ``iik sim-arm``."""
+"""``iik run`` end to end: on the in-process simulated arm, and as a process against ``iik sim-arm``.
+
+Where the subject is not real time (what is run, what is written, what is printed), the in-process
+simulated modules run on a virtual clock shared with the executor (``simulated_time``), so the runs take
+the time of their requests and what they measure does not depend on the machine's load; a run killed
+mid-way, the signals and the runs against ``iik sim-arm`` keep real time.
+"""
 
 import csv
+import functools
 import json
 import signal
 import subprocess
@@ -23,9 +30,19 @@ STEMS = ("joint_error", "ee_error", "velocity")
 ANGLE = "--margin-deg: must be a finite angle in [0, 90) deg, got "
 
 
-def test_run_demo(tmp_path, capsys):
-    # the 30 mm zone of Sec 4.3.2: the simulated error depends on host latency, and the zone
-    # verdict is not under test here (test_a_run_outside_its_zone_exits_1 is)
+@pytest.fixture
+def simulated_time(monkeypatch):
+    """`iik run`'s in-process simulated modules on a :class:`hardware.VirtualClock` (the runner gives the
+    executor the modules' clock)."""
+    import hardware
+
+    virtual = functools.partial(hardware.SimConfig, clock=hardware.VirtualClock())
+    monkeypatch.setattr(hardware, "SimConfig", virtual)
+
+
+def test_run_demo(tmp_path, capsys, simulated_time):
+    # the 30 mm zone of Sec 4.3.2, as typed: the zone verdict is not under test here
+    # (test_a_run_outside_its_zone_exits_1 is)
     assert main(["run", "--demo", "--sim-start", "plan", "--zone-mm", "30", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "end-effector error: max" in out and "30 mm zone" in out
@@ -36,14 +53,14 @@ def test_run_demo(tmp_path, capsys):
         assert (tmp_path / f"{log.stem}_{stem}.png").stat().st_size > 1000
 
 
-def test_a_run_outside_its_zone_exits_1(tmp_path, capsys):
+def test_a_run_outside_its_zone_exits_1(tmp_path, capsys, simulated_time):
     assert main(["run", "--demo", "--sim-start", "plan", "--lag", "0.2", "--out", str(tmp_path / "r.jsonl"),
                  "--no-figures"]) == 1
     assert "status: outside zone" in capsys.readouterr().out
     assert read_run_log(tmp_path / "r.jsonl").status == "ok"  # it did run to the end
 
 
-def test_plan_output_runs_as_written_and_run_executes_the_same_trajectory(tmp_path, capsys):
+def test_plan_output_runs_as_written_and_run_executes_the_same_trajectory(tmp_path, capsys, simulated_time):
     """`iik plan j --out D` then `iik run --trajectory D/steps.csv` (and D/trajectory.csv): both
     run to the end; `iik run j` executes exactly the step times and joints of D/steps.csv."""
     d = tmp_path / "plan"
@@ -70,7 +87,7 @@ def test_plan_output_runs_as_written_and_run_executes_the_same_trajectory(tmp_pa
     assert run.times[-1] == pytest.approx(t[-1], abs=0.01)  # one duration: the plan's
 
 
-def test_speed_is_honoured_with_a_trajectory(tmp_path, capsys):
+def test_speed_is_honoured_with_a_trajectory(tmp_path, capsys, simulated_time):
     q = np.linspace(0, 1, 4)[:, None] * np.array([0.05, 0.04, -0.03, 0.02, 0.1, 0.0])
     path = tmp_path / "traj.csv"
     np.savetxt(path, np.column_stack([np.arange(4) * 0.06, q]), delimiter=",", header="t,q1,q2,q3,q4,q5,q6",
