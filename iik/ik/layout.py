@@ -47,6 +47,8 @@ __all__ = [
     "CERT_OK",
     "CERT_ROOT_WITHOUT_CONFIGURATION",
     "CERT_TABLE_FULL",
+    "CERT_ROWS_DROPPED",
+    "CERT_NEAR_THETA2",
     "CERT_NAMES",
     "FREE_NONE",
     "FREE_Q1",
@@ -141,10 +143,15 @@ PATH_NAMES = ("double", "extended", "multiple-root", "degenerate")
 CERT_OK = 0
 CERT_ROOT_WITHOUT_CONFIGURATION = 1
 CERT_TABLE_FULL = 2
+CERT_ROWS_DROPPED = 3
+CERT_NEAR_THETA2 = 4
 CERT_NAMES = (
     "certified",
     "a certified root gave no configuration within the tolerance",
     "the candidate table was full",
+    "more distinct solutions than MAX_SOLUTIONS rows: some were left out",
+    "near a theta2 continuum (both conditions on theta2 nearly vanish): joint 2 is fixed only "
+    "loosely and solutions along the broken curve may be missed",
 )
 
 # ----------------------------------------------------------------------------- continua

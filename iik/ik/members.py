@@ -17,6 +17,8 @@ import math
 
 import numpy as np
 
+from .angles import into_limits
+
 __all__ = [
     "follow",
     "feasible_interval",
@@ -124,9 +126,16 @@ def follow(c, thetas) -> tuple[np.ndarray, np.ndarray]:
     return np.array(qs), np.array(rs)
 
 
+def _inside(arm, q):
+    """q (6,) turned into the limits where a turn by 2 pi brings a joint in, and whether it is in."""
+    from ..arm import LIMIT_TOL
+
+    out, ok = into_limits(q, arm.q_min, arm.q_max, LIMIT_TOL)
+    return out, bool(ok)
+
+
 def _good(c, q, r, prev) -> bool:
-    arm = c.arm
-    inside = bool(arm.within_limits(q))
+    inside = _inside(c.arm, q)[1]
     tp, tr = c.tolerance
     near = float(np.max(np.abs(np.mod(q - prev + np.pi, 2 * np.pi) - np.pi))) <= _JUMP
     return inside and r[0] <= tp and r[1] <= tr and near
@@ -163,7 +172,7 @@ def feasible_interval(c) -> tuple[float, float]:
     representative), or (nan, nan) if the representative itself is not feasible."""
     j = c.free_joint - 1
     start = float(c.representative[j])
-    if not c.arm.within_limits(c.representative):
+    if not _inside(c.arm, c.representative)[1]:
         return (math.nan, math.nan)
     lo, hi = float(c.arm.q_min[j]), float(c.arm.q_max[j])
     return (_edge(c, start, lo), _edge(c, start, hi))
@@ -208,13 +217,15 @@ def inside_member(c, samples: int = 73):
     """A member of continuum c inside the joint limits, nearest the representative along the free
     joint (``samples`` values across its limits), or None if none is found."""
     arm = c.arm
-    if arm.within_limits(c.representative):
-        return np.array(c.representative, dtype=float)
+    rep, ok = _inside(arm, np.array(c.representative, dtype=float))
+    if ok:
+        return rep
     j = c.free_joint - 1
     grid = np.linspace(arm.q_min[j], arm.q_max[j], samples)
     grid = grid[np.argsort(np.abs(grid - c.representative[j]))]
     for th in grid:
         m, r = follow(c, [th])
-        if arm.within_limits(m[0]) and r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1]:
-            return m[0]
+        m0, ok = _inside(arm, m[0])
+        if ok and r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1]:
+            return m0
     return None

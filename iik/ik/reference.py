@@ -275,10 +275,109 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL, tol_r:
     wr, hval = _wrist(arm, P[own3], q1s, q2s, branch)
     qs = np.column_stack([q1s, q2s, wr])
     qs, own3, hval = _restarts(qs, own3, hval, RESTART_H)
+    f2 = np.zeros(len(qs), bool)
+    extra = _theta2_free_rows(arm, P, x, th1, flat)
+    if extra is not None:
+        qs, own3, hval = np.concatenate([qs, extra[0]]), np.concatenate([own3, extra[1]]), np.concatenate(
+            [hval, extra[2]]
+        )
+        f2 = np.concatenate([f2, extra[3]])
     q = qs[:, ::-1] if arm.solver.reversed else qs
     q, pres, rres = _polish(arm, _wrap(q), T[own3])
     keep = (pres <= tol_p) & (rres <= tol_r)
-    return _collect(n, q[keep], own3[keep], pres[keep], rres[keep], hval[keep], flat, T, arm, tol_p, tol_r)
+    return _collect(
+        n, q[keep], own3[keep], pres[keep], rres[keep], hval[keep], f2[keep], flat, T, arm, tol_p, tol_r
+    )
+
+
+def _free_theta2(x, th1):
+    """theta1 [DH angle] (n, 8) where a, b, c, P, Q and R all vanish (theta2 free,
+    docs/IK_CLASS.md section 5 C), or NaN: each root of the eliminant refined by Gauss-Newton on
+    the six first-degree polynomials, kept if all six vanish to 1e-9 of their coefficients.
+    (The kernel finds these angles in closed form; here they come from the eigenvalues.)"""
+    t = th1.copy()
+    for _ in range(8):
+        c, s = np.cos(t)[..., None], np.sin(t)[..., None]
+        v = x[:, None, :, 0] + x[:, None, :, 1] * c + x[:, None, :, 2] * s  # (n, 8, 6)
+        dv = -x[:, None, :, 1] * s + x[:, None, :, 2] * c
+        with np.errstate(invalid="ignore", divide="ignore"):
+            step = np.sum(v * dv, -1) / np.sum(dv * dv, -1)
+        t = t - np.where(np.abs(step) < 1e-2, step, 0.0)
+    c, s = np.cos(t)[..., None], np.sin(t)[..., None]
+    v = np.abs(x[:, None, :, 0] + x[:, None, :, 1] * c + x[:, None, :, 2] * s)
+    size = np.abs(x).reshape(len(x), 2, 9).max(axis=2)  # (a, b, c) and (P, Q, R)
+    with np.errstate(invalid="ignore"):
+        ok = (v[..., :3].sum(-1) <= 1e-9 * size[:, None, 0]) & (v[..., 3:].sum(-1) <= 1e-9 * size[:, None, 1])
+    return np.where(ok, t, np.nan)
+
+
+def _theta2_free_rows(arm: Arm, P, x, th1, flat):
+    """Candidates (solver joints (m, 6), owners (m,), h (m,), is the continuum's representative
+    (m,)) of every theta2 continuum at each distinct theta1 of :func:`_free_theta2`: joint 2 at 0
+    (the representatives) and where a theta3 continuum may cross (:func:`_aligned_theta2`),
+    both wrist branches; None if there is none."""
+    t = np.where(flat[:, None], np.nan, _free_theta2(x, th1))
+    own, col = np.nonzero(~np.isnan(t))
+    if len(own) == 0:
+        return None
+    pairs = []
+    for i, tt in zip(own, t[own, col], strict=True):
+        if not any(i == j and abs(_wrap(tt - u)) <= 1e-9 for j, u in pairs):
+            pairs.append((i, tt))
+    own = np.repeat([i for i, _ in pairs], 6)
+    rows = arm.solver.rows
+    q1 = np.repeat([u - rows[0][4] for _, u in pairs], 6)
+    q2 = np.concatenate([_aligned_theta2(arm, P[i], u - rows[0][4]) for i, u in pairs])
+    wr, h = _wrist(arm, P[own], q1, q2, np.tile([1.0, -1.0], 3 * len(pairs)))
+    first = np.tile([True, True, False, False, False, False], len(pairs))
+    return np.column_stack([q1, q2, wr]), own, h, first
+
+
+def _aligned_theta2(arm: Arm, P, q1):
+    """Solver joint 2 values (6,) on a theta2 continuum at solver joint 1 = q1: 0 (twice, one
+    per wrist branch), and (twice each) where axis 3 turns closest to z6 and to -z6, found by
+    minimising and maximising z3 . z6 over a grid refined by golden sections (where z3 is
+    along z6 a theta3 continuum crosses)."""
+    rows = arm.solver.rows
+    z6 = P[:3, 2]
+
+    def dot(q2):
+        F = _link(rows[0], np.full(np.shape(q2), q1)) @ _link(rows[1], q2) @ _link(
+            rows[2], np.full(np.shape(q2), -rows[2][4])
+        )
+        return F[..., :3, 2] @ z6
+
+    grid = np.linspace(-np.pi, np.pi, 73)
+    d = dot(grid)
+    out = [0.0, 0.0]
+    for sgn in (1.0, -1.0):
+        k = int(np.argmax(sgn * d))
+        lo, hi = grid[k] - 2 * np.pi / 72, grid[k] + 2 * np.pi / 72
+        for _ in range(60):
+            m1, m2 = hi - 0.618 * (hi - lo), lo + 0.618 * (hi - lo)
+            if sgn * dot(np.array(m1)) >= sgn * dot(np.array(m2)):
+                hi = m2
+            else:
+                lo = m1
+        out += [0.5 * (lo + hi)] * 2
+    return np.array(out)
+
+
+def _on_theta2_curve(a, b, T, arm: Arm) -> bool:
+    """Is b a member of the theta2 continuum of row a: solver joint 1 equal to 1e-6 rad and b the
+    closed-form configuration at a's joint 1 and b's joint 2 on a's wrist branch (to 1e-6 rad)?"""
+    rev = arm.solver.reversed
+    sa, sb = (a[::-1], b[::-1]) if rev else (np.asarray(a), np.asarray(b))
+    if abs(_wrap(sa[0] - sb[0])) > 1e-6:
+        return False
+    P = _solver_poses(np.asarray(T)[None], arm)
+    br = np.array([1.0, -1.0])
+    wa, _ = _wrist(arm, np.repeat(P, 2, 0), np.full(2, sa[0]), np.full(2, sa[1]), br)
+    mine = np.flatnonzero(np.max(np.abs(_wrap(wa - sa[2:])), axis=1) <= 1e-6)
+    if len(mine) == 0:
+        return False
+    wb, _ = _wrist(arm, P, np.array([sa[0]]), np.array([sb[1]]), br[mine[:1]])
+    return bool(np.max(np.abs(_wrap(wb[0] - sb[2:]))) <= 1e-6)
 
 
 def _restarts(qs, own, hval, near):
@@ -338,20 +437,22 @@ def _snap(arm: Arm, q, T, tol_p, tol_r):
     return qn[0] if pr[0] <= tol_p and rr[0] <= tol_r else None
 
 
-def _collect(n, q, own, pres, rres, hval, flat, T, arm, tol_p, tol_r):
-    """Distinct rows per pose, continua flagged, in the kernel's layout."""
+def _collect(n, q, own, pres, rres, hval, f2, flat, T, arm, tol_p, tol_r):
+    """Distinct rows per pose, continua flagged (theta2 continua first), in the kernel's layout."""
     M = L.MAX_SOLUTIONS
     Q, V, F = np.full((n, M, 6), np.nan), np.zeros((n, M), bool), np.zeros((n, M), int)
     Pr, Rr = np.full((n, M), np.nan), np.full((n, M), np.nan)
     near = 30.0 * np.sqrt(max(tol_p / arm.reach, tol_r))
     for i in range(n):
         idx = np.flatnonzero(own == i)
-        idx = idx[np.argsort(pres[idx] + rres[idx], kind="stable")]
+        idx = idx[np.lexsort((pres[idx] + rres[idx], ~f2[idx]))]
         idx = _coarse_distinct(q, idx)
         kept, kinds = [], []
         for j in idx:
             row, kind = q[j], L.FREE_NONE
-            if flat[i]:
+            if f2[j]:
+                kind = L.FREE_Q2
+            elif flat[i]:
                 kind = L.FREE_Q1
             elif hval[j] <= near:
                 snapped = _snap(arm, row, T[i], tol_p, tol_r)
@@ -390,6 +491,10 @@ def _same(a, b, kb, ka, T, arm, tol_p, tol_r) -> bool:
     chain agree to 1e-3, the tube or curve between them checked by the kernel's rules)."""
     if np.max(np.abs(_wrap(a - b))) <= L.DISTINCT_TOL:
         return True
+    if L.FREE_Q2 in (ka, kb) and L.FREE_Q3 not in (ka, kb):  # (crossing continua are both kept)
+        c, d = (b, a) if kb == L.FREE_Q2 else (a, b)
+        if _on_theta2_curve(c, d, T, arm):
+            return True
     if ka == kb and ka in (L.FREE_Q3, L.FREE_NUMERICAL, L.FREE_Q1):
         rev = arm.solver.reversed
         fixed = [5, 4] if rev else [0, 1]

@@ -26,6 +26,7 @@ from ..arm import LIMIT_TOL, THESIS_ARM, Arm
 from ..errors import InvalidInputError
 from . import layout as L
 from . import poses as _poses
+from .angles import into_limits
 from .options import DEFAULT_OPTIONS, IKOptions
 from .result import Certificate, Continuum, IKBatch, IKResult
 
@@ -145,8 +146,8 @@ def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, metho
         from .reference import solve_arrays
 
         Q, V, F, _P, _R = solve_arrays(Tu, arm, tol_p=opts.position_tol, tol_r=opts.rotation_tol)
-    with np.errstate(invalid="ignore"):  # (NaN padding is outside)
-        inside = np.all((Q >= arm.q_min - LIMIT_TOL) & (Q <= arm.q_max + LIMIT_TOL), axis=2) & V
+    Q, inside = into_limits(Q, arm.q_min, arm.q_max, LIMIT_TOL)
+    inside &= V
     keep = inside if within else V
     hdr[good, L.H_TOTAL] = V.sum(axis=1)
     for gi, i in enumerate(good):  # rows are sorted valid-first: keep them in order
@@ -329,7 +330,43 @@ def _results(
                 _certificate(h),
             )
         )
+        if within_only and k and not within[i, :k].all():
+            out[-1] = _theta2_inside(out[-1], Tb[i], arm)
     return out
+
+
+def _theta2_inside(r: IKResult, T: np.ndarray, arm: Arm) -> IKResult:
+    """With ``within_limits``: each theta2 continuum row outside the limits (the kernel keeps
+    them) replaced by a member inside them, or left out if none is found."""
+    import dataclasses
+
+    from .compare import pose_residuals
+    from .members import inside_member
+
+    keep, rows, conts = [], [], []
+    for i, cs in enumerate(r.continua):
+        if r.within_limits[i]:
+            keep.append(i)
+            rows.append(r.q[i])
+            conts.append(cs)
+        elif cs and cs[0].kind == "theta2":
+            m = inside_member(cs[0])
+            if m is not None:
+                m = _ro(m)
+                keep.append(i)
+                rows.append(m)
+                conts.append((dataclasses.replace(cs[0], representative=m),))
+    if len(keep) == r.count:
+        return r
+    Q = np.array(rows).reshape(-1, 6)
+    pres, rres = pose_residuals(Q, np.broadcast_to(T, (len(Q), 4, 4)), arm)
+    return dataclasses.replace(
+        r, q=Q, position_residual=pres, rotation_residual=rres, within_limits=np.ones(len(Q), bool),
+        free_joints=tuple(r.free_joints[i] for i in keep), approximate=r.approximate[keep],
+        continua=tuple(conts),
+        reason=r.reason or ("" if len(Q) else "no solution within the joint limits (a theta2 continuum "
+                                              "has no member inside them)"),
+    )
 
 
 def _ro(a: np.ndarray) -> np.ndarray:
@@ -367,7 +404,7 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
     Q = np.array(rows).reshape(-1, 6)
     pres, rres = pose_residuals(Q, np.broadcast_to(T, (len(Q), 4, 4)), arm) if len(Q) else (np.zeros(0),) * 2
     free = tuple(_FREE_JOINTS[L.FREE_Q1](arm.solver.reversed) if c else () for c in conts)
-    inside = arm.within_limits(Q) if len(Q) else np.zeros(0, bool)
+    Q, inside = into_limits(Q, arm.q_min, arm.q_max, LIMIT_TOL)
     reason = "" if len(Q) else _reason(0, int(h[L.H_TOTAL]), False, h[L.H_BEST_P], h[L.H_BEST_R], opts)
     return IKResult.trusted(
         _ro(Q),
