@@ -1812,11 +1812,12 @@ def continuum_members(T, v, opt, q0, cols, col, coupled, sign, thetas, buf, out_
 
 
 @_entry(_nrt=False)
-def closed_forms_at(T, v, opt, joint1, buf, out_q, out_res, counts) -> bool:
+def closed_forms_at(T, v, opt, joint1, joint2, buf, out_q, out_res, counts) -> bool:
     """Every closed-form configuration with solver joint 1 at each value of ``joint1`` (n,)
-    [rad] (every theta2 option, both wrist branches), unpolished: into out_q (n, 16, 6) (user
-    joints), out_res (n, 16, 2) and counts (n,). What a theta1 continuum's members are made of.
-    False if the pose does not pass the pose check."""
+    [rad] (every theta2 option, or solver joint 2 at ``joint2[i]`` where that is not NaN; both
+    wrist branches), unpolished: into out_q (n, 16, 6) (user joints), out_res (n, 16, 2) and
+    counts (n,). What theta1 and theta2 continua's members are made of. False if the pose does
+    not pass the pose check."""
     ws, wm, _ = _views(buf)
     Ru = wm[_M_RU, :3, :3]
     status, _, _ = _check_pose(T, opt[L.OPT_ORTHONORMAL_TOL], Ru)
@@ -1830,7 +1831,10 @@ def closed_forms_at(T, v, opt, joint1, buf, out_q, out_res, counts) -> bool:
     th2, qc, q = ws[_W_TH2 : _W_TH2 + 8], ws[_W_Q2 : _W_Q2 + 6], ws[_W_Q : _W_Q + 6]
     for i in range(joint1.shape[0]):
         t1 = joint1[i] + v[L.A_SOLVER_DH + 4]
-        n2 = max(_theta2_options(terms, t1, L.KIND_SPECIAL, th2), 0)
+        if math.isnan(joint2[i]):
+            n2 = max(_theta2_options(terms, t1, L.KIND_SPECIAL, th2), 0)
+        else:
+            th2[0], n2 = joint2[i] + v[L.A_SOLVER_DH + 9], 1
         m = 0
         for k in range(n2):
             for branch in range(2):

@@ -78,18 +78,26 @@ def _path(start: float, end: float) -> np.ndarray:
 
 
 def _march_closed(c, thetas: np.ndarray):
-    """theta1 continua: the exact closed-form configurations at each value, the one nearest the
-    previous member taken (continuation without a polish: the members are exact)."""
+    """theta1 and theta2 continua: the exact closed-form configurations at each value (theta2:
+    solver joint 1 held at the representative's), the one nearest the previous member taken
+    (continuation without a polish: the members are exact)."""
     k = _kernel()
     n = len(thetas)
     out_q, out_r = np.empty((n, 16, 6)), np.empty((n, 16, 2))
     counts = np.zeros(n, dtype=np.int64)
     opt = np.array([c.tolerance[0], c.tolerance[1], 1e-5, 1e-3, 1e-7])
+    thetas = np.ascontiguousarray(thetas, dtype=float)
+    if c.kind == "theta2":  # (solver joint 1 is user joint 1, or 6 for an arm read from the flange)
+        j1 = 5 if c.arm.solver.reversed else 0
+        joint1, joint2 = np.full(n, float(c.representative[j1])), thetas
+    else:
+        joint1, joint2 = thetas, np.full(n, np.nan)
     ok = k.closed_forms_at(
         np.ascontiguousarray(c.pose, dtype=float),
         k.arm_data(c.arm).vector,
         opt,
-        np.ascontiguousarray(thetas, dtype=float),
+        joint1,
+        joint2,
         k.scratch(),
         out_q,
         out_r,
@@ -111,12 +119,17 @@ def _march_closed(c, thetas: np.ndarray):
     return qs, rs
 
 
+def _marcher(c):
+    """How c's members are followed: by closed forms (theta1, theta2 continua) or by refits."""
+    return _march_closed if c.kind in ("theta1", "theta2") else _march
+
+
 def follow(c, thetas) -> tuple[np.ndarray, np.ndarray]:
     """Members (n, 6) of continuum ``c`` at the free-joint values ``thetas`` [rad] and their
     residuals (n, 2) [m, rad], each by continuation from the representative."""
     j = c.free_joint - 1
     start = float(c.representative[j])
-    march = _march_closed if c.kind == "theta1" else _march
+    march = _marcher(c)
     qs, rs = [], []
     for th in np.atleast_1d(np.asarray(thetas, dtype=float)):
         path = _path(start, float(th))
@@ -146,7 +159,7 @@ def _edge(c, start: float, limit: float) -> float:
     if abs(limit - start) <= RESOLUTION:
         return start
     path = _path(start, limit)
-    q, r = (_march_closed if c.kind == "theta1" else _march)(c, path)
+    q, r = _marcher(c)(c, path)
     prev = np.array(c.representative, dtype=float)
     last = start
     for i, th in enumerate(path):
@@ -155,7 +168,7 @@ def _edge(c, start: float, limit: float) -> float:
             q_lo = prev
             while abs(hi - lo) > RESOLUTION:
                 mid = 0.5 * (lo + hi)
-                qm, rm = (_march_closed if c.kind == "theta1" else _march)(c, _path(start, mid))
+                qm, rm = _marcher(c)(c, _path(start, mid))
                 if _good(
                     c, qm[-1], rm[-1], q_lo if abs(mid - lo) <= STEP else qm[-2] if len(qm) > 1 else q_lo
                 ):

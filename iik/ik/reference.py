@@ -204,8 +204,8 @@ def _poly_t(x, thr):
 
 
 def _theta1(x):
-    """theta1 candidates (n, 8) of the solver chain [DH angle] (NaN where none), and whether F
-    vanishes on the whole circle (n,)."""
+    """theta1 candidates (n, 15) of the solver chain [DH angle] (NaN where none): the 8 roots and
+    the means of close pairs (:func:`_pair_means`); and whether F vanishes on the whole circle."""
     n = len(x)
     Fg = np.abs(_F(x, np.broadcast_to(_GRID + np.pi, (n, 12))))
     scale = Fg.max(axis=1)
@@ -222,7 +222,17 @@ def _theta1(x):
         t = np.linalg.eigvals(comp)
         real = np.abs(t.imag) <= IMAG_TOL * (1.0 + np.abs(t))
         out[ok] = np.where(real, thr[ok, None] + 2.0 * np.arctan(t.real), np.nan)
-    return out, flat
+    return np.concatenate([out, _pair_means(out)], axis=1), flat
+
+
+def _pair_means(th):
+    """The mean of each pair of neighbouring roots (n, 8) closer than 1e-3 rad (else NaN), (n, 7):
+    a double root perturbed by rounding splits into two roots ~sqrt(eps) apart (or a complex
+    pair) symmetrically about it, to first order, so their mean is the better estimate."""
+    s = np.sort(th, axis=1)  # (NaN last)
+    with np.errstate(invalid="ignore"):
+        close = np.abs(s[:, 1:] - s[:, :-1]) <= 1e-3
+    return np.where(close, 0.5 * (s[:, 1:] + s[:, :-1]), np.nan)
 
 
 def _theta2(x, own, th1):
@@ -262,7 +272,7 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL, tol_r:
     x = _terms(P, arm)
     th1, flat = _theta1(x)
     grid = np.array([0.3, 0.3 + np.pi])
-    th1 = np.where(flat[:, None], np.concatenate([grid, np.full(6, np.nan)])[None], th1)
+    th1 = np.where(flat[:, None], np.concatenate([grid, np.full(th1.shape[1] - 2, np.nan)])[None], th1)
     own, col = np.nonzero(~np.isnan(th1))
     t1 = th1[own, col]
     t2 = _theta2(x, own, t1)
