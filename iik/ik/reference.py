@@ -42,6 +42,8 @@ IMAG_TOL = 1e-3
 #: Candidates whose joint 3 is this close to free (|z6| or |D - C| / a4 across z3) are also
 #: started from 8 angles of joint 3 around the circle.
 RESTART_H = 1e-2
+#: ... from this many angles of joint 3.
+RESTARTS = 24
 _TWO_PI = 2.0 * np.pi
 _GRID = np.arange(12) * (_TWO_PI / 12)
 
@@ -78,7 +80,7 @@ def _polish(arm: Arm, q, T, iters: int = 30, cols=None):
     """Batched Levenberg-Marquardt (over ``cols``, default all joints) of q (n, 6) towards T (n, 4, 4)."""
     q = q.copy()
     mask = np.ones(6) if cols is None else np.isin(np.arange(6), cols).astype(float)
-    lam = np.full(len(q), 1e-9)
+    lam = np.zeros(len(q))  # Gauss-Newton first: damping would stall it along a thin valley
     Tq, J = _fk_jac(arm, q)
     e, pres, rres = _errors(Tq, T)
     err = np.einsum("ni,ni->n", e, e)
@@ -90,8 +92,12 @@ def _polish(arm: Arm, q, T, iters: int = 30, cols=None):
         Jm = J * mask
         A = np.einsum("nri,nrj->nij", Jm, Jm)
         tr = np.trace(A, axis1=1, axis2=2)[:, None, None] / mask.sum()
-        A = A + (lam[:, None, None] + 1e-14) * tr * eye + (1.0 - mask)[None, :, None] * eye
-        dq = np.linalg.solve(A, np.einsum("nri,nr->ni", Jm, e)[..., None])[..., 0] * mask
+        A = A + (lam[:, None, None] + 1e-24) * tr * eye + (1.0 - mask)[None, :, None] * eye
+        g = np.einsum("nri,nr->ni", Jm, e)[..., None]
+        try:
+            dq = np.linalg.solve(A, g)[..., 0] * mask
+        except np.linalg.LinAlgError:  # an exactly singular row: damped a little, this step
+            dq = np.linalg.solve(A + 1e-12 * tr * eye, g)[..., 0] * mask
         qn = q + np.where(act[:, None], dq, 0.0)
         Tn, Jn = _fk_jac(arm, qn)
         en, pn, rn = _errors(Tn, T)
@@ -103,7 +109,7 @@ def _polish(arm: Arm, q, T, iters: int = 30, cols=None):
             np.where(ok[:, None, None], Jn, J),
         )
         pres, rres, err = np.where(ok, pn, pres), np.where(ok, rn, rres), np.where(ok, errn, err)
-        lam = np.where(ok, np.maximum(0.1 * lam, 1e-12), np.minimum(10.0 * lam, 1e6))
+        lam = np.where(ok, 0.1 * lam, np.clip(10.0 * lam, 1e-12, 1e6))
     return _wrap(q), pres, rres
 
 
@@ -278,6 +284,7 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL, tol_r:
     t2 = _theta2(x, own, t1)
     o2, k2 = np.nonzero(~np.isnan(t2))
     own2, t1f, t2f = own[o2], t1[o2], t2[o2, k2]
+    t1f, t2f = _refine_pairs(x, own2, t1f, t2f)
     rows = arm.solver.rows
     own3 = np.repeat(own2, 2)
     q1s, q2s = np.repeat(t1f - rows[0][4], 2), np.repeat(t2f - rows[1][4], 2)
@@ -295,9 +302,46 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL, tol_r:
     q = qs[:, ::-1] if arm.solver.reversed else qs
     q, pres, rres = _polish(arm, _wrap(q), T[own3])
     keep = (pres <= tol_p) & (rres <= tol_r)
+    qk = q[keep][:, ::-1] if arm.solver.reversed else q[keep]  # h where the polish ended
+    hval = hval.copy()
+    hval[keep] = _wrist(arm, P[own3[keep]], qk[:, 0], qk[:, 1], np.ones(int(keep.sum())))[1]
     return _collect(
         n, q[keep], own3[keep], pres[keep], rres[keep], hval[keep], f2[keep], flat, T, arm, tol_p, tol_r
     )
+
+
+def _conditions(x, own, t1, t2):
+    """The two conditions G1 = R + P c2 + Q s2 and G2 = a + b c2 + c s2 at (t1, t2) [DH angles]
+    (m,) and their Jacobian (m, 2, 2) in (t1, t2)."""
+    c, s = np.cos(t1)[:, None], np.sin(t1)[:, None]
+    v = x[own, :, 0] + x[own, :, 1] * c + x[own, :, 2] * s  # (m, 6): a, b, c, P, Q, R
+    d = -x[own, :, 1] * s + x[own, :, 2] * c
+    c2, s2 = np.cos(t2), np.sin(t2)
+    G = np.stack([v[:, 5] + v[:, 3] * c2 + v[:, 4] * s2, v[:, 0] + v[:, 1] * c2 + v[:, 2] * s2], axis=1)
+    J = np.empty((len(t1), 2, 2))
+    J[:, 0, 0], J[:, 0, 1] = d[:, 5] + d[:, 3] * c2 + d[:, 4] * s2, -v[:, 3] * s2 + v[:, 4] * c2
+    J[:, 1, 0], J[:, 1, 1] = d[:, 0] + d[:, 1] * c2 + d[:, 2] * s2, -v[:, 1] * s2 + v[:, 2] * c2
+    return G, J
+
+
+def _refine_pairs(x, own, t1, t2):
+    """(theta1, theta2) candidates refined by Newton's method on the two unsquared conditions
+    (4 steps, each kept where it reduces them and moves less than 1e-3 rad): a root of the
+    squared eliminant is only as accurate as F is steep, the conditions are not squared."""
+    G, J = _conditions(x, own, t1, t2)
+    err = np.abs(G).sum(axis=1)
+    for _ in range(4):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            step = np.linalg.solve(J + 1e-300 * np.eye(2), G[..., None])[..., 0]
+        ok = np.all(np.isfinite(step), axis=1) & (np.abs(step).max(axis=1) <= 1e-3)
+        n1, n2 = t1 - np.where(ok, step[:, 0], 0.0), t2 - np.where(ok, step[:, 1], 0.0)
+        Gn, Jn = _conditions(x, own, n1, n2)
+        en = np.abs(Gn).sum(axis=1)
+        better = ok & (en < err)
+        t1, t2 = np.where(better, n1, t1), np.where(better, n2, t2)
+        G, J = np.where(better[:, None], Gn, G), np.where(better[:, None, None], Jn, J)
+        err = np.where(better, en, err)
+    return t1, t2
 
 
 def _free_theta2(x, th1):
@@ -392,17 +436,20 @@ def _on_theta2_curve(a, b, T, arm: Arm) -> bool:
 
 def _restarts(qs, own, hval, near):
     """Near the collinear continuum joint 3 is fixed only loosely by the pose and the closed
-    forms place it poorly: each such candidate (solver joints) is also started from 8 angles
-    of joint 3 around the circle, joint 6 turned with it (both ways)."""
+    forms place it poorly: each such candidate (solver joints) is also started from RESTARTS
+    angles of joint 3 around the circle, joint 6 turned with it (both ways). (The tube around
+    a continuum broken by 1e-9 rad is thin: a start farther than ~0.3 rad from a solution along
+    it may not reach it within the polish's iterations; the kernel starts from 8 angles with
+    the coupling's sign, from a joint 3 placed by the closed forms.)"""
     idx = np.flatnonzero(hval <= near)
     if len(idx) == 0:
         return qs, own, hval
     extra = []
-    for k in range(1, 8):
+    for k in range(1, RESTARTS):
         for sg in (1.0, -1.0):
             e = qs[idx].copy()
-            e[:, 2] += k * np.pi / 4
-            e[:, 5] += sg * k * np.pi / 4
+            e[:, 2] += k * 2 * np.pi / RESTARTS
+            e[:, 5] += sg * k * 2 * np.pi / RESTARTS
             extra.append(e)
     reps = len(extra)
     return (

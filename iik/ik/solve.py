@@ -270,12 +270,17 @@ _FREE_JOINTS = {
 }
 
 
-def _certificate(h: np.ndarray) -> Certificate:
-    path = int(h[L.H_PATH])
-    cert = int(h[L.H_CERT])
-    if path < 0:
-        return Certificate()
-    return Certificate(
+_CERTIFICATES: dict[tuple, Certificate] = {}
+
+
+def _certificate(h) -> Certificate:
+    """The :class:`Certificate` of a header row (a list; built once per distinct value)."""
+    key = tuple(h[L.H_PATH : L.H_CERT + 1])
+    hit = _CERTIFICATES.get(key)
+    if hit is not None:
+        return hit
+    path, cert = int(h[L.H_PATH]), int(h[L.H_CERT])
+    out = Certificate() if path < 0 else Certificate(
         path=L.PATH_NAMES[path],
         certified=cert == L.CERT_OK,
         roots=int(h[L.H_ROOTS]),
@@ -283,6 +288,10 @@ def _certificate(h: np.ndarray) -> Certificate:
         near=int(h[L.H_NEAR]),
         reason="" if cert == L.CERT_OK else L.CERT_NAMES[cert],
     )
+    if len(_CERTIFICATES) > 4096:
+        _CERTIFICATES.clear()
+    _CERTIFICATES[key] = out
+    return out
 
 
 def _results(
@@ -296,7 +305,7 @@ def _results(
     rev = arm.solver.reversed
     out = []
     make = IKResult.trusted
-    for i, h in enumerate(hdr):
+    for i, h in enumerate(hdr.tolist()):
         k = int(h[L.H_COUNT])
         if h[L.H_FREE]:
             kinds = info[i, :k, L.I_FREE].astype(int).tolist()
@@ -330,7 +339,7 @@ def _results(
                 _certificate(h),
             )
         )
-        if within_only and k and not within[i, :k].all():
+        if within_only and h[L.H_FREE] and not within[i, :k].all():
             out[-1] = _theta2_inside(out[-1], Tb[i], arm)
     return out
 

@@ -51,7 +51,7 @@ def _connected(a, b, T, arm: Arm, tol) -> bool:
     pres, rres = pose_residuals_np(arm, pts, T)
     if np.all(pres <= tol[0]) and np.all(rres <= tol[1]):
         return True
-    moved = project(arm, pts, T)
+    moved = project(arm, pts, T, iterations=30)  # (a curved valley at a singularity converges slowly)
     pres, rres = pose_residuals_np(arm, moved, T)
     shift = np.max(np.abs(_wrap(moved - pts)), axis=1)
     return bool(np.all(pres <= tol[0]) and np.all(rres <= tol[1]) and np.all(shift <= size))
