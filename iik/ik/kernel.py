@@ -309,19 +309,8 @@ _PSI = math.atan2(_SPSI, _CPSI)
 
 #: |h| (z6 or (D - C) / a4 across z3) below this: theta3 is free at the configuration [1].
 FREE_TOL = 1e-9
-#: ... below this many times sqrt(tolerance / reach) (but not free): near the continuum, where
-#: the configurations within the tolerance form a tube around the broken circle (its residual
-#: grows like reach x h^2 along it): tried as a continuum (snapped and verified) or flagged
-#: numerical [1].
-CONTINUUM_NEAR = 30.0
-#: Configurations with joint 3 this close to free [1] are also started from other angles of
-#: joint 3 (:func:`_tube_restarts`).
-RESTART_H = 1e-2
-#: Both conditions on theta2 vanish (theta2 free) when their values are below this fraction of
-#: their coefficients' size; below NEAR_FREE2 the candidate is near a theta2 continuum and joint
-#: 2 is also started around the circle (:func:`_theta2_restarts`).
-VANISH = 1e-9
-NEAR_FREE2 = 1e-4
+#: Shared with the reference (:mod:`iik.ik.layout` says what they mean).
+CONTINUUM_NEAR, RESTART_H, VANISH, NEAR_FREE2 = L.CONTINUUM_NEAR, L.RESTART_H, L.VANISH, L.NEAR_FREE2
 #: The two conditions on theta2 are nearly parallel below this sine of their angle: each
 #: condition's intersections with the unit circle are tried too.
 PARALLEL = 1e-3
@@ -384,6 +373,18 @@ def _check_pose(T, tol, Ru):
             Ru[i, j] = T[i, j]
     if err <= 64 * _EPS:
         return L.OK, err, 0.0
+    _polar(Ru)
+    dist = 0.0
+    for i in range(3):
+        for j in range(3):
+            dist += (T[i, j] - Ru[i, j]) ** 2
+    return L.OK, err, math.sqrt(dist)
+
+
+@_inner
+def _polar(Ru) -> None:
+    """Ru (3, 3) replaced by its polar factor, the nearest rotation (Newton's iteration
+    ``X <- (X + X^-T) / 2``, to 4 eps)."""
     for _ in range(20):
         a, b, c = Ru[0, 0], Ru[0, 1], Ru[0, 2]
         d, e, f = Ru[1, 0], Ru[1, 1], Ru[1, 2]
@@ -409,11 +410,6 @@ def _check_pose(T, tol, Ru):
         )
         if step <= 4 * _EPS:
             break
-    dist = 0.0
-    for i in range(3):
-        for j in range(3):
-            dist += (T[i, j] - Ru[i, j]) ** 2
-    return L.OK, err, math.sqrt(dist)
 
 
 # ----------------------------------------------------------------------------- linear algebra

@@ -40,8 +40,8 @@ ROTATION_TOL = 1e-10
 #: Eigenvalues with |imag| up to this (relative to 1 + |t|) are theta1 candidates.
 IMAG_TOL = 1e-3
 #: Candidates whose joint 3 is this close to free (|z6| or |D - C| / a4 across z3) are also
-#: started from 8 angles of joint 3 around the circle.
-RESTART_H = 1e-2
+#: started from RESTARTS angles of joint 3 around the circle.
+RESTART_H = L.RESTART_H
 #: ... from this many angles of joint 3.
 RESTARTS = 24
 _TWO_PI = 2.0 * np.pi
@@ -96,8 +96,8 @@ def _polish(arm: Arm, q, T, iters: int = 30, cols=None):
         g = np.einsum("nri,nr->ni", Jm, e)[..., None]
         try:
             dq = np.linalg.solve(A, g)[..., 0] * mask
-        except np.linalg.LinAlgError:  # an exactly singular row: damped a little, this step
-            dq = np.linalg.solve(A + 1e-12 * tr * eye, g)[..., 0] * mask
+        except np.linalg.LinAlgError:  # an exactly singular row: the pseudo-inverse, this step
+            dq = (np.linalg.pinv(A, hermitian=True) @ g)[..., 0] * mask
         qn = q + np.where(act[:, None], dq, 0.0)
         Tn, Jn = _fk_jac(arm, qn)
         en, pn, rn = _errors(Tn, T)
@@ -331,8 +331,10 @@ def _refine_pairs(x, own, t1, t2):
     G, J = _conditions(x, own, t1, t2)
     err = np.abs(G).sum(axis=1)
     for _ in range(4):
-        with np.errstate(invalid="ignore", divide="ignore"):
-            step = np.linalg.solve(J + 1e-300 * np.eye(2), G[..., None])[..., 0]
+        det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
+        with np.errstate(invalid="ignore", divide="ignore"):  # (Cramer's rule; det = 0: no step)
+            step = np.stack([G[:, 0] * J[:, 1, 1] - G[:, 1] * J[:, 0, 1],
+                             J[:, 0, 0] * G[:, 1] - J[:, 1, 0] * G[:, 0]], axis=1) / det[:, None]
         ok = np.all(np.isfinite(step), axis=1) & (np.abs(step).max(axis=1) <= 1e-3)
         n1, n2 = t1 - np.where(ok, step[:, 0], 0.0), t2 - np.where(ok, step[:, 1], 0.0)
         Gn, Jn = _conditions(x, own, n1, n2)
@@ -361,7 +363,9 @@ def _free_theta2(x, th1):
     v = np.abs(x[:, None, :, 0] + x[:, None, :, 1] * c + x[:, None, :, 2] * s)
     size = np.abs(x).reshape(len(x), 2, 9).max(axis=2)  # (a, b, c) and (P, Q, R)
     with np.errstate(invalid="ignore"):
-        ok = (v[..., :3].sum(-1) <= 1e-9 * size[:, None, 0]) & (v[..., 3:].sum(-1) <= 1e-9 * size[:, None, 1])
+        ok = (v[..., :3].sum(-1) <= L.VANISH * size[:, None, 0]) & (
+            v[..., 3:].sum(-1) <= L.VANISH * size[:, None, 1]
+        )
     return np.where(ok, t, np.nan)
 
 
@@ -499,7 +503,7 @@ def _collect(n, q, own, pres, rres, hval, f2, flat, T, arm, tol_p, tol_r):
     M = L.MAX_SOLUTIONS
     Q, V, F = np.full((n, M, 6), np.nan), np.zeros((n, M), bool), np.zeros((n, M), int)
     Pr, Rr = np.full((n, M), np.nan), np.full((n, M), np.nan)
-    near = 30.0 * np.sqrt(max(tol_p / arm.reach, tol_r))
+    near = L.CONTINUUM_NEAR * np.sqrt(max(tol_p / arm.reach, tol_r))
     for i in range(n):
         idx = np.flatnonzero(own == i)
         idx = idx[np.lexsort((pres[idx] + rres[idx], ~f2[idx]))]
