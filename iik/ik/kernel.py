@@ -247,6 +247,7 @@ def _layout(*sizes):
     _W_STATS,
     _W_QR,
     _W_QB,
+    _W_REL,
     _W_IDX,
     _W_CAND,
     N_SCRATCH,
@@ -274,6 +275,7 @@ def _layout(*sizes):
     16,
     6,
     6,
+    _MAX_T1,
     MAX_CAND,
     MAX_CAND * N_CAND,
 )
@@ -802,7 +804,8 @@ def _refine_12(terms, t1, t2):
 
 @_inner
 def _theta2_options(terms, th, kind, out):
-    """DH angles of joint 2 to try at joint 1's DH angle th (into out (8,)); the count.
+    """DH angles of joint 2 to try at joint 1's DH angle th (into out (8,)): (the count, or -1
+    when both conditions vanish; how small they are, :func:`_relative`, the larger of the two).
 
     Cramer's rule on the two conditions ``P c2 + Q s2 = -R`` and ``b c2 + c s2 = -a``; where
     they are nearly parallel (or for a candidate that is not a certified simple root) each
@@ -823,18 +826,20 @@ def _theta2_options(terms, th, kind, out):
     if kind != L.KIND_ROOT or abs(det) <= PARALLEL * math.hypot(P, Q) * math.hypot(b, c) or n == 0:
         n = _line_circle(P, Q, -R, out, n)
         n = _line_circle(b, c, -a, out, n)
-    if n == 0 or (_vanishes(P, Q, R, terms, 9, VANISH) and _vanishes(a, b, c, terms, 0, VANISH)):
-        return -1  # both conditions vanish: every theta2 (docs/IK_CLASS.md section 5 C)
-    return n
+    rel = max(_relative(a, b, c, terms, 0), _relative(P, Q, R, terms, 9))
+    if n == 0 or rel <= VANISH:
+        return -1, rel  # both conditions vanish: every theta2 (docs/IK_CLASS.md section 5 C)
+    return n, rel
 
 
 @_inner
-def _vanishes(x, y, z, terms, o, rel):
-    """Do three first-degree values (at theta1) vanish to ``rel`` of their coefficients' size?"""
+def _relative(x, y, z, terms, o):
+    """|x| + |y| + |z| of three first-degree values (at theta1) relative to their coefficients'
+    size (the largest of terms[o:o + 9])."""
     m = 0.0
     for k in range(9):
         m = max(m, abs(terms[o + k]))
-    return abs(x) + abs(y) + abs(z) <= rel * m
+    return (abs(x) + abs(y) + abs(z)) / m if m > 0.0 else 0.0
 
 
 # ----------------------------------------------------------------------------- theta1 candidates
@@ -997,7 +1002,8 @@ def _configurations(t1, kind, root, P, terms, v, Ru, T, opt, ws, wm, cand, nc, b
     verified against the pose (and polished when it misses by a little) into cand."""
     th2, qc, q = ws[_W_TH2 : _W_TH2 + 8], ws[_W_Q2 : _W_Q2 + 6], ws[_W_Q : _W_Q + 6]
     st = ws[_W_STATS : _W_STATS + N_STATS]
-    n2 = _theta2_options(terms, t1, kind, th2)
+    n2, rel = _theta2_options(terms, t1, kind, th2)
+    ws[_W_REL + int(root)] = rel
     free2 = n2 < 0
     if free2:  # theta2 free: the member with joint 2 at 0 (flagged), and where joint 3 may be free
         th2[0], n2 = v[L.A_SOLVER_DH + 9], 1
@@ -1019,7 +1025,7 @@ def _configurations(t1, kind, root, P, terms, v, Ru, T, opt, ws, wm, cand, nc, b
         if h <= RESTART_H:
             _to_user(qc, q, v)
             nc = _tube_restarts(q, kind, root, P, v, Ru, T, opt, ws, wm, cand, nc, best)
-    if not free2 and _both_vanish(terms, math.cos(t1), math.sin(t1), NEAR_FREE2):
+    if not free2 and rel <= NEAR_FREE2:
         nc = _theta2_restarts(t1, kind, root, P, v, Ru, T, opt, ws, wm, cand, nc, best)
     return nc
 
@@ -1482,23 +1488,25 @@ def _free_theta2_candidates(terms, th1, kinds, n):
     base = math.atan2(terms[o + 2], terms[o + 1])
     w = math.acos(max(-1.0, min(1.0, -terms[o] / best)))
     for t in (base + w, base - w):
-        if _both_vanish(terms, math.cos(t), math.sin(t), VANISH):
+        if _both_vanish(terms, math.cos(t), math.sin(t)):
             n = _push(th1, kinds, n, t, L.KIND_SPECIAL)
     return n
 
 
 @_inner
-def _both_vanish(terms, C, S, rel):
-    """Do both conditions on theta2 vanish identically (to ``rel`` of their coefficients' size,
-    :func:`_vanishes`) at theta1 = atan2(S, C)?"""
+def _both_vanish(terms, C, S):
+    """Do both conditions on theta2 vanish identically (to VANISH of their coefficients' size,
+    :func:`_relative`) at theta1 = atan2(S, C)?"""
     f = _el.first_degree_at
     a, b, c = f(terms[0], terms[1], terms[2], C, S), f(terms[3], terms[4], terms[5], C, S), f(
         terms[6], terms[7], terms[8], C, S
     )
+    if _relative(a, b, c, terms, 0) > VANISH:
+        return False
     P, Q, R = f(terms[9], terms[10], terms[11], C, S), f(terms[12], terms[13], terms[14], C, S), f(
         terms[15], terms[16], terms[17], C, S
     )
-    return _vanishes(a, b, c, terms, 0, rel) and _vanishes(P, Q, R, terms, 9, rel)
+    return _relative(P, Q, R, terms, 9) <= VANISH
 
 
 @_inner
@@ -1574,23 +1582,23 @@ def _all_candidates(P, terms, mags, v, Ru, T, opt, ws, wm, cand, hdr, best, thr_
                 hdr[L.H_CERT] = L.CERT_ROOT_WITHOUT_CONFIGURATION
     if nc >= MAX_CAND:
         hdr[L.H_CERT] = L.CERT_TABLE_FULL
-    elif _near_theta2_continuum(terms, th1, n1):
+    elif _near_theta2_continuum(ws[_W_REL : _W_REL + n1]):
         hdr[L.H_CERT] = L.CERT_NEAR_THETA2
     return nc
 
 
 @_inner
-def _near_theta2_continuum(terms, th1, n):
+def _near_theta2_continuum(rel):
     """Is some theta1 candidate near a theta2 continuum (both conditions on theta2 below
-    NEAR_FREE2 of their size) while none is on one (below VANISH)? There joint 2 is fixed only
-    loosely by the pose, its solutions lie along a broken curve, and the restarts of
-    :func:`_theta2_restarts` are not a proof that none was missed."""
+    NEAR_FREE2 of their size, ``rel`` per candidate from :func:`_configurations`) while none is
+    on one (below VANISH)? There joint 2 is fixed only loosely by the pose, its solutions lie
+    along a broken curve, and the restarts of :func:`_theta2_restarts` are not a proof that
+    none was missed."""
     near, exact = False, False
-    for i in range(n):
-        C, S = math.cos(th1[i]), math.sin(th1[i])
-        if _both_vanish(terms, C, S, VANISH):
+    for r in rel:
+        if r <= VANISH:
             exact = True
-        elif _both_vanish(terms, C, S, NEAR_FREE2):
+        elif r <= NEAR_FREE2:
             near = True
     return near and not exact
 
@@ -1828,7 +1836,7 @@ def closed_forms_at(T, v, opt, joint1, joint2, buf, out_q, out_res, counts) -> b
     for i in range(joint1.shape[0]):
         t1 = joint1[i] + v[L.A_SOLVER_DH + 4]
         if math.isnan(joint2[i]):
-            n2 = max(_theta2_options(terms, t1, L.KIND_SPECIAL, th2), 0)
+            n2 = max(_theta2_options(terms, t1, L.KIND_SPECIAL, th2)[0], 0)
         else:
             th2[0], n2 = joint2[i] + v[L.A_SOLVER_DH + 9], 1
         m = 0
