@@ -1,10 +1,11 @@
-"""IK benchmark: complete vs thesis IIK vs Newton on one fixed set of reachable poses.
+"""IK benchmark per adversarial family, with the certificate counters, and the recovery table.
 
-    python benchmarks/bench_ik.py                      # 10 000 poses
-    python benchmarks/bench_ik.py --n 500              # quick
-    python benchmarks/bench_ik.py --recovery 100000    # plus the near-singular recovery sweep
+    python benchmarks/bench_ik.py                                 # thesis arm, 2000 poses per family
+    python benchmarks/bench_ik.py --arm crx10ia --n 500           # another shipped arm, quick
+    python benchmarks/bench_ik.py --recovery 2000 --arm crx10ia   # plus the recovery table
+    python benchmarks/bench_ik.py --profile                       # where a single call's time goes
 
-The implementation is :mod:`verification.testing.ik_benchmark` (shared with ``iik verify``).
+The implementation is :mod:`verification.testing.ik_benchmark`.
 """
 
 import sys

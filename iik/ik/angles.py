@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["wrap_angle", "angle_distance"]
+__all__ = ["wrap_angle", "angle_distance", "into_limits"]
 
 _TWO_PI = 2.0 * np.pi
 
@@ -17,3 +17,16 @@ def wrap_angle(x):
 def angle_distance(a, b) -> np.ndarray:
     """Largest wrapped joint difference [rad] between joint vectors ``a`` and ``b`` (..., 6)."""
     return np.max(np.abs(wrap_angle(np.asarray(a, float) - np.asarray(b, float))), axis=-1)
+
+
+def into_limits(Q: np.ndarray, lower, upper, tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """Configurations Q (..., 6) [rad] (angles wrapped to (-pi, pi]) with each joint outside
+    [lower - tol, upper + tol] turned by +-2 pi where that brings it inside (limits not centred
+    on 0, e.g. the CRX's joint 3, -71 .. 251 deg), and whether each configuration is then
+    inside (...,). NaN is outside. The compiled kernel applies the same rule."""
+    Q = np.asarray(Q, dtype=float)
+    lo, hi = np.asarray(lower) - tol, np.asarray(upper) + tol
+    with np.errstate(invalid="ignore"):
+        shifted = np.where(Q < lo, Q + _TWO_PI, np.where(Q > hi, Q - _TWO_PI, Q))
+        ok = (shifted >= lo) & (shifted <= hi)
+    return np.where(ok, shifted, Q), np.all(ok, axis=-1)

@@ -200,8 +200,9 @@ def jacobian_many(Q, v, J) -> bool:
 # ============================================================================= complete IK
 #: Most theta1 candidates per pose.
 _MAX_T1 = 48
-#: Most configurations per pose (theta1 candidates x theta2 options x 2 wrist branches).
-MAX_CAND = 160
+#: Most configurations per pose (theta1 candidates x theta2 options x 2 wrist branches, and
+#: the restarts near a collinear continuum).
+MAX_CAND = 320
 # Columns of the candidate table: q, residuals against the pose as given, class (1 exact,
 # 2 approximate), continuum kind, candidate kind, smallest singular value, continuum sign,
 # interval of the free joint, the theta1 candidate it came from.
@@ -244,6 +245,9 @@ def _layout(*sizes):
     _W_ET,
     _W_QT,
     _W_STATS,
+    _W_QR,
+    _W_QB,
+    _W_REL,
     _W_IDX,
     _W_CAND,
     N_SCRATCH,
@@ -268,7 +272,10 @@ def _layout(*sizes):
     6,
     6,
     6,
-    12,
+    16,
+    6,
+    6,
+    _MAX_T1,
     MAX_CAND,
     MAX_CAND * N_CAND,
 )
@@ -286,7 +293,10 @@ STATS = (
     "certificate retries",
     "certificate failures",
     "poses on the extended path",
+    "tube restarts",
+    "theta2 restarts",
 )
+N_STATS = 16  # (room for the counters of STATS)
 # matrix scratch (5, 6, 6): projected rotation, solver pose, Jacobian, normal equations, spare
 _M_RU, _M_RC, _M_J, _M_A, _M_X = 0, 1, 2, 3, 4
 N_MATS = 5
@@ -301,11 +311,8 @@ _PSI = math.atan2(_SPSI, _CPSI)
 
 #: |h| (z6 or (D - C) / a4 across z3) below this: theta3 is free at the configuration [1].
 FREE_TOL = 1e-9
-#: ... below this many times sqrt(tolerance / reach) (but not free): near the continuum, where
-#: the configurations within the tolerance form a tube around the broken circle (its residual
-#: grows like reach x h^2 along it): tried as a continuum (snapped and verified) or flagged
-#: numerical [1].
-CONTINUUM_NEAR = 30.0
+#: Shared with the reference (:mod:`iik.ik.layout` says what they mean).
+CONTINUUM_NEAR, RESTART_H, VANISH, NEAR_FREE2 = L.CONTINUUM_NEAR, L.RESTART_H, L.VANISH, L.NEAR_FREE2
 #: The two conditions on theta2 are nearly parallel below this sine of their angle: each
 #: condition's intersections with the unit circle are tried too.
 PARALLEL = 1e-3
@@ -368,6 +375,18 @@ def _check_pose(T, tol, Ru):
             Ru[i, j] = T[i, j]
     if err <= 64 * _EPS:
         return L.OK, err, 0.0
+    _polar(Ru)
+    dist = 0.0
+    for i in range(3):
+        for j in range(3):
+            dist += (T[i, j] - Ru[i, j]) ** 2
+    return L.OK, err, math.sqrt(dist)
+
+
+@_inner
+def _polar(Ru) -> None:
+    """Ru (3, 3) replaced by its polar factor, the nearest rotation (Newton's iteration
+    ``X <- (X + X^-T) / 2``, to 4 eps)."""
     for _ in range(20):
         a, b, c = Ru[0, 0], Ru[0, 1], Ru[0, 2]
         d, e, f = Ru[1, 0], Ru[1, 1], Ru[1, 2]
@@ -393,11 +412,6 @@ def _check_pose(T, tol, Ru):
         )
         if step <= 4 * _EPS:
             break
-    dist = 0.0
-    for i in range(3):
-        for j in range(3):
-            dist += (T[i, j] - Ru[i, j]) ** 2
-    return L.OK, err, math.sqrt(dist)
 
 
 # ----------------------------------------------------------------------------- linear algebra
@@ -518,7 +532,7 @@ def _polish(q, v, Ru, T, ws, wm, cols, n, iters, target):
     J, A = wm[_M_J], wm[_M_A]
     e, dq, g = ws[_W_E : _W_E + 6], ws[_W_DQ : _W_DQ + 6], ws[_W_G : _W_G + 6]
     et, qt = ws[_W_ET : _W_ET + 6], ws[_W_QT : _W_QT + 6]
-    st = ws[_W_STATS : _W_STATS + 12]
+    st = ws[_W_STATS : _W_STATS + N_STATS]
     st[3] += 1.0
     _pose_error(q, v, Ru, T, e)
     err = _sq(e)
@@ -790,7 +804,8 @@ def _refine_12(terms, t1, t2):
 
 @_inner
 def _theta2_options(terms, th, kind, out):
-    """DH angles of joint 2 to try at joint 1's DH angle th (into out (8,)); the count.
+    """DH angles of joint 2 to try at joint 1's DH angle th (into out (8,)): (the count, or -1
+    when both conditions vanish; how small they are, :func:`_relative`, the larger of the two).
 
     Cramer's rule on the two conditions ``P c2 + Q s2 = -R`` and ``b c2 + c s2 = -a``; where
     they are nearly parallel (or for a candidate that is not a certified simple root) each
@@ -811,18 +826,20 @@ def _theta2_options(terms, th, kind, out):
     if kind != L.KIND_ROOT or abs(det) <= PARALLEL * math.hypot(P, Q) * math.hypot(b, c) or n == 0:
         n = _line_circle(P, Q, -R, out, n)
         n = _line_circle(b, c, -a, out, n)
-    if n == 0 or (_vanishes(P, Q, R, terms, 9, C, S) and _vanishes(a, b, c, terms, 0, C, S)):
-        return -1  # both conditions vanish: every theta2 (docs/IK_CLASS.md section 5 C)
-    return n
+    rel = max(_relative(a, b, c, terms, 0), _relative(P, Q, R, terms, 9))
+    if n == 0 or rel <= VANISH:
+        return -1, rel  # both conditions vanish: every theta2 (docs/IK_CLASS.md section 5 C)
+    return n, rel
 
 
 @_inner
-def _vanishes(x, y, z, terms, o, C, S):
-    """Do three first-degree values (at theta1) vanish to 1e-9 of their coefficients' size?"""
+def _relative(x, y, z, terms, o):
+    """|x| + |y| + |z| of three first-degree values (at theta1) relative to their coefficients'
+    size (the largest of terms[o:o + 9])."""
     m = 0.0
     for k in range(9):
         m = max(m, abs(terms[o + k]))
-    return abs(x) + abs(y) + abs(z) <= 1e-9 * m
+    return (abs(x) + abs(y) + abs(z)) / m if m > 0.0 else 0.0
 
 
 # ----------------------------------------------------------------------------- theta1 candidates
@@ -870,7 +887,7 @@ def _leaves_to_candidates(leaves, nl, u0, w, theta_r, th1, kinds, n, multiple_ki
 def _extended(terms, sgn, u0, u1, mag, thr, theta_r, ws, th1, kinds, n):
     """Re-expand the cluster [u0, u1] of a half circle in double-double and isolate it again;
     its theta1 candidates appended (an unresolved cluster as one multiple root)."""
-    st = ws[_W_STATS : _W_STATS + 12]
+    st = ws[_W_STATS : _W_STATS + N_STATS]
     st[5] += 1.0
     dd = ws[_W_DD : _W_DD + 120].reshape((60, 2))
     full, tmp, work = dd[0:9], dd[9:18], dd[18:51]
@@ -910,7 +927,7 @@ def _theta1_candidates(terms, mags, thr_rel, natural, ws, hdr):
     bw, b, m = ws[_W_BW : _W_BW + 60], ws[_W_B : _W_B + 9], ws[_W_M : _W_M + 9]
     leaves = ws[_W_LEAF : _W_LEAF + _bz.N_LEAF * _bz.LEAF_WIDTH].reshape((_bz.N_LEAF, _bz.LEAF_WIDTH))
     stack = ws[_W_STACK : _W_STACK + 96 * 12].reshape((96, 12))
-    st = ws[_W_STATS : _W_STATS + 12]
+    st = ws[_W_STATS : _W_STATS + N_STATS]
     n, flat = 0, 0
     for half in range(2):
         sgn = 1.0 if half == 0 else -1.0
@@ -984,13 +1001,13 @@ def _configurations(t1, kind, root, P, terms, v, Ru, T, opt, ws, wm, cand, nc, b
     """Every configuration of one theta1 candidate (both wrist branches of every theta2 option),
     verified against the pose (and polished when it misses by a little) into cand."""
     th2, qc, q = ws[_W_TH2 : _W_TH2 + 8], ws[_W_Q2 : _W_Q2 + 6], ws[_W_Q : _W_Q + 6]
-    st = ws[_W_STATS : _W_STATS + 12]
-    n2 = _theta2_options(terms, t1, kind, th2)
+    st = ws[_W_STATS : _W_STATS + N_STATS]
+    n2, rel = _theta2_options(terms, t1, kind, th2)
+    ws[_W_REL + int(root)] = rel
     free2 = n2 < 0
-    if free2:  # theta2 free: the member with joint 2 at 0
+    if free2:  # theta2 free: the member with joint 2 at 0 (flagged), and where joint 3 may be free
         th2[0], n2 = v[L.A_SOLVER_DH + 9], 1
-    tp, tr = opt[L.OPT_POSITION_TOL], opt[L.OPT_ROTATION_TOL]
-    far_p = NEAR_POSITION * v[L.A_SCALE]
+        n2 = _aligned_theta2(t1, P, v, th2, n2)
     iters = 12 if kind == L.KIND_ROOT else 30
     for k in range(n2):
         u1, u2 = _refine_12(terms, t1, th2[k])
@@ -1001,21 +1018,109 @@ def _configurations(t1, kind, root, P, terms, v, Ru, T, opt, ws, wm, cand, nc, b
             st[2] += 1.0
             _wrist(r30, e, hv, h, branch, P, v, qc)
             _to_user(qc, q, v)
-            pres, rres = _residuals(q, v, Ru, T)
-            if pres > far_p or rres > NEAR_ROTATION:
-                if pres + rres < best[0] + best[1]:
-                    best[0], best[1] = pres, rres
-                continue
-            hq = h
-            if pres > 1e-3 * tp or rres > 1e-3 * tr:
-                _polish(q, v, Ru, T, ws, wm, _ALL6, 6, iters, 1e-3 * min(tp, tr))
-                pres, rres = _residuals(q, v, Ru, T)
-                hq = _h3_of(q, P, v)  # the polish may have moved joints 1 and 2
             n0 = nc
-            nc = _classify(q, pres, rres, hq, kind, root, opt, v[L.A_SCALE], cand, nc, best)
-            if free2 and nc > n0:
+            nc = _verified(q, h, kind, root, iters, P, v, Ru, T, opt, ws, wm, cand, nc, best)
+            if free2 and k == 0 and nc > n0:
                 cand[nc - 1, _C_FREE] = L.FREE_Q2
+        if h <= RESTART_H:
+            _to_user(qc, q, v)
+            nc = _tube_restarts(q, kind, root, P, v, Ru, T, opt, ws, wm, cand, nc, best)
+    if not free2 and rel <= NEAR_FREE2:
+        nc = _theta2_restarts(t1, kind, root, P, v, Ru, T, opt, ws, wm, cand, nc, best)
     return nc
+
+
+@_inner
+def _theta2_restarts(t1, kind, root, P, v, Ru, T, opt, ws, wm, cand, nc, best):
+    """Near a theta2 continuum (both conditions on theta2 nearly vanish at the theta1 candidate
+    t1, a DH angle) the pose fixes joint 2 only loosely and the conditions place it poorly: joint
+    2 at 16 angles around the circle, both wrist branches, each polished and stored if it
+    reaches the pose (not twice)."""
+    qc, q = ws[_W_Q2 : _W_Q2 + 6], ws[_W_QR : _W_QR + 6]
+    st = ws[_W_STATS : _W_STATS + N_STATS]
+    for k in range(16):
+        t2 = k * math.pi / 8.0
+        r2, r30, e, hv, h = _upper_arm(math.cos(t1), math.sin(t1), math.cos(t2), math.sin(t2), P, v)
+        qc[0], qc[1] = t1 - v[L.A_SOLVER_DH + 4], t2 - v[L.A_SOLVER_DH + 9]
+        for branch in range(2):
+            _wrist(r30, e, hv, h, branch, P, v, qc)
+            _to_user(qc, q, v)
+            st[13] += 1.0
+            n1 = _verified(q, h, kind, root, 30, P, v, Ru, T, opt, ws, wm, cand, nc, best)
+            if n1 > nc and not _repeats(cand, nc):
+                nc = n1
+    return nc
+
+
+@_inner
+def _verified(q, h, kind, root, iters, P, v, Ru, T, opt, ws, wm, cand, nc, best):
+    """Configuration q (user joints; h: how far joint 3 is from free there) verified against
+    the pose, polished when it misses by a little, and stored if it solves it; the new count."""
+    tp, tr = opt[L.OPT_POSITION_TOL], opt[L.OPT_ROTATION_TOL]
+    pres, rres = _residuals(q, v, Ru, T)
+    if pres > NEAR_POSITION * v[L.A_SCALE] or rres > NEAR_ROTATION:
+        if pres + rres < best[0] + best[1]:
+            best[0], best[1] = pres, rres
+        return nc
+    if pres > 1e-3 * tp or rres > 1e-3 * tr:
+        _polish(q, v, Ru, T, ws, wm, _ALL6, 6, iters, 1e-3 * min(tp, tr))
+        pres, rres = _residuals(q, v, Ru, T)
+        h = _h3_of(q, P, v)  # the polish may have moved joints 1 and 2
+    return _classify(q, pres, rres, h, kind, root, opt, v[L.A_SCALE], cand, nc, best)
+
+
+@_inner
+def _tube_restarts(q0, kind, root, P, v, Ru, T, opt, ws, wm, cand, nc, best):
+    """Near the collinear continuum (joint 3 within RESTART_H of free at the closed forms) the
+    pose fixes joint 3 only through the tiny h, and the closed forms place it poorly: the
+    configuration q0 is also started with joint 3 turned by k pi / 4 (k = 1 .. 7; joint 6 with
+    it by the coupling) and polished, each start that reaches the pose stored (the reference's
+    restarts; docs/IK_CLASS.md section 5)."""
+    j, j6 = _user_col(v, 2), _user_col(v, 5)
+    q, base = ws[_W_QR : _W_QR + 6], ws[_W_QB : _W_QB + 6]
+    for i in range(6):
+        base[i] = q0[i]
+    s = _coupling_sign(base, j, j6, v, Ru, T, ws)
+    st = ws[_W_STATS : _W_STATS + N_STATS]
+    for k in range(1, 8):
+        for i in range(6):
+            q[i] = base[i]
+        q[j] = wrap(base[j] + 0.25 * math.pi * k)
+        q[j6] = wrap(base[j6] + s * 0.25 * math.pi * k)
+        st[12] += 1.0
+        n1 = _verified(q, 0.0, kind, root, 30, P, v, Ru, T, opt, ws, wm, cand, nc, best)
+        if n1 > nc and not _repeats(cand, nc):
+            nc = n1
+    return nc
+
+
+@_inner
+def _repeats(cand, i):
+    """Is row i of the candidate table within 1e-9 rad of an earlier row of its class (a restart
+    that found a solution already there: not stored twice)?"""
+    for r in range(i):
+        if cand[r, _C_CLASS] == cand[i, _C_CLASS] and _distance(cand[r], cand[i]) <= L.DISTINCT_TOL:
+            return True
+    return False
+
+
+@_inner
+def _aligned_theta2(t1, P, v, th2, n):
+    """On a theta2 continuum (joint 1 at DH angle t1): the DH angles of joint 2 where axis 3
+    turns closest to z6 and to -z6 (z3 . z6 = k0 + kc cos + ks sin over joint 2, from three
+    values), appended to th2: where z3 is along z6 joints 3 and 6 may be collinear, and a theta3
+    continuum crosses the curve (docs/IK_CLASS.md section 5)."""
+    C, S = math.cos(t1), math.sin(t1)
+    r = _upper_arm(C, S, 1.0, 0.0, P, v)[1]
+    ka = r[2] * P[2] + r[5] * P[5] + r[8] * P[8]
+    r = _upper_arm(C, S, 0.0, 1.0, P, v)[1]
+    kb = r[2] * P[2] + r[5] * P[5] + r[8] * P[8]
+    r = _upper_arm(C, S, -1.0, 0.0, P, v)[1]
+    kd = r[2] * P[2] + r[5] * P[5] + r[8] * P[8]
+    kc, k0 = 0.5 * (ka - kd), 0.5 * (ka + kd)
+    phi = math.atan2(kb - k0, kc)
+    th2[n], th2[n + 1] = phi, wrap(phi + math.pi)
+    return n + 2
 
 
 _ALL6 = np.arange(6)
@@ -1175,6 +1280,11 @@ def _same(cand, ia, ib, v, Ru, T, opt, ws, wm):
                 fixed = max(fixed, abs(wrap(cand[ia, k] - cand[ib, k])))
         if fixed <= 1e-7:
             return True
+    fa, fb = cand[ia, _C_FREE], cand[ib, _C_FREE]  # (a theta3 continuum crossing a theta2 one is kept)
+    if fa == L.FREE_Q2 and fb != L.FREE_Q3 and _on_theta2_curve(cand[ia], cand[ib], v, Ru, T, ws):
+        return True
+    if fb == L.FREE_Q2 and fa != L.FREE_Q3 and _on_theta2_curve(cand[ib], cand[ia], v, Ru, T, ws):
+        return True
     if cand[ia, _C_FREE] == L.FREE_NUMERICAL and cand[ib, _C_FREE] == L.FREE_NUMERICAL:
         if _one_tube(cand[ia], cand[ib], v, Ru, T, opt, ws, wm):
             return True
@@ -1197,6 +1307,42 @@ def _connected(a, b, v, Ru, T, opt, ws):
         if pr > opt[L.OPT_POSITION_TOL] or rr > opt[L.OPT_ROTATION_TOL]:
             return False
     return True
+
+
+@_inner
+def _on_theta2_curve(a, b, v, Ru, T, ws):
+    """Is row b a member of the theta2 continuum of row a (FREE_Q2)? b's joint 1 (solver
+    numbering) is a's to 1e-6 rad and b is, to 1e-6 rad, the closed-form configuration at a's
+    joint 1 and b's joint 2 on a's wrist branch (the curve through a: as joint 2 turns, the wrist
+    follows its closed forms; docs/IK_CLASS.md section 5 C)."""
+    i0, i1 = _user_col(v, 0), _user_col(v, 1)
+    if abs(wrap(a[i0] - b[i0])) > 1e-6:
+        return False
+    P = _solver_pose(T, Ru, v)
+    qc, q = ws[_W_Q2 : _W_Q2 + 6], ws[_W_Q : _W_Q + 6]
+    t1 = a[i0] + v[L.A_SOLVER_DH + 4]
+    mine = -1
+    for branch in range(2):  # a's branch at its own joint 2
+        t2 = a[i1] + v[L.A_SOLVER_DH + 9]
+        _closed_form(t1, math.cos(t2), math.sin(t2), branch, P, v, qc)
+        _to_user(qc, q, v)
+        if _distance(q, a) <= 1e-6:
+            mine = branch
+    if mine < 0:
+        return False
+    t2 = b[i1] + v[L.A_SOLVER_DH + 9]
+    _closed_form(t1, math.cos(t2), math.sin(t2), mine, P, v, qc)
+    _to_user(qc, q, v)
+    return _distance(q, b) <= 1e-6
+
+
+@_inner
+def _distance(a, b):
+    """Largest wrapped joint difference of two configurations [rad]."""
+    d = 0.0
+    for k in range(6):
+        d = max(d, abs(wrap(a[k] - b[k])))
+    return d
 
 
 @_inner
@@ -1255,7 +1401,7 @@ def _one_tube(a, b, v, Ru, T, opt, ws, wm):
 def _key(cand, i, opt):
     """Of duplicates keep: a continuum, then a certified root's row, then the least residual."""
     return (
-        (0.0 if cand[i, _C_FREE] == L.FREE_Q3 else 4.0)
+        (0.0 if cand[i, _C_FREE] == L.FREE_Q3 or cand[i, _C_FREE] == L.FREE_Q2 else 4.0)
         + (0.0 if cand[i, _C_KIND] == L.KIND_ROOT else 2.0)
         + 0.25 * (cand[i, _C_PRES] / opt[L.OPT_POSITION_TOL] + cand[i, _C_RRES] / opt[L.OPT_ROTATION_TOL])
     )
@@ -1273,8 +1419,9 @@ def _before(cand, ia, ib):
 
 @_inner
 def _distinct_sorted(cand, nc, cls, v, Ru, T, opt, ws, wm, idx):
-    """Indices (into idx) of the distinct rows of class ``cls``, lexicographically sorted; count.
-    Of a group of duplicates the first by :func:`_key` is kept; at most MAX_SOLUTIONS."""
+    """Indices (into idx) of the distinct rows of class ``cls``, lexicographically sorted: (count,
+    whether distinct rows beyond MAX_SOLUTIONS were left out). Of a group of duplicates the
+    first by :func:`_key` is kept."""
     m = 0
     for i in range(nc):
         if cand[i, _C_CLASS] == cls:
@@ -1289,6 +1436,7 @@ def _distinct_sorted(cand, nc, cls, v, Ru, T, opt, ws, wm, idx):
             j -= 1
         idx[j + 1] = u
     k = 0
+    dropped = False
     for i in range(m):
         dup = False
         for j in range(k):
@@ -1296,10 +1444,11 @@ def _distinct_sorted(cand, nc, cls, v, Ru, T, opt, ws, wm, idx):
                 dup = True
                 break
         if not dup:
+            if k == L.MAX_SOLUTIONS:  # a 17th distinct row: the answer is cut (the certificate says so)
+                dropped = True
+                break
             idx[k] = idx[i]
             k += 1
-            if k == L.MAX_SOLUTIONS:
-                break
     for i in range(1, k):  # lexicographic
         u = int(idx[i])
         j = i - 1
@@ -1307,7 +1456,7 @@ def _distinct_sorted(cand, nc, cls, v, Ru, T, opt, ws, wm, idx):
             idx[j + 1] = idx[j]
             j -= 1
         idx[j + 1] = u
-    return k
+    return k, dropped
 
 
 # ----------------------------------------------------------------------------- degenerate case
@@ -1320,6 +1469,44 @@ def _zeros_first_degree(x0, xc, xs, th1, kinds, n):
     base, w = math.atan2(xs, xc), math.acos(max(-1.0, min(1.0, -x0 / r)))
     n = _push(th1, kinds, n, base + w, L.KIND_SPECIAL)
     return _push(th1, kinds, n, base - w, L.KIND_SPECIAL)
+
+
+@_inner
+def _free_theta2_candidates(terms, th1, kinds, n):
+    """theta1 (DH angles) where both conditions on theta2 vanish identically (a, b, c, P, Q and
+    R all zero: theta2 free, docs/IK_CLASS.md section 5 C), appended as special candidates: the
+    zeros of the one with the largest amplitude, in closed form, at which all six vanish to
+    1e-9 of their size. (A root of the eliminant there is multiple and known only to ~1e-8,
+    too coarse to see the six vanish.)"""
+    best, o = 0.0, -1
+    for k in range(6):
+        r = math.hypot(terms[3 * k + 1], terms[3 * k + 2])
+        if r > best:
+            best, o = r, 3 * k
+    if o < 0 or abs(terms[o]) > best * (1.0 + 1e-9):
+        return n
+    base = math.atan2(terms[o + 2], terms[o + 1])
+    w = math.acos(max(-1.0, min(1.0, -terms[o] / best)))
+    for t in (base + w, base - w):
+        if _both_vanish(terms, math.cos(t), math.sin(t)):
+            n = _push(th1, kinds, n, t, L.KIND_SPECIAL)
+    return n
+
+
+@_inner
+def _both_vanish(terms, C, S):
+    """Do both conditions on theta2 vanish identically (to VANISH of their coefficients' size,
+    :func:`_relative`) at theta1 = atan2(S, C)?"""
+    f = _el.first_degree_at
+    a, b, c = f(terms[0], terms[1], terms[2], C, S), f(terms[3], terms[4], terms[5], C, S), f(
+        terms[6], terms[7], terms[8], C, S
+    )
+    if _relative(a, b, c, terms, 0) > VANISH:
+        return False
+    P, Q, R = f(terms[9], terms[10], terms[11], C, S), f(terms[12], terms[13], terms[14], C, S), f(
+        terms[15], terms[16], terms[17], C, S
+    )
+    return _relative(P, Q, R, terms, 9) <= VANISH
 
 
 @_inner
@@ -1342,13 +1529,15 @@ def _degenerate_candidates(terms, ws):
 @_inner
 def _all_candidates(P, terms, mags, v, Ru, T, opt, ws, wm, cand, hdr, best, thr_rel):
     """Candidates of every theta1 candidate into cand; the count. Sets the path and certificate."""
-    st = ws[_W_STATS : _W_STATS + 12]
+    st = ws[_W_STATS : _W_STATS + N_STATS]
     th1, kinds = ws[_W_TH1 : _W_TH1 + _MAX_T1], ws[_W_KIND : _W_KIND + _MAX_T1]
     mabc = 0.0  # the size F has when Eq 8's coefficients are as large as Eq 11's allow
     for k in range(9):
         mabc = max(mabc, mags[k])
     n1 = _theta1_candidates(terms, mags, thr_rel, mabc * mabc * mabc, ws, hdr)
     degenerate = n1 < 0
+    if not degenerate:
+        n1 = _free_theta2_candidates(terms, th1, kinds, n1)
     if degenerate:
         st[8] += 1.0
         n1 = _degenerate_candidates(terms, ws)
@@ -1393,7 +1582,42 @@ def _all_candidates(P, terms, mags, v, Ru, T, opt, ws, wm, cand, hdr, best, thr_
                 hdr[L.H_CERT] = L.CERT_ROOT_WITHOUT_CONFIGURATION
     if nc >= MAX_CAND:
         hdr[L.H_CERT] = L.CERT_TABLE_FULL
+    elif _near_theta2_continuum(ws[_W_REL : _W_REL + n1]):
+        hdr[L.H_CERT] = L.CERT_NEAR_THETA2
     return nc
+
+
+@_inner
+def _near_theta2_continuum(rel):
+    """Is some theta1 candidate near a theta2 continuum (both conditions on theta2 below
+    NEAR_FREE2 of their size, ``rel`` per candidate from :func:`_configurations`) while none is
+    on one (below VANISH)? There joint 2 is fixed only loosely by the pose, its solutions lie
+    along a broken curve, and the restarts of :func:`_theta2_restarts` are not a proof that
+    none was missed."""
+    near, exact = False, False
+    for r in rel:
+        if r <= VANISH:
+            exact = True
+        elif r <= NEAR_FREE2:
+            near = True
+    return near and not exact
+
+
+@_inner
+def _into_limits(row, lo, hi, tol):
+    """Is the configuration row[:6] (angles wrapped to (-pi, pi]) inside the limits [lo, hi]
+    (widened by tol) once each joint outside them is turned by +-2 pi where that brings it in
+    (limits not centred on 0, e.g. -71 .. 251 deg)? The joints are turned in place."""
+    inside = True
+    for j in range(6):
+        x = row[j]
+        if x < lo[j] - tol or x > hi[j] + tol:
+            y = x + _TWO_PI if x < lo[j] - tol else x - _TWO_PI
+            if lo[j] - tol <= y <= hi[j] + tol:
+                row[j] = y
+            else:
+                inside = False
+    return inside
 
 
 @_inner
@@ -1402,12 +1626,9 @@ def _write_rows(cand, idx, k, within_only, approx, v, lo, hi, opt, outq, info, f
     m = m0
     for ii in range(k):
         c = int(idx[ii])
-        inside = True
-        for j in range(6):
-            if cand[c, j] < lo[j] - opt[L.OPT_LIMIT_TOL] or cand[c, j] > hi[j] + opt[L.OPT_LIMIT_TOL]:
-                inside = False
-        if within_only and not inside and cand[c, _C_FREE] != L.FREE_Q1:
-            continue  # (a theta1 continuum may have members inside: iik.ik.solve moves it there)
+        inside = _into_limits(cand[c], lo, hi, opt[L.OPT_LIMIT_TOL])
+        if within_only and not inside and cand[c, _C_FREE] != L.FREE_Q1 and cand[c, _C_FREE] != L.FREE_Q2:
+            continue  # (a theta1 or theta2 continuum may have members inside: iik.ik.solve moves it)
         for j in range(6):
             outq[m, j] = cand[c, j]
         info[m, L.I_PRES], info[m, L.I_RRES], info[m, L.I_FREE] = (
@@ -1436,7 +1657,7 @@ def _solve_pose(T, v, opt, within_only, ws, wm, cand, outq, info, flags, hdr):
     status, measure, dist = _check_pose(T, opt[L.OPT_ORTHONORMAL_TOL], Ru)
     hdr[L.H_STATUS], hdr[L.H_MEASURE], hdr[L.H_PROJECTION] = status, measure, dist
     hdr[L.H_BEST_P], hdr[L.H_BEST_R] = np.inf, np.inf
-    st = ws[_W_STATS : _W_STATS + 12]
+    st = ws[_W_STATS : _W_STATS + N_STATS]
     st[0] += 1.0
     if status != L.OK or _beyond(T, v[L.A_REACH] + opt[L.OPT_APPROX_TOL]):
         return 0
@@ -1455,7 +1676,9 @@ def _solve_pose(T, v, opt, within_only, ws, wm, cand, outq, info, flags, hdr):
     lo, hi = v[L.A_LOWER : L.A_LOWER + 6], v[L.A_UPPER : L.A_UPPER + 6]
     _continua(cand, nc, v, Ru, T, opt, ws, wm, lo, hi)
     idx = ws[_W_IDX : _W_IDX + MAX_CAND]
-    k = _distinct_sorted(cand, nc, 1.0, v, Ru, T, opt, ws, wm, idx)
+    k, dropped = _distinct_sorted(cand, nc, 1.0, v, Ru, T, opt, ws, wm, idx)
+    if dropped:
+        hdr[L.H_CERT] = L.CERT_ROWS_DROPPED
     hdr[L.H_TOTAL] = k
     m = _write_rows(cand, idx, k, within_only, False, v, lo, hi, opt, outq, info, flags, 0)
     approx = False
@@ -1463,7 +1686,7 @@ def _solve_pose(T, v, opt, within_only, ws, wm, cand, outq, info, flags, hdr):
         if k == 0 and hdr[L.H_PATH] != L.PATH_DEGENERATE:
             thr_a = NEAR_FACTOR * (opt[L.OPT_APPROX_TOL] / scale + opt[L.OPT_APPROX_TOL])
             nc = _all_candidates(P, terms, mags, v, Ru, T, opt, ws, wm, cand, hdr, best, thr_a)
-        k = _distinct_sorted(cand, nc, 2.0, v, Ru, T, opt, ws, wm, idx)
+        k = _distinct_sorted(cand, nc, 2.0, v, Ru, T, opt, ws, wm, idx)[0]
         m = _write_rows(cand, idx, k, within_only, True, v, lo, hi, opt, outq, info, flags, 0)
         approx = m > 0
     nfree = 0
@@ -1593,11 +1816,12 @@ def continuum_members(T, v, opt, q0, cols, col, coupled, sign, thetas, buf, out_
 
 
 @_entry(_nrt=False)
-def closed_forms_at(T, v, opt, joint1, buf, out_q, out_res, counts) -> bool:
+def closed_forms_at(T, v, opt, joint1, joint2, buf, out_q, out_res, counts) -> bool:
     """Every closed-form configuration with solver joint 1 at each value of ``joint1`` (n,)
-    [rad] (every theta2 option, both wrist branches), unpolished: into out_q (n, 16, 6) (user
-    joints), out_res (n, 16, 2) and counts (n,). What a theta1 continuum's members are made of.
-    False if the pose does not pass the pose check."""
+    [rad] (every theta2 option, or solver joint 2 at ``joint2[i]`` where that is not NaN; both
+    wrist branches), unpolished: into out_q (n, 16, 6) (user joints), out_res (n, 16, 2) and
+    counts (n,). What theta1 and theta2 continua's members are made of. False if the pose does
+    not pass the pose check."""
     ws, wm, _ = _views(buf)
     Ru = wm[_M_RU, :3, :3]
     status, _, _ = _check_pose(T, opt[L.OPT_ORTHONORMAL_TOL], Ru)
@@ -1611,7 +1835,10 @@ def closed_forms_at(T, v, opt, joint1, buf, out_q, out_res, counts) -> bool:
     th2, qc, q = ws[_W_TH2 : _W_TH2 + 8], ws[_W_Q2 : _W_Q2 + 6], ws[_W_Q : _W_Q + 6]
     for i in range(joint1.shape[0]):
         t1 = joint1[i] + v[L.A_SOLVER_DH + 4]
-        n2 = max(_theta2_options(terms, t1, L.KIND_SPECIAL, th2), 0)
+        if math.isnan(joint2[i]):
+            n2 = max(_theta2_options(terms, t1, L.KIND_SPECIAL, th2)[0], 0)
+        else:
+            th2[0], n2 = joint2[i] + v[L.A_SOLVER_DH + 9], 1
         m = 0
         for k in range(n2):
             for branch in range(2):

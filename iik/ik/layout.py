@@ -47,6 +47,8 @@ __all__ = [
     "CERT_OK",
     "CERT_ROOT_WITHOUT_CONFIGURATION",
     "CERT_TABLE_FULL",
+    "CERT_ROWS_DROPPED",
+    "CERT_NEAR_THETA2",
     "CERT_NAMES",
     "FREE_NONE",
     "FREE_Q1",
@@ -66,6 +68,10 @@ __all__ = [
     "OPT_LIMIT_TOL",
     "N_OPT",
     "DISTINCT_TOL",
+    "CONTINUUM_NEAR",
+    "RESTART_H",
+    "VANISH",
+    "NEAR_FREE2",
     "A_USER_DH",
     "A_USER_BASE",
     "A_USER_TOOL",
@@ -141,10 +147,15 @@ PATH_NAMES = ("double", "extended", "multiple-root", "degenerate")
 CERT_OK = 0
 CERT_ROOT_WITHOUT_CONFIGURATION = 1
 CERT_TABLE_FULL = 2
+CERT_ROWS_DROPPED = 3
+CERT_NEAR_THETA2 = 4
 CERT_NAMES = (
     "certified",
     "a certified root gave no configuration within the tolerance",
     "the candidate table was full",
+    "more distinct solutions than MAX_SOLUTIONS rows: some were left out",
+    "near a theta2 continuum (both conditions on theta2 nearly vanish): joint 2 is fixed only "
+    "loosely and solutions along the broken curve may be missed",
 )
 
 # ----------------------------------------------------------------------------- continua
@@ -171,6 +182,20 @@ N_OPT = 5
 
 #: Two rows within this of each other in every joint [rad] are one solution.
 DISTINCT_TOL = 1e-9
+
+# ----------------------------------------------------------------------------- shared thresholds
+#: A row is near the collinear (theta3/theta6) continuum when h, how far joint 3 is from free
+#: (the size of z6 or (D - C) / a4 across z3) [1], is below this many times
+#: sqrt(max(position_tol / reach, rotation_tol)): there the configurations within the tolerance
+#: form a tube around the broken circle (its residual grows like reach x h^2 along it).
+CONTINUUM_NEAR = 30.0
+#: Configurations with h below this [1] are also started from other angles of joint 3 (the
+#: closed forms place joint 3 poorly near the continuum).
+RESTART_H = 1e-2
+#: Both conditions on theta2 vanish (theta2 free) when their values at theta1 are below this
+#: fraction of their coefficients' size; below NEAR_FREE2, near a theta2 continuum.
+VANISH = 1e-9
+NEAR_FREE2 = 1e-4
 
 # ----------------------------------------------------------------------------- arm vector
 #: Layout of the arm vector (:attr:`iik.ik.kernel.ArmData.vector`): a DH row is

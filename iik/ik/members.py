@@ -17,6 +17,8 @@ import math
 
 import numpy as np
 
+from .angles import into_limits
+
 __all__ = [
     "follow",
     "feasible_interval",
@@ -77,18 +79,26 @@ def _path(start: float, end: float) -> np.ndarray:
 
 
 def _march_closed(c, thetas: np.ndarray):
-    """theta1 continua: the exact closed-form configurations at each value, the one nearest the
-    previous member taken (continuation without a polish: the members are exact)."""
+    """theta1 and theta2 continua: the exact closed-form configurations at each value (theta2:
+    solver joint 1 held at the representative's), the one nearest the previous member taken
+    (continuation without a polish: the members are exact)."""
     k = _kernel()
     n = len(thetas)
     out_q, out_r = np.empty((n, 16, 6)), np.empty((n, 16, 2))
     counts = np.zeros(n, dtype=np.int64)
     opt = np.array([c.tolerance[0], c.tolerance[1], 1e-5, 1e-3, 1e-7])
+    thetas = np.ascontiguousarray(thetas, dtype=float)
+    if c.kind == "theta2":  # (solver joint 1 is user joint 1, or 6 for an arm read from the flange)
+        j1 = 5 if c.arm.solver.reversed else 0
+        joint1, joint2 = np.full(n, float(c.representative[j1])), thetas
+    else:
+        joint1, joint2 = thetas, np.full(n, np.nan)
     ok = k.closed_forms_at(
         np.ascontiguousarray(c.pose, dtype=float),
         k.arm_data(c.arm).vector,
         opt,
-        np.ascontiguousarray(thetas, dtype=float),
+        joint1,
+        joint2,
         k.scratch(),
         out_q,
         out_r,
@@ -110,12 +120,17 @@ def _march_closed(c, thetas: np.ndarray):
     return qs, rs
 
 
+def _marcher(c):
+    """How c's members are followed: by closed forms (theta1, theta2 continua) or by refits."""
+    return _march_closed if c.kind in ("theta1", "theta2") else _march
+
+
 def follow(c, thetas) -> tuple[np.ndarray, np.ndarray]:
     """Members (n, 6) of continuum ``c`` at the free-joint values ``thetas`` [rad] and their
     residuals (n, 2) [m, rad], each by continuation from the representative."""
     j = c.free_joint - 1
     start = float(c.representative[j])
-    march = _march_closed if c.kind == "theta1" else _march
+    march = _marcher(c)
     qs, rs = [], []
     for th in np.atleast_1d(np.asarray(thetas, dtype=float)):
         path = _path(start, float(th))
@@ -125,9 +140,16 @@ def follow(c, thetas) -> tuple[np.ndarray, np.ndarray]:
     return np.array(qs), np.array(rs)
 
 
+def _inside(arm, q):
+    """q (6,) turned into the limits where a turn by 2 pi brings a joint in, and whether it is in."""
+    from ..arm import LIMIT_TOL
+
+    out, ok = into_limits(q, arm.q_min, arm.q_max, LIMIT_TOL)
+    return out, bool(ok)
+
+
 def _good(c, q, r, prev) -> bool:
-    arm = c.arm
-    inside = bool(arm.within_limits(q))
+    inside = _inside(c.arm, q)[1]
     tp, tr = c.tolerance
     near = float(np.max(np.abs(np.mod(q - prev + np.pi, 2 * np.pi) - np.pi))) <= _JUMP
     return inside and r[0] <= tp and r[1] <= tr and near
@@ -138,7 +160,7 @@ def _edge(c, start: float, limit: float) -> float:
     if abs(limit - start) <= RESOLUTION:
         return start
     path = _path(start, limit)
-    q, r = (_march_closed if c.kind == "theta1" else _march)(c, path)
+    q, r = _marcher(c)(c, path)
     prev = np.array(c.representative, dtype=float)
     last = start
     for i, th in enumerate(path):
@@ -147,7 +169,7 @@ def _edge(c, start: float, limit: float) -> float:
             q_lo = prev
             while abs(hi - lo) > RESOLUTION:
                 mid = 0.5 * (lo + hi)
-                qm, rm = (_march_closed if c.kind == "theta1" else _march)(c, _path(start, mid))
+                qm, rm = _marcher(c)(c, _path(start, mid))
                 if _good(
                     c, qm[-1], rm[-1], q_lo if abs(mid - lo) <= STEP else qm[-2] if len(qm) > 1 else q_lo
                 ):
@@ -194,7 +216,7 @@ def feasible_interval(c) -> tuple[float, float]:
     representative), or (nan, nan) if the representative itself is not feasible."""
     j = c.free_joint - 1
     start = float(c.representative[j])
-    if not c.arm.within_limits(c.representative):
+    if not _inside(c.arm, c.representative)[1]:
         return (math.nan, math.nan)
     lo, hi = float(c.arm.q_min[j]), float(c.arm.q_max[j])
     return (_edge(c, start, lo), _edge(c, start, hi))
@@ -239,13 +261,15 @@ def inside_member(c, samples: int = 73):
     """A member of continuum c inside the joint limits, nearest the representative along the free
     joint (``samples`` values across its limits), or None if none is found."""
     arm = c.arm
-    if arm.within_limits(c.representative):
-        return np.array(c.representative, dtype=float)
+    rep, ok = _inside(arm, np.array(c.representative, dtype=float))
+    if ok:
+        return rep
     j = c.free_joint - 1
     grid = np.linspace(arm.q_min[j], arm.q_max[j], samples)
     grid = grid[np.argsort(np.abs(grid - c.representative[j]))]
     for th in grid:
         m, r = follow(c, [th])
-        if arm.within_limits(m[0]) and r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1]:
-            return m[0]
+        m0, ok = _inside(arm, m[0])
+        if ok and r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1]:
+            return m0
     return None

@@ -40,8 +40,10 @@ ROTATION_TOL = 1e-10
 #: Eigenvalues with |imag| up to this (relative to 1 + |t|) are theta1 candidates.
 IMAG_TOL = 1e-3
 #: Candidates whose joint 3 is this close to free (|z6| or |D - C| / a4 across z3) are also
-#: started from 8 angles of joint 3 around the circle.
-RESTART_H = 1e-2
+#: started from RESTARTS angles of joint 3 around the circle.
+RESTART_H = L.RESTART_H
+#: ... from this many angles of joint 3.
+RESTARTS = 24
 _TWO_PI = 2.0 * np.pi
 _GRID = np.arange(12) * (_TWO_PI / 12)
 
@@ -78,7 +80,7 @@ def _polish(arm: Arm, q, T, iters: int = 30, cols=None):
     """Batched Levenberg-Marquardt (over ``cols``, default all joints) of q (n, 6) towards T (n, 4, 4)."""
     q = q.copy()
     mask = np.ones(6) if cols is None else np.isin(np.arange(6), cols).astype(float)
-    lam = np.full(len(q), 1e-9)
+    lam = np.zeros(len(q))  # Gauss-Newton first: damping would stall it along a thin valley
     Tq, J = _fk_jac(arm, q)
     e, pres, rres = _errors(Tq, T)
     err = np.einsum("ni,ni->n", e, e)
@@ -90,8 +92,12 @@ def _polish(arm: Arm, q, T, iters: int = 30, cols=None):
         Jm = J * mask
         A = np.einsum("nri,nrj->nij", Jm, Jm)
         tr = np.trace(A, axis1=1, axis2=2)[:, None, None] / mask.sum()
-        A = A + (lam[:, None, None] + 1e-14) * tr * eye + (1.0 - mask)[None, :, None] * eye
-        dq = np.linalg.solve(A, np.einsum("nri,nr->ni", Jm, e)[..., None])[..., 0] * mask
+        A = A + (lam[:, None, None] + 1e-24) * tr * eye + (1.0 - mask)[None, :, None] * eye
+        g = np.einsum("nri,nr->ni", Jm, e)[..., None]
+        try:
+            dq = np.linalg.solve(A, g)[..., 0] * mask
+        except np.linalg.LinAlgError:  # an exactly singular row: the pseudo-inverse, this step
+            dq = (np.linalg.pinv(A, hermitian=True) @ g)[..., 0] * mask
         qn = q + np.where(act[:, None], dq, 0.0)
         Tn, Jn = _fk_jac(arm, qn)
         en, pn, rn = _errors(Tn, T)
@@ -103,7 +109,7 @@ def _polish(arm: Arm, q, T, iters: int = 30, cols=None):
             np.where(ok[:, None, None], Jn, J),
         )
         pres, rres, err = np.where(ok, pn, pres), np.where(ok, rn, rres), np.where(ok, errn, err)
-        lam = np.where(ok, np.maximum(0.1 * lam, 1e-12), np.minimum(10.0 * lam, 1e6))
+        lam = np.where(ok, 0.1 * lam, np.clip(10.0 * lam, 1e-12, 1e6))
     return _wrap(q), pres, rres
 
 
@@ -204,8 +210,8 @@ def _poly_t(x, thr):
 
 
 def _theta1(x):
-    """theta1 candidates (n, 8) of the solver chain [DH angle] (NaN where none), and whether F
-    vanishes on the whole circle (n,)."""
+    """theta1 candidates (n, 15) of the solver chain [DH angle] (NaN where none): the 8 roots and
+    the means of close pairs (:func:`_pair_means`); and whether F vanishes on the whole circle."""
     n = len(x)
     Fg = np.abs(_F(x, np.broadcast_to(_GRID + np.pi, (n, 12))))
     scale = Fg.max(axis=1)
@@ -222,7 +228,17 @@ def _theta1(x):
         t = np.linalg.eigvals(comp)
         real = np.abs(t.imag) <= IMAG_TOL * (1.0 + np.abs(t))
         out[ok] = np.where(real, thr[ok, None] + 2.0 * np.arctan(t.real), np.nan)
-    return out, flat
+    return np.concatenate([out, _pair_means(out)], axis=1), flat
+
+
+def _pair_means(th):
+    """The mean of each pair of neighbouring roots (n, 8) closer than 1e-3 rad (else NaN), (n, 7):
+    a double root perturbed by rounding splits into two roots ~sqrt(eps) apart (or a complex
+    pair) symmetrically about it, to first order, so their mean is the better estimate."""
+    s = np.sort(th, axis=1)  # (NaN last)
+    with np.errstate(invalid="ignore"):
+        close = np.abs(s[:, 1:] - s[:, :-1]) <= 1e-3
+    return np.where(close, 0.5 * (s[:, 1:] + s[:, :-1]), np.nan)
 
 
 def _theta2(x, own, th1):
@@ -262,12 +278,13 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL, tol_r:
     x = _terms(P, arm)
     th1, flat = _theta1(x)
     grid = np.array([0.3, 0.3 + np.pi])
-    th1 = np.where(flat[:, None], np.concatenate([grid, np.full(6, np.nan)])[None], th1)
+    th1 = np.where(flat[:, None], np.concatenate([grid, np.full(th1.shape[1] - 2, np.nan)])[None], th1)
     own, col = np.nonzero(~np.isnan(th1))
     t1 = th1[own, col]
     t2 = _theta2(x, own, t1)
     o2, k2 = np.nonzero(~np.isnan(t2))
     own2, t1f, t2f = own[o2], t1[o2], t2[o2, k2]
+    t1f, t2f = _refine_pairs(x, own2, t1f, t2f)
     rows = arm.solver.rows
     own3 = np.repeat(own2, 2)
     q1s, q2s = np.repeat(t1f - rows[0][4], 2), np.repeat(t2f - rows[1][4], 2)
@@ -275,25 +292,168 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL, tol_r:
     wr, hval = _wrist(arm, P[own3], q1s, q2s, branch)
     qs = np.column_stack([q1s, q2s, wr])
     qs, own3, hval = _restarts(qs, own3, hval, RESTART_H)
+    f2 = np.zeros(len(qs), bool)
+    extra = _theta2_free_rows(arm, P, x, th1, flat)
+    if extra is not None:
+        qs, own3, hval = np.concatenate([qs, extra[0]]), np.concatenate([own3, extra[1]]), np.concatenate(
+            [hval, extra[2]]
+        )
+        f2 = np.concatenate([f2, extra[3]])
     q = qs[:, ::-1] if arm.solver.reversed else qs
     q, pres, rres = _polish(arm, _wrap(q), T[own3])
     keep = (pres <= tol_p) & (rres <= tol_r)
-    return _collect(n, q[keep], own3[keep], pres[keep], rres[keep], hval[keep], flat, T, arm, tol_p, tol_r)
+    qk = q[keep][:, ::-1] if arm.solver.reversed else q[keep]  # h where the polish ended
+    hval = hval.copy()
+    hval[keep] = _wrist(arm, P[own3[keep]], qk[:, 0], qk[:, 1], np.ones(int(keep.sum())))[1]
+    return _collect(
+        n, q[keep], own3[keep], pres[keep], rres[keep], hval[keep], f2[keep], flat, T, arm, tol_p, tol_r
+    )
+
+
+def _conditions(x, own, t1, t2):
+    """The two conditions G1 = R + P c2 + Q s2 and G2 = a + b c2 + c s2 at (t1, t2) [DH angles]
+    (m,) and their Jacobian (m, 2, 2) in (t1, t2)."""
+    c, s = np.cos(t1)[:, None], np.sin(t1)[:, None]
+    v = x[own, :, 0] + x[own, :, 1] * c + x[own, :, 2] * s  # (m, 6): a, b, c, P, Q, R
+    d = -x[own, :, 1] * s + x[own, :, 2] * c
+    c2, s2 = np.cos(t2), np.sin(t2)
+    G = np.stack([v[:, 5] + v[:, 3] * c2 + v[:, 4] * s2, v[:, 0] + v[:, 1] * c2 + v[:, 2] * s2], axis=1)
+    J = np.empty((len(t1), 2, 2))
+    J[:, 0, 0], J[:, 0, 1] = d[:, 5] + d[:, 3] * c2 + d[:, 4] * s2, -v[:, 3] * s2 + v[:, 4] * c2
+    J[:, 1, 0], J[:, 1, 1] = d[:, 0] + d[:, 1] * c2 + d[:, 2] * s2, -v[:, 1] * s2 + v[:, 2] * c2
+    return G, J
+
+
+def _refine_pairs(x, own, t1, t2):
+    """(theta1, theta2) candidates refined by Newton's method on the two unsquared conditions
+    (4 steps, each kept where it reduces them and moves less than 1e-3 rad): a root of the
+    squared eliminant is only as accurate as F is steep, the conditions are not squared."""
+    G, J = _conditions(x, own, t1, t2)
+    err = np.abs(G).sum(axis=1)
+    for _ in range(4):
+        det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
+        with np.errstate(invalid="ignore", divide="ignore"):  # (Cramer's rule; det = 0: no step)
+            step = np.stack([G[:, 0] * J[:, 1, 1] - G[:, 1] * J[:, 0, 1],
+                             J[:, 0, 0] * G[:, 1] - J[:, 1, 0] * G[:, 0]], axis=1) / det[:, None]
+        ok = np.all(np.isfinite(step), axis=1) & (np.abs(step).max(axis=1) <= 1e-3)
+        n1, n2 = t1 - np.where(ok, step[:, 0], 0.0), t2 - np.where(ok, step[:, 1], 0.0)
+        Gn, Jn = _conditions(x, own, n1, n2)
+        en = np.abs(Gn).sum(axis=1)
+        better = ok & (en < err)
+        t1, t2 = np.where(better, n1, t1), np.where(better, n2, t2)
+        G, J = np.where(better[:, None], Gn, G), np.where(better[:, None, None], Jn, J)
+        err = np.where(better, en, err)
+    return t1, t2
+
+
+def _free_theta2(x, th1):
+    """theta1 [DH angle] (n, 8) where a, b, c, P, Q and R all vanish (theta2 free,
+    docs/IK_CLASS.md section 5 C), or NaN: each root of the eliminant refined by Gauss-Newton on
+    the six first-degree polynomials, kept if all six vanish to 1e-9 of their coefficients.
+    (The kernel finds these angles in closed form; here they come from the eigenvalues.)"""
+    t = th1.copy()
+    for _ in range(8):
+        c, s = np.cos(t)[..., None], np.sin(t)[..., None]
+        v = x[:, None, :, 0] + x[:, None, :, 1] * c + x[:, None, :, 2] * s  # (n, 8, 6)
+        dv = -x[:, None, :, 1] * s + x[:, None, :, 2] * c
+        with np.errstate(invalid="ignore", divide="ignore"):
+            step = np.sum(v * dv, -1) / np.sum(dv * dv, -1)
+        t = t - np.where(np.abs(step) < 1e-2, step, 0.0)
+    c, s = np.cos(t)[..., None], np.sin(t)[..., None]
+    v = np.abs(x[:, None, :, 0] + x[:, None, :, 1] * c + x[:, None, :, 2] * s)
+    size = np.abs(x).reshape(len(x), 2, 9).max(axis=2)  # (a, b, c) and (P, Q, R)
+    with np.errstate(invalid="ignore"):
+        ok = (v[..., :3].sum(-1) <= L.VANISH * size[:, None, 0]) & (
+            v[..., 3:].sum(-1) <= L.VANISH * size[:, None, 1]
+        )
+    return np.where(ok, t, np.nan)
+
+
+def _theta2_free_rows(arm: Arm, P, x, th1, flat):
+    """Candidates (solver joints (m, 6), owners (m,), h (m,), is the continuum's representative
+    (m,)) of every theta2 continuum at each distinct theta1 of :func:`_free_theta2`: joint 2 at 0
+    (the representatives) and where a theta3 continuum may cross (:func:`_aligned_theta2`),
+    both wrist branches; None if there is none."""
+    t = np.where(flat[:, None], np.nan, _free_theta2(x, th1))
+    own, col = np.nonzero(~np.isnan(t))
+    if len(own) == 0:
+        return None
+    pairs = []
+    for i, tt in zip(own, t[own, col], strict=True):
+        if not any(i == j and abs(_wrap(tt - u)) <= 1e-9 for j, u in pairs):
+            pairs.append((i, tt))
+    own = np.repeat([i for i, _ in pairs], 6)
+    rows = arm.solver.rows
+    q1 = np.repeat([u - rows[0][4] for _, u in pairs], 6)
+    q2 = np.concatenate([_aligned_theta2(arm, P[i], u - rows[0][4]) for i, u in pairs])
+    wr, h = _wrist(arm, P[own], q1, q2, np.tile([1.0, -1.0], 3 * len(pairs)))
+    first = np.tile([True, True, False, False, False, False], len(pairs))
+    return np.column_stack([q1, q2, wr]), own, h, first
+
+
+def _aligned_theta2(arm: Arm, P, q1):
+    """Solver joint 2 values (6,) on a theta2 continuum at solver joint 1 = q1: 0 (twice, one
+    per wrist branch), and (twice each) where axis 3 turns closest to z6 and to -z6, found by
+    minimising and maximising z3 . z6 over a grid refined by golden sections (where z3 is
+    along z6 a theta3 continuum crosses)."""
+    rows = arm.solver.rows
+    z6 = P[:3, 2]
+
+    def dot(q2):
+        F = _link(rows[0], np.full(np.shape(q2), q1)) @ _link(rows[1], q2) @ _link(
+            rows[2], np.full(np.shape(q2), -rows[2][4])
+        )
+        return F[..., :3, 2] @ z6
+
+    grid = np.linspace(-np.pi, np.pi, 73)
+    d = dot(grid)
+    out = [0.0, 0.0]
+    for sgn in (1.0, -1.0):
+        k = int(np.argmax(sgn * d))
+        lo, hi = grid[k] - 2 * np.pi / 72, grid[k] + 2 * np.pi / 72
+        for _ in range(60):
+            m1, m2 = hi - 0.618 * (hi - lo), lo + 0.618 * (hi - lo)
+            if sgn * dot(np.array(m1)) >= sgn * dot(np.array(m2)):
+                hi = m2
+            else:
+                lo = m1
+        out += [0.5 * (lo + hi)] * 2
+    return np.array(out)
+
+
+def _on_theta2_curve(a, b, T, arm: Arm) -> bool:
+    """Is b a member of the theta2 continuum of row a: solver joint 1 equal to 1e-6 rad and b the
+    closed-form configuration at a's joint 1 and b's joint 2 on a's wrist branch (to 1e-6 rad)?"""
+    rev = arm.solver.reversed
+    sa, sb = (a[::-1], b[::-1]) if rev else (np.asarray(a), np.asarray(b))
+    if abs(_wrap(sa[0] - sb[0])) > 1e-6:
+        return False
+    P = _solver_poses(np.asarray(T)[None], arm)
+    br = np.array([1.0, -1.0])
+    wa, _ = _wrist(arm, np.repeat(P, 2, 0), np.full(2, sa[0]), np.full(2, sa[1]), br)
+    mine = np.flatnonzero(np.max(np.abs(_wrap(wa - sa[2:])), axis=1) <= 1e-6)
+    if len(mine) == 0:
+        return False
+    wb, _ = _wrist(arm, P, np.array([sa[0]]), np.array([sb[1]]), br[mine[:1]])
+    return bool(np.max(np.abs(_wrap(wb[0] - sb[2:]))) <= 1e-6)
 
 
 def _restarts(qs, own, hval, near):
     """Near the collinear continuum joint 3 is fixed only loosely by the pose and the closed
-    forms place it poorly: each such candidate (solver joints) is also started from 8 angles
-    of joint 3 around the circle, joint 6 turned with it (both ways)."""
+    forms place it poorly: each such candidate (solver joints) is also started from RESTARTS
+    angles of joint 3 around the circle, joint 6 turned with it (both ways). (The tube around
+    a continuum broken by 1e-9 rad is thin: a start farther than ~0.3 rad from a solution along
+    it may not reach it within the polish's iterations; the kernel starts from 8 angles with
+    the coupling's sign, from a joint 3 placed by the closed forms.)"""
     idx = np.flatnonzero(hval <= near)
     if len(idx) == 0:
         return qs, own, hval
     extra = []
-    for k in range(1, 8):
+    for k in range(1, RESTARTS):
         for sg in (1.0, -1.0):
             e = qs[idx].copy()
-            e[:, 2] += k * np.pi / 4
-            e[:, 5] += sg * k * np.pi / 4
+            e[:, 2] += k * 2 * np.pi / RESTARTS
+            e[:, 5] += sg * k * 2 * np.pi / RESTARTS
             extra.append(e)
     reps = len(extra)
     return (
@@ -338,20 +498,22 @@ def _snap(arm: Arm, q, T, tol_p, tol_r):
     return qn[0] if pr[0] <= tol_p and rr[0] <= tol_r else None
 
 
-def _collect(n, q, own, pres, rres, hval, flat, T, arm, tol_p, tol_r):
-    """Distinct rows per pose, continua flagged, in the kernel's layout."""
+def _collect(n, q, own, pres, rres, hval, f2, flat, T, arm, tol_p, tol_r):
+    """Distinct rows per pose, continua flagged (theta2 continua first), in the kernel's layout."""
     M = L.MAX_SOLUTIONS
     Q, V, F = np.full((n, M, 6), np.nan), np.zeros((n, M), bool), np.zeros((n, M), int)
     Pr, Rr = np.full((n, M), np.nan), np.full((n, M), np.nan)
-    near = 30.0 * np.sqrt(max(tol_p / arm.reach, tol_r))
+    near = L.CONTINUUM_NEAR * np.sqrt(max(tol_p / arm.reach, tol_r))
     for i in range(n):
         idx = np.flatnonzero(own == i)
-        idx = idx[np.argsort(pres[idx] + rres[idx], kind="stable")]
+        idx = idx[np.lexsort((pres[idx] + rres[idx], ~f2[idx]))]
         idx = _coarse_distinct(q, idx)
         kept, kinds = [], []
         for j in idx:
             row, kind = q[j], L.FREE_NONE
-            if flat[i]:
+            if f2[j]:
+                kind = L.FREE_Q2
+            elif flat[i]:
                 kind = L.FREE_Q1
             elif hval[j] <= near:
                 snapped = _snap(arm, row, T[i], tol_p, tol_r)
@@ -390,6 +552,10 @@ def _same(a, b, kb, ka, T, arm, tol_p, tol_r) -> bool:
     chain agree to 1e-3, the tube or curve between them checked by the kernel's rules)."""
     if np.max(np.abs(_wrap(a - b))) <= L.DISTINCT_TOL:
         return True
+    if L.FREE_Q2 in (ka, kb) and L.FREE_Q3 not in (ka, kb):  # (crossing continua are both kept)
+        c, d = (b, a) if kb == L.FREE_Q2 else (a, b)
+        if _on_theta2_curve(c, d, T, arm):
+            return True
     if ka == kb and ka in (L.FREE_Q3, L.FREE_NUMERICAL, L.FREE_Q1):
         rev = arm.solver.reversed
         fixed = [5, 4] if rev else [0, 1]

@@ -142,8 +142,10 @@ class IKResult:
     """All inverse-kinematics solutions of one pose.
 
     Attributes:
-        q: Joint angles (k, 6) [rad], each wrapped to (-pi, pi]; k may be 0.
-            Deterministic order (lexicographic in theta1, theta2, ... rounded to 1e-9 rad).
+        q: Joint angles (k, 6) [rad], each wrapped to (-pi, pi], or turned by 2 pi into the
+            joint limits where the wrapped angle is outside them and the turned one inside
+            (limits not centred on 0, e.g. the CRX's joint 3, -71 .. 251 deg); k may be 0.
+            Deterministic order (lexicographic in the wrapped angles rounded to 1e-9 rad).
         position_residual: (k,) |p_fk(q) - p| [m], against the pose as given.
         rotation_residual: (k,) rotation angle between R_fk(q) and R as given [rad]
             (:func:`iik.rotations.rotation_angle`; includes ``rotation_projection``).

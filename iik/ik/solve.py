@@ -26,6 +26,7 @@ from ..arm import LIMIT_TOL, Arm
 from ..errors import InvalidInputError
 from . import layout as L
 from . import poses as _poses
+from .angles import into_limits
 from .options import DEFAULT_OPTIONS, IKOptions
 from .result import Certificate, Continuum, IKBatch, IKResult
 
@@ -145,8 +146,8 @@ def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, metho
         from .reference import solve_arrays
 
         Q, V, F, _P, _R = solve_arrays(Tu, arm, tol_p=opts.position_tol, tol_r=opts.rotation_tol)
-    with np.errstate(invalid="ignore"):  # (NaN padding is outside)
-        inside = np.all((Q >= arm.q_min - LIMIT_TOL) & (Q <= arm.q_max + LIMIT_TOL), axis=2) & V
+    Q, inside = into_limits(Q, arm.q_min, arm.q_max, LIMIT_TOL)
+    inside &= V
     keep = inside if within else V
     hdr[good, L.H_TOTAL] = V.sum(axis=1)
     for gi, i in enumerate(good):  # rows are sorted valid-first: keep them in order
@@ -269,12 +270,17 @@ _FREE_JOINTS = {
 }
 
 
-def _certificate(h: np.ndarray) -> Certificate:
-    path = int(h[L.H_PATH])
-    cert = int(h[L.H_CERT])
-    if path < 0:
-        return Certificate()
-    return Certificate(
+_CERTIFICATES: dict[tuple, Certificate] = {}
+
+
+def _certificate(h) -> Certificate:
+    """The :class:`Certificate` of a header row (a list; built once per distinct value)."""
+    key = tuple(h[L.H_PATH : L.H_CERT + 1])
+    hit = _CERTIFICATES.get(key)
+    if hit is not None:
+        return hit
+    path, cert = int(h[L.H_PATH]), int(h[L.H_CERT])
+    out = Certificate() if path < 0 else Certificate(
         path=L.PATH_NAMES[path],
         certified=cert == L.CERT_OK,
         roots=int(h[L.H_ROOTS]),
@@ -282,6 +288,10 @@ def _certificate(h: np.ndarray) -> Certificate:
         near=int(h[L.H_NEAR]),
         reason="" if cert == L.CERT_OK else L.CERT_NAMES[cert],
     )
+    if len(_CERTIFICATES) > 4096:
+        _CERTIFICATES.clear()
+    _CERTIFICATES[key] = out
+    return out
 
 
 def _results(
@@ -295,7 +305,7 @@ def _results(
     rev = arm.solver.reversed
     out = []
     make = IKResult.trusted
-    for i, h in enumerate(hdr):
+    for i, h in enumerate(hdr.tolist()):
         k = int(h[L.H_COUNT])
         if h[L.H_FREE]:
             kinds = info[i, :k, L.I_FREE].astype(int).tolist()
@@ -329,7 +339,43 @@ def _results(
                 _certificate(h),
             )
         )
+        if within_only and h[L.H_FREE] and not within[i, :k].all():
+            out[-1] = _theta2_inside(out[-1], Tb[i], arm)
     return out
+
+
+def _theta2_inside(r: IKResult, T: np.ndarray, arm: Arm) -> IKResult:
+    """With ``within_limits``: each theta2 continuum row outside the limits (the kernel keeps
+    them) replaced by a member inside them, or left out if none is found."""
+    import dataclasses
+
+    from .compare import pose_residuals
+    from .members import inside_member
+
+    keep, rows, conts = [], [], []
+    for i, cs in enumerate(r.continua):
+        if r.within_limits[i]:
+            keep.append(i)
+            rows.append(r.q[i])
+            conts.append(cs)
+        elif cs and cs[0].kind == "theta2":
+            m = inside_member(cs[0])
+            if m is not None:
+                m = _ro(m)
+                keep.append(i)
+                rows.append(m)
+                conts.append((dataclasses.replace(cs[0], representative=m),))
+    if len(keep) == r.count:
+        return r
+    Q = np.array(rows).reshape(-1, 6)
+    pres, rres = pose_residuals(Q, np.broadcast_to(T, (len(Q), 4, 4)), arm)
+    return dataclasses.replace(
+        r, q=Q, position_residual=pres, rotation_residual=rres, within_limits=np.ones(len(Q), bool),
+        free_joints=tuple(r.free_joints[i] for i in keep), approximate=r.approximate[keep],
+        continua=tuple(conts),
+        reason=r.reason or ("" if len(Q) else "no solution within the joint limits (a theta2 continuum "
+                                              "has no member inside them)"),
+    )
 
 
 def _ro(a: np.ndarray) -> np.ndarray:
@@ -367,7 +413,7 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
     Q = np.array(rows).reshape(-1, 6)
     pres, rres = pose_residuals(Q, np.broadcast_to(T, (len(Q), 4, 4)), arm) if len(Q) else (np.zeros(0),) * 2
     free = tuple(_FREE_JOINTS[L.FREE_Q1](arm.solver.reversed) if c else () for c in conts)
-    inside = arm.within_limits(Q) if len(Q) else np.zeros(0, bool)
+    Q, inside = into_limits(Q, arm.q_min, arm.q_max, LIMIT_TOL)
     reason = "" if len(Q) else _reason(0, int(h[L.H_TOTAL]), False, h[L.H_BEST_P], h[L.H_BEST_R], opts)
     return IKResult.trusted(
         _ro(Q),
@@ -423,9 +469,30 @@ def solve(
         if batched:
             raise InvalidInputError("T", f"expected one (4, 4) pose, got shape {Tb.shape}; use solve_many")
     q, info, flags, hdr = _run(Tb, arm, opts, within_limits, method)
-    if hdr[0, L.H_STATUS] != _poses.OK:
+    h = hdr[0].tolist()
+    if h[L.H_STATUS] != _poses.OK:
         _raise_first_bad(hdr, "T", False, opts)
+    if method == "complete" and h[L.H_COUNT] and not (h[L.H_FREE] or h[L.H_APPROX]) and (
+        h[L.H_PATH] != L.PATH_DEGENERATE
+    ):
+        return _isolated_result(q, info, flags, h)
     return _results(Tb, q, info, flags, hdr, method, opts, arm, within_limits)[0]
+
+
+_EMPTY = tuple(((),) * k for k in range(L.MAX_SOLUTIONS + 1))
+
+
+def _isolated_result(q, info, flags, h) -> IKResult:
+    """:func:`_results` for one pose whose rows are all isolated exact solutions (the usual
+    case), with less Python: what a single call's time is mostly made of."""
+    k = int(h[L.H_COUNT])
+    for a in (q, info, flags):
+        a.setflags(write=False)
+    f = flags[0, :k]
+    return IKResult.trusted(
+        q[0, :k], info[0, :k, L.I_PRES], info[0, :k, L.I_RRES], f[:, 0], _EMPTY[k], "", "complete",
+        f[:, 1], _EMPTY[k], h[L.H_PROJECTION], _certificate(h),
+    )
 
 
 def solve_many(

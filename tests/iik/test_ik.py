@@ -147,6 +147,27 @@ def test_issue_example_axis_continuum_is_flagged_with_joint1_and_its_interval():
     assert contains(r, q, T, ARM)
 
 
+@pytest.mark.parametrize("distance", [0.0, 1e-9, 1e-7, 1e-6])
+def test_issue_item5_tool_point_at_the_base_loses_nothing(distance):
+    """Issue 17 item 5: a tool point within 1e-6 m of the base lost solutions in the kernel and
+    the reference. Configurations with the tool point at ``distance`` from the base origin
+    (found by least squares from three starts): both methods return each generating q."""
+    from scipy.optimize import least_squares
+
+    rng = np.random.default_rng(17)
+    for _ in range(3):
+        d = rng.normal(size=3)
+        d *= distance / np.linalg.norm(d)
+        fit = least_squares(lambda x, d=d: iik.fk(x, ARM)[:3, 3] - d, rng.uniform(LO, HI), xtol=1e-15,
+                            ftol=1e-15, gtol=1e-15)
+        q = fit.x
+        T = iik.fk(q, ARM)
+        assert abs(np.linalg.norm(T[:3, 3]) - distance) <= 1e-12
+        for method in ("complete", "reference"):
+            r = iik.solve(T, ARM, method=method, within_limits=False)
+            assert contains(r, q, T, ARM), (method, q.tolist(), r.q)
+
+
 # ----------------------------------------------------------------------------- continua
 def test_collinear_continuum_inside_table_i_with_its_interval():
     """theta4 = theta5 = 0 inside Table I: one row for the continuum, inside Table I; the fixed

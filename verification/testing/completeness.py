@@ -23,12 +23,15 @@ import numpy as np
 from iik.arm import Arm
 from verification.oracles.multistart import OracleSolutions, pose_residuals_np, project
 
-__all__ = ["SAME", "NEAR", "contains", "Coverage", "coverage"]
+__all__ = ["SAME", "NEAR", "AGREE", "contains", "Coverage", "coverage", "Agreement", "agreement"]
 
 #: Rows within this of q [rad] are q.
 SAME = 1e-7
 #: Rows within this [rad] joined to q by a segment within the tolerance are q.
 NEAR = 1e-2
+#: Two IK answers agree when each row of one is within this of a row of the other [rad] (or
+#: connected to it, or on one of its continua): issue 17's "same solution sets within 1e-9".
+AGREE = 1e-9
 _SEGMENT = np.linspace(0.0, 1.0, 17)[1:-1]
 
 
@@ -48,30 +51,31 @@ def _connected(a, b, T, arm: Arm, tol) -> bool:
     pres, rres = pose_residuals_np(arm, pts, T)
     if np.all(pres <= tol[0]) and np.all(rres <= tol[1]):
         return True
-    moved = project(arm, pts, T)
+    moved = project(arm, pts, T, iterations=30)  # (a curved valley at a singularity converges slowly)
     pres, rres = pose_residuals_np(arm, moved, T)
     shift = np.max(np.abs(_wrap(moved - pts)), axis=1)
     return bool(np.all(pres <= tol[0]) and np.all(rres <= tol[1]) and np.all(shift <= size))
 
 
-def _same_or_connected(rows, q, T, arm, tol) -> bool:
+def _same_or_connected(rows, q, T, arm, tol, same=SAME) -> bool:
     if len(rows) == 0:
         return False
     dist = np.max(np.abs(_wrap(np.asarray(rows) - q)), axis=1)
-    if np.min(dist) <= SAME:
+    if np.min(dist) <= same:
         return True
     return any(_connected(rows[i], q, T, arm, tol) for i in np.argsort(dist)[:3] if dist[i] <= NEAR)
 
 
-def contains(result, q, T, arm: Arm, tol=(1e-10, 1e-10)) -> bool:
-    """Does the IK answer ``result`` contain the configuration q (6,) of pose T (see the module)?"""
+def contains(result, q, T, arm: Arm, tol=(1e-10, 1e-10), same: float = SAME) -> bool:
+    """Does the IK answer ``result`` contain the configuration q (6,) of pose T (see the module;
+    ``same``: the distance [rad] within which a row is q)?"""
     q = np.asarray(q, dtype=float)
-    if _same_or_connected(result.q, q, T, arm, tol):
+    if _same_or_connected(result.q, q, T, arm, tol, same):
         return True
     for row in result.continua:
         for c in row:
             m = c.member(float(q[c.free_joint - 1]))
-            if _same_or_connected(m[None], q, T, arm, tol):
+            if _same_or_connected(m[None], q, T, arm, tol, same):
                 return True
     return False
 
@@ -99,3 +103,30 @@ def coverage(result, oracle: OracleSolutions, T, arm: Arm, tol=(1e-10, 1e-10)) -
         pres, rres = pose_residuals_np(arm, result.q, T)
         wrong = tuple(int(i) for i in np.flatnonzero((pres > tol[0]) | (rres > tol[1])))
     return Coverage(np.array(missed).reshape(-1, 6), wrong, len(oracle.q))
+
+
+@dataclass(frozen=True)
+class Agreement:
+    """Two IK answers of one pose compared as sets (:func:`agreement`).
+
+    Attributes:
+        only_a: Rows (indices) of the first answer the second does not contain.
+        only_b: Rows (indices) of the second answer the first does not contain.
+    """
+
+    only_a: tuple[int, ...]
+    only_b: tuple[int, ...]
+
+    @property
+    def same(self) -> bool:
+        """Do the two answers hold the same solutions?"""
+        return not self.only_a and not self.only_b
+
+
+def agreement(a, b, T, arm: Arm, tol=(1e-10, 1e-10), same: float = AGREE) -> Agreement:
+    """Compare two IK answers of pose T as sets: every row of each is within ``same`` [rad] of
+    a row of the other, connected to one within the tolerance, or on one of its continua (and
+    a continuum row of one is a member of the other's continuum or one of its rows)."""
+    only_a = tuple(i for i, q in enumerate(a.q) if not contains(b, q, T, arm, tol, same))
+    only_b = tuple(i for i, q in enumerate(b.q) if not contains(a, q, T, arm, tol, same))
+    return Agreement(only_a, only_b)
