@@ -2,8 +2,7 @@
 
 Reads the library's and the benchmarks' code for a hand-written wrap (``(x + pi) % 2pi - pi``,
 ``pi - (pi - x) % 2pi``, ``np.mod(... pi ...)``, ``math.remainder``, ``angle(exp(1j x))``).
-``PENDING`` are the files of the IK kernel's rework (issue 17) that still carry their own copy; they
-switch to the one wrap (the kernel compiling it from the same source) there. No other file may add one.
+The compiled kernel compiles :func:`iik.ik.angles.wrap` from its source; no other file may add one.
 """
 
 from __future__ import annotations
@@ -13,8 +12,6 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 HOME = "iik/ik/angles.py"
-PENDING = {"iik/ik/kernel.py", "iik/ik/members.py", "iik/ik/reference.py", "iik/ik/result.py",
-           "verification/testing/completeness.py", "verification/testing/families.py"}
 PI = r"(?:np|math)\.pi"
 TURN = rf"\(?(?:2 *\* *{PI}|_?TWO_PI|(?:np|math)\.tau)\)?"
 WRAP = re.compile(rf"\+ *{PI}\)? *% *{TURN}|{PI} *- *\(*(?:np\.mod\(|{PI} *- )|np\.mod\([^)]*{PI}"
@@ -35,7 +32,25 @@ def test_angles_are_wrapped_in_one_place():
     files = [p for d in ("iik", "hardware", "verification", "benchmarks") for p in (ROOT / d).rglob("*.py")]
     found = wraps(files)
     assert HOME in found, "the scan no longer sees the one wrap"
-    assert set(found) - {HOME} - PENDING == set(), found
+    assert set(found) - {HOME} == set(), found
+
+
+def test_the_kernel_compiles_the_one_wrap():
+    """The kernel's wrap is :func:`iik.ik.angles.wrap` compiled, and it agrees with the array form
+    on the edges of the convention (+-pi, +-3 pi, multiples of 2 pi, huge angles, neighbours)."""
+    import numpy as np
+
+    from iik.ik import angles, kernel
+
+    assert kernel.wrap.py_func is angles.wrap
+    edges = np.array([0.0, np.pi, -np.pi, 3 * np.pi, -3 * np.pi, 2 * np.pi, -2 * np.pi, 1e6, -1e6, 1e300])
+    xs = np.concatenate([edges, np.nextafter(edges, np.inf), np.nextafter(edges, -np.inf),
+                         np.random.default_rng(0).uniform(-20, 20, 200)])
+    compiled = np.array([kernel.wrap(x) for x in xs])
+    plain = np.array([angles.wrap(x) for x in xs])
+    assert np.array_equal(compiled, plain)
+    assert np.all((plain > -np.pi) & (plain <= np.pi))
+    assert np.allclose(plain, angles.wrap_angle(xs), rtol=0, atol=1e-12 * np.maximum(1, np.abs(xs)))
 
 
 def test_the_scan_sees_each_form(tmp_path):

@@ -2,15 +2,34 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["wrap_angle", "angle_distance", "into_limits"]
+__all__ = ["wrap", "wrap_angle", "angle_distance", "into_limits"]
 
 _TWO_PI = 2.0 * np.pi
 
 
+def wrap(x: float) -> float:
+    """One angle [rad] wrapped to (-pi, pi]: the project's one wrap, for a float.
+
+    Plain Python on purpose: the compiled IK kernel compiles this very function
+    (``iik/ik/kernel.py``), so the kernel and the NumPy code share one rule. One addition for
+    ``|x| <= 3 pi`` (the usual case); :func:`wrap_angle` is the same rule for arrays (tested equal).
+    """
+    if x > math.pi:
+        if x <= 3.0 * math.pi:
+            return x - _TWO_PI
+    elif x > -math.pi:
+        return x
+    elif x > -3.0 * math.pi:
+        return x + _TWO_PI
+    return math.pi - ((math.pi - x) % _TWO_PI)
+
+
 def wrap_angle(x):
-    """Angles [rad] wrapped to (-pi, pi] (NumPy arrays or floats)."""
+    """Angles [rad] wrapped to (-pi, pi] (NumPy arrays or floats): :func:`wrap`'s rule, vectorised."""
     return np.pi - np.mod(np.pi - x, _TWO_PI)
 
 

@@ -48,6 +48,7 @@ import numba
 import numpy as np
 from numba.core import caching as _nb_caching
 
+from . import angles as _angles
 from . import bernstein as _bz
 from . import chain as _ch
 from . import ddarith as _dd
@@ -71,7 +72,8 @@ __all__ = [
 
 # ----------------------------------------------------------------------------- cache
 #: Every source file whose code the kernel compiles (the cache key hashes them all).
-SOURCES = (__file__, _bz.__file__, _ch.__file__, _dd.__file__, _em.__file__, _el.__file__, L.__file__)
+SOURCES = (__file__, _angles.__file__, _bz.__file__, _ch.__file__, _dd.__file__, _em.__file__, _el.__file__,
+           L.__file__)
 
 
 def _digest() -> str:
@@ -326,17 +328,7 @@ CONNECTED = 1e-3
 NEAR_FACTOR = 64.0
 
 
-@_inner
-def wrap(x):
-    """Angle wrapped to (-pi, pi] (one addition for |x| <= 3 pi, the usual case)."""
-    if x > math.pi:
-        if x <= 3.0 * math.pi:
-            return x - _TWO_PI
-    elif x > -math.pi:
-        return x
-    elif x > -3.0 * math.pi:
-        return x + _TWO_PI
-    return math.pi - ((math.pi - x) % _TWO_PI)
+wrap = _inner(_angles.wrap)  # the project's one wrap (iik/ik/angles.py), compiled from its source
 
 
 # ----------------------------------------------------------------------------- pose input

@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from .angles import into_limits
+from .angles import angle_distance, into_limits
 
 __all__ = [
     "follow",
@@ -113,7 +113,7 @@ def _march_closed(c, thetas: np.ndarray):
         if m == 0:
             qs[i] = prev
             continue
-        d = np.max(np.abs(np.mod(out_q[i, :m] - prev + np.pi, 2 * np.pi) - np.pi), axis=1)
+        d = angle_distance(out_q[i, :m], prev)
         good = (out_r[i, :m, 0] <= c.tolerance[0]) & (out_r[i, :m, 1] <= c.tolerance[1])
         b = int(np.argmin(np.where(good, d, d + 10.0)))
         qs[i], rs[i], prev = out_q[i, b], out_r[i, b], out_q[i, b]
@@ -151,7 +151,7 @@ def _inside(arm, q):
 def _good(c, q, r, prev) -> bool:
     inside = _inside(c.arm, q)[1]
     tp, tr = c.tolerance
-    near = float(np.max(np.abs(np.mod(q - prev + np.pi, 2 * np.pi) - np.pi))) <= _JUMP
+    near = float(angle_distance(q, prev)) <= _JUMP
     return inside and r[0] <= tp and r[1] <= tr and near
 
 
@@ -201,7 +201,7 @@ def along(c) -> tuple[np.ndarray, np.ndarray]:
         q, r = march(c, path)
         prev = members[0]
         for i, th in enumerate(path):
-            if float(np.max(np.abs(np.mod(q[i] - prev + np.pi, 2 * np.pi) - np.pi))) > _JUMP:
+            if float(angle_distance(q[i], prev)) > _JUMP:
                 break
             if r[i, 0] <= tp and r[i, 1] <= tr:
                 thetas.append(float(th))
@@ -226,7 +226,7 @@ def on_continuum(c, q, tol: float = 1e-7) -> bool:
     """Is the configuration q (6,) a member of continuum c (its member at q's free joint)?"""
     m, r = follow(c, [float(q[c.free_joint - 1])])
     return bool(
-        np.max(np.abs(np.mod(m[0] - q + np.pi, 2 * np.pi) - np.pi)) <= tol
+        angle_distance(m[0], q) <= tol
         and r[0, 0] <= c.tolerance[0]
         and r[0, 1] <= c.tolerance[1]
     )
@@ -238,7 +238,7 @@ def _continues(c) -> bool:
     x = float(c.representative[j])
     for th in (x - STEP, x + STEP):
         m, r = follow(c, [th])
-        jump = float(np.max(np.abs(np.mod(m[0] - c.representative + np.pi, 2 * np.pi) - np.pi)))
+        jump = float(angle_distance(m[0], c.representative))
         if not (r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1] and jump <= 2.0):
             return False
     return True

@@ -29,6 +29,7 @@ import numpy as np
 from ..arm import Arm
 from ..dh import dh_chain
 from . import layout as L
+from .angles import wrap_angle as _wrap
 from .elimination import pose_terms
 
 __all__ = ["solve_arrays", "IMAG_TOL", "POSITION_TOL", "ROTATION_TOL"]
@@ -46,10 +47,6 @@ RESTART_H = L.RESTART_H
 RESTARTS = 24
 _TWO_PI = 2.0 * np.pi
 _GRID = np.arange(12) * (_TWO_PI / 12)
-
-
-def _wrap(x):
-    return np.pi - np.mod(np.pi - x, _TWO_PI)
 
 
 # ----------------------------------------------------------------------------- chain (NumPy)

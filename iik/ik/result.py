@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import UnreachablePoseError
+from .angles import wrap
 
 __all__ = ["IKResult", "IKBatch", "Continuum", "Certificate"]
 
@@ -81,7 +82,7 @@ class Continuum:
             return math.nan
         r = self.representative
         x = float(r[self.free_joint - 1] - self.sign * r[self.coupled_joint - 1])
-        return float(math.pi - (math.pi - x) % (2 * math.pi))
+        return wrap(x)
 
     def member(self, theta: float) -> np.ndarray:
         """The member with the free joint at ``theta`` [rad] (6,) (angles wrapped)."""
@@ -89,7 +90,7 @@ class Continuum:
         if self.kind == "collinear":
             q = np.array(self.representative, dtype=float)
             j, k = self.free_joint - 1, self.coupled_joint - 1
-            q[k] = math.pi - (math.pi - (q[k] + self.sign * (theta - q[j]))) % (2 * math.pi)
+            q[k] = wrap(q[k] + self.sign * (theta - q[j]))
             q[j] = theta
             return q
         from .members import follow

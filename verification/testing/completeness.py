@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from iik.arm import Arm
+from iik.ik.angles import wrap_angle as _wrap
 from verification.oracles.multistart import OracleSolutions, pose_residuals_np, project
 
 __all__ = ["SAME", "NEAR", "AGREE", "contains", "Coverage", "coverage", "Agreement", "agreement"]
@@ -33,10 +34,6 @@ NEAR = 1e-2
 #: connected to it, or on one of its continua): issue 17's "same solution sets within 1e-9".
 AGREE = 1e-9
 _SEGMENT = np.linspace(0.0, 1.0, 17)[1:-1]
-
-
-def _wrap(x):
-    return np.pi - np.mod(np.pi - x, 2 * np.pi)
 
 
 def _connected(a, b, T, arm: Arm, tol) -> bool:

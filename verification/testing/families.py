@@ -41,6 +41,7 @@ import numpy as np
 import iik
 from iik.arm import Arm
 from iik.extras import require
+from iik.ik.angles import wrap
 
 __all__ = [
     "Family",
@@ -311,7 +312,7 @@ def _continuum_angles(arm: Arm, qs: np.ndarray):
 
 
 def _nearest_mod_pi(phi, t):
-    return min((phi, phi + math.pi), key=lambda x: abs(math.remainder(x - t, 2 * math.pi)))
+    return min((phi, phi + math.pi), key=lambda x: abs(wrap(x - t)))
 
 
 def _on_continuum(arm, rng, n):
