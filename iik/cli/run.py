@@ -68,10 +68,11 @@ def run(args) -> int:
 
 def _targets(args):  # -> hardware.StepTargets of the one source given
     from hardware import sources
-    from iik.errors import InvalidInputError
+    from iik.errors import InvalidInputError, Remedy
 
     if sum((args.scenario is not None, args.trajectory is not None, args.demo)) != 1:
-        raise InvalidInputError("run", "give exactly one of SCENARIO, --trajectory FILE or --demo")
+        raise InvalidInputError("run", "no trajectory or more than one",
+                                Remedy("give exactly one of {}", ("scenario", "trajectory", "demo")))
     sources.check_speed(args.speed)  # before a scenario is planned
     arm = chosen_arm(args, data=args.scenario is not None)
     if args.scenario is not None:

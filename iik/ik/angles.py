@@ -29,8 +29,13 @@ def wrap(x: float) -> float:
 
 
 def wrap_angle(x):
-    """Angles [rad] wrapped to (-pi, pi] (NumPy arrays or floats): :func:`wrap`'s rule, vectorised."""
-    return np.pi - np.mod(np.pi - x, _TWO_PI)
+    """Angles [rad] wrapped to (-pi, pi] (NumPy arrays or floats): :func:`wrap`'s rule, vectorised
+    (equal to it bit for bit; an angle already in (-pi, pi] is returned unchanged)."""
+    x = np.asarray(x, dtype=float)
+    near = np.where(x > np.pi, x - _TWO_PI, np.where(x > -np.pi, x, x + _TWO_PI))
+    with np.errstate(invalid="ignore"):
+        far = (x > 3.0 * np.pi) | (x <= -3.0 * np.pi)
+        return np.where(far, np.pi - np.mod(np.pi - x, _TWO_PI), near)[()]
 
 
 def angle_distance(a, b) -> np.ndarray:

@@ -14,6 +14,7 @@ from hypothesis import strategies as st
 
 import iik
 import iik.arms
+from iik.ik.angles import wrap_angle
 from iik.ik.nearest import Candidates
 from verification.testing.families import family, solver_joints, user_joints
 
@@ -163,15 +164,20 @@ def test_theta2_continuum_nearest():
 
 
 def test_windings_reach_joint_ranges_beyond_pi():
-    """CRX-10iA: J3 runs to 251 deg; q3 = 200 deg is returned wrapped (-160 deg, outside the
-    limits). Selection takes the winding inside, and a path there has no switch."""
+    """CRX-10iA: J3 runs to 251 deg, J6 over +-225 deg. q3 = 200 deg comes back as 200 deg (turned
+    into its limits, not wrapped to -160 deg outside them); q6 = 200 deg comes back wrapped
+    (-160 deg, also inside). Selection takes the winding of J6 nearest the previous q, and a path
+    there has no switch."""
     q = np.radians([10.0, 20.0, 200.0, 30.0, 40.0, 200.0])
     T = iik.fk(q, CRX)
     r = iik.solve(T, arm=CRX, within_limits=False)
-    assert not np.any(np.all(np.abs(r.q - q) < 1e-9, axis=1))  # q itself is not a row
+    same = np.all(np.abs(wrap_angle(r.q - q)) < 1e-9, axis=1)
+    assert same.sum() == 1
+    k = int(np.argmax(same))
+    assert abs(r.q[k, 2] - q[2]) < 1e-9 and abs(r.q[k, 5] - (q[5] - 2 * np.pi)) < 1e-9
+    assert r.within_limits[k]
     assert np.allclose(iik.select(r, q, arm=CRX), q, atol=1e-9)
-    cand = Candidates.of(r, arm=CRX)
-    assert len(cand) > int(np.sum(r.within_limits))  # the wrapped row counts, by its winding
+    assert len(Candidates.of(r, arm=CRX)) == int(np.sum(r.within_limits))
     qs = q + np.linspace(0, 1, 15)[:, None] * np.radians([5, -5, 30, 10, 10, 20])
     path = iik.follow_path(iik.fk(qs, CRX), q, arm=CRX)
     assert path.switches == () and np.abs(path.q - qs).max() <= 1e-8
