@@ -69,7 +69,6 @@ def run(args) -> int:
 def _targets(args):  # -> hardware.StepTargets of the one source given
     from hardware import sources
     from iik.errors import InvalidInputError, Remedy
-
     if sum((args.scenario is not None, args.trajectory is not None, args.demo)) != 1:
         raise InvalidInputError("run", "no trajectory or more than one",
                                 Remedy("give exactly one of {}", ("scenario", "trajectory", "demo")))
