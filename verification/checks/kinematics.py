@@ -263,10 +263,11 @@ def eq4_from_table_ii(q, arm=THESIS_ARM) -> np.ndarray:
 
 
 def _nudged(f, index, eps=1e-9):
-    """``f`` with entry ``index`` of its (..., 4, 4) output moved by ``eps`` (a deliberate slip)."""
+    """``f`` with entry ``index`` of its (..., 4, 4) or (..., 3, 3) output moved by ``eps`` (the tolerance
+    test)."""
 
-    def g(q, arm=THESIS_ARM):
-        T = np.array(f(q, arm), dtype=float, copy=True)
+    def g(*args):
+        T = np.array(f(*args), dtype=float, copy=True)
         T[(...,) + index] += eps
         return T
 
@@ -407,12 +408,6 @@ def eq42_zxz(alpha, beta, gamma) -> np.ndarray:
         ],
         -2,
     )
-
-
-def _eq42_nudged(alpha, beta, gamma) -> np.ndarray:
-    R = eq42_zyz(alpha, beta, gamma)
-    R[..., 2, 2] += 1e-9
-    return R
 
 
 # ----------------------------------------------------------------------------- ground truth
@@ -932,20 +927,10 @@ def appendix_b_first_set(ctx, first):
     qs = _samples(ctx, "appb", 2000, 100)
     T01, R12 = first(qs)
     t01_pin = joint_placements(qs)[:, 1]  # joint 1 has no offset: 0_1T is the same in both sets
-    d = max(np.abs(T01 - t01_pin).max(), np.abs(R12 - _first_r12_truth(qs)).max())
+    err = np.maximum(np.abs(T01 - t01_pin).max(axis=(1, 2)),
+                     np.abs(R12 - _first_r12_truth(qs)).max(axis=(1, 2)))
     return [
-        Row.graded(
-            "Appendix B first set ('original transformations', no home offsets): the legible entries.",
-            "App. B, first set (legible part)",
-            f"0_1T (fully legible) vs Pinocchio's frame 1; the rotation rows 1-2 of 1_2T ('c2 -s2 0', "
-            f"'0 0 1') vs Craig's formula on Table II row 2 without its -90 deg offset, {len(qs)} q",
-            None,
-            (Measure("max |printed - truth|", d, TOL_EXACT),),
-            id="appb.first_legible",
-            domain=_JOINT_DOMAIN.format(n=len(qs)),
-            erratum=Erratum("App. B, first set", "0_1T and rows 1-2 of 1_2T as read",
-                            "Craig's formula on Table II rows 1-2, no offsets", f"max entry error {d:.3g}"),
-        ),
+        _FIRST_LEGIBLE.row(Points(qs, _JOINT_DOMAIN.format(n=len(qs)), "rad", "q"), err),
         Row(
             "Appendix B first set ('original transformations', Craig's convention without the home offsets).",
             "App. B, first set",
@@ -959,6 +944,16 @@ def appendix_b_first_set(ctx, first):
             "only the second (home-pose) set can be checked",
         ),
     ]
+
+
+#: The legible entries of App. B's first set.
+_FIRST_LEGIBLE = Formula(
+    "App. B, first set (legible part)", None, None, TOL_EXACT, "", (), id="appb.first_legible",
+    claim="Appendix B first set ('original transformations', no home offsets): the legible entries.",
+    text="0_1T and rows 1-2 of 1_2T as read", corrected="Craig's formula on Table II rows 1-2, no offsets",
+    measure="max |printed - truth|", method="0_1T (fully legible) vs Pinocchio's frame 1; the rotation rows "
+    "1-2 of 1_2T ('c2 -s2 0', '0 0 1') vs Craig's formula on Table II row 2 without its -90 deg offset, "
+    "{n} q")
 
 
 def _first_r12_truth(qs) -> np.ndarray:
@@ -1145,31 +1140,18 @@ def appendix_c(ctx, appc):
     step[:, :5] = h * dq
     fd = (tool_poses(qs + step)[:, :3, 3] - tool_poses(qs - step)[:, :3, 3]) / (2 * h)
     e35 = np.linalg.norm(np.einsum("nij,nj->ni", J, dq) - fd, axis=1)
-    m35 = (Measure("max |J dtheta - dp/dtheta (FD)|", e35.max(), TOL_FD, "m/rad"),)
-    rows.append(
-        Row.graded(
-            "Eq 35: D = J_theta D_theta with the 3x5 Jacobian of App. C (first-order change of the tool "
-            "point).",
-            "Eq 35",
-            f"printed App. C matrix times a random unit joint direction vs the central difference "
-            f"(h = 1e-6 rad) of the Pinocchio tool point along it, {len(qs)} q",
-            f"max |J dtheta - FD| = {e35.max():.1e} m/rad",
-            m35,
-            id="eq35",
-            holds_as=Verdict.IDENTITY,
-            basis="Eq 35 is the definition of the Jacobian (the first-order change of the tool point); with "
-            "the "
-            "App. C entries right (row kinematics.appc) it holds by construction: this re-measures App. C",
-            domain=_JOINT_DOMAIN.format(n=len(qs)) + "; one random unit joint direction per q",
-            erratum=Erratum(
-                "Eq 35 (with App. C)",
-                "J_theta of App. C",
-                "iik.position_jacobian",
-                f"max error {e35.max():.3g} m/rad",
-            ),
-        )
-    )
-    return rows
+    s35 = Points(qs, _JOINT_DOMAIN.format(n=len(qs)) + "; one random unit joint direction per q", "rad", "q")
+    return rows + [_EQ35.row(s35, e35)]
+
+
+#: Eq 35 with the printed App. C matrix (the claim is the index's).
+_EQ35 = Formula(
+    "Eq 35", None, None, TOL_FD, "m/rad", (), text="J_theta of App. C", corrected="iik.position_jacobian",
+    measure="max |J dtheta - dp/dtheta (FD)|",
+    method="printed App. C matrix times a random unit joint direction vs the central difference (h = 1e-6 "
+    "rad) of the Pinocchio tool point along it, {n} q",
+    basis="Eq 35 is the definition of the Jacobian (the first-order change of the tool point); with the App. "
+    "C entries right (row kinematics.appc) it holds by construction: this re-measures App. C")
 
 
 def _appc_figure(ctx, worst_, n) -> str:
@@ -1265,7 +1247,7 @@ def _eq42_compare(ctx, eq42):
                 [[1, 1, 1], [1, 1, 1], [-1, 1, 1]])),
             Slip(SlipKind.SWAP, "alpha and gamma exchanged", lambda a, b, g: eq42_zyz(g, b, a)),
         ),
-        tolerance=Slip(SlipKind.EPSILON, "the good matrix with r33 moved by 1e-9", _eq42_nudged),
+        tolerance=Slip(SlipKind.EPSILON, "the good matrix with r33 moved by 1e-9", _nudged(eq42_zyz, (2, 2))),
     ),
 )
 def eq42_matrix(ctx, eq42):
@@ -1482,6 +1464,15 @@ _GEN_FORMS = dict(
 )
 
 
+def _pose_errors(T, T_ref):
+    """Position error [m] and rotation angle [rad] of the poses ``T`` vs ``T_ref``, and their measures
+    (1e-9 each: a generator that is right)."""
+    dp = np.linalg.norm(T[:, :3, 3] - T_ref[:, :3, 3], axis=1)
+    dr = rotation_angle(T[:, :3, :3], T_ref[:, :3, :3])
+    return dp, dr, (Measure("max |dp|", dp.max(), 1e-9, "m"),
+                    Measure("max rotation angle", dr.max(), 1e-9, "rad"))
+
+
 @SECTION.check(17.0, depends_on=(), forms=Forms(**_GEN_FORMS))
 def ur5_generator_check(ctx, generator):
     """The URDF generator on a robot nobody here wrote: UR5 from its standard DH table."""
@@ -1489,10 +1480,7 @@ def ur5_generator_check(ctx, generator):
     Tg, Tr = ur5_fk_pair(qs, generator=generator)
     B, E = solve_base_tool(Tg[:50], Tr[:50])
     d_solved = max(np.abs(B - UR5_BASE).max(), np.abs(E - UR5_TOOL).max())
-    Tm = UR5_BASE @ Tg @ UR5_TOOL
-    dp = np.linalg.norm(Tm[:, :3, 3] - Tr[:, :3, 3], axis=1)
-    dr = rotation_angle(Tm[:, :3, :3], Tr[:, :3, :3])
-    m = (Measure("max |dp|", dp.max(), 1e-9, "m"), Measure("max rotation angle", dr.max(), 1e-9, "rad"))
+    dp, dr, m = _pose_errors(UR5_BASE @ Tg @ UR5_TOOL, Tr)
     rel = _hist(
         ctx,
         "ur5_errors.png",
@@ -1530,9 +1518,7 @@ def panda_generator_check(ctx, generator):
     Tg, Tr = panda_fk_pair(qs, generator=generator)
     B, E = solve_base_tool(Tg[:50], Tr[:50])
     d_id = max(np.abs(B - np.eye(4)).max(), np.abs(E - np.eye(4)).max())
-    dp = np.linalg.norm(Tg[:, :3, 3] - Tr[:, :3, 3], axis=1)
-    dr = rotation_angle(Tg[:, :3, :3], Tr[:, :3, :3])
-    m = (Measure("max |dp|", dp.max(), 1e-9, "m"), Measure("max rotation angle", dr.max(), 1e-9, "rad"))
+    dp, dr, m = _pose_errors(Tg, Tr)
     return Row.graded(
         "(Project) The DH -> URDF generator maps Craig's modified DH (Table II's convention) right: the "
         "Franka Panda built from its published modified DH table matches example-robot-data's panda.urdf.",
