@@ -19,6 +19,10 @@ given; the tolerance test is the good form moved by ``eps``).
 
 A sample is any object with ``len()``, ``domain`` (the sampled domain in words) and ``at(k)`` (sample
 ``k`` in words, e.g. ``"q = [...] rad"``); :class:`Points` wraps a plain array.
+
+A check that grades several printed items with one form on one sample (Eq 9a-c, Eq 34a-c with Eq 55)
+declares each item as a Formula without form, error or slips (the check's own ``Forms`` hold them) and
+builds its rows with :meth:`Formula.row`: ids, claims and the graded numbers come from the declaration.
 """
 
 from __future__ import annotations
@@ -150,6 +154,7 @@ class Formula:
         id: Local row id; default: the key in lower case without spaces (``"eq16"``).
         name: The check function's name; default: the id.
         depends_on: Assumptions of the row, if not the section's.
+        order: The check's place in its section, if not the key's (a number, as for ``SECTION.check``).
     """
 
     key: str
@@ -175,6 +180,7 @@ class Formula:
     id: str = ""
     name: str = ""
     depends_on: tuple[str, ...] | None = None
+    order: float | None = None
 
     @property
     def rid(self) -> str:

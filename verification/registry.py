@@ -721,7 +721,8 @@ class Section:
 
     def formulas(self, sample: Callable, *formulas) -> dict[str, Callable]:
         """Register each :class:`~verification.formula.Formula` as a check of this section measured on
-        ``sample(ctx)``, at its key's place in the index; return the check functions by row id.
+        ``sample(ctx)``, at its key's place in the index (or its ``order``); return the check functions by
+        row id.
 
         The checks belong to the calling module (their names, row-id prefix and report entries)."""
         module = sys._getframe(1).f_globals.get("__name__", __name__)
@@ -729,7 +730,8 @@ class Section:
         for f in formulas:
             func = f.check(sample)
             func.__module__ = module
-            out[f.rid] = self.check(f.key, forms=f.forms, depends_on=f.depends_on)(func)
+            out[f.rid] = self.check(f.key if f.order is None else f.order, forms=f.forms,
+                                    depends_on=f.depends_on)(func)
         return out
 
 

@@ -162,14 +162,14 @@ EQUATIONS: tuple[Item, ...] = _equations(
         "Sec 3.4.4": {"36": "phi = atan2(py, px) selects region 1 (|phi| < 160 deg), 2 or 3"},
         "Sec 3.4.4.1": {
             "37": "joint 2 is at [l2 cos(phi), l2 sin(phi), l1] when theta1 = phi",
-            "38": "region 1: outside iff rho1 > l3 + l4 + l5",
+            "38": "region 1 (|phi| < 160 deg): outside the workspace iff rho1 = |p - joint 2| > l3 + l4 + l5",
         },
         "Sec 3.4.4.2": {
             "39": "regions 2/3: the farthest reach toward the point is at theta2 = -atan2(pz - l1, "
                   "sqrt(px^2 + py^2)) (link 3 aimed at the point's height)",
             "40": "joint 4 is at [(l2 - l3 c2) cos 160, (l2 - l3 c2) sin 160, l1 - l3 s2] with joint 1 at "
                   "160 deg",
-            "41": "regions 2/3: outside iff rho23 > l4 + l5",
+            "41": "regions 2/3 (|phi| >= 160 deg): outside iff rho23 = |p - joint 4| > l4 + l5",
         },
         "Sec 3.5.1": {"42": "Euler-angle orientation matrix ('Z-X-Z convention of [2]')"},
         "Sec 3.5.2.1": {

@@ -95,6 +95,8 @@ def test_sections_place_checks_at_their_index_items(monkeypatch):
     first, second = reg[f"{__name__}.eq16"], reg[f"{__name__}.eq6"]
     assert second.order < first.order  # Eq 6 comes before Eq 16 in the index, whatever the declaration order
     assert first.where == f"{__name__}:eq16" and first.prefix == "test_formula" and first.forms is not None
+    s.formulas(_sample, Formula("Eq 7", _sine, SINE.error, 1e-12, "-", SINE.slips, order=29.5))
+    assert reg[f"{__name__}.eq7"].order == 29.5  # an explicit order wins over the index place
 
 
 def test_rows_derive_numbers_and_reread_only_errata():

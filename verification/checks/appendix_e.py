@@ -21,12 +21,13 @@ import iik
 from iik import THESIS_ARM
 
 from ..assumptions import EXACT_GEOMETRY
+from ..formula import Formula, Points
 from ..numbers import fmt_matrix, fmt_vec
 from ..oracles.abdel_malek import eq67_dq, normal_acceleration
 from ..oracles.normal_distance import parameters, surface_point, tool_point
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon
+from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict
 from ..second_reading import Kind, Reading, digit_slips, moved_entries, search, sign_typos
 from ..shorthand import cos_sin
 
@@ -736,51 +737,26 @@ def _eq69_short(q):
     return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - L * s2], 1)
 
 
-@SECTION.check(
-    48.5,
-    depends_on=EXACT_GEOMETRY,
-    forms=Forms(
-        eq69_printed,
-        eq69_corrected,
-        "f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
-        slips=(
-            Slip(SlipKind.SIGN, "l1 + L s2 for l1 - L s2", _eq69_sign),
-            Slip(SlipKind.LENGTH, "L = l3 + l4 (l5 left out)", _eq69_short),
-        ),
-        tolerance=epsilon(eq69_corrected, 1e-9, "the good point + 1 nm"),
-    ),
-)
-def eq69_surface(ctx, f1):
-    """Eq 69: the parametric surface f(1) of s(1) = [theta4 = 0, theta5 = 0] vs the arm (Eq 4)."""
-    rng = ctx.rng("eq69")
-    arm = iik.THESIS_ARM
-    q = rng.uniform(arm.q_min, arm.q_max, (ctx.n(400, 50), 6))
-    q[:, 3:5] = 0.0  # on s(1)
-    err = np.linalg.norm(f1(q) - iik.fk(q, THESIS_ARM)[:, :3, 3], axis=1)
-    m = (Measure("max |f(1) - tool point|", err.max(), 1e-12, "m"),)
-    k = int(np.argmax(err))
-    q69 = np.array([[-7 * np.pi / 9, 0.3, 0.0, 0.0, 0.0, 0.0]])
-    row = Row.graded(
-        "Eq 69: on s(1) the tool point is f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + l5 "
-        "s1 c5 - l5 c1 s3 s5; l5 c3 s5 + l1].",
-        "Eq 69 (App. E)",
-        f"printed f(1) vs the Eq 4 tool point (iik.fk, = Pinocchio) at {len(q)} random q with theta4 = "
-        "theta5 = 0",
-        f"max |f(1) - tool point| = {err.max():.3g} m",
-        m,
-        id="eq69",
-        erratum=Erratum(
-            "Eq 69",
-            "f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + l5 s1 c5 - l5 c1 s3 s5; "
-            "l5 c3 s5 + l1] (the surface theta2 = theta4 = 0)",
-            "f(1) = [(l2 + (l3+l4+l5) c2) c1; (l2 + (l3+l4+l5) c2) s1; l1 - (l3+l4+l5) s2] (theta4 = "
-            "theta5 = 0, "
-            "free theta1, theta2 as in u(1); the printed H*(2,2) = q_s2^2 (l3+l4+l5) needs this form)",
-            f"at theta1 = -7pi/9, theta2 = 0.3 rad (theta3..5 = 0): Eq 69 gives "
-            f"{fmt_vec(f1(q69)[0] * 1e3, 1)} mm, the arm "
-            f"{fmt_vec(iik.fk(q69, THESIS_ARM)[0, :3, 3] * 1e3, 1)} mm; "
-            f"worst sample {fmt_vec(q[k])} rad",
-        ),
-        domain=f"{len(q)} q uniform in Table I with theta4 = theta5 = 0 (the whole surface f(1))",
-    )
-    return row.reread(eq69_reading(ctx, f1)) if row.verdict is Verdict.ERRATUM else row
+def _on_s1(ctx) -> Points:
+    """Joint vectors [rad] uniform in Table I on s(1) (theta4 = theta5 = 0)."""
+    q = ctx.rng("eq69").uniform(THESIS_ARM.q_min, THESIS_ARM.q_max, (ctx.n(400, 50), 6))
+    q[:, 3:5] = 0.0
+    return Points(q, f"{len(q)} q uniform in Table I with theta4 = theta5 = 0 (the whole surface f(1))",
+                  "rad", "q")
+
+
+CHECKS = SECTION.formulas(_on_s1, Formula(
+    "Eq 69 (App. E)", eq69_printed, lambda s, f: np.linalg.norm(f(s.values) - iik.fk(s.values, THESIS_ARM)[
+        :, :3, 3], axis=1), 1e-12, "m", (
+        Slip(SlipKind.SIGN, "l1 + L s2 for l1 - L s2", _eq69_sign),
+        Slip(SlipKind.LENGTH, "L = l3 + l4 (l5 left out)", _eq69_short),
+    ), good=eq69_corrected, good_is="f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
+    eps_is="the good point + 1 nm", order=48.5, depends_on=EXACT_GEOMETRY, id="eq69", name="eq69_surface",
+    claim="Eq 69: on s(1) the tool point is f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + "
+    "l5 s1 c5 - l5 c1 s3 s5; l5 c3 s5 + l1].",
+    text="f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + l5 s1 c5 - l5 c1 s3 s5; l5 c3 s5 + "
+    "l1] (the surface theta2 = theta4 = 0)",
+    corrected="f(1) = [(l2 + (l3+l4+l5) c2) c1; (l2 + (l3+l4+l5) c2) s1; l1 - (l3+l4+l5) s2] (theta4 = "
+    "theta5 = 0, free theta1, theta2 as in u(1); the printed H*(2,2) = q_s2^2 (l3+l4+l5) needs this form)",
+    method="printed f(1) vs the Eq 4 tool point (iik.fk, = Pinocchio) at {n} random q with theta4 = theta5 = "
+    "0", measure="max |f(1) - tool point|", reread=lambda ctx, s, f: eq69_reading(ctx, f)))

@@ -286,41 +286,31 @@ def _sigma_next_joint(N0, Gq, q0):
     return {j: float(N0 @ Gq[:, j % 5] * dq) for j, dq in eq67_dq(q0, ARM).items()}
 
 
-@SECTION.check(
-    "Eq 66",
-    forms=Forms.right(
-        eq66_67_printed,
-        (
-            Slip(SlipKind.LIMIT, "dq = -1 at a lower limit, +1 at an upper one", _sigma_inverted),
-            Slip(SlipKind.OFF_BY_ONE, "G_q of the next joint", _sigma_next_joint),
-        ),
-    ),
-)
-def eq66_67_sigma(ctx, eq66):
-    """Eq 66-67: sigma = N0 G_qi dq_i is the first-order normal motion of the tool when joint i leaves its
-    limit into the range."""
+def _limit_joints(ctx) -> Probes:
+    """``(joint, probe)`` for each joint at a limit of the probes that have one (A2, A6, s(2), s(26))."""
     ps = [p for p in probes(ctx) if eq67_dq(p.q0, ARM)]
-    errs = []
-    for p in ps:
-        got = eq66(p.N0, p.Gq, p.q0)
-        for j, dq in eq67_dq(p.q0, ARM).items():
-            inward = p.q0[j - 1] + 1e-3 * dq
-            into = ARM.q_min[j - 1] <= inward <= ARM.q_max[j - 1]
-            truth = p.meaning("sigma", j, dq if into else -dq)
-            errs.append(abs(got.get(j, np.inf) - truth) * 1e3)
-    errs = np.array(errs)
-    m = (Measure("max |sigma of Eq 66-67 - normal motion into the range|", errs.max(), TOL, "mm"),)
-    return Row.graded(
-        "Eq 66-67: sigma = N0 G_qi dq_i, dq_i = +1 at a lower limit and -1 at an upper one, is the "
-        "first-order motion of the tool along N0 when joint i leaves its limit (into Table I).",
-        "Eq 66-67",
-        _ROUTE + " with a joint at a limit",
-        f"max difference {errs.max():.2g} mm over {len(errs)} joints at limits at {len(ps)} points",
-        m,
-        id="eq66_67",
-        domain=_domain(ps) + "; only the points with a joint on a limit (A2, A6, s(2), s(26))",
-        erratum=Erratum("Eq 66-67", "sigma = N0 G_qi dq_i", "-", f"max difference {errs.max():.3g} mm"),
-    )
+    return Probes([(j, p) for p in ps for j in eq67_dq(p.q0, ARM)],
+                  _domain(ps) + "; only the points with a joint on a limit (A2, A6, s(2), s(26))")
+
+
+def _sigma_error(jp: tuple[int, Probe], eq66) -> float:
+    """|sigma of the form - the tool's first-order normal motion| [mm] when joint j leaves its limit into the
+    range."""
+    j, p = jp
+    dq = eq67_dq(p.q0, ARM)[j]
+    into = ARM.q_min[j - 1] <= p.q0[j - 1] + 1e-3 * dq <= ARM.q_max[j - 1]
+    return abs(eq66(p.N0, p.Gq, p.q0).get(j, np.inf) - p.meaning("sigma", j, dq if into else -dq)) * 1e3
+
+
+FORMULAS |= SECTION.formulas(_limit_joints, Formula(
+    "Eq 66-67", eq66_67_printed, _per_probe(_sigma_error), TOL, "mm", (
+        Slip(SlipKind.LIMIT, "dq = -1 at a lower limit, +1 at an upper one", _sigma_inverted),
+        Slip(SlipKind.OFF_BY_ONE, "G_q of the next joint", _sigma_next_joint),
+    ), eps=None, id="eq66_67", name="eq66_67_sigma", text="sigma = N0 G_qi dq_i",
+    claim="Eq 66-67: sigma = N0 G_qi dq_i, dq_i = +1 at a lower limit and -1 at an upper one, is the "
+    "first-order motion of the tool along N0 when joint i leaves its limit (into Table I).",
+    method=_ROUTE + " with a joint at a limit",
+    measure="max |sigma of Eq 66-67 - normal motion into the range|"))
 
 
 # ----------------------------------------------------------------------------- Eq 68

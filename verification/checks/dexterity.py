@@ -27,7 +27,7 @@ from ..formula import Formula
 from ..numbers import fmt_q
 from ..oracles.pinocchio_model import joint_placements
 from ..plotting import new_figure
-from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict
+from ..registry import Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict
 from ..second_reading import Kind, Reading, search
 from ..shorthand import wrap
 
@@ -599,52 +599,35 @@ def _sec35_half(alpha35, beta35):
     return wrap(alpha35 + np.pi), beta35 + np.pi / 4
 
 
-@SECTION.check(
-    "Eq 42",
-    forms=Forms(
-        printed=sec35_as_printed,
-        good=sec35_to_eq42,
-        good_is="alpha + 180 deg, beta + 90 deg (z6 = -a)",
-        slips=(
-            Slip(SlipKind.SIGN, "alpha, 90 deg - beta (z6 taken along link 5, d6 = +l5)",
-                 lambda a, b: (a, np.pi / 2 - b)),
-            Slip(SlipKind.BRANCH, "alpha + 180 deg, 90 deg - beta (the other side of the pole)",
-                 lambda a, b: (wrap(a + np.pi), np.pi / 2 - b)),
-            Slip(SlipKind.UNIT, "alpha + 180 deg, beta + 45 deg (a quarter turn taken as an eighth)",
-                _sec35_half),
-        ),
-    ),
-)
-def beta_convention(ctx, to_eq42):
-    """The alpha, beta of Sec 3.5 (link 5) read as the Euler angles of Eq 42 (z6) through ``to_eq42``."""
-    c = configurations(ctx, "aligned")
+def _convention_error(c: Pose35, to_eq42) -> np.ndarray:
+    """The angle difference [rad] of the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5) through ``to_eq42`` from
+    the Eq 42 angles of z6 (azimuth, polar angle; the azimuth not counted at the poles)."""
     z6 = joint_placements(c.q)[:, 6, :3, 2]
     beta42 = np.arccos(np.clip(z6[:, 2], -1, 1))
     alpha42 = np.arctan2(z6[:, 1], z6[:, 0])
     a, b = to_eq42(c.alpha, c.beta)
-    err = np.maximum(np.abs(wrap(a - alpha42)) * (np.sin(beta42) > 1e-6), np.abs(b - beta42))
-    m = (Measure("max angle difference", err.max(), TOL, "rad"),)
-    row = Row.graded(
-        "The beta of Sec 3.5 (Eq 43-51) is the beta of the Euler matrix of Eq 42 (r13 = c_a s_b, r23 = s_a "
-        "s_b, r33 = c_b), and alpha likewise.",
-        "Eq 42 vs Eq 43-47",
-        f"{len(c.q)} configurations (Pinocchio): the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5: azimuth, "
-        "inclination) through the form vs the Eq 42 angles of z6 (azimuth, polar angle)",
-        f"max difference {err.max():.3g} rad; z6 = -a in every configuration (d6 = -l5)",
-        m,
-        id="beta_convention",
-        erratum=Erratum(
-            "Eq 43-51 vs Eq 42",
-            "beta = atan(rise/run) of link 5 (inclination from the horizontal, Eq 43, 47) and alpha' = "
-            "atan2(py, px) (Eq 46), used as the Eq 42 Euler angles",
-            "beta_42 = beta_35 + 90 deg and alpha_42 = alpha_35 + 180 deg (z6 = -a); iik.dexterity "
-            "returns Eq 42 "
-            "angles",
-            f"{fmt_q(c.q[int(np.argmax(err))])}: angles differ by {err.max():.3f} rad",
-        ),
-        domain=c.domain,
-    )
-    return row.reread(convention_reading(c, to_eq42)) if row.verdict is Verdict.ERRATUM else row
+    return np.maximum(np.abs(wrap(a - alpha42)) * (np.sin(beta42) > 1e-6), np.abs(b - beta42))
+
+
+CHECKS |= SECTION.formulas(_family("aligned"), Formula(
+    "Eq 42 vs Eq 43-47", sec35_as_printed, _convention_error, TOL, "rad", (
+        Slip(SlipKind.SIGN, "alpha, 90 deg - beta (z6 taken along link 5, d6 = +l5)",
+             lambda a, b: (a, np.pi / 2 - b)),
+        Slip(SlipKind.BRANCH, "alpha + 180 deg, 90 deg - beta (the other side of the pole)",
+             lambda a, b: (wrap(a + np.pi), np.pi / 2 - b)),
+        Slip(SlipKind.UNIT, "alpha + 180 deg, beta + 45 deg (a quarter turn taken as an eighth)",
+             _sec35_half),
+    ), good=sec35_to_eq42, good_is="alpha + 180 deg, beta + 90 deg (z6 = -a)", eps=None, id="beta_convention",
+    claim="The beta of Sec 3.5 (Eq 43-51) is the beta of the Euler matrix of Eq 42 (r13 = c_a s_b, r23 = s_a "
+    "s_b, r33 = c_b), and alpha likewise.",
+    text="beta = atan(rise/run) of link 5 (inclination from the horizontal, Eq 43, 47) and alpha' = "
+    "atan2(py, px) (Eq 46), used as the Eq 42 Euler angles",
+    corrected="beta_42 = beta_35 + 90 deg and alpha_42 = alpha_35 + 180 deg (z6 = -a); iik.dexterity returns "
+    "Eq 42 angles",
+    method="{n} configurations (Pinocchio): the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5: azimuth, "
+    "inclination) through the form vs the Eq 42 angles of z6 (azimuth, polar angle)",
+    measure="max angle difference", note=lambda c, err: "z6 = -a in every configuration (d6 = -l5)",
+    reread=lambda ctx, c, f: convention_reading(c, f)))
 
 
 def convention_reading(c: Pose35, to_eq42):

@@ -36,6 +36,7 @@ from ..oracles.pinocchio_model import joint_placements
 from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon
 from ..second_reading import Kind, Reading, search
 from ..shorthand import cos_sin, wrap
+from ..thesis_index import title_of
 
 ARM = iik.THESIS_ARM
 L1, L2, L3, L4, L5 = ARM.lengths
@@ -421,22 +422,21 @@ def _wrist_length(p, z6):
 def wrist_point(ctx, eq9abc):
     """Eq 9a, 9b, 9c: the wrist point D (joint 5) from the pose, one row per coordinate."""
     s = sample(ctx)
-    Dp = eq9abc(s.p, s.R[:, :, 2])
-    rows = []
-    for k, (key, name, sym) in enumerate((("9a", "x_D", "r13"), ("9b", "y_D", "r23"), ("9c", "z_D", "r33"))):
-        pr = f"{name} = p_{name[0]} {'- l1 ' if key == '9c' else ''}- {sym} l5"
-        row = error_row(
-            s, Dp[:, k] - s.D[:, k], TOL, "m", key=f"Eq {key}", id=f"eq{key}",
-            claim=f"Eq {key}: {pr} is the {name} coordinate of joint 5.",
-            method="printed coordinate vs the origin of frame 5 (Pinocchio) minus l1 e_z",
-            printed=pr,
-            corrected=f"{pr.replace('- r', '+ r')} (Table II has d6 = -l5: z6 points from the tool back to "
-            "the wrist)",
-            note=f"max |error| = 2 l5 |{sym}| <= 2 l5 = {2 * L5:.3f} m",
-        )
-        rows.append(row.reread(wrist_reading(s, eq9abc, k, pr)) if row.verdict is Verdict.ERRATUM else row)
-    return rows
+    err = eq9abc(s.p, s.R[:, :, 2]) - s.D
+    rows = [f.row(s, err[:, k]) for k, f in enumerate(_WRIST)]
+    return [r.reread_if_erratum(lambda k=k, f=f: wrist_reading(s, eq9abc, k, title_of(f.key)))
+            for k, (r, f) in enumerate(zip(rows, _WRIST, strict=True))]
 
+
+#: The rows of Eq 9a-c, one coordinate of D each (their printed forms are the index titles).
+_WRIST = tuple(
+    Formula(f"Eq 9{c}", None, None, TOL, "m", (), claim=f"Eq 9{c}: {title_of(f'Eq 9{c}')} is the {x}_D "
+            "coordinate of joint 5.", corrected=f"{title_of(f'Eq 9{c}').replace('- r', '+ r')} (Table II has "
+            "d6 = -l5: z6 points from the tool back to the wrist)",
+            method="printed coordinate vs the origin of frame 5 (Pinocchio) minus l1 e_z",
+            note=lambda s, e, sym=sym: f"max |error| = 2 l5 |{sym}| <= 2 l5 = {2 * L5:.3f} m")
+    for c, x, sym in zip("abc", "xyz", ("r13", "r23", "r33"), strict=True)
+)
 
 
 def eq10_printed(B, C, D):

@@ -41,6 +41,7 @@ from ..registry import (
 )
 from ..second_reading import Kind, Reading, search
 from ..shorthand import cos_sin, wrap
+from ..thesis_index import title_of
 
 _D = np.pi / 180
 ARM = iik.THESIS_ARM
@@ -290,7 +291,10 @@ def classification_reading(ctx, test, region: str, printed: str):
                   "joint samples + position IK)", measure="misclassified graded test points")
 
 
-def _classification_row(ctx, form, rid, key, claim, method, region: str, printed: str, corrected: str) -> Row:
+def _classification_row(ctx, form, key, method, region: str, printed: str, corrected: str = "-", *,
+                        claim: str = "", rid: str = "") -> Row:
+    """The row of a classification test (the form) on the graded test points of ``region`` ("all", "1",
+    "23"); the id and the claim default to the index key's (``"Eq 38"`` -> ``eq38``, its title)."""
     tp = _test_points(ctx)
     P, truth = tp["p"], tp["truth"]
     sel = _selected(tp, region)
@@ -310,14 +314,14 @@ def _classification_row(ctx, form, rid, key, claim, method, region: str, printed
             ),
         )
     row = Row(
-        claim,
+        claim or f"{title_of(key)}.",
         key,
         method,
         f"{int(sel.sum())} graded test points ({int(truth[sel].sum())} reachable; "
         f"{int((~_graded_points(tp)).sum())} "
         f"in the oracle's boundary band not graded): false inside {fi}, false outside {fo}",
         verdict,
-        id=rid,
+        id=rid or key.lower().replace(" ", ""),
         measures=m,
         errata=errata,
         domain=_TEST_DOMAIN.format(n_box=tp["n_box"], n_back=len(P) - tp["n_box"])
@@ -358,17 +362,17 @@ def eq36_41(ctx, test):
     row = _classification_row(
         ctx,
         test,
-        "eq36_41",
         "Sec 3.4.4, Eq 36-41",
-        "Eq 36-41 decide whether a point is inside the workspace (region 1: |p - joint 2| <= l3+l4+l5; "
-        "regions 2/3: "
-        "|p - joint 4| <= l4+l5 with joint 1 at its limit); 'the algorithm was capable of recognizing "
-        "whether a given position was inside of the workspace ... during every trial' (Sec 5.2).",
         _COMPOSITE + "; 10000 points uniform in a box around the arm plus 4000 at azimuth 150-210 deg "
         "(quick: 1500 + 600). Map: cross-sections z = l1, y = 0",
         "all",
         "Eq 36-41 as printed",
         "Eq 39 and Eq 40 corrected (rows workspace.eq39, workspace.eq40)",
+        rid="eq36_41",
+        claim="Eq 36-41 decide whether a point is inside the workspace (region 1: |p - joint 2| <= l3+l4+l5; "
+        "regions 2/3: "
+        "|p - joint 4| <= l4+l5 with joint 1 at its limit); 'the algorithm was capable of recognizing "
+        "whether a given position was inside of the workspace ... during every trial' (Sec 5.2).",
     )
     if test is not eq36_41_printed:
         return row
@@ -551,17 +555,8 @@ def _region_forms(good_is: str, bad_is: str, slips: tuple, **test) -> Forms:
 )
 def eq38_region1(ctx, test):
     """Eq 38: in region 1 (|phi| < 160 deg) the point is outside iff rho1 > l3 + l4 + l5."""
-    return _classification_row(
-        ctx,
-        test,
-        "eq38",
-        "Eq 38",
-        "Region 1 (|phi| < 160 deg): outside the workspace iff rho1 = |p - joint 2| > l3 + l4 + l5.",
-        _COMPOSITE + "; region-1 points only",
-        "1",
-        "rho1 > l3 + l4 + l5",
-        "-",
-    )
+    return _classification_row(ctx, test, "Eq 38", _COMPOSITE + "; region-1 points only", "1",
+                               "rho1 > l3 + l4 + l5")
 
 
 def eq39_printed(P, th1):
@@ -808,18 +803,8 @@ CHECKS = {
 )
 def eq41_regions23(ctx, test):
     """Eq 41 (with Eq 39-40 corrected): in regions 2/3 the point is outside iff rho23 > l4 + l5."""
-    return _classification_row(
-        ctx,
-        test,
-        "eq41",
-        "Eq 41",
-        "Regions 2/3 (|phi| >= 160 deg): outside iff rho23 = |p - joint 4| > l4 + l5 (joint 4 "
-        "from Eq 39-40 corrected).",
-        _COMPOSITE + "; region 2/3 points only",
-        "23",
-        "rho23 > l4 + l5",
-        "-",
-    )
+    return _classification_row(ctx, test, "Eq 41", _COMPOSITE + "; region 2/3 points only (joint 4 from Eq "
+                               "39-40 corrected)", "23", "rho23 > l4 + l5")
 
 
 def _boundary_points(ctx):

@@ -67,15 +67,15 @@ def test_appendix_e_verdicts_follow_the_printed_numbers(ctx):
     assert a6["n0"].verdict is Verdict.ERRATUM and a6["n0"].second_reading.slip.name == "INPUT_AND_TYPO"
     good = E.appendix_e(ctx, E.recomputed_values)
     assert all(r.verdict is Verdict.HOLDS for r in good)
-    eq69 = E.eq69_surface(ctx, E.eq69_printed)
+    eq69 = E.CHECKS["eq69"](ctx, E.eq69_printed)
     assert eq69.verdict is Verdict.INPUT_SLIP  # the surface of [theta2 = 0, theta4 = 0]
     assert "theta2 = 0, theta4 = 0" in eq69.second_reading.explanation.text
-    assert E.eq69_surface(ctx, E.eq69_corrected).verdict is Verdict.HOLDS
+    assert E.CHECKS["eq69"](ctx, E.eq69_corrected).verdict is Verdict.HOLDS
 
 
 def test_dexterity_is_graded_from_the_printed_equations(ctx):
-    assert X.beta_convention(ctx, X.sec35_as_printed).verdict is Verdict.ERRATUM
-    assert X.beta_convention(ctx, X.sec35_to_eq42).verdict is Verdict.HOLDS
+    assert X.CHECKS["beta_convention"](ctx, X.sec35_as_printed).verdict is Verdict.ERRATUM
+    assert X.CHECKS["beta_convention"](ctx, X.sec35_to_eq42).verdict is Verdict.HOLDS
     for check, ok in (
         (X.CHECKS["eq44"], X.eq44_delta),
         (X.CHECKS["eq45"], X.eq44_delta),

@@ -40,7 +40,7 @@ def test_eq4_check_detects_a_nanometre(ctx):
 
 def test_table_ii_product_follows_the_table(ctx):
     assert K.table_ii_vs_eq4(ctx, K.table_ii_printed()).verdict is Verdict.HOLDS
-    assert K.table_ii_vs_eq4(ctx, K._table_nudged()).verdict is Verdict.DOES_NOT_HOLD
+    assert K.table_ii_vs_eq4(ctx, K.TABLE_NUDGED).verdict is Verdict.DOES_NOT_HOLD
 
 
 def test_table_checks_hold_by_construction(ctx):
@@ -137,7 +137,7 @@ def test_eq42_verdicts_follow_the_matrix(ctx):
 def test_ur5_check_holds_and_sees_a_micrometre(ctx):
     row = K.ur5_generator_check(ctx, K.urdf_from_dh)
     assert row.verdict is Verdict.HOLDS and row.measures[0].value <= 1e-9
-    assert K.ur5_generator_check(ctx, K._shifted_generator).verdict is Verdict.DOES_NOT_HOLD
+    assert K.ur5_generator_check(ctx, K.SHIFTED_GENERATOR).verdict is Verdict.DOES_NOT_HOLD
 
 
 def test_table_i_self_collision_claim_refuted_geometry_independently(ctx):
