@@ -32,15 +32,18 @@ def wrap_angle(x):
     """Angles [rad] wrapped to (-pi, pi] (NumPy arrays or floats): :func:`wrap`'s rule, vectorised
     (equal to it bit for bit; an angle already in (-pi, pi] is returned unchanged)."""
     x = np.asarray(x, dtype=float)
-    near = np.where(x > np.pi, x - _TWO_PI, np.where(x > -np.pi, x, x + _TWO_PI))
-    with np.errstate(invalid="ignore"):
-        far = (x > 3.0 * np.pi) | (x <= -3.0 * np.pi)
-        return np.where(far, np.pi - np.mod(np.pi - x, _TWO_PI), near)[()]
+    out = np.where(x > np.pi, x - _TWO_PI, np.where(x > -np.pi, x, x + _TWO_PI))
+    far = (x > 3.0 * np.pi) | (x <= -3.0 * np.pi)
+    if far.any():  # rare: the general form only where it is needed (inf gives nan, quietly)
+        with np.errstate(invalid="ignore"):
+            out = np.where(far, np.pi - np.mod(np.pi - x, _TWO_PI), out)
+    return out[()]
 
 
 def angle_distance(a, b) -> np.ndarray:
     """Largest wrapped joint difference [rad] between joint vectors ``a`` and ``b`` (..., 6)."""
-    return np.max(np.abs(wrap_angle(np.asarray(a, float) - np.asarray(b, float))), axis=-1)
+    d = np.asarray(a, float) - np.asarray(b, float)
+    return np.max(np.abs(np.pi - np.mod(np.pi - d, _TWO_PI)), axis=-1)  # |wrap_angle(d)|, in one pass
 
 
 def into_limits(Q: np.ndarray, lower, upper, tol: float) -> tuple[np.ndarray, np.ndarray]:
