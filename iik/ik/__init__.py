@@ -13,7 +13,8 @@ __getattr__, __dir__ = lazy_exports(__name__, {
     ".options": ("DEFAULT_OPTIONS", "ORTHONORMAL_TOL", "IKOptions"),
     ".result": ("Continuum", "IKBatch", "IKResult"),
     ".selection": ("branch_signature", "follow_path", "select", "select_index"),
-    ".solve": ("COMPILE_MESSAGE", "METHODS", "compile_notice", "solve", "solve_batch", "solve_many"),
+    ".solve": ("COMPILE_MESSAGE", "METHODS", "compile_clock", "compile_notice", "solve", "solve_batch",
+               "solve_many"),
 })
 
 __all__ = [
@@ -28,6 +29,7 @@ __all__ = [
     "solve_many",
     "solve_batch",
     "compile_notice",
+    "compile_clock",
     "COMPILE_MESSAGE",
     "select",
     "select_index",

@@ -43,7 +43,7 @@ def wrap_angle(x):
 def angle_distance(a, b) -> np.ndarray:
     """Largest wrapped joint difference [rad] between joint vectors ``a`` and ``b`` (..., 6)."""
     d = np.asarray(a, float) - np.asarray(b, float)
-    return np.max(np.abs(np.pi - np.mod(np.pi - d, _TWO_PI)), axis=-1)  # |wrap_angle(d)|, in one pass
+    return np.abs(np.pi - np.mod(np.pi - d, _TWO_PI)).max(axis=-1)  # |wrap_angle(d)|, in one pass
 
 
 def into_limits(Q: np.ndarray, lower, upper, tol: float) -> tuple[np.ndarray, np.ndarray]:

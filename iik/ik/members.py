@@ -108,14 +108,14 @@ def _march_closed(c, thetas: np.ndarray):
         raise ValueError("the continuum's pose does not pass the pose check")
     prev = np.array(c.representative, dtype=float)
     qs, rs = np.empty((n, 6)), np.full((n, 2), np.inf)
+    # a member that misses the pose is taken only when none reaches it (10 rad more than any distance)
+    penalty = np.where((out_r[..., 0] <= c.tolerance[0]) & (out_r[..., 1] <= c.tolerance[1]), 0.0, 10.0)
     for i in range(n):
         m = counts[i]
         if m == 0:
             qs[i] = prev
             continue
-        d = angle_distance(out_q[i, :m], prev)
-        good = (out_r[i, :m, 0] <= c.tolerance[0]) & (out_r[i, :m, 1] <= c.tolerance[1])
-        b = int(np.argmin(np.where(good, d, d + 10.0)))
+        b = int((angle_distance(out_q[i, :m], prev) + penalty[i, :m]).argmin())
         qs[i], rs[i], prev = out_q[i, b], out_r[i, b], out_q[i, b]
     return qs, rs
 
@@ -257,19 +257,23 @@ def theta1_branches(continua) -> list[int | None]:
     return out
 
 
-def inside_member(c, samples: int = 73):
+def inside_member(c):
     """A member of continuum c inside the joint limits, nearest the representative along the free
-    joint (``samples`` values across its limits), or None if none is found."""
+    joint (members every :data:`STEP` rad or closer, followed once towards each of the free joint's
+    limits), or None if none is found."""
     arm = c.arm
     rep, ok = _inside(arm, np.array(c.representative, dtype=float))
     if ok:
         return rep
     j = c.free_joint - 1
-    grid = np.linspace(arm.q_min[j], arm.q_max[j], samples)
-    grid = grid[np.argsort(np.abs(grid - c.representative[j]))]
-    for th in grid:
-        m, r = follow(c, [th])
-        m0, ok = _inside(arm, m[0])
-        if ok and r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1]:
-            return m0
-    return None
+    start = float(c.representative[j])
+    found = []  # (distance along the free joint, member) of the first inside member each way
+    for end in (arm.q_min[j], arm.q_max[j]):
+        path = _path(start, float(end))
+        qs, rs = _marcher(c)(c, path)
+        for th, q, r in zip(path, qs, rs, strict=True):
+            m, ok = _inside(arm, q)
+            if ok and r[0] <= c.tolerance[0] and r[1] <= c.tolerance[1]:
+                found.append((abs(th - start), m))
+                break
+    return min(found, key=lambda f: f[0])[1] if found else None

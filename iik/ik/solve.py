@@ -17,6 +17,7 @@ method returns approximate configurations for poses just out of reach.
 from __future__ import annotations
 
 import sys
+import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 
@@ -30,7 +31,8 @@ from .angles import into_limits
 from .options import DEFAULT_OPTIONS, IKOptions
 from .result import Certificate, Continuum, IKBatch, IKResult
 
-__all__ = ["solve", "solve_many", "solve_batch", "METHODS", "compile_notice", "COMPILE_MESSAGE"]
+__all__ = ["solve", "solve_many", "solve_batch", "METHODS", "compile_notice", "compile_clock",
+           "COMPILE_MESSAGE"]
 
 METHODS = ("complete", "reference", "thesis")
 
@@ -592,4 +594,34 @@ def compile_notice(emit: Callable[[str], None] | None = None) -> Iterator[None]:
             pass
 
     with event.install_listener("numba:compile", _FirstCompile()):
+        yield
+
+
+@contextmanager
+def compile_clock(on_compiled: Callable[[float], None]) -> Iterator[None]:
+    """Report the wall time [s] of each Numba compilation that starts inside the block (the
+    outermost one of a nested chain: the kernel's entry points compile their helpers), so a
+    caller with a deadline can leave the one-time compile out of it (``iik.planning.Budget``:
+    a first plan after an install, or several processes compiling at once on a loaded machine,
+    took 70-120 s of compiling). Loading the compiled kernel from its cache reports nothing.
+
+    Args:
+        on_compiled: Called with the seconds each compilation took, when it ends.
+    """
+    from numba.core import event
+
+    depth, began = [0], [0.0]
+
+    class _Clock(event.Listener):
+        def on_start(self, ev) -> None:
+            if depth[0] == 0:
+                began[0] = time.perf_counter()
+            depth[0] += 1
+
+        def on_end(self, ev) -> None:
+            depth[0] -= 1
+            if depth[0] == 0:
+                on_compiled(time.perf_counter() - began[0])
+
+    with event.install_listener("numba:compile", _Clock()):
         yield

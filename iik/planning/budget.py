@@ -45,6 +45,11 @@ class Budget:
         self._last = self.start
         self.current = "start"
 
+    def exclude(self, seconds: float) -> None:
+        """Leave ``seconds`` of work out of the budget (the deadline moves by as much): a one-time
+        compile of the IK kernel (:func:`iik.ik.compile_clock`) is not planning."""
+        self.start += float(seconds)
+
     @property
     def elapsed(self) -> float:
         """Seconds since the budget started."""
