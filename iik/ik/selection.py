@@ -28,11 +28,7 @@ def select_index(result_or_q, previous_q, *, arm: Arm) -> tuple[int, float]:
     Raises:
         UnreachablePoseError: no candidate inside the joint limits.
     """
-    cand = Candidates.of(result_or_q, arm=arm)
-    if len(cand) == 0:
-        reason = getattr(result_or_q, "reason", "") or "no solution inside the joint limits"
-        raise UnreachablePoseError(f"nothing to select: {reason}")
-    _, E = cand.nearest(previous_q)
+    _, E = _nearest(result_or_q, previous_q, arm)
     i = int(np.argmin(E))  # ties: the first in the deterministic order
     return i, float(E[i])
 
@@ -50,12 +46,18 @@ def select(result_or_q, previous_q, *, arm: Arm) -> np.ndarray:
     Raises:
         UnreachablePoseError: no candidate inside the joint limits.
     """
+    Q, E = _nearest(result_or_q, previous_q, arm)
+    return Q[int(np.argmin(E))].copy()
+
+
+def _nearest(result_or_q, previous_q, arm: Arm) -> tuple[np.ndarray, np.ndarray]:
+    """Each usable candidate's configuration nearest ``previous_q`` and its Eq 54 effort
+    (:meth:`Candidates.nearest`); UnreachablePoseError if there is none."""
     cand = Candidates.of(result_or_q, arm=arm)
     if len(cand) == 0:
         reason = getattr(result_or_q, "reason", "") or "no solution inside the joint limits"
         raise UnreachablePoseError(f"nothing to select: {reason}")
-    Q, E = cand.nearest(previous_q)
-    return Q[int(np.argmin(E))].copy()
+    return cand.nearest(previous_q)
 
 
 def branch_signature(q) -> np.ndarray:
