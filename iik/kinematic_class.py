@@ -50,6 +50,7 @@ __all__ = [
 LENGTH_TOL = 1e-9
 #: Angles within this of a multiple of 90 deg count as that multiple [rad] (and are snapped).
 ANGLE_TOL = 1e-9
+_NEARLY_PARALLEL = math.sin(math.pi / 4)  # |z_i x z_j| below it: a pair meant parallel is measured as such
 
 
 @dataclass(frozen=True)
@@ -209,7 +210,9 @@ def _foot(p, z, x):
     return float((x - p) @ z)
 
 
-def chain_from_lines(pts, dirs, start, end, size: float, ltol: float = LENGTH_TOL, atol: float = ANGLE_TOL):
+def chain_from_lines(
+    pts, dirs, start, end, size: float, ltol: float = LENGTH_TOL, atol: float = ANGLE_TOL, parallel=()
+):
     """A canonical modified-DH chain through the axis lines (pts, dirs) at q = 0.
 
     Frame i has z along axis i and its origin where the common normal to axis i+1 meets it
@@ -217,20 +220,31 @@ def chain_from_lines(pts, dirs, start, end, size: float, ltol: float = LENGTH_TO
     is frame 1 at q = 0; frame 6 shares frame 5's x axis, its origin on axis 6. Returns
     ``(rows, base, tool, raw)``: rows ``(alpha, a, d, offset)`` snapped, ``base = start^-1 .
     frame 0``, ``tool = frame 6^-1 . end``, and ``raw`` the unsnapped rows (for the report).
+
+    ``parallel``: indices i of the axis pairs (i+1, i+2) the class wants parallel. A pair of those
+    that is only nearly parallel (under 45 deg) is measured as if parallel (the normal through the
+    previous foot, made perpendicular to axis i+1; its raw alpha is the whole angle between the
+    axes): the common
+    normal of two nearly parallel skew lines lies far outside the arm (hundreds of metres for
+    0.1 deg), so its length and offset would measure nothing about the arm.
     """
     lt = ltol * size
     n = len(pts)
     origins, xs = [], []
     prev = np.asarray(pts[0], float)
     feet2 = []
+    near = set()  # pairs measured as if parallel though they are not
     for i in range(n - 1):
         p1, z1, p2, z2 = pts[i], dirs[i], pts[i + 1], dirs[i + 1]
         c = np.cross(z1, z2)
         s = float(np.linalg.norm(c))
-        if s <= atol:  # parallel: the normal through the previous foot
+        if s <= atol or (i in parallel and s < _NEARLY_PARALLEL):  # the normal through the previous foot
             o1 = p1 + _foot(p1, z1, prev) * z1
             o2 = p2 + _foot(p2, z2, o1) * z2
             w = o2 - o1
+            if s > atol:
+                near.add(i)
+                w = w - (w @ z1) * z1
             dist = float(np.linalg.norm(w))
             if dist <= lt:
                 raise InvalidInputError("arm", f"joint axes {i + 1} and {i + 2} coincide")
@@ -260,6 +274,8 @@ def chain_from_lines(pts, dirs, start, end, size: float, ltol: float = LENGTH_TO
         Fi, Fj = frames[i], frames[i + 1]
         xi, zi, zj, xj = Fi[:3, 0], Fi[:3, 2], Fj[:3, 2], Fj[:3, 0]
         alpha = math.atan2(float(np.cross(zi, zj) @ xi), float(zi @ zj))
+        if i in near:
+            alpha = math.copysign(math.atan2(float(np.linalg.norm(np.cross(zi, zj))), float(zi @ zj)), alpha)
         a = float((feet2[i] - origins[i]) @ xi)
         d = float((origins[i + 1] - feet2[i]) @ zj)
         off = math.atan2(float(np.cross(xi, xj) @ zj), float(xi @ xj))
@@ -325,7 +341,7 @@ def solver_chain(
             p, d = pts, dirs
             start, end = np.eye(4), flange
         # (base-frame coordinates: the solver pose is X = start^-1 ... end)
-        r, b, t, raw = chain_from_lines(p, d, start, end, size, ltol, atol)
+        r, b, t, raw = chain_from_lines(p, d, start, end, size, ltol, atol, parallel=(3,))
         rep = ClassReport("from the flange" if rev else "from the base", _conditions(raw, size, ltol, atol))
         found.append((rev, r, b, t, rep))
     for k, (rev, r, b, t, rep) in enumerate(found):
