@@ -461,12 +461,22 @@ def _restarts(qs, own, hval, near):
 
 
 def _connected(a, b, T, arm: Arm, tol_p, tol_r) -> bool:
+    """Rows a and b (within 1e-3 rad) in one connected piece of the set that reaches the pose within
+    the tolerance: 9 points of the segment between them do, or else 9 points of a bent path do (the
+    joint that moves most stepped along the segment, the others refit with it held). Near a
+    multiple root that set is a thin curved blob (residual ~ c d^2 along it, c ~ 1e-3): a straight
+    segment between two of its points leaves it, and the rows would count as several solutions."""
     d = _wrap(b - a)
     if np.max(np.abs(d)) > 1e-3:
         return False
     pts = a + np.linspace(0.1, 0.9, 9)[:, None] * d
     Tq, _ = _fk_jac(arm, pts)
     _, pr, rr = _errors(Tq, np.broadcast_to(T, (9, 4, 4)))
+    if np.all(pr <= tol_p) and np.all(rr <= tol_r):
+        return True
+    held = int(np.argmax(np.abs(d)))
+    cols = [k for k in range(6) if k != held]
+    _, pr, rr = _polish(arm, pts, np.broadcast_to(T, (9, 4, 4)), iters=12, cols=cols)
     return bool(np.all(pr <= tol_p) and np.all(rr <= tol_r))
 
 

@@ -117,3 +117,21 @@ def test_family_contains_every_oracle_solution(arm_name, fam):
             assert not r.certificate.certified, (q.tolist(), cov.missed, r.certificate)
 
     check()
+
+
+def test_reference_keeps_both_rows_beside_a_multiple_root_blob():
+    """A CRX-10iA pose of split-axis6-through-b (found by the CI profile, default_rng(130)): near
+    its multiple root the set within the tolerance is a thin curved blob, and the reference once
+    kept three points of it as three solutions (the straight segment between them leaves the
+    tolerance), hit the 16-row bound and dropped two genuine solutions, both found by the oracle.
+    The blob counts once (its points are joined by a refitted path), and the sets agree."""
+    arm = arms.get("crx10ia")
+    q = np.array([-0.30985614618627055, -3.686893141438525, 0.4801953510974333,
+                  -1.5707963267948966, 1.5908015393997852, -0.34233353551891454])
+    T = iik.fk(q, arm)
+    k, ref = _solve(T, arm), _solve(T, arm, method="reference")
+    assert k.certificate.certified
+    a = agreement(k, ref, T, arm, TOL)
+    assert a.same, ("kernel only", k.q[list(a.only_a)], "reference only", ref.q[list(a.only_b)])
+    oracle = multistart_ik(T, arm, OracleOptions(starts=256))
+    assert len(coverage(ref, oracle, T, arm, TOL).missed) == 0
