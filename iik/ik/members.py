@@ -4,9 +4,13 @@ of kind ``"theta1"`` and ``"numerical"``).
 A member with the free joint at theta is found by continuation from the representative: the
 free joint is stepped towards theta (steps of at most :data:`STEP` rad), and at each step the
 other joints are refit by Levenberg-Marquardt with the free joint held (the compiled
-:func:`iik.ik.kernel.continuum_members`). The feasible interval is where the members reach the
+:func:`iik.ik.kernel.continuum_members`), or, for theta1 and theta2 continua, the exact
+closed-form configuration nearest the previous member is taken (the compiled
+:func:`iik.ik.kernel.closed_form_march`). The feasible interval is where the members reach the
 pose within the tolerance and lie inside the joint limits, found by marching from the
-representative in both directions and bisecting the first failure (to :data:`RESOLUTION` rad).
+representative in both directions and bisecting (to :data:`RESOLUTION` rad) between the last
+good member and the first failure, each trial one continuation step from the last good member.
+The march towards each limit is computed once per continuum object, and only as far as asked.
 
 Units: radians.
 """
@@ -146,29 +150,46 @@ def _inside(arm, q):
 
 
 _MARCHES: dict = {}  # (id(c), end, march) -> (c, representative, pose, (path, members, residuals))
+_CHUNK = 16  # steps of a march first computed where it may stop early (then doubled)
 
 
-def _toward(c, end: float, march=None):
+def _toward(c, end: float, march=None, steps: int | None = None):
     """c's march from the representative towards the free-joint value ``end`` (``march``: the
-    continuum's own by default): the values (n,) [rad], members (n, 6) and residuals (n, 2).
-    Computed once per continuum object and end (the interval, the inside member, the samples
-    and the theta1 branches share the march to each limit)."""
+    continuum's own by default), its first ``steps`` (all by default): the values (n,) [rad],
+    members (n, 6) and residuals (n, 2). Computed once per continuum object and end, and only as
+    far as asked (a march continues from its last member: the same members as in one go). The
+    interval, the inside member, the samples and the theta1 branches share it."""
     march = march or _marcher(c)
     key = (id(c), float(end), march)
     hit = _MARCHES.get(key)
-    if (
-        hit is not None
-        and hit[0] is c
-        and np.array_equal(hit[1], c.representative)
-        and np.array_equal(hit[2], c.pose)
-    ):
-        return hit[3]
-    path = _path(float(c.representative[c.free_joint - 1]), float(end))
-    out = (path, *march(c, path))
-    if len(_MARCHES) > 256:
-        _MARCHES.clear()
-    _MARCHES[key] = (c, np.array(c.representative, dtype=float), np.array(c.pose, dtype=float), out)
-    return out
+    rep, pose = np.array(c.representative, dtype=float), np.array(c.pose, dtype=float)
+    if hit is not None and hit[0] is c and np.array_equal(hit[1], rep) and np.array_equal(hit[2], pose):
+        path, q, r = hit[3]
+    else:
+        path, q, r = _path(float(rep[c.free_joint - 1]), float(end)), np.zeros((0, 6)), np.zeros((0, 2))
+    n = len(path) if steps is None else min(steps, len(path))
+    if len(q) < n:
+        qn, rn = march(c, path[len(q) : n], rep if len(q) == 0 else q[-1])
+        q, r = np.vstack([q, qn]), np.vstack([r, rn])
+        if len(_MARCHES) > 256:
+            _MARCHES.clear()
+        _MARCHES[key] = (c, rep, pose, (path, q, r))
+    return path[:n], q[:n], r[:n]
+
+
+def _scan(c, end: float, found):
+    """c's march towards ``end`` (:func:`_toward`), extended until ``found(path, members,
+    residuals)`` (bool (n,)) holds somewhere: (path, members, the first index where it holds, or
+    None)."""
+    n = _CHUNK
+    while True:
+        path, q, r = _toward(c, end, steps=n)
+        hit = found(path, q, r)
+        if hit.any():
+            return path, q, int(hit.argmax())
+        if len(path) < n:
+            return path, q, None
+        n *= 2
 
 
 def _good(c, q, r, prev) -> np.ndarray:
@@ -185,13 +206,11 @@ def _edge(c, start: float, limit: float) -> float:
     member and it, each trial member one continuation step from the last good one."""
     if abs(limit - start) <= RESOLUTION:
         return start
-    path, q, r = _toward(c, limit)
-    prev = np.vstack([np.asarray(c.representative, dtype=float)[None], q[:-1]])
-    good = _good(c, q, r, prev)
-    if good.all():
+    rep = np.asarray(c.representative, dtype=float)[None]
+    path, q, i = _scan(c, limit, lambda p, q, r: ~_good(c, q, r, np.vstack([rep, q[:-1]])))
+    if i is None:
         return limit
-    i = int(good.argmin())
-    lo, hi, q_lo = (start if i == 0 else float(path[i - 1])), float(path[i]), prev[i]
+    lo, hi, q_lo = (start if i == 0 else float(path[i - 1])), float(path[i]), (rep[0] if i == 0 else q[i - 1])
     march = _marcher(c)
     while abs(hi - lo) > RESOLUTION:
         mid = 0.5 * (lo + hi)
@@ -246,11 +265,7 @@ def feasible_interval(c) -> tuple[float, float]:
 def on_continuum(c, q, tol: float = 1e-7) -> bool:
     """Is the configuration q (6,) a member of continuum c (its member at q's free joint)?"""
     m, r = follow(c, [float(q[c.free_joint - 1])])
-    return bool(
-        angle_distance(m[0], q) <= tol
-        and r[0, 0] <= c.tolerance[0]
-        and r[0, 1] <= c.tolerance[1]
-    )
+    return bool(angle_distance(m[0], q) <= tol and r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1])
 
 
 def _on_branch(c, Q, tol: float = 1e-7) -> np.ndarray:
@@ -265,15 +280,16 @@ def _on_branch(c, Q, tol: float = 1e-7) -> np.ndarray:
     for limit, side in ((float(c.arm.q_min[j]), ths < start), (float(c.arm.q_max[j]), ths >= start)):
         sel = side & (np.abs(ths - start) <= abs(limit - start)) & ((ths - start) * (limit - start) >= 0.0)
         if sel.any():
-            path, members, _ = _toward(c, limit)
+            path = _path(start, limit)
             k = np.count_nonzero(np.abs(path[None] - start) < np.abs(ths[sel, None] - start), axis=1)
+            members = _toward(c, limit, steps=int(k.max()))[1]
             prev[sel] = np.vstack([rep[None], members])[k]
             marched |= sel
     out = np.array([not marched[i] and on_continuum(c, q, tol) for i, q in enumerate(Q)], dtype=bool)
     if marched.any():
         m, r = _march_closed(c, ths[marched], prev[marched], np.arange(marched.sum()))
-        out[marched] = (angle_distance(m, Q[marched]) <= tol) & (r[:, 0] <= c.tolerance[0]) & (
-            r[:, 1] <= c.tolerance[1]
+        out[marched] = (
+            (angle_distance(m, Q[marched]) <= tol) & (r[:, 0] <= c.tolerance[0]) & (r[:, 1] <= c.tolerance[1])
         )
     return out
 
@@ -314,11 +330,13 @@ def inside_member(c):
     j = c.free_joint - 1
     start = float(c.representative[j])
     found = []  # (distance along the free joint, member) of the first inside member each way
+    tp, tr = c.tolerance
+
+    def inside(path, q, r):
+        return _inside(arm, q)[1] & (r[:, 0] <= tp) & (r[:, 1] <= tr)
+
     for end in (arm.q_min[j], arm.q_max[j]):
-        path, qs, rs = _toward(c, float(end))
-        m, ok = _inside(arm, qs)
-        ok &= (rs[:, 0] <= c.tolerance[0]) & (rs[:, 1] <= c.tolerance[1])
-        if ok.any():
-            i = int(ok.argmax())
-            found.append((abs(path[i] - start), m[i]))
+        path, qs, i = _scan(c, float(end), inside)
+        if i is not None:
+            found.append((abs(path[i] - start), _inside(arm, qs[i])[0]))
     return min(found, key=lambda f: f[0])[1] if found else None
