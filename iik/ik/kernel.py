@@ -64,6 +64,7 @@ __all__ = [
     "solve_many",
     "solve_many_parallel",
     "continuum_members",
+    "closed_form_march",
     "scratch",
     "work_counts",
     "STATS",
@@ -1807,14 +1808,86 @@ def continuum_members(T, v, opt, q0, cols, col, coupled, sign, thetas, buf, out_
     return True
 
 
+#: A closed-form configuration that misses the pose is taken as the next member of a march only
+#: when none reaches it: this is added to its distance [rad] (more than any wrapped distance, pi).
+MISS_PENALTY = 10.0
+
+
+@_inner
+def _closed_row(t1, t2, branch, P, v, qc, row):
+    """The closed-form configuration with solver joints 1, 2 at DH angles t1, t2 and wrist branch
+    ``branch``, unpolished, into row[:6] (user joints)."""
+    _closed_form(t1, math.cos(t2), math.sin(t2), branch, P, v, qc)
+    _to_user(qc, row, v)
+
+
+@_inner
+def _mod_distance(a, b):
+    """Largest wrapped joint difference of two configurations [rad], |x| by the mod form as
+    :func:`iik.ik.angles.angle_distance` (NaN if any difference is NaN, as NumPy's max)."""
+    d = 0.0
+    for k in range(6):
+        x = abs(math.pi - ((math.pi - (a[k] - b[k])) % _TWO_PI))
+        if x > d or math.isnan(x):  # (NaN stays)
+            d = x
+    return d
+
+
+@_inner
+def _nearest_closed_form(t1, t2, terms, P, v, Ru, T, ws, rows, prev, ptol, rtol):
+    """Of the closed-form configurations with solver joint 1 at DH angle t1 (every theta2 option,
+    or solver joint 2 at DH angle t2 where that is not NaN; both wrist branches), the one nearest
+    prev (6,) (:func:`_mod_distance`), MISS_PENALTY added to one that misses the tolerance, the
+    first of equals (NumPy's argmin: the first NaN wins): its index b (rows[b, :6], user joints)
+    and residuals [m, rad]; (-1, inf, inf) if there is none. Only what can matter is computed:
+    a configuration whose joint-2 difference alone exceeds the best distance is skipped (from
+    finite inputs the closed forms give no NaN), and the nearest wins if it reaches the pose (any
+    other is at least as far); else every configuration is weighed with its penalty."""
+    th2, qc = ws[_W_TH2 : _W_TH2 + 8], ws[_W_Q2 : _W_Q2 + 6]
+    if math.isnan(t2):
+        n2 = max(_theta2_options(terms, t1, L.KIND_SPECIAL, th2)[0], 0)
+    else:
+        th2[0], n2 = t2, 1
+    m, j2, o2 = min(2 * n2, rows.shape[0]), _user_col(v, 1), v[L.A_SOLVER_DH + 9]
+    b, best = -1, math.inf
+    for r in range(m):
+        x = wrap(math.atan2(math.sin(th2[r // 2]), math.cos(th2[r // 2])) - o2) - prev[j2]
+        if abs(math.pi - ((math.pi - x) % _TWO_PI)) > best:  # (joint 2 of the row, as _to_user)
+            continue
+        _closed_row(t1, th2[r // 2], r % 2, P, v, qc, rows[r])
+        d = _mod_distance(rows[r], prev)
+        if math.isnan(d):
+            pres, rres = _residuals(rows[r, :6], v, Ru, T)
+            return r, pres, rres
+        if d < best:
+            best, b = d, r
+    if b < 0:
+        return -1, math.inf, math.inf
+    pres, rres = _residuals(rows[b, :6], v, Ru, T)
+    if pres <= ptol and rres <= rtol:
+        return b, pres, rres
+    best = math.inf  # the nearest misses: every configuration with its penalty
+    for r in range(m):
+        _closed_row(t1, th2[r // 2], r % 2, P, v, qc, rows[r])
+        p, q = _residuals(rows[r, :6], v, Ru, T)
+        d = _mod_distance(rows[r], prev) + (0.0 if p <= ptol and q <= rtol else MISS_PENALTY)
+        if d < best or math.isnan(d):
+            best, b, pres, rres = d, r, p, q
+            if math.isnan(d):
+                break
+    return b, pres, rres
+
+
 @_entry(_nrt=False)
-def closed_forms_at(T, v, opt, joint1, joint2, buf, out_q, out_res, counts) -> bool:
-    """Every closed-form configuration with solver joint 1 at each value of ``joint1`` (n,)
-    [rad] (every theta2 option, or solver joint 2 at ``joint2[i]`` where that is not NaN; both
-    wrist branches), unpolished: into out_q (n, 16, 6) (user joints), out_res (n, 16, 2) and
-    counts (n,). What theta1 and theta2 continua's members are made of. False if the pose does
-    not pass the pose check."""
-    ws, wm, _ = _views(buf)
+def closed_form_march(T, v, opt, q0, starts, joint1, joint2, buf, out_q, out_res) -> bool:
+    """A theta1 or theta2 continuum followed by its exact closed forms: at each step i, solver
+    joint 1 at ``joint1[i]`` [rad] (and solver joint 2 at ``joint2[i]`` where that is not NaN),
+    the closed-form configuration nearest the previous member taken (:func:`_nearest_closed_form`; no
+    polish: the members are exact). The previous member of step i is ``q0[starts[i]]`` (q0
+    (k, 6)) where ``starts[i] >= 0`` (a march begins there), else step i - 1's. Into out_q
+    (n, 6) (user joints) and out_res (n, 2) [m, rad]; where there is no closed form, the previous
+    member with infinite residuals. False if the pose does not pass the pose check."""
+    ws, wm, cand = _views(buf)
     Ru = wm[_M_RU, :3, :3]
     status, _, _ = _check_pose(T, opt[L.OPT_ORTHONORMAL_TOL], Ru)
     if status != L.OK:
@@ -1824,24 +1897,19 @@ def closed_forms_at(T, v, opt, joint1, joint2, buf, out_q, out_res, counts) -> b
     t = _el.pose_terms(P[2], P[5], P[8], P[9], P[10], P[11], v, L.A_CONST, -1.0)
     for k in range(18):
         terms[k] = t[k]
-    th2, qc, q = ws[_W_TH2 : _W_TH2 + 8], ws[_W_Q2 : _W_Q2 + 6], ws[_W_Q : _W_Q + 6]
+    prev, rows = ws[_W_QB : _W_QB + 6], cand[: L.MAX_SOLUTIONS]
+    ptol, rtol = opt[L.OPT_POSITION_TOL], opt[L.OPT_ROTATION_TOL]
     for i in range(joint1.shape[0]):
-        t1 = joint1[i] + v[L.A_SOLVER_DH + 4]
-        if math.isnan(joint2[i]):
-            n2 = max(_theta2_options(terms, t1, L.KIND_SPECIAL, th2)[0], 0)
-        else:
-            th2[0], n2 = joint2[i] + v[L.A_SOLVER_DH + 9], 1
-        m = 0
-        for k in range(n2):
-            for branch in range(2):
-                if m >= out_q.shape[1]:
-                    break
-                _closed_form(t1, math.cos(th2[k]), math.sin(th2[k]), branch, P, v, qc)
-                _to_user(qc, q, v)
-                pres, rres = _residuals(q, v, Ru, T)
-                for j in range(6):
-                    out_q[i, m, j] = q[j]
-                out_res[i, m, 0], out_res[i, m, 1] = pres, rres
-                m += 1
-        counts[i] = m
+        if starts[i] >= 0:
+            for k in range(6):
+                prev[k] = q0[starts[i], k]
+        t1, t2 = joint1[i] + v[L.A_SOLVER_DH + 4], joint2[i] + v[L.A_SOLVER_DH + 9]
+        b, out_res[i, 0], out_res[i, 1] = _nearest_closed_form(
+            t1, t2, terms, P, v, Ru, T, ws, rows, prev, ptol, rtol
+        )
+        if b >= 0:
+            for k in range(6):
+                prev[k] = rows[b, k]
+        for k in range(6):
+            out_q[i, k] = prev[k]
     return True

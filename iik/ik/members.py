@@ -4,9 +4,13 @@ of kind ``"theta1"`` and ``"numerical"``).
 A member with the free joint at theta is found by continuation from the representative: the
 free joint is stepped towards theta (steps of at most :data:`STEP` rad), and at each step the
 other joints are refit by Levenberg-Marquardt with the free joint held (the compiled
-:func:`iik.ik.kernel.continuum_members`). The feasible interval is where the members reach the
+:func:`iik.ik.kernel.continuum_members`), or, for theta1 and theta2 continua, the exact
+closed-form configuration nearest the previous member is taken (the compiled
+:func:`iik.ik.kernel.closed_form_march`). The feasible interval is where the members reach the
 pose within the tolerance and lie inside the joint limits, found by marching from the
-representative in both directions and bisecting the first failure (to :data:`RESOLUTION` rad).
+representative in both directions and bisecting (to :data:`RESOLUTION` rad) between the last
+good member and the first failure, each trial one continuation step from the last good member.
+The march towards each limit is computed once per continuum object, and only as far as asked.
 
 Units: radians.
 """
@@ -43,9 +47,9 @@ def _kernel():
     return kernel
 
 
-def _march(c, thetas: np.ndarray):
+def _march(c, thetas: np.ndarray, q0=None):
     """Members (n, 6) and residuals (n, 2) along the free-joint values ``thetas`` (in order,
-    starting next to the representative)."""
+    starting next to the member ``q0``: the representative by default)."""
     k = _kernel()
     j = c.free_joint - 1
     cols = np.array([i for i in range(6) if i != j], dtype=np.int64)
@@ -58,7 +62,7 @@ def _march(c, thetas: np.ndarray):
         np.ascontiguousarray(c.pose, dtype=float),
         data,
         opt,
-        np.array(c.representative, dtype=float),
+        np.array(c.representative if q0 is None else q0, dtype=float),
         cols,
         j,
         coupled,
@@ -78,46 +82,40 @@ def _path(start: float, end: float) -> np.ndarray:
     return start + (end - start) * np.arange(1, n + 1) / n
 
 
-def _march_closed(c, thetas: np.ndarray):
+def _march_closed(c, thetas: np.ndarray, q0=None, starts=None):
     """theta1 and theta2 continua: the exact closed-form configurations at each value (theta2:
     solver joint 1 held at the representative's), the one nearest the previous member taken
-    (continuation without a polish: the members are exact)."""
+    (continuation without a polish: the members are exact), starting from the member ``q0``
+    (the representative by default). With ``starts`` (n,): q0 is (k, 6) and a march begins
+    from ``q0[starts[i]]`` at each i where that is >= 0 (several marches in one call).
+    Compiled: :func:`iik.ik.kernel.closed_form_march`."""
     k = _kernel()
     n = len(thetas)
-    out_q, out_r = np.empty((n, 16, 6)), np.empty((n, 16, 2))
-    counts = np.zeros(n, dtype=np.int64)
-    opt = np.array([c.tolerance[0], c.tolerance[1], 1e-5, 1e-3, 1e-7])
     thetas = np.ascontiguousarray(thetas, dtype=float)
     if c.kind == "theta2":  # (solver joint 1 is user joint 1, or 6 for an arm read from the flange)
         j1 = 5 if c.arm.solver.reversed else 0
         joint1, joint2 = np.full(n, float(c.representative[j1])), thetas
     else:
         joint1, joint2 = thetas, np.full(n, np.nan)
-    ok = k.closed_forms_at(
+    if starts is None:
+        starts = np.full(n, -1, dtype=np.int64)
+        starts[:1] = 0
+    out_q, out_r = np.empty((n, 6)), np.empty((n, 2))
+    ok = k.closed_form_march(
         np.ascontiguousarray(c.pose, dtype=float),
         k.arm_data(c.arm).vector,
-        opt,
+        np.array([c.tolerance[0], c.tolerance[1], 1e-5, 1e-3, 1e-7]),
+        np.array(c.representative if q0 is None else q0, dtype=float).reshape(-1, 6),
+        np.asarray(starts, dtype=np.int64),
         joint1,
         joint2,
         k.scratch(),
         out_q,
         out_r,
-        counts,
     )
     if not ok:  # pragma: no cover (the pose passed the IK's check)
         raise ValueError("the continuum's pose does not pass the pose check")
-    prev = np.array(c.representative, dtype=float)
-    qs, rs = np.empty((n, 6)), np.full((n, 2), np.inf)
-    # a member that misses the pose is taken only when none reaches it (10 rad more than any distance)
-    penalty = np.where((out_r[..., 0] <= c.tolerance[0]) & (out_r[..., 1] <= c.tolerance[1]), 0.0, 10.0)
-    for i in range(n):
-        m = counts[i]
-        if m == 0:
-            qs[i] = prev
-            continue
-        b = int((angle_distance(out_q[i, :m], prev) + penalty[i, :m]).argmin())
-        qs[i], rs[i], prev = out_q[i, b], out_r[i, b], out_q[i, b]
-    return qs, rs
+    return out_q, out_r
 
 
 def _marcher(c):
@@ -130,55 +128,98 @@ def follow(c, thetas) -> tuple[np.ndarray, np.ndarray]:
     residuals (n, 2) [m, rad], each by continuation from the representative."""
     j = c.free_joint - 1
     start = float(c.representative[j])
-    march = _marcher(c)
-    qs, rs = [], []
-    for th in np.atleast_1d(np.asarray(thetas, dtype=float)):
-        path = _path(start, float(th))
-        q, r = march(c, path)
-        qs.append(q[-1])
-        rs.append(r[-1])
-    return np.array(qs), np.array(rs)
+    paths = [_path(start, float(th)) for th in np.atleast_1d(np.asarray(thetas, dtype=float))]
+    if not paths:
+        return np.zeros((0, 6)), np.zeros((0, 2))
+    ends = np.cumsum([len(p) for p in paths]) - 1
+    if _marcher(c) is _march_closed:  # every march in one call
+        starts = np.full(ends[-1] + 1, -1, dtype=np.int64)
+        starts[np.r_[0, ends[:-1] + 1]] = 0
+        q, r = _march_closed(c, np.concatenate(paths), c.representative, starts)
+        return q[ends], r[ends]
+    marched = [_march(c, p) for p in paths]
+    return np.array([q[-1] for q, _ in marched]), np.array([r[-1] for _, r in marched])
 
 
 def _inside(arm, q):
-    """q (6,) turned into the limits where a turn by 2 pi brings a joint in, and whether it is in."""
+    """q (..., 6) turned into the limits where a turn by 2 pi brings a joint in, and whether each
+    is in."""
     from ..arm import LIMIT_TOL
 
-    out, ok = into_limits(q, arm.q_min, arm.q_max, LIMIT_TOL)
-    return out, bool(ok)
+    return into_limits(q, arm.q_min, arm.q_max, LIMIT_TOL)
 
 
-def _good(c, q, r, prev) -> bool:
-    inside = _inside(c.arm, q)[1]
+_MARCHES: dict = {}  # (id(c), end, march) -> (c, representative, pose, (path, members, residuals))
+_CHUNK = 16  # steps of a march first computed where it may stop early (then doubled)
+
+
+def _toward(c, end: float, march=None, steps: int | None = None):
+    """c's march from the representative towards the free-joint value ``end`` (``march``: the
+    continuum's own by default), its first ``steps`` (all by default): the values (n,) [rad],
+    members (n, 6) and residuals (n, 2). Computed once per continuum object and end, and only as
+    far as asked (a march continues from its last member: the same members as in one go). The
+    interval, the inside member, the samples and the theta1 branches share it."""
+    march = march or _marcher(c)
+    key = (id(c), float(end), march)
+    hit = _MARCHES.get(key)
+    rep, pose = np.array(c.representative, dtype=float), np.array(c.pose, dtype=float)
+    if hit is not None and hit[0] is c and np.array_equal(hit[1], rep) and np.array_equal(hit[2], pose):
+        path, q, r = hit[3]
+    else:
+        path, q, r = _path(float(rep[c.free_joint - 1]), float(end)), np.zeros((0, 6)), np.zeros((0, 2))
+    n = len(path) if steps is None else min(steps, len(path))
+    if len(q) < n:
+        qn, rn = march(c, path[len(q) : n], rep if len(q) == 0 else q[-1])
+        q, r = np.vstack([q, qn]), np.vstack([r, rn])
+        if len(_MARCHES) > 256:
+            _MARCHES.clear()
+        _MARCHES[key] = (c, rep, pose, (path, q, r))
+    return path[:n], q[:n], r[:n]
+
+
+def _scan(c, end: float, found):
+    """c's march towards ``end`` (:func:`_toward`), extended until ``found(path, members,
+    residuals)`` (bool (n,)) holds somewhere: (path, members, the first index where it holds, or
+    None)."""
+    n = _CHUNK
+    while True:
+        path, q, r = _toward(c, end, steps=n)
+        hit = found(path, q, r)
+        if hit.any():
+            return path, q, int(hit.argmax())
+        if len(path) < n:
+            return path, q, None
+        n *= 2
+
+
+def _good(c, q, r, prev) -> np.ndarray:
+    """Are the members q (..., 6) with residuals r (..., 2) inside the limits, within the
+    tolerance and no more than _JUMP from the members ``prev`` before them?"""
     tp, tr = c.tolerance
-    near = float(angle_distance(q, prev)) <= _JUMP
-    return inside and r[0] <= tp and r[1] <= tr and near
+    near = angle_distance(q, prev) <= _JUMP
+    return _inside(c.arm, q)[1] & (r[..., 0] <= tp) & (r[..., 1] <= tr) & near
 
 
 def _edge(c, start: float, limit: float) -> float:
-    """How far from the representative the feasible members reach towards ``limit``."""
+    """How far from the representative the feasible members reach towards ``limit``: the march
+    to the first member that fails, then bisection (to RESOLUTION) between the last good
+    member and it, each trial member one continuation step from the last good one."""
     if abs(limit - start) <= RESOLUTION:
         return start
-    path = _path(start, limit)
-    q, r = _marcher(c)(c, path)
-    prev = np.array(c.representative, dtype=float)
-    last = start
-    for i, th in enumerate(path):
-        if not _good(c, q[i], r[i], prev):
-            lo, hi = last, th  # bisect between the last good value and the first bad one
-            q_lo = prev
-            while abs(hi - lo) > RESOLUTION:
-                mid = 0.5 * (lo + hi)
-                qm, rm = _marcher(c)(c, _path(start, mid))
-                if _good(
-                    c, qm[-1], rm[-1], q_lo if abs(mid - lo) <= STEP else qm[-2] if len(qm) > 1 else q_lo
-                ):
-                    lo, q_lo = mid, qm[-1]
-                else:
-                    hi = mid
-            return lo
-        prev, last = q[i], th
-    return limit
+    rep = np.asarray(c.representative, dtype=float)[None]
+    path, q, i = _scan(c, limit, lambda p, q, r: ~_good(c, q, r, np.vstack([rep, q[:-1]])))
+    if i is None:
+        return limit
+    lo, hi, q_lo = (start if i == 0 else float(path[i - 1])), float(path[i]), (rep[0] if i == 0 else q[i - 1])
+    march = _marcher(c)
+    while abs(hi - lo) > RESOLUTION:
+        mid = 0.5 * (lo + hi)
+        qm, rm = march(c, np.array([mid]), q_lo)
+        if _good(c, qm[0], rm[0], q_lo):
+            lo, q_lo = mid, qm[0]
+        else:
+            hi = mid
+    return lo
 
 
 def along(c) -> tuple[np.ndarray, np.ndarray]:
@@ -197,8 +238,7 @@ def along(c) -> tuple[np.ndarray, np.ndarray]:
     for limit in (float(c.arm.q_min[j]), float(c.arm.q_max[j])):
         if abs(limit - start) <= RESOLUTION:
             continue
-        path = _path(start, limit)
-        q, r = march(c, path)
+        path, q, r = _toward(c, limit, march)
         prev = members[0]
         for i, th in enumerate(path):
             if float(angle_distance(q[i], prev)) > _JUMP:
@@ -225,35 +265,57 @@ def feasible_interval(c) -> tuple[float, float]:
 def on_continuum(c, q, tol: float = 1e-7) -> bool:
     """Is the configuration q (6,) a member of continuum c (its member at q's free joint)?"""
     m, r = follow(c, [float(q[c.free_joint - 1])])
-    return bool(
-        angle_distance(m[0], q) <= tol
-        and r[0, 0] <= c.tolerance[0]
-        and r[0, 1] <= c.tolerance[1]
-    )
+    return bool(angle_distance(m[0], q) <= tol and r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1])
+
+
+def _on_branch(c, Q, tol: float = 1e-7) -> np.ndarray:
+    """:func:`on_continuum` for each configuration of Q (n, 6), by the shared marches towards
+    the limits: each member one continuation step from the marched member before its value of
+    the free joint (all in one call), or by :func:`follow` beyond the limits."""
+    j = c.free_joint - 1
+    start, rep = float(c.representative[j]), np.array(c.representative, dtype=float)
+    Q = np.asarray(Q, dtype=float).reshape(-1, 6)
+    ths = Q[:, j]
+    prev, marched = np.empty((len(ths), 6)), np.zeros(len(ths), dtype=bool)
+    for limit, side in ((float(c.arm.q_min[j]), ths < start), (float(c.arm.q_max[j]), ths >= start)):
+        sel = side & (np.abs(ths - start) <= abs(limit - start)) & ((ths - start) * (limit - start) >= 0.0)
+        if sel.any():
+            path = _path(start, limit)
+            k = np.count_nonzero(np.abs(path[None] - start) < np.abs(ths[sel, None] - start), axis=1)
+            members = _toward(c, limit, steps=int(k.max()))[1]
+            prev[sel] = np.vstack([rep[None], members])[k]
+            marched |= sel
+    out = np.array([not marched[i] and on_continuum(c, q, tol) for i, q in enumerate(Q)], dtype=bool)
+    if marched.any():
+        m, r = _march_closed(c, ths[marched], prev[marched], np.arange(marched.sum()))
+        out[marched] = (
+            (angle_distance(m, Q[marched]) <= tol) & (r[:, 0] <= c.tolerance[0]) & (r[:, 1] <= c.tolerance[1])
+        )
+    return out
 
 
 def _continues(c) -> bool:
     """Do c's members continue on both sides of the representative (a curve, not a point)?"""
-    j = c.free_joint - 1
-    x = float(c.representative[j])
-    for th in (x - STEP, x + STEP):
-        m, r = follow(c, [th])
-        jump = float(angle_distance(m[0], c.representative))
-        if not (r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1] and jump <= 2.0):
-            return False
-    return True
+    x = float(c.representative[c.free_joint - 1])
+    m, r = follow(c, [x - STEP, x + STEP])
+    jump = angle_distance(m, c.representative)
+    return bool(np.all((r[:, 0] <= c.tolerance[0]) & (r[:, 1] <= c.tolerance[1]) & (jump <= 2.0)))
 
 
 def theta1_branches(continua) -> list[int | None]:
     """For the candidate rows of a degenerate pose (one theta1 :class:`Continuum` each, in the
     result's order): the index of the row whose branch each row lies on (itself for the first
-    of a branch), or None for a row that is an isolated solution (no curve through it)."""
+    of a branch), or None for a row that is an isolated solution (no curve through it). The
+    later rows are tested against each branch's members at once (:func:`_on_branch`)."""
     out: list[int | None] = []
+    on: dict[int, np.ndarray] = {}  # branch -> which of the rows after it lie on it
+    reps = np.array([c.representative for c in continua], dtype=float).reshape(-1, 6)
     for i, c in enumerate(continua):
-        owner = next(
-            (k for k in range(i) if out[k] == k and on_continuum(continua[k], c.representative)), None
-        )
-        out.append(owner if owner is not None else (i if _continues(c) else None))
+        owner = next((k for k in range(i) if out[k] == k and on[k][i - k - 1]), None)
+        if owner is None and _continues(c):
+            owner = i
+            on[i] = _on_branch(c, reps[i + 1 :])
+        out.append(owner)
     return out
 
 
@@ -268,12 +330,13 @@ def inside_member(c):
     j = c.free_joint - 1
     start = float(c.representative[j])
     found = []  # (distance along the free joint, member) of the first inside member each way
+    tp, tr = c.tolerance
+
+    def inside(path, q, r):
+        return _inside(arm, q)[1] & (r[:, 0] <= tp) & (r[:, 1] <= tr)
+
     for end in (arm.q_min[j], arm.q_max[j]):
-        path = _path(start, float(end))
-        qs, rs = _marcher(c)(c, path)
-        for th, q, r in zip(path, qs, rs, strict=True):
-            m, ok = _inside(arm, q)
-            if ok and r[0] <= c.tolerance[0] and r[1] <= c.tolerance[1]:
-                found.append((abs(th - start), m))
-                break
+        path, qs, i = _scan(c, float(end), inside)
+        if i is not None:
+            found.append((abs(path[i] - start), _inside(arm, qs[i])[0]))
     return min(found, key=lambda f: f[0])[1] if found else None
