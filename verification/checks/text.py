@@ -29,6 +29,10 @@ class Slip:
     cited: object = None
     right: object = None
 
+    @property
+    def erratum(self) -> Erratum:
+        return Erratum(f"{self.where} (citation)", self.quote, self.correct, f"cited target: {self.cited_is}")
+
     def reading(self):
         """Second reading: is the right target one number or letter off the printed one (a typo)?"""
         return search({"cite": self.cited}, numbering_slips("cite", self.cited, "the citation"),
@@ -136,17 +140,14 @@ SLIPS = (
 @SECTION.check(
     990.0,
     by_construction="a reading of each citation against the thesis's own lists of figures and tables, table "
-                    "of "
-    "contents and equation numbering (quoted in verification/checks/text.py); no computation",
+    "of contents and equation numbering (quoted in verification/checks/text.py); no computation",
 )
 def cross_references(ctx):
     """The cross-reference slips of the text, one erratum record each."""
     m = (Measure("citations whose target is not what the sentence describes", len(SLIPS), 0),)
     details = tuple(
         Row(f"{s.where}: '{s.quote}'", f"{s.where} (citation)", "", f"cited target: {s.cited_is}; described: "
-            f"{s.correct}", Verdict.ERRATUM, id=f"c{k + 1}",
-            errata=(Erratum(f"{s.where} (citation)", s.quote, s.correct, f"cited target: {s.cited_is}"),)
-            ).reread(s.reading())
+            f"{s.correct}", Verdict.ERRATUM, id=f"c{k + 1}", errata=(s.erratum,)).reread(s.reading())
         for k, s in enumerate(SLIPS)
     )
     return Row(
@@ -162,7 +163,5 @@ def cross_references(ctx):
         covers=("Cross-references",),
         details=details,
         domain=f"the {len(SLIPS)} citations found wrong by reading every numbered citation",
-        errata=tuple(
-            Erratum(f"{s.where} (citation)", s.quote, s.correct, f"cited target: {s.cited_is}") for s in SLIPS
-        ),
+        errata=tuple(s.erratum for s in SLIPS),
     )

@@ -18,6 +18,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 import iik
+from iik.dh import dh_chain
 from iik.workspace import in_workspace, tool_positions
 
 from ..assumptions import EXACT_GEOMETRY
@@ -162,7 +163,8 @@ def surface_points(name: str, n1: int, n2: int, arm=ARM) -> tuple[np.ndarray, np
 # ----------------------------------------------------------------------------- ground truth
 @per_run
 def _test_points(ctx) -> dict:
-    """Uniform box points + points concentrated in regions 2/3, classified by the oracle."""
+    """Uniform box points + points concentrated in regions 2/3, classified by the oracle; ``graded``: those
+    it decides clearly (not in its boundary band)."""
     rng = ctx.rng("workspace-test-points")
     n1, n2 = ctx.n(10000, 1500), ctx.n(4000, 600)
     box = np.column_stack(
@@ -173,7 +175,9 @@ def _test_points(ctx) -> dict:
     back = np.column_stack([r * np.cos(phi), r * np.sin(phi), rng.uniform(-0.55, 1.15, n2)])
     pts = np.vstack([box, back])
     cls = oracle_for(ctx).classify(pts)
-    return {"p": pts, "n_box": n1, "truth": cls.reachable, "residual": cls.residual, "q": cls.q}
+    graded = ~((cls.residual > 1e-6) & (cls.residual < AMBIGUOUS))
+    return {"p": pts, "n_box": n1, "truth": cls.reachable, "residual": cls.residual, "q": cls.q,
+            "graded": graded}
 
 
 @per_run
@@ -229,11 +233,6 @@ def _map_figure(ctx, name: str) -> str:
     return ctx.save_figure(fig, name, dpi=80)
 
 
-def _graded_points(tp) -> np.ndarray:
-    """Test points the oracle decides clearly (not in its boundary band)."""
-    return ~((tp["residual"] > 1e-6) & (tp["residual"] < AMBIGUOUS))
-
-
 def _fmt_point(tp, i) -> str:
     P, truth = tp["p"], tp["truth"]
     s = (
@@ -255,7 +254,7 @@ def _test_domain(tp) -> str:
 def _selected(tp, region: str) -> np.ndarray:
     P = tp["p"]
     r23 = np.abs(np.arctan2(P[:, 1], P[:, 0])) >= 160 * _D
-    return _graded_points(tp) & {"all": np.ones(len(P), bool), "1": ~r23, "23": r23}[region]
+    return tp["graded"] & {"all": np.ones(len(P), bool), "1": ~r23, "23": r23}[region]
 
 
 def classification_reading(ctx, test, region: str, printed: str):
@@ -304,7 +303,7 @@ def _classification_row(ctx, form, key, method, region: str, printed: str, corre
         key,
         method,
         f"{int(sel.sum())} graded test points ({int(truth[sel].sum())} reachable; "
-        f"{int((~_graded_points(tp)).sum())} in the oracle's boundary band not graded): false inside {fi}, "
+        f"{int((~tp['graded']).sum())} in the oracle's boundary band not graded): false inside {fi}, "
         f"false outside {fo}",
         (Measure("misclassified test points", fi + fo, 0),),
         erratum=erratum,
@@ -369,29 +368,18 @@ def eq36_printed(P):
     return np.arctan2(P[:, 1], P[:, 0])
 
 
-def _joints_at(th1, th2, frame: int) -> np.ndarray:
-    """Joint ``frame``'s position (Pinocchio) with joints 1-2 at ``th1``, ``th2`` and the others 0 [m]."""
+def _dh_frames(q) -> np.ndarray:
+    """Frames 1..6 of Table II's chain by iik.dh (n, 6, 4, 4): index 1 is joint 2's, 2 joint 4's."""
+    return dh_chain(ARM.dh_table(), q, all_frames=True)
+
+
+def _joints_at(th1, th2, frame: int, frames=joint_placements) -> np.ndarray:
+    """A joint's position [m] (n, 3) with joints 1-2 at ``th1``, ``th2`` [rad] and the others 0: the origin
+    of ``frames(q)[:, frame]`` (Pinocchio's placements: 2 is joint 2, 3 joint 4; or :func:`_dh_frames`)."""
     th1, th2 = np.broadcast_arrays(th1, th2)
     q = np.zeros((len(th1), 6))
     q[:, 0], q[:, 1] = th1, th2
-    return joint_placements(q)[:, frame, :3, 3]
-
-
-def _first_links(th1: np.ndarray, th2: np.ndarray | None = None, upto: int = 2) -> np.ndarray:
-    """Origins of frames 1..``upto`` of Table II's chain by iik.dh at joint angles (th1, th2, 0, ...) [m]:
-    (n, 3) of frame ``upto`` (2 = joint 2, 3 = joint 4)."""
-    import dataclasses
-
-    from iik.dh import dh_chain
-
-    t = ARM.dh_table()
-    part = dataclasses.replace(t, rows=t.rows[:upto], lower=t.lower[:upto], upper=t.upper[:upto],
-                               velocity=t.velocity[:upto])
-    q = np.zeros((len(th1), upto))
-    q[:, 0] = th1
-    if upto > 1 and th2 is not None:
-        q[:, 1] = th2
-    return dh_chain(part, q)[:, :3, 3]
+    return frames(q)[:, frame, :3, 3]
 
 
 def _nearest_angle(P, grid, at, refine_at=None, lo=None, hi=None, iters: int = 50) -> np.ndarray:
@@ -429,7 +417,8 @@ def _eq36_points(ctx) -> tuple[np.ndarray, np.ndarray]:
     edge = np.column_stack([rr * np.cos(lim), rr * np.sin(lim), rng.uniform(-0.55, 1.15, n)])
     P = np.vstack([box, axis, edge])
     grid = np.linspace(-np.pi, np.pi, 3600, endpoint=False)
-    return P, _nearest_angle(P, grid, partial(_joints_at, th2=0.0, frame=2), _first_links)
+    return P, _nearest_angle(P, grid, partial(_joints_at, th2=0.0, frame=2),
+                             partial(_joints_at, th2=0.0, frame=1, frames=_dh_frames))
 
 
 @SECTION.check(
@@ -524,17 +513,6 @@ def eq38_region1(ctx, test):
                                "rho1 > l3 + l4 + l5")
 
 
-def _joint4_at(th1: float):
-    """Joint 4's positions [m] (iik.joint_frames) at theta2 = t [rad], joint 1 at ``th1`` [rad]: (k, 3)."""
-
-    def at(t):
-        q = np.zeros((len(t), 6))
-        q[:, 0], q[:, 1] = th1, t
-        return iik.joint_frames(q, ARM)[:, 2, :3, 3]
-
-    return at
-
-
 @dataclass(frozen=True)
 class RearPoints(Points):
     """Points behind the arm (regions 2/3) with joint 1 at ``th1`` [rad] and ``best``, the theta2 [rad] that
@@ -555,7 +533,8 @@ def _rear_sample(ctx) -> RearPoints:
     r = np.where(np.arange(n) % 4 == 0, rng.uniform(0.01, 0.2, n), rng.uniform(0.05, 0.9, n))  # 1/4 near axis
     P = np.column_stack([r * np.cos(phi), r * np.sin(phi), rng.uniform(-0.5, 1.1, n)])
     P, th1, lo, hi = P[np.arctan2(P[:, 1], P[:, 0]) >= 160 * _D], 160 * _D, ARM.lower[1], ARM.upper[1]
-    best = _nearest_angle(P, np.linspace(lo, hi, 2001), _joint4_at(th1), lo=lo, hi=hi, iters=45)
+    at = partial(_joints_at, th1, frame=2, frames=partial(iik.joint_frames, arm=ARM))  # joint 4
+    best = _nearest_angle(P, np.linspace(lo, hi, 2001), at, lo=lo, hi=hi, iters=45)
     return RearPoints(P, f"{len(P)} points at azimuth 160-200 deg, radius 0.05-0.9 m (a quarter 0.01-0.2 m: "
                       "within l2 of the axis, where u - l2 changes sign), z from -0.5 to 1.1 m (theta2 "
                       "clipped at both Table I limits)", th1=th1, best=best)
@@ -566,13 +545,9 @@ def _dh_theta2(ctx, th1: float) -> np.ndarray:
     """theta2 within Table I that puts joint 4 (joint 1 at ``th1``) nearest to each rear point: a dense grid
     over Table II's first three links by iik.dh, refined by golden-section search (a route of its own: not
     Pinocchio, not the check's search)."""
-    P = _rear_sample(ctx).values
-
-    def at(t):
-        return _first_links(np.full(len(t), th1), t, upto=3)
-
     lo, hi = ARM.lower[1], ARM.upper[1]
-    return _nearest_angle(P, np.linspace(lo, hi, 2001), at, lo=lo, hi=hi)
+    at = partial(_joints_at, th1, frame=2, frames=_dh_frames)  # joint 4
+    return _nearest_angle(_rear_sample(ctx).values, np.linspace(lo, hi, 2001), at, lo=lo, hi=hi)
 
 
 def eq39_reading(ctx, P, th1, eq39):
@@ -604,7 +579,7 @@ def eq40_reading(th2: np.ndarray, eq40):
     stated = {"th1": 160 * _D, "th2": th2, "xy": False, "th1_form": 160 * _D}
 
     def misfit(x) -> float:
-        j4 = _first_links(np.full(len(th2), x["th1"]), x["th2"], upto=3)
+        j4 = _joints_at(x["th1"], x["th2"], 2, _dh_frames)
         f = eq40(np.full(len(th2), x["th1_form"]), th2)
         if x["xy"]:
             f = f[:, [1, 0, 2]]
@@ -762,31 +737,17 @@ def _distance_to_surface(B: np.ndarray, spec: tuple, n: int) -> np.ndarray:
 def three_surface_boundary(ctx, surfaces):
     """Sec 3.4.3: the exterior boundary consists of the printed surfaces (each boundary point on one)."""
     B, na, ne = _boundary_points(ctx)
-    dist = np.full(len(B), np.inf)
-    nn = np.zeros(len(B), int)
-    names = list(surfaces)
-    for k, name in enumerate(names):
-        d = _distance_to_surface(
-            B, surfaces[name], ctx.n(160, 60) if len(surfaces[name][1]) == 2 else ctx.n(24, 14)
-        )
-        nn = np.where(d < dist, k, nn)
-        dist = np.minimum(dist, d)
-    labels = np.array(names)
+    d = np.array([_distance_to_surface(B, spec, ctx.n(160, 60) if len(spec[1]) == 2 else ctx.n(24, 14))
+                  for spec in surfaces.values()])
+    dist, nearest = d.min(axis=0), np.array(list(surfaces))[d.argmin(axis=0)]
     covered = dist <= _COVER_TOL
     phiB = np.degrees(np.arctan2(B[:, 1], B[:, 0]))
     front = np.abs(phiB) < 160
-    m = (
-        Measure(
-            f"share of boundary points farther than {_COVER_TOL * 1e3:.0f} mm from every surface",
-            1 - covered.mean(),
-            0.01,
-        ),
-    )
     lines = [
         f"{len(B)} exterior-boundary points (farthest of the oracle's samples in each of {na}x{ne} "
         "equal-area direction cells from (0, 0, l1), refined along the ray by IK bisection to 1.25 mm); "
         f"within {_COVER_TOL * 1e3:.0f} mm of a surface: {int(covered.sum())} ({covered.mean():.1%}) ["
-        + ", ".join(f"{k}: {int(np.sum(covered & (labels[nn] == k)))}" for k in surfaces)
+        + ", ".join(f"{k}: {int(np.sum(covered & (nearest == k)))}" for k in surfaces)
         + "]",
         f"|azimuth| < 160 deg: {int(covered[front].sum())} of {int(front.sum())} covered; |azimuth| >= 160 "
         f"deg: {int(covered[~front].sum())} of {int((~front).sum())}",
@@ -805,7 +766,8 @@ def three_surface_boundary(ctx, surfaces):
         "\n".join(lines)
         + "\nNote: Sec 3.4.3 lists s(2) with th1 = +160 deg, while Table VI and App. E list s(2) with "
         "th1 = -160 deg (and s(3) with +160).",
-        m,
+        (Measure(f"share of boundary points farther than {_COVER_TOL * 1e3:.0f} mm from every surface",
+                 1 - covered.mean(), 0.01),),
         fail=Verdict.DOES_NOT_HOLD,
         id="three_surfaces",
         domain=f"{len(B)} exterior-boundary points, one per equal-area direction cell ({na} x {ne}) around "
