@@ -322,7 +322,7 @@ _COMPOSITE = (
 
 def _corrected(**kw):
     """The test with Eq 39 and Eq 40 corrected, and ``kw`` (:func:`eq36_41_test`)."""
-    return partial(eq36_41_test, eq39="corrected", eq40_sign=1.0, **kw)
+    return partial(eq36_41_test, **{"eq39": "corrected", "eq40_sign": 1.0, **kw})
 
 
 @SECTION.check(
@@ -332,8 +332,7 @@ def _corrected(**kw):
         good=partial(in_workspace, arm=ARM),
         good_is="iik.in_workspace (Eq 39 and Eq 40 corrected)",
         slips=(
-            Slip(SlipKind.SIGN, "Eq 40 with l2 - l3 c2 (Eq 39 corrected)", partial(eq36_41_test,
-                eq39="corrected")),
+            Slip(SlipKind.SIGN, "Eq 40 with l2 - l3 c2 (Eq 39 corrected)", _corrected(eq40_sign=-1.0)),
             Slip(SlipKind.LIMIT, "joint 1 at the other limit in regions 2/3", _corrected(th1_rule="other")),
             Slip(SlipKind.LENGTH, "region 1's reach l3 + l4 (l5 left out)",
                  _corrected(reach1=ARM.l3 + ARM.l4)),
@@ -532,12 +531,13 @@ def _rear_sample(ctx) -> RearPoints:
     phi = rng.uniform(160 * _D, 200 * _D, n)
     r = np.where(np.arange(n) % 4 == 0, rng.uniform(0.01, 0.2, n), rng.uniform(0.05, 0.9, n))  # 1/4 near axis
     P = np.column_stack([r * np.cos(phi), r * np.sin(phi), rng.uniform(-0.5, 1.1, n)])
-    P, th1, lo, hi = P[np.arctan2(P[:, 1], P[:, 0]) >= 160 * _D], 160 * _D, ARM.lower[1], ARM.upper[1]
-    at = partial(_joints_at, th1, frame=2, frames=partial(iik.joint_frames, arm=ARM))  # joint 4
+    P = P[np.arctan2(P[:, 1], P[:, 0]) >= 160 * _D]
+    lo, hi = ARM.lower[1], ARM.upper[1]
+    at = partial(_joints_at, 160 * _D, frame=2, frames=partial(iik.joint_frames, arm=ARM))  # joint 4
     best = _nearest_angle(P, np.linspace(lo, hi, 2001), at, lo=lo, hi=hi, iters=45)
     return RearPoints(P, f"{len(P)} points at azimuth 160-200 deg, radius 0.05-0.9 m (a quarter 0.01-0.2 m: "
                       "within l2 of the axis, where u - l2 changes sign), z from -0.5 to 1.1 m (theta2 "
-                      "clipped at both Table I limits)", th1=th1, best=best)
+                      "clipped at both Table I limits)", th1=160 * _D, best=best)
 
 
 @per_run
