@@ -970,12 +970,10 @@ def eq27_s45(ctx, eq27):
     """Eq 27-28 on random q, including |c3| down to 1e-10 (theta3 within 1e-3..1e-10 rad of +-90 deg), graded
     on |error| |c3| (the division by c3 costs eps / |c3|; at c3 = 0 exactly see eq27.c3_zero)."""
     s, near = sample(ctx), _near_c3_zero(ctx)
-    q = np.concatenate([s.q, near.q])
-    R = np.concatenate([s.R, near.R])
-    c3 = np.cos(q[:, 2])
-    err = np.abs(wrap(_theta5(eq27, R, q, c3, np.sin(q[:, 2])) - q[:, 4]))
+    both = Sample(np.concatenate([s.q, near.q]), np.concatenate([s.F, near.F]), s.hard)
+    q, c3 = both.q, np.cos(both.q[:, 2])
+    err = np.abs(wrap(_theta5(eq27, both.R, q, c3, np.sin(q[:, 2])) - q[:, 4]))
     err = np.where(np.isnan(err), np.inf, err)
-    both = Sample(q, np.concatenate([s.F, near.F]), s.hard)
     raw_near = err[len(s.q):]
     small = np.abs(c3[len(s.q):])
     ok = raw_near <= TOL_ANGLE
