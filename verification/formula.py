@@ -240,7 +240,7 @@ def per_run(func: Callable) -> Callable:
     module and name, ``args`` (hashable) and ``ctx.quick``.
 
     For samples and ground truths that depend on no form: the self-test reruns each check with other
-    forms in the same context (:class:`~verification.registry.Context`). (The same as k4's ``per_run``.)"""
+    forms in the same context (:class:`~verification.registry.Context`)."""
 
     @wraps(func)
     def cached(ctx, *args):
