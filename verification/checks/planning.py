@@ -655,36 +655,17 @@ def _details(ctx, detail: Callable, among=None) -> list[Row]:
     return [detail(n, _planned(ctx)[n][0]) for n in _planned(ctx) if among is None or n in among]
 
 
-def _no_path(sc, method: str, why: str, scope: Scope = Scope.THESIS) -> Row:
-    """The detail row of a scenario for which the form offers no path (it does not hold)."""
-    return Row(
-        sc.title,
-        sc.reference or "Sec 4.2",
-        method,
-        why,
-        Verdict.DOES_NOT_HOLD,
-        reason=why,
-        id=sc.name,
-        scope=scope,
-    )
-
-
-def _scenario_row(
-    sc, method: str, numbers: str, measures, *, claim: str = "", section: str = "Sec 4.2", scope=Scope.THESIS
-) -> Row:
+def _detail(sc, method: str, numbers: str, measures=(), *, claim: str = "", section: str = "Sec 4.2",
+            scope: Scope = Scope.THESIS) -> Row:
     """The detail row of scenario ``sc`` in a claim over the scenarios, graded on ``measures``
-    (DOES_NOT_HOLD if one fails): its claim is ``sc.title`` unless given, its reference the scenario's
-    own, else ``section``."""
-    return Row.graded(
-        claim or sc.title,
-        sc.reference or section,
-        method,
-        numbers,
-        measures,
-        fail=Verdict.DOES_NOT_HOLD,
-        id=sc.name,
-        scope=scope,
-    )
+    (DOES_NOT_HOLD if one fails); without measures, a scenario the form offers no path for (``numbers``
+    says why; it does not hold, claimed as ``sc.title``). Its claim is ``sc.title`` unless given, its
+    reference the scenario's own, else ``section``."""
+    if not measures:
+        return Row(sc.title, sc.reference or "Sec 4.2", method, numbers, Verdict.DOES_NOT_HOLD,
+                   reason=numbers, id=sc.name, scope=scope)
+    return Row.graded(claim or sc.title, sc.reference or section, method, numbers, measures,
+                      fail=Verdict.DOES_NOT_HOLD, id=sc.name, scope=scope)
 
 
 #: What the scenario rows rest on.
@@ -738,7 +719,7 @@ def check_scenarios(ctx, source: PathSource) -> Row:
     def detail(name, res) -> Row:
         sc, ch = res.scenario, _choose(ctx, source, name)
         if ch.q is None:
-            return _no_path(sc, source.name, "no IK branch covers every step-point")
+            return _detail(sc, source.name, "no IK branch covers every step-point")
         ev, dbox = _tool_zone(sc, ch.q)
         m = (Measure("whole-arm clearance (no contact)", ch.clearance.value, 0.0, "m", bound=">="),)
         tool = "no obstacle to repel from (supports only)"
@@ -755,7 +736,7 @@ def check_scenarios(ctx, source: PathSource) -> Row:
             + (f" (earlier branches touch the scene: {touched} mm)" if touched else "")
             + f"; {tool}; whole arm: min {ch.clearance.mm()}; {len(branch_switches(ch.q))} branch switches"
         )
-        return _scenario_row(sc, source.name, numbers, m, section="Sec 4.2.2")
+        return _detail(sc, source.name, numbers, m, section="Sec 4.2.2")
 
     details = _details(ctx, detail, FIG42)
     figs, views = _illustrations(ctx)
@@ -792,7 +773,7 @@ def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
     def detail(name, res) -> Row:
         sc, ch = res.scenario, _choose(ctx, source, name)
         if ch.q is None:
-            return _no_path(sc, source.name, "no IK branch covers every step-point", Scope.PROJECT)
+            return _detail(sc, source.name, "no IK branch covers every step-point", scope=Scope.PROJECT)
         c = measure_clearance(_checker(ctx, name), ch.q, sc.safety_zone)
         numbers = (
             f"whole arm: min {c.mm()} (certified >= {c.lower * 1e3:.1f} mm); for comparison "
@@ -802,7 +783,7 @@ def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
         )
         m = (Measure("whole-arm clearance", c.value, sc.safety_zone, "m", bound=">="),)
         claim = f"{sc.title}: whole arm >= {sc.safety_zone * 1e3:.0f} mm"
-        return _scenario_row(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT)
+        return _detail(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT)
 
     details = _details(ctx, detail)
     return _grouped(
@@ -838,7 +819,7 @@ def check_planner(ctx, source: PathSource) -> Row:
     def detail(name, res) -> Row:
         sc, wall, paths = res.scenario, _planned(ctx)[name][1], source.paths(ctx, name)
         if not paths:
-            return _no_path(sc, source.name, f"no path ({res.reason or 'none offered'})", Scope.PROJECT)
+            return _detail(sc, source.name, f"no path ({res.reason or 'none offered'})", scope=Scope.PROJECT)
         cs = [measure_clearance(_checker(ctx, name), q, sc.safety_zone) for q in paths]
         m = tuple(
             Measure(f"whole-arm clearance, {labels[min(k, 1)]}", c.value, sc.safety_zone, "m", bound=">=")
@@ -851,7 +832,7 @@ def check_planner(ctx, source: PathSource) -> Row:
             + f"; planned in {wall:.2f} s"
         )
         claim = f"{sc.title}: iik.planning.plan"
-        return _scenario_row(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT)
+        return _detail(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT)
 
     details = _details(ctx, detail)
     return _grouped(
@@ -906,7 +887,7 @@ def check_smooth_joints(ctx, form: Callable) -> Row:
     def detail(name, res) -> Row:
         q = _choose(ctx, THESIS_PATH, name).q
         if q is None or len(q) < 2:
-            return _no_path(res.scenario, "thesis path", "no IK branch covers every step-point")
+            return _detail(res.scenario, "thesis path", "no IK branch covers every step-point")
         dq = np.abs(np.diff(form(q), axis=0))
         step = dq.max(axis=1)
         k = int(step.argmax())
@@ -917,7 +898,7 @@ def check_smooth_joints(ctx, form: Callable) -> Row:
             f"of 1-6) between step-points {k} and {k + 1} of 0-{len(q) - 1}; median "
             f"{math.degrees(float(np.median(step))):.2f} deg"
         )
-        return _scenario_row(res.scenario, "thesis path", numbers, m, section="Sec 4.2.2")
+        return _detail(res.scenario, "thesis path", numbers, m, section="Sec 4.2.2")
 
     details = _details(ctx, detail, FIG42)
     return _grouped(
