@@ -9,7 +9,7 @@ import pytest
 
 from verification import registry
 from verification.errors import RegistrationError
-from verification.formula import RIGHT, Formula, Points
+from verification.formula import RIGHT, Formula, Points, per_run
 from verification.registry import Context, Erratum, Measure, Row, Section, Slip, SlipKind, Verdict
 from verification.second_reading import search
 from verification.self_test import self_test_check
@@ -108,3 +108,16 @@ def test_rows_derive_numbers_and_reread_only_errata():
     wrong = Row.graded("c", "Eq 4", "m", None, m, erratum=Erratum("Eq 4", "p", "c", "x"))
     reading = search({"x": 1.0}, [], lambda x: 0.0, 0.0, printed="p", stated_text="s", route="r", measure="m")
     assert wrong.reread_if_erratum(lambda: reading).verdict is Verdict.HOLDS  # right as stated: withdrawn
+
+
+def test_per_run_computes_once_per_context(ctx):
+    calls = []
+
+    @per_run
+    def sample(ctx, n):
+        calls.append(n)
+        return np.arange(n)
+
+    assert sample(ctx, 3) is sample(ctx, 3) and calls == [3]
+    sample(ctx, 4)
+    assert calls == [3, 4]

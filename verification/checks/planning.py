@@ -70,6 +70,7 @@ from iik.scene import THESIS_SCENE
 from ..formula import per_run
 from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict, verdict_of
 from ..second_reading import Kind, Reading, search
+from ..thesis_index import title_of
 
 __all__ = ["SECTION", "FIG42", "PathSource", "Clearance", "measure_clearance", "eq53_printed"]
 
@@ -378,9 +379,8 @@ def check_fig42e_via_points(ctx, table) -> Row:
         Measure("largest |azimuth| along the path (joint 1 pointing at it)", az, limit, "rad"),
     )
     return Row.graded(
-        claim="Fig 42e: to cross from region A to region D the planner takes two via-points (Table IV: 1, "
-        "2), and so avoids the conflict zone at the centre of the workspace (the platform the arm stands on) "
-        "and the plane behind the arm",
+        claim=f"Fig 42e: {title_of('Claim 4.9')}, from region A to D (1, 2), avoiding the conflict zones "
+        "(the platform the arm stands on, the plane behind the arm)",
         reference="Sec 4.2.2 (Fig 42e), Table IV",
         method="scenario e (scenarios/e.toml): the regions of its start and goal (inferred Fig 29), the "
         "via-points Table IV gives for them, the Sec 3.6 path through them (iik.planning.build_path); "
@@ -466,8 +466,7 @@ def check_arc_route(ctx, route) -> list[Row]:
                 f"{'more' if n_alt > n_line else 'as many or fewer'} steps than the line, {n_line})"
             )
         rows.append(Row.graded(
-            claim=f"{name}: the straight line between the two via-points has steps without IK solutions "
-            "at the given orientations; the arc route has none",
+            claim=f"{name}: {title_of('Claim 4.2')}",
             reference="Sec 4.2.1.1, 4.2.1.2",
             method=f"scenarios/{name}.toml (reconstructed via-points and orientations: the thesis prints "
             f"neither); complete IK (iik.solve, within Table I) at each of the {n} steps of the middle "
@@ -744,10 +743,8 @@ def check_scenarios(ctx, source: PathSource) -> Row:
         details,
         "the thesis's criterion",
         lambda bad: "; ".join(f"{d.id}: {d.numbers}" for d in bad),
-        claim="The Sec 3.6 planner gives a collision-free path in each scenario of Fig 42: every tool "
-        "step-point outside the obstacles' ellipsoids padded by the 30 mm safety zone, and no part of the "
-        "arm touching the scene (the thesis's own criterion: the zone pads the tool point; joints must not "
-        "collide)",
+        claim=f"{title_of('Claim 4.8')} (Fig 42), by the thesis's own criterion: every tool step-point "
+        "outside the ellipsoids padded by the 30 mm zone, no part of the arm touching the scene",
         reference="Sec 4.2.2, Sec 3.6, Fig 42",
         method=f"{source.name}, on the reconstructed scenes (scenarios/*.toml): Eq 52 at the FK tool point "
         "of every step-point with the corrected Eq 53 radii + the scenario's safety zone; whole-arm Coal "
@@ -911,8 +908,7 @@ def check_smooth_joints(ctx, form: Callable) -> Row:
             "orientation search, which may turn the gripper by half a turn (joint 6) or change IK branch "
             "between two step-points"
         ),
-        claim="The joint angles of the planned paths change smoothly from step-point to step-point (no jump "
-        "to another IK branch)",
+        claim=f"{title_of('Claim 4.10')} (no jump to another IK branch)",
         reference="Sec 4.2.2 (Figs 43-44)",
         method="the thesis's own path (as in planning.scenarios); a step is a jump if a joint changes by "
         f"more than {math.degrees(BRANCH_SWITCH_STEP):.1f} deg (iik.joint_path.BRANCH_SWITCH_STEP, the "
