@@ -680,8 +680,7 @@ def _grouped(details: list[Row], what: str, failing: Callable[[list[Row]], str],
              on_reconstruction: bool = False, **fields) -> Row:
     """A claim over the scenarios, counted once with one detail per scenario: it holds if every detail
     passes; ``failing(rows)`` words the reason from the failing details. ``on_reconstruction``: the verdict
-    rests on the reconstructed scenes (consistent with / not reproduced on our reconstruction). The
-    project-standard rows (``scope``) cover every planned scenario, every 2 mm of arm motion."""
+    rests on the reconstructed scenes (consistent with / not reproduced on our reconstruction)."""
     bad = [d for d in details if not d.verdict.passes]
     m = (Measure(f"scenarios where {what} fails", len(bad), 0),)
     if on_reconstruction:
