@@ -9,7 +9,7 @@ in one vertical plane, theta3 = 0). The IK ground truth: an orientation ``(alpha
 (Eq 42 convention, see :mod:`iik.rotations`) is feasible at ``p`` if ``iik.solve``
 (complete solver) returns a solution within Table I for ``iik.pose_from_euler(p, alpha,
 beta, 0)`` (gamma only turns joint 6, checked separately). The printed Eq 43-51 are
-transcribed in :func:`printed_admits`.
+transcribed one by one and composed in :func:`printed_admits`.
 """
 
 from __future__ import annotations
@@ -40,43 +40,26 @@ SECTION = Section("Dexterity (Sec 3.5, Eq 42-51)", depends_on=EXACT_GEOMETRY, or
 
 
 # ----------------------------------------------------------------------------- printed forms
-def printed_admits(p, alpha35, beta35, arm=ARM) -> np.ndarray:
-    """Eq 43-51 as printed: is (alpha, beta) in the thesis's own angles admitted at ``p``?
+def printed_admits(p, alpha35, beta35) -> np.ndarray:
+    """Eq 43-51 as printed (their transcriptions below, one per equation): is (alpha, beta) in the thesis's
+    own angles [rad] admitted at ``p`` (3,) [m]?
 
     Cases (Sec 3.5.2-3.5.3): outer only -> beta' +- delta (Eq 44), alpha' +- sigma (Eq 49);
     ring -> Eq 44 with the Eq 45 interval removed, alpha in Eq 49's interval and outside Eq 51's;
     inner only -> beta' +- delta (Eq 45), alpha' +- sigma (Eq 51).
     """
-    l1, l2, l3, l4, l5 = arm.lengths
-    px, py, pz = p
-    phi = np.arctan2(py, px)  # Eq 36
-    x2, y2, z2 = l2 * np.cos(phi), l2 * np.sin(phi), l1  # Eq 37
-    rho = np.sqrt((px - x2) ** 2 + (py - y2) ** 2 + (pz - z2) ** 2)
-    bp = np.arctan((pz - z2) / np.sqrt((px - x2) ** 2 + (py - y2) ** 2))  # Eq 43
-    d2 = l3**2 + l4**2 - 2 * l3 * l4 * np.cos(np.pi - 119 * _D)  # Eq 45
-    a_out = (l5**2 + rho**2 - (l3 + l4) ** 2) / (2 * l5 * rho)  # Eq 44
-    a_in = (l5**2 + rho**2 - d2) / (2 * l5 * rho)  # Eq 45
-    has_out, has_in = abs(a_out) <= 1, abs(a_in) <= 1
-    b = np.asarray(beta35, float)
-    a = np.asarray(alpha35, float)
+    P = np.asarray(p, float)[None]
+    a, b = np.asarray(alpha35, float), np.asarray(beta35, float)
+    rho = _length(_from_joint2(P))[0]
+    # Eq 44, 45: the outer and inner triangles close
+    has_out, has_in = (abs((L5**2 + rho**2 - r**2) / (2 * L5 * rho)) <= 1 for r in (L3 + L4, D_IN))
     if not (has_out or has_in):
         return np.zeros(np.broadcast(a, b).shape, bool)
-    d_out = np.arccos(a_out) if has_out else 0.0
-    d_in = np.arccos(a_in) if has_in else 0.0
-    ok_b = _in_ring(np.abs(b - bp), d_out, d_in, has_out, has_in)
-    alpha_p = np.arctan2(py, px)  # Eq 46
-    h = pz - l5 * np.sin(b)  # Eq 47
-    rxy = np.hypot(px, py)
-    L5 = l5 * np.cos(b)
-    phid = np.sqrt(d2)
-
-    def sigma(reach):
-        delta = np.arctan((h - l1) / reach)  # Eq 48 / Eq 50
-        arg = (rxy**2 + L5**2 - (reach * np.cos(delta) + l2) ** 2) / (2 * rxy * L5)  # Eq 49 / 51
-        return np.where(arg < -1, np.pi, np.where(arg > 1, -1.0, np.arccos(np.clip(arg, -1, 1))))
-
-    ok_a = _in_ring(np.abs(wrap(a - alpha_p)), sigma(l3 + l4), sigma(phid), has_out, has_in)
-    return ok_b & ok_a
+    bp, d_out, d_in = eq43_printed(P)[0], eq44_delta(rho, L3 + L4), eq44_delta(rho, D_IN)
+    h, rxy = eq47_printed(P[0, 2], b), np.hypot(P[0, 0], P[0, 1])
+    sigma_out, sigma_in = (eq49_sigma(rxy, b, eq48_printed(h, r), r) for r in (L3 + L4, D_IN))  # Eq 48-51
+    ok_a = _in_ring(np.abs(wrap(a - eq46_printed(P)[0])), sigma_out, sigma_in, has_out, has_in)
+    return _in_ring(np.abs(b - bp), d_out, d_in, has_out, has_in) & ok_a
 
 
 def _in_ring(dev, outer, inner, has_out: bool, has_in: bool):
@@ -397,26 +380,28 @@ def eq49_sigma(rho, beta, delta, r, reach=None):
     rho = |p_xy|.
 
     ``reach`` (ignored here): the SLJ's true horizontal distance, used by the known-good form."""
-    lb = L5 * np.cos(beta)
-    return np.arccos(np.clip((rho**2 + lb**2 - (r * np.cos(delta) + L2) ** 2) / (2 * rho * lb), -1, 1))
+    return _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta) + L2)
+
+
+def _cos_law(rho, lb, far, sign: float = 1.0):
+    """The angle at the base axis of the triangle with sides ``rho`` (to p), ``lb`` (link 5 projected) and
+    ``far`` (to the SLJ) [rad]; ``sign`` -1: the slip rho^2 - lb^2."""
+    return _acos((rho**2 + sign * lb**2 - far**2) / (2 * rho * lb))
 
 
 def _sigma_true(rho, beta, delta, r, reach):
-    lb = L5 * np.cos(beta)
-    return np.arccos(np.clip((rho**2 + lb**2 - reach**2) / (2 * rho * lb), -1, 1))
+    return _cos_law(rho, L5 * np.cos(beta), reach)
 
 
 #: The slips of the printed law of cosines of Eq 49 and Eq 51.
 _SIGMA_SLIPS = (
     Slip(SlipKind.SIGN, "rho^2 - (l5 cos b)^2 in the numerator",
-         lambda rho, beta, delta, r, reach=None: np.arccos(np.clip(
-            (rho**2 - (L5 * np.cos(beta))**2 - (r * np.cos(delta) + L2) ** 2) / (2 * rho * L5 * np.cos(beta)),
-            -1, 1))),
+         lambda rho, beta, delta, r, reach=None: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta) + L2,
+                                                          -1.0)),
     Slip(SlipKind.FUNCTION, "l5 sin(b) for l5 cos(b)",
          lambda rho, beta, delta, r, reach=None: eq49_sigma(rho, np.pi / 2 - beta, delta, r)),
-    Slip(SlipKind.LENGTH, "the SLJ's distance without l2", lambda rho, beta, delta, r, reach=None: np.arccos(
-        np.clip((rho**2 + (L5 * np.cos(beta))**2 - (r * np.cos(delta)) ** 2) / (2 * rho * L5 * np.cos(beta)),
-                -1, 1))),
+    Slip(SlipKind.LENGTH, "the SLJ's distance without l2",
+         lambda rho, beta, delta, r, reach=None: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta))),
 )
 
 
@@ -569,10 +554,6 @@ def sec35_to_eq42(alpha35, beta35):
     return wrap(alpha35 + np.pi), beta35 + np.pi / 2
 
 
-def _sec35_half(alpha35, beta35):
-    return wrap(alpha35 + np.pi), beta35 + np.pi / 4
-
-
 def _convention_error(c: Pose35, to_eq42) -> np.ndarray:
     """The angle difference [rad] of the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5) through ``to_eq42`` from
     the Eq 42 angles of z6 (azimuth, polar angle; the azimuth not counted at the poles)."""
@@ -590,7 +571,7 @@ CHECKS |= SECTION.formulas(_family("aligned"), Formula(
         Slip(SlipKind.BRANCH, "alpha + 180 deg, 90 deg - beta (the other side of the pole)",
              lambda a, b: (wrap(a + np.pi), np.pi / 2 - b)),
         Slip(SlipKind.UNIT, "alpha + 180 deg, beta + 45 deg (a quarter turn taken as an eighth)",
-             _sec35_half),
+             lambda a, b: (wrap(a + np.pi), b + np.pi / 4)),
     ), good=sec35_to_eq42, good_is="alpha + 180 deg, beta + 90 deg (z6 = -a)", eps=None, id="beta_convention",
     claim="The beta of Sec 3.5 (Eq 43-51) is the beta of the Euler matrix of Eq 42 (r13 = c_a s_b, r23 = s_a "
     "s_b, r33 = c_b), and alpha likewise.",
@@ -680,7 +661,7 @@ def rates(adm: np.ndarray, truth: np.ndarray) -> Rates:
 def admitted_printed(p, A, B):
     """Eq 43-51 as printed, the angles converted to Eq 42's (the reading of dexterity.beta_convention)."""
     with np.errstate(invalid="ignore", divide="ignore"):
-        return printed_admits(p, A - np.pi, B - np.pi / 2, ARM)
+        return printed_admits(p, A - np.pi, B - np.pi / 2)
 
 
 def shell_admits(p, A, B, arm) -> np.ndarray:
@@ -718,11 +699,7 @@ class SolvableOnly:
 
 def _unconverted(p, A, B):
     with np.errstate(invalid="ignore", divide="ignore"):
-        return printed_admits(p, A, B, ARM)
-
-
-def _admit_all(p, A, B):
-    return np.ones(A.shape, bool)
+        return printed_admits(p, A, B)
 
 
 def _admitted(form, sw, i, p):
@@ -741,7 +718,7 @@ def _sweep_forms(printed) -> Forms:
         good=SolvableOnly(),
         good_is="exactly the orientations the sweep solves",
         slips=(
-            Slip(SlipKind.CLAIM, "every orientation", _admit_all),
+            Slip(SlipKind.CLAIM, "every orientation", lambda p, A, B: np.ones(A.shape, bool)),
             Slip(SlipKind.MODEL, "the angles used without the Eq 42 conversion (Sec 3.5's read as Eq 42's)",
                  _unconverted),
         ),
@@ -965,7 +942,7 @@ def gamma_free(ctx, unaffected):
     """Sec 3.5.1: gamma only changes joint 6 (a full turn), so any gamma works; ``unaffected`` joints stay."""
     rng = ctx.rng("gamma")
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(ctx.n(40, 6), 6))
-    T = iik.fk(q, THESIS_ARM)
+    T = iik.fk(q, ARM)
     ang = np.array([iik.euler_from_matrix(t[:3, :3]) for t in T])
     gam = np.linspace(-np.pi, np.pi, 13)[:-1]
     ok, total, moved = 0, 0, 0.0
@@ -973,7 +950,7 @@ def gamma_free(ctx, unaffected):
     for t, (a, b, _) in zip(T, ang, strict=True):
         k = len(gam)
         poses = iik.pose_from_euler(np.tile(t[:3, 3], (k, 1)), np.full(k, a), np.full(k, b), gam)
-        res = iik.solve_many(poses, THESIS_ARM)
+        res = iik.solve_many(poses, ARM)
         ok += sum(len(r.q) > 0 for r in res)
         total += k
         base = res[0].q[:, cols] if len(res[0].q) else None

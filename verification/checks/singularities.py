@@ -18,7 +18,6 @@ import numpy as np
 from scipy.optimize import least_squares
 
 import iik
-from iik import THESIS_ARM
 from iik.singularities import ALL_SETS, TABLE_VI, TABLE_VII, at_limit_mask, reduced_rank, sample_set
 
 from ..formula import per_run
@@ -55,7 +54,7 @@ def _necessity(s, rng, n=20):
             continue
         q = sample_set(s, n, rng, ARM)
         q[:, j - 1] = v + 15 * _D if v + 15 * _D <= ARM.upper[j - 1] else v - 15 * _D
-        rank, _ = reduced_rank(iik.position_jacobian(q, THESIS_ARM)[..., :5], at_limit_mask(q, ARM), RTOL)
+        rank, _ = reduced_rank(iik.position_jacobian(q, ARM)[..., :5], at_limit_mask(q, ARM), RTOL)
         out.append((j, float(np.mean(rank < 3))))
     return out
 
@@ -222,7 +221,7 @@ def search_singular(ctx, trials: int, trials_interior: int):
                     def f(x, q=q, free=free):
                         qq = q.copy()
                         qq[free] = x
-                        return _minors(iik.position_jacobian(np.r_[qq, 0.0], THESIS_ARM)[:, :5], free)
+                        return _minors(iik.position_jacobian(np.r_[qq, 0.0], ARM)[:, :5], free)
 
                     sol = least_squares(f, q[free], bounds=(lo[free], hi[free]), **_LSQ)
                     if np.abs(sol.fun).max() > 1e-10:
@@ -328,7 +327,7 @@ def _rad(q) -> str:
 
 def _type_i_note(q) -> str:
     """A type I singular configuration outside s(1): where its tool point lies (joint-1 and link-3 axes)."""
-    F = iik.joint_frames(np.r_[q, 0.0], THESIS_ARM)
+    F = iik.joint_frames(np.r_[q, 0.0], ARM)
     p, j2, j3 = F[-1, :3, 3], F[1, :3, 3], F[2, :3, 3]
     d = (j3 - j2) / np.linalg.norm(j3 - j2)
     v = p - j2
@@ -353,7 +352,7 @@ def _scan_figure(ctx, unexpl) -> str:
         for dt in t:
             qq = q.copy()
             qq[j] = np.clip(qq[j] + dt, ARM.lower[j], ARM.upper[j])
-            J = iik.position_jacobian(np.r_[qq, 0.0], THESIS_ARM)[:, :5]
+            J = iik.position_jacobian(np.r_[qq, 0.0], ARM)[:, :5]
             sv.append(reduced_rank(J[None], at_limit_mask(qq[None], ARM), RTOL)[1][0])
         lab = ", ".join(f"th{k + 1}={np.degrees(q[k]):.0f}" for k in S) or "no joint at a limit"
         ax.semilogy(np.degrees(t), np.maximum(sv, 1e-18), label=f"vary th{j + 1}; {lab}")
