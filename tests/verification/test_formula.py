@@ -9,7 +9,7 @@ import pytest
 
 from verification import registry
 from verification.errors import RegistrationError
-from verification.formula import RIGHT, Formula, Points
+from verification.formula import RIGHT, Formula, Points, per_run
 from verification.registry import Context, Erratum, Measure, Row, Section, Slip, SlipKind, Verdict
 from verification.second_reading import search
 from verification.self_test import self_test_check
@@ -108,3 +108,18 @@ def test_rows_derive_numbers_and_reread_only_errata():
     wrong = Row.graded("c", "Eq 4", "m", None, m, erratum=Erratum("Eq 4", "p", "c", "x"))
     reading = search({"x": 1.0}, [], lambda x: 0.0, 0.0, printed="p", stated_text="s", route="r", measure="m")
     assert wrong.reread_if_erratum(lambda: reading).verdict is Verdict.HOLDS  # right as stated: withdrawn
+
+
+def test_per_run_computes_once_per_run_and_per_arguments(tmp_path: Path):
+    calls = []
+
+    @per_run
+    def sample(ctx, kind):
+        calls.append(kind)
+        return object()
+
+    ctx, quick = Context(tmp_path), Context(tmp_path, quick=True)
+    assert sample(ctx, "a") is sample(ctx, "a") and calls == ["a"]  # kept in the run's cache
+    assert sample(ctx, "b") is not sample(ctx, "a") and calls == ["a", "b"]
+    assert sample(quick, "a") is not sample(ctx, "a")  # another run, another sample
+    assert sample.__name__ == "sample"
