@@ -21,7 +21,7 @@ import iik
 from iik import THESIS_ARM
 
 from ..assumptions import EXACT_GEOMETRY
-from ..formula import Formula, Points
+from ..formula import Formula, Points, printed_row
 from ..numbers import fmt_matrix, fmt_vec
 from ..oracles.abdel_malek import eq67_dq, normal_acceleration
 from ..oracles.normal_distance import parameters, surface_point, tool_point
@@ -315,57 +315,19 @@ def reading_dq(pv: dict):
                   "an upper one)", measure="largest difference of the printed step from Eq 67's")
 
 
-def _near(a, b, rel=_REL, abs_=_ABS) -> tuple[float, bool]:
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    d = np.abs(a - b)
-    return float(d.max()), bool(np.all(d <= abs_ + rel * np.abs(b)))
-
-
-def _detail(
-    rid,
-    claim,
-    ref,
-    numbers,
-    ok: bool,
-    measure: Measure,
-    erratum: Erratum | None,
-    fail: Verdict = Verdict.ERRATUM,
-    depends=(),
-    reread=None,
-    basis: str = "",
-) -> Row:
-    """A detail row; an erratum is re-read by ``reread()`` (a SecondReading) before it stands."""
-    verdict = (Verdict.IDENTITY if basis else Verdict.HOLDS) if ok else fail
-    if verdict is Verdict.ERRATUM and erratum is None:
-        erratum = Erratum(ref, claim, "the recomputed value", numbers)
-    row = Row(
-        claim,
-        ref,
-        "",
-        numbers,
-        verdict,
-        id=rid,
-        measures=(measure,),
-        errata=(erratum,) if verdict is Verdict.ERRATUM else (),
-        reason="" if ok or fail is not Verdict.DOES_NOT_HOLD else "ground truth disagrees",
-        depends_on=depends,
-        basis=basis,
-    )
-    return row.reread(reread()) if verdict is Verdict.ERRATUM and reread is not None else row
-
-
 def _n0_detail(name, pv, r) -> Row:
-    d = min(np.abs(pv["N0"] - r.N0).max(), np.abs(pv["N0"] + r.N0).max())  # N0's sign is a convention
-    ok = d <= _TOL_UNIT
     norm = float(np.linalg.norm(pv["N0"]))
-    return _detail(
+    return printed_row(
         "n0",
         f"{name}: N0 = {fmt_vec(pv['N0'])} (Eq 59).",
         f"App. E, {name}, Eq 59",
         f"printed {fmt_vec(pv['N0'])} (norm {norm:.4f}) | ours {fmt_vec(r.N0)} (left null vector of G_q q_s)",
-        ok,
-        Measure("max |printed - ours| (up to sign)", d, _TOL_UNIT),
-        Erratum(
+        pv["N0"],
+        r.N0,
+        _TOL_UNIT,
+        up_to_sign=True,  # N0's sign is a convention
+        measure="max |printed - ours| (up to sign)",
+        erratum=Erratum(
             f"App. E, {name}, N0",
             f"N0 = {fmt_vec(pv['N0'])}",
             f"N0 = {fmt_vec(r.N0)}",
@@ -378,16 +340,19 @@ def _n0_detail(name, pv, r) -> Row:
 
 def _eig_detail(name, pv, mm) -> Row:
     ours, pr = np.sort(mm["eig"]), np.sort(np.asarray(pv["eig"], float))
-    d, ok = _near(pr, ours)
     eig_h = np.sort(np.linalg.eigvalsh(0.5 * (mm["H"] + mm["H"].T)))
-    return _detail(
+    return printed_row(
         "eig",
         f"{name}: eig(Q*) = {fmt_vec(pr, 2)} mm (Eq 65).",
         f"App. E, {name}, Eq 65",
         f"printed {fmt_vec(pr, 2)} | ours {fmt_vec(ours, 2)} mm (sorted); eig(H*) = {fmt_vec(eig_h, 1)} mm",
-        ok,
-        Measure("max |printed - ours| (sorted)", d, _ABS, "mm"),
-        Erratum(
+        pr,
+        ours,
+        _ABS,
+        "mm",
+        rel=_REL,
+        measure="max |printed - ours| (sorted)",
+        erratum=Erratum(
             f"App. E, {name}, eig(Q*)",
             f"eig(Q*) = {fmt_vec(pr, 2)}",
             f"eig(Q*) = {fmt_vec(ours, 2)}",
@@ -403,33 +368,30 @@ _SIDE_TEXT = {"+N0": "only along +N0 (a boundary)", "both": "both ways (not a bo
 
 
 def _conclusion_detail(name, pv, side, r, note: str = "") -> Row:
-    ok = pv["conclusion"] == side
-    return _detail(
-        "conclusion",
+    return Row.graded(
         f"{name}: motion is admissible {_SIDE_TEXT.get(pv['conclusion'], pv['conclusion'])}.",
         f"App. E, {name}",
+        "",
         f"printed {pv['conclusion']} | ground truth {side} (reachability of p +- 2 mm "
         f"N0, p = {fmt_vec(r.point * 1e3, 1)} mm) | Abdel-Malek's test with our numbers: {r.verdict}" + note,
-        ok,
-        Measure("printed side differs from ground truth", 0.0 if ok else 1.0, 0.0),
-        None,
+        (Measure("printed side differs from ground truth", float(pv["conclusion"] != side), 0.0),),
         fail=Verdict.DOES_NOT_HOLD,
+        reason="ground truth disagrees",
+        id="conclusion",
     )
 
 
-def _group(name, claim, ref, details: list[Row], appendix: str = "") -> Row:
-    """The point's row: the worst of its details (does not hold, erratum, input slip, holds)."""
-    slips = [d for d in details if d.verdict is Verdict.INPUT_SLIP]
-    if any(d.verdict is Verdict.DOES_NOT_HOLD for d in details):
-        verdict = Verdict.DOES_NOT_HOLD
-    elif any(d.verdict is Verdict.ERRATUM for d in details):
-        verdict = Verdict.ERRATUM
-    elif slips:
-        verdict = Verdict.INPUT_SLIP
-    else:
-        verdict = Verdict.HOLDS
+#: The worst verdict of a point's details first: its row's verdict.
+_WORST = (Verdict.DOES_NOT_HOLD, Verdict.ERRATUM, Verdict.INPUT_SLIP)
+
+
+def _group(name, claim, ref, r, details: list[Row], appendix: str) -> Row:
+    """The point's row: the worst of its details (does not hold, erratum, input slip, holds); ``r`` its
+    :class:`~verification.oracles.abdel_malek.NormalAcceleration`, ``appendix`` its long numbers."""
+    verdict = next((v for v in _WORST if any(d.verdict is v for d in details)), Verdict.HOLDS)
     wrong = [d.id for d in details if not d.verdict.passes]
     m = (Measure("printed quantities that disagree", len(wrong), 0),)
+    slips = [d for d in details if d.verdict is Verdict.INPUT_SLIP]
     return Row(
         claim,
         ref,
@@ -445,7 +407,7 @@ def _group(name, claim, ref, details: list[Row], appendix: str = "") -> Row:
         details=tuple(details),
         domain=f"the printed point {name} (q0 as stated) and its +-{EPS * 1e3:.0f} mm probes along N0",
         errata=tuple(e for d in details for e in d.errata),
-        appendix=appendix,
+        appendix=f"{name}, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\n{appendix}",
         second_reading=slips[0].second_reading if verdict is Verdict.INPUT_SLIP else None,
         reason="the printed conclusion disagrees with ground truth"
         if verdict is Verdict.DOES_NOT_HOLD
@@ -455,24 +417,19 @@ def _group(name, claim, ref, details: list[Row], appendix: str = "") -> Row:
 
 def _a1(pv, r, side) -> Row:
     mm = r.in_mm()
-    d_u, _ = _near(pv["u0"], r.lam0)
-    u_ok = d_u <= _TOL_UNIT
-    off = ~np.eye(5, dtype=bool)
-    d_off, ok_off = _near(np.asarray(pv["H"])[off], mm["H"][off])
-    diag = np.eye(5, dtype=bool)
-    d_diag, ok_diag = _near(np.asarray(pv["H"])[diag], mm["H"][diag])
-    k = np.unravel_index(np.argmax(np.where(off, np.abs(np.asarray(pv["H"]) - mm["H"]), 0)), (5, 5))
-    d_b = float(np.abs(np.asarray(pv["B"]) - mm["B"]).max())
-    d_q, ok_q = _near(pv["Q"], mm["Q"])
+    pH, off = np.asarray(pv["H"], float), ~np.eye(5, dtype=bool)
+    dH = np.abs(pH - mm["H"])
+    k = np.unravel_index(np.argmax(np.where(off, dH, 0)), (5, 5))
     details = [
-        _detail(
+        printed_row(
             "u0",
             "A1: u0 = [1.0654 0.1165 0 0 0] (Eq 58 parameters of q0).",
             "App. E, A1, Eq 58",
             f"printed {fmt_vec(pv['u0'])} | ours {fmt_vec(r.lam0)} (Eq 58 inverted at q0)",
-            u_ok,
-            Measure("max |printed - ours|", d_u, _TOL_UNIT),
-            Erratum(
+            pv["u0"],
+            r.lam0,
+            _TOL_UNIT,
+            erratum=Erratum(
                 "App. E, A1, u0",
                 f"u0 = {fmt_vec(pv['u0'])}",
                 f"u0 = {fmt_vec(r.lam0)} (Eq 58 inverted at theta1 = -7 pi/9: sin(lambda1) = -140/160)",
@@ -481,15 +438,19 @@ def _a1(pv, r, side) -> Row:
             reread=lambda: reading_u0(pv),
         ),
         _n0_detail("A1", pv, r),
-        _detail(
+        printed_row(
             "h_offdiag",
             "A1: the off-diagonal entries of H* (Eq 61).",
             "App. E, A1, Eq 61",
-            f"largest difference {d_off:.3g} mm at H*({k[0] + 1},{k[1] + 1}): printed "
-            f"{np.asarray(pv['H'])[k]:.1f}, ours {mm['H'][k]:.1f}",
-            ok_off,
-            Measure("max |printed - ours| off the diagonal", d_off, _ABS, "mm"),
-            Erratum(
+            f"largest difference {dH[k]:.3g} mm at H*({k[0] + 1},{k[1] + 1}): printed {pH[k]:.1f}, ours "
+            f"{mm['H'][k]:.1f}",
+            pH[off],
+            mm["H"][off],
+            _ABS,
+            "mm",
+            rel=_REL,
+            measure="max |printed - ours| off the diagonal",
+            erratum=Erratum(
                 "App. E, A1, H*(4,2)",
                 "H*(4,2) = +1703 (with H*(2,4) = -1703)",
                 f"H*(4,2) = H*(2,4) = {mm['H'][3, 1]:.1f} (a Hessian-based quadratic form: symmetric)",
@@ -499,109 +460,107 @@ def _a1(pv, r, side) -> Row:
             ),
             reread=lambda: reading_h(pv, off, "the off-diagonal entries of H* as printed (H*(4,2) = +1703)"),
         ),
-        _detail(
+        printed_row(
             "h_diag",
             "A1: the diagonal of H* (Eq 61).",
             "App. E, A1, Eq 61",
-            f"largest difference {d_diag:.3g} mm: CIRCULAR, l2..l5 were fitted to these four numbers",
-            ok_diag,
-            Measure("max |printed - ours| on the diagonal", d_diag, _ABS, "mm"),
-            None,
-            depends=("lengths-circular", "pinocchio"),
+            f"largest difference {dH.diagonal().max():.3g} mm: CIRCULAR, l2..l5 were fitted to these four "
+            "numbers",
+            pH.diagonal(),
+            mm["H"].diagonal(),
+            _ABS,
+            "mm",
+            rel=_REL,
+            measure="max |printed - ours| on the diagonal",
+            depends_on=("lengths-circular", "pinocchio"),
             basis="circular: l2..l5 were recovered from these four numbers (docs/ARM.md), so they agree by "
             "construction",
         ),
-        _detail(
+        printed_row(
             "b",
             "A1: B = [0 -0.0014 0; 0 0 -0.0013] (Eq 63, rows (2,3) as the thesis chose).",
             "App. E, A1, Eq 63",
             f"printed {fmt_matrix(pv['B'], 4)} | ours {fmt_matrix(mm['B'], 5)} 1/mm",
-            d_b <= _TOL_B,
-            Measure("max |printed - ours|", d_b, _TOL_B, "1/mm"),
-            Erratum(
-                "App. E, A1, B", "B as printed", fmt_matrix(mm["B"], 5), f"max difference {d_b:.2g} 1/mm"
-            ),
+            pv["B"],
+            mm["B"],
+            _TOL_B,
+            "1/mm",
         ),
-        _detail(
+        printed_row(
             "q",
             "A1: Q* (Eq 62-65).",
             "App. E, A1, Eq 62-65",
-            f"largest difference {d_q:.3g} mm (printed Q*(4,4) {pv['Q'][3][3]}, ours {mm['Q'][3, 3]:.2f})",
-            ok_q,
-            Measure("max |printed - ours|", d_q, _ABS, "mm"),
-            Erratum(
-                "App. E, A1, Q*", "Q* as printed", fmt_matrix(mm["Q"], 2), f"max difference {d_q:.3g} mm"
-            ),
+            f"largest difference {np.abs(np.asarray(pv['Q']) - mm['Q']).max():.3g} mm (printed Q*(4,4) "
+            f"{pv['Q'][3][3]}, ours {mm['Q'][3, 3]:.2f})",
+            pv["Q"],
+            mm["Q"],
+            _ABS,
+            "mm",
+            rel=_REL,
         ),
         _eig_detail("A1", pv, mm),
         _conclusion_detail("A1", pv, side, r),
     ]
-    appendix = (
-        f"A1, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\n"
-        f"H* printed: {fmt_matrix(pv['H'])}\nH* ours:    {fmt_matrix(mm['H'])}\n"
-        f"B printed:  {fmt_matrix(pv['B'], 4)}\nB ours:     {fmt_matrix(mm['B'], 5)}\n"
-        f"Q* printed: {fmt_matrix(pv['Q'], 2)}\nQ* ours:    {fmt_matrix(mm['Q'], 2)}\n"
-        "The text says Q* is semi-definite only when a joint is at a limit; at A1 no joint is at a limit and "
-        "Q* still has three zero eigenvalues (th1, th2 move along the surface; th3 does not move the tool)."
-    )
     return _group(
         "A1",
         "A1 on f(1) (s(1)): u0, N0, H*, B, Q*, eig(Q*) as printed; Q* semi-positive definite, so the "
         "normal acceleration is admissible only along +N0 (f(1) is a boundary there).",
         "App. E, point A1 (Eq 58-65)",
+        r,
         details,
-        appendix,
+        f"H* printed: {fmt_matrix(pv['H'])}\nH* ours:    {fmt_matrix(mm['H'])}\n"
+        f"B printed:  {fmt_matrix(pv['B'], 4)}\nB ours:     {fmt_matrix(mm['B'], 5)}\n"
+        f"Q* printed: {fmt_matrix(pv['Q'], 2)}\nQ* ours:    {fmt_matrix(mm['Q'], 2)}\n"
+        "The text says Q* is semi-definite only when a joint is at a limit; at A1 no joint is at a limit and "
+        "Q* still has three zero eigenvalues (th1, th2 move along the surface; th3 does not move the tool).",
     )
 
 
-def _a2(pv, r, side, r_read=None, side_read: str = "") -> Row:
+def _a2(pv, r, side, r_read, side_read: str) -> Row:
     mm = r.in_mm()
     eq67 = {j: (1.0 if b == "lower" else -1.0) for j, b in r.at_limit}
-    dq_ok = pv["dq"] == eq67
     # Eq 66 with the printed step: sigma = N0 . G_q1 * (printed delta q1)
     s_pr, s_ours = pv["sigma"][1], mm["sigma"][1] * pv["dq"].get(1, 0.0) / eq67[1]
-    d_s, ok_s = _near(s_pr, s_ours, rel=1e-3, abs_=1e-3)
     details = [
         _n0_detail("A2", pv, r),
         _eig_detail("A2", pv, mm),
-        _detail(
+        printed_row(
             "sigma",
             "A2: |sigma| = 389.2341 mm (Eq 66).",
             "App. E, A2, Eq 66",
             f"printed {s_pr} | ours {s_ours:.4f} mm (Eq 66 with the printed delta q1 = {pv['dq'].get(1)})",
-            ok_s,
-            Measure("|printed - ours|", d_s, 1e-3 * abs(s_ours), "mm"),
-            Erratum(
-                "App. E, A2, sigma",
-                f"sigma = {s_pr}",
-                f"|sigma| = {abs(s_ours):.4f}",
-                f"difference {d_s:.3g}",
-            ),
+            s_pr,
+            s_ours,
+            1e-3,
+            "mm",
+            rel=1e-3,
+            measure="|printed - ours|",
+            limit=1e-3 * abs(s_ours),
         ),
-        _detail(
-            "dq",
+        Row.graded(
             "A2: delta q1 = -1 because joint 1 is at its lower limit (Eq 67).",
             "App. E, A2, Eq 67",
+            "",
             f"printed delta q = {pv['dq']} | Eq 67 gives {eq67} (+1 at a lower limit)",
-            dq_ok,
-            Measure("signs differing from Eq 67", 0.0 if dq_ok else 1.0, 0.0),
-            Erratum(
+            (Measure("signs differing from Eq 67", float(pv["dq"] != eq67), 0.0),),
+            erratum=Erratum(
                 "App. E, A2, delta q1",
                 "delta q1 = -1 because joint 1 is at its lower limit",
                 "delta q1 = +1 at a lower limit (Eq 67)",
                 f"with Eq 67, sigma = N0.G_q1 dq1 = {mm['sigma'][1]:.4f} mm: the opposite sign of the "
                 f"positive eigenvalues, so motion is admissible both ways; ground truth: {side}",
             ),
-            reread=lambda: reading_dq(pv),
-        ),
+            id="dq",
+        ).reread_if_erratum(lambda: reading_dq(pv)),
         _conclusion_detail(
-            "A2", pv, side, r,
-            ""
-            if r_read is None
-            else f" | second reading with theta1 = +160 deg (the reading that reproduces the "
-            f"printed N0, delta q1 and the sign of sigma): Abdel-Malek's test {r_read.verdict} as printed, "
-            f"ground truth {side_read}: the local test is right there, the point is still reached from both "
-            "sides by other configurations",
+            "A2",
+            pv,
+            side,
+            r,
+            f" | second reading with theta1 = +160 deg (the reading that reproduces the printed N0, delta q1 "
+            f"and the sign of sigma): Abdel-Malek's test {r_read.verdict} as printed, ground truth "
+            f"{side_read}: the local test is right there, the point is still reached from both sides by "
+            "other configurations",
         ),
     ]
     return _group(
@@ -609,29 +568,25 @@ def _a2(pv, r, side, r_read=None, side_read: str = "") -> Row:
         "A2 on f(2) (s(2)): joint 1 at its limit, Q* positive definite, sigma = 389.2341 has the sign "
         "of the eigenvalues, so motion only along +N0 (f(2) is a boundary there).",
         "App. E, point A2 (Eq 59-67)",
+        r,
         details,
-        f"A2, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\nQ* ours: "
-        f"{fmt_matrix(mm['Q'], 1)}\n"
-        f"K-bar (Eq 68): {mm['kbar']}; A2's th4 = -60 deg is also outside the printed range of f(3) "
-        "(th4 in [-41, 0])",
+        f"Q* ours: {fmt_matrix(mm['Q'], 1)}\nK-bar (Eq 68): {mm['kbar']}; A2's th4 = -60 deg is also outside "
+        "the printed range of f(3) (th4 in [-41, 0])",
     )
 
 
 def _a6(pv, r, side) -> Row:
     mm = r.in_mm()
     details = [_n0_detail("A6", pv, r), _eig_detail("A6", pv, mm), _conclusion_detail("A6", pv, side, r)]
+    sigma = ", ".join(f"th{j}: {v:.2f}" for j, v in mm["sigma"].items())
+    kbar = ", ".join(f"th{j}: {v:.1f}" for j, v in mm["kbar"].items())
     return _group(
         "A6",
         "A6 on f(26): Q* indefinite, so the surface admits motion both ways (not a boundary).",
         "App. E, point A6 (Eq 59-68)",
+        r,
         details,
-        f"A6, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\nQ* ours: "
-        f"{fmt_matrix(mm['Q'], 2)}\n"
-        "sigma: "
-        + ", ".join(f"th{j}: {v:.2f}" for j, v in mm["sigma"].items())
-        + " mm; K-bar (Eq 68): "
-        + ", ".join(f"th{j}: {v:.1f}" for j, v in mm["kbar"].items())
-        + " mm",
+        f"Q* ours: {fmt_matrix(mm['Q'], 2)}\nsigma: {sigma} mm; K-bar (Eq 68): {kbar} mm",
     )
 
 

@@ -35,7 +35,7 @@ from ..oracles.abdel_malek import (
     position_and_jacobian,
 )
 from ..oracles.normal_distance import SurfacePoint, surface_point, tool_point
-from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon
+from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, epsilon
 from ..second_reading import Kind, Reading, search
 from .appendix_e import PRINTED
 from .appendix_e import SECTION as _POINTS
@@ -332,26 +332,12 @@ def _sigma_zero_points(ctx) -> Probes:
 
         out.append(("sigma_4", q_at(0.0)))
         grid = np.linspace(ARM.q_min[4] + 1e-3, ARM.q_max[4] - 1e-3, 241)
-
-        def s2(t5):
-            q = q_at(t5)
-            e = np.zeros(5)
-            e[4] = 1e-6
-            f5 = (tool_point(q + e) - tool_point(q - e)) / 2e-6
-            e1 = np.zeros(5)
-            e1[0] = 1e-6
-            f1 = (tool_point(q + e1) - tool_point(q - e1)) / 2e-6
-            e2 = np.zeros(5)
-            e2[1] = 1e-6
-            g2 = (tool_point(q + e2) - tool_point(q - e2)) / 2e-6
-            return float(np.cross(f1, f5) @ g2)  # unnormalised normal: continuous in theta5
-
         vals = _s2_grid(q_at, grid)
         for k in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
             a, b = grid[k], grid[k + 1]
             for _ in range(50):
                 c = 0.5 * (a + b)
-                a, b = (c, b) if np.sign(s2(c)) == np.sign(s2(a)) else (a, c)
+                a, b = (c, b) if np.prod(np.sign(_s2_grid(q_at, [a, c]))) > 0 else (a, c)
             out.append(("sigma_2", q_at(0.5 * (a + b))))
     res = []
     for which, q in out:
@@ -367,7 +353,8 @@ def _sigma_zero_points(ctx) -> Probes:
 
 
 def _s2_grid(q_at, grid) -> np.ndarray:
-    """The unnormalised normal (f_theta1 x f_theta5) dotted with G_q2 on a theta5 grid, vectorised."""
+    """The unnormalised normal (f_theta1 x f_theta5) dotted with G_q2 on a theta5 grid (continuous in
+    theta5, unlike the unit normal)."""
     q = np.array([q_at(t) for t in grid])
 
     def d(j):
@@ -378,8 +365,8 @@ def _s2_grid(q_at, grid) -> np.ndarray:
     return np.einsum("ni,ni->n", np.cross(d(0), d(4)), d(1))
 
 
-def eq68_printed(g, B, Nf_uu, NG_ii):
-    return eq68_kbar(g, B, Nf_uu, NG_ii)
+#: Eq 68 as printed (verification.oracles.abdel_malek).
+eq68_printed = eq68_kbar
 
 
 def _kbar_at(p: Probe, j: int, form) -> float:
@@ -416,25 +403,26 @@ def rule_corrected(kbar: float) -> float:
 _STEP = 1e-2  # [rad]: how far joint i leaves its limit to see which side the tool moves to
 
 
-def _side(p: Probe, j: int, sign_n0: float = 1.0, rows=None) -> float:
-    dq = eq67_dq(p.q0, ARM).get(j, 1.0)
-    return float(np.sign(sign_n0 * p.meaning("offset", j, _STEP * dq, rows)))
+def _sides(pts, rule, n0: float = 1.0, out: float = 1.0, alt_rows: bool = False):
+    """At each point ``(j, probe)``: the side ``rule`` predicts from K-bar's sign (+1: +N0) and the side the
+    tool goes to when joint j leaves its limit by ``_STEP`` (the sign of its normal distance); under the
+    nearby readings N0 the other way (``n0`` -1), the joint moved out of its range (``out`` -1) and Eq 63's
+    other row pair (``alt_rows``)."""
+    pred, seen = [], []
+    for j, p in pts:
+        rows = [r for r in ((0, 1), (0, 2), (1, 2)) if r != p.rows][0] if alt_rows else p.rows
+        dq = eq67_dq(p.q0, ARM).get(j, 1.0) * out
+        pred.append(rule(_kbar_at(p, j, eq68_printed) * n0))
+        seen.append(float(np.sign(n0 * p.meaning("offset", j, _STEP * dq, rows))))
+    return np.array(pred), np.array(seen)
 
 
 def rule_reading(pts, rule):
     """Second reading of the K-bar rule: the side predicted by ``rule`` vs the measured one under the nearby
-    readings of its inputs (N0 the other way, the joint moved out of its range, the
-    other row pair of Eq 63)."""
-    stated = {"n0": 1.0, "out": 1.0, "alt_rows": False}
+    readings of its inputs (:func:`_sides`)."""
 
     def misfit(x) -> float:
-        wrong = 0
-        for j, p in pts:
-            rows = [r for r in ((0, 1), (0, 2), (1, 2)) if r != p.rows][0] if x["alt_rows"] else p.rows
-            k = _kbar_at(p, j, eq68_printed) * x["n0"]
-            dq = eq67_dq(p.q0, ARM).get(j, 1.0) * x["out"]
-            wrong += rule(k) != float(np.sign(x["n0"] * p.meaning("offset", j, _STEP * dq, rows)))
-        return float(wrong)
+        return float(np.sum(np.not_equal(*_sides(pts, rule, **x))))
 
     readings = [
         Reading(Kind.SIGN, "N0 the other way", {"n0": -1.0}),
@@ -442,7 +430,7 @@ def rule_reading(pts, rule):
         Reading(Kind.CONVENTION, "Eq 63's other row pair", {"alt_rows": True}),
     ]
     return search(
-        stated,
+        {"n0": 1.0, "out": 1.0, "alt_rows": False},
         readings,
         misfit,
         0.0,
@@ -470,10 +458,8 @@ def rule_reading(pts, rule):
 def eq68_rule(ctx, rule):
     """Eq 68's rule: where sigma = 0, K-bar > 0 means the surface admits motion along +N0."""
     pts = _sigma_zero_points(ctx)
-    pred = np.array([rule(_kbar_at(p, j, eq68_printed)) for j, p in pts])
-    seen = np.array([_side(p, j) for j, p in pts])
+    pred, seen = _sides(pts, rule)
     wrong = int(np.sum(pred != seen))
-    m = (Measure("points where the rule predicts the wrong side", wrong, 0),)
     detail = "; ".join(
         f"K-bar_{j} = {_kbar_at(p, j, eq68_printed) * 1e3:.0f} mm -> {'+' if seen[k] > 0 else '-'}N0"
         for k, (j, p) in enumerate(pts)
@@ -487,7 +473,7 @@ def eq68_rule(ctx, rule):
         f"of the surface the tool goes to when joint i leaves its limit by {_STEP:g} rad (the sign of its "
         "normal distance, verification.oracles.normal_distance)",
         f"the rule is wrong at {wrong} of {len(pts)} points; measured: {detail}",
-        m,
+        (Measure("points where the rule predicts the wrong side", wrong, 0),),
         id="eq68.rule",
         domain=f"{len(pts)} points of s(24)-s(27) where sigma_4 = 0 or sigma_2 = 0",
         erratum=Erratum(
@@ -498,4 +484,4 @@ def eq68_rule(ctx, rule):
             detail,
         ),
     )
-    return row.reread(rule_reading(pts, rule)) if row.verdict is Verdict.ERRATUM else row
+    return row.reread_if_erratum(lambda: rule_reading(pts, rule))
