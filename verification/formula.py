@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import wraps
 from typing import Any
 
 import numpy as np
@@ -37,7 +38,7 @@ from .numbers import fmt_vec, worst
 from .registry import Erratum, Forms, Measure, Row, Slip, Verdict, epsilon
 from .thesis_index import title_of
 
-__all__ = ["Formula", "Points", "error_row", "printed_row", "RIGHT"]
+__all__ = ["Formula", "Points", "error_row", "per_run", "printed_row", "RIGHT"]
 
 #: What the good form is when the printed one is right.
 RIGHT = "the printed form (it is right)"
@@ -234,6 +235,23 @@ class Formula:
 
 
 # --- added in k6
+def per_run(func: Callable) -> Callable:
+    """Decorator: ``func(ctx, *args)`` computed once per run, kept in ``ctx.cache`` under the function's
+    module and name, ``args`` (hashable) and ``ctx.quick``.
+
+    For samples and ground truths that depend on no form: the self-test reruns each check with other
+    forms in the same context (:class:`~verification.registry.Context`). (The same as k2's ``per_run``.)"""
+
+    @wraps(func)
+    def cached(ctx, *args):
+        key = (func.__module__, func.__qualname__, args, ctx.quick)
+        if key not in ctx.cache:
+            ctx.cache[key] = func(ctx, *args)
+        return ctx.cache[key]
+
+    return cached
+
+
 def printed_row(
     id: str,
     claim: str,
@@ -253,7 +271,7 @@ def printed_row(
     basis: str = "",
     **fields,
 ) -> Row:
-    """A number or array printed in the thesis vs the same quantity recomputed (one entry of a table of
+    """A number or array printed in the thesis vs the same quantity recomputed (an entry of a table of
     printed values, e.g. App. E's points), graded within the printed rounding.
 
     It holds if ``|printed - ours| <= tol + rel |ours|`` everywhere (``up_to_sign``: or everywhere against

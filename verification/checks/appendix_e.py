@@ -21,7 +21,7 @@ import iik
 from iik import THESIS_ARM
 
 from ..assumptions import EXACT_GEOMETRY
-from ..formula import Formula, Points, printed_row
+from ..formula import Formula, Points, per_run, printed_row
 from ..numbers import fmt_matrix, fmt_vec
 from ..oracles.abdel_malek import eq67_dq, normal_acceleration
 from ..oracles.normal_distance import parameters, surface_point, tool_point
@@ -84,25 +84,24 @@ _TOL_B = 1e-4  # [1/mm]: B printed to 4 decimals
 _REL, _ABS = 2e-3, 0.1  # H*, Q*, eig, sigma [mm]: 0.2 % (the lengths are known to 1 mm) + 0.1 mm
 
 
-def _results(ctx) -> dict:
-    key = "appendix_e.results"
-    if key not in ctx.cache:
-        res = {
-            name: normal_acceleration(
-                d["q0"], d["free"], normal_hint=d["N0"], prefer_rows=(1, 2) if name == "A1" else None
-            )
-            for name, d in PRINTED.items()
-        }
-        a2 = PRINTED["A2"]
-        res[A2_READ] = normal_acceleration(np.r_[-a2["q0"][0], a2["q0"][1:]], a2["free"],
-            normal_hint=a2["N0"])
-        sides = {}
-        for name, r in res.items():
-            cls = oracle_for(ctx).classify(np.array([r.point + EPS * r.N0, r.point - EPS * r.N0]))
-            plus, minus = bool(cls.reachable[0]), bool(cls.reachable[1])
-            sides[name] = "both" if (plus and minus) else ("+N0" if plus else ("-N0" if minus else "none"))
-        ctx.cache[key] = (res, sides)
-    return ctx.cache[key]
+@per_run
+def _results(ctx) -> tuple[dict, dict]:
+    """Our numbers at each point (and A2 read with theta1 = +160 deg), and the side each can move to
+    (reachability of p +- EPS N0: "+N0", "-N0", "both" or "none")."""
+    res = {
+        name: normal_acceleration(
+            d["q0"], d["free"], normal_hint=d["N0"], prefer_rows=(1, 2) if name == "A1" else None
+        )
+        for name, d in PRINTED.items()
+    }
+    a2 = PRINTED["A2"]
+    res[A2_READ] = normal_acceleration(np.r_[-a2["q0"][0], a2["q0"][1:]], a2["free"], normal_hint=a2["N0"])
+    sides = {}
+    for name, r in res.items():
+        cls = oracle_for(ctx).classify(np.array([r.point + EPS * r.N0, r.point - EPS * r.N0]))
+        plus, minus = bool(cls.reachable[0]), bool(cls.reachable[1])
+        sides[name] = "both" if (plus and minus) else ("+N0" if plus else ("-N0" if minus else "none"))
+    return res, sides
 
 
 def printed_values(ctx) -> dict:
@@ -138,10 +137,8 @@ def eig_of_h_values(ctx) -> dict:
 def inverted_dq_values(ctx) -> dict:
     """A realistic slip: Eq 67 read the other way (-1 at a lower limit), sigma computed with it."""
     out = recomputed_values(ctx)
-    a2 = dict(out["A2"])
-    a2["dq"] = {j: -v for j, v in a2["dq"].items()}
-    a2["sigma"] = {j: -v for j, v in a2["sigma"].items()}
-    out["A2"] = a2
+    a2 = out["A2"]
+    out["A2"] = dict(a2, **{k: {j: -v for j, v in a2[k].items()} for k in ("dq", "sigma")})
     return out
 
 
@@ -194,6 +191,18 @@ def _point(q0, free, hint):
     return sgn * n, np.sort(sgn * eig), sgn * H
 
 
+def _by_meaning(x: dict, hint, misfit) -> float:
+    """``misfit(N0, eig(Q*), H*)`` of :func:`_point` at the reading ``x`` (its q0 and free joints), inf where
+    the surface has no normal."""
+    sp = _point(x["q0"], x["free"], hint)
+    return float("inf") if sp is None else float(misfit(*sp))
+
+
+def _scaled(printed, ours):
+    """|printed - ours| in units of the printed rounding (_ABS + _REL |ours|)."""
+    return np.abs(printed - ours) / (_ABS + _REL * np.abs(ours))
+
+
 def _q0_readings(name: str) -> list[Reading]:
     """Nearby readings of point ``name``'s stated joints: each non-zero angle's sign, a joint at a limit at
     its other limit, and (A2) Sec 3.4.3's s(2) with theta1 = +160 deg."""
@@ -204,14 +213,11 @@ def _q0_readings(name: str) -> list[Reading]:
         v = q0[j]
         other = hi[j] if abs(v - lo[j]) < 1e-9 else (lo[j] if abs(v - hi[j]) < 1e-9 else None)
         if other is not None:
-            q = q0.copy()
-            q[j] = other
             out.append(Reading(Kind.LIMIT, f"theta{j + 1} at its other limit ({np.degrees(other):+.0f} deg)",
-                               {"q0": q}))
+                               {"q0": np.r_[q0[:j], other, q0[j + 1 :]]}))
         if v != 0 and (other is None or abs(-v - other) > 1e-9):
-            q = q0.copy()
-            q[j] = -v
-            out.append(Reading(Kind.SIGN, f"theta{j + 1} = {np.degrees(-v):+.1f} deg", {"q0": q}))
+            out.append(Reading(Kind.SIGN, f"theta{j + 1} = {np.degrees(-v):+.1f} deg",
+                               {"q0": np.r_[q0[:j], -v, q0[j + 1 :]]}))
     return out
 
 
@@ -232,16 +238,15 @@ def _stated_text(name: str) -> str:
     return f"q0 = {fmt_vec(np.degrees(d['q0']), 1)} deg on {d['surface']}, free joints {d['free']}"
 
 
+def _n0_misfit(x) -> float:
+    """max |printed N0 - surface normal| at the reading ``x`` (the normal's sign along the printed one)."""
+    return _by_meaning(x, x["N0"], lambda n, eig, H: np.abs(np.asarray(x["N0"], float) - n).max())
+
+
 def reading_n0(name: str, pv: dict):
     """Second reading of a printed N0: the surface normal at each nearby reading of the point, vs the printed
     vector read as typed or one digit slip away (sign of N0 free)."""
-    def misfit(x) -> float:
-        sp = _point(x["q0"], x["free"], x["N0"])
-        if sp is None:
-            return float("inf")
-        return float(np.abs(np.asarray(x["N0"], float) - sp[0]).max())
-
-    return search(_stated(name, pv), _q0_readings(name) + digit_slips("N0", pv["N0"]), misfit, _TOL_UNIT,
+    return search(_stated(name, pv), _q0_readings(name) + digit_slips("N0", pv["N0"]), _n0_misfit, _TOL_UNIT,
                   printed=f"N0 = {fmt_vec(pv['N0'])}", stated_text=_stated_text(name), route=_MEANING,
                   measure="max |printed - surface normal| (up to sign)")
 
@@ -252,11 +257,7 @@ def reading_eig(name: str, pv: dict):
     pr = np.sort(np.asarray(pv["eig"], float))
 
     def misfit(x) -> float:
-        sp = _point(x["q0"], x["free"], PRINTED[name]["N0"])
-        if sp is None:
-            return float("inf")
-        ours = sp[1]
-        return float(np.max(np.abs(pr - ours) / (_ABS + _REL * np.abs(ours))))
+        return _by_meaning(x, PRINTED[name]["N0"], lambda n, eig, H: _scaled(pr, eig).max())
 
     return search(_stated(name, pv), _q0_readings(name) + _free_readings(name), misfit, 1.0,
                   printed=f"eig(Q*) = {fmt_vec(pr, 2)} mm", stated_text=_stated_text(name), route=_MEANING,
@@ -273,9 +274,7 @@ def reading_u0(pv: dict):
     def misfit(x) -> float:
         lam = parameters(x["q0"])
         u0 = float(np.abs(np.asarray(x["u0"], float) - (-lam if x["swap"] else lam)).max())
-        sp = _point(x["q0"], x["free"], x["N0"])
-        n0 = float("inf") if sp is None else float(np.abs(np.asarray(x["N0"], float) - sp[0]).max())
-        return max(u0, n0)
+        return max(u0, _n0_misfit(x))
 
     readings = _q0_readings("A1") + [Reading(Kind.LIMIT, "Eq 58 with q^U and q^L exchanged", {"swap": True})]
     return search(stated, readings + digit_slips("u0", pv["u0"]) + sign_typos("u0", pv["u0"]), misfit,
@@ -289,11 +288,8 @@ def reading_h(pv: dict, mask: np.ndarray, what: str):
     """Second reading of A1's printed H* entries ``mask``: the Hessian of N0.G(q(s)) at each nearby reading,
     vs the printed matrix as typed, transposed or with an entry moved."""
     def misfit(x) -> float:
-        sp = _point(x["q0"], x["free"], PRINTED["A1"]["N0"])
-        if sp is None:
-            return float("inf")
-        ours, pr = sp[2], np.asarray(x["H"], float)
-        return float(np.max((np.abs(pr - ours) / (_ABS + _REL * np.abs(ours)))[mask]))
+        pr = np.asarray(x["H"], float)
+        return _by_meaning(x, PRINTED["A1"]["N0"], lambda n, eig, H: _scaled(pr, H)[mask].max())
 
     readings = _q0_readings("A1") + [Reading(Kind.SWAP, "H* transposed", {"H": np.asarray(pv["H"], float).T})]
     readings += moved_entries("H", pv["H"]) + moved_entries("H", pv["H"], within="row")
@@ -647,12 +643,17 @@ def eq69_printed(q):
     )
 
 
-def eq69_corrected(q):
-    """f(1) on s(1) (theta4 = theta5 = 0): [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5."""
-    l1, l2, l3, l4, l5 = iik.THESIS_ARM.lengths
-    L = l3 + l4 + l5
+def _f1(q, L):
+    """The tool point [m] on s(1) (theta4 = theta5 = 0) with links 3-5 of length L [m]."""
+    l1, l2 = iik.THESIS_ARM.lengths[:2]
     c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
     return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - L * s2], 1)
+
+
+def eq69_corrected(q):
+    """f(1) on s(1) (theta4 = theta5 = 0): [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5."""
+    _, _, l3, l4, l5 = iik.THESIS_ARM.lengths
+    return _f1(q, l3 + l4 + l5)
 
 
 def eq69_reading(ctx, f1):
@@ -680,16 +681,8 @@ def eq69_reading(ctx, f1):
 
 def _eq69_sign(q):
     out = eq69_corrected(q)
-    L = float(np.sum(iik.THESIS_ARM.lengths[2:]))
-    out[:, 2] += 2 * L * np.sin(q[:, 1])
+    out[:, 2] += 2 * float(np.sum(iik.THESIS_ARM.lengths[2:])) * np.sin(q[:, 1])
     return out
-
-
-def _eq69_short(q):
-    l1, l2, l3, l4, _ = iik.THESIS_ARM.lengths
-    c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
-    L = l3 + l4
-    return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - L * s2], 1)
 
 
 def _on_s1(ctx) -> Points:
@@ -704,11 +697,9 @@ CHECKS = SECTION.formulas(_on_s1, Formula(
     "Eq 69 (App. E)", eq69_printed, lambda s, f: np.linalg.norm(f(s.values) - iik.fk(s.values, THESIS_ARM)[
         :, :3, 3], axis=1), 1e-12, "m", (
         Slip(SlipKind.SIGN, "l1 + L s2 for l1 - L s2", _eq69_sign),
-        Slip(SlipKind.LENGTH, "L = l3 + l4 (l5 left out)", _eq69_short),
+        Slip(SlipKind.LENGTH, "L = l3 + l4 (l5 left out)", lambda q: _f1(q, sum(THESIS_ARM.lengths[2:4]))),
     ), good=eq69_corrected, good_is="f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
     eps_is="the good point + 1 nm", order=48.5, depends_on=EXACT_GEOMETRY, id="eq69", name="eq69_surface",
-    claim="Eq 69: on s(1) the tool point is f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + "
-    "l5 s1 c5 - l5 c1 s3 s5; l5 c3 s5 + l1].",
     text="f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + l5 s1 c5 - l5 c1 s3 s5; l5 c3 s5 + "
     "l1] (the surface theta2 = theta4 = 0)",
     corrected="f(1) = [(l2 + (l3+l4+l5) c2) c1; (l2 + (l3+l4+l5) c2) s1; l1 - (l3+l4+l5) s2] (theta4 = "

@@ -21,7 +21,7 @@ import numpy as np
 
 import iik
 
-from ..formula import Formula
+from ..formula import Formula, per_run
 from ..numbers import fmt_vec
 from ..oracles.abdel_malek import (
     eq58_rates,
@@ -57,7 +57,7 @@ class Probe:
 
     Attributes:
         name: ``"A1"`` or ``"s(26) #3"``; q0: joints 1-5 [rad]; free: the free joints (1-based).
-        Gq: (3, 5) tool-point Jacobian; Hq: (3, 5, 5) its derivatives; lam, qs, qss: Eq 58 at q0.
+        Gq: (3, 5) tool-point Jacobian; Hq: (3, 5, 5) its derivatives; qs, qss: Eq 58's rates at q0.
         sp: the meaning-based :class:`~verification.oracles.normal_distance.SurfacePoint`.
         rows: Eq 63's row pair (the best-conditioned one).
     """
@@ -67,7 +67,6 @@ class Probe:
     free: tuple[int, int]
     Gq: np.ndarray
     Hq: np.ndarray
-    lam: np.ndarray
     qs: np.ndarray
     qss: np.ndarray
     sp: SurfacePoint
@@ -100,9 +99,9 @@ def _probe(name, q0, free) -> Probe | None:
         sp = surface_point(q0, free)
     except iik.InvalidInputError:
         return None
-    lam, qs, qss = eq58_rates(q0, ARM)
+    _, qs, qss = eq58_rates(q0, ARM)
     _, Gq = position_and_jacobian(q0)
-    return Probe(name, q0, tuple(free), Gq, hessian(q0), lam, qs, qss, sp, sp.rows)
+    return Probe(name, q0, tuple(free), Gq, hessian(q0), qs, qss, sp, sp.rows)
 
 
 #: The singular sets sampled besides A1, A2, A6: (name, fixed {joint: value [rad]}, free joints).
@@ -129,21 +128,19 @@ class Probes(tuple):
         return f"at {p.name}, q0 = {fmt_vec(p.q0)} rad"
 
 
+@per_run
 def probes(ctx) -> Probes:
-    """A1, A2, A6 and random points of s(1), s(2), s(26) (free joints uniform in Table I), cached."""
-    key = ("appendix_e.probes", ctx.quick)
-    if key not in ctx.cache:
-        out = [_probe(n, d["q0"], d["free"]) for n, d in PRINTED.items()]
-        rng = ctx.rng("appendix-e-formulas")
-        for name, fixed, free in _SETS:
-            for k in range(ctx.n(6, 2)):
-                q = rng.uniform(ARM.q_min[:5], ARM.q_max[:5])
-                for j, v in fixed.items():
-                    q[j - 1] = v
-                out.append(_probe(f"{name} #{k + 1}", q, free))
-        out = [p for p in out if p is not None]
-        ctx.cache[key] = Probes(out, _domain(out))
-    return ctx.cache[key]
+    """A1, A2, A6 and random points of s(1), s(2), s(26) (free joints uniform in Table I)."""
+    out = [_probe(n, d["q0"], d["free"]) for n, d in PRINTED.items()]
+    rng = ctx.rng("appendix-e-formulas")
+    for name, fixed, free in _SETS:
+        for k in range(ctx.n(6, 2)):
+            q = rng.uniform(ARM.q_min[:5], ARM.q_max[:5])
+            for j, v in fixed.items():
+                q[j - 1] = v
+            out.append(_probe(f"{name} #{k + 1}", q, free))
+    out = [p for p in out if p is not None]
+    return Probes(out, _domain(out))
 
 
 def _domain(ps) -> str:
@@ -314,13 +311,11 @@ FORMULAS |= SECTION.formulas(_limit_joints, Formula(
 
 
 # ----------------------------------------------------------------------------- Eq 68
+@per_run
 def _sigma_zero_points(ctx) -> Probes:
     """Points of s(24)-s(27) (theta2 and theta4 at limits, theta3 = 0, free theta1, theta5) where Eq 66
     vanishes for one of the joints at a limit: theta5 = 0 (sigma_4 = 0) and the roots of sigma_2(theta5), at
-    random theta1 (cached)."""
-    key = ("appendix_e.sigma_zero", ctx.quick)
-    if key in ctx.cache:
-        return ctx.cache[key]
+    random theta1."""
     rng = ctx.rng("eq68-points")
     out = []
     sets = [(t2, t4) for t2 in (ARM.q_min[1], ARM.q_max[1]) for t4 in (ARM.q_min[3], ARM.q_max[3])]
@@ -346,10 +341,8 @@ def _sigma_zero_points(ctx) -> Probes:
         # a sign change of the unnormalised normal through zero (tangents parallel) is not a root of sigma
         if p is not None and abs(p.sp.sigma(j, 1.0)) < 1e-7:
             res.append((j, p))
-    ctx.cache[key] = Probes(res, f"{len(res)} points of s(24)-s(27) (theta2, theta4 at limits, theta3 = 0) "
-                            "where sigma_4 = 0 (theta5 = 0) or sigma_2 = 0 (roots in theta5), theta1 "
-                            "random in Table I")
-    return ctx.cache[key]
+    return Probes(res, f"{len(res)} points of s(24)-s(27) (theta2, theta4 at limits, theta3 = 0) where "
+                  "sigma_4 = 0 (theta5 = 0) or sigma_2 = 0 (roots in theta5), theta1 random in Table I")
 
 
 def _s2_grid(q_at, grid) -> np.ndarray:
