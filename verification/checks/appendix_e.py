@@ -28,7 +28,7 @@ from ..oracles.normal_distance import parameters, surface_point, tool_point
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
 from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict
-from ..second_reading import Kind, Reading, digit_slips, moved_entries, search, sign_typos
+from ..second_reading import Kind, Reading, choices, digit_slips, moved_entries, search, sign_typos
 from ..shorthand import cos_sin
 
 _D = np.pi / 180
@@ -223,9 +223,8 @@ def _q0_readings(name: str) -> list[Reading]:
 
 def _free_readings(name: str) -> list[Reading]:
     """The other pairs of free joints (which joints span the surface)."""
-    free = PRINTED[name]["free"]
-    pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != tuple(free)]
-    return [Reading(Kind.WHICH, f"free joints {a}, {b}", {"free": (a, b)}) for a, b in pairs]
+    pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != tuple(PRINTED[name]["free"])]
+    return choices(Kind.WHICH, "free", {f"free joints {a}, {b}": (a, b) for a, b in pairs})
 
 
 def _stated(name: str, pv: dict) -> dict:
@@ -670,8 +669,7 @@ def eq69_reading(ctx, f1):
         return float(np.linalg.norm(f1(qq) - tool_point(qq[:, :5]), axis=1).max())
 
     pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != (4, 5)]
-    readings = [Reading(Kind.WHICH, f"the set [theta{a} = 0, theta{b} = 0]", {"pair": (a, b)}) for a,
-        b in pairs]
+    readings = choices(Kind.WHICH, "pair", {f"the set [theta{p[0]} = 0, theta{p[1]} = 0]": p for p in pairs})
     return search(stated, readings, misfit, 1e-12,
         printed="f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; ...; "
                   "l5 c3 s5 + l1]", stated_text="s(1) = [theta4 = 0, theta5 = 0] (App. E, Table VI)",
