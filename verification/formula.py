@@ -38,7 +38,7 @@ from .numbers import fmt_vec, worst
 from .registry import Erratum, Forms, Measure, Row, Slip, Verdict, epsilon
 from .thesis_index import title_of
 
-__all__ = ["Formula", "Points", "error_row", "per_run", "printed_row", "RIGHT"]
+__all__ = ["Formula", "Points", "error_row", "per_run", "RIGHT"]
 
 #: What the good form is when the printed one is right.
 RIGHT = "the printed form (it is right)"
@@ -250,50 +250,3 @@ def per_run(func: Callable) -> Callable:
         return ctx.cache[key]
 
     return cached
-
-
-def printed_row(
-    id: str,
-    claim: str,
-    reference: str,
-    numbers: str,
-    printed,
-    ours,
-    tol: float,
-    unit: str = "",
-    *,
-    rel: float = 0.0,
-    up_to_sign: bool = False,
-    measure: str = "max |printed - ours|",
-    limit: float | None = None,
-    erratum: Erratum | None = None,
-    reread: Callable | None = None,
-    basis: str = "",
-    **fields,
-) -> Row:
-    """A number or array printed in the thesis vs the same quantity recomputed (an entry of a table of
-    printed values, e.g. App. E's points), graded within the printed rounding.
-
-    It holds if ``|printed - ours| <= tol + rel |ours|`` everywhere (``up_to_sign``: or everywhere against
-    ``-ours``, a sign convention); the measure is ``max |printed - ours|`` [``unit``] against ``limit``
-    (default ``tol``). A passing row is IDENTITY with ``basis`` (why it agrees by construction); a failing
-    one is an ERRATUM with ``erratum`` (default: the claim, "the recomputed value", ``numbers``), re-read
-    by ``reread()`` (a :class:`~verification.second_reading.SecondReading`) before it stands.
-    ``fields``: further :class:`~verification.registry.Row` fields (``depends_on``)."""
-    p, o = np.asarray(printed, float), np.asarray(ours, float)
-    signs = (1.0, -1.0) if up_to_sign else (1.0,)
-    d = min(float(np.abs(p - s * o).max()) for s in signs)
-    ok = any(np.all(np.abs(p - s * o) <= tol + rel * np.abs(o)) for s in signs)
-    row = Row(
-        claim,
-        reference,
-        "",
-        numbers,
-        (Verdict.IDENTITY if basis else Verdict.HOLDS) if ok else Verdict.ERRATUM,
-        id=id,
-        measures=(Measure(measure, d, tol if limit is None else limit, unit),),
-        errata=() if ok else (erratum or Erratum(reference, claim, "the recomputed value", numbers),),
-        basis=basis,
-        **fields,
-    )
-    return row.reread(reread()) if not ok and reread is not None else row
