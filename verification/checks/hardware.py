@@ -458,12 +458,13 @@ def _simulated(order: float, forms: dict, **options):
 
 def _graded(claim: str, reference: str, method: str, numbers: str, measures, lag: float, **fields) -> Row:
     """A Sec 4.3 claim graded by ``measures`` on the simulated arm with tracking lag ``lag`` [s]; ``method``
-    follows the simulation's description (:func:`_note`)."""
+    follows the simulation's description (:func:`_note`). ``reasons``: (if it holds, if not)."""
     reason = f"on the simulated arm with a {lag * 1e3:.0f} ms lag (the real arm: see the not-checkable row)"
-    fields.setdefault("reason", reason)
-    return Row.graded(
+    holds, fails = fields.pop("reasons", (reason, reason))
+    row = Row.graded(
         claim, reference, _note(lag) + method, numbers, measures, fail=Verdict.DOES_NOT_HOLD, **fields
     )
+    return row.replace(reason=holds if row.verdict is Verdict.HOLDS else fails)
 
 
 @_simulated(
@@ -533,7 +534,10 @@ def check_early_update(ctx, early: float) -> Row:
         "current one ends, so no step is cut.",
         m,
         waits[0].lag,
-        reason="the early update did not remove the stops or did not add error",
+        reasons=(
+            "measured on the simulated arm (assumed lag); the real arm's vibrations are not checkable",
+            "the early update did not remove the stops or did not add error",
+        ),
         domain=f"scenarios {', '.join(n for n, _ in compared)}, every step-point",
     )
 
