@@ -234,7 +234,6 @@ class Formula:
         return check
 
 
-# --- added in k4
 def per_run(func: Callable) -> Callable:
     """Decorator: ``func(ctx, *args)`` computed once per run, kept in ``ctx.cache`` under the function's
     module and name, ``args`` (hashable) and ``ctx.quick``.
