@@ -108,3 +108,21 @@ def test_rows_derive_numbers_and_reread_only_errata():
     wrong = Row.graded("c", "Eq 4", "m", None, m, erratum=Erratum("Eq 4", "p", "c", "x"))
     reading = search({"x": 1.0}, [], lambda x: 0.0, 0.0, printed="p", stated_text="s", route="r", measure="m")
     assert wrong.reread_if_erratum(lambda: reading).verdict is Verdict.HOLDS  # right as stated: withdrawn
+
+
+def test_per_run_computes_once_per_run_and_sample_size(tmp_path):
+    from verification.formula import per_run
+    from verification.registry import Context
+
+    calls = []
+
+    @per_run
+    def sample(ctx, n):
+        calls.append(n)
+        return [n] * n
+
+    ctx = Context(out_dir=tmp_path, quick=True)
+    assert sample(ctx, 2) is sample(ctx, 2) and sample(ctx, 3) == [3, 3, 3]
+    assert calls == [2, 3]
+    sample(Context(out_dir=tmp_path, quick=True), 2)  # a new run computes again
+    assert calls == [2, 3, 2]

@@ -30,7 +30,7 @@ from iik.rotations import rotation_angle
 from iik.urdf import thesis_urdf, urdf_from_dh
 
 from ..assumptions import EXACT_GEOMETRY
-from ..formula import Formula, Points
+from ..formula import Formula, Points, per_run
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements, thesis_model, tool_jacobians, tool_poses
 from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
@@ -376,19 +376,19 @@ def _samples(ctx, salt: str, full: int, quick: int) -> np.ndarray:
     return qs if ctx.quick else np.concatenate([qs, _special_joints()])
 
 
-def _cached(ctx, key, make):
-    if key not in ctx.cache:
-        ctx.cache[key] = make()
-    return ctx.cache[key]
-
-
+@per_run
 def _truth_poses(ctx, salt, full, quick):
-    """(q, Pinocchio tool poses) for a sample, cached (form-independent)."""
-    return _cached(
-        ctx,
-        ("kin.poses", salt, ctx.quick),
-        lambda: (lambda qs: (qs, tool_poses(qs)))(_samples(ctx, salt, full, quick)),
-    )
+    """(q, Pinocchio tool poses) for a sample."""
+    qs = _samples(ctx, salt, full, quick)
+    return qs, tool_poses(qs)
+
+
+@per_run
+def _jacobians(ctx):
+    """On the App. C sample: Pinocchio's frame Jacobians (n, 6, 6) and the central differences of the tool
+    point (n, 3, 6) [m/rad]."""
+    qs = _samples(ctx, "appc", 3000, 200)
+    return tool_jacobians(qs), _fd_position_jacobian(qs)
 
 
 def _hist(ctx, name, series, xlabel, title):
@@ -397,11 +397,13 @@ def _hist(ctx, name, series, xlabel, title):
     for label, v in series:
         v = np.maximum(np.asarray(v), 1e-19)
         ax.hist(np.log10(v), bins=40, alpha=0.6, label=label)
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel("count")
-    ax.set_title(title)
+    ax.set(xlabel=xlabel, ylabel="count", title=title)
     ax.legend(fontsize=8)
     return ctx.save_figure(fig, name, dpi=90)
+
+
+#: The axis labels of a 3-D figure in base frame 0.
+_XYZ_M = {"xlabel": "x [m]", "ylabel": "y [m]", "zlabel": "z [m]"}
 
 
 def _bars(ctx, name, labels, series, ylabel, title, *, floor=1e-19, figsize=(7.5, 3.4), **ticks) -> str:
@@ -411,10 +413,8 @@ def _bars(ctx, name, labels, series, ylabel, title, *, floor=1e-19, figsize=(7.5
     x = np.arange(len(labels))
     for k, (label, v) in enumerate(series):
         ax.bar(x + (k - 0.5) * 0.4, np.maximum(v, floor), 0.4, label=label)
-    ax.set_yscale("log")
+    ax.set(yscale="log", ylabel=ylabel, title=title)
     ax.set_xticks(x, labels, **ticks)
-    ax.set_ylabel(ylabel)
-    ax.set_title(title)
     ax.legend(fontsize=8)
     return ctx.save_figure(fig, name)
 # ----------------------------------------------------------------------------- checks
@@ -432,8 +432,8 @@ def table_ii_encoding(ctx):
     d_rows = max(abs(getattr(a, k) - getattr(b, k)) for a, b in zip(printed.rows, THESIS_ARM.dh_table().rows,
                  strict=True) for k in ("alpha", "a", "d", "offset"))
     tm = thesis_model(THESIS_ARM)
-    lo, hi = tm.model.lowerPositionLimit, tm.model.upperPositionLimit
-    d_lim = max(np.abs(lo - np.array(printed.lower)).max(), np.abs(hi - np.array(printed.upper)).max())
+    d_lim = np.abs(np.concatenate([tm.model.lowerPositionLimit - printed.lower,
+                                   tm.model.upperPositionLimit - printed.upper])).max()
     revolute = [tm.model.joints[i].shortname() for i in range(1, tm.model.njoints)]
     ok_types = all(t.startswith("JointModelR") for t in revolute) and tm.model.nq == 6
     m_lim = Measure("max |printed - URDF| limit", d_lim, 1e-15, "rad")
@@ -487,14 +487,9 @@ def urdf_is_generated(ctx):
         ax = fig.add_subplot(1, 2, k + 1, projection="3d")
         used = draw_collision(ax, tm.model, tm.collision_model, q)
         draw_arm(ax, q, color="k", lw=1, markersize=2)
-        ax.set_xlim(-0.2, 1.0)
-        ax.set_ylim(-0.5, 0.5)
-        ax.set_zlim(0.0, 1.0)
+        ax.set(xlim=(-0.2, 1.0), ylim=(-0.5, 0.5), zlim=(0.0, 1.0), **_XYZ_M)
         ax.set_box_aspect((1.2, 1.0, 1.0))  # equal scales: the limits' spans
         ax.view_init(elev=20, azim=-60)
-        ax.set_xlabel("x [m]")
-        ax.set_ylabel("y [m]")
-        ax.set_zlabel("z [m]")
         ax.set_title(("home pose (Fig 8)" if k == 0 else fmt_q(q)), fontsize=7)
     fig.legend(
         handles=[Patch(facecolor=c, alpha=0.5, label=link) for link, c in used.items()]
@@ -545,16 +540,9 @@ def eq4_vs_pinocchio(ctx, eq4):
         Measure("max |dR_ij| vs Pinocchio", dR.max(), TOL_EXACT),
     )
     dp_w, k = worst(dp)
-    figs = (
-        _hist(
-            ctx,
-            "eq4_errors.png",
-            [("Eq 4 printed |dp|", dp), ("Eq 4 printed max |dR_ij|", dR)],
-            "log10 error vs Pinocchio [m or -]",
-            f"Eq 4 vs Pinocchio, {len(qs)} q",
-        ),
-        _arm_figure(ctx),
-    ) if eq4 is eq4_printed else ()
+    figs = (_hist(ctx, "eq4_errors.png", [("Eq 4 printed |dp|", dp), ("Eq 4 printed max |dR_ij|", dR)],
+                  "log10 error vs Pinocchio [m or -]", f"Eq 4 vs Pinocchio, {len(qs)} q"),
+            _arm_figure(ctx)) if eq4 is eq4_printed else ()
     return Row.graded(
         "Eq 4 gives the pose of frame 6 (position of the end-effector point and orientation).",
         "Eq 4 (with Table II, Fig 8)",
@@ -566,12 +554,8 @@ def eq4_vs_pinocchio(ctx, eq4):
         id="eq4",
         domain=_JOINT_DOMAIN.format(n=len(qs)),
         figures=figs,
-        erratum=Erratum(
-            "Eq 4",
-            "the printed entries",
-            "the Table II product (iik.fk)",
-            f"{fmt_q(qs[k])}: position off by {dp_w:.3g} m",
-        ),
+        erratum=Erratum("Eq 4", "the printed entries", "the Table II product (iik.fk)",
+                        f"{fmt_q(qs[k])}: position off by {dp_w:.3g} m"),
     )
 
 
@@ -594,9 +578,7 @@ def _arm_figure(ctx) -> str:
         draw_arm_bodies(ax, q, colour=f"C{k}", alpha=0.25, arm=THESIS_ARM)
         draw_arm(ax, q, color=f"C{k}", label=fmt_q(q[:5]).replace(" rad", ""), markersize=3)
         ax.scatter(*tool_poses(q[None])[0, :3, 3], marker="x", color="k", s=40)
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    ax.set_zlabel("z [m]")
+    ax.set(**_XYZ_M)
     ax.set_title(
         "The arm at 4 poses: URDF collision shapes, Table II frame origins (dots), x = Pinocchio tool "
         "point;\nplatform and floor (iik.scene); base frame 0, x/y/z [m], equal scales",
@@ -611,9 +593,7 @@ def _arm_figure(ctx) -> str:
         fontsize=6,
         loc="upper left",
     )
-    p2, rel2 = ctx.figure_path("arm_poses.png")
-    f2.savefig(p2, dpi=90)
-    return rel2
+    return ctx.save_figure(f2, "arm_poses.png")
 
 
 def _table_edit(k: int, table: DHTable | None = None, **change) -> DHTable:
@@ -653,12 +633,8 @@ def table_ii_vs_eq4(ctx, table):
     """Eq 1 with Table II: the product of the link transforms vs Eq 4 as printed and vs Pinocchio."""
     qs, T_pin = _truth_poses(ctx, "eq4", 20000, 400)
     T = dh_chain(table, qs)
-    d4 = np.abs(T - eq4_printed(qs)).max(axis=(1, 2))
-    dpin = np.abs(T - T_pin).max(axis=(1, 2))
-    m = (
-        Measure("max |T_TableII - T_Eq4|", d4.max(), TOL_EXACT),
-        Measure("max |T_TableII - T_Pinocchio|", dpin.max(), TOL_EXACT),
-    )
+    m = (Measure("max |T_TableII - T_Eq4|", np.abs(T - eq4_printed(qs)).max(), TOL_EXACT),
+         Measure("max |T_TableII - T_Pinocchio|", np.abs(T - T_pin).max(), TOL_EXACT))
     return Row.graded(
         "Eq 4 is the product 0_1T ... 5_6T (Eq 1) of the Table II link transforms.",
         "Eq 1, Table II, Eq 4",
@@ -775,6 +751,13 @@ def _pin_links(qs) -> np.ndarray:
     return np.stack([np.linalg.inv(P[:, i]) @ P[:, i + 1] for i in range(6)], 1)
 
 
+@per_run
+def _appb_truth(ctx):
+    """The App. B sample's q and Pinocchio's joint-to-joint placements there (:func:`_pin_links`)."""
+    qs = _samples(ctx, "appb", 2000, 100)
+    return qs, _pin_links(qs)
+
+
 @SECTION.check(
     "App. B",
     depends_on=EXACT_GEOMETRY + ("text",),
@@ -789,8 +772,7 @@ def _pin_links(qs) -> np.ndarray:
 def appendix_b(ctx, appb):
     """Appendix B link matrices (home-pose set, the form) vs Pinocchio's joint-to-joint placements, and
     their product vs Eq 4."""
-    qs = _samples(ctx, "appb", 2000, 100)
-    pin_links = _cached(ctx, ("kin.appb.links", ctx.quick), lambda: _pin_links(qs))
+    qs, pin_links = _appb_truth(ctx)
     printed = np.stack([np.stack(appb(q), 0) for q in qs], 0)  # (n, 6, 4, 4)
     P_q, T_q = appb(Q_COUNTEREXAMPLE), _pin_links(Q_COUNTEREXAMPLE[None])[0]
     rows = []
@@ -951,8 +933,7 @@ def eq34_arguments(ctx, arguments):
         q2 = qs.copy()
         q2[:, j] = rng.uniform(THESIS_ARM.q_min[j], THESIS_ARM.q_max[j], len(qs))
         change[j + 1] = np.abs(tool_poses(q2)[:, :3, 3] - p0).max(axis=0)  # (3,) per coordinate
-    worst_missing = 0.0
-    lines = []
+    worst_missing, lines = 0.0, []
     for k, f in enumerate(("f1", "f2", "f3")):
         absent = [j for j in range(1, 7) if j not in arguments[f]]
         d = max((change[j][k] for j in absent), default=0.0)
@@ -961,15 +942,13 @@ def eq34_arguments(ctx, arguments):
             f"{f}({', '.join(f'th{j}' for j in arguments[f])}): max change when a joint not in the "
             f"list moves ({', '.join(f'th{j}' for j in absent)}) = {d:.1e} m"
         )
-    m = (
-        Measure("max coordinate change from a joint not in the argument list", worst_missing, TOL_EXACT, "m"),
-    )
     return Row.graded(
         "Eq 34: joint 6 does not move the end-effector point, and f3 does not depend on theta1.",
         "Eq 34",
         f"Pinocchio tool position at {len(qs)} random q in Table I; each joint resampled in turn",
         "; ".join(lines),
-        m,
+        (Measure("max coordinate change from a joint not in the argument list", worst_missing, TOL_EXACT,
+                 "m"),),
         fail=Verdict.DOES_NOT_HOLD,
         id="eq34",
         domain=f"{len(qs)} q uniform in Table I; each joint in turn resampled uniformly over its whole range",
@@ -999,8 +978,7 @@ def eq34_arguments(ctx, arguments):
 def appendix_c(ctx, appc):
     """Each printed entry of Appendix C vs Pinocchio's frame Jacobian and finite differences; Eq 35."""
     qs = _samples(ctx, "appc", 3000, 200)
-    J_pin = _cached(ctx, ("kin.appc.jpin", ctx.quick), lambda: tool_jacobians(qs))
-    J_fd = _cached(ctx, ("kin.appc.jfd", ctx.quick), lambda: _fd_position_jacobian(qs))
+    J_pin, J_fd = _jacobians(ctx)
     pr = appc(qs)
     details, worst_ = [], {}
     for key, val in pr.items():
@@ -1025,35 +1003,32 @@ def appendix_c(ctx, appc):
     fig = _bars(ctx, "appc_errors.png", list(worst_), [(w, [worst_[k][i] for k in worst_]) for i, w in
                 enumerate(("vs Pinocchio", "vs central FD"))], "max |error| [m/rad]",
                 f"Appendix C entries as printed, {len(qs)} q", rotation=60, fontsize=7)
-    rows = [
-        Row(
-            "Appendix C: the 15 printed entries of the 3x5 Jacobian (Eq 56) are the derivatives of Eq 55.",
-            "Eq 56 (App. C)",
-            "each printed entry vs Pinocchio computeFrameJacobian(frame 'tool', LOCAL_WORLD_ALIGNED) and "
-            f"central differences (h = 1e-6 rad) of the Pinocchio tool point, {len(qs)} q",
-            f"{n_ok} of 15 entries match (worst |printed - Pinocchio| = "
-            f"{max(w[0] for w in worst_.values()):.1e} m/rad)",
-            verdict_of(group_m),
-            id="appc",
-            measures=group_m,
-            details=tuple(details),
-            domain=_JOINT_DOMAIN.format(n=len(qs)),
-            figures=(fig,),
-            errata=tuple(e for d in details for e in d.errata),
-        )
-    ]
+    group = Row(
+        "Appendix C: the 15 printed entries of the 3x5 Jacobian (Eq 56) are the derivatives of Eq 55.",
+        "Eq 56 (App. C)",
+        "each printed entry vs Pinocchio computeFrameJacobian(frame 'tool', LOCAL_WORLD_ALIGNED) and "
+        f"central differences (h = 1e-6 rad) of the Pinocchio tool point, {len(qs)} q",
+        f"{n_ok} of 15 entries match (worst |printed - Pinocchio| = {max(w[0] for w in worst_.values()):.1e} "
+        "m/rad)",
+        verdict_of(group_m),
+        id="appc",
+        measures=group_m,
+        details=tuple(details),
+        domain=_JOINT_DOMAIN.format(n=len(qs)),
+        figures=(fig,),
+        errata=tuple(e for d in details for e in d.errata),
+    )
     # Eq 35: the assembled 3x5 matrix maps joint increments to tool-point increments
     J = np.stack([np.stack([pr[f"df{i + 1}/dth{j + 1}"] for j in range(5)], -1) for i in range(3)], 1)
     rng = ctx.rng("eq35")
     dq = rng.normal(size=(len(qs), 5))
     dq /= np.linalg.norm(dq, axis=1, keepdims=True)
     h = 1e-6
-    step = np.zeros((len(qs), 6))
-    step[:, :5] = h * dq
+    step = np.pad(h * dq, ((0, 0), (0, 1)))  # theta6 fixed
     fd = (tool_poses(qs + step)[:, :3, 3] - tool_poses(qs - step)[:, :3, 3]) / (2 * h)
     e35 = np.linalg.norm(np.einsum("nij,nj->ni", J, dq) - fd, axis=1)
     s35 = Points(qs, _JOINT_DOMAIN.format(n=len(qs)) + "; one random unit joint direction per q", "rad", "q")
-    return rows + [_EQ35.row(s35, e35)]
+    return [group, _EQ35.row(s35, e35)]
 
 
 #: Eq 35 with the printed App. C matrix (the claim is the index's).
@@ -1089,22 +1064,18 @@ def iik_kinematics(ctx, impl):
     """(Project) iik.fk and iik.jacobian (6x6) agree with Pinocchio."""
     fk_f, jac_f = impl
     qs, T_pin = _truth_poses(ctx, "appc", 3000, 200)
-    J_pin = _cached(ctx, ("kin.appc.jpin6", ctx.quick), lambda: tool_jacobians(qs))
+    J_pin = _jacobians(ctx)[0]
     T = fk_f(qs, THESIS_ARM)
     dp = np.linalg.norm(T[:, :3, 3] - T_pin[:, :3, 3], axis=1).max()
     dr = float(np.max(rotation_angle(T[:, :3, :3], T_pin[:, :3, :3])))
     dj = np.abs(jac_f(qs, THESIS_ARM) - J_pin).max()
-    m = (
-        Measure("max |dp|", dp, TOL_EXACT, "m"),
-        Measure("max rotation angle", dr, TOL_EXACT, "rad"),
-        Measure("max |dJ|", dj, TOL_EXACT, "m/rad or -"),
-    )
     return Row.graded(
         "(Project) iik.fk and the 6x6 iik.jacobian agree with Pinocchio.",
         "iik.kinematics (Eq 4, Eq 56)",
         f"Pinocchio framesForwardKinematics and computeFrameJacobian (LOCAL_WORLD_ALIGNED), {len(qs)} q",
-        f"max |dp| = {dp:.1e} m, max rotation angle {dr:.1e} rad, max |dJ| = {dj:.1e}",
-        m,
+        None,
+        (Measure("max |dp|", dp, TOL_EXACT, "m"), Measure("max rotation angle", dr, TOL_EXACT, "rad"),
+         Measure("max |dJ|", dj, TOL_EXACT, "m/rad or -")),
         fail=Verdict.DOES_NOT_HOLD,
         id="iik_kinematics",
         scope=Scope.PROJECT,
@@ -1119,6 +1090,8 @@ def _euler_samples(ctx):
 
 
 _CONVENTIONS = ("ZYZ", "ZXZ")
+#: The angles (alpha, beta, gamma) [rad] of Eq 42's counterexamples.
+_EULER_AT = (0.5, 0.7, 0.3)
 
 
 def _eq42_compare(ctx, eq42):
@@ -1136,7 +1109,7 @@ def _eq42_compare(ctx, eq42):
     forms=Forms(
         printed=eq42_printed,
         good=eq42_zyz,
-        good_is="the Z-Y-Z matrix in closed form (Craig)",
+        good_is="the Z-Y-Z matrix (Craig), composed from elementary rotations",
         slips=(
             Slip(SlipKind.TRANSPOSE, "the Z-Y-Z matrix transposed",
                  lambda a, b, g: np.swapaxes(eq42_zyz(a, b, g), -1, -2)),
@@ -1156,46 +1129,33 @@ def eq42_matrix(ctx, eq42):
         Measure(f"max |printed - scipy '{best}'|", dev[best].max(), TOL_EXACT),
         Measure("max |R^T R - I|", orth, TOL_EXACT),
     )
-    verdict = verdict_of(m)
     bad_entries = [(r + 1, c + 1) for r in range(3) for c in range(3) if dev[best][:, r, c].max() > TOL_EXACT]
     fig = _bars(ctx, "eq42_entries.png", [f"r{r + 1}{c + 1}" for r in range(3) for c in range(3)],
                 [(f"vs scipy '{c}'", dev[c].max(axis=0).ravel()) for c in _CONVENTIONS], "max |form - scipy|",
                 f"Eq 42 entry by entry ({len(a)} angle triples)", floor=1e-17, figsize=(6.4, 3.2))
-    a0, b0, g0 = 0.5, 0.7, 0.3
+    a0, b0, g0 = _EULER_AT
     P0, Z0 = eq42(a0, b0, g0), Rotation.from_euler(best, [a0, b0, g0]).as_matrix()
-    errata = ()
-    if verdict is not Verdict.HOLDS:
-        r, c = bad_entries[0]
-        errata = (
-            Erratum(
-                f"Eq 42 r{r}{c}",
-                "r21 = c_a c_b c_g - c_a s_g" if (r, c) == (2, 1) else f"r{r}{c} as printed",
-                "r21 = s_a c_b c_g + c_a s_g" if (r, c) == (2, 1) else f"r{r}{c} of {best}",
-                f"alpha, beta, gamma = {a0}, {b0}, {g0} rad: printed r{r}{c} = {P0[r - 1, c - 1]:.6f}, "
-                f"{best} gives {Z0[r - 1, c - 1]:.6f}; printed R^T R - I has max entry "
-                f"{np.abs(P0.T @ P0 - np.eye(3)).max():.3f}",
-            ),
-        )
-    row = Row(
+    r, c = (bad_entries or [(2, 1)])[0]  # the first entry that differs (the erratum, if the row fails)
+    return Row.graded(
         "Eq 42 is an Euler-angle orientation matrix R = Rz(alpha) R(beta) Rz(gamma).",
         "Eq 42 (Sec 3.5.1)",
         f"Eq 42 transcribed as printed vs scipy Rotation.from_euler('ZYZ') and ('ZXZ') (intrinsic), {len(a)} "
         "angle triples (alpha, gamma in [-pi, pi], beta in [0, pi]); orthonormality",
         f"closest convention {best}: entries differing by > 1e-12: {bad_entries}; max deviation "
         f"{dev[best].max():.3g}; max |R^T R - I| = {orth:.2g}",
-        verdict,
+        m,
         id="eq42",
-        measures=m,
         figures=(fig,),
-        errata=errata,
+        erratum=Erratum(f"Eq 42 r{r}{c}", f"r{r}{c} = {EQ42_TEXT[r - 1][c - 1]}",
+                        "r21 = s_a c_b c_g + c_a s_g" if (r, c) == (2, 1) else f"r{r}{c} of {best}",
+                        f"alpha, beta, gamma = {a0}, {b0}, {g0} rad: printed r{r}{c} = {P0[r - 1, c - 1]:.6f}"
+                        f", {best} gives {Z0[r - 1, c - 1]:.6f}; printed R^T R - I has max entry "
+                        f"{np.abs(P0.T @ P0 - np.eye(3)).max():.3f}"),
         domain=f"{len(a)} angle triples: alpha, gamma uniform in [-pi, pi], beta uniform in [0, pi] (both "
         "poles of the polar angle included)",
-    )
-    if verdict is Verdict.HOLDS:
-        return row
-    which = ", ".join(f"r{r}{c}" for r, c in bad_entries)
-    return row.reread(eq42_reading(ctx, eq42, [(r - 1, c - 1) for r, c in bad_entries], f"{which} as printed",
-                                   count=False))
+    ).reread_if_erratum(lambda: eq42_reading(
+        ctx, eq42, [(r - 1, c - 1) for r, c in bad_entries],
+        ", ".join(f"r{r}{c}" for r, c in bad_entries) + " as printed", count=False))
 
 
 @SECTION.check(
@@ -1204,7 +1164,7 @@ def eq42_matrix(ctx, eq42):
     forms=Forms(
         printed=eq42_printed,
         good=eq42_zxz,
-        good_is="the Z-X-Z matrix in closed form",
+        good_is="the Z-X-Z matrix, composed from elementary rotations",
         slips=(
             Slip(SlipKind.MODEL, "the Z-Y-Z matrix in closed form", eq42_zyz),
             Slip(SlipKind.TRANSPOSE, "the Z-X-Z matrix transposed (extrinsic)",
@@ -1216,9 +1176,9 @@ def eq42_convention(ctx, eq42):
     """Sec 3.5.1 names Eq 42 'the Z-X-Z convention of [2]': how many of the form's entries are Z-X-Z?"""
     (a, b, g), _, _, counts = _eq42_compare(ctx, eq42)
     m = (Measure("entries of Eq 42 that are not Z-X-Z", 9 - counts["ZXZ"], 0),)
-    a0, b0, g0 = 0.5, 0.7, 0.3
+    a0, b0, g0 = _EULER_AT
     P0 = eq42(a0, b0, g0)
-    row = Row.graded(
+    return Row.graded(
         "Eq 42 follows 'the Z-X-Z representation convention described in [2]'.",
         "Eq 42, Sec 3.5.1",
         f"each of the 9 entries vs scipy 'ZXZ' and 'ZYZ' (intrinsic) on {len(a)} angle triples",
@@ -1235,12 +1195,9 @@ def eq42_convention(ctx, eq42):
             f"r13 = s_a s_b = {Rotation.from_euler('ZXZ', [a0, b0, g0]).as_matrix()[0, 2]:.6f}",
         ),
         domain=f"{len(a)} angle triples: alpha, gamma uniform in [-pi, pi], beta uniform in [0, pi]",
-    )
-    if row.verdict is Verdict.HOLDS:
-        return row
-    others = [(r, c) for r in range(3) for c in range(3) if (r, c) != (1, 0)]
-    return row.reread(eq42_reading(ctx, eq42, others, "the entries of Eq 42 other than r21 (r21 is a typo of "
-                                   "its own, row kinematics.eq42)", count=True))
+    ).reread_if_erratum(lambda: eq42_reading(
+        ctx, eq42, [(r, c) for r in range(3) for c in range(3) if (r, c) != (1, 0)],
+        "the entries of Eq 42 other than r21 (r21 is a typo of its own, row kinematics.eq42)", count=True))
 
 
 _ELEMENTARY = "elementary rotations composed by hand (euler_matrix), not scipy"
@@ -1373,16 +1330,12 @@ def panda_generator_check(ctx, generator):
     )
 
 
-def _point_segment_distance(p, a, b):
-    u = b - a
-    t = np.clip(np.einsum("ni,ni->n", p - a, u) / np.einsum("ni,ni->n", u, u), 0.0, 1.0)
-    return np.linalg.norm(p - (a + t[:, None] * u), axis=1)
-
-
 def _tool_to_upper_arm(qs):
-    """Distance [m] from the tool point E to the upper-arm axis segment J2-J34, (n,)."""
+    """Distance [m] from the tool point E to the upper-arm axis segment J2-J34 (a to b), (n,)."""
     F = joint_frames(qs, THESIS_ARM)
-    return _point_segment_distance(F[:, 5, :3, 3], F[:, 1, :3, 3], F[:, 2, :3, 3])
+    p, a, b = F[:, 5, :3, 3], F[:, 1, :3, 3], F[:, 2, :3, 3]
+    t = np.clip(np.einsum("ni,ni->n", p - a, b - a) / np.einsum("ni,ni->n", b - a, b - a), 0.0, 1.0)
+    return np.linalg.norm(p - (a + t[:, None] * (b - a)), axis=1)
 
 
 def _limits(lo_deg, hi_deg) -> tuple[np.ndarray, np.ndarray]:
@@ -1421,32 +1374,24 @@ def table_i_self_collision(ctx, limits):
     data, gdata = tm.model.createData(), pin.GeometryData(tm.collision_model)
     qs = ctx.rng("selfcol").uniform(lo, hi, (ctx.n(10000, 500), 6))
     hit = np.array([pin.computeCollisions(tm.model, data, tm.collision_model, gdata, q, True) for q in qs])
-    d = _tool_to_upper_arm(qs)
-    q0 = qs[int(np.argmin(d))]
-    res = minimize(
-        lambda q: float(_tool_to_upper_arm(q[None])[0]),
-        q0,
-        bounds=list(zip(lo, hi, strict=True)),
-        method="L-BFGS-B",
-    )
+    q0 = qs[int(np.argmin(_tool_to_upper_arm(qs)))]  # the sampled q nearest to the upper-arm axis
+    res = minimize(lambda q: float(_tool_to_upper_arm(q[None])[0]), q0, bounds=list(zip(lo, hi, strict=True)),
+                   method="L-BFGS-B")
     q_star = np.clip(res.x, lo, hi)
     d_star = float(_tool_to_upper_arm(q_star[None])[0])
-    m = (
-        Measure("min distance tool point - upper-arm axis", d_star, MIN_CLEARANCE, "m", bound=">="),
-        Measure("fraction of sampled q in self-collision (Coal)", hit.mean(), 0.0),
-    )
     return Row.graded(
         "The joint limits of Table I keep the arm from hitting itself.",
         "Sec 3.2, Table I",
         "(a) geometry-independent: minimum over q within the limits of the distance from the tool point (Eq "
         f"4) to the upper-arm axis segment J2-J34 (sampling {len(qs)} q, then L-BFGS-B within the limits), "
         f">= {MIN_CLEARANCE * 1e3:.0f} mm required; (b) Coal via Pinocchio on the assumed PowerCube "
-        "collision "
-        f"shapes of urdf/thesis_arm.urdf (non-adjacent links), {len(qs)} q uniform within the limits",
+        "collision shapes of urdf/thesis_arm.urdf (non-adjacent links), "
+        f"{len(qs)} q uniform within the limits",
         f"(a) min distance = {d_star * 1000:.2g} mm at {fmt_q(q_star)} (theta4 + theta5 = "
         f"{np.degrees(q_star[3] + q_star[4]):.0f} deg); (b) {hit.mean() * 100:.1f} % of the sampled "
         "configurations self-collide",
-        m,
+        (Measure("min distance tool point - upper-arm axis", d_star, MIN_CLEARANCE, "m", bound=">="),
+         Measure("fraction of sampled q in self-collision (Coal)", hit.mean(), 0.0)),
         fail=Verdict.DOES_NOT_HOLD,
         id="table_i_self_collision",
         domain=f"{len(qs)} q uniform within the limits under test, then a bounded local search from the "
