@@ -55,8 +55,8 @@ from ..testing.strategies import BEYOND, sample_joints
 TOL_EXACT = 1e-12  # [m] and [-]: closed forms vs Pinocchio
 #: The sampled domain of the full-range kinematics rows.
 _JOINT_DOMAIN = (
-    "{n} q: uniform in Table I widened by 0.2 rad on every joint (the whole range and past it), plus in "
-    "full runs the 729 corners {{lower, 0, upper}}^6 where the trigonometric signs flip"
+    "{n} q: uniform in Table I widened by " + str(BEYOND) + " rad on every joint (the whole range and past "
+    "it), plus in full runs the 729 corners {{lower, 0, upper}}^6 where the trigonometric signs flip"
 )
 TOL_FD = 1e-7  # [m/rad]: vs central finite differences (h = 1e-6)
 _DEG = np.pi / 180
@@ -546,9 +546,8 @@ def eq4_vs_pinocchio(ctx, eq4):
     return Row.graded(
         "Eq 4 gives the pose of frame 6 (position of the end-effector point and orientation).",
         "Eq 4 (with Table II, Fig 8)",
-        f"Eq 4 transcribed as printed; {len(qs)} q (uniform in Table I widened by {BEYOND} rad, plus the 729 "
-        "corners {lower, 0, upper}^6 in full runs); vs Pinocchio framesForwardKinematics of "
-        "urdf/thesis_arm.urdf (frame 'tool')",
+        f"Eq 4 transcribed as printed vs Pinocchio framesForwardKinematics of urdf/thesis_arm.urdf (frame "
+        f"'tool'), {len(qs)} q (the domain below)",
         None,
         m,
         id="eq4",
