@@ -460,7 +460,7 @@ def eq36_azimuth(ctx, eq36):
         "farthest reach toward it, Sec 3.4.4.1); region 1 is -160 < phi < 160 deg, where that angle is "
         "within Table I.",
         "Eq 36",
-        "the joint-1 angle that puts joint 2 (Pinocchio) nearest to each point, by a 7200-point grid over "
+        "the joint-1 angle that puts joint 2 (Pinocchio) nearest to each point, by a 3600-point grid over "
         "the whole turn and golden-section refinement, vs the form; the extra distance it costs, and the "
         "region the form assigns vs whether that angle is outside Table I",
         f"max extra distance {gap.max():.2g} m (max angular difference {d_angle[r > 1e-3].max():.2g} rad "
