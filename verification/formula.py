@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import wraps
 from typing import Any
 
 import numpy as np
@@ -37,7 +38,7 @@ from .numbers import fmt_vec, worst
 from .registry import Erratum, Forms, Measure, Row, Slip, Verdict, epsilon
 from .thesis_index import title_of
 
-__all__ = ["Formula", "Points", "error_row", "RIGHT"]
+__all__ = ["Formula", "Points", "error_row", "RIGHT", "per_run"]
 
 #: What the good form is when the printed one is right.
 RIGHT = "the printed form (it is right)"
@@ -231,3 +232,20 @@ class Formula:
         check.__name__ = check.__qualname__ = self.name or self.rid.replace(".", "_")
         check.__doc__ = f"{self.key}: {self.claim or title_of(self.key)}"
         return check
+
+
+def per_run(func: Callable) -> Callable:
+    """Decorator: ``func(ctx, *args)`` computed once per run, kept in ``ctx.cache`` under the function's
+    module and name, ``args`` (hashable) and ``ctx.quick``.
+
+    For samples and ground truths that depend on no form: the self-test reruns each check with other
+    forms in the same context (:class:`~verification.registry.Context`)."""
+
+    @wraps(func)
+    def cached(ctx, *args):
+        key = (func.__module__, func.__qualname__, args, ctx.quick)
+        if key not in ctx.cache:
+            ctx.cache[key] = func(ctx, *args)
+        return ctx.cache[key]
+
+    return cached

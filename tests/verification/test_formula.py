@@ -9,7 +9,7 @@ import pytest
 
 from verification import registry
 from verification.errors import RegistrationError
-from verification.formula import RIGHT, Formula, Points
+from verification.formula import RIGHT, Formula, Points, per_run
 from verification.registry import Context, Erratum, Measure, Row, Section, Slip, SlipKind, Verdict
 from verification.second_reading import search
 from verification.self_test import self_test_check
@@ -108,3 +108,20 @@ def test_rows_derive_numbers_and_reread_only_errata():
     wrong = Row.graded("c", "Eq 4", "m", None, m, erratum=Erratum("Eq 4", "p", "c", "x"))
     reading = search({"x": 1.0}, [], lambda x: 0.0, 0.0, printed="p", stated_text="s", route="r", measure="m")
     assert wrong.reread_if_erratum(lambda: reading).verdict is Verdict.HOLDS  # right as stated: withdrawn
+
+
+def test_per_run_computes_once_per_run_args_and_sample_size(tmp_path):
+    calls = []
+
+    @per_run
+    def draw(ctx, k):
+        calls.append(k)
+        return ctx.rng("per-run").uniform(size=ctx.n(5, 2)) + k
+
+    ctx = Context(out_dir=tmp_path)
+    first = draw(ctx, 1)
+    assert draw(ctx, 1) is first and calls == [1]  # cached: the same object, computed once
+    assert draw(ctx, 2)[0] == first[0] + 1 and calls == [1, 2]  # other arguments: computed anew
+    quick = Context(out_dir=tmp_path, quick=True, cache=ctx.cache)
+    assert len(draw(quick, 1)) == 2 and calls == [1, 2, 1]  # the sample size is part of the key
+    assert draw(Context(out_dir=tmp_path), 1) is not first  # a new run starts with an empty cache

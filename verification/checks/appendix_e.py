@@ -21,14 +21,14 @@ import iik
 from iik import THESIS_ARM
 
 from ..assumptions import EXACT_GEOMETRY
-from ..formula import Formula, Points
+from ..formula import Formula, Points, per_run
 from ..numbers import fmt_matrix, fmt_vec
 from ..oracles.abdel_malek import eq67_dq, normal_acceleration
 from ..oracles.normal_distance import parameters, surface_point, tool_point
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
 from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict
-from ..second_reading import Kind, Reading, digit_slips, moved_entries, search, sign_typos
+from ..second_reading import Kind, Reading, choices, digit_slips, moved_entries, search, sign_typos
 from ..shorthand import cos_sin
 
 _D = np.pi / 180
@@ -84,25 +84,24 @@ _TOL_B = 1e-4  # [1/mm]: B printed to 4 decimals
 _REL, _ABS = 2e-3, 0.1  # H*, Q*, eig, sigma [mm]: 0.2 % (the lengths are known to 1 mm) + 0.1 mm
 
 
-def _results(ctx) -> dict:
-    key = "appendix_e.results"
-    if key not in ctx.cache:
-        res = {
-            name: normal_acceleration(
-                d["q0"], d["free"], normal_hint=d["N0"], prefer_rows=(1, 2) if name == "A1" else None
-            )
-            for name, d in PRINTED.items()
-        }
-        a2 = PRINTED["A2"]
-        res[A2_READ] = normal_acceleration(np.r_[-a2["q0"][0], a2["q0"][1:]], a2["free"],
-            normal_hint=a2["N0"])
-        sides = {}
-        for name, r in res.items():
-            cls = oracle_for(ctx).classify(np.array([r.point + EPS * r.N0, r.point - EPS * r.N0]))
-            plus, minus = bool(cls.reachable[0]), bool(cls.reachable[1])
-            sides[name] = "both" if (plus and minus) else ("+N0" if plus else ("-N0" if minus else "none"))
-        ctx.cache[key] = (res, sides)
-    return ctx.cache[key]
+@per_run
+def _results(ctx) -> tuple[dict, dict]:
+    """Our numbers at each point (and A2 read with theta1 = +160 deg), and the side each can move to
+    (reachability of p +- EPS N0: "+N0", "-N0", "both" or "none")."""
+    res = {
+        name: normal_acceleration(
+            d["q0"], d["free"], normal_hint=d["N0"], prefer_rows=(1, 2) if name == "A1" else None
+        )
+        for name, d in PRINTED.items()
+    }
+    a2 = PRINTED["A2"]
+    res[A2_READ] = normal_acceleration(np.r_[-a2["q0"][0], a2["q0"][1:]], a2["free"], normal_hint=a2["N0"])
+    sides = {}
+    for name, r in res.items():
+        cls = oracle_for(ctx).classify(np.array([r.point + EPS * r.N0, r.point - EPS * r.N0]))
+        plus, minus = bool(cls.reachable[0]), bool(cls.reachable[1])
+        sides[name] = "both" if (plus and minus) else ("+N0" if plus else ("-N0" if minus else "none"))
+    return res, sides
 
 
 def printed_values(ctx) -> dict:
@@ -138,10 +137,8 @@ def eig_of_h_values(ctx) -> dict:
 def inverted_dq_values(ctx) -> dict:
     """A realistic slip: Eq 67 read the other way (-1 at a lower limit), sigma computed with it."""
     out = recomputed_values(ctx)
-    a2 = dict(out["A2"])
-    a2["dq"] = {j: -v for j, v in a2["dq"].items()}
-    a2["sigma"] = {j: -v for j, v in a2["sigma"].items()}
-    out["A2"] = a2
+    a2 = out["A2"]
+    out["A2"] = dict(a2, **{k: {j: -v for j, v in a2[k].items()} for k in ("dq", "sigma")})
     return out
 
 
@@ -194,6 +191,18 @@ def _point(q0, free, hint):
     return sgn * n, np.sort(sgn * eig), sgn * H
 
 
+def _by_meaning(x: dict, hint, misfit) -> float:
+    """``misfit(N0, eig(Q*), H*)`` of :func:`_point` at the reading ``x`` (its q0 and free joints), inf where
+    the surface has no normal."""
+    sp = _point(x["q0"], x["free"], hint)
+    return float("inf") if sp is None else float(misfit(*sp))
+
+
+def _scaled(printed, ours):
+    """|printed - ours| in units of the printed rounding (_ABS + _REL |ours|)."""
+    return np.abs(printed - ours) / (_ABS + _REL * np.abs(ours))
+
+
 def _q0_readings(name: str) -> list[Reading]:
     """Nearby readings of point ``name``'s stated joints: each non-zero angle's sign, a joint at a limit at
     its other limit, and (A2) Sec 3.4.3's s(2) with theta1 = +160 deg."""
@@ -204,22 +213,18 @@ def _q0_readings(name: str) -> list[Reading]:
         v = q0[j]
         other = hi[j] if abs(v - lo[j]) < 1e-9 else (lo[j] if abs(v - hi[j]) < 1e-9 else None)
         if other is not None:
-            q = q0.copy()
-            q[j] = other
             out.append(Reading(Kind.LIMIT, f"theta{j + 1} at its other limit ({np.degrees(other):+.0f} deg)",
-                               {"q0": q}))
+                               {"q0": np.r_[q0[:j], other, q0[j + 1 :]]}))
         if v != 0 and (other is None or abs(-v - other) > 1e-9):
-            q = q0.copy()
-            q[j] = -v
-            out.append(Reading(Kind.SIGN, f"theta{j + 1} = {np.degrees(-v):+.1f} deg", {"q0": q}))
+            out.append(Reading(Kind.SIGN, f"theta{j + 1} = {np.degrees(-v):+.1f} deg",
+                               {"q0": np.r_[q0[:j], -v, q0[j + 1 :]]}))
     return out
 
 
 def _free_readings(name: str) -> list[Reading]:
     """The other pairs of free joints (which joints span the surface)."""
-    free = PRINTED[name]["free"]
-    pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != tuple(free)]
-    return [Reading(Kind.WHICH, f"free joints {a}, {b}", {"free": (a, b)}) for a, b in pairs]
+    pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != tuple(PRINTED[name]["free"])]
+    return choices(Kind.WHICH, "free", {f"free joints {a}, {b}": (a, b) for a, b in pairs})
 
 
 def _stated(name: str, pv: dict) -> dict:
@@ -232,16 +237,15 @@ def _stated_text(name: str) -> str:
     return f"q0 = {fmt_vec(np.degrees(d['q0']), 1)} deg on {d['surface']}, free joints {d['free']}"
 
 
+def _n0_misfit(x) -> float:
+    """max |printed N0 - surface normal| at the reading ``x`` (the normal's sign along the printed one)."""
+    return _by_meaning(x, x["N0"], lambda n, eig, H: np.abs(np.asarray(x["N0"], float) - n).max())
+
+
 def reading_n0(name: str, pv: dict):
     """Second reading of a printed N0: the surface normal at each nearby reading of the point, vs the printed
     vector read as typed or one digit slip away (sign of N0 free)."""
-    def misfit(x) -> float:
-        sp = _point(x["q0"], x["free"], x["N0"])
-        if sp is None:
-            return float("inf")
-        return float(np.abs(np.asarray(x["N0"], float) - sp[0]).max())
-
-    return search(_stated(name, pv), _q0_readings(name) + digit_slips("N0", pv["N0"]), misfit, _TOL_UNIT,
+    return search(_stated(name, pv), _q0_readings(name) + digit_slips("N0", pv["N0"]), _n0_misfit, _TOL_UNIT,
                   printed=f"N0 = {fmt_vec(pv['N0'])}", stated_text=_stated_text(name), route=_MEANING,
                   measure="max |printed - surface normal| (up to sign)")
 
@@ -252,11 +256,7 @@ def reading_eig(name: str, pv: dict):
     pr = np.sort(np.asarray(pv["eig"], float))
 
     def misfit(x) -> float:
-        sp = _point(x["q0"], x["free"], PRINTED[name]["N0"])
-        if sp is None:
-            return float("inf")
-        ours = sp[1]
-        return float(np.max(np.abs(pr - ours) / (_ABS + _REL * np.abs(ours))))
+        return _by_meaning(x, PRINTED[name]["N0"], lambda n, eig, H: _scaled(pr, eig).max())
 
     return search(_stated(name, pv), _q0_readings(name) + _free_readings(name), misfit, 1.0,
                   printed=f"eig(Q*) = {fmt_vec(pr, 2)} mm", stated_text=_stated_text(name), route=_MEANING,
@@ -273,9 +273,7 @@ def reading_u0(pv: dict):
     def misfit(x) -> float:
         lam = parameters(x["q0"])
         u0 = float(np.abs(np.asarray(x["u0"], float) - (-lam if x["swap"] else lam)).max())
-        sp = _point(x["q0"], x["free"], x["N0"])
-        n0 = float("inf") if sp is None else float(np.abs(np.asarray(x["N0"], float) - sp[0]).max())
-        return max(u0, n0)
+        return max(u0, _n0_misfit(x))
 
     readings = _q0_readings("A1") + [Reading(Kind.LIMIT, "Eq 58 with q^U and q^L exchanged", {"swap": True})]
     return search(stated, readings + digit_slips("u0", pv["u0"]) + sign_typos("u0", pv["u0"]), misfit,
@@ -289,11 +287,8 @@ def reading_h(pv: dict, mask: np.ndarray, what: str):
     """Second reading of A1's printed H* entries ``mask``: the Hessian of N0.G(q(s)) at each nearby reading,
     vs the printed matrix as typed, transposed or with an entry moved."""
     def misfit(x) -> float:
-        sp = _point(x["q0"], x["free"], PRINTED["A1"]["N0"])
-        if sp is None:
-            return float("inf")
-        ours, pr = sp[2], np.asarray(x["H"], float)
-        return float(np.max((np.abs(pr - ours) / (_ABS + _REL * np.abs(ours)))[mask]))
+        pr = np.asarray(x["H"], float)
+        return _by_meaning(x, PRINTED["A1"]["N0"], lambda n, eig, H: _scaled(pr, H)[mask].max())
 
     readings = _q0_readings("A1") + [Reading(Kind.SWAP, "H* transposed", {"H": np.asarray(pv["H"], float).T})]
     readings += moved_entries("H", pv["H"]) + moved_entries("H", pv["H"], within="row")
@@ -315,57 +310,58 @@ def reading_dq(pv: dict):
                   "an upper one)", measure="largest difference of the printed step from Eq 67's")
 
 
-def _near(a, b, rel=_REL, abs_=_ABS) -> tuple[float, bool]:
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    d = np.abs(a - b)
-    return float(d.max()), bool(np.all(d <= abs_ + rel * np.abs(b)))
-
-
-def _detail(
+def _printed(
     rid,
     claim,
     ref,
     numbers,
-    ok: bool,
-    measure: Measure,
-    erratum: Erratum | None,
-    fail: Verdict = Verdict.ERRATUM,
-    depends=(),
+    printed,
+    ours,
+    tol,
+    unit="",
+    *,
+    rel=0.0,
+    limit=None,
+    erratum=None,
     reread=None,
-    basis: str = "",
+    measure="max |printed - ours|",
+    **fields,
 ) -> Row:
-    """A detail row; an erratum is re-read by ``reread()`` (a SecondReading) before it stands."""
-    verdict = (Verdict.IDENTITY if basis else Verdict.HOLDS) if ok else fail
-    if verdict is Verdict.ERRATUM and erratum is None:
-        erratum = Erratum(ref, claim, "the recomputed value", numbers)
+    """A printed value vs ours: it holds if ``|printed - ours| <= tol + rel |ours|`` everywhere (the printed
+    rounding); the measure is ``max |printed - ours|`` [``unit``] against ``limit`` (default ``tol``). With a
+    ``basis`` a pass holds by construction; a failing row is an erratum (default: the claim vs "the
+    recomputed value"), re-read by ``reread()`` before it stands."""
+    p, o = np.asarray(printed, float), np.asarray(ours, float)
+    ok = bool(np.all(np.abs(p - o) <= tol + rel * np.abs(o)))
+    m = Measure(measure, np.abs(p - o).max(), tol if limit is None else limit, unit)
     row = Row(
         claim,
         ref,
         "",
         numbers,
-        verdict,
+        (Verdict.IDENTITY if fields.get("basis") else Verdict.HOLDS) if ok else Verdict.ERRATUM,
         id=rid,
-        measures=(measure,),
-        errata=(erratum,) if verdict is Verdict.ERRATUM else (),
-        reason="" if ok or fail is not Verdict.DOES_NOT_HOLD else "ground truth disagrees",
-        depends_on=depends,
-        basis=basis,
+        measures=(m,),
+        errata=() if ok else (erratum or Erratum(ref, claim, "the recomputed value", numbers),),
+        **fields,
     )
-    return row.reread(reread()) if verdict is Verdict.ERRATUM and reread is not None else row
+    return row.reread(reread()) if not ok and reread is not None else row
 
 
 def _n0_detail(name, pv, r) -> Row:
-    d = min(np.abs(pv["N0"] - r.N0).max(), np.abs(pv["N0"] + r.N0).max())  # N0's sign is a convention
-    ok = d <= _TOL_UNIT
     norm = float(np.linalg.norm(pv["N0"]))
-    return _detail(
+    # N0's sign is a convention: ours along the printed one
+    n0 = r.N0 if np.abs(pv["N0"] - r.N0).max() <= np.abs(pv["N0"] + r.N0).max() else -r.N0
+    return _printed(
         "n0",
         f"{name}: N0 = {fmt_vec(pv['N0'])} (Eq 59).",
         f"App. E, {name}, Eq 59",
         f"printed {fmt_vec(pv['N0'])} (norm {norm:.4f}) | ours {fmt_vec(r.N0)} (left null vector of G_q q_s)",
-        ok,
-        Measure("max |printed - ours| (up to sign)", d, _TOL_UNIT),
-        Erratum(
+        pv["N0"],
+        n0,
+        _TOL_UNIT,
+        measure="max |printed - ours| (up to sign)",
+        erratum=Erratum(
             f"App. E, {name}, N0",
             f"N0 = {fmt_vec(pv['N0'])}",
             f"N0 = {fmt_vec(r.N0)}",
@@ -378,16 +374,19 @@ def _n0_detail(name, pv, r) -> Row:
 
 def _eig_detail(name, pv, mm) -> Row:
     ours, pr = np.sort(mm["eig"]), np.sort(np.asarray(pv["eig"], float))
-    d, ok = _near(pr, ours)
     eig_h = np.sort(np.linalg.eigvalsh(0.5 * (mm["H"] + mm["H"].T)))
-    return _detail(
+    return _printed(
         "eig",
         f"{name}: eig(Q*) = {fmt_vec(pr, 2)} mm (Eq 65).",
         f"App. E, {name}, Eq 65",
         f"printed {fmt_vec(pr, 2)} | ours {fmt_vec(ours, 2)} mm (sorted); eig(H*) = {fmt_vec(eig_h, 1)} mm",
-        ok,
-        Measure("max |printed - ours| (sorted)", d, _ABS, "mm"),
-        Erratum(
+        pr,
+        ours,
+        _ABS,
+        "mm",
+        rel=_REL,
+        measure="max |printed - ours| (sorted)",
+        erratum=Erratum(
             f"App. E, {name}, eig(Q*)",
             f"eig(Q*) = {fmt_vec(pr, 2)}",
             f"eig(Q*) = {fmt_vec(ours, 2)}",
@@ -403,33 +402,30 @@ _SIDE_TEXT = {"+N0": "only along +N0 (a boundary)", "both": "both ways (not a bo
 
 
 def _conclusion_detail(name, pv, side, r, note: str = "") -> Row:
-    ok = pv["conclusion"] == side
-    return _detail(
-        "conclusion",
+    return Row.graded(
         f"{name}: motion is admissible {_SIDE_TEXT.get(pv['conclusion'], pv['conclusion'])}.",
         f"App. E, {name}",
+        "",
         f"printed {pv['conclusion']} | ground truth {side} (reachability of p +- 2 mm "
         f"N0, p = {fmt_vec(r.point * 1e3, 1)} mm) | Abdel-Malek's test with our numbers: {r.verdict}" + note,
-        ok,
-        Measure("printed side differs from ground truth", 0.0 if ok else 1.0, 0.0),
-        None,
+        (Measure("printed side differs from ground truth", float(pv["conclusion"] != side), 0.0),),
         fail=Verdict.DOES_NOT_HOLD,
+        reason="ground truth disagrees",
+        id="conclusion",
     )
 
 
-def _group(name, claim, ref, details: list[Row], appendix: str = "") -> Row:
-    """The point's row: the worst of its details (does not hold, erratum, input slip, holds)."""
-    slips = [d for d in details if d.verdict is Verdict.INPUT_SLIP]
-    if any(d.verdict is Verdict.DOES_NOT_HOLD for d in details):
-        verdict = Verdict.DOES_NOT_HOLD
-    elif any(d.verdict is Verdict.ERRATUM for d in details):
-        verdict = Verdict.ERRATUM
-    elif slips:
-        verdict = Verdict.INPUT_SLIP
-    else:
-        verdict = Verdict.HOLDS
+#: The worst verdict of a point's details first: its row's verdict.
+_WORST = (Verdict.DOES_NOT_HOLD, Verdict.ERRATUM, Verdict.INPUT_SLIP)
+
+
+def _group(name, claim, ref, r, details: list[Row], appendix: str) -> Row:
+    """The point's row: the worst of its details (does not hold, erratum, input slip, holds); ``r`` its
+    :class:`~verification.oracles.abdel_malek.NormalAcceleration`, ``appendix`` its long numbers."""
+    verdict = next((v for v in _WORST if any(d.verdict is v for d in details)), Verdict.HOLDS)
     wrong = [d.id for d in details if not d.verdict.passes]
     m = (Measure("printed quantities that disagree", len(wrong), 0),)
+    slips = [d for d in details if d.verdict is Verdict.INPUT_SLIP]
     return Row(
         claim,
         ref,
@@ -445,7 +441,7 @@ def _group(name, claim, ref, details: list[Row], appendix: str = "") -> Row:
         details=tuple(details),
         domain=f"the printed point {name} (q0 as stated) and its +-{EPS * 1e3:.0f} mm probes along N0",
         errata=tuple(e for d in details for e in d.errata),
-        appendix=appendix,
+        appendix=f"{name}, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\n{appendix}",
         second_reading=slips[0].second_reading if verdict is Verdict.INPUT_SLIP else None,
         reason="the printed conclusion disagrees with ground truth"
         if verdict is Verdict.DOES_NOT_HOLD
@@ -455,24 +451,19 @@ def _group(name, claim, ref, details: list[Row], appendix: str = "") -> Row:
 
 def _a1(pv, r, side) -> Row:
     mm = r.in_mm()
-    d_u, _ = _near(pv["u0"], r.lam0)
-    u_ok = d_u <= _TOL_UNIT
-    off = ~np.eye(5, dtype=bool)
-    d_off, ok_off = _near(np.asarray(pv["H"])[off], mm["H"][off])
-    diag = np.eye(5, dtype=bool)
-    d_diag, ok_diag = _near(np.asarray(pv["H"])[diag], mm["H"][diag])
-    k = np.unravel_index(np.argmax(np.where(off, np.abs(np.asarray(pv["H"]) - mm["H"]), 0)), (5, 5))
-    d_b = float(np.abs(np.asarray(pv["B"]) - mm["B"]).max())
-    d_q, ok_q = _near(pv["Q"], mm["Q"])
+    pH, off = np.asarray(pv["H"], float), ~np.eye(5, dtype=bool)
+    dH = np.abs(pH - mm["H"])
+    k = np.unravel_index(np.argmax(np.where(off, dH, 0)), (5, 5))
     details = [
-        _detail(
+        _printed(
             "u0",
             "A1: u0 = [1.0654 0.1165 0 0 0] (Eq 58 parameters of q0).",
             "App. E, A1, Eq 58",
             f"printed {fmt_vec(pv['u0'])} | ours {fmt_vec(r.lam0)} (Eq 58 inverted at q0)",
-            u_ok,
-            Measure("max |printed - ours|", d_u, _TOL_UNIT),
-            Erratum(
+            pv["u0"],
+            r.lam0,
+            _TOL_UNIT,
+            erratum=Erratum(
                 "App. E, A1, u0",
                 f"u0 = {fmt_vec(pv['u0'])}",
                 f"u0 = {fmt_vec(r.lam0)} (Eq 58 inverted at theta1 = -7 pi/9: sin(lambda1) = -140/160)",
@@ -481,15 +472,19 @@ def _a1(pv, r, side) -> Row:
             reread=lambda: reading_u0(pv),
         ),
         _n0_detail("A1", pv, r),
-        _detail(
+        _printed(
             "h_offdiag",
             "A1: the off-diagonal entries of H* (Eq 61).",
             "App. E, A1, Eq 61",
-            f"largest difference {d_off:.3g} mm at H*({k[0] + 1},{k[1] + 1}): printed "
-            f"{np.asarray(pv['H'])[k]:.1f}, ours {mm['H'][k]:.1f}",
-            ok_off,
-            Measure("max |printed - ours| off the diagonal", d_off, _ABS, "mm"),
-            Erratum(
+            f"largest difference {dH[k]:.3g} mm at H*({k[0] + 1},{k[1] + 1}): printed {pH[k]:.1f}, ours "
+            f"{mm['H'][k]:.1f}",
+            pH[off],
+            mm["H"][off],
+            _ABS,
+            "mm",
+            rel=_REL,
+            measure="max |printed - ours| off the diagonal",
+            erratum=Erratum(
                 "App. E, A1, H*(4,2)",
                 "H*(4,2) = +1703 (with H*(2,4) = -1703)",
                 f"H*(4,2) = H*(2,4) = {mm['H'][3, 1]:.1f} (a Hessian-based quadratic form: symmetric)",
@@ -499,109 +494,107 @@ def _a1(pv, r, side) -> Row:
             ),
             reread=lambda: reading_h(pv, off, "the off-diagonal entries of H* as printed (H*(4,2) = +1703)"),
         ),
-        _detail(
+        _printed(
             "h_diag",
             "A1: the diagonal of H* (Eq 61).",
             "App. E, A1, Eq 61",
-            f"largest difference {d_diag:.3g} mm: CIRCULAR, l2..l5 were fitted to these four numbers",
-            ok_diag,
-            Measure("max |printed - ours| on the diagonal", d_diag, _ABS, "mm"),
-            None,
-            depends=("lengths-circular", "pinocchio"),
+            f"largest difference {dH.diagonal().max():.3g} mm: CIRCULAR, l2..l5 were fitted to these four "
+            "numbers",
+            pH.diagonal(),
+            mm["H"].diagonal(),
+            _ABS,
+            "mm",
+            rel=_REL,
+            measure="max |printed - ours| on the diagonal",
+            depends_on=("lengths-circular", "pinocchio"),
             basis="circular: l2..l5 were recovered from these four numbers (docs/ARM.md), so they agree by "
             "construction",
         ),
-        _detail(
+        _printed(
             "b",
             "A1: B = [0 -0.0014 0; 0 0 -0.0013] (Eq 63, rows (2,3) as the thesis chose).",
             "App. E, A1, Eq 63",
             f"printed {fmt_matrix(pv['B'], 4)} | ours {fmt_matrix(mm['B'], 5)} 1/mm",
-            d_b <= _TOL_B,
-            Measure("max |printed - ours|", d_b, _TOL_B, "1/mm"),
-            Erratum(
-                "App. E, A1, B", "B as printed", fmt_matrix(mm["B"], 5), f"max difference {d_b:.2g} 1/mm"
-            ),
+            pv["B"],
+            mm["B"],
+            _TOL_B,
+            "1/mm",
         ),
-        _detail(
+        _printed(
             "q",
             "A1: Q* (Eq 62-65).",
             "App. E, A1, Eq 62-65",
-            f"largest difference {d_q:.3g} mm (printed Q*(4,4) {pv['Q'][3][3]}, ours {mm['Q'][3, 3]:.2f})",
-            ok_q,
-            Measure("max |printed - ours|", d_q, _ABS, "mm"),
-            Erratum(
-                "App. E, A1, Q*", "Q* as printed", fmt_matrix(mm["Q"], 2), f"max difference {d_q:.3g} mm"
-            ),
+            f"largest difference {np.abs(np.asarray(pv['Q']) - mm['Q']).max():.3g} mm (printed Q*(4,4) "
+            f"{pv['Q'][3][3]}, ours {mm['Q'][3, 3]:.2f})",
+            pv["Q"],
+            mm["Q"],
+            _ABS,
+            "mm",
+            rel=_REL,
         ),
         _eig_detail("A1", pv, mm),
         _conclusion_detail("A1", pv, side, r),
     ]
-    appendix = (
-        f"A1, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\n"
-        f"H* printed: {fmt_matrix(pv['H'])}\nH* ours:    {fmt_matrix(mm['H'])}\n"
-        f"B printed:  {fmt_matrix(pv['B'], 4)}\nB ours:     {fmt_matrix(mm['B'], 5)}\n"
-        f"Q* printed: {fmt_matrix(pv['Q'], 2)}\nQ* ours:    {fmt_matrix(mm['Q'], 2)}\n"
-        "The text says Q* is semi-definite only when a joint is at a limit; at A1 no joint is at a limit and "
-        "Q* still has three zero eigenvalues (th1, th2 move along the surface; th3 does not move the tool)."
-    )
     return _group(
         "A1",
         "A1 on f(1) (s(1)): u0, N0, H*, B, Q*, eig(Q*) as printed; Q* semi-positive definite, so the "
         "normal acceleration is admissible only along +N0 (f(1) is a boundary there).",
         "App. E, point A1 (Eq 58-65)",
+        r,
         details,
-        appendix,
+        f"H* printed: {fmt_matrix(pv['H'])}\nH* ours:    {fmt_matrix(mm['H'])}\n"
+        f"B printed:  {fmt_matrix(pv['B'], 4)}\nB ours:     {fmt_matrix(mm['B'], 5)}\n"
+        f"Q* printed: {fmt_matrix(pv['Q'], 2)}\nQ* ours:    {fmt_matrix(mm['Q'], 2)}\n"
+        "The text says Q* is semi-definite only when a joint is at a limit; at A1 no joint is at a limit and "
+        "Q* still has three zero eigenvalues (th1, th2 move along the surface; th3 does not move the tool).",
     )
 
 
-def _a2(pv, r, side, r_read=None, side_read: str = "") -> Row:
+def _a2(pv, r, side, r_read, side_read: str) -> Row:
     mm = r.in_mm()
     eq67 = {j: (1.0 if b == "lower" else -1.0) for j, b in r.at_limit}
-    dq_ok = pv["dq"] == eq67
     # Eq 66 with the printed step: sigma = N0 . G_q1 * (printed delta q1)
     s_pr, s_ours = pv["sigma"][1], mm["sigma"][1] * pv["dq"].get(1, 0.0) / eq67[1]
-    d_s, ok_s = _near(s_pr, s_ours, rel=1e-3, abs_=1e-3)
     details = [
         _n0_detail("A2", pv, r),
         _eig_detail("A2", pv, mm),
-        _detail(
+        _printed(
             "sigma",
             "A2: |sigma| = 389.2341 mm (Eq 66).",
             "App. E, A2, Eq 66",
             f"printed {s_pr} | ours {s_ours:.4f} mm (Eq 66 with the printed delta q1 = {pv['dq'].get(1)})",
-            ok_s,
-            Measure("|printed - ours|", d_s, 1e-3 * abs(s_ours), "mm"),
-            Erratum(
-                "App. E, A2, sigma",
-                f"sigma = {s_pr}",
-                f"|sigma| = {abs(s_ours):.4f}",
-                f"difference {d_s:.3g}",
-            ),
+            s_pr,
+            s_ours,
+            1e-3,
+            "mm",
+            rel=1e-3,
+            measure="|printed - ours|",
+            limit=1e-3 * abs(s_ours),
         ),
-        _detail(
-            "dq",
+        Row.graded(
             "A2: delta q1 = -1 because joint 1 is at its lower limit (Eq 67).",
             "App. E, A2, Eq 67",
+            "",
             f"printed delta q = {pv['dq']} | Eq 67 gives {eq67} (+1 at a lower limit)",
-            dq_ok,
-            Measure("signs differing from Eq 67", 0.0 if dq_ok else 1.0, 0.0),
-            Erratum(
+            (Measure("signs differing from Eq 67", float(pv["dq"] != eq67), 0.0),),
+            erratum=Erratum(
                 "App. E, A2, delta q1",
                 "delta q1 = -1 because joint 1 is at its lower limit",
                 "delta q1 = +1 at a lower limit (Eq 67)",
                 f"with Eq 67, sigma = N0.G_q1 dq1 = {mm['sigma'][1]:.4f} mm: the opposite sign of the "
                 f"positive eigenvalues, so motion is admissible both ways; ground truth: {side}",
             ),
-            reread=lambda: reading_dq(pv),
-        ),
+            id="dq",
+        ).reread_if_erratum(lambda: reading_dq(pv)),
         _conclusion_detail(
-            "A2", pv, side, r,
-            ""
-            if r_read is None
-            else f" | second reading with theta1 = +160 deg (the reading that reproduces the "
-            f"printed N0, delta q1 and the sign of sigma): Abdel-Malek's test {r_read.verdict} as printed, "
-            f"ground truth {side_read}: the local test is right there, the point is still reached from both "
-            "sides by other configurations",
+            "A2",
+            pv,
+            side,
+            r,
+            f" | second reading with theta1 = +160 deg (the reading that reproduces the printed N0, delta q1 "
+            f"and the sign of sigma): Abdel-Malek's test {r_read.verdict} as printed, ground truth "
+            f"{side_read}: the local test is right there, the point is still reached from both sides by "
+            "other configurations",
         ),
     ]
     return _group(
@@ -609,29 +602,25 @@ def _a2(pv, r, side, r_read=None, side_read: str = "") -> Row:
         "A2 on f(2) (s(2)): joint 1 at its limit, Q* positive definite, sigma = 389.2341 has the sign "
         "of the eigenvalues, so motion only along +N0 (f(2) is a boundary there).",
         "App. E, point A2 (Eq 59-67)",
+        r,
         details,
-        f"A2, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\nQ* ours: "
-        f"{fmt_matrix(mm['Q'], 1)}\n"
-        f"K-bar (Eq 68): {mm['kbar']}; A2's th4 = -60 deg is also outside the printed range of f(3) "
-        "(th4 in [-41, 0])",
+        f"Q* ours: {fmt_matrix(mm['Q'], 1)}\nK-bar (Eq 68): {mm['kbar']}; A2's th4 = -60 deg is also outside "
+        "the printed range of f(3) (th4 in [-41, 0])",
     )
 
 
 def _a6(pv, r, side) -> Row:
     mm = r.in_mm()
     details = [_n0_detail("A6", pv, r), _eig_detail("A6", pv, mm), _conclusion_detail("A6", pv, side, r)]
+    sigma = ", ".join(f"th{j}: {v:.2f}" for j, v in mm["sigma"].items())
+    kbar = ", ".join(f"th{j}: {v:.1f}" for j, v in mm["kbar"].items())
     return _group(
         "A6",
         "A6 on f(26): Q* indefinite, so the surface admits motion both ways (not a boundary).",
         "App. E, point A6 (Eq 59-68)",
+        r,
         details,
-        f"A6, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\nQ* ours: "
-        f"{fmt_matrix(mm['Q'], 2)}\n"
-        "sigma: "
-        + ", ".join(f"th{j}: {v:.2f}" for j, v in mm["sigma"].items())
-        + " mm; K-bar (Eq 68): "
-        + ", ".join(f"th{j}: {v:.1f}" for j, v in mm["kbar"].items())
-        + " mm",
+        f"Q* ours: {fmt_matrix(mm['Q'], 2)}\nsigma: {sigma} mm; K-bar (Eq 68): {kbar} mm",
     )
 
 
@@ -692,12 +681,17 @@ def eq69_printed(q):
     )
 
 
-def eq69_corrected(q):
-    """f(1) on s(1) (theta4 = theta5 = 0): [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5."""
-    l1, l2, l3, l4, l5 = iik.THESIS_ARM.lengths
-    L = l3 + l4 + l5
+def _f1(q, L):
+    """The tool point [m] on s(1) (theta4 = theta5 = 0) with links 3-5 of length L [m]."""
+    l1, l2 = iik.THESIS_ARM.lengths[:2]
     c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
     return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - L * s2], 1)
+
+
+def eq69_corrected(q):
+    """f(1) on s(1) (theta4 = theta5 = 0): [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5."""
+    _, _, l3, l4, l5 = iik.THESIS_ARM.lengths
+    return _f1(q, l3 + l4 + l5)
 
 
 def eq69_reading(ctx, f1):
@@ -714,8 +708,7 @@ def eq69_reading(ctx, f1):
         return float(np.linalg.norm(f1(qq) - tool_point(qq[:, :5]), axis=1).max())
 
     pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != (4, 5)]
-    readings = [Reading(Kind.WHICH, f"the set [theta{a} = 0, theta{b} = 0]", {"pair": (a, b)}) for a,
-        b in pairs]
+    readings = choices(Kind.WHICH, "pair", {f"the set [theta{p[0]} = 0, theta{p[1]} = 0]": p for p in pairs})
     return search(stated, readings, misfit, 1e-12,
         printed="f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; ...; "
                   "l5 c3 s5 + l1]", stated_text="s(1) = [theta4 = 0, theta5 = 0] (App. E, Table VI)",
@@ -725,16 +718,8 @@ def eq69_reading(ctx, f1):
 
 def _eq69_sign(q):
     out = eq69_corrected(q)
-    L = float(np.sum(iik.THESIS_ARM.lengths[2:]))
-    out[:, 2] += 2 * L * np.sin(q[:, 1])
+    out[:, 2] += 2 * float(np.sum(iik.THESIS_ARM.lengths[2:])) * np.sin(q[:, 1])
     return out
-
-
-def _eq69_short(q):
-    l1, l2, l3, l4, _ = iik.THESIS_ARM.lengths
-    c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
-    L = l3 + l4
-    return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - L * s2], 1)
 
 
 def _on_s1(ctx) -> Points:
@@ -749,11 +734,9 @@ CHECKS = SECTION.formulas(_on_s1, Formula(
     "Eq 69 (App. E)", eq69_printed, lambda s, f: np.linalg.norm(f(s.values) - iik.fk(s.values, THESIS_ARM)[
         :, :3, 3], axis=1), 1e-12, "m", (
         Slip(SlipKind.SIGN, "l1 + L s2 for l1 - L s2", _eq69_sign),
-        Slip(SlipKind.LENGTH, "L = l3 + l4 (l5 left out)", _eq69_short),
+        Slip(SlipKind.LENGTH, "L = l3 + l4 (l5 left out)", lambda q: _f1(q, sum(THESIS_ARM.lengths[2:4]))),
     ), good=eq69_corrected, good_is="f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
     eps_is="the good point + 1 nm", order=48.5, depends_on=EXACT_GEOMETRY, id="eq69", name="eq69_surface",
-    claim="Eq 69: on s(1) the tool point is f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + "
-    "l5 s1 c5 - l5 c1 s3 s5; l5 c3 s5 + l1].",
     text="f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + l5 s1 c5 - l5 c1 s3 s5; l5 c3 s5 + "
     "l1] (the surface theta2 = theta4 = 0)",
     corrected="f(1) = [(l2 + (l3+l4+l5) c2) c1; (l2 + (l3+l4+l5) c2) s1; l1 - (l3+l4+l5) s2] (theta4 = "

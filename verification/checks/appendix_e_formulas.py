@@ -21,7 +21,7 @@ import numpy as np
 
 import iik
 
-from ..formula import Formula
+from ..formula import Formula, per_run
 from ..numbers import fmt_vec
 from ..oracles.abdel_malek import (
     eq58_rates,
@@ -35,7 +35,7 @@ from ..oracles.abdel_malek import (
     position_and_jacobian,
 )
 from ..oracles.normal_distance import SurfacePoint, surface_point, tool_point
-from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon
+from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, epsilon
 from ..second_reading import Kind, Reading, search
 from .appendix_e import PRINTED
 from .appendix_e import SECTION as _POINTS
@@ -57,7 +57,7 @@ class Probe:
 
     Attributes:
         name: ``"A1"`` or ``"s(26) #3"``; q0: joints 1-5 [rad]; free: the free joints (1-based).
-        Gq: (3, 5) tool-point Jacobian; Hq: (3, 5, 5) its derivatives; lam, qs, qss: Eq 58 at q0.
+        Gq: (3, 5) tool-point Jacobian; Hq: (3, 5, 5) its derivatives; qs, qss: Eq 58's rates at q0.
         sp: the meaning-based :class:`~verification.oracles.normal_distance.SurfacePoint`.
         rows: Eq 63's row pair (the best-conditioned one).
     """
@@ -67,7 +67,6 @@ class Probe:
     free: tuple[int, int]
     Gq: np.ndarray
     Hq: np.ndarray
-    lam: np.ndarray
     qs: np.ndarray
     qss: np.ndarray
     sp: SurfacePoint
@@ -100,9 +99,9 @@ def _probe(name, q0, free) -> Probe | None:
         sp = surface_point(q0, free)
     except iik.InvalidInputError:
         return None
-    lam, qs, qss = eq58_rates(q0, ARM)
+    _, qs, qss = eq58_rates(q0, ARM)
     _, Gq = position_and_jacobian(q0)
-    return Probe(name, q0, tuple(free), Gq, hessian(q0), lam, qs, qss, sp, sp.rows)
+    return Probe(name, q0, tuple(free), Gq, hessian(q0), qs, qss, sp, sp.rows)
 
 
 #: The singular sets sampled besides A1, A2, A6: (name, fixed {joint: value [rad]}, free joints).
@@ -129,21 +128,19 @@ class Probes(tuple):
         return f"at {p.name}, q0 = {fmt_vec(p.q0)} rad"
 
 
+@per_run
 def probes(ctx) -> Probes:
-    """A1, A2, A6 and random points of s(1), s(2), s(26) (free joints uniform in Table I), cached."""
-    key = ("appendix_e.probes", ctx.quick)
-    if key not in ctx.cache:
-        out = [_probe(n, d["q0"], d["free"]) for n, d in PRINTED.items()]
-        rng = ctx.rng("appendix-e-formulas")
-        for name, fixed, free in _SETS:
-            for k in range(ctx.n(6, 2)):
-                q = rng.uniform(ARM.q_min[:5], ARM.q_max[:5])
-                for j, v in fixed.items():
-                    q[j - 1] = v
-                out.append(_probe(f"{name} #{k + 1}", q, free))
-        out = [p for p in out if p is not None]
-        ctx.cache[key] = Probes(out, _domain(out))
-    return ctx.cache[key]
+    """A1, A2, A6 and random points of s(1), s(2), s(26) (free joints uniform in Table I)."""
+    out = [_probe(n, d["q0"], d["free"]) for n, d in PRINTED.items()]
+    rng = ctx.rng("appendix-e-formulas")
+    for name, fixed, free in _SETS:
+        for k in range(ctx.n(6, 2)):
+            q = rng.uniform(ARM.q_min[:5], ARM.q_max[:5])
+            for j, v in fixed.items():
+                q[j - 1] = v
+            out.append(_probe(f"{name} #{k + 1}", q, free))
+    out = [p for p in out if p is not None]
+    return Probes(out, _domain(out))
 
 
 def _domain(ps) -> str:
@@ -187,23 +184,20 @@ def eq58_parameterisation(ctx, eq58):
     ends = max(np.abs(q[0] - lo).max(), np.abs(q[1] - hi).max())
     h = 1e-6
     fd = np.array([(eq58(lo, hi, v + h) - eq58(lo, hi, v - h)) / (2 * h) for v in lam])
-    qs = (hi - lo) / 2 * np.cos(lam)[:, None]
+    d_qs = np.abs(fd - (hi - lo) / 2 * np.cos(lam)[:, None]).max()  # vs q_s = (qU - qL)/2 cos(lambda)
     inside = np.all((q >= lo - 1e-12) & (q <= hi + 1e-12))
-    m = (
-        Measure("max |q(-+pi/2) - Table I limits|", ends, 1e-12, "rad"),
-        Measure(
-            "max |dq/dlambda - (qU - qL)/2 cos(lambda)| (central differences)", np.abs(fd - qs).max(), 1e-8
-        ),
-        Measure("parameter values mapped outside Table I", 0 if inside else 1, 0),
-    )
     return Row.graded(
         "Eq 58: q_i(lambda_i) = (qU + qL)/2 + (qU - qL)/2 sin(lambda_i) reaches the joint limits at lambda = "
         "-+pi/2 and stays within them; q_s = (qU - qL)/2 cos(lambda) (App. E).",
         "Eq 58",
         "the printed map on lambda over [-pi/2, pi/2] for joints 1-5 of Table I; its derivative by central "
         "differences vs the q_s App. E uses",
-        f"max |q(-+pi/2) - limits| = {ends:.1e} rad; max |dq/dlambda - q_s| = {np.abs(fd - qs).max():.1e}",
-        m,
+        None,
+        (
+            Measure("max |q(-+pi/2) - Table I limits|", ends, 1e-12, "rad"),
+            Measure("max |dq/dlambda - (qU - qL)/2 cos(lambda)| (central differences)", d_qs, 1e-8),
+            Measure("parameter values mapped outside Table I", 0 if inside else 1, 0),
+        ),
         id="eq58",
         domain=f"{len(lam)} values of lambda over [-pi/2, pi/2] (both ends exactly), joints 1-5",
         erratum=Erratum(
@@ -314,13 +308,11 @@ FORMULAS |= SECTION.formulas(_limit_joints, Formula(
 
 
 # ----------------------------------------------------------------------------- Eq 68
+@per_run
 def _sigma_zero_points(ctx) -> Probes:
     """Points of s(24)-s(27) (theta2 and theta4 at limits, theta3 = 0, free theta1, theta5) where Eq 66
     vanishes for one of the joints at a limit: theta5 = 0 (sigma_4 = 0) and the roots of sigma_2(theta5), at
-    random theta1 (cached)."""
-    key = ("appendix_e.sigma_zero", ctx.quick)
-    if key in ctx.cache:
-        return ctx.cache[key]
+    random theta1."""
     rng = ctx.rng("eq68-points")
     out = []
     sets = [(t2, t4) for t2 in (ARM.q_min[1], ARM.q_max[1]) for t4 in (ARM.q_min[3], ARM.q_max[3])]
@@ -332,26 +324,12 @@ def _sigma_zero_points(ctx) -> Probes:
 
         out.append(("sigma_4", q_at(0.0)))
         grid = np.linspace(ARM.q_min[4] + 1e-3, ARM.q_max[4] - 1e-3, 241)
-
-        def s2(t5):
-            q = q_at(t5)
-            e = np.zeros(5)
-            e[4] = 1e-6
-            f5 = (tool_point(q + e) - tool_point(q - e)) / 2e-6
-            e1 = np.zeros(5)
-            e1[0] = 1e-6
-            f1 = (tool_point(q + e1) - tool_point(q - e1)) / 2e-6
-            e2 = np.zeros(5)
-            e2[1] = 1e-6
-            g2 = (tool_point(q + e2) - tool_point(q - e2)) / 2e-6
-            return float(np.cross(f1, f5) @ g2)  # unnormalised normal: continuous in theta5
-
         vals = _s2_grid(q_at, grid)
         for k in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
             a, b = grid[k], grid[k + 1]
             for _ in range(50):
                 c = 0.5 * (a + b)
-                a, b = (c, b) if np.sign(s2(c)) == np.sign(s2(a)) else (a, c)
+                a, b = (c, b) if np.prod(np.sign(_s2_grid(q_at, [a, c]))) > 0 else (a, c)
             out.append(("sigma_2", q_at(0.5 * (a + b))))
     res = []
     for which, q in out:
@@ -360,14 +338,13 @@ def _sigma_zero_points(ctx) -> Probes:
         # a sign change of the unnormalised normal through zero (tangents parallel) is not a root of sigma
         if p is not None and abs(p.sp.sigma(j, 1.0)) < 1e-7:
             res.append((j, p))
-    ctx.cache[key] = Probes(res, f"{len(res)} points of s(24)-s(27) (theta2, theta4 at limits, theta3 = 0) "
-                            "where sigma_4 = 0 (theta5 = 0) or sigma_2 = 0 (roots in theta5), theta1 "
-                            "random in Table I")
-    return ctx.cache[key]
+    return Probes(res, f"{len(res)} points of s(24)-s(27) (theta2, theta4 at limits, theta3 = 0) where "
+                  "sigma_4 = 0 (theta5 = 0) or sigma_2 = 0 (roots in theta5), theta1 random in Table I")
 
 
 def _s2_grid(q_at, grid) -> np.ndarray:
-    """The unnormalised normal (f_theta1 x f_theta5) dotted with G_q2 on a theta5 grid, vectorised."""
+    """The unnormalised normal (f_theta1 x f_theta5) dotted with G_q2 on a theta5 grid (continuous in
+    theta5, unlike the unit normal)."""
     q = np.array([q_at(t) for t in grid])
 
     def d(j):
@@ -378,8 +355,8 @@ def _s2_grid(q_at, grid) -> np.ndarray:
     return np.einsum("ni,ni->n", np.cross(d(0), d(4)), d(1))
 
 
-def eq68_printed(g, B, Nf_uu, NG_ii):
-    return eq68_kbar(g, B, Nf_uu, NG_ii)
+#: Eq 68 as printed (verification.oracles.abdel_malek).
+eq68_printed = eq68_kbar
 
 
 def _kbar_at(p: Probe, j: int, form) -> float:
@@ -416,25 +393,26 @@ def rule_corrected(kbar: float) -> float:
 _STEP = 1e-2  # [rad]: how far joint i leaves its limit to see which side the tool moves to
 
 
-def _side(p: Probe, j: int, sign_n0: float = 1.0, rows=None) -> float:
-    dq = eq67_dq(p.q0, ARM).get(j, 1.0)
-    return float(np.sign(sign_n0 * p.meaning("offset", j, _STEP * dq, rows)))
+def _sides(pts, rule, n0: float = 1.0, out: float = 1.0, alt_rows: bool = False):
+    """At each point ``(j, probe)``: the side ``rule`` predicts from K-bar's sign (+1: +N0) and the side the
+    tool goes to when joint j leaves its limit by ``_STEP`` (the sign of its normal distance); under the
+    nearby readings N0 the other way (``n0`` -1), the joint moved out of its range (``out`` -1) and Eq 63's
+    other row pair (``alt_rows``)."""
+    pred, seen = [], []
+    for j, p in pts:
+        rows = [r for r in ((0, 1), (0, 2), (1, 2)) if r != p.rows][0] if alt_rows else p.rows
+        dq = eq67_dq(p.q0, ARM).get(j, 1.0) * out
+        pred.append(rule(_kbar_at(p, j, eq68_printed) * n0))
+        seen.append(float(np.sign(n0 * p.meaning("offset", j, _STEP * dq, rows))))
+    return np.array(pred), np.array(seen)
 
 
 def rule_reading(pts, rule):
     """Second reading of the K-bar rule: the side predicted by ``rule`` vs the measured one under the nearby
-    readings of its inputs (N0 the other way, the joint moved out of its range, the
-    other row pair of Eq 63)."""
-    stated = {"n0": 1.0, "out": 1.0, "alt_rows": False}
+    readings of its inputs (:func:`_sides`)."""
 
     def misfit(x) -> float:
-        wrong = 0
-        for j, p in pts:
-            rows = [r for r in ((0, 1), (0, 2), (1, 2)) if r != p.rows][0] if x["alt_rows"] else p.rows
-            k = _kbar_at(p, j, eq68_printed) * x["n0"]
-            dq = eq67_dq(p.q0, ARM).get(j, 1.0) * x["out"]
-            wrong += rule(k) != float(np.sign(x["n0"] * p.meaning("offset", j, _STEP * dq, rows)))
-        return float(wrong)
+        return float(np.sum(np.not_equal(*_sides(pts, rule, **x))))
 
     readings = [
         Reading(Kind.SIGN, "N0 the other way", {"n0": -1.0}),
@@ -442,7 +420,7 @@ def rule_reading(pts, rule):
         Reading(Kind.CONVENTION, "Eq 63's other row pair", {"alt_rows": True}),
     ]
     return search(
-        stated,
+        {"n0": 1.0, "out": 1.0, "alt_rows": False},
         readings,
         misfit,
         0.0,
@@ -470,10 +448,8 @@ def rule_reading(pts, rule):
 def eq68_rule(ctx, rule):
     """Eq 68's rule: where sigma = 0, K-bar > 0 means the surface admits motion along +N0."""
     pts = _sigma_zero_points(ctx)
-    pred = np.array([rule(_kbar_at(p, j, eq68_printed)) for j, p in pts])
-    seen = np.array([_side(p, j) for j, p in pts])
+    pred, seen = _sides(pts, rule)
     wrong = int(np.sum(pred != seen))
-    m = (Measure("points where the rule predicts the wrong side", wrong, 0),)
     detail = "; ".join(
         f"K-bar_{j} = {_kbar_at(p, j, eq68_printed) * 1e3:.0f} mm -> {'+' if seen[k] > 0 else '-'}N0"
         for k, (j, p) in enumerate(pts)
@@ -487,7 +463,7 @@ def eq68_rule(ctx, rule):
         f"of the surface the tool goes to when joint i leaves its limit by {_STEP:g} rad (the sign of its "
         "normal distance, verification.oracles.normal_distance)",
         f"the rule is wrong at {wrong} of {len(pts)} points; measured: {detail}",
-        m,
+        (Measure("points where the rule predicts the wrong side", wrong, 0),),
         id="eq68.rule",
         domain=f"{len(pts)} points of s(24)-s(27) where sigma_4 = 0 or sigma_2 = 0",
         erratum=Erratum(
@@ -498,4 +474,4 @@ def eq68_rule(ctx, rule):
             detail,
         ),
     )
-    return row.reread(rule_reading(pts, rule)) if row.verdict is Verdict.ERRATUM else row
+    return row.reread_if_erratum(lambda: rule_reading(pts, rule))

@@ -9,7 +9,7 @@ in one vertical plane, theta3 = 0). The IK ground truth: an orientation ``(alpha
 (Eq 42 convention, see :mod:`iik.rotations`) is feasible at ``p`` if ``iik.solve``
 (complete solver) returns a solution within Table I for ``iik.pose_from_euler(p, alpha,
 beta, 0)`` (gamma only turns joint 6, checked separately). The printed Eq 43-51 are
-transcribed in :func:`printed_admits`.
+transcribed one by one and composed in :func:`printed_admits`.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from iik import THESIS_ARM
 from iik.dexterity import admissible, alpha_intervals, dexterity
 
 from ..assumptions import EXACT_GEOMETRY
-from ..formula import Formula
+from ..formula import Formula, per_run
 from ..numbers import fmt_q
 from ..oracles.pinocchio_model import joint_placements
 from ..plotting import new_figure
@@ -40,54 +40,34 @@ SECTION = Section("Dexterity (Sec 3.5, Eq 42-51)", depends_on=EXACT_GEOMETRY, or
 
 
 # ----------------------------------------------------------------------------- printed forms
-def printed_admits(p, alpha35, beta35, arm=ARM) -> np.ndarray:
-    """Eq 43-51 as printed: is (alpha, beta) in the thesis's own angles admitted at ``p``?
+def printed_admits(p, alpha35, beta35) -> np.ndarray:
+    """Eq 43-51 as printed (their transcriptions below, one per equation): is (alpha, beta) in the thesis's
+    own angles [rad] admitted at ``p`` (3,) [m]?
 
     Cases (Sec 3.5.2-3.5.3): outer only -> beta' +- delta (Eq 44), alpha' +- sigma (Eq 49);
     ring -> Eq 44 with the Eq 45 interval removed, alpha in Eq 49's interval and outside Eq 51's;
     inner only -> beta' +- delta (Eq 45), alpha' +- sigma (Eq 51).
     """
-    l1, l2, l3, l4, l5 = arm.lengths
-    px, py, pz = p
-    phi = np.arctan2(py, px)  # Eq 36
-    x2, y2, z2 = l2 * np.cos(phi), l2 * np.sin(phi), l1  # Eq 37
-    rho = np.sqrt((px - x2) ** 2 + (py - y2) ** 2 + (pz - z2) ** 2)
-    bp = np.arctan((pz - z2) / np.sqrt((px - x2) ** 2 + (py - y2) ** 2))  # Eq 43
-    d2 = l3**2 + l4**2 - 2 * l3 * l4 * np.cos(np.pi - 119 * _D)  # Eq 45
-    a_out = (l5**2 + rho**2 - (l3 + l4) ** 2) / (2 * l5 * rho)  # Eq 44
-    a_in = (l5**2 + rho**2 - d2) / (2 * l5 * rho)  # Eq 45
-    has_out, has_in = abs(a_out) <= 1, abs(a_in) <= 1
-    b = np.asarray(beta35, float)
-    a = np.asarray(alpha35, float)
+    P = np.asarray(p, float)[None]
+    a, b = np.asarray(alpha35, float), np.asarray(beta35, float)
+    rho = _length(_from_joint2(P))[0]
+    # Eq 44, 45: the outer and inner triangles close
+    has_out, has_in = (abs((L5**2 + rho**2 - r**2) / (2 * L5 * rho)) <= 1 for r in (L3 + L4, D_IN))
     if not (has_out or has_in):
         return np.zeros(np.broadcast(a, b).shape, bool)
-    d_out = np.arccos(a_out) if has_out else 0.0
-    d_in = np.arccos(a_in) if has_in else 0.0
-    if has_out and not has_in:
-        ok_b = np.abs(b - bp) <= d_out
-    elif has_out:
-        ok_b = (np.abs(b - bp) <= d_out) & (np.abs(b - bp) >= d_in)
-    else:
-        ok_b = np.abs(b - bp) <= d_in
-    alpha_p = np.arctan2(py, px)  # Eq 46
-    h = pz - l5 * np.sin(b)  # Eq 47
-    rxy = np.hypot(px, py)
-    L5 = l5 * np.cos(b)
-    phid = np.sqrt(d2)
+    bp, d_out, d_in = eq43_printed(P)[0], eq44_delta(rho, L3 + L4), eq44_delta(rho, D_IN)
+    h, rxy = eq47_printed(P[0, 2], b), np.hypot(P[0, 0], P[0, 1])
+    sigma_out, sigma_in = (eq49_sigma(rxy, b, eq48_printed(h, r), r) for r in (L3 + L4, D_IN))  # Eq 48-51
+    ok_a = _in_ring(np.abs(wrap(a - eq46_printed(P)[0])), sigma_out, sigma_in, has_out, has_in)
+    return _in_ring(np.abs(b - bp), d_out, d_in, has_out, has_in) & ok_a
 
-    def sigma(reach):
-        delta = np.arctan((h - l1) / reach)  # Eq 48 / Eq 50
-        arg = (rxy**2 + L5**2 - (reach * np.cos(delta) + l2) ** 2) / (2 * rxy * L5)  # Eq 49 / 51
-        return np.where(arg < -1, np.pi, np.where(arg > 1, -1.0, np.arccos(np.clip(arg, -1, 1))))
 
-    dev = np.abs(wrap(a - alpha_p))
-    if has_out and not has_in:
-        ok_a = dev <= sigma(l3 + l4)
-    elif has_out:
-        ok_a = (dev <= sigma(l3 + l4)) & (dev >= sigma(phid))
-    else:
-        ok_a = dev <= sigma(phid)
-    return ok_b & ok_a
+def _in_ring(dev, outer, inner, has_out: bool, has_in: bool):
+    """Sec 3.5.2-3.5.3's cases: ``dev`` within the outer bound (outer circle only), within the outer and
+    beyond the inner (the ring), or within the inner (inner circle only)."""
+    if not has_out:
+        return dev <= inner
+    return (dev <= outer) & (dev >= inner) if has_in else dev <= outer
 
 
 # ----------------------------------------------------------------------------- exact geometry
@@ -142,6 +122,7 @@ def _pose35(q, kind: str = "") -> Pose35:
     return Pose35(q, F[:, 6, :3, 3], F[:, 5, :3, 3], F[:, 2, :3, 3], kind)
 
 
+@per_run
 def configurations(ctx, kind: str) -> Pose35:
     """Configurations the text describes (cached): ``"aligned-planar"`` (theta3 = theta4 = 0),
     ``"contracted-planar"`` (theta3 = 0, theta4 = +-119 deg), ``"aligned"`` (theta4 = 0), ``"contracted"``
@@ -149,15 +130,10 @@ def configurations(ctx, kind: str) -> Pose35:
     Table I, a third of the samples within 10^U(-6, -1.5) rad of theta2 = +-90 deg (link 3 vertical: where
     the inclination formulas are hardest); the planar ones keep p in front of the base axis (its azimuth is
     theta1)."""
-    key = ("dex.conf", kind, ctx.quick)
-    if key in ctx.cache:
-        return ctx.cache[key]
     if kind == "planar":
         c, c2 = configurations(ctx, "aligned-planar"), configurations(ctx, "contracted-planar")
         both = (np.concatenate([getattr(c, f), getattr(c2, f)]) for f in ("q", "p", "S", "J2"))
-        r = np.concatenate([np.full(len(c.q), L3 + L4), np.full(len(c2.q), D_IN)])
-        ctx.cache[key] = Pose35(*both, kind, r)
-        return ctx.cache[key]
+        return Pose35(*both, kind, np.concatenate([np.full(len(c.q), L3 + L4), np.full(len(c2.q), D_IN)]))
     rng = ctx.rng(f"dex-{kind}")
     n = ctx.n(3000, 300)
     q = rng.uniform(ARM.q_min, ARM.q_max, (n, 6))
@@ -172,10 +148,7 @@ def configurations(ctx, kind: str) -> Pose35:
     if kind.endswith("planar"):
         q[:, 2] = 0.0
     c = _pose35(q, kind)
-    if kind.endswith("planar"):
-        c = c.keep(np.abs(wrap(c.phi - q[:, 0])) < 1e-9)
-    ctx.cache[key] = c
-    return c
+    return c.keep(np.abs(wrap(c.phi - q[:, 0])) < 1e-9) if kind.endswith("planar") else c
 
 
 _KIND_TEXT = {
@@ -195,14 +168,6 @@ def _family(kind: str):
     return lambda ctx: configurations(ctx, kind)
 
 
-def _direction(c: Pose35, incl: np.ndarray) -> np.ndarray:
-    """Unit vector at inclination ``incl`` in the plane of J2, p (horizontal part along J2->p)."""
-    h = c.p - c.J2
-    h[:, 2] = 0.0
-    h /= np.linalg.norm(h, axis=1, keepdims=True)
-    return np.cos(incl)[:, None] * h + np.sin(incl)[:, None] * np.array([0.0, 0.0, 1.0])
-
-
 def _length(v: np.ndarray) -> np.ndarray:
     return np.linalg.norm(v, axis=1)
 
@@ -213,53 +178,47 @@ def _inclination(v: np.ndarray) -> np.ndarray:
 
 
 # ----------------------------------------------------------------------------- Eq 43-47
-def eq43_printed(p):
+def _from_joint2(p, l2: float = L2):
+    """p - joint 2 (Eq 37: joint 2 at azimuth atan2(py, px), ``l2`` from the axis, at height l1) -> (n, 3)
+    [m]."""
     phi = np.arctan2(p[:, 1], p[:, 0])
-    x2, y2, z2 = L2 * np.cos(phi), L2 * np.sin(phi), L1  # Eq 37
-    return np.arctan((p[:, 2] - z2) / np.sqrt((p[:, 0] - x2) ** 2 + (p[:, 1] - y2) ** 2))
+    return p - np.stack([l2 * np.cos(phi), l2 * np.sin(phi), np.full(len(p), L1)], 1)
 
 
-def _eq43_l3(p):
-    phi = np.arctan2(p[:, 1], p[:, 0])
-    x2, y2, z2 = L3 * np.cos(phi), L3 * np.sin(phi), L1
-    return np.arctan((p[:, 2] - z2) / np.sqrt((p[:, 0] - x2) ** 2 + (p[:, 1] - y2) ** 2))
+def eq43_printed(p, l2: float = L2):
+    """Eq 43: beta' = atan((pz - z2) / sqrt((px - x2)^2 + (py - y2)^2)), joint 2 by Eq 37."""
+    v = _from_joint2(p, l2)
+    return np.arctan(v[:, 2] / np.sqrt(v[:, 0] ** 2 + v[:, 1] ** 2))
 
 
-def _from_joint2(p):
-    """p - joint 2 (Eq 37: joint 2 at azimuth atan2(py, px)) -> (n, 3) [m]."""
-    phi = np.arctan2(p[:, 1], p[:, 0])
-    return p - np.stack([L2 * np.cos(phi), L2 * np.sin(phi), np.full(len(p), L1)], 1)
+def _acos(x):
+    return np.arccos(np.clip(x, -1, 1))
 
 
 def eq44_delta(rho, r):
     """Eq 44 / Eq 45: delta = acos((l5^2 + rho^2 - r^2) / (2 l5 rho)) with r = l3 + l4 or d."""
-    return np.arccos(np.clip((L5**2 + rho**2 - r**2) / (2 * L5 * rho), -1, 1))
+    return _acos((L5**2 + rho**2 - r**2) / (2 * L5 * rho))
 
 
 #: The slips of the printed triangle of Eq 44 and Eq 45.
 _DELTA_SLIPS = (
     Slip(SlipKind.SIGN, "l5^2 - rho^2 - r^2 in the numerator",
-         lambda rho, r: np.arccos(np.clip((L5**2 - rho**2 - r**2) / (2 * L5 * rho), -1, 1))),
+         lambda rho, r: _acos((L5**2 - rho**2 - r**2) / (2 * L5 * rho))),
     Slip(SlipKind.SWAP, "l5^2 and r^2 exchanged (the angle at the other vertex)",
-         lambda rho, r: np.arccos(np.clip((r**2 + rho**2 - L5**2) / (2 * L5 * rho), -1, 1))),
+         lambda rho, r: _acos((r**2 + rho**2 - L5**2) / (2 * L5 * rho))),
     Slip(SlipKind.FUNCTION, "asin for acos",
          lambda rho, r: np.arcsin(np.clip((L5**2 + rho**2 - r**2) / (2 * L5 * rho), -1, 1))),
 )
 
 
-def _extreme_direction_error(c: Pose35, delta_form, r) -> np.ndarray:
-    rho = np.linalg.norm(c.p - c.J2, axis=1)
-    bp = eq43_printed(c.p)
-    d = delta_form(rho, r)
-    return np.minimum(
-        np.linalg.norm(_direction(c, bp + d) - c.a, axis=1),
-        np.linalg.norm(_direction(c, bp - d) - c.a, axis=1),
-    )
-
-
 def _beta_limits(key: str, r: float, method: str, note=None) -> Formula:
-    """Eq 44 / Eq 45: link 5 at beta' +- delta (the printed triangle with side ``r``), as unit vectors."""
-    return Formula(key, eq44_delta, lambda c, f: _extreme_direction_error(c, f, r), TOL, "-", _DELTA_SLIPS,
+    """Eq 44 / Eq 45: link 5 at beta' +- delta (the printed triangle with side ``r``), as unit vectors, in
+    the vertical plane of J2 and p."""
+    def error(c, f):
+        v = c.p - c.J2
+        return _link5_error(c, r, np.arctan2(v[:, 1], v[:, 0]), delta=f)
+
+    return Formula(key, eq44_delta, error, TOL, "-", _DELTA_SLIPS,
                    good_is="the printed triangle (it is right)", eps=1e-6, eps_is="delta + 1 urad",
                    measure=_GEOMETRY, method=method, note=note)
 
@@ -286,11 +245,10 @@ def eq43_signed_run(p):
     return np.arctan2(p[:, 2] - L1, np.hypot(p[:, 0], p[:, 1]) - L2)
 
 
-def _eq46_error(c: Pose35, r: np.ndarray, alpha: np.ndarray, nominal=eq43_printed) -> np.ndarray:
+def _link5_error(c: Pose35, r, alpha: np.ndarray, nominal=eq43_printed, delta=eq44_delta) -> np.ndarray:
     """|link 5 - the direction at (alpha, beta' +- delta)|, the nearer of the two (Eq 43-45's beta;
-    ``nominal`` gives beta')."""
-    rho = np.linalg.norm(c.p - c.J2, axis=1)
-    bp, d = nominal(c.p), eq44_delta(rho, r)
+    ``nominal`` gives beta', ``delta(rho, r)`` the half-angle)."""
+    bp, d = nominal(c.p), delta(_length(c.p - c.J2), r)
     return np.minimum(np.linalg.norm(_dir(alpha, bp + d) - c.a, axis=1),
                       np.linalg.norm(_dir(alpha, bp - d) - c.a, axis=1))
 def eq46_reading(ctx, c: Pose35, r: np.ndarray, eq46):
@@ -299,15 +257,14 @@ def eq46_reading(ctx, c: Pose35, r: np.ndarray, eq46):
     beta' by Eq 43 as printed), with Eq 43's run signed (|p_xy| - l2: the sign its square root drops), with
     (px, py) seen from joint 2, and under our former reading (beta within +-90 deg, alpha the azimuth of
     link 5's horizontal projection). The signed run comes first: it keeps Eq 46 as printed."""
-    phi = np.arctan2(c.p[:, 1], c.p[:, 0])
-    from_j2 = c.p - np.stack([L2 * np.cos(phi), L2 * np.sin(phi), 0 * phi], 1)  # p seen from joint 2 (Eq 37)
+    from_j2 = _from_joint2(c.p)  # p seen from joint 2 (Eq 37)
     stated = {"convention": "thesis", "p": c.p, "run": "unsigned"}
 
     def misfit(x) -> float:
         alpha = np.asarray(eq46(x["p"]), float)
         if x["convention"] == "thesis":
             nominal = eq43_printed if x["run"] == "unsigned" else eq43_signed_run
-            return float(_eq46_error(c, r, alpha, nominal).max())
+            return float(_link5_error(c, r, alpha, nominal).max())
         return float(np.abs(wrap(alpha - c.alpha)).max())
 
     readings = [
@@ -344,7 +301,7 @@ def _eq46_note(c: Pose35, err) -> str:
     old = _pose35(OLD_EQ46_COUNTEREXAMPLE[None])  # the configuration that made Eq 46 an erratum (issue 19)
     old_r = np.array([L3 + L4])
     old_beta = eq43_printed(old.p) + eq44_delta(np.linalg.norm(old.p - old.J2, axis=1), old_r)
-    old_err = _eq46_error(old, old_r, eq46_printed(old.p))[0]
+    old_err = _link5_error(old, old_r, eq46_printed(old.p))[0]
     return (
         f"link 5 faces the base axis in {inward.mean():.0%} of these configurations (beta' + delta up to "
         f"{beta.max():.1f} deg; past 90 deg in {(beta > 90).mean():.0%}): there too the angles describe "
@@ -423,26 +380,28 @@ def eq49_sigma(rho, beta, delta, r, reach=None):
     rho = |p_xy|.
 
     ``reach`` (ignored here): the SLJ's true horizontal distance, used by the known-good form."""
-    lb = L5 * np.cos(beta)
-    return np.arccos(np.clip((rho**2 + lb**2 - (r * np.cos(delta) + L2) ** 2) / (2 * rho * lb), -1, 1))
+    return _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta) + L2)
+
+
+def _cos_law(rho, lb, far, sign: float = 1.0):
+    """The angle at the base axis of the triangle with sides ``rho`` (to p), ``lb`` (link 5 projected) and
+    ``far`` (to the SLJ) [rad]; ``sign`` -1: the slip rho^2 - lb^2."""
+    return _acos((rho**2 + sign * lb**2 - far**2) / (2 * rho * lb))
 
 
 def _sigma_true(rho, beta, delta, r, reach):
-    lb = L5 * np.cos(beta)
-    return np.arccos(np.clip((rho**2 + lb**2 - reach**2) / (2 * rho * lb), -1, 1))
+    return _cos_law(rho, L5 * np.cos(beta), reach)
 
 
 #: The slips of the printed law of cosines of Eq 49 and Eq 51.
 _SIGMA_SLIPS = (
     Slip(SlipKind.SIGN, "rho^2 - (l5 cos b)^2 in the numerator",
-         lambda rho, beta, delta, r, reach=None: np.arccos(np.clip(
-            (rho**2 - (L5 * np.cos(beta))**2 - (r * np.cos(delta) + L2) ** 2) / (2 * rho * L5 * np.cos(beta)),
-            -1, 1))),
+         lambda rho, beta, delta, r, reach=None: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta) + L2,
+                                                          -1.0)),
     Slip(SlipKind.FUNCTION, "l5 sin(b) for l5 cos(b)",
          lambda rho, beta, delta, r, reach=None: eq49_sigma(rho, np.pi / 2 - beta, delta, r)),
-    Slip(SlipKind.LENGTH, "the SLJ's distance without l2", lambda rho, beta, delta, r, reach=None: np.arccos(
-        np.clip((rho**2 + (L5 * np.cos(beta))**2 - (r * np.cos(delta)) ** 2) / (2 * rho * L5 * np.cos(beta)),
-                -1, 1))),
+    Slip(SlipKind.LENGTH, "the SLJ's distance without l2",
+         lambda rho, beta, delta, r, reach=None: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta))),
 )
 
 
@@ -515,7 +474,7 @@ CHECKS = {
         Formula("Eq 43", eq43_printed, lambda c, f: np.abs(f(c.p) - _inclination(c.p - c.J2)), TOL, "rad", (
             Slip(SlipKind.SWAP, "rise and run exchanged",
                  lambda p: np.arctan(np.linalg.norm(_from_joint2(p)[:, :2], axis=1) / _from_joint2(p)[:, 2])),
-            Slip(SlipKind.LENGTH, "joint 2 at l3 from the axis (l3 for l2)", _eq43_l3),
+            Slip(SlipKind.LENGTH, "joint 2 at l3 from the axis (l3 for l2)", lambda p: eq43_printed(p, L3)),
         ), good=lambda p: _inclination(_from_joint2(p)), good_is="asin of the rise over |p - J2|", eps=1e-6,
             eps_is="that beta' + 1 urad", measure=_GEOMETRY,
             method="printed beta' vs the inclination of p - J2 with J2 from Pinocchio (theta1 = phi)",
@@ -535,7 +494,7 @@ CHECKS = {
     ),
     **SECTION.formulas(
         _family("planar"),
-        Formula("Eq 46", eq46_printed, lambda c, f: _eq46_error(c, c.r, np.asarray(f(c.p), float)), TOL,
+        Formula("Eq 46", eq46_printed, lambda c, f: _link5_error(c, c.r, np.asarray(f(c.p), float)), TOL,
                 "-", (
             Slip(SlipKind.SWAP, "atan2(px, py): the arguments exchanged",
                  lambda p: np.arctan2(p[:, 0], p[:, 1])),
@@ -595,10 +554,6 @@ def sec35_to_eq42(alpha35, beta35):
     return wrap(alpha35 + np.pi), beta35 + np.pi / 2
 
 
-def _sec35_half(alpha35, beta35):
-    return wrap(alpha35 + np.pi), beta35 + np.pi / 4
-
-
 def _convention_error(c: Pose35, to_eq42) -> np.ndarray:
     """The angle difference [rad] of the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5) through ``to_eq42`` from
     the Eq 42 angles of z6 (azimuth, polar angle; the azimuth not counted at the poles)."""
@@ -616,7 +571,7 @@ CHECKS |= SECTION.formulas(_family("aligned"), Formula(
         Slip(SlipKind.BRANCH, "alpha + 180 deg, 90 deg - beta (the other side of the pole)",
              lambda a, b: (wrap(a + np.pi), np.pi / 2 - b)),
         Slip(SlipKind.UNIT, "alpha + 180 deg, beta + 45 deg (a quarter turn taken as an eighth)",
-             _sec35_half),
+             lambda a, b: (wrap(a + np.pi), b + np.pi / 4)),
     ), good=sec35_to_eq42, good_is="alpha + 180 deg, beta + 90 deg (z6 = -a)", eps=None, id="beta_convention",
     claim="The beta of Sec 3.5 (Eq 43-51) is the beta of the Euler matrix of Eq 42 (r13 = c_a s_b, r23 = s_a "
     "s_b, r33 = c_b), and alpha likewise.",
@@ -658,12 +613,10 @@ def convention_reading(c: Pose35, to_eq42):
                   measure="max angle difference [rad]")
 
 
+@per_run
 def sweep(ctx):
     """The exact admissible set on a grid: :func:`iik.dexterity.admissible` (IK feasibility) at
     ``na x nb`` orientations of each of ``npts`` reachable points (300 in the full report)."""
-    key = ("dexterity_sweep", ctx.quick)
-    if key in ctx.cache:
-        return ctx.cache[key]
     rng = ctx.rng("dexterity-points")
     npts = ctx.n(300, 8)
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(npts, 6))
@@ -671,10 +624,7 @@ def sweep(ctx):
     na, nb = ctx.n(36, 24), ctx.n(18, 12)
     A, B = np.meshgrid((np.arange(na) + 0.5) / na * 2 * np.pi - np.pi, (np.arange(nb) + 0.5) / nb * np.pi)
     A, B = A.ravel(), B.ravel()
-    truth = np.array([admissible(p, A, B, ARM) for p in P])
-    out = dict(P=P, A=A, B=B, truth=truth, na=na, nb=nb)
-    ctx.cache[key] = out
-    return out
+    return dict(P=P, A=A, B=B, truth=np.array([admissible(p, A, B, ARM) for p in P]), na=na, nb=nb)
 
 
 @dataclass(frozen=True)
@@ -711,7 +661,7 @@ def rates(adm: np.ndarray, truth: np.ndarray) -> Rates:
 def admitted_printed(p, A, B):
     """Eq 43-51 as printed, the angles converted to Eq 42's (the reading of dexterity.beta_convention)."""
     with np.errstate(invalid="ignore", divide="ignore"):
-        return printed_admits(p, A - np.pi, B - np.pi / 2, ARM)
+        return printed_admits(p, A - np.pi, B - np.pi / 2)
 
 
 def shell_admits(p, A, B, arm) -> np.ndarray:
@@ -749,11 +699,7 @@ class SolvableOnly:
 
 def _unconverted(p, A, B):
     with np.errstate(invalid="ignore", divide="ignore"):
-        return printed_admits(p, A, B, ARM)
-
-
-def _admit_all(p, A, B):
-    return np.ones(A.shape, bool)
+        return printed_admits(p, A, B)
 
 
 def _admitted(form, sw, i, p):
@@ -772,30 +718,40 @@ def _sweep_forms(printed) -> Forms:
         good=SolvableOnly(),
         good_is="exactly the orientations the sweep solves",
         slips=(
-            Slip(SlipKind.CLAIM, "every orientation", _admit_all),
+            Slip(SlipKind.CLAIM, "every orientation", lambda p, A, B: np.ones(A.shape, bool)),
             Slip(SlipKind.MODEL, "the angles used without the Eq 42 conversion (Sec 3.5's read as Eq 42's)",
                  _unconverted),
         ),
     )
 
 
-def _sweep_domain(sw) -> str:
-    return (f"{len(sw['P'])} reachable points (fk of q uniform in Table I), a {sw['na']} x {sw['nb']} "
-            "(alpha, beta) grid over every orientation of z6 at each")
-
-
-def _graded_sweep(ctx, admit):
-    """The sweep, the set ``admit`` admits on it, its :class:`Rates` and the soundness measure."""
+def _sweep_row(ctx, admit, claim: str, reference: str, method: str, reason: str, *, numbers: str = "{rates}",
+               figure: bool = False, **fields) -> Row:
+    """The row of the set ``admit`` admits, graded on the sweep: sound if at least ``_SOUND`` of what it
+    admits is solvable. ``method`` and ``numbers`` may name the grid (``{na}``, ``{nb}``, ``{npts}``), the
+    :class:`Rates` (``{rates}``) and the solvable orientations (``{solvable}`` of ``{total}``); with
+    ``figure`` the row shows the sets at the first points (:func:`_figure`)."""
     sw = sweep(ctx)
     adm = np.array([_admitted(admit, sw, i, p) for i, p in enumerate(sw["P"])])
     r = rates(adm, sw["truth"])
-    m = (Measure("share of admitted orientations that are solvable", 1.0 - r.false_admit_rate, _SOUND,
-                 bound=">="),)
-    return sw, adm, r, m
-
-
-_SWEEP_METHOD = ("the exact admissible set on a grid: iik.dexterity.admissible (the complete IK, a solution "
-                 "within Table I for pose_from_euler(p, alpha, beta, 0); gamma turns joint 6 alone) ")
+    words = dict(na=sw["na"], nb=sw["nb"], npts=len(sw["P"]), rates=r.text(), total=sw["truth"].size,
+                 solvable=int(sw["truth"].sum()))
+    return Row.graded(
+        claim,
+        reference,
+        "the exact admissible set on a grid: iik.dexterity.admissible (the complete IK, a solution within "
+        "Table I for pose_from_euler(p, alpha, beta, 0); gamma turns joint 6 alone) "
+        + method.format(**words),
+        numbers.format(**words),
+        (Measure("share of admitted orientations that are solvable", 1.0 - r.false_admit_rate, _SOUND,
+                 bound=">="),),
+        fail=Verdict.DOES_NOT_HOLD,
+        domain=f"{len(sw['P'])} reachable points (fk of q uniform in Table I), a {sw['na']} x {sw['nb']} "
+        "(alpha, beta) grid over every orientation of z6 at each",
+        reason=reason,
+        figures=(_figure(ctx, sw, adm),) if figure else (),
+        **fields,
+    )
 
 
 @SECTION.check(
@@ -806,24 +762,19 @@ _SWEEP_METHOD = ("the exact admissible set on a grid: iik.dexterity.admissible (
 def printed_admitted_set(ctx, admit):
     """Sec 3.5 / Sec 5.2: the orientations Eq 43-51 admit at a point can be reached ('at least one solution
     ... when suitable orientations were chosen ... guarantees the convergence of the inverse kinematics')."""
-    sw, adm, r, m = _graded_sweep(ctx, admit)
-    P, truth = sw["P"], sw["truth"]
-    figs = (_figure(ctx, sw, adm),) if admit is admitted_printed else ()
-    return Row.graded(
+    return _sweep_row(
+        ctx,
+        admit,
         "The orientations Eq 43-51 admit at a point inside the workspace are reachable (at least one IK "
         "solution), so choosing them guarantees convergence.",
         "Sec 3.5.2-3.5.3, Eq 43-51, Sec 5.2",
-        _SWEEP_METHOD + f"over a {sw['na']} x {sw['nb']} (alpha, beta) grid at {len(P)} reachable points, "
-        "vs the set Eq 43-51 admit (angles converted to Eq 42's)",
-        f"{r.text()}; of {truth.size} orientations {int(truth.sum())} are solvable",
-        m,
-        fail=Verdict.DOES_NOT_HOLD,
+        "over a {na} x {nb} (alpha, beta) grid at {npts} reachable points, vs the set Eq 43-51 admit (angles "
+        "converted to Eq 42's)",
+        "the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the roll geometry, and Eq "
+        "48/50/51 are wrong (rows above): admitted orientations without an IK solution",
+        numbers="{rates}; of {total} orientations {solvable} are solvable",
+        figure=admit is admitted_printed,
         id="admitted_set",
-        domain=_sweep_domain(sw),
-        figures=figs,
-        reason="the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the "
-        "roll geometry, and Eq 48/50/51 are wrong (rows above): admitted "
-        "orientations without an IK solution",
     )
 
 
@@ -834,21 +785,17 @@ def printed_admitted_set(ctx, admit):
 )
 def shell_model(ctx, admit):
     """Sec 3.5's model (the SLJ in the shell of Eq 44-45) read exactly, vs the same sweep."""
-    sw, _, r, m = _graded_sweep(ctx, admit)
-    return Row.graded(
+    return _sweep_row(
+        ctx,
+        admit,
         "Sec 3.5's model read exactly (the second-last joint inside the shell of Eq 44-45, the angles "
         "converted to Eq 42's) admits only reachable orientations.",
         "Sec 3.5.2-3.5.3 (Figs 18-21), Eq 44-45",
-        _SWEEP_METHOD + "vs the orientations whose link-5 direction lies in the cone between the Eq 44 and "
-        "Eq 45 half-angles (the former iik.dexterity)",
-        r.text(),
-        m,
-        fail=Verdict.DOES_NOT_HOLD,
+        "vs the orientations whose link-5 direction lies in the cone between the Eq 44 and Eq 45 half-angles "
+        "(the former iik.dexterity)",
+        "the model ignores the joint-1, joint-2, joint-3 and joint-5 limits and where the wrist really is: "
+        "it is neither a necessary nor a sufficient condition (false admits and false rejects above)",
         id="shell_model",
-        domain=_sweep_domain(sw),
-        reason="the model ignores the joint-1, joint-2, joint-3 and joint-5 limits and where the wrist "
-        "really is: it is neither a necessary nor a sufficient condition (false admits and false "
-        "rejects above)",
     )
 
 
@@ -883,14 +830,11 @@ def _near_end(intervals, a, eps):
     return near
 
 
+@per_run
 def _exact_sample(ctx):
-    key = ("dexterity_exact", ctx.quick)
-    if key not in ctx.cache:
-        rng = ctx.rng("dexterity-exact")
-        q = rng.uniform(ARM.q_min, ARM.q_max, size=(ctx.n(5, 2), 6))
-        pts = iik.fk(q, ARM)[:, :3, 3]
-        ctx.cache[key] = [(p, dexterity(p, ARM)) for p in pts]
-    return ctx.cache[key]
+    """Random reachable points fk(q), q uniform in Table I, with their exact dexterity."""
+    q = ctx.rng("dexterity-exact").uniform(ARM.q_min, ARM.q_max, size=(ctx.n(5, 2), 6))
+    return [(p, dexterity(p, ARM)) for p in iik.fk(q, ARM)[:, :3, 3]]
 
 
 def _beta_end_errors(p, d) -> int:
@@ -998,7 +942,7 @@ def gamma_free(ctx, unaffected):
     """Sec 3.5.1: gamma only changes joint 6 (a full turn), so any gamma works; ``unaffected`` joints stay."""
     rng = ctx.rng("gamma")
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(ctx.n(40, 6), 6))
-    T = iik.fk(q, THESIS_ARM)
+    T = iik.fk(q, ARM)
     ang = np.array([iik.euler_from_matrix(t[:3, :3]) for t in T])
     gam = np.linspace(-np.pi, np.pi, 13)[:-1]
     ok, total, moved = 0, 0, 0.0
@@ -1006,7 +950,7 @@ def gamma_free(ctx, unaffected):
     for t, (a, b, _) in zip(T, ang, strict=True):
         k = len(gam)
         poses = iik.pose_from_euler(np.tile(t[:3, 3], (k, 1)), np.full(k, a), np.full(k, b), gam)
-        res = iik.solve_many(poses, THESIS_ARM)
+        res = iik.solve_many(poses, ARM)
         ok += sum(len(r.q) > 0 for r in res)
         total += k
         base = res[0].q[:, cols] if len(res[0].q) else None

@@ -1,47 +1,41 @@
 """Hardware execution checks (Sec 4.3, App. A, Table V) for ``iik verify``.
 
-They register like every other check, so :func:`verification.verify` and ``iik
-verify`` produce the same report. Every run is on the in-process simulated arm
-(:func:`hardware.sim.simulated_arm`) with the scenarios planned exactly as ``iik run``
-plans them (:func:`hardware.sources.scenario_trajectory`: the project's planner,
-step-points at the times ``iik plan`` writes for them, TOPP-RA within the Sec 3.2
-limits). The simulator's tracking lag (a pure delay) and current model are
-assumptions, not identified on the real modules, so what these rows measure is the
-*method* (FSTEP streaming with the thesis's early update) on a simulated arm; the
-real arm's errors (Figs 46-55) are not checkable here.
+They register like every other check, so :func:`verification.verify` and ``iik verify`` produce the same
+report. Every run is on the in-process simulated arm (:func:`hardware.sim.simulated_arm`) with the
+scenarios planned exactly as ``iik run`` plans them (:func:`hardware.sources.scenario_trajectory`: the
+project's planner, step-points at the times ``iik plan`` writes for them, TOPP-RA within the Sec 3.2
+limits). The simulator's tracking lag (a pure delay) and current model are assumptions, not identified on
+the real modules, so what these rows measure is the *method* (FSTEP streaming with the thesis's early
+update) on a simulated arm; the real arm's errors (Figs 46-55) are not checkable here.
 
-Time base. Executions run on a *fast-forward* clock shared by the simulator and
-the executor (:func:`fast_forward_clock`): every wait of the executor advances the
-clock by its full length but sleeps only 1/:data:`FAST_FORWARD` of it, and the host's
-own time (computation and bus round trips) counts :data:`LATENCY_SCALE` of its real
-length. So what is graded is the streaming scheme, not this host's load: whether the
-next step arrives within the last 5 % of the previous one depends on the scheme alone,
-and two runs give the same verdicts. (With bus round trips at their real length, p3's
-95 % update left 0-6 of 696 joint rests depending on the load, and one such rest too
-many flipped the Sec 4.3 row between two runs; the early-update row still reports that
-real-latency count, ungraded.) The simulator's motion is an analytic function of the
-clock, so the jumps are exact. The executor samples every 30 ms (:data:`SAMPLE_PERIOD`;
-on p3 the errors agree with 10 ms sampling to 0.05 mm). The Table V round trips use the
-same clock, so their timings (a step's duration, the velocity half-way) do not depend on
-the host's load either.
+Time base. Executions run on a *fast-forward* clock shared by the simulator and the executor
+(:func:`fast_forward_clock`): every wait of the executor advances the clock by its full length but sleeps
+only 1/:data:`FAST_FORWARD` of it, and the host's own time (computation and bus round trips) counts
+:data:`LATENCY_SCALE` of its real length. So what is graded is the streaming scheme, not this host's load:
+whether the next step arrives within the last 5 % of the previous one depends on the scheme alone, and two
+runs give the same verdicts. (With bus round trips at their real length, p3's 95 % update left 0-6 of 696
+joint rests depending on the load, and one such rest too many flipped the Sec 4.3 row between two runs;
+the early-update row still reports that real-latency count, ungraded.) The simulator's motion is an
+analytic function of the clock, so the jumps are exact. The executor samples every 30 ms
+(:data:`SAMPLE_PERIOD`; on p3 the errors agree with 10 ms sampling to 0.05 mm). The Table V round trips
+use the same clock, so their timings do not depend on the host's load either.
 
-Grades. The thesis's Sec 4.3 claims are about the real arm: they are *not checkable* here
-(one row each, with the reason), and the simulation that reproduces them is a separate
-*project* row, *consistent with our reconstruction* (or not): its verdict is decided by the
-simulator's assumed 20 ms lag, not by the PowerCube modules. The Table V round trip tests
-our driver against our simulator: it holds *by construction*.
+Grades. The thesis's Sec 4.3 claims are about the real arm: *not checkable* here (one row each, with the
+reason); the simulation that reproduces them is a separate *project* row (:func:`_split`), *consistent
+with our reconstruction* or not, decided by the simulator's assumed 20 ms lag, not by the PowerCube
+modules. The Table V round trip tests our driver against our simulator: it holds *by construction*.
 
-Forms. The simulation rows take the simulated arm as their form (:class:`SimArm`): the
-assumed lag (printed, also the good form) and, as slip, the same runs with the logged errors
-read in the wrong unit (mm as m: no extra run); the early-update row takes the update
-fraction (95 % as printed, also the good form, and 100 %: no early update, as slip).
+Forms. The simulation rows take the simulated arm (:class:`SimArm`): the assumed lag (printed and good)
+and, as slip, the same runs with the logged errors read in the wrong unit (mm as m: no extra run); the
+early-update row takes the update fraction (95 % printed and good; 100 %, no early update, as slip).
 """
 
 from __future__ import annotations
 
+import functools
 import tempfile
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -49,19 +43,9 @@ import numpy as np
 
 from hardware.executor import EARLY_UPDATE
 from iik import THESIS_ARM
-from verification.registry import (
-    Erratum,
-    Forms,
-    Measure,
-    Row,
-    Scope,
-    Section,
-    Slip,
-    SlipKind,
-    Verdict,
-    verdict_of,
-)
+from verification.registry import Erratum, Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict
 from verification.second_reading import Kind, Reading, search
+from verification.thesis_index import title_of
 
 if TYPE_CHECKING:
     from hardware.analysis import RunAnalysis
@@ -89,16 +73,18 @@ REQUEST_TIMEOUT = 5.0
 #: The simulator's assumed tracking lag [s] (hardware.sim's default).
 LAG = 0.02
 _ORDER = 900.0
-#: (scenario, number of leading step-points or None for all) for the waiting/95 %/buffered comparison.
-_COMPARE = (("j", None), ("p3", None))
-_COMPARE_QUICK = (("j", None),)
-#: Predefined paths of Sec 4.3.1 (quick mode: the first 30 step-points of p3).
-_PREDEFINED = (("p1", None), ("p2", None), ("p3", None))
-_PREDEFINED_QUICK = (("p3", 30),)
-#: Further planned scenarios (Sec 4.2.2) executed for the 30 mm row of Sec 4.3.2 (the short ones).
-_PLANNED_EXTRA = (("b", None), ("h", None))
+#: Runs as (scenario, number of leading step-points or None for all), by ``ctx.quick``: the waiting /
+#: 95 % / buffered comparison; the predefined paths of Sec 4.3.1 (quick: the first 30 step-points of p3);
+#: every path of the section, with the short planned scenarios of Sec 4.2.2, for the 30 mm row (Sec 4.3.2).
+_COMPARE = {False: (("j", None), ("p3", None)), True: (("j", None),)}
+_PREDEFINED = {False: (("p1", None), ("p2", None), ("p3", None)), True: (("p3", 30),)}
+_MOTION = {
+    False: _PREDEFINED[False] + (("j", None), ("b", None), ("h", None)),
+    True: (("p3", 30), ("j", None)),
+}
 _DEP = ("sim-arm", "speed-limits", "scene", "l1", "lengths")
 SECTION = Section("Hardware execution (Sec 4.3, App. A)", depends_on=_DEP)
+_ON_REAL_ARM = "`iik run SCENARIO --interface socketcan --channel can0 --bitrate 500000`"
 
 
 def fast_forward_clock(factor: float = FAST_FORWARD, latency: float = 1.0):
@@ -184,16 +170,16 @@ class SimRun:
         return self.analysis.mean_ee_error * self.error_scale
 
     @property
-    def label(self) -> str:
-        if self.update == "buffered":
-            return "buffered"
-        return "waiting (100 %)" if self.early >= 1.0 else f"thesis ({self.early * 100:.0f} %)"
+    def errors(self) -> str:
+        """The largest and the mean step-point error in words [mm]."""
+        return f"max {self.max_ee * 1e3:.2f} mm, mean {self.mean_ee * 1e3:.2f} mm"
 
     def brief(self) -> str:
-        return (
-            f"{self.label}: {self.rests}/{self.changes} rests, EE error max {self.max_ee * 1e3:.2f} mm, mean "
-            f"{self.mean_ee * 1e3:.2f} mm"
-        )
+        if self.update == "buffered":
+            label = "buffered"
+        else:
+            label = "waiting (100 %)" if self.early >= 1.0 else f"thesis ({self.early * 100:.0f} %)"
+        return f"{label}: {self.rests}/{self.changes} rests, EE error {self.errors}"
 
 
 def _planned(ctx, name: str, limit: int | None):
@@ -234,20 +220,15 @@ def execute_scenario(
         return ctx.cache[key]
     traj, scenario = _planned(ctx, name, limit)
     clock, sleep = fast_forward_clock(latency=latency)
+    options = ExecutionOptions(early=early, update=update, sample_period=SAMPLE_PERIOD)
     with tempfile.TemporaryDirectory(prefix="iik-verify-hw-") as tmp:
         log_path = Path(tmp) / f"{name}.jsonl"
         t0 = time.perf_counter()
-        with simulated_arm(initial=traj.q[0], clock=clock, lag=lag, timeout=REQUEST_TIMEOUT,
-                           arm=THESIS_ARM) as (sim, arm):
+        with simulated_arm(
+            initial=traj.q[0], clock=clock, lag=lag, timeout=REQUEST_TIMEOUT, arm=THESIS_ARM
+        ) as (sim, arm):
             arm.open()
-            execute(
-                arm,
-                traj,
-                log_path,
-                options=ExecutionOptions(early=early, update=update, sample_period=SAMPLE_PERIOD),
-                clock=clock,
-                sleep=sleep,
-            )
+            execute(arm, traj, log_path, options=options, clock=clock, sleep=sleep)
             rests = sum(len(m.stops) for m in sim.modules.values())
             sim_lag = float(next(iter(sim.modules.values())).lag)
             errors = list(sim.errors)
@@ -255,39 +236,35 @@ def execute_scenario(
         run = read_run_log(log_path)
     if errors:
         raise SimulatorError(f"simulated arm raised while serving {name}: {errors[:3]}")
-    analysis = analyse(run)
     checker = SceneCollision(scenario.obstacles, arm=THESIS_ARM)
     clearance = min(checker.nearest(q).distance for q in run.samples_q)
-    res = SimRun(
+    ctx.cache[key] = SimRun(
         name=name if limit is None else f"{name}[:{limit}]",
         update=update,
         early=early,
         steps=len(traj),
         rests=rests,
         changes=6 * max(len(traj) - 2, 0),
-        analysis=analysis,
+        analysis=analyse(run),
         min_clearance=float(clearance),
         lag=sim_lag,
         latency=float(latency),
         wall=wall,
     )
-    ctx.cache[key] = res
-    return res
+    return ctx.cache[key]
 
 
-_SIM_NOTE = (
-    "in-process simulated arm (hardware.sim: FSTEP = constant velocity to the target in the given time, "
-    "joints at rest between steps that do not overlap; measured signals lag the set-point by a pure delay "
-    "of {lag:.0f} ms, an assumption), host waits fast-forwarded and the host's own time (bus round trips, "
-    "computation) counted at {latency:g} of its length, samples every 30 ms; scenarios planned as `iik run` "
-    "plans them (step-points at the times iik plan writes: TOPP-RA within the Sec 3.2 limits, whole ms), "
-    "validated, streamed by hardware.executor; step-point error = |p(FK(measured q)) - planned p| (Eq 4, "
-    "as in Sec 4.3)"
-)
-
-
-def _note(lag: float, latency: float = LATENCY_SCALE) -> str:
-    return _SIM_NOTE.format(lag=lag * 1e3, latency=latency)
+def _note(lag: float) -> str:
+    """How the simulation rows are measured, on a simulated arm with tracking lag ``lag`` [s]."""
+    return (
+        "in-process simulated arm (hardware.sim: FSTEP = constant velocity to the target in the given time, "
+        "joints at rest between steps that do not overlap; measured signals lag the set-point by a pure "
+        f"delay of {lag * 1e3:.0f} ms, an assumption), host waits fast-forwarded and the host's own time "
+        f"(bus round trips, computation) counted at {LATENCY_SCALE:g} of its length, samples every 30 ms; "
+        "scenarios planned as `iik run` plans them (step-points at the times iik plan writes: TOPP-RA within "
+        "the Sec 3.2 limits, whole ms), validated, streamed by hardware.executor; step-point error = "
+        "|p(FK(measured q)) - planned p| (Eq 4, as in Sec 4.3)"
+    )
 
 
 # ----------------------------------------------------------------------------- Table V
@@ -326,27 +303,25 @@ def check_table_v(ctx) -> Row:
         wait_for(0.1)  # > the simulator's tracking lag
         return done
 
-    def homed(ids):
-        return lambda states: all(
-            s & P.State.HOME_OK and not s & P.State.MOTION for i, s in enumerate(states) if i in ids
-        )
+    def homed(n: int):
+        """The first ``n`` modules homed and at rest."""
+        return lambda states: all(s & P.State.HOME_OK and not s & P.State.MOTION for s in states[:n])
 
     with simulated_arm(initial=q0, clock=clock, timeout=REQUEST_TIMEOUT, arm=THESIS_ARM) as (sim, arm):
         states = arm.open()  # PCube_openDevice: every module answers VERSION
         ok["openDevice"] = len(states) == 6 and all(m.version() == SIM_VERSION for m in arm.modules)
         ok["getPos"] = bool(np.allclose(arm.get_pos(), q0, atol=1e-6))
         ok["getVel"] = bool(np.allclose(arm.get_vel(), 0.0, atol=1e-9))
-        cur = arm.get_cur()
-        ok["getCur"] = bool(np.all(np.isfinite(cur)))
+        ok["getCur"] = bool(np.all(np.isfinite(arm.get_cur())))
         arm.set_max_cur(1.5)  # [A]
         back = np.array([m.get_param(P.Param.FMAXCUR) for m in arm.modules])
         ok["setMaxCur"] = bool(np.allclose(back, 1.5) and np.all(np.abs(arm.get_cur()) <= 1.5 + 1e-6))
         first = arm.modules[0]
         first.home()  # PCube_homeModule
-        wait_until(homed({0}), "module 1 homed")
+        wait_until(homed(1), "module 1 homed")
         ok["homeModule"] = abs(first.get_pos()) < 1e-6 and np.allclose(arm.get_pos()[1:], q0[1:], atol=1e-6)
         arm.home_all()  # PCube_homeAll (broadcast)
-        wait_until(homed(set(range(6))), "all modules homed")
+        wait_until(homed(6), "all modules homed")
         ok["homeAll"] = bool(np.allclose(arm.get_pos(), 0.0, atol=1e-6))
         # PCube_moveRamp: 0.2 rad at 0.3 rad/s, 0.6 rad/s^2: trapezoid of d/v + v/a = 1.17 s
         d, v, a = 0.2, 0.3, 0.6
@@ -368,42 +343,38 @@ def check_table_v(ctx) -> Row:
         # PCube_moveVel: 0.2 rad/s, then 0
         arm.move_vel(0.2)
         wait_for(0.5)
-        vel = arm.get_vel()
+        ok["moveVel"] = bool(np.allclose(arm.get_vel(), 0.2, atol=1e-6))
         arm.move_vel(0.0)
-        ok["moveVel"] = bool(np.allclose(vel, 0.2, atol=1e-6))
         # PCube_moveCur: +0.5 A; the simulator's (assumed) model turns it into motion in the current's
         # direction; the payload behaviour of Table V's description is not modelled
         arm.move_cur(0.5)
         wait_for(0.3)
-        vel_cur = arm.get_vel()
+        ok["moveCur"] = bool(np.all(arm.get_vel() > 0.0))
         arm.move_vel(0.0)
-        ok["moveCur"] = bool(np.all(vel_cur > 0.0))
         time.sleep(0.05)
-        received = sim.received()
+        received = [m for _, m in sim.received()]
         serving_errors = list(sim.errors) + ([f"{sim.malformed} malformed"] if sim.malformed else [])
     ok["closeDevice"] = not serving_errors  # bus shut down by the context manager
+    # the frame each function must have put on the bus (POWERCUBE.md): type and (plain) mode, param or cmd
     seen = {
-        (
-            type(m).__name__,
-            getattr(m, "mode", None) and m.mode.plain,
-            getattr(m, "param", None),
-            getattr(m, "cmd", None),
-        )
-        for _, m in received
+        (type(m), m.mode.plain if isinstance(m, P.SetMove) else getattr(m, "param", getattr(m, "cmd", None)))
+        for m in received
     }
     wire = {
-        "moveStep": ("SetMove", P.Mode.FSTEP, None, None),
-        "moveRamp": ("SetMove", P.Mode.FRAMP, None, None),
-        "moveVel": ("SetMove", P.Mode.FVEL, None, None),
-        "moveCur": ("SetMove", P.Mode.FCUR, None, None),
-        "setMaxCur": ("SetParam", None, P.Param.FMAXCUR, None),
-        "homeAll": ("Broadcast", None, None, P.Cmd.HOME),
-        "homeModule": ("Command", None, None, P.Cmd.HOME),
+        "moveStep": P.Mode.FSTEP,
+        "moveRamp": P.Mode.FRAMP,
+        "moveVel": P.Mode.FVEL,
+        "moveCur": P.Mode.FCUR,
+    }
+    wire = {f: (P.SetMove, mode) for f, mode in wire.items()} | {
+        "setMaxCur": (P.SetParam, P.Param.FMAXCUR),
+        "homeAll": (P.Broadcast, P.Cmd.HOME),
+        "homeModule": (P.Command, P.Cmd.HOME),
     }
     for fn, sig in wire.items():
         ok[fn] = ok[fn] and sig in seen
     steps_ms = sorted(
-        {m.time_ms for _, m in received if isinstance(m, P.SetMove) and m.mode.plain is P.Mode.FSTEP}
+        {m.time_ms for m in received if isinstance(m, P.SetMove) and m.mode.plain is P.Mode.FSTEP}
     )
     good = [f for f, v in ok.items() if v]
     bad = [f for f, v in ok.items() if not v]
@@ -432,11 +403,16 @@ def check_table_v(ctx) -> Row:
     )
 
 
-_REAL = ("it is a statement about the real PowerCube arm (its joints stopping and vibrating, its measured "
-         "errors): no real arm is attached to `iik verify`; the simulation that reproduces it is the project "
-         "row below it, whose verdict the simulator's assumed tracking lag decides")
-_SIM_BASIS = ("hardware.sim's arm: FSTEP at constant velocity and measured signals lagging by an assumed "
-              "pure delay (20 ms), not identified on the real modules; the verdict follows that assumption")
+# ----------------------------------------------------------------------------- Sec 4.3, the real arm
+_REAL = (
+    "it is a statement about the real PowerCube arm (its joints stopping and vibrating, its measured "
+    "errors): no real arm is attached to `iik verify`; the simulation that reproduces it is the project "
+    "row below it, whose verdict the simulator's assumed tracking lag decides"
+)
+_SIM_BASIS = (
+    "hardware.sim's arm: FSTEP at constant velocity and measured signals lagging by an assumed "
+    "pure delay (20 ms), not identified on the real modules; the verdict follows that assumption"
+)
 
 
 def _split(thesis: Row, sim_id: str) -> list[Row]:
@@ -453,7 +429,7 @@ def _split(thesis: Row, sim_id: str) -> list[Row]:
     real = Row(
         thesis.claim,
         thesis.reference,
-        "would need the real arm (`iik run SCENARIO --interface socketcan --channel can0 --bitrate 500000`)",
+        f"would need the real arm ({_ON_REAL_ARM})",
         f"simulated: {sim.verdict.value} (row {sim_id})",
         Verdict.NOT_CHECKABLE,
         reason=_REAL,
@@ -463,81 +439,90 @@ def _split(thesis: Row, sim_id: str) -> list[Row]:
     return [real, sim]
 
 
-# ----------------------------------------------------------------------------- Sec 4.3 update
-@SECTION.check(
+def _simulated(order: float, forms: dict, **options):
+    """Register a check of a Sec 4.3 claim whose function grades it on the simulated arm (a ``Row``, the
+    verdict HOLDS or DOES_NOT_HOLD): its rows are :func:`_split` (id: the function's name, and ``.sim``
+    for the simulation, which the self-test grades); ``forms``: the :class:`Forms` but its rows."""
+
+    def register(func):
+        sim_id = f"{func.__name__}.sim"
+
+        @functools.wraps(func)
+        def check(ctx, form) -> list[Row]:
+            return _split(func(ctx, form).replace(id=func.__name__), sim_id)
+
+        return SECTION.check(order, forms=Forms(**forms, rows=(sim_id,)), **options)(check)
+
+    return register
+
+
+def _graded(claim: str, reference: str, method: str, numbers: str, measures, lag: float, **fields) -> Row:
+    """A Sec 4.3 claim graded by ``measures`` on the simulated arm with tracking lag ``lag`` [s]; ``method``
+    follows the simulation's description (:func:`_note`). ``reasons``: (if it holds, if not)."""
+    reason = f"on the simulated arm with a {lag * 1e3:.0f} ms lag (the real arm: see the not-checkable row)"
+    holds, fails = fields.pop("reasons", (reason, reason))
+    row = Row.graded(
+        claim, reference, _note(lag) + method, numbers, measures, fail=Verdict.DOES_NOT_HOLD, **fields
+    )
+    return row.replace(reason=holds if row.verdict is Verdict.HOLDS else fails)
+
+
+@_simulated(
     _ORDER + 1,
-    forms=Forms(
+    dict(
         printed=EARLY_UPDATE,
         good=EARLY_UPDATE,
         good_is="the printed 95 % (the simulation's model of the claim)",
         slips=(Slip(SlipKind.OFF_BY_ONE, "the next command after 100 % of the step (no early update)", 1.0),),
-        rows=("check_early_update.sim",),
     ),
 )
-def check_early_update(ctx, early: float) -> list[Row]:
+def check_early_update(ctx, early: float) -> Row:
     """Waiting for each step to finish stops the joints; the 95 % update removes the stops, adds error."""
-    runs = {}
-    for name, limit in _COMPARE_QUICK if ctx.quick else _COMPARE:
-        runs[name] = (
+    compared = _COMPARE[ctx.quick]
+    runs = [
+        (
             execute_scenario(ctx, name, early=1.0, limit=limit),
             execute_scenario(ctx, name, early=early, limit=limit),
             execute_scenario(ctx, name, update="buffered", limit=limit),
         )
+        for name, limit in compared
+    ]
+    waits, ours = [r[0] for r in runs], [r[1] for r in runs]
     m = (
-        Measure(
-            "fewest joint rests of the waiting scheme",
-            min(w.rests for w, _, _ in runs.values()),
-            1,
-            bound=">=",
-        ),
+        Measure("fewest joint rests of the waiting scheme", min(w.rests for w in waits), 1, bound=">="),
         Measure(
             "largest share of the waiting scheme's rests left by the early update",
-            max(t.rests / max(w.rests, 1) for w, t, _ in runs.values()),
+            max(t.rests / max(w.rests, 1) for w, t in zip(waits, ours, strict=True)),
             0.1,
         ),
         Measure(
             "smallest increase of the mean end-effector error by the early update",
-            min(t.mean_ee - w.mean_ee for w, t, _ in runs.values()),
+            min(t.mean_ee - w.mean_ee for w, t in zip(waits, ours, strict=True)),
             0.0,
             "m",
             bound=">=",
         ),
     )
-    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
-    lag = next(iter(runs.values()))[0].lag
-    margins = {
-        name: 0.05 * float(np.min(_planned(ctx, name, limit)[0].step_ms))
-        for name, limit in (_COMPARE_QUICK if ctx.quick else _COMPARE)
-    }
     numbers = "; ".join(
         f"{r[0].name} ({r[0].steps} step-points, 5 % of the shortest step = "
-        f"{margins[name]:.1f} ms): " + ", ".join(x.brief() for x in r)
-        for name, r in runs.items()
+        f"{0.05 * float(np.min(_planned(ctx, name, limit)[0].step_ms)):.1f} ms): "
+        + ", ".join(x.brief() for x in r)
+        for r, (name, limit) in zip(runs, compared, strict=True)
     )
     if (
         early == EARLY_UPDATE
     ):  # ungraded: the same update with the host's bus round trips at their real length
         real = [
-            execute_scenario(ctx, name, early=early, limit=limit, latency=1.0)
-            for name, limit in (_COMPARE_QUICK if ctx.quick else _COMPARE)
+            execute_scenario(ctx, name, early=early, limit=limit, latency=1.0) for name, limit in compared
         ]
         numbers += (
             ". Not graded, with bus round trips at their real length on this host (load dependent): "
             + ", ".join(f"{r.name} {r.rests}/{r.changes} rests" for r in real)
         )
-    buffered = (
-        " Buffered = ours: each step is queued in the modules' step buffer shortly before the current one "
-        "ends, so no step is cut."
-    )
-    return _split(Row(
-        id="check_early_update",
-        domain=f"scenarios {', '.join(n for n, _ in (_COMPARE_QUICK if ctx.quick else _COMPARE))}, every "
-        "step-point",
-        claim="Sending each step-point only after the previous command finished stops the joints at every "
-        "step-point (the cause of the vibrations); sending the next command after 95 % of the previous "
-        "one's time removes the stops but adds some end-effector error (Sec 4.3)",
-        reference="Sec 4.3",
-        method=f"{_note(lag)}. Each scenario run three times: waiting (next command at 100 % of the step), "
+    return _graded(
+        f"{title_of('Claim 4.13')} (Sec 4.3)",
+        "Sec 4.3",
+        ". Each scenario run three times: waiting (next command at 100 % of the step), "
         f"early update ({early * 100:.0f} %), buffered; rests = a joint at rest between two consecutive "
         "steps (SimModule.stops). Holds if waiting has rests, the early update leaves at most a tenth of "
         "them, and its mean error is larger. Host latency is excluded from the graded runs (module "
@@ -545,122 +530,102 @@ def check_early_update(ctx, early: float) -> list[Row]:
         "step, so some of its step changes (about half or more) register as a rest and the count varies "
         "between runs, while the 95 % update is 5 % of a step (>= 2.5 ms) early, never a rest. Vibrations "
         "themselves need a structural model: not simulated",
-        numbers=numbers + "." + buffered,
-        verdict=verdict,
-        measures=m,
-        reason="measured on the simulated arm (assumed lag); the real arm's vibrations are not checkable"
-        if verdict is Verdict.HOLDS
-        else "the early update did not remove the stops or did not add error",
-    ), "check_early_update.sim")
-
-
-def _zone_runs(ctx, arm: SimArm, runs) -> list[SimRun]:
-    import dataclasses
-
-    return [dataclasses.replace(execute_scenario(ctx, name, limit=limit, lag=arm.lag),
-        error_scale=arm.error_scale)
-            for name, limit in runs]
-
-
-def _arm_forms(sim_id: str) -> dict:
-    return dict(
-        printed=SimArm(),
-        good=SimArm(),
-        good_is="the simulated arm with its assumed lag (the printed form is the simulation's model)",
-        slips=(Slip(SlipKind.UNIT, "the logged errors read in mm as m (x 1000)",
-                    SimArm(LAG, "the simulated arm, its errors read x 1000", error_scale=1000.0)),),
-        rows=(sim_id,),
+        numbers + ". Buffered = ours: each step is queued in the modules' step buffer shortly before the "
+        "current one ends, so no step is cut.",
+        m,
+        waits[0].lag,
+        reasons=(
+            "measured on the simulated arm (assumed lag); the real arm's vibrations are not checkable",
+            "the early update did not remove the stops or did not add error",
+        ),
+        domain=f"scenarios {', '.join(n for n, _ in compared)}, every step-point",
     )
 
 
-def _zone_row(
-    runs: list[SimRun], zone: float, measures, *, claim: str, reference: str, method: str, per_run
-) -> Row:
-    """A safety-zone row (Sec 4.3.1, 4.3.2): the runs' errors against ``zone`` [m]."""
+def _zone_rows(ctx, arm: SimArm, scenarios, zone: float, *more: Measure, what: str, per_run, **text) -> Row:
+    """A safety-zone claim (Sec 4.3.1, 4.3.2): the largest step-point error of ``scenarios`` on ``arm``
+    against ``zone`` [m], and ``more`` measures of the runs (``more(runs)``)."""
+    runs = [
+        replace(execute_scenario(ctx, name, limit=limit, lag=arm.lag), error_scale=arm.error_scale)
+        for name, limit in scenarios
+    ]
     worst = max(r.max_ee for r in runs)
-    verdict = verdict_of(measures, fail=Verdict.DOES_NOT_HOLD)
-    return Row(
+    return _graded(
+        text["claim"] + " - checked for the method on a simulated arm",
+        text["reference"],
+        f"; thesis update (95 %); {arm.what}; {text['method']}",
+        "; ".join(per_run(r) for r in runs) + f"; worst {worst * 1e3:.2f} mm vs {zone * 1e3:.0f} mm",
+        (Measure(f"largest step-point end-effector error{what}", worst, zone, "m"), *(f(runs) for f in more)),
+        runs[0].lag,
         domain=", ".join(r.name for r in runs) + ": every step-point of each run",
-        claim=claim + " - checked for the method on a simulated arm",
-        reference=reference,
-        method=f"{_note(runs[0].lag)}; thesis update (95 %); {method}",
-        numbers="; ".join(per_run(r) for r in runs) + f"; worst {worst * 1e3:.2f} mm vs {zone * 1e3:.0f} mm",
-        verdict=verdict,
-        measures=tuple(measures),
-        reason=f"on the simulated arm with a {runs[0].lag * 1e3:.0f} ms lag (the real arm: see the "
-        "not-checkable row)",
     )
 
 
-@SECTION.check(_ORDER + 2, forms=Forms(**_arm_forms("check_predefined_10mm.sim")))
-def check_predefined_10mm(ctx, arm: SimArm) -> list[Row]:
+_ARM_FORMS = dict(
+    printed=SimArm(),
+    good=SimArm(),
+    good_is="the simulated arm with its assumed lag (the printed form is the simulation's model)",
+    slips=(
+        Slip(
+            SlipKind.UNIT,
+            "the logged errors read in mm as m (x 1000)",
+            SimArm(LAG, "the simulated arm, its errors read x 1000", error_scale=1000.0),
+        ),
+    ),
+)
+
+
+@_simulated(_ORDER + 2, _ARM_FORMS)
+def check_predefined_10mm(ctx, arm: SimArm) -> Row:
     """Sec 4.3.1: max end-effector error on predefined paths 1-3 <= 10 mm (the method, simulated)."""
     from hardware.analysis import SAFETY_ZONE_PREDEFINED
 
-    runs = _zone_runs(ctx, arm, _PREDEFINED_QUICK if ctx.quick else _PREDEFINED)
-    m = (
-        Measure(
-            "largest step-point end-effector error", max(r.max_ee for r in runs), SAFETY_ZONE_PREDEFINED, "m"
-        ),
-    )
-    return _split(_zone_row(
-        runs,
+    return _zone_rows(
+        ctx,
+        arm,
+        _PREDEFINED[ctx.quick],
         SAFETY_ZONE_PREDEFINED,
-        m,
-        claim="On the predefined paths 1-3 the maximum end-effector error is not bigger than 10 mm, so 10 mm "
-        "is the minimum safety zone there (Sec 4.3.1, Figs 46-51)",
+        what="",
+        per_run=lambda r: f"{r.name} ({r.steps} step-points): {r.errors}",
+        claim=f"{title_of('Claim 4.14')}, here paths 1-3, so 10 mm is the minimum safety zone there "
+        "(Sec 4.3.1, Figs 46-51)",
         reference="Sec 4.3.1",
-        method=f"{arm.what}; "
-        + ("quick: first 30 step-points of p3 only" if ctx.quick else "p1, p2, p3 in full"),
-        per_run=lambda r: (
-            f"{r.name} ({r.steps} step-points): max {r.max_ee * 1e3:.2f} mm, mean {r.mean_ee * 1e3:.2f} mm"
-        ),
-    ).replace(id="check_predefined_10mm"), "check_predefined_10mm.sim")
+        method="quick: first 30 step-points of p3 only" if ctx.quick else "p1, p2, p3 in full",
+    )
 
 
-@SECTION.check(_ORDER + 3, depends_on=_DEP + ("collision-shapes", "platform"),
-               forms=Forms(**_arm_forms("check_safety_zone_30mm.sim")))
-def check_safety_zone_30mm(ctx, arm: SimArm) -> list[Row]:
+@_simulated(_ORDER + 3, _ARM_FORMS, depends_on=_DEP + ("collision-shapes", "platform"))
+def check_safety_zone_30mm(ctx, arm: SimArm) -> Row:
     """Sec 4.3.2: 30 mm is enough in motion; start and end errors are zero."""
     from iik.planning.obstacles import SAFETY_ZONE
 
-    runs = _zone_runs(
+    def clearance(runs) -> Measure:
+        least = min(r.min_clearance for r in runs)
+        return Measure("smallest whole-arm clearance of the measured motion", least, 0.0, "m", bound=">=")
+
+    def ends(runs) -> Measure:
+        worst = max(max(float(r.ee_error[0]), float(r.ee_error[-1])) for r in runs)
+        return Measure("largest error at the start or end of a path", worst, 1e-4, "m")
+
+    return _zone_rows(
         ctx,
         arm,
-        (_PREDEFINED_QUICK + _COMPARE_QUICK) if ctx.quick else (_PREDEFINED + _COMPARE + _PLANNED_EXTRA),
-    )
-    runs = list({r.name: r for r in runs}.values())
-    ends = max(max(float(r.ee_error[0]), float(r.ee_error[-1])) for r in runs)
-    m = (
-        Measure(
-            "largest step-point end-effector error in motion", max(r.max_ee for r in runs), SAFETY_ZONE, "m"
-        ),
-        Measure(
-            "smallest whole-arm clearance of the measured motion",
-            min(r.min_clearance for r in runs),
-            0.0,
-            "m",
-            bound=">=",
-        ),
-        Measure("largest error at the start or end of a path", ends, 1e-4, "m"),
-    )
-    return _split(_zone_row(
-        runs,
+        _MOTION[ctx.quick],
         SAFETY_ZONE,
-        m,
-        claim="A 30 mm safety zone is sufficient when the arm is in motion (max error of all paths), the "
-        "mean error stays low, and the error at the beginning and end of each path is zero, so the early "
-        "update does not compromise accuracy (Sec 4.3.2)",
-        reference="Sec 4.3.2",
-        method=f"{arm.what}; every path executed in this section; whole-arm clearance (Coal, URDF collision "
-        "shapes) of every measured joint sample to the scenario's boxes, platform and floor. Holds if max "
-        "error <= 30 mm, measured clearance > 0 and start/end errors < 0.1 mm",
+        clearance,
+        ends,
+        what=" in motion",
         per_run=lambda r: (
-            f"{r.name}: max {r.max_ee * 1e3:.2f} mm, mean {r.mean_ee * 1e3:.2f} mm, start "
-            f"{r.ee_error[0] * 1e3:.3f} mm, end {r.ee_error[-1] * 1e3:.3f} mm, min measured clearance "
-            f"{r.min_clearance * 1e3:.1f} mm"
+            f"{r.name}: {r.errors}, start {r.ee_error[0] * 1e3:.3f} mm, end {r.ee_error[-1] * 1e3:.3f} mm, "
+            f"min measured clearance {r.min_clearance * 1e3:.1f} mm"
         ),
-    ).replace(id="check_safety_zone_30mm"), "check_safety_zone_30mm.sim")
+        claim=f"{title_of('Claim 4.16')}; {title_of('Claim 4.15')}: the early update does not compromise "
+        "accuracy (Sec 4.3.2)",
+        reference="Sec 4.3.2",
+        method="every path executed in this section; whole-arm clearance (Coal, URDF collision shapes) of "
+        "every measured joint sample to the scenario's boxes, platform and floor. Holds if max error <= 30 "
+        "mm, measured clearance > 0 and start/end errors < 0.1 mm",
+    )
 
 
 @SECTION.check(
@@ -670,11 +635,9 @@ def check_safety_zone_30mm(ctx, arm: SimArm) -> list[Row]:
 )
 def check_real_arm(ctx) -> Row:
     return Row(
-        claim="The measured joint and end-effector errors of the real arm (Figs 46-56), hence the 10 mm and "
-        "30 mm zones as numbers of the real PowerCube arm",
+        claim=f"{title_of('Claim 4.17')}, hence the 10 mm and 30 mm zones as numbers of the real arm",
         reference="Sec 4.3.1, 4.3.2",
-        method="would need the real arm: `iik run SCENARIO --interface socketcan --channel can0 --bitrate "
-        "500000` logs the same step-point errors",
+        method=f"would need the real arm: {_ON_REAL_ARM} logs the same step-point errors",
         numbers="-",
         verdict=Verdict.NOT_CHECKABLE,
         domain="none: the claim is about the real arm's measurements",
@@ -693,6 +656,9 @@ class LimitReading:
     unit: str
 
 
+_UNITS = {"velocity": "rad/s", "current": "A", "position": "rad"}
+
+
 @SECTION.check(
     _ORDER + 5,
     depends_on=("sim-arm", "text"),
@@ -702,8 +668,11 @@ class LimitReading:
         good_is="the value limits the current [A] (FMAXCUR)",
         slips=(
             Slip(SlipKind.UNIT, "the value in rad (a position limit)", LimitReading("position", "rad")),
-            Slip(SlipKind.UNIT, "the value in rad/s (a speed limit, as printed)", LimitReading("velocity",
-                "rad/s")),
+            Slip(
+                SlipKind.UNIT,
+                "the value in rad/s (a speed limit, as printed)",
+                LimitReading("velocity", "rad/s"),
+            ),
         ),
     ),
 )
@@ -728,16 +697,11 @@ def check_set_max_cur(ctx, reading: LimitReading) -> Row:
         }
         m.move_vel(0.0)
         frames = [msg for _, msg in sim.received() if isinstance(msg, P.SetParam) and msg.module == m.id]
-    wrote = [(f"0x{int(f.param):02X}", f.param.name, f.value) for f in frames]
-    value = observed[reading.quantity]
-    ms = (
-        Measure(
-            f"|{reading.quantity}| [{reading.unit}] after PCube_setMaxCur(0.3) and a 0.6 rad/s command",
-            value,
-            0.3 * (1 + 1e-3),
-        ),
+    wrote = (
+        f"0x{int(frames[0].param):02X}, {frames[0].param.name}, {frames[0].value}" if frames else "nothing"
     )
-    row = Row.graded(
+    held = min(observed, key=lambda k: abs(observed[k] - 0.3))  # the quantity the command held at 0.3
+    return Row.graded(
         domain="one simulated module: PCube_setMaxCur(0.3), then a 0.6 rad/s velocity command for 1 s",
         claim=f"PCube_setMaxCur limits the {reading.quantity}, 'specifying ... the new value in "
         f"{reading.unit}' (Table V)",
@@ -745,39 +709,42 @@ def check_set_max_cur(ctx, reading: LimitReading) -> Row:
         method="the driver's PCube_setMaxCur(0.3) on the virtual bus (the frame it writes, POWERCUBE.md's "
         "parameter table), then a 0.6 rad/s velocity command for 1 s on the simulated module: is the "
         f"{reading.quantity} held at 0.3 {reading.unit}?",
-        numbers=f"SETPARAM written: {wrote[0] if wrote else 'none'}; after 1 s: velocity "
-        f"{observed['velocity']:.3f} rad/s, current {observed['current']:.3f} A, moved "
-        f"{observed['position']:.3f} rad",
-        measures=ms,
+        numbers=f"SETPARAM written: ({wrote}); after 1 s: velocity {observed['velocity']:.3f} rad/s, current "
+        f"{observed['current']:.3f} A, moved {observed['position']:.3f} rad",
+        measures=(
+            Measure(
+                f"|{reading.quantity}| [{reading.unit}] after PCube_setMaxCur(0.3) and a 0.6 rad/s command",
+                observed[reading.quantity],
+                0.3 * (1 + 1e-3),
+            ),
+        ),
         erratum=Erratum(
             equation="Table V (PCube_setMaxCur)",
             printed=f"the new value in {reading.unit}",
             corrected="the new value in A (parameter FMAXCUR 0x4C, a current; speeds are FMAXVEL 0x48)",
-            counterexample=f"PCube_setMaxCur(0.3) writes {wrote[0] if wrote else 'nothing'}; a 0.6 "
-            f"rad/s velocity command still reaches {observed['velocity']:.2f} rad/s while the current is "
-            f"held at {observed['current']:.2f} A",
+            counterexample=f"PCube_setMaxCur(0.3) writes ({wrote}); a 0.6 rad/s velocity command still "
+            f"reaches {observed['velocity']:.2f} rad/s while the current is held at "
+            f"{observed['current']:.2f} A",
         ),
+    ).reread_if_erratum(
+        lambda: search(
+            {"unit": reading.unit},
+            [
+                Reading(
+                    Kind.MOVED,
+                    "'rad/s' a unit misplaced from the neighbouring rows (PCube_getVel, PCube_moveRamp): "
+                    "this row's own 'maximum current' gives A",
+                    {"unit": "A"},
+                )
+            ],
+            lambda x: 0.0 if x["unit"] == _UNITS[held] else 1.0,
+            0.0,
+            printed=f"PCube_setMaxCur ... 'the new value in {reading.unit}'",
+            stated_text="'Sets the actual maximum current' (the same row); FMAXCUR (POWERCUBE.md)",
+            route="the quantity the simulated module holds at 0.3 after PCube_setMaxCur(0.3)",
+            measure="the printed unit differs from that quantity's (0 = same)",
+        )
     )
-    if row.verdict is not Verdict.ERRATUM:
-        return row
-    units = {"velocity": "rad/s", "current": "A", "position": "rad"}
-    held = min(observed, key=lambda k: abs(observed[k] - 0.3))  # the quantity the command held at 0.3
-
-    def misfit(x) -> float:
-        return 0.0 if x["unit"] == units[held] else 1.0
-
-    readings = [
-        Reading(Kind.MOVED,
-            "'rad/s' a unit misplaced from the neighbouring rows (PCube_getVel, PCube_moveRamp): "
-                "this row's own 'maximum current' gives A", {"unit": "A"}),
-    ]
-    return row.reread(search({"unit": reading.unit}, readings, misfit, 0.0,
-                             printed=f"PCube_setMaxCur ... 'the new value in {reading.unit}'",
-                             stated_text="'Sets the actual maximum current' (the same row); FMAXCUR "
-                             "(POWERCUBE.md)",
-                             route="the quantity the simulated module holds at 0.3 after "
-                             "PCube_setMaxCur(0.3)",
-                             measure="the printed unit differs from that quantity's (0 = same)"))
 
 
 @SECTION.check(

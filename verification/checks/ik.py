@@ -17,12 +17,12 @@ from dataclasses import dataclass
 import numpy as np
 
 import iik
-from iik import THESIS_ARM
 from iik.ik import solve_batch
 from iik.ik.angles import angle_distance
 from iik.ik.thesis import solve_thesis_arrays, thesis_candidates
 
-from ..registry import Forms, Measure, Row, Section, Slip, SlipKind, Verdict, verdict_of
+from ..formula import per_run
+from ..registry import Forms, Measure, Row, Section, Slip, SlipKind, Verdict
 from ..testing.ik_cost import ThesisSolver, compare_cost
 from . import ik_equations
 
@@ -35,18 +35,17 @@ def _sample(ctx, salt, full=4000, quick=300):
     return ctx.rng(salt).uniform(ARM.q_min, ARM.q_max, size=(ctx.n(full, quick), 6))
 
 
+@per_run
 def _cached_solutions(ctx):
-    key = ("ik.solutions", ctx.quick)
-    if key not in ctx.cache:
-        q = _sample(ctx, "ik-complete", 4000, 300)
-        T = iik.fk(q, THESIS_ARM)
-        ctx.cache[key] = (q, T, _complete_arrays(T))
-    return ctx.cache[key]
+    """The complete solver's solutions at fk(q) of q uniform in Table I: ``(q, T, (Q, V, F, P, R))``."""
+    q = _sample(ctx, "ik-complete", 4000, 300)
+    T = iik.fk(q, ARM)
+    return q, T, _complete_arrays(T)
 
 
 def _complete_arrays(T):
     """The complete solver (compiled kernel) as padded arrays ``(Q, V, F, P, R)``, limits ignored."""
-    b = solve_batch(T, THESIS_ARM, within_limits=False)
+    b = solve_batch(T, ARM, within_limits=False)
     V = np.arange(b.q.shape[1])[None, :] < b.count[:, None]
     return np.where(V[..., None], b.q, 0.0), V, b.free, b.position_residual, b.rotation_residual
 
@@ -65,7 +64,7 @@ def _complete_arrays(T):
 def four_configurations(ctx, per_root):
     """Sec 3.3.3: combining the signs of Eq 15 and Eq 21 gives ``per_root`` configurations per theta1 root."""
     q = _sample(ctx, "ik-four", 2000, 200)
-    d = thesis_candidates(iik.fk(q, THESIS_ARM), ARM)
+    d = thesis_candidates(iik.fk(q, ARM), ARM)
     valid = np.bincount(d.root, weights=d.ok, minlength=int(d.root.max()) + 1).astype(int)
     hist = np.bincount(valid, minlength=5)
     real = valid[valid > 0]
@@ -75,8 +74,7 @@ def four_configurations(ctx, per_root):
         f"Combining the signs of Eq 15 and Eq 21 gives {per_root} configurations per theta1 root.",
         "Sec 3.3.3 (Eq 15, 21)",
         f"all 4 sign combinations of every bisected (theta1, theta2) root of {len(q)} random poses; valid = "
-        "Eq 4 "
-        "pose error <= 1e-6 m and rad",
+        "Eq 4 pose error <= 1e-6 m and rad",
         f"roots with 0/1/2/3/4 valid configurations: {hist[:5].tolist()}",
         m,
         fail=Verdict.DOES_NOT_HOLD,
@@ -123,7 +121,6 @@ def _counts_row(ctx, claim: CountClaim, within: bool) -> Row:
         Measure(f"share of poses with more than {claim.most} solutions", above, claim.rare),
         Measure("fewest solutions of a pose", counts.min(), claim.least, bound=">="),
     )
-    verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
     reading = "within the Table I limits" if within else "joint limits ignored"
     reasons = []
     if above > claim.rare:
@@ -133,18 +130,17 @@ def _counts_row(ctx, claim: CountClaim, within: bool) -> Row:
             f"{int(np.sum(counts < claim.least))} of {len(q)} poses have fewer than {claim.least} "
             f"solutions {reading}"
         )
-    return Row(
+    return Row.graded(
         f"Up to {claim.most} solutions per pose ({claim.most * 2} in special cases, at most {claim.rare:.0%} "
-        "of "
-        f"poses); at least {claim.least} ({reading}).",
+        f"of poses); at least {claim.least} ({reading}).",
         "Sec 3.3.5",
         f"complete solver (every solution) on {len(q)} poses fk(q), q uniform in Table I; {reading}",
         "poses per solution count: "
         + ", ".join(f"{k}: {v}" for k, v in enumerate(hist) if v)
         + f"; max FK residual {np.nanmax(P):.1e} m / {np.nanmax(R):.1e} rad",
-        verdict,
+        m,
+        fail=Verdict.DOES_NOT_HOLD,
         id="solution_counts" + ("_table_i" if within else ""),
-        measures=m,
         reason="; ".join(reasons),
         domain=f"{len(q)} poses fk(q), q uniform in Table I (the generating q is a solution of each)",
     )
@@ -271,7 +267,7 @@ class Lookup:
 def benchmark(ctx, solver):
     """Sec 4.2.1 / 5.2: the IIK costs less computation per solution than pseudo-inverse Newton."""
     q = _sample(ctx, "ik-bench", 1000, 100)
-    c = compare_cost(iik.fk(q, THESIS_ARM), q, solver, n_single=ctx.n(150, 30), repeats=5, seed=ctx.seed)
+    c = compare_cost(iik.fk(q, ARM), q, solver, n_single=ctx.n(150, 30), repeats=5, seed=ctx.seed)
     s_med = float(np.median(c.single_ratio))
     b_max, b_min = max(c.batch_ratio), min(c.batch_ratio)
     m = (
@@ -295,13 +291,11 @@ def benchmark(ctx, solver):
         "The IIK needs less computation per solution than pseudo-inverse Newton.",
         "Sec 4.2.1 (Figs 33, 37, 41), Sec 5.2",
         f"{len(q)} poses fk(q), q in Table I; Newton (pseudo-inverse, tolerance 1e-6 deg) from q + N(0, 0.1 "
-        "rad); "
-        f"{c.repeats} repeats, each: {c.n_single} single-pose calls (IIK and Newton interleaved per pose, "
-        "order "
-        f"alternating; Newton on Pinocchio) and one vectorised batch of {c.n_batch} poses each (Newton "
-        "vectorised "
-        "with NumPy). Holds if the IIK is clearly cheaper per solution in both modes (median single-call "
-        f"ratio and every batch ratio below 1/{TIE_FACTOR:g}); does not hold if clearly dearer in both "
+        f"rad); {c.repeats} repeats, each: {c.n_single} single-pose calls (IIK and Newton interleaved per "
+        f"pose, order alternating; Newton on Pinocchio) and one vectorised batch of {c.n_batch} poses each "
+        "(Newton vectorised with NumPy). Holds if the IIK is clearly cheaper per solution in both modes "
+        f"(median single-call ratio and every batch ratio below 1/{TIE_FACTOR:g}); does not hold if clearly "
+        "dearer in both "
         f"(above {TIE_FACTOR:g}); otherwise a tie or a split, not checkable",
         f"IIK/Newton per solution: single calls {', '.join(f'{r:.2f}' for r in c.single_ratio)} "
         f"(median {c.single_us[0]:.0f} vs {c.single_us[1]:.0f} us); batches "

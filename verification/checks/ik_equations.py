@@ -22,15 +22,17 @@ when fed the true values (Eq 10, 15-17, 21-23, 28, 29, 33) hold by construction 
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
 import iik
-from iik.dh import dh_link_transform
+from iik.dh import dh_chain, dh_link_transform
 
 from ..assumptions import EXACT_GEOMETRY
-from ..formula import Formula, error_row
+from ..formula import Formula, error_row, per_run
 from ..numbers import fmt_q
 from ..oracles.pinocchio_model import joint_placements
 from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Verdict, epsilon
@@ -50,22 +52,26 @@ SECTION = Section(
     order=20.0,
 )
 
+
 @dataclass(frozen=True)
 class Sample:
     """Exact geometry at random q within Table I (arrays over n samples; m, rad).
 
-    B, C, D, E are joint points in the Sec 3.3.1 frame (origin moved up by l1);
-    F are the Pinocchio joint placements 0_iT (base frame, i = 0..6); T = F[:, 6].
-    The last ``hard`` samples sit near the singular values (:func:`hard_joints`).
+    F are the joint placements 0_iT (base frame, i = 0..6; Pinocchio, or the iik.dh chain for a second
+    reading); B, C, D, E the joint points of frames 2, 3, 5, 6 in the Sec 3.3.1 frame (origin moved up
+    by l1). The last ``hard`` samples sit near the singular values (:func:`hard_joints`).
     """
 
     q: np.ndarray
     F: np.ndarray
-    B: np.ndarray
-    C: np.ndarray
-    D: np.ndarray
-    E: np.ndarray
     hard: int = 0
+
+    B = property(lambda self: self.F[:, 2, :3, 3] - L1 * _EZ)
+    C = property(lambda self: self.F[:, 3, :3, 3] - L1 * _EZ)
+    D = property(lambda self: self.F[:, 5, :3, 3] - L1 * _EZ)
+    E = property(lambda self: self.F[:, 6, :3, 3] - L1 * _EZ)
+    R = property(lambda self: self.F[:, 6, :3, :3])
+    p = property(lambda self: self.F[:, 6, :3, 3])
 
     @property
     def domain(self) -> str:
@@ -74,18 +80,6 @@ class Sample:
             "(theta3 = +-90 deg, theta4 = 0, theta5 = 0, theta4 + theta5 = 0 or 180 deg, within 10^U(-9, -2) "
             "rad; a joint on its limit)"
         )
-
-    @property
-    def T(self) -> np.ndarray:
-        return self.F[:, 6]
-
-    @property
-    def R(self) -> np.ndarray:
-        return self.F[:, 6, :3, :3]
-
-    @property
-    def p(self) -> np.ndarray:
-        return self.F[:, 6, :3, 3]
 
     def __len__(self) -> int:
         return len(self.q)
@@ -100,22 +94,18 @@ class Sample:
         return np.sin(self.q[:, j - 1])
 
     def rel(self, i: int, j: int) -> np.ndarray:
-        """i_jT = (0_iT)^-1 0_jT from Pinocchio, (n, 4, 4)."""
+        """i_jT = (0_iT)^-1 0_jT, (n, 4, 4)."""
         return np.linalg.inv(self.F[:, i]) @ self.F[:, j]
 
 
 def make_sample(q: np.ndarray, hard: int = 0) -> Sample:
-    F = joint_placements(q)
-    shift = L1 * _EZ
-    return Sample(
-        q=q,
-        F=F,
-        B=F[:, 2, :3, 3] - shift,
-        C=F[:, 3, :3, 3] - shift,
-        D=F[:, 5, :3, 3] - shift,
-        E=F[:, 6, :3, 3] - shift,
-        hard=hard,
-    )
+    """The :class:`Sample` of ``q`` from Pinocchio (the ground truth)."""
+    return Sample(q, joint_placements(q), hard)
+
+
+def dh_sample(q: np.ndarray) -> Sample:
+    """The :class:`Sample` of ``q`` from the iik.dh chain instead of Pinocchio (second readings)."""
+    return Sample(q, np.concatenate([np.broadcast_to(np.eye(4), (len(q), 1, 4, 4)), chain_frames(q)], 1))
 
 
 def hard_joints(rng: np.random.Generator, n: int) -> np.ndarray:
@@ -139,15 +129,12 @@ def hard_joints(rng: np.random.Generator, n: int) -> np.ndarray:
     return np.clip(q, ARM.q_min, ARM.q_max)
 
 
+@per_run
 def sample(ctx) -> Sample:
-    """The cached sample of this run: q uniform within Table I, then the hard ones (:func:`hard_joints`)."""
-    key = ("ik.sample", ctx.quick)
-    if key not in ctx.cache:
-        rng = ctx.rng("ik-equations")
-        q = rng.uniform(ARM.q_min, ARM.q_max, size=(ctx.n(3000, 300), 6))
-        h = hard_joints(ctx.rng("ik-equations-hard"), ctx.n(1200, 120))
-        ctx.cache[key] = make_sample(np.concatenate([q, h]), hard=len(h))
-    return ctx.cache[key]
+    """The sample of this run: q uniform within Table I, then the hard ones (:func:`hard_joints`)."""
+    q = ctx.rng("ik-equations").uniform(ARM.q_min, ARM.q_max, size=(ctx.n(3000, 300), 6))
+    h = hard_joints(ctx.rng("ik-equations-hard"), ctx.n(1200, 120))
+    return make_sample(np.concatenate([q, h]), hard=len(h))
 
 
 #: Why the one-line steps hold by construction when fed the true sine and cosine.
@@ -200,14 +187,12 @@ def eq5_coplanar(ctx, triple):
     )
 
 
-
 def eq6_printed(th1):
     return np.stack([L2 * np.cos(th1), L2 * np.sin(th1), np.zeros_like(th1)], 1)
 
 
 def _eq6_rot(th1):
     return np.einsum("nij,j->ni", iik.euler_matrix(th1, np.zeros_like(th1), np.zeros_like(th1)), [L2, 0, 0])
-
 
 
 def eq7_printed(th1, th2):
@@ -218,7 +203,6 @@ def eq7_printed(th1, th2):
 def _eq7_geom(th1, th2):
     u = np.stack([np.cos(th2) * np.cos(th1), np.cos(th2) * np.sin(th1), -np.sin(th2)], 1)
     return _eq6_rot(th1) + L3 * u
-
 
 
 def eq8_printed(R, D, th1, th2):
@@ -310,25 +294,13 @@ def _eq9_miss(s: Sample, eq9) -> np.ndarray:
 
 
 # ----------------------------------------------------------------------------- second readings (iik.dh route)
-def table_ii(**rows) -> DHTable:  # noqa: F821 (iik.dh.DHTable)
-    """Table II (iik.THESIS_ARM's) with some rows' fields replaced: ``d6=...`` or ``alpha2=...``."""
-    import dataclasses
-
+def chain_frames(q: np.ndarray, d6: float | None = None) -> np.ndarray:
+    """Every frame 0_iT (i = 1..6) of Table II (with its d6 [m] replaced by ``d6`` if given) by iik.dh, not
+    Pinocchio: (n, 6, 4, 4)."""
     t = ARM.dh_table()
-    out = list(t.rows)
-    for key, value in rows.items():
-        field, k = key.rstrip("0123456789"), int(key[len(key.rstrip("0123456789")):])
-        i = k - 1 if field == "d" else k
-        out[i] = dataclasses.replace(out[i], **{field: value})
-    return dataclasses.replace(t, rows=tuple(out))
-
-
-def chain_frames(q: np.ndarray, **rows) -> np.ndarray:
-    """Every frame 0_iT (i = 1..6) of Table II (with ``rows`` replaced) by iik.dh, not Pinocchio:
-    (n, 6, 4, 4)."""
-    from iik.dh import dh_chain
-
-    return dh_chain(table_ii(**rows), q, all_frames=True)
+    if d6 is not None:
+        t = dataclasses.replace(t, rows=t.rows[:5] + (dataclasses.replace(t.rows[5], d=d6),))
+    return dh_chain(t, q, all_frames=True)
 
 
 _DH_ROUTE = "the Table II chain of iik.dh.dh_chain under the reading (not Pinocchio)"
@@ -349,10 +321,8 @@ def eq9_reading(ctx, s: Sample, eq9):
     """Second reading of Eq 9 (the form ``eq9``): its two branches against Eq 8's two solutions
     theta2 and theta2 + pi, the wrist point from the iik.dh chain, under the nearby readings of theta2
     (its sign, Table II's -90 deg offset, the formula read as a tangent only, theta2 mod pi)."""
-    F = chain_frames(s.q)
-    D = F[:, 4, :3, 3] - L1 * _EZ
-    R = F[:, 5, :3, :3]
-    br = eq9(R, D, s.q[:, 0])
+    d = dh_sample(s.q)
+    br = eq9(d.R, d.D, s.q[:, 0])
     stated = {"sign": 1.0, "offset": 0.0, "period": 2 * np.pi}
 
     def misfit(x) -> float:
@@ -370,7 +340,6 @@ def eq9_reading(ctx, s: Sample, eq9):
                   "theta2 + pi)",
                   route=_DH_ROUTE,
                       measure="max over q of the gap between the printed and the true pair [rad]")
-
 
 
 def eq9abc_printed(p, z6):
@@ -458,7 +427,6 @@ def _eq10_off(s: Sample, err) -> str:
     )
 
 
-
 def eq11_printed(D, th1, th2):
     x, y, z = D.T
     c1, s1, c2, s2 = cos_sin(th1, th2)
@@ -532,11 +500,7 @@ def _extremum(R, D, sign: float, n_grid: int = 721, iters: int = 40) -> np.ndarr
     h = 2 * np.pi / n_grid
     a = grid[np.arange(n), np.argmin(E, axis=1)] - h
     b = a + 2 * h
-    g = (np.sqrt(5) - 1) / 2
-
-    def f(t):
-        return _signed_e(R, D, t, sign)
-
+    g, f = (np.sqrt(5) - 1) / 2, partial(_signed_e, R, D, sign=sign)
     c, d = b - g * (b - a), a + g * (b - a)
     fc, fd = f(c), f(d)
     for _ in range(iters):
@@ -590,10 +554,7 @@ def _numeric_argmin(sign: float, D: np.ndarray, R: np.ndarray, n_grid: int = 360
         sl = slice(lo, min(lo + 25, len(D)))
         vals = (sign * _e_of_theta1(R[sl], D[sl], np.broadcast_to(grid, (sl.stop - sl.start, n_grid)))).min(0)
         out[sl] = grid[np.argmin(vals, axis=1)]
-
-    def f(t):
-        return _signed_e(R, D, t, sign)
-
+    f = partial(_signed_e, R, D, sign=sign)
     a, b, c = out - h, out, out + h
     fa, fb, fc = f(a), f(b), f(c)
     for _ in range(30):
@@ -615,11 +576,6 @@ def _numeric_argmin(sign: float, D: np.ndarray, R: np.ndarray, n_grid: int = 360
     return wrap(b)
 
 
-def _reference_extremum(ctx, s: Sample, sign: float, rows: slice) -> np.ndarray:
-    """:class:`NumericArgmin` on the check's poses, cached per run (it does not depend on any form)."""
-    return NumericArgmin(sign)(s.p[rows], s.D[rows], s.R[rows])
-
-
 def extremum_reading(ctx, form, sign: float, rows: slice):
     """Second reading of Eq 12 / Eq 13 (the form): the share of poses at which the form, under each nearby
     reading of its inputs (the wrist point D for the tool point p, the arguments exchanged, theta1's sign,
@@ -627,8 +583,7 @@ def extremum_reading(ctx, form, sign: float, rows: slice):
     check's golden section)."""
     s = sample(ctx)
     R, D, p = s.R[rows], s.D[rows], s.p[rows]
-    ref = _reference_extremum(ctx, s, sign, rows)
-    best = _signed_e(R, D, ref, sign)
+    best = _signed_e(R, D, NumericArgmin(sign)(p, D, R), sign)
     stated = {"point": p, "swap": False, "sign": 1.0, "turn": 0.0}
 
     def misfit(x) -> float:
@@ -642,9 +597,8 @@ def extremum_reading(ctx, form, sign: float, rows: slice):
         Reading(Kind.SIGN, "theta1 measured the other way", {"sign": -1.0}),
         Reading(Kind.WHICH, "the opposite side (+ pi)", {"turn": np.pi}),
     ]
-    what = "minimum" if sign > 0 else "maximum"
-    return search(stated, readings, misfit, 1.0 - _EXT_SHARE,
-                  printed="min = atan2(py, px)" if sign > 0 else "max = atan2(py, px) +- pi",
+    what, printed = _EXTREMA[sign]
+    return search(stated, readings, misfit, 1.0 - _EXT_SHARE, printed=printed,
                   stated_text="p = (px, py, pz) the end-effector point ('theta1 oriented toward the "
                   "end-effector')",
                   route=f"the {what} of ||E|| by a 3600-point grid and successive parabolic interpolation",
@@ -657,39 +611,29 @@ def _apply_extremum_form(form, p, D, R):
     return form(p, D)
 
 
-def _call_extremum_form(form, s: Sample, rows: slice):
-    return _apply_extremum_form(form, s.p[rows], s.D[rows], s.R[rows])
-
-
 _EXT_TOL = 1e-9  # [m^2]: "at" the extremum = within this of its ||E|| value (near-ties count as hits)
 _EXT_SHARE = 0.99  # share of random poses the statement must hit
+#: Per sign: the extremum (+1 the minimum, -1 the maximum) and Eq 12 / Eq 13 as printed.
+_EXTREMA = {1.0: ("minimum", "min = atan2(py, px)"), -1.0: ("maximum", "max = atan2(py, px) +- pi")}
 
 
-def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
-    s = sample(ctx)
+def _extremum_row(ctx, form, sign: float, key: str) -> Row:
+    """Eq 12 (``sign`` +1) or Eq 13 (-1): is ||E|| at the form's theta1 the extremum over theta1?"""
+    s, (what, printed) = sample(ctx), _EXTREMA[sign]
     m_pts = min(len(s.q), ctx.n(600, 80))
     rows = slice(0, m_pts)
     R, D = s.R[rows], s.D[rows]
     found = _extremum(R, D, sign)
     best = _signed_e(R, D, found, sign)
-    at_form = wrap(_call_extremum_form(form, s, rows))
+    at_form = wrap(_apply_extremum_form(form, s.p[rows], D, R))
     gap = _signed_e(R, D, at_form, sign) - best  # >= 0 unless the form beats the search
     phi_d = wrap(np.arctan2(D[:, 1], D[:, 0]) + (0.0 if sign > 0 else np.pi))
     hit_d = np.mean(_signed_e(R, D, phi_d, sign) - best <= _EXT_TOL)
     hit_d_pi = np.mean(_signed_e(R, D, wrap(phi_d + np.pi), sign) - best <= _EXT_TOL)
     share = float(np.mean(gap <= _EXT_TOL))
-    what = "minimum" if sign > 0 else "maximum"
-    m = (
-        Measure(
-            f"share of poses where ||E|| at the form is within {_EXT_TOL:g} m^2 of its {what}",
-            share,
-            _EXT_SHARE,
-            bound=">=",
-        ),
-    )
+    m = (Measure(f"share of poses where ||E|| at the form is within {_EXT_TOL:g} m^2 of its {what}", share,
+                 _EXT_SHARE, bound=">="),)
     k = int(np.argmax(gap))
-    miss = np.abs(wrap(at_form - found))
-    printed_text = "min = atan2(py, px)" if sign > 0 else "max = atan2(py, px) +- pi"
     corrected = (
         "min at atan2(yD, xD), the wrist point's azimuth (|D - B| is smallest there): the global minimum "
         f"in {hit_d:.1%} of random poses, else at atan2(yD, xD) + pi ({hit_d_pi:.1%})"
@@ -697,28 +641,28 @@ def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
         else f"max = atan2(yD, xD) +- pi (the wrist point's azimuth; {hit_d:.1%} of random poses)"
     )
     row = Row.graded(
-        f"The {what} of ||E|| (Eq 11) over theta1 lies at {printed_text.split('= ')[1]}.",
+        f"The {what} of ||E|| (Eq 11) over theta1 lies at {printed.split('= ')[1]}.",
         key,
         f"||E|| over theta1 with theta2 from Eq 9 (corrected, both branches; the {what} over both), true D "
-        "of "
-        f"{m_pts} random poses: global {what} by a 721-point grid then golden-section search to 1e-10 rad; "
-        "the "
-        f"form hits it if ||E|| there is within {_EXT_TOL:g} m^2 of the {what} (a near-tie counts as a hit)",
-        f"the form is at the {what} in {share:.1%} of poses (median angular miss {np.median(miss):.3g} rad); "
-        f"atan2(yD, xD){'' if sign > 0 else ' + pi'} is in {hit_d:.1%}",
+        f"of {m_pts} random poses: global {what} by a 721-point grid then golden-section search to 1e-10 "
+        f"rad; the form hits it if ||E|| there is within {_EXT_TOL:g} m^2 of the {what} (a near-tie counts "
+        "as a hit)",
+        f"the form is at the {what} in {share:.1%} of poses (median angular miss "
+        f"{np.median(np.abs(wrap(at_form - found))):.3g} rad); atan2(yD, xD){'' if sign > 0 else ' + pi'} is "
+        f"in {hit_d:.1%}",
         m,
-        id=rid,
+        id=key.lower().replace(" ", ""),
         domain=f"the first {m_pts} poses of the uniform sample ({s.domain.split(' plus')[0]}); theta1 over "
         "the whole turn",
         erratum=Erratum(
             key,
-            printed_text,
+            printed,
             corrected,
             f"{fmt_q(s.q[k])}: the {what} of ||E|| is at theta1 = {found[k]:.4f} rad, the form gives "
             f"{at_form[k]:.4f} rad (||E|| differs by {abs(gap[k]):.3g} m^2)",
         ),
     )
-    return row.reread(extremum_reading(ctx, form, sign, rows)) if row.verdict is Verdict.ERRATUM else row
+    return row.reread_if_erratum(lambda: extremum_reading(ctx, form, sign, rows))
 
 
 @SECTION.check("Eq 12", forms=Forms(
@@ -730,7 +674,7 @@ def _extremum_row(ctx, form, sign: float, key: str, rid: str) -> Row:
     Slip(SlipKind.EPSILON, "the good minimiser + 1 mrad", NumericArgmin(1.0, 1e-3))))
 def eq12_minimum(ctx, form):
     """Eq 12: the minimum of ||E|| (not of |E|) over theta1."""
-    return _extremum_row(ctx, form, 1.0, "Eq 12", "eq12")
+    return _extremum_row(ctx, form, 1.0, "Eq 12")
 
 
 @SECTION.check("Eq 13", forms=Forms(
@@ -741,7 +685,7 @@ def eq12_minimum(ctx, form):
     epsilon(eq13_corrected, 1e-3, "the good form + 1 mrad")))
 def eq13_maximum(ctx, form):
     """Eq 13: the maximum of ||E|| over theta1."""
-    return _extremum_row(ctx, form, -1.0, "Eq 13", "eq13")
+    return _extremum_row(ctx, form, -1.0, "Eq 13")
 
 
 # ----------------------------------------------------------------------------- Eq 14-16
@@ -755,14 +699,6 @@ def eq14_corrected(D, th1):
     x, y, z = D.T
     c1, s1 = cos_sin(th1)
     return (x**2 + y**2 + z**2 + L2**2 - L3**2 - L4**2 - 2 * L2 * (x * c1 + y * s1)) / (2 * L3 * L4)
-
-
-def dh_sample(q: np.ndarray, hard: int = 0) -> Sample:
-    """The :class:`Sample` of ``q`` built from the iik.dh chain instead of Pinocchio (second readings)."""
-    F = np.concatenate([np.broadcast_to(np.eye(4), (len(q), 1, 4, 4)), chain_frames(q)], axis=1)
-    shift = L1 * _EZ
-    return Sample(q, F, F[:, 2, :3, 3] - shift, F[:, 3, :3, 3] - shift, F[:, 5, :3, 3] - shift,
-                  F[:, 6, :3, 3] - shift, hard)
 
 
 def eq14_reading(s: Sample, eq14):
@@ -796,7 +732,6 @@ def eq14_reading(s: Sample, eq14):
                   route=_DH_ROUTE, measure="max(|form - cos(theta4)|, |Eq 11| / (2 l3 l4))")
 
 
-
 def eq15_printed(c4):
     r = np.sqrt(1 - c4**2)
     return np.stack([r, -r])
@@ -822,7 +757,6 @@ _ROOT_SLIPS = (
 TOL_SCALED = 1e-14
 
 
-
 # ----------------------------------------------------------------------------- Eq 17-22
 def _links(q: np.ndarray, first: int, last: int) -> np.ndarray:
     """Product of the Table II link transforms first..last (1-based), (n, 4, 4)."""
@@ -839,33 +773,30 @@ def _rot_t(T):
     return T
 
 
+def _matrix(*rows) -> np.ndarray:
+    """The (n, r, c) matrices of ``rows`` of entries (arrays over n samples, or numbers)."""
+    entries = np.broadcast_arrays(*(np.asarray(e, float) for r in rows for e in r))
+    return np.stack(entries, -1).reshape(entries[0].shape + (len(rows), len(rows[0])))
+
 
 def eq18_inverse_printed(q):
     c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
-    z, o = np.zeros_like(c1), np.ones_like(c1)
-    return np.stack(
-        [
-            np.stack([c1 * s2, s1 * s2, c2, -L1 * c2 - L2 * s2], 1),
-            np.stack([c1 * c2, s1 * c2, -s2, L1 * s2 - L2 * c2], 1),
-            np.stack([-s1, c1, z, z], 1),
-            np.stack([z, z, z, o], 1),
-        ],
-        1,
+    return _matrix(
+        [c1 * s2, s1 * s2, c2, -L1 * c2 - L2 * s2],
+        [c1 * c2, s1 * c2, -s2, L1 * s2 - L2 * c2],
+        [-s1, c1, 0, 0],
+        [0, 0, 0, 1],
     )
 
 
 def eq18_t25_printed(q):
     c3, s3, c4, s4 = cos_sin(q[:, 2], q[:, 3])
     c45, s45 = cos_sin(q[:, 3] + q[:, 4])
-    z, o = np.zeros_like(c3), np.ones_like(c3)
-    return np.stack(
-        [
-            np.stack([c3 * c45, -c3 * s45, -s3, L4 * c3 * s4], 1),
-            np.stack([-s45, -c45, z, L4 * c4 + L3], 1),
-            np.stack([-s3 * c45, s3 * s45, -c3, -L4 * s3 * s4], 1),
-            np.stack([z, z, z, o], 1),
-        ],
-        1,
+    return _matrix(
+        [c3 * c45, -c3 * s45, -s3, L4 * c3 * s4],
+        [-s45, -c45, 0, L4 * c4 + L3],
+        [-s3 * c45, s3 * s45, -c3, -L4 * s3 * s4],
+        [0, 0, 0, 1],
     )
 
 
@@ -912,7 +843,6 @@ def eq18_matrices(ctx, mats):
     ]
 
 
-
 def eq18_frame_reading(ctx, s: Sample, wrist):
     """Second reading of Eq 18 with the D of Eq 9 (the form ``wrist``): the printed 0_2T^-1 times 0_5T
     built from the iik.dh chain's rotation and the form's D, vs the printed 2_5T, under each nearby reading
@@ -945,7 +875,6 @@ def _eq18_frame_error(s: Sample, wrist) -> np.ndarray:
     return np.abs(lhs - eq18_t25_printed(s.q)).max(axis=(1, 2))
 
 
-
 def eq19_printed(q, D):
     c1, s1 = cos_sin(q[:, 0])
     return np.stack([c1 * D[:, 1] - s1 * D[:, 0], -L4 * np.sin(q[:, 2]) * np.sin(q[:, 3])])
@@ -956,17 +885,14 @@ def _eq19_good(q, D):
     return np.stack([np.einsum("ni,ni->n", row3, D), -L4 * np.sin(q[:, 2]) * np.sin(q[:, 3])])
 
 
-
 def eq20_printed(q, D):
     c1, s1 = cos_sin(q[:, 0])
     return (s1 * D[:, 0] - c1 * D[:, 1]) / (L4 * np.sin(q[:, 3]))
 
 
-
 def eq24_printed(q):
     c3, c45, s45 = np.cos(q[:, 2]), np.cos(q[:, 3] + q[:, 4]), np.sin(q[:, 3] + q[:, 4])
     return np.stack([-c3 * s45, -c45], 1)
-
 
 
 def eq25_lhs(R, q):
@@ -1008,17 +934,13 @@ def _theta5(s45_form, R, q, c3, s3):
 _C3_EXP = (-10, -3)
 
 
+@per_run
 def _near_c3_zero(ctx) -> Sample:
-    key = ("ik.sample.c3", ctx.quick)
-    if key not in ctx.cache:
-        rng = ctx.rng("eq27-near")
-        n = ctx.n(1500, 150)
-        q = rng.uniform(ARM.q_min, ARM.q_max, size=(n, 6))
-        q[:, 2] = rng.choice([-1.0, 1.0], n) * np.pi / 2 + rng.choice([-1.0, 1.0], n) * 10 ** rng.uniform(
-            *_C3_EXP, n
-        )
-        ctx.cache[key] = make_sample(q)
-    return ctx.cache[key]
+    """q uniform in Table I but theta3 = +-90 deg +- 10^U(_C3_EXP) rad."""
+    rng, n, pm = ctx.rng("eq27-near"), ctx.n(1500, 150), [-1.0, 1.0]
+    q = rng.uniform(ARM.q_min, ARM.q_max, size=(n, 6))
+    q[:, 2] = rng.choice(pm, n) * np.pi / 2 + rng.choice(pm, n) * 10 ** rng.uniform(*_C3_EXP, n)
+    return make_sample(q)
 
 
 def _eq27_plus(a13, a33, c3, s3):
@@ -1048,12 +970,10 @@ def eq27_s45(ctx, eq27):
     """Eq 27-28 on random q, including |c3| down to 1e-10 (theta3 within 1e-3..1e-10 rad of +-90 deg), graded
     on |error| |c3| (the division by c3 costs eps / |c3|; at c3 = 0 exactly see eq27.c3_zero)."""
     s, near = sample(ctx), _near_c3_zero(ctx)
-    q = np.concatenate([s.q, near.q])
-    R = np.concatenate([s.R, near.R])
-    c3 = np.cos(q[:, 2])
-    err = np.abs(wrap(_theta5(eq27, R, q, c3, np.sin(q[:, 2])) - q[:, 4]))
+    both = Sample(np.concatenate([s.q, near.q]), np.concatenate([s.F, near.F]), s.hard)
+    q, c3 = both.q, np.cos(both.q[:, 2])
+    err = np.abs(wrap(_theta5(eq27, both.R, q, c3, np.sin(q[:, 2])) - q[:, 4]))
     err = np.where(np.isnan(err), np.inf, err)
-    both = Sample(q, np.concatenate([s.F, near.F]), s.B, s.C, s.D, s.E, hard=s.hard)
     raw_near = err[len(s.q):]
     small = np.abs(c3[len(s.q):])
     ok = raw_near <= TOL_ANGLE
@@ -1102,7 +1022,6 @@ def eq27_c3_zero(ctx, eq27):
     )
 
 
-
 def _atan2_minus(sn, cs, th4):
     return np.arctan2(sn, cs) - th4
 
@@ -1116,7 +1035,6 @@ def _eq28_error(s: Sample, eq28) -> np.ndarray:
     return wrap(eq28(np.sin(t45), np.cos(t45), s.q[:, 3]) - s.q[:, 4])
 
 
-
 def eq30_row3_printed(q):
     c1, s1, c2, s2, c3, s3 = cos_sin(q[:, 0], q[:, 1], q[:, 2])
     return np.stack([s1 * c3 - c1 * s2 * s3, -c1 * c3 - s1 * s2 * s3, -c2 * s3], 1)
@@ -1124,16 +1042,7 @@ def eq30_row3_printed(q):
 
 def eq30_t56_printed(q):
     c6, s6 = cos_sin(q[:, 5])
-    z, o = np.zeros_like(c6), np.ones_like(c6)
-    return np.stack(
-        [
-            np.stack([c6, -s6, z, z], 1),
-            np.stack([z, z, o, z], 1),
-            np.stack([-s6, -c6, z, -L5 * o], 1),
-            np.stack([z, z, z, o], 1),
-        ],
-        1,
-    )
+    return _matrix([c6, -s6, 0, 0], [0, 0, 1, 0], [-s6, -c6, 0, -L5], [0, 0, 0, 1])
 
 
 def eq30_t56_corrected(q):
@@ -1180,7 +1089,6 @@ def eq30_matrices(ctx, mats):
     return rows
 
 
-
 def eq31_lhs(R, q, col=0):
     row3 = eq30_row3_printed(q)
     return np.einsum("ni,ni->n", row3, R[:, :, col])
@@ -1188,8 +1096,6 @@ def eq31_lhs(R, q, col=0):
 
 def eq32_lhs(R, q):
     return eq31_lhs(R, q, col=1)
-
-
 
 
 # ----------------------------------------------------------------------------- the printed steps, declared

@@ -54,17 +54,23 @@ from iik.planning import (
     build_path,
     ellipsoid_value,
     enclosing_radii,
+    load_scenario,
     region_of,
+    scenario_path,
+    thesis_scenario_paths,
     thesis_timing,
     time_parameterize,
     track_branches,
     track_dp,
 )
 from iik.rotations import euler_from_matrix
+from iik.safety import SAFETY_ZONE
 from iik.scene import THESIS_SCENE
 
+from ..formula import per_run
 from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict, verdict_of
 from ..second_reading import Kind, Reading, search
+from ..thesis_index import title_of
 
 __all__ = ["SECTION", "FIG42", "PathSource", "Clearance", "measure_clearance", "eq53_printed"]
 
@@ -81,15 +87,25 @@ SECTION = Section("Planning (Sec 3.6, Sec 4.2)", depends_on=_DEP)
 
 
 # ----------------------------------------------------------------------------- Eq 52-53
-def eq53_printed(w: float, d: float, h: float) -> np.ndarray:
-    """Eq 53 exactly as printed: x_r = w/(cos b cos a), y_r = d/(cos b sin a), z_r = h/sin a [m]."""
-    a = math.pi / 4
+def eq53_printed(w: float, d: float, h: float, a: float = math.pi / 4, z_angle: str = "a") -> np.ndarray:
+    """Eq 53 exactly as printed: x_r = w/(cos b cos a), y_r = d/(cos b sin a), z_r = h/sin a [m], b =
+    atan(cos a), a = pi/4 [rad]; ``a`` and ``z_angle = "b"`` (z_r = h/sin b) for the second reading."""
     b = math.atan(math.cos(a))
-    return np.array([w / (math.cos(b) * math.cos(a)), d / (math.cos(b) * math.sin(a)), h / math.sin(a)])
+    z = math.sin(a) if z_angle == "a" else math.sin(b)
+    return np.array([w / (math.cos(b) * math.cos(a)), d / (math.cos(b) * math.sin(a)), h / z])
 
 
 def _sqrt3_half(half) -> np.ndarray:
     return math.sqrt(3.0) * np.asarray(half, float)
+
+
+def _corner_misfit(sizes, radii: Callable) -> np.ndarray:
+    """max |Eq 52 - 1| at the 8 corners of each box of ``sizes`` (n, 3) [m] with the radii ``radii(half)``."""
+    out = []
+    for s in sizes:
+        box = Box((0.0, 0.0, 0.0), tuple(s))
+        out.append(np.abs(ellipsoid_value(box.corners, box.center, radii(box.half)) - 1.0).max())  # Eq 52
+    return np.array(out)
 
 
 #: Eq 53 as printed, in both readings of w, d, h (the text calls them width, depth and height).
@@ -97,6 +113,7 @@ _EQ53_PRINTED = {
     "w, d, h = full dimensions": lambda half: eq53_printed(*(2.0 * np.asarray(half))),
     "w, d, h = half dimensions": lambda half: eq53_printed(*half),
 }
+_EQ53_TEXT = "x_r = w/(cos b cos a), y_r = d/(cos b sin a), z_r = h/sin a, a = pi/4, b = atan(cos a)"
 
 
 @SECTION.check(
@@ -122,15 +139,8 @@ def check_eq53_ellipsoid(ctx, readings) -> Row:
     d, h)."""
     rng = ctx.rng("eq53")
     sizes = np.vstack([[0.30, 0.20, 0.50], rng.uniform(0.05, 1.0, size=(ctx.n(2000, 100), 3))])
-    worst, at_example = {}, {}
-    for name, radii in readings.items():
-        dev = []
-        for s in sizes:
-            box = Box((0.0, 0.0, 0.0), tuple(s))
-            dev.append(np.abs(ellipsoid_value(box.corners, box.center, radii(box.half)) - 1.0).max())  # Eq 52
-        worst[name], at_example[name] = float(max(dev)), float(dev[0])
+    worst = {name: float(_corner_misfit(sizes, radii).max()) for name, radii in readings.items()}
     best = min(worst, key=worst.get)
-    m = (Measure("max |Eq 52 at the 8 corners - 1|, best reading", worst[best], 1e-9),)
     example = Box((0.0, 0.0, 0.0), (0.30, 0.20, 0.50))
     values = {
         n: float(ellipsoid_value(example.corners[:1], example.center, r(example.half))[0])
@@ -147,11 +157,10 @@ def check_eq53_ellipsoid(ctx, readings) -> Row:
             f"{worst[n]:.3g}"
             for n in readings
         ),
-        measures=m,
+        measures=(Measure("max |Eq 52 at the 8 corners - 1|, best reading", worst[best], 1e-9),),
         erratum=Erratum(
             equation="Eq 53",
-            printed="x_r = w/(cos b cos a), y_r = d/(cos b sin a), z_r = h/sin(a), a = pi/4, b = "
-            "atan(cos a)",
+            printed=_EQ53_TEXT,
             corrected="z_r = h/sin(b), with w, d, h the HALF dimensions: (x_r, y_r, z_r) = sqrt(3)(w, "
             "d, h)",
             counterexample="box 0.30 x 0.20 x 0.50 m, Eq 52 at its corners: "
@@ -163,37 +172,27 @@ def check_eq53_ellipsoid(ctx, readings) -> Row:
         domain=f"{len(sizes)} boxes: 0.30 x 0.20 x 0.50 m and sizes uniform in 0.05-1 m per side (flat, long "
         "and cubic), every corner",
     )
-    return row.reread(eq53_reading(sizes[:200])) if row.verdict is Verdict.ERRATUM else row
+    return row.reread_if_erratum(lambda: eq53_reading(sizes[:200]))
 
 
 def eq53_reading(sizes):
     """Second reading of Eq 53: Eq 52 at the corners of the boxes with the printed radii under each nearby
     reading of w, d, h (the full or the half dimensions),
     of a (45 taken as rad) and of the printed formula (the a of z_r = h / sin a a misprinted b)."""
-    stated = {"dims": 1.0, "a": math.pi / 4, "z_angle": "a"}
-
-    def radii(half, x):
-        w, d, h = x["dims"] * 2 * np.asarray(half, float)
-        a = x["a"]
-        b = math.atan(math.cos(a))
-        z = math.sin(a) if x["z_angle"] == "a" else math.sin(b)
-        return np.array([w / (math.cos(b) * math.cos(a)), d / (math.cos(b) * math.sin(a)), h / z])
 
     def misfit(x) -> float:
-        worst = 0.0
-        for s in sizes:
-            box = Box((0.0, 0.0, 0.0), tuple(s))
-            worst = max(worst, float(np.abs(ellipsoid_value(box.corners, box.center, radii(box.half,
-                x)) - 1).max()))
-        return worst
+        def radii(half):
+            return eq53_printed(*(x["dims"] * 2 * np.asarray(half, float)), a=x["a"], z_angle=x["z_angle"])
+
+        return float(_corner_misfit(sizes, radii).max())
 
     readings = [
         Reading(Kind.WHICH, "w, d, h the half dimensions of the box", {"dims": 0.5}),
         Reading(Kind.UNIT, "a = 45 taken as rad", {"a": 45.0}),
         Reading(Kind.MOVED, "the a of z_r = h / sin(a) a misprinted b", {"z_angle": "b"}),
     ]
-    return search(stated, readings, misfit, 1e-9, printed="x_r = w/(cos b cos a), y_r = d/(cos b sin a), "
-                  "z_r = h/sin a, a = pi/4, b = atan(cos a)",
+    return search({"dims": 1.0, "a": math.pi / 4, "z_angle": "a"}, readings, misfit, 1e-9,
+                  printed=_EQ53_TEXT,
                   stated_text="w, d, h the box's width, depth and height (Sec 3.6.2.1), a = pi/4",
                   route=f"Eq 52 evaluated at the 8 corners of {len(sizes)} of the boxes",
                   measure="max |Eq 52 at the corners - 1|")
@@ -210,9 +209,7 @@ def _mirror_point(p) -> tuple[float, float, float]:
 
 def _completed_table(table: dict) -> dict:
     """Table IV completed by the note under it: the reverse direction uses the same via-points reversed."""
-    full = dict(table)
-    full.update({(b, a): tuple(reversed(v)) for (a, b), v in table.items()})
-    return full
+    return {**table, **{(b, a): tuple(reversed(v)) for (a, b), v in table.items()}}
 
 
 def _mirror_built_table() -> dict:
@@ -220,17 +217,10 @@ def _mirror_built_table() -> dict:
     idx = {r: i for i, r in enumerate(REGIONS)}
     keep = {k: v for k, v in TABLE_IV_PRINTED.items() if idx[k[0]] + idx[k[1]] <= 6}
     full = _completed_table(keep)
-    built = dict(keep)
-    for a, b in TABLE_IV_PRINTED:
-        if (a, b) not in keep:
-            built[(a, b)] = tuple(_VIA_MIRROR[v] for v in full[(_MIRROR[a], _MIRROR[b])])
-    return built
-
-
-def _moved_entry() -> dict:
-    t = dict(TABLE_IV_PRINTED)
-    t[("A", "D")] = (1, 3)
-    return t
+    return {
+        (a, b): keep[a, b] if (a, b) in keep else tuple(_VIA_MIRROR[v] for v in full[_MIRROR[a], _MIRROR[b]])
+        for a, b in TABLE_IV_PRINTED
+    }
 
 
 @SECTION.check(
@@ -240,21 +230,15 @@ def _moved_entry() -> dict:
         printed=(TABLE_IV_PRINTED, VIA_POINTS),
         good=(
             _mirror_built_table(),
-            {
-                1: VIA_POINTS[1],
-                2: VIA_POINTS[2],
-                3: _mirror_point(VIA_POINTS[2]),
-                4: _mirror_point(VIA_POINTS[1]),
-            },
+            {k: VIA_POINTS[k] if k < 3 else _mirror_point(VIA_POINTS[_VIA_MIRROR[k]]) for k in VIA_POINTS},
         ),
         good_is="Table IV built from its first half by the mirror rule; Table III from via-points 1, 2 "
         "mirrored",
         slips=(
             Slip(SlipKind.OFF_BY_ONE, "A -> D through via-points 1, 3 (the second one a number off)",
-                 (_moved_entry(), VIA_POINTS)),
+                 ({**TABLE_IV_PRINTED, ("A", "D"): (1, 3)}, VIA_POINTS)),
             Slip(SlipKind.SIGN, "via-point 3 with the sign of x flipped",
-                 (TABLE_IV_PRINTED, {**VIA_POINTS, 3: (-VIA_POINTS[3][0], VIA_POINTS[3][1],
-                     VIA_POINTS[3][2])})),
+                 (TABLE_IV_PRINTED, {**VIA_POINTS, 3: (-VIA_POINTS[3][0], *VIA_POINTS[3][1:])})),
         ),
     ),
 )
@@ -272,14 +256,11 @@ def check_table_iv(ctx, tables) -> Row:
         float(np.abs(np.asarray(_mirror_point(via[k])) - np.asarray(via[_VIA_MIRROR[k]])).max()) for k in via
     )
     regions = [str(r) for r in region_of(np.array([via[2], via[3]], float))]
+    outside = sum(r != e for r, e in zip(regions, "CE", strict=True))
     m = (
         Measure("Table IV entries whose mirror image (y -> -y) differs", len(asym), 0),
         Measure("largest distance of a Table III via-point from its mirror image", via_off, 1e-9, "m"),
-        Measure(
-            "middle via-points 2, 3 outside the sectors C, E",
-            sum(r != e for r, e in zip(regions, "CE", strict=True)),
-            0,
-        ),
+        Measure("middle via-points 2, 3 outside the sectors C, E", outside, 0),
     )
     return Row.graded(
         claim="Table III/IV are consistent with a layout of 7 azimuth sectors A..G (Fig 29 missing)",
@@ -326,15 +307,13 @@ def check_table_iii(ctx, via) -> Row:
 
     P = np.array([via[k] for k in sorted(via)], float)
     cls = oracle_for(ctx).classify(P)
-    platform, floor = THESIS_SCENE.platform, THESIS_SCENE.floor
-    d_box = np.array([float(platform.distance(p)) for p in P])
-    above = P[:, 2] - floor.z
-    zone = 0.030  # Sec 3.6.2.2's safety zone
+    d_box = np.array([float(THESIS_SCENE.platform.distance(p)) for p in P])
+    above = P[:, 2] - THESIS_SCENE.floor.z
     m = (
         Measure("via-points the arm cannot reach (position)", int(np.sum(~cls.reachable)), 0),
-        Measure("smallest distance of a via-point from the platform box", float(d_box.min()), zone, "m",
-                bound=">="),
-        Measure("smallest height of a via-point above the floor", float(above.min()), zone, "m", bound=">="),
+        Measure("smallest distance of a via-point from the platform box", d_box.min(), SAFETY_ZONE, "m",
+                bound=">="),  # Sec 3.6.2.2's safety zone
+        Measure("smallest height of a via-point above the floor", above.min(), SAFETY_ZONE, "m", bound=">="),
     )
     return Row.graded(
         claim="The four via-points of Table III lie inside the workspace, clear of the platform and above "
@@ -344,11 +323,10 @@ def check_table_iii(ctx, via) -> Row:
         "+ bounded position IK) of each printed via-point; its distance to the platform box and its height "
         "above the floor (iik.scene, the 30 mm zone of Sec 3.6.2.2)",
         numbers="; ".join(
-            f"via-point {k} {fmt} mm: {'reachable' if ok else 'unreachable'} (IK residual {res:.1e} m), "
-            f"{db * 1e3:.0f} mm from the platform, {h * 1e3:.0f} mm above the floor"
-            for k, fmt, ok, res, db, h in zip(sorted(via), [str([round(c * 1e3) for c in via[k]]) for k in
-                                                            sorted(via)], cls.reachable, cls.residual, d_box,
-                                              above, strict=True)
+            f"via-point {k} {[round(c * 1e3) for c in via[k]]} mm: {'reachable' if ok else 'unreachable'} "
+            f"(IK residual {res:.1e} m), {db * 1e3:.0f} mm from the platform, {h * 1e3:.0f} mm above the "
+            "floor"
+            for k, ok, res, db, h in zip(sorted(via), cls.reachable, cls.residual, d_box, above, strict=True)
         ),
         measures=m,
         fail=Verdict.DOES_NOT_HOLD,
@@ -359,51 +337,40 @@ def check_table_iii(ctx, via) -> Row:
 
 
 # ----------------------------------------------------------------------------- Fig 42e: two via-points
-def _fine(points: np.ndarray, step: float = 0.005) -> np.ndarray:
-    """A polyline sampled every ``step`` [m]."""
-    out = [points[:1]]
+def _platform_clearance(points: np.ndarray, step: float = 0.005) -> float:
+    """Smallest distance [m] of a polyline sampled every ``step`` [m] from the platform box (-1 inside)."""
+    box, fine = THESIS_SCENE.platform, [points[:1]]
     for a, b in zip(points[:-1], points[1:], strict=True):
         n = max(2, int(np.ceil(np.linalg.norm(b - a) / step)))
-        out.append(a + np.linspace(0, 1, n)[1:, None] * (b - a))
-    return np.concatenate(out)
-
-
-def _platform_clearance(points: np.ndarray) -> float:
-    """Smallest distance [m] of a polyline (sampled every 5 mm) from the platform box (negative inside)."""
-    box = THESIS_SCENE.platform
-    p = _fine(points)
-    return float(min(box.distance(x) if not box.contains(x) else -1.0 for x in p))
+        fine.append(a + np.linspace(0, 1, n)[1:, None] * (b - a))
+    return float(min(box.distance(x) if not box.contains(x) else -1.0 for x in np.concatenate(fine)))
 
 
 @SECTION.check(
     502,
     depends_on=("scene", "platform", "l1", "lengths"),
-    forms=Forms(
-        printed=TABLE_IV_PRINTED,
-        good=TABLE_IV_PRINTED,
-        good_is="Table IV as printed",
-        slips=(
+    forms=Forms.right(
+        TABLE_IV_PRINTED,
+        (
             Slip(SlipKind.OFF_BY_ONE, "A -> D read from the row above (A -> C: via-point 1 only)",
                  {**TABLE_IV_PRINTED, ("A", "D"): (1,)}),
             Slip(SlipKind.CLAIM, "no via-points (the straight line from A to D)",
                  {**TABLE_IV_PRINTED, ("A", "D"): ()}),
         ),
+        good_is="Table IV as printed",
     ),
 )
 def check_fig42e_via_points(ctx, table) -> Row:
     """Sec 4.2.2 (Fig 42e): 'two via-points were chosen by the path planning algorithm to avoid manipulator
     motion conflict zones' (Table IV)."""
-    from iik.planning import load_scenario, region_of, scenario_path
-
     sc = load_scenario(scenario_path("e"))
     start, goal = np.asarray(sc.start.position), np.asarray(sc.goal.position)
     a, b = str(region_of(start)), str(region_of(goal))
     nums = _completed_table(table).get((a, b), ())
     vias = np.array([VIA_POINTS[k] for k in nums], float).reshape(-1, 3)
     path = build_path(sc, scene=THESIS_SCENE, via_points=vias)
-    limit = float(iik.THESIS_ARM.q_max[0])
-    line_clear = _platform_clearance(np.array([start, goal]))
-    path_clear = _platform_clearance(path.points)
+    limit = float(THESIS_ARM.q_max[0])
+    line_clear, path_clear = _platform_clearance(np.array([start, goal])), _platform_clearance(path.points)
     az = float(np.abs(np.arctan2(path.points[:, 1], path.points[:, 0])).max())
     m = (
         Measure("via-points of the path", len(path.via_points), 2, bound=">="),
@@ -412,14 +379,13 @@ def check_fig42e_via_points(ctx, table) -> Row:
         Measure("largest |azimuth| along the path (joint 1 pointing at it)", az, limit, "rad"),
     )
     return Row.graded(
-        claim="Fig 42e: to cross from region A to region D the planner takes two via-points (Table IV: 1, "
-        "2), and so avoids the conflict zone at the centre of the workspace (the platform the arm stands on) "
-        "and the plane behind the arm",
+        claim=f"Fig 42e: {title_of('Claim 4.9')}, from region A to D (1, 2), avoiding the conflict zones "
+        "(the platform the arm stands on, the plane behind the arm)",
         reference="Sec 4.2.2 (Fig 42e), Table IV",
         method="scenario e (scenarios/e.toml): the regions of its start and goal (inferred Fig 29), the "
-        "via-points "
-        "Table IV gives for them, the Sec 3.6 path through them (iik.planning.build_path); clearance from "
-        "the platform box (iik.scene) and azimuth every 5 mm, also of the straight line it replaces",
+        "via-points Table IV gives for them, the Sec 3.6 path through them (iik.planning.build_path); "
+        "clearance from the platform box (iik.scene) and azimuth every 5 mm, also of the straight line it "
+        "replaces",
         numbers=f"start in {a}, goal in {b}: Table IV gives via-points {list(nums)}; the path has "
         f"{len(path.via_points)} via-points; the straight line start -> goal goes "
         f"{'through' if line_clear < 0 else 'past'} the platform (clearance {line_clear * 1e3:.0f} mm, -1000 "
@@ -436,21 +402,20 @@ def check_fig42e_via_points(ctx, table) -> Row:
 
 
 # ----------------------------------------------------------------------------- arc route
-def _segment(path, k: int = 1) -> tuple[np.ndarray, np.ndarray]:
-    mid = path.segment == k
-    return path.points[mid], path.euler[mid]
+def _middle(sc, kinds: tuple[str, str, str]) -> tuple[np.ndarray, np.ndarray]:
+    """The middle segment of ``sc`` built with segments of ``kinds``: (points [m], Eq 42 angles [rad])."""
+    path = build_path(dataclasses.replace(sc, segments=kinds), scene=THESIS_SCENE)
+    return path.points[path.segment == 1], path.euler[path.segment == 1]
 
 
 def arc_route(sc) -> tuple[np.ndarray, np.ndarray]:
-    """The thesis's remedy (Sec 4.2.1.1): an arc between the via-points; (points [m], Eq 42 angles [rad])."""
-    return _segment(build_path(dataclasses.replace(sc, segments=("line", "arc", "line")), scene=THESIS_SCENE))
+    """The thesis's remedy (Sec 4.2.1.1): an arc between the via-points."""
+    return _middle(sc, ("line", "arc", "line"))
 
 
 def straight_route(sc) -> tuple[np.ndarray, np.ndarray]:
     """The straight line between the via-points (what the arc replaced)."""
-    return _segment(
-        build_path(dataclasses.replace(sc, segments=("line", "line", "line")), scene=THESIS_SCENE)
-    )
+    return _middle(sc, ("line", "line", "line"))
 
 
 def joint_space_route(sc) -> tuple[np.ndarray, np.ndarray]:
@@ -459,7 +424,6 @@ def joint_space_route(sc) -> tuple[np.ndarray, np.ndarray]:
     with the orientations FK gives."""
     pts, eul = straight_route(sc)
     ends = all_solutions(pts[[0, -1]], eul[[0, -1]], ramp=0, arm=THESIS_ARM)[0]  # orientation adapted
-
     qa, qb = min(
         ((a, b) for a in ends[0] for b in ends[1]), key=lambda ab: float(np.abs(ab[0] - ab[1]).sum())
     )
@@ -486,50 +450,38 @@ def _unsolved(points, euler) -> int:
 )
 def check_arc_route(ctx, route) -> list[Row]:
     """Sec 4.2.1.1/4.2.1.2: between the via-points the straight line had no IK solutions; an arc had."""
-    from iik.planning import load_scenario, scenario_path
-
     rows = []
     for name in ("p1", "p2"):
         sc = load_scenario(scenario_path(name))
-        line = straight_route(sc)
-        alt = route(sc)
-        n_line, n_alt = _unsolved(*line), _unsolved(*alt)
+        line, alt = straight_route(sc), route(sc)
+        n_line, n_alt, n = _unsolved(*line), _unsolved(*alt), len(line[0])
         m = (
             Measure("steps of the straight line without an IK solution", n_line, 1, bound=">="),
             Measure("steps of the route without an IK solution", n_alt, 0),
         )
-        verdict = Verdict.RECONSTRUCTION if all(x.holds for x in m) else Verdict.NOT_REPRODUCED
-        reasons = []
-        if n_line < 1:
-            reasons.append("the straight line has a solution at every step")
+        reasons = ["the straight line has a solution at every step"] if n_line < 1 else []
         if n_alt > 0:
             reasons.append(
                 f"the route itself has {n_alt} of {len(alt[0])} steps without a solution (the arc fails "
                 f"{'more' if n_alt > n_line else 'as many or fewer'} steps than the line, {n_line})"
             )
-        rows.append(
-            Row(
-                claim=f"{name}: the straight line between the two via-points has steps without IK solutions "
-                "at the given orientations; the arc route has none",
-                reference="Sec 4.2.1.1, 4.2.1.2",
-                method=f"scenarios/{name}.toml (reconstructed via-points and orientations: the thesis "
-                f"prints neither); complete IK (iik.solve, within Table I) at each of the {len(line[0])} "
-                "steps of the middle segment at the nominal (gradual Euler) orientation, for the straight "
-                "line and the route",
-                numbers=f"steps without a solution: straight line {n_line}/{len(line[0])}, route "
-                f"{n_alt}/{len(alt[0])}",
-                verdict=verdict,
-                measures=m,
-                reason="; ".join(reasons)
-                + ("; depends on the reconstructed via-points and orientations" if reasons else ""),
-                id=f"arc_route_{name}",
-                basis=f"the via-points and orientations of {name} are our reconstruction "
-                f"(scenarios/{name}.toml): "
-                "the thesis prints neither, so whether the straight line has unsolvable steps depends on "
-                "them",
-                domain=f"the {len(line[0])} steps of the middle segment of the reconstructed {name}",
-            )
-        )
+        rows.append(Row.graded(
+            claim=f"{name}: {title_of('Claim 4.2')}",
+            reference="Sec 4.2.1.1, 4.2.1.2",
+            method=f"scenarios/{name}.toml (reconstructed via-points and orientations: the thesis prints "
+            f"neither); complete IK (iik.solve, within Table I) at each of the {n} steps of the middle "
+            "segment at the nominal (gradual Euler) orientation, for the straight line and the route",
+            numbers=f"steps without a solution: straight line {n_line}/{n}, route {n_alt}/{len(alt[0])}",
+            measures=m,
+            fail=Verdict.NOT_REPRODUCED,
+            holds_as=Verdict.RECONSTRUCTION,
+            reason="; ".join(reasons) + "; depends on the reconstructed via-points and orientations",
+            id=f"arc_route_{name}",
+            basis=f"the via-points and orientations of {name} are our reconstruction "
+            f"(scenarios/{name}.toml): the thesis prints neither, so whether the straight line has "
+            "unsolvable steps depends on them",
+            domain=f"the {n} steps of the middle segment of the reconstructed {name}",
+        ))
     return rows
 
 
@@ -586,14 +538,10 @@ def measure_clearance(checker: SceneCollision, q, limit: float) -> Clearance:
     return Clearance(value, lower, found[j].link, found[j].object, steps[j])
 
 
-def _obstacles(sc) -> tuple[Box, ...]:
-    return tuple(b for b in sc.obstacles if b.kind == "obstacle")
-
-
 def _tool_zone(sc, q) -> tuple[float, float]:
     """(smallest Eq 52 value of the tool step-points over the ellipsoids padded by the safety zone,
     smallest tool distance to an obstacle box [m]) -- (inf, inf) without obstacles."""
-    obst = _obstacles(sc)
+    obst = [b for b in sc.obstacles if b.kind == "obstacle"]
     if not obst:
         return math.inf, math.inf
     tool = iik.fk(np.asarray(q, float), THESIS_ARM)[:, :3, 3]
@@ -602,28 +550,23 @@ def _tool_zone(sc, q) -> tuple[float, float]:
 
 
 # ----------------------------------------------------------------------------- scenarios: planning
+@per_run
 def _planned(ctx) -> dict:
     """:func:`iik.planning.plan` of every shipped scenario (quick: j and b): name -> (result, wall [s])."""
-    if "planning.results" not in ctx.cache:
-        from iik.planning import PlanOptions, plan, thesis_scenario_paths
+    from iik.planning import PlanOptions, plan
 
-        out = {}
-        for p in thesis_scenario_paths():
-            if ctx.quick and p.stem not in _QUICK:
-                continue
+    out = {}
+    for p in thesis_scenario_paths():
+        if not ctx.quick or p.stem in _QUICK:
             t0 = time.perf_counter()
             res = plan(p, PlanOptions(rrt_time=1.0, seed=ctx.seed % 1000 + 1))
             out[p.stem] = (res, time.perf_counter() - t0)
-        ctx.cache["planning.results"] = out
-    return ctx.cache["planning.results"]
+    return out
 
 
+@per_run
 def _checker(ctx, name: str) -> SceneCollision:
-    key = ("planning.checker", name)
-    if key not in ctx.cache:
-        ctx.cache[key] = SceneCollision(_planned(ctx)[name][0].scenario.obstacles, scene=THESIS_SCENE,
-                                        arm=THESIS_ARM)
-    return ctx.cache[key]
+    return SceneCollision(_planned(ctx)[name][0].scenario.obstacles, scene=THESIS_SCENE, arm=THESIS_ARM)
 
 
 def _branches(sc) -> tuple[np.ndarray, ...]:
@@ -635,12 +578,31 @@ def _branches(sc) -> tuple[np.ndarray, ...]:
     return tuple(b.q for b in tr.complete)
 
 
+@per_run
+def _paths(ctx, kind: str, name: str) -> tuple[np.ndarray, ...]:
+    """The joint paths of :attr:`PathSource.kind` ``kind`` for scenario ``name``."""
+    res = _planned(ctx)[name][0]
+    sc, planned = res.scenario, (res.q,) if len(res.q) else ()
+    if kind == "thesis":
+        return _branches(sc)
+    if kind == "unrepelled":
+        supports = tuple(b for b in sc.obstacles if b.kind != "obstacle")
+        return _branches(dataclasses.replace(sc, obstacles=supports))
+    if kind == "plan":
+        return planned
+    if kind == "plan+timed":
+        return planned + ((res.trajectory.q,) if planned and res.trajectory is not None else ())
+    if kind == "held":
+        return (res.q[:1],) if planned else ()
+    raise ValueError(f"unknown path source {kind!r}")
+
+
 @dataclass(frozen=True)
 class PathSource:
     """The form of the scenario checks: which joint paths of a planned scenario are measured.
 
     Attributes:
-        name: Short label (also the cache key of its paths).
+        name: Short label.
         kind: ``"thesis"`` (the IK branches of the Sec 3.6 path), ``"unrepelled"`` (the same
             with the obstacles' repulsion switched off), ``"plan"`` (the path
             :func:`iik.planning.plan` accepted), ``"plan+timed"`` (that path and its timed
@@ -651,34 +613,14 @@ class PathSource:
     kind: str
 
     def paths(self, ctx, name: str) -> tuple[np.ndarray, ...]:
-        key = ("planning.paths", self.kind, name)
-        if key not in ctx.cache:
-            res = _planned(ctx)[name][0]
-            sc = res.scenario
-            if self.kind == "thesis":
-                out = _branches(sc)
-            elif self.kind == "unrepelled":
-                out = _branches(
-                    dataclasses.replace(sc, obstacles=tuple(b for b in sc.obstacles if b.kind != "obstacle"))
-                )
-            elif self.kind in ("plan", "plan+timed"):
-                out = (res.q,) if len(res.q) else ()
-                if self.kind == "plan+timed" and out and res.trajectory is not None:
-                    out += (res.trajectory.q,)
-            elif self.kind == "held":
-                out = (res.q[:1],) if len(res.q) else ()
-            else:
-                raise ValueError(f"unknown path source {self.kind!r}")
-            ctx.cache[key] = out
-        return ctx.cache[key]
+        return _paths(ctx, self.kind, name)
 
 
 THESIS_PATH = PathSource("the thesis's own path (Sec 3.6 path, least-effort IK branch)", "thesis")
 ACCEPTED = PathSource("the path iik.planning.plan accepted (certified >= 30 mm whole-arm clearance)", "plan")
 UNREPELLED = PathSource("the Sec 3.6 path with the repulsion from the obstacles switched off", "unrepelled")
-_PATH_FORMS = dict(
-    printed=THESIS_PATH, good=ACCEPTED, good_is=ACCEPTED.name,
-    slips=(Slip(SlipKind.MODEL, UNREPELLED.name, UNREPELLED),),
+_PATH_FORMS = Forms(
+    THESIS_PATH, ACCEPTED, ACCEPTED.name, (Slip(SlipKind.MODEL, UNREPELLED.name, UNREPELLED),)
 )
 
 
@@ -695,63 +637,43 @@ class _Choice:
         return self.tried[self.index] if self.q is not None else None
 
 
+@per_run
 def _choose(ctx, source: PathSource, name: str) -> _Choice:
     """The first path of ``source`` whose arm does not touch the scene (else the one of largest clearance)."""
-    key = ("planning.choice", source.kind, name)
-    if key not in ctx.cache:
-        paths, tried = source.paths(ctx, name), []
-        pick = None
-        for k, q in enumerate(paths):
-            tried.append(measure_clearance(_checker(ctx, name), q, 0.0))
-            if tried[-1].value >= 0.0:
-                pick = k
-                break
-        if pick is None and tried:
-            pick = int(np.argmax([c.value for c in tried]))
-        ctx.cache[key] = _Choice(paths[pick] if pick is not None else None, pick or 0, tuple(tried))
-    return ctx.cache[key]
+    paths, tried = source.paths(ctx, name), []
+    for q in paths:
+        tried.append(measure_clearance(_checker(ctx, name), q, 0.0))
+        if tried[-1].value >= 0.0:
+            return _Choice(q, len(tried) - 1, tuple(tried))
+    pick = int(np.argmax([c.value for c in tried])) if tried else None
+    return _Choice(None if pick is None else paths[pick], pick or 0, tuple(tried))
 
 
-def _names(ctx, among=None) -> list[str]:
-    return [n for n in _planned(ctx) if among is None or n in among]
+def _details(ctx, detail: Callable, among=None) -> list[Row]:
+    """One detail row per scenario planned in this run (of ``among``): ``detail(name, plan result)``."""
+    return [detail(n, _planned(ctx)[n][0]) for n in _planned(ctx) if among is None or n in among]
 
 
-def _no_path(sc, method: str, why: str, scope: Scope = Scope.THESIS) -> Row:
-    """The detail row of a scenario for which the form offers no path (it does not hold)."""
-    return Row(
-        sc.title,
-        sc.reference or "Sec 4.2",
-        method,
-        why,
-        Verdict.DOES_NOT_HOLD,
-        reason=why,
-        id=sc.name,
-        scope=scope,
-    )
-
-
-def _scenario_row(
-    sc, method: str, numbers: str, measures, *, claim: str = "", section: str = "Sec 4.2", scope=Scope.THESIS
-) -> Row:
+def _detail(sc, method: str, numbers: str, measures=(), *, claim: str = "", section: str = "Sec 4.2",
+            scope: Scope = Scope.THESIS) -> Row:
     """The detail row of scenario ``sc`` in a claim over the scenarios, graded on ``measures``
-    (DOES_NOT_HOLD if one fails): its claim is ``sc.title`` unless given, its reference the scenario's
-    own, else ``section``."""
-    return Row.graded(
-        claim or sc.title,
-        sc.reference or section,
-        method,
-        numbers,
-        measures,
-        fail=Verdict.DOES_NOT_HOLD,
-        id=sc.name,
-        scope=scope,
-    )
+    (DOES_NOT_HOLD if one fails); without measures, a scenario the form offers no path for (``numbers``
+    says why; it does not hold, claimed as ``sc.title``). Its claim is ``sc.title`` unless given, its
+    reference the scenario's own, else ``section``."""
+    if not measures:
+        return Row(sc.title, sc.reference or "Sec 4.2", method, numbers, Verdict.DOES_NOT_HOLD,
+                   reason=numbers, id=sc.name, scope=scope)
+    return Row.graded(claim or sc.title, sc.reference or section, method, numbers, measures,
+                      fail=Verdict.DOES_NOT_HOLD, id=sc.name, scope=scope)
 
 
 #: What the scenario rows rest on.
-_SCENES = ("the scenes are our reconstruction (scenarios/*.toml): the thesis shows Fig 42's pictures but "
-           "prints "
-           "no start, goal, obstacle size or position, so the verdict is about the reconstructed scenes")
+_SCENES = (
+    "the scenes are our reconstruction (scenarios/*.toml): the thesis shows Fig 42's pictures but prints no "
+    "start, goal, obstacle size or position, so the verdict is about the reconstructed scenes"
+)
+#: Whole-arm clearance, as the project-standard rows measure it.
+_WHOLE_ARM = "whole-arm Coal clearance every 2 mm of arm motion"
 
 
 def _grouped(details: list[Row], what: str, failing: Callable[[list[Row]], str], *,
@@ -773,67 +695,55 @@ def _grouped(details: list[Row], what: str, failing: Callable[[list[Row]], str],
 
 def _quick_note(ctx, among=None) -> str:
     """A sentence naming the scenarios quick mode skipped (of ``among``, default every shipped one)."""
-    if among is None:
-        from iik.planning import thesis_scenario_paths
-
-        among = [p.stem for p in thesis_scenario_paths()]
+    among = among or [p.stem for p in thesis_scenario_paths()]
     skipped = [n for n in among if n not in _planned(ctx)]
-    return (
-        f" Quick mode: only {', '.join(_names(ctx, among))} planned ({', '.join(skipped)} skipped)."
-        if ctx.quick and skipped
-        else ""
-    )
+    if not (ctx.quick and skipped):
+        return ""
+    planned = [n for n in _planned(ctx) if n in among]
+    return f" Quick mode: only {', '.join(planned)} planned ({', '.join(skipped)} skipped)."
+
+
+def _mm(row: Row) -> str:
+    arm = [m for m in row.measures if m.unit == "m"]
+    return f"{arm[0].value * 1e3:.1f} mm" if arm else "-"
 
 
 # ----------------------------------------------------------------------------- scenarios: the rows
-@SECTION.check(510, forms=Forms(**_PATH_FORMS))
+@SECTION.check(510, forms=_PATH_FORMS)
 def check_scenarios(ctx, source: PathSource) -> Row:
     """Sec 4.2.2: in each scenario of Fig 42 the thesis's path keeps its tool outside the padded
     ellipsoids and its arm off the scene (the thesis's own criterion)."""
-    details = []
-    for name in _names(ctx, FIG42):
-        sc = _planned(ctx)[name][0].scenario
-        ch = _choose(ctx, source, name)
+
+    def detail(name, res) -> Row:
+        sc, ch = res.scenario, _choose(ctx, source, name)
         if ch.q is None:
-            details.append(_no_path(sc, source.name, "no IK branch covers every step-point"))
-            continue
+            return _detail(sc, source.name, "no IK branch covers every step-point")
         ev, dbox = _tool_zone(sc, ch.q)
-        c = ch.clearance
-        m = (
-            (
-                Measure(
-                    "smallest Eq 52 value of the tool step-points, ellipsoids + 30 mm zone",
-                    ev,
-                    1 - 1e-6,
-                    bound=">=",
-                ),
+        m = (Measure("whole-arm clearance (no contact)", ch.clearance.value, 0.0, "m", bound=">="),)
+        tool = "no obstacle to repel from (supports only)"
+        if math.isfinite(ev):
+            padded = "smallest Eq 52 value of the tool step-points, ellipsoids + 30 mm zone"
+            m = (Measure(padded, ev, 1 - 1e-6, bound=">="), *m)
+            tool = (
+                f"tool step-points: smallest padded Eq 52 value {ev:.6f} (tool >= {dbox * 1e3:.1f} mm from "
+                "the obstacle boxes)"
             )
-            if math.isfinite(ev)
-            else ()
-        )
-        m += (Measure("whole-arm clearance (no contact)", c.value, 0.0, "m", bound=">="),)
-        tool = (
-            f"tool step-points: smallest padded Eq 52 value {ev:.6f} (tool >= {dbox * 1e3:.1f} mm from the "
-            "obstacle boxes)"
-            if math.isfinite(ev)
-            else "no obstacle to repel from (supports only)"
-        )
         touched = ", ".join(f"{t.value * 1e3:.1f}" for t in ch.tried[: ch.index])
         numbers = (
             f"IK branch {ch.index + 1} of {len(source.paths(ctx, name))}"
             + (f" (earlier branches touch the scene: {touched} mm)" if touched else "")
-            + f"; {tool}; whole arm: min {c.mm()}; {len(branch_switches(ch.q))} branch switches"
+            + f"; {tool}; whole arm: min {ch.clearance.mm()}; {len(branch_switches(ch.q))} branch switches"
         )
-        details.append(_scenario_row(sc, source.name, numbers, m, section="Sec 4.2.2"))
+        return _detail(sc, source.name, numbers, m, section="Sec 4.2.2")
+
+    details = _details(ctx, detail, FIG42)
     figs, views = _illustrations(ctx)
     return _grouped(
         details,
         "the thesis's criterion",
         lambda bad: "; ".join(f"{d.id}: {d.numbers}" for d in bad),
-        claim="The Sec 3.6 planner gives a collision-free path in each scenario of Fig 42: every tool "
-        "step-point outside the obstacles' ellipsoids padded by the 30 mm safety zone, and no part of the "
-        "arm touching the scene (the thesis's own criterion: the zone pads the tool point; joints must not "
-        "collide)",
+        claim=f"{title_of('Claim 4.8')} (Fig 42), by the thesis's own criterion: every tool step-point "
+        "outside the ellipsoids padded by the 30 mm zone, no part of the arm touching the scene",
         reference="Sec 4.2.2, Sec 3.6, Fig 42",
         method=f"{source.name}, on the reconstructed scenes (scenarios/*.toml): Eq 52 at the FK tool point "
         "of every step-point with the corrected Eq 53 radii + the scenario's safety zone; whole-arm Coal "
@@ -851,33 +761,27 @@ def check_scenarios(ctx, source: PathSource) -> Row:
     )
 
 
-def _mm(row: Row) -> str:
-    arm = [m for m in row.measures if m.unit == "m"]
-    return f"{arm[0].value * 1e3:.1f} mm" if arm else "-"
-
-
-@SECTION.check(511, forms=Forms(**_PATH_FORMS))
+@SECTION.check(511, forms=_PATH_FORMS)
 def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
     """Project standard: the thesis's path keeps the whole arm (not only the tool point) a safety zone
     away."""
-    details = []
-    for name in _names(ctx):
-        res = _planned(ctx)[name][0]
-        sc = res.scenario
-        ch = _choose(ctx, source, name)
+
+    def detail(name, res) -> Row:
+        sc, ch = res.scenario, _choose(ctx, source, name)
         if ch.q is None:
-            details.append(_no_path(sc, source.name, "no IK branch covers every step-point", Scope.PROJECT))
-            continue
+            return _detail(sc, source.name, "no IK branch covers every step-point", scope=Scope.PROJECT)
         c = measure_clearance(_checker(ctx, name), ch.q, sc.safety_zone)
-        m = (Measure("whole-arm clearance", c.value, sc.safety_zone, "m", bound=">="),)
         numbers = (
             f"whole arm: min {c.mm()} (certified >= {c.lower * 1e3:.1f} mm); for comparison "
             f"iik.planning.plan: {'OK' if res.success else 'FAILED'} via '{res.method}', its own "
             f"certified bound >= {res.min_clearance * 1e3:.1f} mm (its bisection stops once the zone is "
             "proven: a lower bound, not the minimum; planning.planner measures that path's minimum)"
         )
+        m = (Measure("whole-arm clearance", c.value, sc.safety_zone, "m", bound=">="),)
         claim = f"{sc.title}: whole arm >= {sc.safety_zone * 1e3:.0f} mm"
-        details.append(_scenario_row(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT))
+        return _detail(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT)
+
+    details = _details(ctx, detail)
     return _grouped(
         details,
         "the whole-arm 30 mm standard",
@@ -886,8 +790,8 @@ def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
         "only the tool point -- at least the 30 mm safety zone from the scene, on every step-point and "
         "motion",
         reference="Sec 4.2, Sec 3.6",
-        method=f"{source.name}; whole-arm Coal clearance sampled every 2 mm of arm motion (certified "
-        "bisection where the bound is undecided)." + _quick_note(ctx),
+        method=f"{source.name}; {_WHOLE_ARM} (certified bisection where the bound is undecided)."
+        + _quick_note(ctx),
         numbers="; ".join(f"{d.id}: {_mm(d)}" for d in details),
         scope=Scope.PROJECT,
         id="scenarios_whole_arm",
@@ -902,23 +806,17 @@ _HELD = PathSource("the first configuration of iik.planning.plan's path, held (n
 @SECTION.check(
     512,
     depends_on=_DEP + ("speed-limits", "accel-limits"),
-    forms=Forms(printed=_PLANNER, good=_HELD, good_is=_HELD.name,
-                slips=(Slip(SlipKind.MODEL, UNREPELLED.name, UNREPELLED),)),
+    forms=Forms(_PLANNER, _HELD, _HELD.name, _PATH_FORMS.slips),
 )
 def check_planner(ctx, source: PathSource) -> Row:
     """Project standard: iik.planning.plan's path and timed trajectory keep the whole arm 30 mm away."""
-    details = []
-    for name in _names(ctx):
-        res, wall = _planned(ctx)[name]
-        sc = res.scenario
-        paths = source.paths(ctx, name)
+    labels = ("path", "timed trajectory")
+
+    def detail(name, res) -> Row:
+        sc, wall, paths = res.scenario, _planned(ctx)[name][1], source.paths(ctx, name)
         if not paths:
-            details.append(
-                _no_path(sc, source.name, f"no path ({res.reason or 'none offered'})", Scope.PROJECT)
-            )
-            continue
+            return _detail(sc, source.name, f"no path ({res.reason or 'none offered'})", scope=Scope.PROJECT)
         cs = [measure_clearance(_checker(ctx, name), q, sc.safety_zone) for q in paths]
-        labels = ("path", "timed trajectory")
         m = tuple(
             Measure(f"whole-arm clearance, {labels[min(k, 1)]}", c.value, sc.safety_zone, "m", bound=">=")
             for k, c in enumerate(cs)
@@ -930,7 +828,9 @@ def check_planner(ctx, source: PathSource) -> Row:
             + f"; planned in {wall:.2f} s"
         )
         claim = f"{sc.title}: iik.planning.plan"
-        details.append(_scenario_row(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT))
+        return _detail(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT)
+
+    details = _details(ctx, detail)
     return _grouped(
         details,
         "the planner's 30 mm standard",
@@ -939,8 +839,8 @@ def check_planner(ctx, source: PathSource) -> Row:
         "arm at least the 30 mm safety zone from the scene in every shipped scenario",
         reference="Sec 4.2, Sec 3.6",
         method=f"{source.name}: the planner (thesis path, other IK branches, arc route, redesigns, "
-        "RRT-Connect; TOPP-RA), re-measured here independently of its acceptance rule: whole-arm Coal "
-        "clearance every 2 mm of arm motion." + _quick_note(ctx),
+        f"RRT-Connect; TOPP-RA), re-measured here independently of its acceptance rule: {_WHOLE_ARM}."
+        + _quick_note(ctx),
         numbers="; ".join(f"{d.id}: {_mm(d)}" for d in details),
         scope=Scope.PROJECT,
         id="planner",
@@ -949,68 +849,54 @@ def check_planner(ctx, source: PathSource) -> Row:
     )
 
 
-@dataclass(frozen=True)
-class _Jolted:
-    """The thesis's path with joint 1 moved by ``jump`` [rad] from the middle step on (a bad form)."""
-
-    jump: float = 0.6
+def _joint_line(q: np.ndarray) -> np.ndarray:
+    """The joint-space straight line between the ends of a joint path (smooth by construction)."""
+    return q[0] + np.linspace(0.0, 1.0, len(q))[:, None] * (q[-1] - q[0])
 
 
-@dataclass(frozen=True)
-class _JointLine:
-    """The joint-space straight line between the ends of the thesis's path (smooth by construction)."""
-
-
-def _smooth_path(ctx, form, name: str) -> np.ndarray | None:
-    """The joint path ``form`` offers for scenario ``name`` (the thesis's, or one derived from it)."""
-    if isinstance(form, PathSource):
-        return _choose(ctx, form, name).q
-    q = _choose(ctx, THESIS_PATH, name).q
-    if q is None:
-        return None
-    if isinstance(form, _JointLine):
-        return q[0] + np.linspace(0.0, 1.0, len(q))[:, None] * (q[-1] - q[0])
+def _jolted(q: np.ndarray, jump: float = 0.6) -> np.ndarray:
+    """The joint path with joint 1 moved by ``jump`` [rad] from the middle step on."""
     out = q.copy()
-    out[len(q) // 2 :, 0] += form.jump
+    out[len(q) // 2 :, 0] += jump
     return out
+
+
+def _as_planned(q: np.ndarray) -> np.ndarray:
+    """The thesis's own path, as it is."""
+    return q
 
 
 @SECTION.check(
     513,
     forms=Forms(
-        printed=THESIS_PATH,
-        good=_JointLine(),
+        printed=_as_planned,
+        good=_joint_line,
         good_is="the joint-space straight line between the ends of the thesis's path",
         slips=(Slip(SlipKind.BRANCH, "the thesis's path with joint 1 jumping 0.6 rad at the middle step "
-                    "(another IK branch)", _Jolted()),),
+                    "(another IK branch)", _jolted),),
     ),
 )
-def check_smooth_joints(ctx, form) -> Row:
-    """Sec 4.2.2 (Figs 43-44): the joint angles change smoothly from step-point to step-point."""
-    details = []
-    for name in _names(ctx, FIG42):
-        sc = _planned(ctx)[name][0].scenario
-        q = _smooth_path(ctx, form, name)
+def check_smooth_joints(ctx, form: Callable) -> Row:
+    """Sec 4.2.2 (Figs 43-44): the joint angles change smoothly from step-point to step-point; ``form``
+    maps the thesis's path (Sec 3.6 path, least-effort IK branch) to the path graded."""
+
+    def detail(name, res) -> Row:
+        q = _choose(ctx, THESIS_PATH, name).q
         if q is None or len(q) < 2:
-            details.append(_no_path(sc, "thesis path", "no IK branch covers every step-point"))
-            continue
-        dq = np.abs(np.diff(q, axis=0))
+            return _detail(res.scenario, "thesis path", "no IK branch covers every step-point")
+        dq = np.abs(np.diff(form(q), axis=0))
         step = dq.max(axis=1)
         k = int(step.argmax())
-        m = (
-            Measure(
-                "largest joint change between consecutive step-points",
-                float(step.max()),
-                BRANCH_SWITCH_STEP,
-                "rad",
-            ),
-        )
+        jump = "largest joint change between consecutive step-points"
+        m = (Measure(jump, step[k], BRANCH_SWITCH_STEP, "rad"),)
         numbers = (
             f"largest joint change {math.degrees(step.max()):.1f} deg (joint {int(dq[k].argmax()) + 1} "
             f"of 1-6) between step-points {k} and {k + 1} of 0-{len(q) - 1}; median "
             f"{math.degrees(float(np.median(step))):.2f} deg"
         )
-        details.append(_scenario_row(sc, "thesis path", numbers, m, section="Sec 4.2.2"))
+        return _detail(res.scenario, "thesis path", numbers, m, section="Sec 4.2.2")
+
+    details = _details(ctx, detail, FIG42)
     return _grouped(
         details,
         "smoothness",
@@ -1021,8 +907,7 @@ def check_smooth_joints(ctx, form) -> Row:
             "orientation search, which may turn the gripper by half a turn (joint 6) or change IK branch "
             "between two step-points"
         ),
-        claim="The joint angles of the planned paths change smoothly from step-point to step-point (no jump "
-        "to another IK branch)",
+        claim=f"{title_of('Claim 4.10')} (no jump to another IK branch)",
         reference="Sec 4.2.2 (Figs 43-44)",
         method="the thesis's own path (as in planning.scenarios); a step is a jump if a joint changes by "
         f"more than {math.degrees(BRANCH_SWITCH_STEP):.1f} deg (iik.joint_path.BRANCH_SWITCH_STEP, the "
@@ -1041,21 +926,13 @@ def check_smooth_joints(ctx, form) -> Row:
 
 
 # ----------------------------------------------------------------------------- the figures and 3D views
+@per_run
 def _illustrations(ctx) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """Figures of scenario j's plan and the offline 3D views of j and p1 (quick: j): relative paths."""
-    if "planning.illustrations" in ctx.cache:
-        return ctx.cache["planning.illustrations"]
-    planned = _planned(ctx)
-    figs: tuple[str, ...] = ()
-    if "j" in planned and len(planned["j"][0].q):
-        figs = _figures(ctx, planned["j"][0])
-    views = tuple(
-        _export_view(ctx, n, planned[n][0])
-        for n in (_VIEWS_QUICK if ctx.quick else _VIEWS)
-        if n in planned and len(planned[n][0].q)
-    )
-    ctx.cache["planning.illustrations"] = (figs, views)
-    return figs, views
+    planned = {n: res for n, (res, _) in _planned(ctx).items() if len(res.q)}
+    figs = _figures(ctx, planned["j"]) if "j" in planned else ()
+    views = _VIEWS_QUICK if ctx.quick else _VIEWS
+    return figs, tuple(_export_view(ctx, n, planned[n]) for n in views if n in planned)
 
 
 def _figures(ctx, res) -> tuple[str, ...]:
@@ -1085,13 +962,14 @@ def _export_view(ctx, name: str, res) -> str:
 
 
 # ----------------------------------------------------------------------------- timing (Eq 54)
-def _peak(traj, arm) -> tuple[float, float]:
-    """(max |qd| / v_max, max |qdd| / a_max) of a trajectory; a velocity step (qdd not finite) is infinite."""
-    v = float((np.abs(traj.qd) / np.asarray(arm.velocity)).max())
+def _peak(traj, arm) -> tuple[float, float, float]:
+    """(max |qd| / v_max, max |qdd| / a_max, largest speed change between samples / v_max) of a trajectory;
+    a velocity step (qdd not finite) needs an infinite acceleration."""
+    step = np.abs(np.diff(traj.qd, axis=0)) if len(traj.qd) > 1 else np.zeros(1)
+    v, dv = (float((x / np.asarray(arm.velocity)).max()) for x in (np.abs(traj.qd), step))
     if np.all(np.isfinite(traj.qdd)):
-        return v, float((np.abs(traj.qdd) / np.asarray(arm.acceleration)).max())
-    jumps = np.abs(np.diff(traj.qd, axis=0)).max() if len(traj.qd) > 1 else 0.0
-    return v, (math.inf if jumps > 1e-12 else 0.0)
+        return v, float((np.abs(traj.qdd) / np.asarray(arm.acceleration)).max()), dv
+    return v, (math.inf if step.max() > 1e-12 else 0.0), dv
 
 
 def _toppra_double_limits(q, arm):
@@ -1113,20 +991,13 @@ def _toppra_double_limits(q, arm):
 )
 def check_thesis_timing(ctx, timing: Callable) -> Row:
     """Project standard: timing the paths with speeds proportional to the effort index respects the limits."""
-    arm = iik.THESIS_ARM
-    peaks, per = [], []
-    for name in _names(ctx):
-        res = _planned(ctx)[name][0]
+    arm, peaks, per = THESIS_ARM, [], []
+    for name, (res, _) in _planned(ctx).items():
         if len(res.q) < 2:
             continue
         tr = timing(res.q, arm)
-        v, a = _peak(tr, arm)
+        v, a, dv = _peak(tr, arm)
         peaks.append((v, a))
-        dv = (
-            float((np.abs(np.diff(tr.qd, axis=0)) / np.asarray(arm.velocity)).max())
-            if len(tr.qd) > 1
-            else 0.0
-        )
         per.append(
             f"{name}: {tr.duration:.2f} s, max |qd|/v {v:.3f}, max |qdd|/a "
             + ("unbounded" if math.isinf(a) else f"{a:.3f}")

@@ -20,8 +20,9 @@ from iik.planning import build_path, poses_of
 from iik.planning.scenario_io import load_scenario, thesis_scenario_paths
 from iik.scene import THESIS_SCENE
 
+from ..formula import per_run
 from ..oracles.baselines import newton_pinv
-from ..registry import Forms, Measure, Row, Section, Slip, SlipKind, Verdict, verdict_of
+from ..registry import Forms, Measure, Row, Section, Slip, SlipKind, Verdict
 from ..shorthand import wrap
 from .ik import Solver, solver_forms
 
@@ -32,27 +33,22 @@ _DEP = ("l1", "lengths", "scene", "platform")
 SECTION = Section("Predefined paths (Sec 4.2.1)", depends_on=_DEP)
 
 
-def _scenarios(ctx) -> dict:
-    key = "paths.scenarios"
-    if key not in ctx.cache:
-        ctx.cache[key] = {p.stem: load_scenario(p) for p in thesis_scenario_paths() if p.stem in PATHS}
-    return ctx.cache[key]
-
-
 def _path(sc, steps: int | None = None):
     if steps is not None:
         sc = dataclasses.replace(sc, steps_per_segment=steps)
     return build_path(sc, scene=THESIS_SCENE)
 
 
+@per_run
+def _scenarios(ctx) -> dict:
+    return {p.stem: load_scenario(p) for p in thesis_scenario_paths() if p.stem in PATHS}
+
+
+@per_run
 def _poses(ctx) -> dict:
-    key = "paths.poses"
-    if key not in ctx.cache:
-        ctx.cache[key] = {
-            name: poses_of(cp.points, cp.euler)
-            for name, cp in ((n, _path(sc)) for n, sc in _scenarios(ctx).items())
-        }
-    return ctx.cache[key]
+    """The step-points of each path at the nominal orientation: name -> (n, 4, 4) poses [m]."""
+    paths = {name: _path(sc) for name, sc in _scenarios(ctx).items()}
+    return {name: poses_of(cp.points, cp.euler) for name, cp in paths.items()}
 
 
 @SECTION.check(
@@ -99,14 +95,14 @@ def step_length(ctx, steps):
     )
 
 
-def _within(Q, V, i) -> np.ndarray:
-    q = Q[i][V[i]]
-    return q[np.atleast_1d(ARM.within_limits(q))] if len(q) else q
-
-
 def _solutions(solver: Solver, T) -> list[np.ndarray]:
+    """The solutions of ``solver`` within Table I at each pose of ``T`` [rad]."""
     Q, V, *_ = solver(T)
-    return [_within(Q, V, i) for i in range(len(T))]
+    sols = [Q[i][V[i]] for i in range(len(T))]
+    return [q[np.atleast_1d(ARM.within_limits(q))] if len(q) else q for q in sols]
+
+
+_DOMAIN = f"every step-point of the reconstructed paths {', '.join(PATHS)}"
 
 
 @SECTION.check(
@@ -119,10 +115,8 @@ def iik_along_paths(ctx, solver):
     complete = Solver("complete", "complete")
     lines, n_solvable, n_missed, n_none = [], 0, 0, 0
     for name, T in _poses(ctx).items():
-        ref = _solutions(complete, T)
-        got = _solutions(solver, T)
-        solvable = np.array([len(r) > 0 for r in ref])
-        missed = solvable & np.array([len(g) == 0 for g in got])
+        solvable = np.array([len(r) > 0 for r in _solutions(complete, T)])
+        missed = solvable & np.array([len(g) == 0 for g in _solutions(solver, T)])
         n_solvable += int(solvable.sum())
         n_missed += int(missed.sum())
         n_none += int((~solvable).sum())
@@ -131,26 +125,20 @@ def iik_along_paths(ctx, solver):
             f"the nominal orientation; the form misses {int(missed.sum())} of the {int(solvable.sum())} "
             "solvable ones"
         )
-    m = (Measure("solvable step-points without a solution from the form", n_missed, 0),)
-    return Row(
+    return Row.graded(
         "The IIK computes the joint angles at each position along the predefined paths.",
         "Sec 4.2.1, Sec 5.2",
         f"{solver.name}, within Table I, at every step-point of {', '.join(PATHS)} with the nominal "
-        "orientation; "
-        "graded on the step-points where the complete solver finds a solution (the others are a limit of the "
-        "reconstructed paths and orientations, reported)",
-        "; ".join(lines)
-        + f". Total: {n_none} step-points unsolvable by any method at the nominal orientation",
-        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        "orientation; graded on the step-points where the complete solver finds a solution (the others are a "
+        "limit of the reconstructed paths and orientations, reported)",
+        "; ".join(lines) + f". Total: {n_none} step-points unsolvable by any method at the nominal "
+        "orientation",
+        (Measure("solvable step-points without a solution from the form", n_missed, 0),),
+        fail=Verdict.DOES_NOT_HOLD,
         id="iik_along_paths",
-        measures=m,
-        domain=f"every step-point of the reconstructed paths {', '.join(PATHS)} (the misses are the IIK's "
-        "own, as on random poses: ik.completeness)",
-        reason=""
-        if n_missed == 0
-        else "the theta1 grid misses roots and c3 = +-sqrt(1 - s3^2) (Eq 21) loses accuracy near theta3 = "
-             "+-90 "
-        "deg (see ik.completeness)",
+        domain=f"{_DOMAIN} (the misses are the IIK's own, as on random poses: ik.completeness)",
+        reason="the theta1 grid misses roots and c3 = +-sqrt(1 - s3^2) (Eq 21) loses accuracy near theta3 = "
+        "+-90 deg (see ik.completeness)",
     )
 
 
@@ -203,18 +191,12 @@ def iik_vs_newton(ctx, pick):
     thesis = Solver("thesis IIK", "thesis")
     dq_all, de_all, lines = [], [], []
     for name, T in _poses(ctx).items():
-        sols = _solutions(thesis, T)
-        dq, de = [], []
-        prev = None
-        for i in range(len(T)):
-            if len(sols[i]) == 0:
-                prev = None  # a gap: restart after it
+        prev, dq, de = None, [], []
+        for i, cands in enumerate(_solutions(thesis, T)):
+            if len(cands) == 0 or prev is None:  # a gap: restart after it, least effort from home
+                prev = _pick_min_effort(cands, np.zeros(6), T[i]) if len(cands) else None
                 continue
-            if prev is None:
-                prev = _pick_min_effort(sols[i], np.zeros(6), T[i])
-                continue
-            q_iik = pick(sols[i], prev, T[i])
-            qn = _newton(T[i], prev)
+            q_iik, qn = pick(cands, prev, T[i]), _newton(T[i], prev)
             dq.append(float(np.max(np.abs(wrap(q_iik - qn)))) if qn is not None else np.inf)
             de.append(abs(effort_index(prev, q_iik) - effort_index(prev, qn)) if qn is not None else np.inf)
             prev = q_iik
@@ -226,8 +208,6 @@ def iik_vs_newton(ctx, pick):
             f"difference {np.max(dq):.2g} rad"
         )
     dq, de = np.concatenate(dq_all), np.concatenate(de_all)
-    mq = (Measure("share of steps where the joint values differ", float(np.mean(dq > _SAME)), 0.0),)
-    me = (Measure("share of steps where the effort index differs", float(np.mean(de > _SAME)), 0.0),)
     method = (
         f"thesis IIK at every step-point of {', '.join(PATHS)} (nominal orientation), the solution chosen by "
         "the form from the previous IIK configuration; Newton (pseudo-inverse, Pinocchio) started from the "
@@ -235,19 +215,17 @@ def iik_vs_newton(ctx, pick):
         f"within {_SAME:g} rad"
     )
     return [
-        Row(
+        Row.graded(
             "IIK and Newton give exactly the same joint angles along the predefined paths (Figs 31, 35, 39).",
             "Sec 4.2.1.1",
             method,
             "; ".join(lines),
-            verdict_of(mq, fail=Verdict.DOES_NOT_HOLD),
+            (Measure("share of steps where the joint values differ", float(np.mean(dq > _SAME)), 0.0),),
+            fail=Verdict.DOES_NOT_HOLD,
             id="iik_vs_newton.joints",
-            measures=mq,
-            domain=f"every step-point of the reconstructed paths {', '.join(PATHS)} with an IIK solution",
-            reason=""
-            if mq[0].holds
-            else "on some steps Newton reaches a solution the thesis IIK missed (theta3 "
-            "near +-90 deg, Eq 21), leaves Table I, or jumps to another branch",
+            domain=f"{_DOMAIN} with an IIK solution",
+            reason="on some steps Newton reaches a solution the thesis IIK missed (theta3 near +-90 deg, Eq "
+            "21), leaves Table I, or jumps to another branch",
         ),
         Row.graded(
             "Hence the effort index (Eq 54) of both is identical (Figs 32, 36, 40).",
@@ -255,9 +233,9 @@ def iik_vs_newton(ctx, pick):
             method + "; Eq 54 from the previous configuration to each answer",
             f"effort index differs (> {_SAME:g} rad) on {np.mean(de > _SAME):.1%} of {len(de)} steps; "
             f"largest difference {np.max(de):.2g} rad",
-            me,
+            (Measure("share of steps where the effort index differs", float(np.mean(de > _SAME)), 0.0),),
             fail=Verdict.DOES_NOT_HOLD,
             id="iik_vs_newton.effort",
-            domain=f"every step-point of the reconstructed paths {', '.join(PATHS)} with an IIK solution",
+            domain=f"{_DOMAIN} with an IIK solution",
         ),
     ]

@@ -18,12 +18,12 @@ import numpy as np
 from scipy.optimize import least_squares
 
 import iik
-from iik import THESIS_ARM
 from iik.singularities import ALL_SETS, TABLE_VI, TABLE_VII, at_limit_mask, reduced_rank, sample_set
 
+from ..formula import per_run
 from ..oracles.pinocchio_model import tool_jacobians
 from ..plotting import new_figure
-from ..registry import Forms, Measure, Row, Section, Slip, SlipKind, Verdict, verdict_of
+from ..registry import Forms, Measure, Row, Section, Slip, SlipKind, Verdict
 
 ARM = iik.THESIS_ARM
 _D = np.pi / 180
@@ -33,10 +33,8 @@ SECTION = Section("Singularities (App. D, Tables VI-VII)", depends_on=_DEP)
 
 
 def _set_label(s) -> str:
-    cells = []
-    for j in range(1, 6):
-        v = s.fixed_dict().get(j)
-        cells.append(f"th{j}={round(v / _D):d}" if v is not None else f"th{j} free")
+    fixed = s.fixed_dict()
+    cells = (f"th{j}={round(fixed[j] / _D):d}" if j in fixed else f"th{j} free" for j in range(1, 6))
     return "[" + ", ".join(cells) + "]"
 
 
@@ -56,7 +54,7 @@ def _necessity(s, rng, n=20):
             continue
         q = sample_set(s, n, rng, ARM)
         q[:, j - 1] = v + 15 * _D if v + 15 * _D <= ARM.upper[j - 1] else v - 15 * _D
-        rank, _ = reduced_rank(iik.position_jacobian(q, THESIS_ARM)[..., :5], at_limit_mask(q, ARM), RTOL)
+        rank, _ = reduced_rank(iik.position_jacobian(q, ARM)[..., :5], at_limit_mask(q, ARM), RTOL)
         out.append((j, float(np.mean(rank < 3))))
     return out
 
@@ -81,23 +79,16 @@ def _shifted_joints(sets):
     return tuple(replace(s, fixed=tuple(((j % 5) + 1, v) for j, v in s.fixed)) for s in sets)
 
 
-def _entry(claim: str, source: str, numbers: str, measure: Measure, rid: str, basis: str = "") -> Row:
-    """One entry of Table VI or VII (a set, or a group of sets): holds when singular on every sample."""
-    return Row.graded(claim, source, "", numbers, (measure,), fail=Verdict.DOES_NOT_HOLD, id=rid,
-                      holds_as=Verdict.IDENTITY if basis else Verdict.HOLDS, basis=basis)
+def _graded(claim: str, source: str, method: str, numbers: str, measure: Measure, rid: str, basis: str = "",
+            **fields) -> Row:
+    """A row of Table VI or VII (the table, or one entry: a set or a group of sets): it holds when singular
+    on every sample (with ``basis``, by construction)."""
+    return Row.graded(claim, source, method, numbers, (measure,), fail=Verdict.DOES_NOT_HOLD, id=rid,
+                      holds_as=Verdict.IDENTITY if basis else Verdict.HOLDS, basis=basis, **fields)
 
 
-def _table(rid: str, claim: str, source: str, method: str, bad_is: str, details: list[Row], numbers,
-           basis: str = "", domain: str = "") -> Row:
-    """The grouped row of Table VI or VII over its ``details``; ``numbers(bad)`` words the result, ``bad``
-    the entries that do not pass (counted by the measure ``bad_is``); with ``basis`` it holds by
-    construction."""
-    bad = [d for d in details if not d.verdict.passes]
-    m = (Measure(bad_is, len(bad), 0),)
-    return Row.graded(
-        claim, source, method, numbers(bad), m, fail=Verdict.DOES_NOT_HOLD, id=rid, details=tuple(details),
-        holds_as=Verdict.IDENTITY if basis else Verdict.HOLDS, basis=basis, domain=domain,
-    )
+def _failing(details: list[Row]) -> list[Row]:
+    return [d for d in details if not d.verdict.passes]
 
 
 #: Why Table VII holds whatever the arm: three columns dropped leave a 3x2 matrix.
@@ -138,25 +129,20 @@ def table_vi(ctx, sets):
             )
         if s.note:
             numbers += f". Note: {s.note}"
-        details.append(
-            _entry(
-                f"{s.name} = {_set_label(s)} is a type {s.kind} singularity set.",
-                f"App. D, Table VI, {s.name}",
-                numbers,
-                Measure("share of samples with full rank", 1 - frac, 0.0),
-                f"s{s.index}",
-            )
-        )
-    return _table(
-        "table_vi",
+        claim = f"{s.name} = {_set_label(s)} is a type {s.kind} singularity set."
+        m = Measure("share of samples with full rank", 1 - frac, 0.0)
+        details.append(_graded(claim, f"App. D, Table VI, {s.name}", "", numbers, m, f"s{s.index}"))
+    bad = _failing(details)
+    return _graded(
         f"The {len(sets)} sets of Table VI (type I and II) are singularity sets of the arm.",
         "Table VI (App. D)",
         f"Pinocchio position Jacobian (reduced: columns of joints at a limit dropped) on {n} random samples "
         "of each set's free joints within Table I; singular = rank < 3",
-        "sets that are not singular",
-        details,
-        lambda bad: f"{len(sets) - len(bad)} of {len(sets)} sets singular on every sample"
+        f"{len(sets) - len(bad)} of {len(sets)} sets singular on every sample"
         + (f"; not: {', '.join(d.id for d in bad)}" if bad else ""),
+        Measure("sets that are not singular", len(bad), 0),
+        "table_vi",
+        details=tuple(details),
         domain=f"{n} samples per set, each free joint uniform over its whole Table I range",
     )
 
@@ -181,28 +167,29 @@ def table_vii(ctx, sets):
         s0 = group[0]
         joints = [j for j, _ in s0.fixed]
         details.append(
-            _entry(
+            _graded(
                 f"s({s0.index})-s({group[-1].index}): joints {joints} at their limits (8 combinations), "
                 f"joints {list(s0.free)} free, are constraint (type III) singularity sets.",
                 f"App. D, Table VII, s({s0.index})-s({group[-1].index})",
+                "",
                 f"rank < 3 on {min(fr):.0%}-{max(fr):.0%} of samples"
                 + (f". Note: {s0.note}" if s0.note else ""),
                 Measure("share of samples with full rank (worst set)", 1 - min(fr), 0.0),
                 f"s{s0.index}-{group[-1].index}",
-                basis=_VII_BASIS,
+                _VII_BASIS,
             )
         )
-    return _table(
-        "table_vii",
+    bad = _failing(details)
+    return _graded(
         f"The {len(sets)} sets of Table VII (type III: three joints at limits) are singularity sets.",
         "Table VII (App. D)",
         f"Pinocchio reduced Jacobian (columns of the joints at limits dropped) on {n} samples per set",
-        "groups with a set that is not singular",
-        details,
-        lambda bad: f"{len(details) - len(bad)} of {len(details)} groups singular on every sample (with "
-        "three columns dropped the reduced Jacobian is 3x2, so rank <= 2: these sets are singular by "
-        "their construction)",
-        basis=_VII_BASIS,
+        f"{len(details) - len(bad)} of {len(details)} groups singular on every sample (with three columns "
+        "dropped the reduced Jacobian is 3x2, so rank <= 2: these sets are singular by their construction)",
+        Measure("groups with a set that is not singular", len(bad), 0),
+        "table_vii",
+        _VII_BASIS,
+        details=tuple(details),
         domain=f"{n} samples per set, the free joints uniform over Table I",
     )
 
@@ -210,6 +197,10 @@ def table_vii(ctx, sets):
 def _minors(J: np.ndarray, cols: list[int]) -> np.ndarray:
     Jr = J[:, cols]
     return np.array([np.linalg.det(Jr[:, list(c)]) for c in itertools.combinations(range(Jr.shape[1]), 3)])
+
+
+#: The bounded least squares of :func:`search_singular`: tight tolerances, 200 evaluations at most.
+_LSQ = dict(xtol=1e-13, ftol=1e-13, gtol=1e-13, max_nfev=200)
 
 
 def search_singular(ctx, trials: int, trials_interior: int):
@@ -230,17 +221,9 @@ def search_singular(ctx, trials: int, trials_interior: int):
                     def f(x, q=q, free=free):
                         qq = q.copy()
                         qq[free] = x
-                        return _minors(iik.position_jacobian(np.r_[qq, 0.0], THESIS_ARM)[:, :5], free)
+                        return _minors(iik.position_jacobian(np.r_[qq, 0.0], ARM)[:, :5], free)
 
-                    sol = least_squares(
-                        f,
-                        q[free],
-                        bounds=(lo[free], hi[free]),
-                        xtol=1e-13,
-                        ftol=1e-13,
-                        gtol=1e-13,
-                        max_nfev=200,
-                    )
+                    sol = least_squares(f, q[free], bounds=(lo[free], hi[free]), **_LSQ)
                     if np.abs(sol.fun).max() > 1e-10:
                         continue
                     qq = q.copy()
@@ -280,11 +263,9 @@ def member_of_type_i(S, q) -> bool:
     return abs(q[3]) < 1e-5 and abs(q[4]) < 1e-5
 
 
+@per_run
 def _found(ctx):
-    key = ("sing.found", ctx.quick)
-    if key not in ctx.cache:
-        ctx.cache[key] = search_singular(ctx, ctx.n(2, 1), ctx.n(20, 6))
-    return ctx.cache[key]
+    return search_singular(ctx, ctx.n(2, 1), ctx.n(20, 6))
 
 
 @SECTION.check(
@@ -309,70 +290,54 @@ def missing_singularities(ctx, member):
     ex = ""
     if unexpl:
         S, q = unexpl[0]
-        ex = (
-            f"\nExample not in any set: joints {[j + 1 for j in S]} at limits, q[1..5] = ["
-            + ", ".join(f"{v:.4f}" for v in q)
-            + "] rad"
-        )
+        ex = f"\nExample not in any set: joints {[j + 1 for j in S]} at limits, q[1..5] = {_rad(q)}"
     for q in interior_unexpl[:2]:
         ex += _type_i_note(q)
-    m = (Measure("singular configurations found in no listed set", len(unexpl), 0),)
-    return Row(
+    reasons = []
+    if interior_unexpl:
+        reasons.append(f"{len(interior_unexpl)} singular configurations with no joint at a limit lie outside "
+                       "s(1) (type I is incomplete)")
+    if any(len(S) for S, _ in unexpl):
+        reasons.append("with one or two joints at limits the reduced Jacobian is singular on curved 2-D "
+                       "families (det = 0) that no table row describes")
+    return Row.graded(
         'Tables VI and VII list the singularity sets of the arm ("all the singularities found").',
         "App. D, Sec 3.4.2",
         "For the full Jacobian and every choice of one or two joints held at a limit (51 cases), "
         f"{ctx.n(2, 1)} random starts each ({ctx.n(20, 6)} for the full Jacobian): bounded least squares on "
-        "all 3x3 "
-        "minors of the reduced Jacobian (rank < 3 <=> all minors vanish), then membership in the listed sets "
-        "and clustering by which joints sit at limits or at 0/+-90 deg",
+        "all 3x3 minors of the reduced Jacobian (rank < 3 <=> all minors vanish), then membership in the "
+        "listed sets and clustering by which joints sit at limits or at 0/+-90 deg",
         f"{len(res)} singular configurations found; {len(res) - len(unexpl)} lie in a listed set; "
-        f"{len(unexpl)} lie in "
-        f"none ({len(clusters)} clusters). With no joint at a limit: {len(interior)} found, "
-        f"{len(interior_unexpl)} outside the list. Largest clusters: {top}{ex}",
-        verdict_of(m, fail=Verdict.DOES_NOT_HOLD),
+        f"{len(unexpl)} lie in none ({len(clusters)} clusters). With no joint at a limit: {len(interior)} "
+        f"found, {len(interior_unexpl)} outside the list. Largest clusters: {top}{ex}",
+        (Measure("singular configurations found in no listed set", len(unexpl), 0),),
+        fail=Verdict.DOES_NOT_HOLD,
         id="missing",
-        measures=m,
         figures=figs,
         domain="51 cases (no joint, one or two joints at a limit), random starts over Table I; the search "
         "ends on the singular set, so the sample is the singular configurations themselves",
-        reason="; ".join(
-            (
-                [
-                    f"{len(interior_unexpl)} singular configurations with no joint at a limit lie outside "
-                    "s(1) (type I is incomplete)"
-                ]
-                if interior_unexpl
-                else []
-            )
-            + (
-                [
-                    "with one or two joints at limits the reduced Jacobian is singular on curved 2-D "
-                    "families (det = 0) "
-                    "that no table row describes"
-                ]
-                if any(len(S) for S, _ in unexpl)
-                else []
-            )
-        ),
+        reason="; ".join(reasons),
     )
 
 
+def _rad(q) -> str:
+    """``q`` (5,) [rad] in words."""
+    return "[" + ", ".join(f"{v:.4f}" for v in q) + "] rad"
+
+
 def _type_i_note(q) -> str:
-    F = iik.joint_frames(np.r_[q, 0.0], THESIS_ARM)
+    """A type I singular configuration outside s(1): where its tool point lies (joint-1 and link-3 axes)."""
+    F = iik.joint_frames(np.r_[q, 0.0], ARM)
     p, j2, j3 = F[-1, :3, 3], F[1, :3, 3], F[2, :3, 3]
     d = (j3 - j2) / np.linalg.norm(j3 - j2)
     v = p - j2
+    to_axis1, to_axis3 = np.hypot(p[0], p[1]), np.linalg.norm(v - (v @ d) * d)
+    both = to_axis1 < 1e-6 and to_axis3 < 1e-6
     return (
-        "\nType I configuration outside s(1): q[1..5] = ["
-        + ", ".join(f"{x:.4f}" for x in q)
-        + f"] rad, tool at [{p[0]:.4f}, {p[1]:.4f}, {p[2]:.4f}] m: distance to the joint-1 axis "
-        f"{np.hypot(p[0], p[1]):.1e} m, to the link-3 axis {np.linalg.norm(v - (v @ d) * d):.1e} m, "
+        f"\nType I configuration outside s(1): q[1..5] = {_rad(q)}, tool at [{p[0]:.4f}, {p[1]:.4f}, "
+        f"{p[2]:.4f}] m: distance to the joint-1 axis {to_axis1:.1e} m, to the link-3 axis {to_axis3:.1e} m, "
         f"th3 = {np.degrees(q[2]):.2f} deg, th5 = {np.degrees(q[4]):.2f} deg"
-        + (
-            " (planar arm with the tool on both axes: the th1 and th3 columns vanish)"
-            if np.hypot(p[0], p[1]) < 1e-6 and np.linalg.norm(v - (v @ d) * d) < 1e-6
-            else ""
-        )
+        + (" (planar arm with the tool on both axes: the th1 and th3 columns vanish)" if both else "")
     )
 
 
@@ -387,7 +352,7 @@ def _scan_figure(ctx, unexpl) -> str:
         for dt in t:
             qq = q.copy()
             qq[j] = np.clip(qq[j] + dt, ARM.lower[j], ARM.upper[j])
-            J = iik.position_jacobian(np.r_[qq, 0.0], THESIS_ARM)[:, :5]
+            J = iik.position_jacobian(np.r_[qq, 0.0], ARM)[:, :5]
             sv.append(reduced_rank(J[None], at_limit_mask(qq[None], ARM), RTOL)[1][0])
         lab = ", ".join(f"th{k + 1}={np.degrees(q[k]):.0f}" for k in S) or "no joint at a limit"
         ax.semilogy(np.degrees(t), np.maximum(sv, 1e-18), label=f"vary th{j + 1}; {lab}")
