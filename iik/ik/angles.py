@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-__all__ = ["wrap", "wrap_angle", "angle_distance", "into_limits"]
+__all__ = ["wrap", "wrap_angle", "gap", "angle_distance", "into_limits"]
 
 _TWO_PI = 2.0 * np.pi
 
@@ -40,10 +40,17 @@ def wrap_angle(x):
     return out[()]
 
 
+def gap(x: float) -> float:
+    """|wrap(x)| [rad] of one angle difference, in one operation (the mod form: its sign at +-pi
+    does not matter). Plain Python: the kernel compiles it; :func:`angle_distance` is the same rule
+    for arrays."""
+    return abs(math.pi - ((math.pi - x) % _TWO_PI))
+
+
 def angle_distance(a, b) -> np.ndarray:
     """Largest wrapped joint difference [rad] between joint vectors ``a`` and ``b`` (..., 6)."""
     d = np.asarray(a, float) - np.asarray(b, float)
-    return np.abs(np.pi - np.mod(np.pi - d, _TWO_PI)).max(axis=-1)  # |wrap_angle(d)|, in one pass
+    return np.abs(np.pi - np.mod(np.pi - d, _TWO_PI)).max(axis=-1)  # gap(d), in one pass
 
 
 def into_limits(Q: np.ndarray, lower, upper, tol: float) -> tuple[np.ndarray, np.ndarray]:

@@ -330,6 +330,7 @@ NEAR_FACTOR = 64.0
 
 
 wrap = _inner(_angles.wrap)  # the project's one wrap (iik/ik/angles.py), compiled from its source
+gap = _inner(_angles.gap)  # |wrap(x)|, the mod form of iik.ik.angles.angle_distance
 
 
 # ----------------------------------------------------------------------------- pose input
@@ -906,6 +907,19 @@ def _half_magnitude(mags, half, ws):
     for i in range(9):
         out = max(out, m[i])
     return out
+
+
+@_inner
+def _flat_half(terms, half, thr, ws):
+    """Is F within ``thr`` of zero on one half circle (every Bernstein coefficient)? A pose taken
+    for degenerate because F is small against its natural size (P, Q and R of Eq 11 small) but not
+    against its own rounding scale has genuine near-double roots: they are searched too."""
+    bw, b = ws[_W_BW : _W_BW + 60], ws[_W_B : _W_B + 9]
+    _em.half_bernstein(terms, _CPSI, _SPSI, 1.0 if half == 0 else -1.0, -1.0, bw, b)
+    for i in range(9):
+        if abs(b[i]) > thr:
+            return False
+    return True
 
 
 @_inner
@@ -1534,14 +1548,16 @@ def _all_candidates(P, terms, mags, v, Ru, T, opt, ws, wm, cand, hdr, best, thr_
     if degenerate:
         st[8] += 1.0
         n1 = _degenerate_candidates(terms, ws)
-        for half in range(2):  # and the roots of F, separated in double-double (isolated rows)
+        for half in range(2):  # and the roots of F, in double-double (isolated rows); near roots
+            hm = _half_magnitude(mags, half, ws)  # too where F is small only against its natural size
+            near = 0.0 if _flat_half(terms, half, thr_rel * hm, ws) else thr_rel * hm
             n1 = _extended(
                 terms,
                 1.0 if half == 0 else -1.0,
                 0.0,
                 1.0,
-                _half_magnitude(mags, half, ws),
-                0.0,
+                hm,
+                near,
                 _PSI if half == 0 else _PSI + math.pi,
                 ws,
                 th1,
@@ -1827,7 +1843,7 @@ def _mod_distance(a, b):
     :func:`iik.ik.angles.angle_distance` (NaN if any difference is NaN, as NumPy's max)."""
     d = 0.0
     for k in range(6):
-        x = abs(math.pi - ((math.pi - (a[k] - b[k])) % _TWO_PI))
+        x = gap(a[k] - b[k])
         if x > d or math.isnan(x):  # (NaN stays)
             d = x
     return d
@@ -1852,7 +1868,7 @@ def _nearest_closed_form(t1, t2, terms, P, v, Ru, T, ws, rows, prev, ptol, rtol)
     b, best = -1, math.inf
     for r in range(m):
         x = wrap(math.atan2(math.sin(th2[r // 2]), math.cos(th2[r // 2])) - o2) - prev[j2]
-        if abs(math.pi - ((math.pi - x) % _TWO_PI)) > best:  # (joint 2 of the row, as _to_user)
+        if gap(x) > best:  # (joint 2 of the row, as _to_user)
             continue
         _closed_row(t1, th2[r // 2], r % 2, P, v, qc, rows[r])
         d = _mod_distance(rows[r], prev)

@@ -135,3 +135,18 @@ def test_reference_keeps_both_rows_beside_a_multiple_root_blob():
     assert a.same, ("kernel only", k.q[list(a.only_a)], "reference only", ref.q[list(a.only_b)])
     oracle = multistart_ik(T, arm, OracleOptions(starts=256))
     assert len(coverage(ref, oracle, T, arm, TOL).missed) == 0
+
+
+def test_a_pose_taken_for_degenerate_keeps_the_near_roots_of_its_eliminant():
+    """A thesis-arm pose of singular-second (the 4428th of the 10^5-pose recovery run, seed
+    20120101): P, Q and R of Eq 11 are small, so the eliminant is below the degenerate threshold
+    on the whole circle and the kernel takes the degenerate path; it once searched the eliminant
+    there for exact roots only and lost a near-double one (q* and its wrist flip), certified. It
+    keeps the near roots too, as on the other paths."""
+    arm = arms.get("thesis")
+    q = np.array([3.7010337174830545, -1.4505542057019916, 3.1298324366784582,
+                  -1.3023775359917218, 1.1825946301057206, 0.8027795600399259])
+    T = iik.fk(q, arm)
+    k, ref = _solve(T, arm), _solve(T, arm, method="reference")
+    assert contains(k, q, T, arm, TOL), (k.certificate, k.q)
+    assert agreement(k, ref, T, arm, TOL).same
