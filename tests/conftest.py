@@ -99,18 +99,19 @@ class UdpBus:
         except (OSError, ImportError) as exc:
             return f"udp_multicast unavailable: {exc}"
 
-    def request_timeout(self, floor: float = 1.0, margin: float = 25.0) -> str:
+    def request_timeout(self, floor: float = 1.0, margin: float = 25.0, arm=None) -> str:
         """A CAN request timeout [s] for ``iik run`` on this bus (as ``--timeout`` text), derived from a
         baseline measured now, under whatever load the machine has: ``margin`` times the slowest of
         ten round trips to the running ``sim-arm`` (GETPOS of every module), at least ``floor`` and at
-        most the longest timeout accepted (:data:`hardware.bus.MAX_TIMEOUT`)."""
+        most the longest timeout accepted (:data:`hardware.bus.MAX_TIMEOUT`). ``arm``: the arm the
+        ``sim-arm`` serves (default the thesis arm's)."""
         from hardware import PowerCubeArm
         from hardware.bus import MAX_TIMEOUT
         from iik import THESIS_ARM
 
         with PowerCubeArm.from_interface(interface="udp_multicast", channel=self.group, port=self.port,
-                                         timeout=MAX_TIMEOUT, arm=THESIS_ARM) as arm:
-            timeout = timeout_from_baseline(arm.get_pos, margin=margin, floor=floor, ceiling=MAX_TIMEOUT)
+                                         timeout=MAX_TIMEOUT, arm=arm or THESIS_ARM) as modules:
+            timeout = timeout_from_baseline(modules.get_pos, margin=margin, floor=floor, ceiling=MAX_TIMEOUT)
         return f"{timeout:.3f}"
 
     def close(self) -> None:

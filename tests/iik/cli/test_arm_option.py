@@ -144,9 +144,10 @@ def test_the_crx_scenario_runs_across_processes_on_udp_multicast(udp_bus, tmp_pa
     udp_multicast`: the run goes to the end and its log records the CRX."""
     sim = udp_bus.start_sim("--arm", "crx10ia")
     log = tmp_path / "udp.jsonl"
-    run = udp_bus.process("run", "crx_j", "--arm", "crx10ia", *udp_bus.args, "--timeout", "1", "--sim-start",
-                          "plan", "--out", str(log), "--no-figures")
-    out, err = run.communicate(timeout=180)
+    timeout = udp_bus.request_timeout(arm=CRX)  # from a round trip measured now: more under load
+    run = udp_bus.process("run", "crx_j", "--arm", "crx10ia", *udp_bus.args, "--timeout", timeout,
+                          "--sim-start", "plan", "--out", str(log), "--no-figures")
+    out, err = run.communicate(timeout=600)  # (a hang detector: a cold start compiles the IK kernel)
     assert run.returncode == 0, err
     assert out.strip().splitlines()[-1].startswith("status: ok"), out
     assert same_arm(read_run_log(log).arm, CRX)
@@ -156,9 +157,10 @@ def test_the_crx_scenario_runs_across_processes_on_udp_multicast(udp_bus, tmp_pa
 def test_modules_set_up_for_another_arm_are_refused_before_anything_moves(udp_bus, tmp_path):
     """The thesis arm's simulated modules (their soft limits Table I) and a CRX trajectory: refused."""
     udp_bus.start_sim()  # --arm defaults to thesis
-    run = udp_bus.process("run", "crx_j", *udp_bus.args, "--timeout", "1", "--sim-start", "plan", "--out",
+    timeout = udp_bus.request_timeout()  # (the sim serves the thesis arm)
+    run = udp_bus.process("run", "crx_j", *udp_bus.args, "--timeout", timeout, "--sim-start", "plan", "--out",
                           str(tmp_path), "--no-figures")
-    _, err = run.communicate(timeout=180)
+    _, err = run.communicate(timeout=600)
     assert run.returncode == 2, err
     (line,) = [x for x in err.splitlines() if "error" in x]
     assert "SafetyError" in line and "soft limits" in line and "set up for the arm 'crx10ia'" in line, line

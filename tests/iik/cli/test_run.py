@@ -234,10 +234,11 @@ def test_two_sim_arms_on_one_channel_are_a_fault(udp_bus, tmp_path):
     """Two `iik sim-arm` on one channel: every module id answers twice; the run stops before
     anything moves, with one line, and every bus is shut down."""
     udp_bus.start_sim()
+    timeout = udp_bus.request_timeout()  # measured while one answers
     udp_bus.start_sim()
-    run = udp_bus.process("run", "--demo", *udp_bus.args, "--timeout", "1", "--out", str(tmp_path),
+    run = udp_bus.process("run", "--demo", *udp_bus.args, "--timeout", timeout, "--out", str(tmp_path),
                           "--no-figures")
-    _, err = run.communicate(timeout=60)
+    _, err = run.communicate(timeout=300)
     assert run.returncode == 2, err
     (line,) = [x for x in err.splitlines() if "error" in x]
     assert line.startswith("iik run: error: DuplicateModuleError: module 1: two answers to GETPARAM VERSION")
