@@ -192,12 +192,15 @@ def _scan(c, end: float, found):
         n *= 2
 
 
+def _reaches(c, r) -> np.ndarray:
+    """Do the residuals r (..., 2) [m, rad] reach c's pose within its tolerance?"""
+    return (r[..., 0] <= c.tolerance[0]) & (r[..., 1] <= c.tolerance[1])
+
+
 def _good(c, q, r, prev) -> np.ndarray:
     """Are the members q (..., 6) with residuals r (..., 2) inside the limits, within the
     tolerance and no more than _JUMP from the members ``prev`` before them?"""
-    tp, tr = c.tolerance
-    near = angle_distance(q, prev) <= _JUMP
-    return _inside(c.arm, q)[1] & (r[..., 0] <= tp) & (r[..., 1] <= tr) & near
+    return _inside(c.arm, q)[1] & _reaches(c, r) & (angle_distance(q, prev) <= _JUMP)
 
 
 def _edge(c, start: float, limit: float) -> float:
@@ -234,7 +237,6 @@ def along(c) -> tuple[np.ndarray, np.ndarray]:
     start = float(c.representative[j])
     march = _march_closed if c.kind == "theta1" else _march
     thetas, members = [start], [np.array(c.representative, dtype=float)]
-    tp, tr = c.tolerance
     for limit in (float(c.arm.q_min[j]), float(c.arm.q_max[j])):
         if abs(limit - start) <= RESOLUTION:
             continue
@@ -243,7 +245,7 @@ def along(c) -> tuple[np.ndarray, np.ndarray]:
         for i, th in enumerate(path):
             if float(angle_distance(q[i], prev)) > _JUMP:
                 break
-            if r[i, 0] <= tp and r[i, 1] <= tr:
+            if _reaches(c, r[i]):
                 thetas.append(float(th))
                 members.append(q[i])
                 prev = q[i]
@@ -265,7 +267,7 @@ def feasible_interval(c) -> tuple[float, float]:
 def on_continuum(c, q, tol: float = 1e-7) -> bool:
     """Is the configuration q (6,) a member of continuum c (its member at q's free joint)?"""
     m, r = follow(c, [float(q[c.free_joint - 1])])
-    return bool(angle_distance(m[0], q) <= tol and r[0, 0] <= c.tolerance[0] and r[0, 1] <= c.tolerance[1])
+    return bool(angle_distance(m[0], q) <= tol and _reaches(c, r[0]))
 
 
 def _on_branch(c, Q, tol: float = 1e-7) -> np.ndarray:
@@ -288,9 +290,7 @@ def _on_branch(c, Q, tol: float = 1e-7) -> np.ndarray:
     out = np.array([not marched[i] and on_continuum(c, q, tol) for i, q in enumerate(Q)], dtype=bool)
     if marched.any():
         m, r = _march_closed(c, ths[marched], prev[marched], np.arange(marched.sum()))
-        out[marched] = (
-            (angle_distance(m, Q[marched]) <= tol) & (r[:, 0] <= c.tolerance[0]) & (r[:, 1] <= c.tolerance[1])
-        )
+        out[marched] = (angle_distance(m, Q[marched]) <= tol) & _reaches(c, r)
     return out
 
 
@@ -299,7 +299,7 @@ def _continues(c) -> bool:
     x = float(c.representative[c.free_joint - 1])
     m, r = follow(c, [x - STEP, x + STEP])
     jump = angle_distance(m, c.representative)
-    return bool(np.all((r[:, 0] <= c.tolerance[0]) & (r[:, 1] <= c.tolerance[1]) & (jump <= 2.0)))
+    return bool(np.all(_reaches(c, r) & (jump <= 2.0)))
 
 
 def theta1_branches(continua) -> list[int | None]:
@@ -330,10 +330,9 @@ def inside_member(c):
     j = c.free_joint - 1
     start = float(c.representative[j])
     found = []  # (distance along the free joint, member) of the first inside member each way
-    tp, tr = c.tolerance
 
     def inside(path, q, r):
-        return _inside(arm, q)[1] & (r[:, 0] <= tp) & (r[:, 1] <= tr)
+        return _inside(arm, q)[1] & _reaches(c, r)
 
     for end in (arm.q_min[j], arm.q_max[j]):
         path, qs, i = _scan(c, float(end), inside)
