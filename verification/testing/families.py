@@ -143,8 +143,8 @@ def elbow_factor(arm: Arm, qs) -> np.ndarray:
 def elbow_is_factor(arm: Arm) -> bool:
     """Does det J vanish wherever D is on axis 3 (at 8 random such configurations)?"""
     rng = np.random.default_rng(1)
-    qs = [_newton(arm, x, _residual_elbow, [3]) for x in solver_joints(arm, _uniform(arm, rng, 8))]
-    qs = np.array([x for x in qs if x is not None])
+    qs = _newton(arm, solver_joints(arm, _uniform(arm, rng, 8)), _residual_elbow, np.full((8, 1), 3))
+    qs = qs[np.all(np.isfinite(qs), axis=1)]
     scale = np.max(np.abs(det_jacobian(arm, _uniform(arm, rng, 64))))
     return bool(np.all(np.abs(det_jacobian(arm, user_joints(arm, qs))) <= 1e-12 * scale))
 
@@ -169,55 +169,71 @@ def second_factor(arm: Arm, q) -> np.ndarray:
     return out
 
 
+# Residuals of the geometric conditions: solver joints qs (n, 6) -> (n, k), zero on the condition.
 def _residual_elbow(arm, qs):
-    return elbow_factor(arm, qs[None])
+    return elbow_factor(arm, qs)[:, None]
 
 
 def _residual_split(arm, qs):
     """z4 . z2: axis 4 perpendicular to axis 2 (thesis: theta3 = +-90 deg)."""
-    F = _solver_frames(arm, qs[None])[0]
-    return np.array([F[4, :3, 2] @ F[2, :3, 2]])
+    F = _solver_frames(arm, qs)
+    return np.einsum("ni,ni->n", F[:, 4, :3, 2], F[:, 2, :3, 2])[:, None]
 
 
 def _residual_c_on_axis1(arm, qs):
     """C's offset from axis 1 (x, y in frame 0): thesis l3 cos theta2 + l2 = 0 (with theta3 = 90 deg)."""
-    return _points(arm, qs[None])[2][0, :2] / arm.reach
+    return _points(arm, qs)[2][:, :2] / arm.reach
 
 
 def _residual_axis6_through_b(arm, qs):
     """((D - B) x z6) . z4: axis 6 through B within the plane of the arm (thesis:
     l3 sin(theta4 + theta5) + l4 sin theta5 = 0)."""
-    F, B, _, D = _points(arm, qs[None])
-    return np.array([np.cross(D[0] - B[0], F[0, 6, :3, 2]) @ F[0, 4, :3, 2]]) / arm.reach
+    F, B, _, D = _points(arm, qs)
+    return np.einsum("ni,ni->n", np.cross(D - B, F[:, 6, :3, 2]), F[:, 4, :3, 2])[:, None] / arm.reach
 
 
 def _residual_second(arm, qs):
-    return second_factor(arm, user_joints(arm, qs)[None]) / arm.reach**2
+    return second_factor(arm, user_joints(arm, qs))[:, None] / arm.reach**2
 
 
 def _residual_d_on_axis1(arm, qs):
-    return _points(arm, qs[None])[3][0, :2] / arm.reach
+    return _points(arm, qs)[3][:, :2] / arm.reach
 
 
-def _newton(arm: Arm, qs, residual, cols, iters: int = 60):
-    """Solver joints qs (6,) moved over ``cols`` until ``residual(arm, qs)`` (k,) vanishes
-    (least-squares Newton steps, Jacobian by central differences); None if it does not."""
-    qs = np.array(qs, float)
+def _newton(arm: Arm, qs, residual, cols, *per_row, iters: int = 60) -> np.ndarray:
+    """Configurations qs (n, 6), row i moved over its columns ``cols[i]`` (n, k) until
+    ``residual(arm, x, *rows of per_row)`` (m, r) vanishes: least-squares Newton steps on all
+    rows at once, Jacobian by central differences, steps capped at 0.5 rad. Rows that do not
+    converge (residual above 1e-13 after ``iters`` steps, or a non-finite step) come back NaN."""
+    qs, cols = np.array(qs, float), np.asarray(cols)
+    live = np.all(np.isfinite(qs), axis=1)
     for _ in range(iters):
-        r = residual(arm, qs)
-        if np.max(np.abs(r)) <= 1e-15:
-            return qs
-        J = np.empty((len(r), len(cols)))
-        for k, j in enumerate(cols):
-            h = np.zeros(6)
-            h[j] = 1e-7
-            J[:, k] = (residual(arm, qs + h) - residual(arm, qs - h)) / 2e-7
-        dq = np.linalg.lstsq(J, -r, rcond=None)[0]
-        if not np.all(np.isfinite(dq)):
-            return None
-        big = np.max(np.abs(dq))
-        qs[list(cols)] += dq * (0.5 / big if big > 0.5 else 1.0)
-    return qs if np.max(np.abs(residual(arm, qs))) <= 1e-13 else None
+        idx = np.flatnonzero(live)
+        if not idx.size:
+            break
+        x, c, args = qs[idx], cols[idx], [a[idx] for a in per_row]
+        r = residual(arm, x, *args)
+        done = np.max(np.abs(r), axis=1) <= 1e-15
+        J = np.empty(r.shape + (c.shape[1],))
+        for k in range(c.shape[1]):
+            h = np.zeros_like(x)
+            h[np.arange(len(x)), c[:, k]] = 1e-7
+            J[..., k] = (residual(arm, x + h, *args) - residual(arm, x - h, *args)) / 2e-7
+        ok = ~done & np.all(np.isfinite(r), axis=1) & np.all(np.isfinite(J), axis=(1, 2))
+        dq = np.full((len(x), c.shape[1]), np.nan)
+        dq[ok] = -(np.linalg.pinv(J[ok]) @ r[ok][..., None])[..., 0]
+        bad = ~done & ~np.all(np.isfinite(dq), axis=1)
+        big = np.max(np.abs(np.where(ok[:, None], dq, 0.0)), axis=1)
+        dq *= np.where(big > 0.5, 0.5 / np.maximum(big, 0.5), 1.0)[:, None]
+        step = idx[ok & ~bad]
+        qs[step[:, None], cols[step]] += dq[ok & ~bad]
+        qs[idx[bad]] = np.nan
+        live[idx[done | bad]] = False
+    fin = np.flatnonzero(np.all(np.isfinite(qs), axis=1))
+    if fin.size:
+        r = residual(arm, qs[fin], *[a[fin] for a in per_row])
+        qs[fin[~(np.max(np.abs(r), axis=1) <= 1e-13)]] = np.nan
+    return qs
 
 
 # ----------------------------------------------------------------------------- sampling
@@ -228,6 +244,10 @@ def _uniform(arm: Arm, rng, n):
 def _log_offset(rng, n, lo=-12.0, hi=-2.0):
     """Signed offsets 10^U(lo, hi) (n,)."""
     return rng.choice([-1.0, 1.0], n) * 10.0 ** rng.uniform(lo, hi, n)
+
+
+#: Configurations tried at once by a batched sampler.
+BATCH = 1024
 
 
 def _draw(arm: Arm, rng, n: int, one: Callable) -> np.ndarray:
@@ -244,19 +264,37 @@ def _draw(arm: Arm, rng, n: int, one: Callable) -> np.ndarray:
     return np.array(out).reshape(-1, 6)
 
 
+def _draw_batches(arm: Arm, rng, n: int, batch: Callable) -> np.ndarray:
+    """n configurations from ``batch(arm, rng, m) -> q (<= m, 6)`` (the members among m tries);
+    FamilyEmpty if they do not come in TRIES tries per configuration asked for."""
+    out, got, tries = [], 0, 0
+    while got < n:
+        if tries >= TRIES * n:
+            raise FamilyEmpty(f"no member found for {arm.name!r} in {tries} tries")
+        m = min(TRIES * n - tries, BATCH, max(8, 2 * (n - got)))
+        tries += m
+        out.append(batch(arm, rng, m))
+        got += len(out[-1])
+    return np.concatenate(out)[:n]
+
+
+def _columns(rng, cols, k: int, m: int) -> np.ndarray:
+    """m rows of k distinct columns drawn from ``cols``, each row sorted (m, k)."""
+    pick = np.argsort(rng.random((m, len(cols))), axis=1)[:, :k]
+    return np.sort(np.asarray(cols)[pick], axis=1)
+
+
 def _conditions(*parts):
-    """A sampler: from a uniform q, Newton on each (residual, candidate columns) in turn (the
-    columns drawn at random among the candidates, as many as the residual needs)."""
+    """A sampler: from uniform q, Newton on each (residual, candidate columns, k) in turn, over
+    k columns drawn at random among the candidates (as many as the residual needs)."""
 
-    def one(arm, rng):
-        qs = solver_joints(arm, _uniform(arm, rng, 1)[0])
+    def batch(arm, rng, m):
+        qs = solver_joints(arm, _uniform(arm, rng, m))
         for residual, cols, k in parts:
-            qs = _newton(arm, qs, residual, sorted(rng.choice(cols, size=k, replace=False)))
-            if qs is None:
-                return None
-        return user_joints(arm, qs)
+            qs = _newton(arm, qs, residual, _columns(rng, cols, k, m))
+        return user_joints(arm, qs[np.all(np.isfinite(qs), axis=1)])
 
-    return lambda arm, rng, n: _draw(arm, rng, n, one)
+    return lambda arm, rng, n: _draw_batches(arm, rng, n, batch)
 
 
 def _sample_uniform(arm, rng, n):
@@ -370,25 +408,24 @@ def _sample_at_stops(arm, rng, n):
     return q
 
 
-def _tool_near_base(arm, rng):
-    """q with the tool point at 0 (probability 1/5) or 10^U(-9, -3) m from the base origin."""
+def _tool_near_base(arm, rng, m):
+    """Of m tries, those q with the tool point at 0 (probability 1/5) or 10^U(-9, -3) m from
+    the base origin (user joints)."""
 
-    def res(x, target):
-        return (iik.fk(x, arm)[:3, 3] - target) / arm.reach
+    def res(a, x, target):
+        return (iik.fk(x, a)[:, :3, 3] - target) / a.reach
 
-    start = _uniform(arm, rng, 1)[0]
-    at0 = _newton(arm, start, lambda a, x: res(x, np.zeros(3)), range(6))
-    if at0 is None:
-        return None
-    if rng.random() < 0.2:
-        return at0
-    d = rng.normal(size=3)
-    d *= 10.0 ** rng.uniform(-9.0, -3.0) / np.linalg.norm(d)
-    return _newton(arm, at0, lambda a, x, d=d: res(x, d), range(6))
+    every = np.tile(np.arange(6), (m, 1))
+    at0 = _newton(arm, _uniform(arm, rng, m), res, every, np.zeros((m, 3)))
+    d = rng.normal(size=(m, 3))
+    d *= (10.0 ** rng.uniform(-9.0, -3.0, m) / np.linalg.norm(d, axis=1))[:, None]
+    d[rng.random(m) < 0.2] = 0.0
+    q = _newton(arm, at0, res, every, d)
+    return q[np.all(np.isfinite(q), axis=1)]
 
 
 def _sample_tool_near_base(arm, rng, n):
-    return _draw(arm, rng, n, _tool_near_base)
+    return _draw_batches(arm, rng, n, _tool_near_base)
 
 
 @dataclass(frozen=True)
