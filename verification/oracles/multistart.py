@@ -22,7 +22,7 @@ from iik.arm import Arm
 from iik.dh import dh_chain
 from iik.ik.angles import wrap_angle
 
-__all__ = ["OracleOptions", "OracleSolutions", "multistart_ik", "pose_residuals_np", "project"]
+__all__ = ["OracleOptions", "OracleSolutions", "multistart_ik", "pose_residuals_np", "project", "refit"]
 
 
 @dataclass(frozen=True)
@@ -129,6 +129,30 @@ def project(arm: Arm, q, T, iterations: int = 8, tol: float = 1e-10) -> np.ndarr
     """Each row of q (n, 6) moved onto the pose T by a few Levenberg-Marquardt steps (n, 6)."""
     out, _, _ = _lm(arm, np.atleast_2d(np.asarray(q, float)).copy(), np.asarray(T, float), iterations, tol)
     return out
+
+
+def refit(arm: Arm, q, T, held: int, iterations: int = 30, rcond: float = 1e-12) -> np.ndarray:
+    """q (6,) moved onto the pose T (4, 4) with joint ``held`` (0-based) left where it is:
+    Gauss-Newton minimum-norm steps (singular values below ``rcond`` times the largest ignored),
+    each halved until it lowers the error, until none does. Undamped, they reach the bottom of a
+    flat valley of near-solutions (a nearly singular Jacobian) that damped steps cannot."""
+    target = np.asarray(T, float)
+    x = np.asarray(q, float).copy()
+    Tq, J = _chain(arm, x[None])
+    e = _error(Tq, target)[0][0]
+    for _ in range(iterations):
+        J[0, :, held] = 0.0
+        step = np.linalg.lstsq(J[0], e, rcond=rcond)[0]
+        for _ in range(30):
+            Tn, Jn = _chain(arm, (x + step)[None])
+            en = _error(Tn, target)[0][0]
+            if en @ en < e @ e:
+                break
+            step = step / 2
+        else:
+            break
+        x, J, e = x + step, Jn, en
+    return x
 
 
 def multistart_ik(T, arm: Arm, options: OracleOptions = OracleOptions(), seeds=None) -> OracleSolutions:

@@ -7,7 +7,10 @@ A configuration q that reaches the pose counts as found by an :class:`~iik.IKRes
   points all reach the pose within the tolerances (near a singularity the configurations
   within the tolerance form a thin valley; the pose does not tell its points apart); or
 * q lies on a continuum row: the member at q's value of the free joint is the same or
-  connected (collinear continua: the exact member; the others: followed by continuation).
+  connected (collinear continua: the exact member; the others: followed by continuation); or
+* a *bent path* within the tolerances leads from q to a point found so (:func:`_bent_path`):
+  where a continuum meets another singular set, or at a multiple root, the configurations within
+  the tolerance form a flat, curved blob whose far points no straight segment reaches.
 
 :func:`coverage` compares an answer with the oracle (:mod:`verification.oracles.multistart`):
 oracle solutions the answer does not contain (missed), and rows of the answer that do not reach
@@ -22,7 +25,7 @@ import numpy as np
 
 from iik.arm import Arm
 from iik.ik.angles import wrap_angle as _wrap
-from verification.oracles.multistart import OracleSolutions, pose_residuals_np, project
+from verification.oracles.multistart import OracleSolutions, pose_residuals_np, project, refit
 
 __all__ = ["SAME", "NEAR", "AGREE", "contains", "Coverage", "coverage", "Agreement", "agreement"]
 
@@ -67,6 +70,21 @@ def contains(result, q, T, arm: Arm, tol=(1e-10, 1e-10), same: float = SAME) -> 
     """Does the IK answer ``result`` contain the configuration q (6,) of pose T (see the module;
     ``same``: the distance [rad] within which a row is q)?"""
     q = np.asarray(q, dtype=float)
+    if _directly(result, q, T, arm, tol, same):
+        return True
+    near = np.vstack([np.asarray(result.q).reshape(-1, 6)]
+                     + [c.member(float(q[c.free_joint - 1]))[None] for row in result.continua for c in row])
+    dist = np.max(np.abs(_wrap(near - q)), axis=1)
+    for i in np.argsort(dist)[:3]:
+        if dist[i] <= NEAR:
+            end = _bent_path(near[i], q, T, arm, tol)
+            if end is not None and _directly(result, end, T, arm, tol, same):
+                return True
+    return False
+
+
+def _directly(result, q, T, arm: Arm, tol, same) -> bool:
+    """q the same as or connected to a row, or to that row's continuum member at q."""
     if _same_or_connected(result.q, q, T, arm, tol, same):
         return True
     for row in result.continua:
@@ -75,6 +93,30 @@ def contains(result, q, T, arm: Arm, tol=(1e-10, 1e-10), same: float = SAME) -> 
             if _same_or_connected(m[None], q, T, arm, tol, same):
                 return True
     return False
+
+
+_STEPS = np.linspace(0.0, 1.0, 17)[1:]
+
+
+def _bent_path(a, q, T, arm: Arm, tol):
+    """The end of a path from q toward a (6,): the joint that differs most stepped from q's
+    value to a's in 16 steps, the others refit at each step from the previous point
+    (:func:`~verification.oracles.multistart.refit`); None unless every point reaches the pose
+    within the tolerances and no step moves any joint by more than a quarter of the distance
+    (the path is continuous, not a jump to another solution)."""
+    d = _wrap(a - q)
+    size, held = float(np.max(np.abs(d))), int(np.argmax(np.abs(d)))
+    x, pts = np.asarray(q, float), []
+    for s in _STEPS:
+        y = x.copy()
+        y[held] = q[held] + s * d[held]
+        y = refit(arm, y, T, held)
+        if np.max(np.abs(_wrap(y - x))) > size / 4:
+            return None
+        pts.append(y)
+        x = y
+    pres, rres = pose_residuals_np(arm, np.array(pts), T)
+    return x if np.all(pres <= tol[0]) and np.all(rres <= tol[1]) else None
 
 
 @dataclass(frozen=True)

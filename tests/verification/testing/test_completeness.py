@@ -1,0 +1,59 @@
+"""The completeness comparator (:mod:`verification.testing.completeness`): an oracle point in a
+flat valley of near-solutions beside a continuum is contained by the continuum (through a bent
+path), and a solution the answer lacks is still reported missing."""
+
+from types import SimpleNamespace
+
+import numpy as np
+
+import iik
+from iik import arms
+from iik.ik.angles import wrap_angle
+from verification.oracles.multistart import pose_residuals_np
+from verification.testing.completeness import contains
+
+TOL = (1e-10, 1e-10)
+
+#: CRX-10iA, family elbow-second (pose 23200 of the 10^5 recovery run): the pose has a collinear
+#: continuum (joints 4 and 1) that meets another singular set at joint 4 = 0; the oracle's point
+#: lies 1.7e-4 rad off it, in the valley where the residual grows as about 8e-4 d^2.
+Q_STAR = [1.1780979579439985, 4.734709156498013e-17, 1.570796326794897, 2.2274215101582464,
+          -0.05187300885723367, 3.0536666505979175]
+VALLEY = [-1.0490103340682018, -8.715011126870802e-05, 1.5706218800210978, 0.00031374573180857786,
+          -0.05178571219899359, 3.053666122302938]
+
+
+def _pose():
+    arm = arms.get("crx10ia")
+    T = iik.fk(np.array(Q_STAR), arm)
+    return arm, T, iik.solve(T, arm, within_limits=False)
+
+
+def test_an_oracle_point_in_the_valley_beside_a_continuum_is_contained_by_it():
+    arm, T, r = _pose()
+    q = np.array(VALLEY)
+    pres, rres = pose_residuals_np(arm, q[None], T)
+    assert pres[0] <= TOL[0] and rres[0] <= TOL[1]  # the oracle's point reaches the pose
+    (c,) = [c for row in r.continua for c in row]
+    member = c.member(float(q[c.free_joint - 1]))
+    assert np.max(np.abs(wrap_angle(member - q))) > 1e-4  # and is far from the continuum's member
+    assert contains(r, q, T, arm, TOL)
+
+
+def test_without_the_continuum_row_the_valley_point_is_missed():
+    arm, T, r = _pose()
+    keep = [i for i, row in enumerate(r.continua) if not row]
+    lacking = SimpleNamespace(q=r.q[keep], continua=tuple(r.continua[i] for i in keep))
+    assert not contains(lacking, np.array(VALLEY), T, arm, TOL)
+
+
+def test_a_generic_solution_left_out_of_the_answer_is_missed():
+    arm = arms.get("crx10ia")
+    rng = np.random.default_rng(3)
+    for q in rng.uniform(arm.q_min, arm.q_max, (5, 6)):
+        T = iik.fk(q, arm)
+        r = iik.solve(T, arm, within_limits=False)
+        assert contains(r, q, T, arm, TOL)
+        d = np.max(np.abs(wrap_angle(r.q - q)), axis=1)
+        lacking = SimpleNamespace(q=r.q[d > 1e-7], continua=())
+        assert not contains(lacking, q, T, arm, TOL)
