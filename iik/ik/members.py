@@ -149,31 +149,29 @@ def _inside(arm, q):
     return into_limits(q, arm.q_min, arm.q_max, LIMIT_TOL)
 
 
-_MARCHES: dict = {}  # (id(c), end, march) -> (c, representative, pose, (path, members, residuals))
 _CHUNK = 16  # steps of a march first computed where it may stop early (then doubled)
 
 
 def _toward(c, end: float, march=None, steps: int | None = None):
     """c's march from the representative towards the free-joint value ``end`` (``march``: the
     continuum's own by default), its first ``steps`` (all by default): the values (n,) [rad],
-    members (n, 6) and residuals (n, 2). Computed once per continuum object and end, and only as
-    far as asked (a march continues from its last member: the same members as in one go). The
-    interval, the inside member, the samples and the theta1 branches share it."""
+    members (n, 6) and residuals (n, 2). Computed once per continuum and end (kept in
+    ``c.marches``), and only as far as asked (a march continues from its last member: the same
+    members as in one go). The interval, the inside member, the samples and the theta1 branches
+    share it."""
     march = march or _marcher(c)
-    key = (id(c), float(end), march)
-    hit = _MARCHES.get(key)
+    key = (float(end), march)
     rep, pose = np.array(c.representative, dtype=float), np.array(c.pose, dtype=float)
-    if hit is not None and hit[0] is c and np.array_equal(hit[1], rep) and np.array_equal(hit[2], pose):
-        path, q, r = hit[3]
+    hit = c.marches.get(key)
+    if hit is not None and np.array_equal(hit[0], rep) and np.array_equal(hit[1], pose):
+        path, q, r = hit[2]
     else:
         path, q, r = _path(float(rep[c.free_joint - 1]), float(end)), np.zeros((0, 6)), np.zeros((0, 2))
     n = len(path) if steps is None else min(steps, len(path))
     if len(q) < n:
         qn, rn = march(c, path[len(q) : n], rep if len(q) == 0 else q[-1])
         q, r = np.vstack([q, qn]), np.vstack([r, rn])
-        if len(_MARCHES) > 256:
-            _MARCHES.clear()
-        _MARCHES[key] = (c, rep, pose, (path, q, r))
+        c.marches[key] = (rep, pose, (path, q, r))
     return path[:n], q[:n], r[:n]
 
 

@@ -56,6 +56,8 @@ class Continuum:
             :attr:`interval` computes it on first use.
         arm, pose, tolerance: What :meth:`member` solves (the arm, the pose as given (4, 4) and
             (position_tol, rotation_tol)).
+        marches: The members followed so far along the continuum, kept for later calls
+            (filled on demand by :mod:`iik.ik.members`; not part of the value).
     """
 
     kind: str
@@ -67,6 +69,7 @@ class Continuum:
     arm: object = field(default=None, compare=False, repr=False)
     pose: np.ndarray | None = field(default=None, compare=False, repr=False)
     tolerance: tuple[float, float] = (1e-10, 1e-10)
+    marches: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
     def fixed(self) -> str:
