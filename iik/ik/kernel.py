@@ -327,6 +327,9 @@ NEAR_ROTATION = 1e-2
 CONNECTED = 1e-3
 #: Near threshold of the isolation: |F| within this many (tolerance / reach) of its magnitude.
 NEAR_FACTOR = 64.0
+#: Certified roots closer than this in joint 1 [rad] are one for the certificate (a near-double
+#: root on the singular set, its two roots 1e-8 ... 5e-7 apart: their configurations merge).
+SAME_ROOT = 1e-6
 
 
 wrap = _inner(_angles.wrap)  # the project's one wrap (iik/ik/angles.py), compiled from its source
@@ -1138,9 +1141,21 @@ _COLS_NO3_REV = np.array([5, 4, 2, 1, 0])
 
 
 @_inner
-def _exact_from(cand, nc, root):
-    for i in range(nc):
-        if cand[i, _C_ROOT] == root and cand[i, _C_CLASS] == 1.0:
+def _exact_from(cand, nc, i, th1, kinds, n1, v):
+    """Did certified root i (joint 1's DH angles th1, kinds: the candidates) give a solution
+    nearer to it in joint 1 than to any other certified root (farther than :data:`SAME_ROOT`)?
+    One the refinement or the polish slid to along a shallow eliminant is the other root's, and
+    leaves root i unaccounted for."""
+    j1, off = _user_col(v, 0), v[L.A_SOLVER_DH + 4]
+    for r in range(nc):
+        if cand[r, _C_ROOT] != float(i) or cand[r, _C_CLASS] != 1.0:
+            continue
+        d = gap(cand[r, j1] + off - th1[i])
+        mine = True
+        for k in range(n1):
+            if k != i and kinds[k] == L.KIND_ROOT and gap(cand[r, j1] + off - th1[k]) < d:
+                mine = mine and gap(th1[k] - th1[i]) <= SAME_ROOT
+        if mine:
             return True
     return False
 
@@ -1581,12 +1596,12 @@ def _all_candidates(P, terms, mags, v, Ru, T, opt, ws, wm, cand, hdr, best, thr_
         elif hdr[L.H_PATH] == L.PATH_DOUBLE and hdr[L.H_CLUSTERS] > 0:
             hdr[L.H_PATH] = L.PATH_EXTENDED
     for i in range(n1):  # the certificate: every certified root gave a solution
-        if kinds[i] == L.KIND_ROOT and not _exact_from(cand, nc, float(i)):
+        if kinds[i] == L.KIND_ROOT and not _exact_from(cand, nc, i, th1, kinds, n1, v):
             st[9] += 1.0
             nc = _configurations(
                 th1[i], L.KIND_NEAR, float(i), P, terms, v, Ru, T, opt, ws, wm, cand, nc, best
             )
-            if not _exact_from(cand, nc, float(i)):
+            if not _exact_from(cand, nc, i, th1, kinds, n1, v):
                 st[10] += 1.0
                 hdr[L.H_CERT] = L.CERT_ROOT_WITHOUT_CONFIGURATION
     if nc >= MAX_CAND:

@@ -44,6 +44,7 @@ __all__ = [
     "PATH_MULTIPLE",
     "PATH_DEGENERATE",
     "PATH_NAMES",
+    "SLOW_PATH",
     "CERT_OK",
     "CERT_ROOT_WITHOUT_CONFIGURATION",
     "CERT_TABLE_FULL",
@@ -142,6 +143,9 @@ PATH_MULTIPLE = 2
 #: elimination (a theta1 continuum); solved by the degenerate-case analysis.
 PATH_DEGENERATE = 3
 PATH_NAMES = ("double", "extended", "multiple-root", "degenerate")
+#: The path of a degenerate pose without a theta1 continuum, re-solved by the NumPy reference
+#: (:func:`iik.ik.solve.solve`; not a kernel path).
+SLOW_PATH = "reference"
 
 #: The certificate: every real root became configurations (CERT_OK); else why not.
 CERT_OK = 0
@@ -151,7 +155,7 @@ CERT_ROWS_DROPPED = 3
 CERT_NEAR_THETA2 = 4
 CERT_NAMES = (
     "certified",
-    "a certified root gave no configuration within the tolerance",
+    "a certified root gave no configuration within the tolerance nearer to it than to another root",
     "the candidate table was full",
     "more distinct solutions than MAX_SOLUTIONS rows: some were left out",
     "near a theta2 continuum (both conditions on theta2 nearly vanish): joint 2 is fixed only "

@@ -125,7 +125,9 @@ class Certificate:
             double precision), ``"extended"`` (clusters of roots re-expanded and separated in
             double-double), ``"multiple-root"`` (a cluster unresolved even there: roots that
             coincide to ~1e-15, returned as one), ``"degenerate"`` (the eliminant vanishes: a
-            theta1 continuum), or ``"numpy"`` for the NumPy methods.
+            theta1 continuum), ``"reference"`` (it vanishes within its rounding but no theta1
+            continuum reaches the pose: rows merged with the NumPy reference's, not certified),
+            or ``"numpy"`` for the NumPy methods.
         certified: Every certified root of the eliminant gave a configuration within the
             tolerances (else ``reason`` says what failed).
         roots: Real roots of the eliminant found; ``clusters``: clusters re-expanded;
@@ -321,6 +323,9 @@ class IKBatch:
         closest: (n, 2) least position [m] and rotation [rad] residuals of the candidates
             examined (inf if none): how far an unreachable pose is from the nearest one found.
         path, certified: (n,) the path code (``PATH_*``) and whether the certificate holds.
+            A degenerate pose's rows are the kernel's raw theta1 candidates: only
+            :func:`iik.solve_many` sorts them into continua (or takes the slow path), so here it
+            is not certified.
         method: The method used.
     """
 

@@ -412,11 +412,17 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
                 rep.setflags(write=False)
                 rows.append(rep)
                 conts.append((dataclasses.replace(c, representative=rep),))
+    cert = _certificate(h)
+    if not any(conts):  # no theta1 continuum reaches the pose: the slow path
+        rows = _with_reference(T, rows, arm, opts, within_only)
+        conts = [()] * len(rows)
+        cert = dataclasses.replace(cert, path=L.SLOW_PATH, certified=False, reason=_NO_CONTINUUM)
     Q = np.array(rows).reshape(-1, 6)
     pres, rres = pose_residuals(Q, np.broadcast_to(T, (len(Q), 4, 4)), arm) if len(Q) else (np.zeros(0),) * 2
     free = tuple(_FREE_JOINTS[L.FREE_Q1](arm.solver.reversed) if c else () for c in conts)
     Q, inside = into_limits(Q, arm.q_min, arm.q_max, LIMIT_TOL)
     reason = "" if len(Q) else _reason(0, int(h[L.H_TOTAL]), False, h[L.H_BEST_P], h[L.H_BEST_R], opts)
+    reason = reason or cert.reason
     return IKResult.trusted(
         _ro(Q),
         _ro(pres),
@@ -428,8 +434,28 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
         _ro(np.zeros(len(Q), bool)),
         tuple(conts),
         float(h[L.H_PROJECTION]),
-        _certificate(h),
+        cert,
     )
+
+
+_NO_CONTINUUM = (
+    "the eliminant vanishes within its rounding on the whole circle (taken for a theta1 continuum), "
+    "but no theta1 continuum reaches the pose within the tolerances: its isolated roots cannot be "
+    "told from the rounding, so the rows are merged with the NumPy reference's (slow path)"
+)
+
+
+def _with_reference(T, rows, arm: Arm, opts: IKOptions, within_only: bool) -> list:
+    """The rows (6,) [rad] and those of the NumPy reference for pose T not already among them
+    (within 1e-9 rad in every joint, wrapped)."""
+    from .angles import wrap_angle
+
+    rq, _, _, rhdr = _numpy_method(T[None], arm, opts, within_only, "reference")
+    out = list(rows)
+    for x in rq[0, : int(rhdr[0, L.H_COUNT])]:
+        if not out or np.min(np.max(np.abs(wrap_angle(np.array(out) - x)), axis=1)) > 1e-9:
+            out.append(x)
+    return out
 
 
 # ----------------------------------------------------------------------------- public API
@@ -540,7 +566,7 @@ def solve_batch(
         hdr[:, L.H_BEST_P : L.H_BEST_R + 1].copy(),
         info[:, :, L.I_FREE].astype(int),
         hdr[:, L.H_PATH].astype(int),
-        hdr[:, L.H_CERT] == L.CERT_OK,
+        (hdr[:, L.H_CERT] == L.CERT_OK) & (hdr[:, L.H_PATH] != L.PATH_DEGENERATE),  # (see IKBatch)
     ]
     for a in out:
         a.setflags(write=False)

@@ -400,6 +400,14 @@ def _sample_theta3_band(arm, rng, n):
     return user_joints(arm, qs)
 
 
+def _sample_near_wrist_on_axis1_theta4(arm, rng, n):
+    """wrist-on-axis1-theta4 with solver joint 2 moved by +-10^U(-9, -3) rad: D off the joint-1
+    axis by about that times its distance from axis 2, still on axis 3."""
+    qs = solver_joints(arm, family("wrist-on-axis1-theta4").sample(arm, rng, n))
+    qs[:, 1] += _log_offset(rng, n, -9.0, -3.0)
+    return user_joints(arm, qs)
+
+
 def _sample_at_stops(arm, rng, n):
     q = _uniform(arm, rng, n)
     for i in range(n):
@@ -481,6 +489,9 @@ FAMILIES = (
     Family("at-stops", "one to three joints exactly at a joint limit", _sample_at_stops),
     Family("tool-near-base", "the tool point 0 (one in five) or 10^U(-9, -3) m from the base origin",
            _sample_tool_near_base),
+    Family("near-wrist-on-axis1-theta4", "wrist-on-axis1-theta4 with joint 2 moved by +-10^U(-9, -3) "
+           "rad: D just off the joint-1 axis, beside the theta1 continuum",
+           _sample_near_wrist_on_axis1_theta4),
 )
 
 
