@@ -1153,8 +1153,10 @@ def _exact_from(cand, nc, i, th1, kinds, n1, v):
         d = gap(cand[r, j1] + off - th1[i])
         mine = True
         for k in range(n1):
-            if k != i and kinds[k] == L.KIND_ROOT and gap(cand[r, j1] + off - th1[k]) < d:
-                mine = mine and gap(th1[k] - th1[i]) <= SAME_ROOT
+            other = k != i and kinds[k] == L.KIND_ROOT and gap(th1[k] - th1[i]) > SAME_ROOT
+            if other and gap(cand[r, j1] + off - th1[k]) < d:
+                mine = False
+                break
         if mine:
             return True
     return False

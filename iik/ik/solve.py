@@ -27,7 +27,7 @@ from ..arm import LIMIT_TOL, Arm
 from ..errors import InvalidInputError
 from . import layout as L
 from . import poses as _poses
-from .angles import into_limits
+from .angles import into_limits, wrap_angle
 from .options import DEFAULT_OPTIONS, IKOptions
 from .result import Certificate, Continuum, IKBatch, IKResult
 
@@ -448,8 +448,6 @@ _NO_CONTINUUM = (
 def _with_reference(T, rows, arm: Arm, opts: IKOptions, within_only: bool) -> list:
     """The rows (6,) [rad] and those of the NumPy reference for pose T not already among them
     (within 1e-9 rad in every joint, wrapped)."""
-    from .angles import wrap_angle
-
     rq, _, _, rhdr = _numpy_method(T[None], arm, opts, within_only, "reference")
     out = list(rows)
     for x in rq[0, : int(rhdr[0, L.H_COUNT])]:
