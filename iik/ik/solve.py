@@ -446,11 +446,16 @@ _NO_CONTINUUM = (
 
 
 def _with_reference(T, rows, arm: Arm, opts: IKOptions, within_only: bool) -> list:
-    """The rows (6,) [rad] and those of the NumPy reference for pose T not already among them
-    (within 1e-9 rad in every joint, wrapped)."""
+    """The rows (6,) [rad] and those of the NumPy reference for pose T, each only if it reaches
+    the pose within the tolerances (the kernel's rows of a degenerate pose include its
+    approximate candidates) and is not already among them (1e-9 rad in every joint, wrapped)."""
+    from .compare import pose_residuals
+
     rq, _, _, rhdr = _numpy_method(T[None], arm, opts, within_only, "reference")
-    out = list(rows)
-    for x in rq[0, : int(rhdr[0, L.H_COUNT])]:
+    both = np.array(list(rows) + list(rq[0, : int(rhdr[0, L.H_COUNT])])).reshape(-1, 6)
+    pres, rres = pose_residuals(both, np.broadcast_to(T, (len(both), 4, 4)), arm)
+    out: list = []
+    for x in both[(pres <= opts.position_tol) & (rres <= opts.rotation_tol)]:
         if not out or np.min(np.max(np.abs(wrap_angle(np.array(out) - x)), axis=1)) > 1e-9:
             out.append(x)
     return out
