@@ -413,7 +413,7 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
                 rows.append(rep)
                 conts.append((dataclasses.replace(c, representative=rep),))
     cert = _certificate(h)
-    if not any(conts):  # no theta1 continuum reaches the pose: the slow path
+    if all(o is None for o in owner):  # no theta1 continuum reaches the pose: the slow path
         rows = _with_reference(T, rows, arm, opts, within_only)
         conts = [()] * len(rows)
         cert = dataclasses.replace(cert, path=L.SLOW_PATH, certified=False, reason=_NO_CONTINUUM)

@@ -198,3 +198,22 @@ def test_a_degenerate_pose_without_a_theta1_continuum_takes_the_slow_path():
         assert not r.has_continuum
         pres, rres = pose_residuals_np(arm, r.q, T)  # (the kernel's approximate candidates are left out)
         assert np.all(pres <= TOL[0]) and np.all(rres <= TOL[1]), (pres, rres)
+
+
+def test_a_theta1_continuum_outside_the_limits_does_not_take_the_slow_path():
+    """With the limits applied, a theta1 continuum whose members all lie outside them leaves no
+    continuum row, but the pose has one: it keeps the kernel's certificate (the slow path is for
+    poses where no continuum reaches the pose at all)."""
+    arm = arms.get("thesis")
+    Q = FAMILIES[[f.name for f in FAMILIES].index("wrist-on-axis1-theta4")].sample(
+        arm, np.random.default_rng(5), 20)
+    seen = 0
+    for q in Q:
+        T = iik.fk(q, arm)
+        free = _solve(T, arm)
+        if not free.certificate.certified or not free.has_continuum:
+            continue
+        limited = iik.solve(T, arm)
+        seen += not limited.has_continuum
+        assert limited.certificate.path == "degenerate", limited.certificate
+    assert seen, "no pose with its continuum outside the limits among the 20"
