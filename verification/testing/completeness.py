@@ -70,29 +70,29 @@ def contains(result, q, T, arm: Arm, tol=(1e-10, 1e-10), same: float = SAME) -> 
     """Does the IK answer ``result`` contain the configuration q (6,) of pose T (see the module;
     ``same``: the distance [rad] within which a row is q)?"""
     q = np.asarray(q, dtype=float)
-    if _directly(result, q, T, arm, tol, same):
+    members = _members(result, q)
+    if _directly(result, members, q, T, arm, tol, same):
         return True
-    near = np.vstack([np.asarray(result.q).reshape(-1, 6)]
-                     + [c.member(float(q[c.free_joint - 1]))[None] for row in result.continua for c in row])
+    near = np.vstack([np.asarray(result.q).reshape(-1, 6)] + [m[None] for m in members])
     dist = np.max(np.abs(_wrap(near - q)), axis=1)
     for i in np.argsort(dist)[:3]:
         if dist[i] <= NEAR:
             end = _bent_path(near[i], q, T, arm, tol)
-            if end is not None and _directly(result, end, T, arm, tol, same):
+            if end is not None and _directly(result, _members(result, end), end, T, arm, tol, same):
                 return True
     return False
 
 
-def _directly(result, q, T, arm: Arm, tol, same) -> bool:
-    """q the same as or connected to a row, or to that row's continuum member at q."""
+def _members(result, q) -> list:
+    """The member of each continuum of the answer at q's value of its free joint (6,) each."""
+    return [c.member(float(q[c.free_joint - 1])) for row in result.continua for c in row]
+
+
+def _directly(result, members, q, T, arm: Arm, tol, same) -> bool:
+    """q the same as or connected to a row, or to one of the continuum ``members`` at q."""
     if _same_or_connected(result.q, q, T, arm, tol, same):
         return True
-    for row in result.continua:
-        for c in row:
-            m = c.member(float(q[c.free_joint - 1]))
-            if _same_or_connected(m[None], q, T, arm, tol, same):
-                return True
-    return False
+    return any(_same_or_connected(m[None], q, T, arm, tol, same) for m in members)
 
 
 _STEPS = np.linspace(0.0, 1.0, 17)[1:]
