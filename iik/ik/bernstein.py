@@ -167,6 +167,33 @@ def _push_leaf(out, n, kind, u0, u1, E, b):
     return n + 1
 
 
+#: What :func:`_piece` says of a piece besides a leaf kind: nothing there, or split it.
+_NOTHING, _SPLIT = -1, -2
+
+
+@_njit
+def _piece(cur, e, thr, u0, u1):
+    """What to do with the piece [u0, u1] of [0, 1] whose Bernstein coefficients are ``cur`` (9,)
+    with error bound ``e``: a leaf kind (LEAF_ROOT, LEAF_NEAR, LEAF_CLUSTER), _NOTHING (no root
+    and |p| above ``thr``, or a near minimum only at an end that is not one of [0, 1]) or
+    _SPLIT; and the largest |coefficient| (for the error bound of the halves)."""
+    w = u1 - u0
+    v, nz, lo, hi = _classify(cur, e, thr)
+    if nz != 0:  # a coefficient within the error bound of 0: a cluster, or split
+        return (LEAF_CLUSTER if w <= W_MIN or hi <= 4.0 * e else _SPLIT), hi
+    if v == 1:
+        return LEAF_ROOT, hi
+    if v != 0:
+        return (LEAF_CLUSTER if w <= W_MIN else _SPLIT), hi
+    if lo > thr:
+        return _NOTHING, hi
+    if _monotone(cur, e):  # no interior minimum of |p|: only an end can be one
+        at_start = u0 == 0.0 and abs(cur[0]) <= abs(cur[8]) and abs(cur[0]) <= thr
+        at_end = u1 == 1.0 and abs(cur[8]) < abs(cur[0]) and abs(cur[8]) <= thr
+        return (LEAF_NEAR if at_start or at_end else _NOTHING), hi
+    return (LEAF_NEAR if w <= W_NEAR else _SPLIT), hi
+
+
 @_njit
 def isolate(b, E, thr, out, stack):
     """Classify [0, 1] for the Bernstein coefficients ``b`` (9,) with error bound ``E`` and
@@ -175,7 +202,6 @@ def isolate(b, E, thr, out, stack):
     as a cluster). ``stack`` (_STACK, 12) is scratch: ``[u0, u1, E, b0 .. b8]`` per piece.
     """
     n = 0
-    top = 0
     stack[0, 0], stack[0, 1], stack[0, 2] = 0.0, 1.0, E
     for i in range(9):
         stack[0, 3 + i] = b[i]
@@ -188,52 +214,25 @@ def isolate(b, E, thr, out, stack):
         u0, u1, e = stack[top, 0], stack[top, 1], stack[top, 2]
         for i in range(9):
             cur[i] = stack[top, 3 + i]
-        w = u1 - u0
-        v, nz, lo, hi = _classify(cur, e, thr)
-        split = False
-        if nz == 0:
-            if v == 0:
-                if lo > thr:
-                    continue
-                if _monotone(cur, e):  # no interior minimum of |p|: only an end can be one
-                    if (u0 == 0.0 and abs(cur[0]) <= abs(cur[8]) and abs(cur[0]) <= thr) or (
-                        u1 == 1.0 and abs(cur[8]) < abs(cur[0]) and abs(cur[8]) <= thr
-                    ):
-                        n = _push_leaf(out, n, LEAF_NEAR, u0, u1, e, cur)
-                    continue
-                if w <= W_NEAR:
-                    n = _push_leaf(out, n, LEAF_NEAR, u0, u1, e, cur)
-                    continue
-                split = True
-            elif v == 1:
-                n = _push_leaf(out, n, LEAF_ROOT, u0, u1, e, cur)
-                continue
-            elif w <= W_MIN:
-                n = _push_leaf(out, n, LEAF_CLUSTER, u0, u1, e, cur)
-                continue
-            else:
-                split = True
-        else:
-            if w <= W_MIN or hi <= 4.0 * e:
-                n = _push_leaf(out, n, LEAF_CLUSTER, u0, u1, e, cur)
-                continue
-            split = True
-        if split:
-            if top + 2 > _STACK - 3:
-                return -1
-            casteljau_split(cur, left, right)
-            ec = e + 8.0 * _EPS * hi
-            um = u0 + 0.5 * w
-            # push the right half first: the left one is taken next (leaves come out sorted)
-            stack[top, 0], stack[top, 1], stack[top, 2] = um, u1, ec
-            for i in range(9):
-                stack[top, 3 + i] = right[i]
-            stack[top + 1, 0], stack[top + 1, 1], stack[top + 1, 2] = u0, um, ec
-            for i in range(9):
-                stack[top + 1, 3 + i] = left[i]
-            top += 2
-        if n >= N_LEAF:
-            return -1
+        kind, hi = _piece(cur, e, thr, u0, u1)
+        if kind == _NOTHING:
+            continue
+        if n >= N_LEAF or (kind == _SPLIT and top + 2 > _STACK - 3):
+            return -1  # a leaf past N_LEAF (never dropped), or a piece past the stack
+        if kind != _SPLIT:
+            n = _push_leaf(out, n, kind, u0, u1, e, cur)
+            continue
+        casteljau_split(cur, left, right)
+        ec = e + 8.0 * _EPS * hi
+        um = u0 + 0.5 * (u1 - u0)
+        # push the right half first: the left one is taken next (leaves come out sorted)
+        stack[top, 0], stack[top, 1], stack[top, 2] = um, u1, ec
+        for i in range(9):
+            stack[top, 3 + i] = right[i]
+        stack[top + 1, 0], stack[top + 1, 1], stack[top + 1, 2] = u0, um, ec
+        for i in range(9):
+            stack[top + 1, 3 + i] = left[i]
+        top += 2
     return n
 
 

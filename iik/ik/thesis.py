@@ -93,14 +93,10 @@ class ThesisCandidates:
     sigma: np.ndarray
 
 
-def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
-                      tol_deg: float = THESIS_TOL_DEG, accept_tol: float = ACCEPT_TOL) -> ThesisCandidates:
-    """Run Sec 3.3 on validated poses ``T`` (n, 4, 4); every configuration it tries."""
-    n = T.shape[0]
-    R, p = T[:, :3, :3], T[:, :3, 3]
-    l1, l2, l3, l4, l5 = arm.lengths  # (an arm of the thesis's Table II form)
-    co = eliminant_coefficients(R, p, arm)
-    # Sec 3.3.1 grid plus Eq 12 (min) and Eq 13 (max) points.
+def _theta1_brackets(co: EliminantCoefficients, p: np.ndarray, n_grid: int):
+    """Sec 3.3.1: the grid of theta1 [rad] plus the Eq 12/13 points, and every cell where the
+    Eq 11 error changes sign for either sign of Eq 9: (pose index, lo, hi, sign) per cell."""
+    n = p.shape[0]
     base = -np.pi + np.arange(n_grid) * (2 * np.pi / n_grid)
     phi = np.arctan2(p[:, 1], p[:, 0])  # Eq 12
     extra = np.stack([phi, _wrap(phi + np.pi)], axis=1)  # Eq 13 (+-pi are the same angle)
@@ -115,11 +111,14 @@ def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
         los.append(grid[i, j])
         his.append(grid[i, j + 1])
         sig.append(np.full(len(i), s))
-    own = np.concatenate(owners)
-    lo, hi, s = np.concatenate(los), np.concatenate(his), np.concatenate(sig)
+    return tuple(np.concatenate(x) for x in (owners, los, his, sig))
+
+
+def _bisect(co: EliminantCoefficients, own, lo, hi, s, tol: float):
+    """Each sign-change cell [lo, hi] [rad] bisected down to ``tol`` [rad] (Sec 4.2.1):
+    (theta1, theta2) at its midpoint [rad]."""
     _, Elo = _E_flat(co, own, lo, s)
-    tol = np.radians(tol_deg)
-    while len(lo) and np.max(hi - lo) > tol:  # bisection
+    while len(lo) and np.max(hi - lo) > tol:
         mid = 0.5 * (lo + hi)
         _, Em = _E_flat(co, own, mid, s)
         left = Elo * Em <= 0
@@ -128,16 +127,20 @@ def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
         Elo = np.where(left, Elo, Em)
     th1 = _wrap(0.5 * (lo + hi))
     th2, _ = _E_flat(co, own, th1, s)
-    n_roots = np.bincount(own, minlength=n)
-    # --- the four configurations per root: signs of Eq 15 and Eq 21 -------------
-    D = co.D[own]
+    return th1, th2
+
+
+def _four_configurations(R, D, th1, th2, arm: Arm) -> np.ndarray:
+    """Sec 3.3.3: the four configurations (4 m, 6) [rad] of each root (theta1, theta2) (m,), in
+    blocks [(+,+), (+,-), (-,+), (-,-)] of the signs of Eq 15 and Eq 21; R (m, 3, 3) the pose's
+    rotation, D (m, 3) its wrist point [m] (Eq 9a-c)."""
+    l1, l2, l3, l4, l5 = arm.lengths  # (an arm of the thesis's Table II form)
     xD, yD = D[:, 0], D[:, 1]
     c1, s1, c2, s2 = np.cos(th1), np.sin(th1), np.cos(th2), np.sin(th2)
     c4 = (np.sum(D**2, axis=1) + l2**2 - l3**2 - l4**2
           - 2 * l2 * (xD * c1 + yD * s1)) / (2 * l3 * l4)  # Eq 14 (corrected: + yD s1)
     c4 = np.clip(c4, -1.0, 1.0)
-    z = R[own][:, :, 2]
-    Rm = R[own]
+    z = R[:, :, 2]
     qs = []
     for sg4 in (1.0, -1.0):
         s4 = sg4 * np.sqrt(1.0 - c4**2)  # Eq 15
@@ -156,20 +159,29 @@ def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
             u = s1 * c3 - c1 * s2 * s3  # row 3 of 5_0 T (Eq 30)
             v = -(c1 * c3 + s1 * s2 * s3)
             w = -c2 * s3
-            s6 = -(Rm[:, 0, 0] * u + Rm[:, 1, 0] * v + Rm[:, 2, 0] * w)  # Eq 31
-            c6 = -(Rm[:, 0, 1] * u + Rm[:, 1, 1] * v + Rm[:, 2, 1] * w)  # Eq 32
+            s6 = -(R[:, 0, 0] * u + R[:, 1, 0] * v + R[:, 2, 0] * w)  # Eq 31
+            c6 = -(R[:, 0, 1] * u + R[:, 1, 1] * v + R[:, 2, 1] * w)  # Eq 32
             th6 = np.arctan2(s6, c6)  # Eq 33
             qs.append(np.stack([th1, _wrap(th2), th3, th4, th5, th6], axis=1))
-    q = np.concatenate(qs)  # (4 m, 6): config blocks [(+,+), (+,-), (-,+), (-,-)]
+    return np.concatenate(qs)
+
+
+def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
+                      tol_deg: float = THESIS_TOL_DEG, accept_tol: float = ACCEPT_TOL) -> ThesisCandidates:
+    """Run Sec 3.3 on validated poses ``T`` (n, 4, 4); every configuration it tries."""
+    co = eliminant_coefficients(T[:, :3, :3], T[:, :3, 3], arm)
+    own, lo, hi, s = _theta1_brackets(co, T[:, :3, 3], n_grid)
+    th1, th2 = _bisect(co, own, lo, hi, s, np.radians(tol_deg))
+    q = _four_configurations(T[own, :3, :3], co.D[own], th1, th2, arm)
     owner = np.tile(own, 4)
-    root = np.tile(np.arange(len(own)), 4)
     if len(q):
         pres, rres = pose_residuals(q, T[owner], arm)
     else:
         pres = rres = np.zeros(0)
     ok = (pres <= accept_tol) & (rres <= accept_tol)
-    return ThesisCandidates(owner=owner, root=root, q=q, position_residual=pres, rotation_residual=rres,
-                            ok=ok, n_roots=n_roots, sigma=np.tile(s, 4))
+    return ThesisCandidates(owner=owner, root=np.tile(np.arange(len(own)), 4), q=q, position_residual=pres,
+                            rotation_residual=rres, ok=ok, n_roots=np.bincount(own, minlength=T.shape[0]),
+                            sigma=np.tile(s, 4))
 
 
 def solve_thesis_arrays(T: np.ndarray, arm: Arm, **kw):
