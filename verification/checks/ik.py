@@ -96,11 +96,11 @@ class CountClaim:
     rare: float = 0.01
 
 
-_COUNTS = dict(
-    printed=CountClaim(8, 2),
-    good=CountClaim(16, 1),
-    good_is="at most 16 (the bound for any 6R arm), at least 1 (the generating q)",
-    slips=(
+_COUNTS = Forms(
+    CountClaim(8, 2),
+    CountClaim(16, 1),
+    "at most 16 (the bound for any 6R arm), at least 1 (the generating q)",
+    (
         Slip(SlipKind.CLAIM, "at most 4, at least 1", CountClaim(4, 1)),
         Slip(SlipKind.CLAIM, "at most 16, at least 5", CountClaim(16, 5)),
     ),
@@ -109,12 +109,7 @@ _COUNTS = dict(
 
 def _counts_row(ctx, claim: CountClaim, within: bool) -> Row:
     q, T, (Q, V, F, P, R) = _cached_solutions(ctx)
-    if within:
-        inside = np.zeros_like(V)
-        inside[V] = ARM.within_limits(Q[V])
-        counts = inside.sum(1)
-    else:
-        counts = V.sum(1)
+    counts = (V & ARM.within_limits(Q.reshape(-1, 6)).reshape(V.shape) if within else V).sum(1)
     hist = np.bincount(counts, minlength=17)
     above = float(np.mean(counts > claim.most))
     m = (
@@ -146,13 +141,13 @@ def _counts_row(ctx, claim: CountClaim, within: bool) -> Row:
     )
 
 
-@SECTION.check(28.0, forms=Forms(**_COUNTS))
+@SECTION.check(28.0, forms=_COUNTS)
 def solution_counts(ctx, claim):
     """Sec 3.3.5 counts with the joint limits ignored (the IIK of Sec 3.3 does not apply Table I)."""
     return _counts_row(ctx, claim, within=False)
 
 
-@SECTION.check(28.1, forms=Forms(**_COUNTS))
+@SECTION.check(28.1, forms=_COUNTS)
 def solution_counts_table_i(ctx, claim):
     """Sec 3.3.5 counts with Table I applied (what the arm can use)."""
     return _counts_row(ctx, claim, within=True)
@@ -192,11 +187,6 @@ def solver_forms(thesis: Solver) -> Forms:
 _RECOVER_TOL = 1e-6  # [rad]: the thesis's bisection tolerance is 1e-6 deg (Sec 4.2.1)
 
 
-def _recovered(rows: np.ndarray, q: np.ndarray) -> bool:
-    """Is q among the rows to _RECOVER_TOL (uniform poses in Table I: no continua)?"""
-    return bool(len(rows)) and float(np.min(angle_distance(rows, q))) <= _RECOVER_TOL
-
-
 @SECTION.check(
     29.0, forms=solver_forms(Solver("thesis IIK (5 deg theta1 grid + Eq 12/13 points, bisection)", "thesis"))
 )
@@ -204,7 +194,9 @@ def completeness(ctx, solver):
     """Sec 3.3.1 / 5.2: the IIK finds every solution of a pose (the generating q among them)."""
     q, T, (Q, V, F, P, R) = _cached_solutions(ctx)
     Qs, Vs, Fs, Ps, Rs = solver(T)
-    hit = np.array([_recovered(Qs[i][Vs[i]], q[i]) for i in range(len(q))])
+    # is the generating q among the rows (uniform poses in Table I: no continua)?
+    hit = np.array([v.any() and angle_distance(x[v], g).min() <= _RECOVER_TOL
+                    for x, v, g in zip(Qs, Vs, q, strict=True)])
     lost = V.sum(1) - Vs.sum(1)
     m = (
         Measure("share of poses whose generating q is missed", 1 - hit.mean(), 0.0),
