@@ -143,9 +143,9 @@ _ATAN2_BASIS = ("atan2 of the true sine and cosine returns the angle: an identit
                 "the arm")
 _PYTHAGORAS = ("+-sqrt(1 - x^2) with the true cosine (sine) is +-|sine| (cosine): Pythagoras, not a fact "
                "about the arm; which sign is right is graded by ik.four_configurations")
-_SAME_TABLE = ("Pinocchio's model is generated from the same Table II (urdf/thesis_arm.urdf), so the product "
-               "of "
-               "its link transforms is its pose by associativity: an identity, not evidence about the thesis")
+_SAME_TABLE = ("Pinocchio's model is generated from the same Table II (urdf/thesis_arm.urdf), so the "
+               "product of its link transforms is its pose by associativity: an identity, not evidence about "
+               "the thesis")
 
 
 # ----------------------------------------------------------------------------- Eq 5-8
@@ -468,9 +468,7 @@ def eq11_error(ctx, eq11):
     """Eq 11 as an identity in (theta1, theta2) (|D - C|^2 - l4^2, C from Pinocchio), zero at the solution."""
     s = sample(ctx)
     th = ctx.rng("eq11-any").uniform(ARM.q_min[:2], ARM.q_max[:2], (len(s.q), 2))
-    q_any = np.zeros((len(s.q), 6))
-    q_any[:, :2] = th
-    C_any = joint_placements(q_any)[:, 3, :3, 3] - L1 * _EZ
+    C_any = make_sample(np.pad(th, ((0, 0), (0, 4)))).C  # the frame-3 origin at (theta1, theta2, 0, ...)
     return _identity_row(
         s, "Eq 11", "||E|| (Eq 11) is the length error |DC|^2 - l4^2 of Eq 10; it vanishes at the solution.",
         f"Eq 11 as printed with the true D of {len(s.q)} random poses: (a) at random (theta1, theta2) within "
@@ -798,9 +796,8 @@ def eq18_matrices(ctx, mats):
     return [
         error_row(s, np.abs(inv - np.linalg.inv(s.F[:, 2])).max(axis=(1, 2)), TOL, "m or -", key="Eq 18",
                   id="eq18.inverse", claim="The printed 0_2T^-1 is the inverse of the frame-2 pose.",
-                  method="printed matrix vs inv(0_2T) from Pinocchio (base frame at the mounting plane, z = "
-                  "0)",
-                  printed="0_2T^-1 as printed",
+                  method="printed matrix vs inv(0_2T) from Pinocchio (base frame at the mounting plane, "
+                  "z = 0)", printed="0_2T^-1 as printed",
                   note="it contains l1: it belongs to the unshifted base frame (see eq18.frame)"),
         error_row(s, np.abs(t25 - s.rel(2, 5)).max(axis=(1, 2)), TOL, "m or -", key="Eq 18", id="eq18.t25",
                   claim="The printed 2_5T is the transform from frame 2 to frame 5.",
