@@ -866,11 +866,6 @@ def eq26_lhs(R, q):
     return r13 * c1 * c2 + r23 * s1 * c2 - r33 * s2
 
 
-def _row3_lhs(R, q):
-    """(0_2T^-1 R)_33 = -s1 r13 + c1 r23: the row-3 companion of Eq 25 (= s3 s45)."""
-    return -np.sin(q[:, 0]) * R[:, 0, 2] + np.cos(q[:, 0]) * R[:, 1, 2]
-
-
 def eq27_printed(a13, a33, c3, s3):
     """s45 = (r13 c1 s2 + r23 s1 s2 + r33 c2) / (-c3); ``a13`` is that numerator."""
     return a13 / (-c3)
@@ -885,8 +880,9 @@ def _theta5_error(s45_form, s: Sample, c3, s3) -> np.ndarray:
     """|theta5 through Eq 27 (the form) and Eq 28 (c45 from Eq 26) - the true theta5| [rad], NaN as inf (a
     division by c3 = 0)."""
     q = s.q
+    a33 = -np.sin(q[:, 0]) * s.R[:, 0, 2] + np.cos(q[:, 0]) * s.R[:, 1, 2]  # (0_2T^-1 R)_33 = s3 s45
     with np.errstate(divide="ignore", invalid="ignore"):
-        s45 = s45_form(eq25_lhs(s.R, q), _row3_lhs(s.R, q), c3, s3)
+        s45 = s45_form(eq25_lhs(s.R, q), a33, c3, s3)
         err = np.abs(wrap(np.arctan2(s45, -eq26_lhs(s.R, q)) - q[:, 3] - q[:, 4]))
     return np.where(np.isnan(err), np.inf, err)
 
