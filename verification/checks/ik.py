@@ -38,7 +38,7 @@ def _sample(ctx, salt, full=4000, quick=300):
 @per_run
 def _cached_solutions(ctx):
     """The complete solver's solutions at fk(q) of q uniform in Table I: ``(q, T, (Q, V, F, P, R))``."""
-    q = _sample(ctx, "ik-complete", 4000, 300)
+    q = _sample(ctx, "ik-complete")
     T = iik.fk(q, ARM)
     return q, T, _complete_arrays(T)
 
@@ -54,12 +54,8 @@ def _complete_arrays(T):
 @SECTION.check(
     27.0,
     depends_on=("l1", "lengths"),
-    forms=Forms(
-        printed=4,
-        good=2,
-        good_is="2 valid configurations per root (Eq 20 ties the sign of s3 to s4)",
-        slips=(Slip(SlipKind.CLAIM, "3 per root", 3), Slip(SlipKind.CLAIM, "1 per root", 1)),
-    ),
+    forms=Forms(4, 2, "2 valid configurations per root (Eq 20 ties the sign of s3 to s4)",
+                (Slip(SlipKind.CLAIM, "3 per root", 3), Slip(SlipKind.CLAIM, "1 per root", 1))),
 )
 def four_configurations(ctx, per_root):
     """Sec 3.3.3: combining the signs of Eq 15 and Eq 21 gives ``per_root`` configurations per theta1 root."""
@@ -78,7 +74,6 @@ def four_configurations(ctx, per_root):
         f"roots with 0/1/2/3/4 valid configurations: {hist[:5].tolist()}",
         m,
         fail=Verdict.DOES_NOT_HOLD,
-        id="four_configurations",
         domain=f"{len(q)} poses fk(q), q uniform in Table I",
         reason="Eq 20 ties the sign of s3 to the sign of s4, so only 2 of the 4 sign pairs are consistent; "
         "the other 2 fail Eq 4 (spurious roots from the +- of Eq 9 give 0)",
@@ -96,11 +91,11 @@ class CountClaim:
     rare: float = 0.01
 
 
-_COUNTS = dict(
-    printed=CountClaim(8, 2),
-    good=CountClaim(16, 1),
-    good_is="at most 16 (the bound for any 6R arm), at least 1 (the generating q)",
-    slips=(
+_COUNTS = Forms(
+    CountClaim(8, 2),
+    CountClaim(16, 1),
+    "at most 16 (the bound for any 6R arm), at least 1 (the generating q)",
+    (
         Slip(SlipKind.CLAIM, "at most 4, at least 1", CountClaim(4, 1)),
         Slip(SlipKind.CLAIM, "at most 16, at least 5", CountClaim(16, 5)),
     ),
@@ -109,12 +104,7 @@ _COUNTS = dict(
 
 def _counts_row(ctx, claim: CountClaim, within: bool) -> Row:
     q, T, (Q, V, F, P, R) = _cached_solutions(ctx)
-    if within:
-        inside = np.zeros_like(V)
-        inside[V] = ARM.within_limits(Q[V])
-        counts = inside.sum(1)
-    else:
-        counts = V.sum(1)
+    counts = (V & ARM.within_limits(Q.reshape(-1, 6)).reshape(V.shape) if within else V).sum(1)
     hist = np.bincount(counts, minlength=17)
     above = float(np.mean(counts > claim.most))
     m = (
@@ -146,13 +136,13 @@ def _counts_row(ctx, claim: CountClaim, within: bool) -> Row:
     )
 
 
-@SECTION.check(28.0, forms=Forms(**_COUNTS))
+@SECTION.check(28.0, forms=_COUNTS)
 def solution_counts(ctx, claim):
     """Sec 3.3.5 counts with the joint limits ignored (the IIK of Sec 3.3 does not apply Table I)."""
     return _counts_row(ctx, claim, within=False)
 
 
-@SECTION.check(28.1, forms=Forms(**_COUNTS))
+@SECTION.check(28.1, forms=_COUNTS)
 def solution_counts_table_i(ctx, claim):
     """Sec 3.3.5 counts with Table I applied (what the arm can use)."""
     return _counts_row(ctx, claim, within=True)
@@ -176,25 +166,16 @@ class Solver:
 def solver_forms(thesis: Solver) -> Forms:
     """The forms of a completeness claim about the thesis IIK: ``thesis`` (printed), the complete
     elimination solver (good) and the thesis IIK on a coarse 30 deg theta1 grid (bad)."""
-    return Forms(
-        printed=thesis,
-        good=Solver("complete elimination solver", "complete"),
-        good_is="the complete elimination solver",
-        slips=(
-            Slip(SlipKind.MODEL, "the thesis IIK with a 30 deg theta1 grid",
-                 Solver("thesis IIK on a 30 deg grid", "thesis", n_grid=12)),
-            Slip(SlipKind.MODEL, "the thesis IIK with a 180 deg theta1 grid (2 cells)",
-                 Solver("thesis IIK on a 180 deg grid", "thesis", n_grid=2)),
-        ),
-    )
+    good = Solver("complete elimination solver", "complete")
+    return Forms(thesis, good, "the complete elimination solver", (
+        Slip(SlipKind.MODEL, "the thesis IIK with a 30 deg theta1 grid",
+             Solver("thesis IIK on a 30 deg grid", "thesis", n_grid=12)),
+        Slip(SlipKind.MODEL, "the thesis IIK with a 180 deg theta1 grid (2 cells)",
+             Solver("thesis IIK on a 180 deg grid", "thesis", n_grid=2)),
+    ))
 
 
 _RECOVER_TOL = 1e-6  # [rad]: the thesis's bisection tolerance is 1e-6 deg (Sec 4.2.1)
-
-
-def _recovered(rows: np.ndarray, q: np.ndarray) -> bool:
-    """Is q among the rows to _RECOVER_TOL (uniform poses in Table I: no continua)?"""
-    return bool(len(rows)) and float(np.min(angle_distance(rows, q))) <= _RECOVER_TOL
 
 
 @SECTION.check(
@@ -204,7 +185,9 @@ def completeness(ctx, solver):
     """Sec 3.3.1 / 5.2: the IIK finds every solution of a pose (the generating q among them)."""
     q, T, (Q, V, F, P, R) = _cached_solutions(ctx)
     Qs, Vs, Fs, Ps, Rs = solver(T)
-    hit = np.array([_recovered(Qs[i][Vs[i]], q[i]) for i in range(len(q))])
+    # is the generating q among the rows (uniform poses in Table I: no continua)?
+    hit = np.array([v.any() and angle_distance(x[v], g).min() <= _RECOVER_TOL
+                    for x, v, g in zip(Qs, Vs, q, strict=True)])
     lost = V.sum(1) - Vs.sum(1)
     m = (
         Measure("share of poses whose generating q is missed", 1 - hit.mean(), 0.0),
@@ -219,7 +202,6 @@ def completeness(ctx, solver):
         f"{np.mean(lost > 0):.1%} of poses ({int(lost[lost > 0].sum())} solutions lost)",
         m,
         fail=Verdict.DOES_NOT_HOLD,
-        id="completeness",
         domain=f"{len(q)} poses fk(q), q uniform in Table I",
         reason="two roots in one grid cell (or a tangent root) give no sign change, and c3 = +-sqrt(1 - "
         "s3^2) (Eq 21) loses accuracy near |s3| = 1; the complete solver takes every real root of a degree-8 "
@@ -256,13 +238,9 @@ class Lookup:
 @SECTION.check(
     30.0,
     depends_on=("host-timing", "complete-solver"),
-    forms=Forms(
-        printed=ThesisSolver(),
-        good=Lookup(),
-        good_is="a lookup of precomputed solutions (no computation)",
-        slips=(Slip(SlipKind.MODEL, "the thesis IIK with a 1 deg theta1 grid (5x the work)",
-                    ThesisSolver(n_grid=360)),),
-    ),
+    forms=Forms(ThesisSolver(), Lookup(), "a lookup of precomputed solutions (no computation)",
+                (Slip(SlipKind.MODEL, "the thesis IIK with a 1 deg theta1 grid (5x the work)",
+                      ThesisSolver(360)),)),
 )
 def benchmark(ctx, solver):
     """Sec 4.2.1 / 5.2: the IIK costs less computation per solution than pseudo-inverse Newton."""
@@ -302,7 +280,6 @@ def benchmark(ctx, solver):
         f"{', '.join(f'{r:.3f}' for r in c.batch_ratio)} ({c.batch_us[0]:.1f} vs {c.batch_us[1]:.1f} us); "
         f"{c.solutions_per_pose:.2f} IIK solutions per pose; Newton converged on {c.newton_converged:.1%}",
         verdict,
-        id="benchmark",
         measures=m,
         reason=reason,
         domain=f"{len(q)} poses fk(q), q uniform in Table I; {c.repeats} repeats",

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
+from scipy.optimize import minimize_scalar
 
 import iik
 from iik.dh import dh_chain, dh_link_transform
@@ -142,20 +143,20 @@ _ATAN2_BASIS = ("atan2 of the true sine and cosine returns the angle: an identit
                 "the arm")
 _PYTHAGORAS = ("+-sqrt(1 - x^2) with the true cosine (sine) is +-|sine| (cosine): Pythagoras, not a fact "
                "about the arm; which sign is right is graded by ik.four_configurations")
-_SAME_TABLE = ("Pinocchio's model is generated from the same Table II (urdf/thesis_arm.urdf), so the product "
-               "of "
-               "its link transforms is its pose by associativity: an identity, not evidence about the thesis")
+_SAME_TABLE = ("Pinocchio's model is generated from the same Table II (urdf/thesis_arm.urdf), so the "
+               "product of its link transforms is its pose by associativity: an identity, not evidence about "
+               "the thesis")
 
 
 # ----------------------------------------------------------------------------- Eq 5-8
-def eq5_printed(E, D, C, B):
-    """[ED x DC] . BC (Eq 5), vectors as differences of the points."""
-    return np.einsum("ni,ni->n", np.cross(D - E, C - D), C - B)
-
-
 def _triple(E, D, C, v):
     """[ED x DC] . v, row by row."""
     return np.einsum("ni,ni->n", np.cross(D - E, C - D), v)
+
+
+def eq5_printed(E, D, C, B):
+    """[ED x DC] . BC (Eq 5), vectors as differences of the points."""
+    return _triple(E, D, C, C - B)
 
 
 @SECTION.check("Eq 5", forms=Forms(
@@ -200,9 +201,13 @@ def eq7_printed(th1, th2):
     return np.stack([L2 * c1 + L3 * c2 * c1, L2 * s1 + L3 * c2 * s1, -L3 * s2], 1)
 
 
+def _link3(th1, th2):
+    """The unit vector of link 3 (from B to C)."""
+    return np.stack([np.cos(th2) * np.cos(th1), np.cos(th2) * np.sin(th1), -np.sin(th2)], 1)
+
+
 def _eq7_geom(th1, th2):
-    u = np.stack([np.cos(th2) * np.cos(th1), np.cos(th2) * np.sin(th1), -np.sin(th2)], 1)
-    return _eq6_rot(th1) + L3 * u
+    return _eq6_rot(th1) + L3 * _link3(th1, th2)
 
 
 def eq8_printed(R, D, th1, th2):
@@ -220,8 +225,7 @@ def eq8_printed(R, D, th1, th2):
 
 def eq8_geometric(R, D, th1, th2):
     """z6 . ((D - B) x u): Eq 5 with Eq 6-7 substituted (u the unit vector of link 3)."""
-    u = np.stack([np.cos(th2) * np.cos(th1), np.cos(th2) * np.sin(th1), -np.sin(th2)], 1)
-    return np.einsum("ni,ni->n", R[:, :, 2], np.cross(D - eq6_printed(th1), u))
+    return np.einsum("ni,ni->n", R[:, :, 2], np.cross(D - eq6_printed(th1), _link3(th1, th2)))
 
 
 def _eq8_swap(R, D, th1, th2):
@@ -464,9 +468,7 @@ def eq11_error(ctx, eq11):
     """Eq 11 as an identity in (theta1, theta2) (|D - C|^2 - l4^2, C from Pinocchio), zero at the solution."""
     s = sample(ctx)
     th = ctx.rng("eq11-any").uniform(ARM.q_min[:2], ARM.q_max[:2], (len(s.q), 2))
-    q_any = np.zeros((len(s.q), 6))
-    q_any[:, :2] = th
-    C_any = joint_placements(q_any)[:, 3, :3, 3] - L1 * _EZ
+    C_any = make_sample(np.pad(th, ((0, 0), (0, 4)))).C  # the frame-3 origin at (theta1, theta2, 0, ...)
     return _identity_row(
         s, "Eq 11", "||E|| (Eq 11) is the length error |DC|^2 - l4^2 of Eq 10; it vanishes at the solution.",
         f"Eq 11 as printed with the true D of {len(s.q)} random poses: (a) at random (theta1, theta2) within "
@@ -491,14 +493,23 @@ def _signed_e(R, D, t, sign: float) -> np.ndarray:
     return (sign * _e_of_theta1(R, D, np.asarray(t)[:, None])[:, :, 0]).min(axis=0)
 
 
+def _grid_best(R, D, sign: float, n_grid: int) -> np.ndarray:
+    """theta1 [rad] of the best point (least sign * ||E||) of an ``n_grid``-point grid over the turn, per
+    pose (in blocks of 25 poses: the grid is large)."""
+    grid = np.linspace(-np.pi, np.pi, n_grid, endpoint=False)
+    out = np.empty(len(D))
+    for lo in range(0, len(D), 25):
+        sl = slice(lo, min(lo + 25, len(D)))
+        vals = (sign * _e_of_theta1(R[sl], D[sl], np.broadcast_to(grid, (sl.stop - sl.start, n_grid)))).min(0)
+        out[sl] = grid[np.argmin(vals, axis=1)]
+    return out
+
+
 def _extremum(R, D, sign: float, n_grid: int = 721, iters: int = 40) -> np.ndarray:
     """theta1 of the global minimum (sign +1) or maximum (sign -1) of ||E|| over theta1 and both branches:
     a grid, then golden-section search in the best cell's neighbourhood."""
-    n = len(D)
-    grid = np.linspace(-np.pi, np.pi, n_grid, endpoint=False)[None, :].repeat(n, 0)
-    E = (sign * _e_of_theta1(R, D, grid)).min(axis=0)
     h = 2 * np.pi / n_grid
-    a = grid[np.arange(n), np.argmin(E, axis=1)] - h
+    a = _grid_best(R, D, sign, n_grid) - h
     b = a + 2 * h
     g, f = (np.sqrt(5) - 1) / 2, partial(_signed_e, R, D, sign=sign)
     c, d = b - g * (b - a), a + g * (b - a)
@@ -512,23 +523,23 @@ def _extremum(R, D, sign: float, n_grid: int = 721, iters: int = 40) -> np.ndarr
     return wrap((a + b) / 2)
 
 
-def eq12_printed(p, D):
+def eq12_printed(p, D, R):
     return np.arctan2(p[:, 1], p[:, 0])
 
 
-def eq13_printed(p, D):
+def eq13_printed(p, D, R):
     return wrap(np.arctan2(p[:, 1], p[:, 0]) + np.pi)
 
 
-def eq13_corrected(p, D):
+def eq13_corrected(p, D, R):
     return wrap(np.arctan2(D[:, 1], D[:, 0]) + np.pi)
 
 
 @dataclass(frozen=True)
 class NumericArgmin:
-    """Known-good Eq 12/13: theta1 of the extremum by a 3600-point grid, then successive parabolic
-    interpolation (a different search from the check's grid and golden section); ``offset``
-    [rad] moves the answer (the tolerance test)."""
+    """Known-good Eq 12/13: theta1 [rad] of the extremum of ||E|| per pose by a 3600-point grid, then
+    Brent's bounded search (scipy) on the best cell's bracket: a different search from the check's grid and
+    golden section; ``offset`` [rad] moves the answer (the tolerance test)."""
 
     sign: float
     offset: float = 0.0
@@ -536,59 +547,32 @@ class NumericArgmin:
     def __call__(self, p, D, R):
         key = (self.sign, hash(D.tobytes()), hash(R.tobytes()))
         if key not in _ARGMIN:  # a pure function of (D, R): computed once per process
-            _ARGMIN[key] = _numeric_argmin(self.sign, D, R)
+            h, f = 2 * np.pi / 3600, partial(_signed_e, sign=self.sign)
+            _ARGMIN[key] = wrap(np.array([
+                minimize_scalar(lambda t, k=k: f(R[k:k + 1], D[k:k + 1], [t])[0], bounds=(t0 - h, t0 + h),
+                                method="bounded", options={"xatol": 1e-13}).x
+                for k, t0 in enumerate(_grid_best(R, D, self.sign, 3600))]))
         return _ARGMIN[key] + self.offset
 
 
 _ARGMIN: dict = {}
+_EXT_TOL = 1e-9  # [m^2]: "at" the extremum = within this of its ||E|| value (near-ties count as hits)
+_EXT_SHARE = 0.99  # share of random poses the statement must hit
+#: Per sign: the extremum (+1 the minimum, -1 the maximum) and Eq 12 / Eq 13 as printed.
+_EXTREMA = {1.0: ("minimum", "min = atan2(py, px)"), -1.0: ("maximum", "max = atan2(py, px) +- pi")}
 
 
-def _numeric_argmin(sign: float, D: np.ndarray, R: np.ndarray, n_grid: int = 3600) -> np.ndarray:
-    """theta1 [rad] of the extremum of ||E|| per pose: a 3600-point grid, then successive parabolic
-    interpolation on the best cell's bracket (vectorised; a different search from the check's golden
-    section)."""
-    grid = np.linspace(-np.pi, np.pi, n_grid, endpoint=False)
-    h = grid[1] - grid[0]
-    out = np.empty(len(D))
-    for lo in range(0, len(D), 25):
-        sl = slice(lo, min(lo + 25, len(D)))
-        vals = (sign * _e_of_theta1(R[sl], D[sl], np.broadcast_to(grid, (sl.stop - sl.start, n_grid)))).min(0)
-        out[sl] = grid[np.argmin(vals, axis=1)]
-    f = partial(_signed_e, R, D, sign=sign)
-    a, b, c = out - h, out, out + h
-    fa, fb, fc = f(a), f(b), f(c)
-    for _ in range(30):
-        num = (b - a) ** 2 * (fb - fc) - (b - c) ** 2 * (fb - fa)
-        den = (b - a) * (fb - fc) - (b - c) * (fb - fa)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            x = b - 0.5 * num / den
-        x = np.where(np.isfinite(x) & (x > a) & (x < c) & (np.abs(x - b) > 1e-13), x, b)
-        fx = f(x)
-        better = fx < fb
-        left = x < b
-        # keep a bracket [a, c] around the best point b
-        a = np.where(better & left, a, np.where(~better & left, x, a))
-        c = np.where(better & ~left, c, np.where(~better & ~left, x, c))
-        a = np.where(better & ~left, b, a)
-        c = np.where(better & left, b, c)
-        b = np.where(better, x, b)
-        fa, fb, fc = f(a), np.where(better, fx, fb), f(c)
-    return wrap(b)
-
-
-def extremum_reading(ctx, form, sign: float, rows: slice):
+def extremum_reading(form, sign: float, R, D, p):
     """Second reading of Eq 12 / Eq 13 (the form): the share of poses at which the form, under each nearby
     reading of its inputs (the wrist point D for the tool point p, the arguments exchanged, theta1's sign,
     the opposite side), sits at the extremum found by the reference search (:class:`NumericArgmin`, not the
     check's golden section)."""
-    s = sample(ctx)
-    R, D, p = s.R[rows], s.D[rows], s.p[rows]
     best = _signed_e(R, D, NumericArgmin(sign)(p, D, R), sign)
     stated = {"point": p, "swap": False, "sign": 1.0, "turn": 0.0}
 
     def misfit(x) -> float:
         pt = x["point"][:, [1, 0, 2]] if x["swap"] else x["point"]
-        at = wrap(x["sign"] * _apply_extremum_form(form, pt, D, R) + x["turn"])
+        at = wrap(x["sign"] * form(pt, D, R) + x["turn"])
         return float(1.0 - np.mean(_signed_e(R, D, at, sign) - best <= _EXT_TOL))
 
     readings = [
@@ -601,31 +585,18 @@ def extremum_reading(ctx, form, sign: float, rows: slice):
     return search(stated, readings, misfit, 1.0 - _EXT_SHARE, printed=printed,
                   stated_text="p = (px, py, pz) the end-effector point ('theta1 oriented toward the "
                   "end-effector')",
-                  route=f"the {what} of ||E|| by a 3600-point grid and successive parabolic interpolation",
+                  route=f"the {what} of ||E|| by a 3600-point grid and Brent's bounded search (scipy)",
                   measure=f"share of poses NOT at the {what} (within {_EXT_TOL:g} m^2)")
-
-
-def _apply_extremum_form(form, p, D, R):
-    if isinstance(form, NumericArgmin):
-        return form(p, D, R)
-    return form(p, D)
-
-
-_EXT_TOL = 1e-9  # [m^2]: "at" the extremum = within this of its ||E|| value (near-ties count as hits)
-_EXT_SHARE = 0.99  # share of random poses the statement must hit
-#: Per sign: the extremum (+1 the minimum, -1 the maximum) and Eq 12 / Eq 13 as printed.
-_EXTREMA = {1.0: ("minimum", "min = atan2(py, px)"), -1.0: ("maximum", "max = atan2(py, px) +- pi")}
 
 
 def _extremum_row(ctx, form, sign: float, key: str) -> Row:
     """Eq 12 (``sign`` +1) or Eq 13 (-1): is ||E|| at the form's theta1 the extremum over theta1?"""
     s, (what, printed) = sample(ctx), _EXTREMA[sign]
     m_pts = min(len(s.q), ctx.n(600, 80))
-    rows = slice(0, m_pts)
-    R, D = s.R[rows], s.D[rows]
+    R, D, p = s.R[:m_pts], s.D[:m_pts], s.p[:m_pts]
     found = _extremum(R, D, sign)
     best = _signed_e(R, D, found, sign)
-    at_form = wrap(_apply_extremum_form(form, s.p[rows], D, R))
+    at_form = wrap(form(p, D, R))
     gap = _signed_e(R, D, at_form, sign) - best  # >= 0 unless the form beats the search
     phi_d = wrap(np.arctan2(D[:, 1], D[:, 0]) + (0.0 if sign > 0 else np.pi))
     hit_d = np.mean(_signed_e(R, D, phi_d, sign) - best <= _EXT_TOL)
@@ -654,23 +625,18 @@ def _extremum_row(ctx, form, sign: float, key: str) -> Row:
         id=key.lower().replace(" ", ""),
         domain=f"the first {m_pts} poses of the uniform sample ({s.domain.split(' plus')[0]}); theta1 over "
         "the whole turn",
-        erratum=Erratum(
-            key,
-            printed,
-            corrected,
-            f"{fmt_q(s.q[k])}: the {what} of ||E|| is at theta1 = {found[k]:.4f} rad, the form gives "
-            f"{at_form[k]:.4f} rad (||E|| differs by {abs(gap[k]):.3g} m^2)",
-        ),
+        erratum=Erratum(key, printed, corrected, f"{fmt_q(s.q[k])}: the {what} of ||E|| is at theta1 = "
+                        f"{found[k]:.4f} rad, the form gives {at_form[k]:.4f} rad (||E|| differs by "
+                        f"{abs(gap[k]):.3g} m^2)"),
     )
-    return row.reread_if_erratum(lambda: extremum_reading(ctx, form, sign, rows))
+    return row.reread_if_erratum(lambda: extremum_reading(form, sign, R, D, p))
 
 
 @SECTION.check("Eq 12", forms=Forms(
-    eq12_printed, NumericArgmin(1.0), "the minimiser found by a 3600-point grid and successive parabolic "
-    "interpolation",
+    eq12_printed, NumericArgmin(1.0), "the minimiser found by a 3600-point grid and Brent's bounded search",
     (Slip(SlipKind.BRANCH, "atan2(yD, xD) + pi (the maximum's side)", eq13_corrected),
      Slip(SlipKind.SWAP, "atan2(xD, yD): the arguments exchanged",
-          lambda p, D: np.arctan2(D[:, 0], D[:, 1]))),
+          lambda p, D, R: np.arctan2(D[:, 0], D[:, 1]))),
     Slip(SlipKind.EPSILON, "the good minimiser + 1 mrad", NumericArgmin(1.0, 1e-3))))
 def eq12_minimum(ctx, form):
     """Eq 12: the minimum of ||E|| (not of |E|) over theta1."""
@@ -680,8 +646,8 @@ def eq12_minimum(ctx, form):
 @SECTION.check("Eq 13", forms=Forms(
     eq13_printed, eq13_corrected, "atan2(yD, xD) + pi (the wrist point's opposite azimuth)",
     (Slip(SlipKind.BRANCH, "atan2(yD, xD) without the pi (the minimum's side)",
-          lambda p, D: np.arctan2(D[:, 1], D[:, 0])),
-     Slip(SlipKind.SIGN, "-atan2(yD, xD) + pi", lambda p, D: wrap(np.pi - np.arctan2(D[:, 1], D[:, 0])))),
+          lambda p, D, R: np.arctan2(D[:, 1], D[:, 0])),
+     Slip(SlipKind.SIGN, "-atan2(yD, xD) + pi", lambda p, D, R: wrap(np.pi - np.arctan2(D[:, 1], D[:, 0])))),
     epsilon(eq13_corrected, 1e-3, "the good form + 1 mrad")))
 def eq13_maximum(ctx, form):
     """Eq 13: the maximum of ||E|| over theta1."""
@@ -689,16 +655,15 @@ def eq13_maximum(ctx, form):
 
 
 # ----------------------------------------------------------------------------- Eq 14-16
-def eq14_printed(D, th1):
+def _eq14(D, th1, sy: float):
+    """Eq 14 with ``sy`` the sign of yD s1 (printed: -1): c4 = (xD^2 + yD^2 + zD^2 + l2^2 - l3^2 - l4^2
+    - 2 l2 (xD c1 + sy yD s1)) / (2 l3 l4)."""
     x, y, z = D.T
     c1, s1 = cos_sin(th1)
-    return (x**2 + y**2 + z**2 + L2**2 - L3**2 - L4**2 - 2 * L2 * (x * c1 - y * s1)) / (2 * L3 * L4)
+    return (x**2 + y**2 + z**2 + L2**2 - L3**2 - L4**2 - 2 * L2 * (x * c1 + sy * y * s1)) / (2 * L3 * L4)
 
 
-def eq14_corrected(D, th1):
-    x, y, z = D.T
-    c1, s1 = cos_sin(th1)
-    return (x**2 + y**2 + z**2 + L2**2 - L3**2 - L4**2 - 2 * L2 * (x * c1 + y * s1)) / (2 * L3 * L4)
+eq14_printed, eq14_corrected = partial(_eq14, sy=-1.0), partial(_eq14, sy=1.0)
 
 
 def eq14_reading(s: Sample, eq14):
@@ -807,9 +772,7 @@ def _eq18_dh(q):
 def _eq18_not_transposed(q):
     """0_2T^-1 written with R for R^T (the translation -R^T p kept)."""
     inv, t25 = _eq18_dh(q)
-    inv = inv.copy()
-    inv[:, :3, :3] = np.swapaxes(inv[:, :3, :3], -1, -2)
-    return inv, t25
+    return _rot_t(inv), t25
 
 
 def _eq18_t25_sign(q):
@@ -833,9 +796,8 @@ def eq18_matrices(ctx, mats):
     return [
         error_row(s, np.abs(inv - np.linalg.inv(s.F[:, 2])).max(axis=(1, 2)), TOL, "m or -", key="Eq 18",
                   id="eq18.inverse", claim="The printed 0_2T^-1 is the inverse of the frame-2 pose.",
-                  method="printed matrix vs inv(0_2T) from Pinocchio (base frame at the mounting plane, z = "
-                  "0)",
-                  printed="0_2T^-1 as printed",
+                  method="printed matrix vs inv(0_2T) from Pinocchio (base frame at the mounting plane, "
+                  "z = 0)", printed="0_2T^-1 as printed",
                   note="it contains l1: it belongs to the unshifted base frame (see eq18.frame)"),
         error_row(s, np.abs(t25 - s.rel(2, 5)).max(axis=(1, 2)), TOL, "m or -", key="Eq 18", id="eq18.t25",
                   claim="The printed 2_5T is the transform from frame 2 to frame 5.",
@@ -852,9 +814,7 @@ def eq18_frame_reading(ctx, s: Sample, wrist):
     stated = {"shift": 0.0}
 
     def misfit(x) -> float:
-        T05 = d.F[:, 5].copy()
-        T05[:, :3, 3] = D + x["shift"] * _EZ
-        return float(np.abs(eq18_inverse_printed(s.q) @ T05 - eq18_t25_printed(s.q)).max())
+        return float(_eq18_frame_gap(d, D + x["shift"] * _EZ).max())
 
     readings = [
         Reading(Kind.CONVENTION, "D in the base frame (not moved up by l1: the frame of the printed 0_2T^-1)",
@@ -867,12 +827,11 @@ def eq18_frame_reading(ctx, s: Sample, wrist):
                   route=_DH_ROUTE, measure="max |printed 0_2T^-1 0_5T - printed 2_5T| [m]")
 
 
-def _eq18_frame_error(s: Sample, wrist) -> np.ndarray:
-    """Printed 0_2T^-1 times 0_5T (last column: the D of Eq 9, the form) vs the printed 2_5T, per q."""
+def _eq18_frame_gap(s: Sample, D) -> np.ndarray:
+    """max |printed 0_2T^-1 0_5T (rotation of ``s``, last column D) - printed 2_5T| per q [m or -]."""
     T05 = s.F[:, 5].copy()
-    T05[:, :3, 3] = wrist(s)
-    lhs = eq18_inverse_printed(s.q) @ T05
-    return np.abs(lhs - eq18_t25_printed(s.q)).max(axis=(1, 2))
+    T05[:, :3, 3] = D
+    return np.abs(eq18_inverse_printed(s.q) @ T05 - eq18_t25_printed(s.q)).max(axis=(1, 2))
 
 
 def eq19_printed(q, D):
@@ -907,15 +866,9 @@ def eq26_lhs(R, q):
     return r13 * c1 * c2 + r23 * s1 * c2 - r33 * s2
 
 
-def _row3_lhs(R, q):
-    """(0_2T^-1 R)_33 = -s1 r13 + c1 r23: the row-3 companion of Eq 25 (= s3 s45)."""
-    return -np.sin(q[:, 0]) * R[:, 0, 2] + np.cos(q[:, 0]) * R[:, 1, 2]
-
-
 def eq27_printed(a13, a33, c3, s3):
     """s45 = (r13 c1 s2 + r23 s1 s2 + r33 c2) / (-c3); ``a13`` is that numerator."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return a13 / (-c3)
+    return a13 / (-c3)
 
 
 def eq27_companion(a13, a33, c3, s3):
@@ -923,11 +876,15 @@ def eq27_companion(a13, a33, c3, s3):
     return -c3 * a13 + s3 * a33
 
 
-def _theta5(s45_form, R, q, c3, s3):
-    """theta5 through Eq 27 (the form) and Eq 28 with c45 from Eq 26."""
-    s45 = s45_form(eq25_lhs(R, q), _row3_lhs(R, q), c3, s3)
-    with np.errstate(invalid="ignore"):
-        return np.arctan2(s45, -eq26_lhs(R, q)) - q[:, 3]
+def _theta5_error(s45_form, s: Sample, c3, s3) -> np.ndarray:
+    """|theta5 through Eq 27 (the form) and Eq 28 (c45 from Eq 26) - the true theta5| [rad], NaN as inf (a
+    division by c3 = 0)."""
+    q = s.q
+    a33 = -np.sin(q[:, 0]) * s.R[:, 0, 2] + np.cos(q[:, 0]) * s.R[:, 1, 2]  # (0_2T^-1 R)_33 = s3 s45
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s45 = s45_form(eq25_lhs(s.R, q), a33, c3, s3)
+        err = np.abs(wrap(np.arctan2(s45, -eq26_lhs(s.R, q)) - q[:, 3] - q[:, 4]))
+    return np.where(np.isnan(err), np.inf, err)
 
 
 #: |c3| = 10^U(_C3_EXP) in the near-singular sample of Eq 27.
@@ -944,25 +901,13 @@ def _near_c3_zero(ctx) -> Sample:
 
 
 def _eq27_plus(a13, a33, c3, s3):
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return a13 / c3
+    return a13 / c3
 
 
-def _eq27_s3(a13, a33, c3, s3):
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return a13 / (-s3)
-
-
-_EQ27 = Forms(
-    eq27_printed,
-    eq27_companion,
-    "s45 = -c3 (Eq 25 left side) + s3 (its row-3 companion)",
-    slips=(
-        Slip(SlipKind.SIGN, "s45 = (...) / (+c3)", _eq27_plus),
-        Slip(SlipKind.FUNCTION, "s45 = (...) / (-s3): the sine for the cosine", _eq27_s3),
-    ),
-    tolerance=epsilon(eq27_companion, 1e-6, "the good s45 + 1e-6"),
-)
+_EQ27 = Forms(eq27_printed, eq27_companion, "s45 = -c3 (Eq 25 left side) + s3 (its row-3 companion)", (
+    Slip(SlipKind.SIGN, "s45 = (...) / (+c3)", _eq27_plus),
+    Slip(SlipKind.FUNCTION, "s45 = (...) / (-s3): the sine for the cosine", lambda a, b, c3, s3: a / -s3),
+), epsilon(eq27_companion, 1e-6, "the good s45 + 1e-6"))
 
 
 @SECTION.check("Eq 27", forms=_EQ27)
@@ -971,9 +916,8 @@ def eq27_s45(ctx, eq27):
     on |error| |c3| (the division by c3 costs eps / |c3|; at c3 = 0 exactly see eq27.c3_zero)."""
     s, near = sample(ctx), _near_c3_zero(ctx)
     both = Sample(np.concatenate([s.q, near.q]), np.concatenate([s.F, near.F]), s.hard)
-    q, c3 = both.q, np.cos(both.q[:, 2])
-    err = np.abs(wrap(_theta5(eq27, both.R, q, c3, np.sin(q[:, 2])) - q[:, 4]))
-    err = np.where(np.isnan(err), np.inf, err)
+    c3 = np.cos(both.q[:, 2])
+    err = _theta5_error(eq27, both, c3, np.sin(both.q[:, 2]))
     raw_near = err[len(s.q):]
     small = np.abs(c3[len(s.q):])
     ok = raw_near <= TOL_ANGLE
@@ -1003,9 +947,7 @@ def eq27_c3_zero(ctx, eq27):
     q = rng.uniform(ARM.q_min, ARM.q_max, size=(n, 6))
     sgn = rng.choice([-1.0, 1.0], n)
     q[:, 2] = sgn * np.pi / 2
-    s = make_sample(q)
-    err = np.abs(wrap(_theta5(eq27, s.R, q, np.zeros(n), sgn) - q[:, 4]))
-    err = np.where(np.isnan(err), np.inf, err)
+    err = _theta5_error(eq27, make_sample(q), np.zeros(n), sgn)
     k = int(np.argmax(err))
     return Row.graded(
         "Eq 27-28 give theta5 also at theta3 = +-90 deg (c3 = 0).",
@@ -1020,14 +962,6 @@ def eq27_c3_zero(ctx, eq27):
         reason="Eq 27 divides by c3: at theta3 = +-90 deg it is 0/0 (the numerator is -c3 s45 = 0) and "
         "theta5 is lost; s45 = -c3 (Eq 25 left side) + s3 (-s1 r13 + c1 r23) holds for every theta3",
     )
-
-
-def _atan2_minus(sn, cs, th4):
-    return np.arctan2(sn, cs) - th4
-
-
-def _eq28_good(sn, cs, th4):
-    return np.angle(cs + 1j * sn) - th4
 
 
 def _eq28_error(s: Sample, eq28) -> np.ndarray:
@@ -1052,9 +986,7 @@ def eq30_t56_corrected(q):
 
 
 def _eq30_t56_transposed(q):
-    T = eq30_t56_corrected(q)
-    T[:, :3, :3] = np.swapaxes(T[:, :3, :3], -1, -2)
-    return eq30_row3_printed(q), T
+    return eq30_row3_printed(q), _rot_t(eq30_t56_corrected(q))
 
 
 @SECTION.check("Eq 30", forms=Forms(
@@ -1084,18 +1016,16 @@ def eq30_matrices(ctx, mats):
                   corrected="5_6T = [c6 -s6 0 0; 0 0 1 -l5; -s6 -c6 0 0; 0 0 0 1] (the offset d6 = -l5 lies "
                   "along y5, row 2); harmless for Eq 31-32, which use only entries (3,1) and (3,2)"),
     ]
-    if rows[1].verdict is Verdict.ERRATUM:
-        rows[1] = rows[1].reread(appb_reading(5, t56, s.q, "5_6T of Eq 30 as printed"))
+    rows[1] = rows[1].reread_if_erratum(lambda: appb_reading(5, t56, s.q, "5_6T of Eq 30 as printed"))
     return rows
 
 
 def eq31_lhs(R, q, col=0):
-    row3 = eq30_row3_printed(q)
-    return np.einsum("ni,ni->n", row3, R[:, :, col])
+    """Row 3 of 0_5T^-1 (Eq 30) times column ``col`` + 1 of R: Eq 31 (col 0), Eq 32 (col 1)."""
+    return np.einsum("ni,ni->n", eq30_row3_printed(q), R[:, :, col])
 
 
-def eq32_lhs(R, q):
-    return eq31_lhs(R, q, col=1)
+eq32_lhs = partial(eq31_lhs, col=1)
 
 
 # ----------------------------------------------------------------------------- the printed steps, declared
@@ -1202,7 +1132,7 @@ CHECKS = SECTION.formulas(
             scale=("s4", lambda s: s.s(4))),
     _atan2_step(16, 4),
     _composition(17, 2, 5),
-    Formula("Eq 18", lambda s: s.D, _eq18_frame_error, TOL, "m", (
+    Formula("Eq 18", lambda s: s.D, lambda s, wrist: _eq18_frame_gap(s, wrist(s)), TOL, "m", (
         Slip(SlipKind.SIGN, "D moved up by l1 the wrong way (z_D + 2 l1)", lambda s: s.D + 2 * L1 * _EZ),
         Slip(SlipKind.LENGTH, "D shifted by l2 for l1", lambda s: s.D + L2 * _EZ),
     ), good=lambda s: s.D + L1 * _EZ,
@@ -1249,10 +1179,11 @@ CHECKS = SECTION.formulas(
         method="printed entries vs (0_2T)^-1 0_6T from Pinocchio"),
     _element(25, eq25_lhs, "-c3 s45", lambda s: -s.c(3) * np.sin(s.q[:, 3] + s.q[:, 4])),
     _element(26, eq26_lhs, "-c45", lambda s: -np.cos(s.q[:, 3] + s.q[:, 4])),
-    Formula("Eq 28", _atan2_minus, _eq28_error, TOL, "rad", (
+    Formula("Eq 28", lambda sn, cs, t4: np.arctan2(sn, cs) - t4, _eq28_error, TOL, "rad", (
         Slip(SlipKind.SIGN, "atan2(s45, c45) + theta4", lambda sn, cs, t4: np.arctan2(sn, cs) + t4),
         Slip(SlipKind.SWAP, "atan2(c45, s45) - theta4", lambda sn, cs, t4: np.arctan2(cs, sn) - t4),
-    ), good=_eq28_good, good_is="arg(c45 + i s45) - theta4", eps=1e-6, eps_is="the good form + 1 urad",
+    ), good=lambda sn, cs, t4: _angle(sn, cs) - t4, good_is="arg(c45 + i s45) - theta4", eps=1e-6,
+        eps_is="the good form + 1 urad",
         method="with the true s45, c45, theta4 vs theta5", basis=_ATAN2_BASIS + " (minus the true theta4)"),
     _composition(29, 5, 6),
     _element(31, eq31_lhs, "-sin(theta6)", lambda s: -s.s(6)),
