@@ -38,11 +38,6 @@ def _at_limit(j: int, v: float) -> bool:
     return min(abs(v - ARM.lower[j - 1]), abs(v - ARM.upper[j - 1])) < 1e-9
 
 
-def _jacobian(q5) -> np.ndarray:
-    """The position Jacobian (3, 5) [m/rad] of joints 1-5 at ``q5`` (5,) [rad], joint 6 at 0."""
-    return iik.position_jacobian(np.r_[q5, 0.0], ARM)[:, :5]
-
-
 def _set_label(s) -> str:
     fixed = s.fixed_dict()
     cells = (f"th{j}={round(fixed[j] / _D):d}" if j in fixed else f"th{j} free" for j in range(1, 6))
@@ -225,7 +220,7 @@ def search_singular(ctx, trials: int, trials_interior: int):
             def f(x, q=q, free=free):
                 qq = q.copy()
                 qq[free] = x
-                return _minors(_jacobian(qq), free)
+                return _minors(iik.position_jacobian(np.r_[qq, 0.0], ARM)[:, :5], free)
 
             sol = least_squares(f, q[free], bounds=(lo[free], hi[free]), **_LSQ)
             q[free] = sol.x  # kept if singular and on no further limit (else counted under that subset)
@@ -256,7 +251,7 @@ def member_by_rank(S, q) -> bool:
     """The complete description: every configuration whose reduced Jacobian has rank < 3."""
     lim = np.zeros((1, 5), bool)
     lim[0, list(S)] = True
-    return bool(reduced_rank(_jacobian(q)[None], lim, 1e-6)[0][0] < 3)
+    return bool(reduced_rank(iik.position_jacobian(np.r_[q, 0.0], ARM)[None, :, :5], lim, 1e-6)[0][0] < 3)
 
 
 def member_of_type_i(S, q) -> bool:
@@ -344,11 +339,9 @@ def _scan_figure(ctx, unexpl) -> str:
     t = np.linspace(-20, 20, 201) * _D
     for S, q in unexpl[:4]:
         j = [k for k in range(5) if k not in S and k != 0][0]  # th1 never changes the rank
-        sv = []
-        for dt in t:
-            qq = q.copy()
-            qq[j] = np.clip(qq[j] + dt, ARM.lower[j], ARM.upper[j])
-            sv.append(reduced_rank(_jacobian(qq)[None], at_limit_mask(qq[None], ARM), RTOL)[1][0])
+        qq = np.tile(np.r_[q, 0.0], (len(t), 1))
+        qq[:, j] = np.clip(q[j] + t, ARM.lower[j], ARM.upper[j])
+        sv = reduced_rank(iik.position_jacobian(qq, ARM)[..., :5], at_limit_mask(qq, ARM), RTOL)[1]
         lab = ", ".join(f"th{k + 1}={np.degrees(q[k]):.0f}" for k in S) or "no joint at a limit"
         ax.semilogy(np.degrees(t), np.maximum(sv, 1e-18), label=f"vary th{j + 1}; {lab}")
     ax.set_xlabel("change of the joint [deg] from the singular configuration")

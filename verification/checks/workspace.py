@@ -65,10 +65,8 @@ def clip_angle(t, lo: float, hi: float):
     """``t`` [rad] limited to [lo, hi] by the nearer limit *on the circle* (a plain clip picks the wrong one
     for an angle past one limit but nearer the other across +-pi)."""
     t = np.asarray(t, float)
-    d_lo = np.abs(wrap(t - lo))
-    d_hi = np.abs(wrap(t - hi))
-    inside = (t >= lo) & (t <= hi)
-    return np.where(inside, t, np.where(d_lo < d_hi, lo, hi))
+    nearer = np.where(np.abs(wrap(t - lo)) < np.abs(wrap(t - hi)), lo, hi)
+    return np.where((t >= lo) & (t <= hi), t, nearer)
 
 
 def eq39_printed(P, th1, *, sign: float = -1.0, arm=ARM):
@@ -122,7 +120,8 @@ def eq36_41_test(
     inside = ~(rho1 > r1 + margin)  # Eq 38
     for region, lim in ((phi >= 160 * _D, 160 * _D), (phi <= -160 * _D, -160 * _D)):
         th1 = {"region": lim, "printed": 160 * _D, "other": -lim}[th1_rule]
-        th2 = {"printed": eq39_printed, "corrected": eq39_corrected}[eq39](p, th1, sign=eq39_sign, arm=arm)
+        eq39_form = {"printed": eq39_printed, "corrected": eq39_corrected}[eq39]
+        th2 = eq39_form(p, th1, sign=eq39_sign, arm=arm)  # Eq 39
         rho23 = np.linalg.norm(p - eq40_corrected(th1, th2, sign=eq40_sign, arm=arm), axis=1)  # Eq 40
         inside = np.where(region, ~(rho23 > r23 + margin), inside)  # Eq 41
     return inside
@@ -694,8 +693,7 @@ def _distance_to_surface(B: np.ndarray, spec: tuple, n: int) -> np.ndarray:
     _, idx = cKDTree(pts).query(B)
     q = q[idx].copy()
     free = [j - 1 for j in spec[1]]
-    lo = np.array([a for a, _ in spec[1].values()]) * _D
-    hi = np.array([b for _, b in spec[1].values()]) * _D
+    lo, hi = np.array(list(spec[1].values())).T * _D
     for _ in range(25):
         G = tool_positions(q, ARM)
         J = iik.position_jacobian(np.column_stack([q, np.zeros(len(q))]), ARM)[:, :, :5][:, :, free]
