@@ -21,6 +21,7 @@ import iik
 from iik.singularities import ALL_SETS, TABLE_VI, TABLE_VII, at_limit_mask, reduced_rank, sample_set
 
 from ..formula import per_run
+from ..numbers import fmt_q
 from ..oracles.pinocchio_model import tool_jacobians
 from ..plotting import new_figure
 from ..registry import Forms, Measure, Row, Section, Slip, SlipKind, Verdict
@@ -30,6 +31,11 @@ _D = np.pi / 180
 RTOL = 1e-9
 _DEP = ("lengths", "pinocchio")
 SECTION = Section("Singularities (App. D, Tables VI-VII)", depends_on=_DEP)
+
+
+def _at_limit(j: int, v: float) -> bool:
+    """Is joint ``j`` (1-5) at ``v`` [rad] at one of its Table I limits?"""
+    return min(abs(v - ARM.lower[j - 1]), abs(v - ARM.upper[j - 1])) < 1e-9
 
 
 def _set_label(s) -> str:
@@ -50,7 +56,7 @@ def _necessity(s, rng, n=20):
     """For each fixed joint NOT at a limit: does moving it by 15 deg keep the set singular?"""
     out = []
     for j, v in s.fixed:
-        if abs(v - ARM.lower[j - 1]) < 1e-9 or abs(v - ARM.upper[j - 1]) < 1e-9:
+        if _at_limit(j, v):
             continue
         q = sample_set(s, n, rng, ARM)
         q[:, j - 1] = v + 15 * _D if v + 15 * _D <= ARM.upper[j - 1] else v - 15 * _D
@@ -65,7 +71,7 @@ def _moved(sets, joint_value: float = 10.0):
     for s in sets:
         fixed = list(s.fixed)
         for k, (j, v) in enumerate(fixed):
-            if abs(v - ARM.lower[j - 1]) > 1e-9 and abs(v - ARM.upper[j - 1]) > 1e-9:
+            if not _at_limit(j, v):
                 fixed[k] = (j, v + joint_value * _D)
                 break
         else:  # every fixed joint at a limit: release the last one
@@ -79,21 +85,33 @@ def _shifted_joints(sets):
     return tuple(replace(s, fixed=tuple(((j % 5) + 1, v) for j, v in s.fixed)) for s in sets)
 
 
-def _graded(claim: str, source: str, method: str, numbers: str, measure: Measure, rid: str, basis: str = "",
-            **fields) -> Row:
+def _graded(claim: str, source: str, numbers: str, measure: Measure, rid: str, basis: str = "", *,
+            method: str = "", **fields) -> Row:
     """A row of Table VI or VII (the table, or one entry: a set or a group of sets): it holds when singular
     on every sample (with ``basis``, by construction)."""
     return Row.graded(claim, source, method, numbers, (measure,), fail=Verdict.DOES_NOT_HOLD, id=rid,
                       holds_as=Verdict.IDENTITY if basis else Verdict.HOLDS, basis=basis, **fields)
 
 
-def _failing(details: list[Row]) -> list[Row]:
-    return [d for d in details if not d.verdict.passes]
+def _table(table: str, sets, what: str, details: list[Row], entries: str, basis: str = "", **fields) -> Row:
+    """The grouped row of Table ``table`` (one entry per set or group of ``sets``, the ``details``): it holds
+    when every entry is singular on every sample."""
+    bad = [d.id for d in details if not d.verdict.passes]
+    return _graded(
+        f"The {len(sets)} sets of Table {table} ({what}) are singularity sets of the arm.",
+        f"Table {table} (App. D)",
+        f"{len(details) - len(bad)} of {len(details)} {entries} singular on every sample"
+        + (f"; not: {', '.join(bad)}" if bad else ""),
+        Measure(f"{entries} with a sample of full rank", len(bad), 0),
+        f"table_{table.lower()}",
+        basis,
+        details=tuple(details),
+        **fields,
+    )
 
 
-#: Why Table VII holds whatever the arm: three columns dropped leave a 3x2 matrix.
-_VII_BASIS = ("with three joints at their limits their columns are dropped, so the reduced Jacobian is 3x2 "
-              "and has rank <= 2 whatever the arm: singular by construction (shown, not evidence)")
+def _note(s) -> str:
+    return f". Note: {s.note}" if s.note else ""
 
 
 @SECTION.check(
@@ -127,22 +145,13 @@ def table_vi(ctx, sets):
             numbers += "; moving a fixed non-limit joint by 15 deg: " + ", ".join(
                 f"th{j} -> still singular on {f:.0%}" for j, f in nec
             )
-        if s.note:
-            numbers += f". Note: {s.note}"
         claim = f"{s.name} = {_set_label(s)} is a type {s.kind} singularity set."
         m = Measure("share of samples with full rank", 1 - frac, 0.0)
-        details.append(_graded(claim, f"App. D, Table VI, {s.name}", "", numbers, m, f"s{s.index}"))
-    bad = _failing(details)
-    return _graded(
-        f"The {len(sets)} sets of Table VI (type I and II) are singularity sets of the arm.",
-        "Table VI (App. D)",
-        f"Pinocchio position Jacobian (reduced: columns of joints at a limit dropped) on {n} random samples "
-        "of each set's free joints within Table I; singular = rank < 3",
-        f"{len(sets) - len(bad)} of {len(sets)} sets singular on every sample"
-        + (f"; not: {', '.join(d.id for d in bad)}" if bad else ""),
-        Measure("sets that are not singular", len(bad), 0),
-        "table_vi",
-        details=tuple(details),
+        details.append(_graded(claim, f"App. D, Table VI, {s.name}", numbers + _note(s), m, f"s{s.index}"))
+    return _table(
+        "VI", sets, "type I and II", details, "sets",
+        method=f"Pinocchio position Jacobian (reduced: columns of joints at a limit dropped) on {n} random "
+        "samples of each set's free joints within Table I; singular = rank < 3",
         domain=f"{n} samples per set, each free joint uniform over its whole Table I range",
     )
 
@@ -157,39 +166,29 @@ def table_vi(ctx, sets):
     ),
 )
 def table_vii(ctx, sets):
-    """Table VII: the type III sets (three joints at limits); one grouped row, an entry per group of 8."""
+    """Table VII: the type III sets (three joints at limits); one grouped row, an entry per group of 8.
+    With three columns dropped the reduced Jacobian is 3x2 and has rank <= 2 whatever the arm: the sets are
+    singular by construction (shown, not evidence)."""
     rng = ctx.rng("table-vii")
     n = ctx.n(20, 4)
+    basis = ("with three joints at their limits their columns are dropped, so the reduced Jacobian is 3x2 "
+             "and has rank <= 2 whatever the arm: singular by construction (shown, not evidence)")
     details = []
-    for g in range(0, len(sets), 8):
-        group = sets[g : g + 8]
+    for group in (sets[g : g + 8] for g in range(0, len(sets), 8)):
         fr = [_singular_share(s, n, rng)[0] for s in group]
-        s0 = group[0]
-        joints = [j for j, _ in s0.fixed]
-        details.append(
-            _graded(
-                f"s({s0.index})-s({group[-1].index}): joints {joints} at their limits (8 combinations), "
-                f"joints {list(s0.free)} free, are constraint (type III) singularity sets.",
-                f"App. D, Table VII, s({s0.index})-s({group[-1].index})",
-                "",
-                f"rank < 3 on {min(fr):.0%}-{max(fr):.0%} of samples"
-                + (f". Note: {s0.note}" if s0.note else ""),
-                Measure("share of samples with full rank (worst set)", 1 - min(fr), 0.0),
-                f"s{s0.index}-{group[-1].index}",
-                _VII_BASIS,
-            )
-        )
-    bad = _failing(details)
-    return _graded(
-        f"The {len(sets)} sets of Table VII (type III: three joints at limits) are singularity sets.",
-        "Table VII (App. D)",
-        f"Pinocchio reduced Jacobian (columns of the joints at limits dropped) on {n} samples per set",
-        f"{len(details) - len(bad)} of {len(details)} groups singular on every sample (with three columns "
-        "dropped the reduced Jacobian is 3x2, so rank <= 2: these sets are singular by their construction)",
-        Measure("groups with a set that is not singular", len(bad), 0),
-        "table_vii",
-        _VII_BASIS,
-        details=tuple(details),
+        s0, ids = group[0], f"s({group[0].index})-s({group[-1].index})"
+        details.append(_graded(
+            f"{ids}: joints {[j for j, _ in s0.fixed]} at their limits (8 combinations), joints "
+            f"{list(s0.free)} free, are constraint (type III) singularity sets.",
+            f"App. D, Table VII, {ids}",
+            f"rank < 3 on {min(fr):.0%}-{max(fr):.0%} of samples" + _note(s0),
+            Measure("share of samples with full rank (worst set)", 1 - min(fr), 0.0),
+            f"s{s0.index}-{group[-1].index}",
+            basis,
+        ))
+    return _table(
+        "VII", sets, "type III: three joints at limits", details, "groups", basis,
+        method=f"Pinocchio reduced Jacobian (columns of the joints at limits dropped) on {n} samples per set",
         domain=f"{n} samples per set, the free joints uniform over Table I",
     )
 
@@ -208,29 +207,26 @@ def search_singular(ctx, trials: int, trials_interior: int):
     minors of the reduced Jacobian to zero (bounded least squares) from random starts."""
     rng = ctx.rng("singular-search")
     lo, hi = ARM.q_min[:5], ARM.q_max[:5]
+    cases = [(S, ends) for nS in (0, 1, 2) for S in itertools.combinations(range(5), nS)
+             for ends in itertools.product((0, 1), repeat=nS)]
     found = []
-    for nS in (0, 1, 2):
-        for S in itertools.combinations(range(5), nS):
-            for ends in itertools.product((0, 1), repeat=nS):
-                free = [j for j in range(5) if j not in S]
-                for _ in range(trials_interior if nS == 0 else trials):
-                    q = rng.uniform(lo, hi)
-                    for j, e in zip(S, ends, strict=True):
-                        q[j] = (lo[j], hi[j])[e]
+    for S, ends in cases:
+        free = [j for j in range(5) if j not in S]
+        for _ in range(trials if S else trials_interior):
+            q = rng.uniform(lo, hi)
+            for j, e in zip(S, ends, strict=True):
+                q[j] = (lo[j], hi[j])[e]
 
-                    def f(x, q=q, free=free):
-                        qq = q.copy()
-                        qq[free] = x
-                        return _minors(iik.position_jacobian(np.r_[qq, 0.0], ARM)[:, :5], free)
+            def f(x, q=q, free=free):
+                qq = q.copy()
+                qq[free] = x
+                return _minors(iik.position_jacobian(np.r_[qq, 0.0], ARM)[:, :5], free)
 
-                    sol = least_squares(f, q[free], bounds=(lo[free], hi[free]), **_LSQ)
-                    if np.abs(sol.fun).max() > 1e-10:
-                        continue
-                    qq = q.copy()
-                    qq[free] = sol.x
-                    if any(min(abs(qq[j] - lo[j]), abs(qq[j] - hi[j])) < 1e-6 for j in free):
-                        continue  # ended on another limit: counted under that subset
-                    found.append((S, qq))
+            sol = least_squares(f, q[free], bounds=(lo[free], hi[free]), **_LSQ)
+            q[free] = sol.x  # kept if singular and on no further limit (else counted under that subset)
+            if np.abs(sol.fun).max() <= 1e-10 and all(min(abs(q[j] - lo[j]), abs(q[j] - hi[j])) >= 1e-6
+                                                       for j in free):
+                found.append((S, q))
     return found
 
 
@@ -290,7 +286,7 @@ def missing_singularities(ctx, member):
     ex = ""
     if unexpl:
         S, q = unexpl[0]
-        ex = f"\nExample not in any set: joints {[j + 1 for j in S]} at limits, q[1..5] = {_rad(q)}"
+        ex = f"\nExample not in any set: joints {[j + 1 for j in S]} at limits, joints 1-5 at {fmt_q(q)}"
     for q in interior_unexpl[:2]:
         ex += _type_i_note(q)
     reasons = []
@@ -320,11 +316,6 @@ def missing_singularities(ctx, member):
     )
 
 
-def _rad(q) -> str:
-    """``q`` (5,) [rad] in words."""
-    return "[" + ", ".join(f"{v:.4f}" for v in q) + "] rad"
-
-
 def _type_i_note(q) -> str:
     """A type I singular configuration outside s(1): where its tool point lies (joint-1 and link-3 axes)."""
     F = iik.joint_frames(np.r_[q, 0.0], ARM)
@@ -334,7 +325,7 @@ def _type_i_note(q) -> str:
     to_axis1, to_axis3 = np.hypot(p[0], p[1]), np.linalg.norm(v - (v @ d) * d)
     both = to_axis1 < 1e-6 and to_axis3 < 1e-6
     return (
-        f"\nType I configuration outside s(1): q[1..5] = {_rad(q)}, tool at [{p[0]:.4f}, {p[1]:.4f}, "
+        f"\nType I configuration outside s(1): joints 1-5 at {fmt_q(q)}, tool at [{p[0]:.4f}, {p[1]:.4f}, "
         f"{p[2]:.4f}] m: distance to the joint-1 axis {to_axis1:.1e} m, to the link-3 axis {to_axis3:.1e} m, "
         f"th3 = {np.degrees(q[2]):.2f} deg, th5 = {np.degrees(q[4]):.2f} deg"
         + (" (planar arm with the tool on both axes: the th1 and th3 columns vanish)" if both else "")
@@ -348,12 +339,9 @@ def _scan_figure(ctx, unexpl) -> str:
     t = np.linspace(-20, 20, 201) * _D
     for S, q in unexpl[:4]:
         j = [k for k in range(5) if k not in S and k != 0][0]  # th1 never changes the rank
-        sv = []
-        for dt in t:
-            qq = q.copy()
-            qq[j] = np.clip(qq[j] + dt, ARM.lower[j], ARM.upper[j])
-            J = iik.position_jacobian(np.r_[qq, 0.0], ARM)[:, :5]
-            sv.append(reduced_rank(J[None], at_limit_mask(qq[None], ARM), RTOL)[1][0])
+        qq = np.tile(np.r_[q, 0.0], (len(t), 1))
+        qq[:, j] = np.clip(q[j] + t, ARM.lower[j], ARM.upper[j])
+        sv = reduced_rank(iik.position_jacobian(qq, ARM)[..., :5], at_limit_mask(qq, ARM), RTOL)[1]
         lab = ", ".join(f"th{k + 1}={np.degrees(q[k]):.0f}" for k in S) or "no joint at a limit"
         ax.semilogy(np.degrees(t), np.maximum(sv, 1e-18), label=f"vary th{j + 1}; {lab}")
     ax.set_xlabel("change of the joint [deg] from the singular configuration")

@@ -41,6 +41,21 @@ AMBIGUOUS = 1e-4
 
 
 # ----------------------------------------------------------------------------- printed forms
+def eq36_printed(P):
+    """Eq 36: phi = atan2(py, px) [rad] of points ``P`` (n, 3) [m]."""
+    return np.arctan2(P[:, 1], P[:, 0])
+
+
+def _behind(P) -> np.ndarray:
+    """Regions 2/3 (Eq 36): |phi| >= 160 deg, behind the arm."""
+    return np.abs(eq36_printed(P)) >= 160 * _D
+
+
+def _polar(r, phi, z) -> np.ndarray:
+    """Points (n, 3) [m] at radius ``r`` [m] and azimuth ``phi`` [rad] about the base axis, height ``z``."""
+    return np.column_stack([r * np.cos(phi), r * np.sin(phi), z])
+
+
 def eq37_printed(phi, arm=ARM) -> np.ndarray:
     """Eq 37: joint 2 at [l2 cos(phi), l2 sin(phi), l1] [m] with joint 1 at phi [rad] -> (n, 3)."""
     return np.stack([arm.l2 * np.cos(phi), arm.l2 * np.sin(phi), np.full_like(phi, arm.l1)], 1)
@@ -50,16 +65,14 @@ def clip_angle(t, lo: float, hi: float):
     """``t`` [rad] limited to [lo, hi] by the nearer limit *on the circle* (a plain clip picks the wrong one
     for an angle past one limit but nearer the other across +-pi)."""
     t = np.asarray(t, float)
-    d_lo = np.abs(wrap(t - lo))
-    d_hi = np.abs(wrap(t - hi))
-    inside = (t >= lo) & (t <= hi)
-    return np.where(inside, t, np.where(d_lo < d_hi, lo, hi))
+    nearer = np.where(np.abs(wrap(t - lo)) < np.abs(wrap(t - hi)), lo, hi)
+    return np.where((t >= lo) & (t <= hi), t, nearer)
 
 
-def eq39_printed(P, th1):
+def eq39_printed(P, th1, *, sign: float = -1.0, arm=ARM):
     """Eq 39 as printed: theta2 = -atan2(pz - l1, sqrt(px^2 + py^2)) [rad] (link 3 aimed from the base
-    axis; ``th1`` unused)."""
-    return -np.arctan2(P[:, 2] - ARM.l1, np.hypot(P[:, 0], P[:, 1]))
+    axis; ``th1`` unused; ``sign``: the sign in front)."""
+    return sign * np.arctan2(P[:, 2] - arm.l1, np.sqrt(P[:, 0] ** 2 + P[:, 1] ** 2))
 
 
 def eq39_corrected(P, th1, *, sign: float = -1.0, atan=np.arctan2, arm=ARM):
@@ -100,19 +113,15 @@ def eq36_41_test(
     radii (default l3 + l4 + l5 and l4 + l5); ``eq39_sign``: the sign in front of Eq 39's atan2.
     """
     p = np.atleast_2d(p)
-    l1, l2, l3, l4, l5 = arm.lengths
-    r1 = l3 + l4 + l5 if reach1 is None else reach1
-    r23 = l4 + l5 if reach23 is None else reach23
-    px, py, pz = p.T
-    phi = np.arctan2(py, px)  # Eq 36
+    r1 = arm.l3 + arm.l4 + arm.l5 if reach1 is None else reach1
+    r23 = arm.l4 + arm.l5 if reach23 is None else reach23
+    phi = eq36_printed(p)  # Eq 36
     rho1 = np.linalg.norm(p - eq37_printed(phi, arm), axis=1)  # Eq 37
     inside = ~(rho1 > r1 + margin)  # Eq 38
     for region, lim in ((phi >= 160 * _D, 160 * _D), (phi <= -160 * _D, -160 * _D)):
         th1 = {"region": lim, "printed": 160 * _D, "other": -lim}[th1_rule]
-        if eq39 == "printed":
-            th2 = eq39_sign * np.arctan2(pz - l1, np.sqrt(px**2 + py**2))  # Eq 39 as printed
-        else:
-            th2 = eq39_corrected(p, th1, sign=eq39_sign, arm=arm)
+        eq39_form = {"printed": eq39_printed, "corrected": eq39_corrected}[eq39]
+        th2 = eq39_form(p, th1, sign=eq39_sign, arm=arm)  # Eq 39
         rho23 = np.linalg.norm(p - eq40_corrected(th1, th2, sign=eq40_sign, arm=arm), axis=1)  # Eq 40
         inside = np.where(region, ~(rho23 > r23 + margin), inside)  # Eq 41
     return inside
@@ -172,7 +181,7 @@ def _test_points(ctx) -> dict:
     )
     phi = rng.uniform(150 * _D, 210 * _D, n2)
     r = np.sqrt(rng.uniform(0, 0.95**2, n2))
-    back = np.column_stack([r * np.cos(phi), r * np.sin(phi), rng.uniform(-0.55, 1.15, n2)])
+    back = _polar(r, phi, rng.uniform(-0.55, 1.15, n2))
     pts = np.vstack([box, back])
     cls = oracle_for(ctx).classify(pts)
     graded = ~((cls.residual > 1e-6) & (cls.residual < AMBIGUOUS))
@@ -180,66 +189,43 @@ def _test_points(ctx) -> dict:
             "graded": graded}
 
 
+#: The map's cross-sections: plane -> (in words, the index of its vertical axis, that axis's range [m]).
+_PLANES = {"xy": ("z = l1", 1, (-0.95, 0.95)), "xz": ("y = 0", 2, (-0.55, 1.15))}
+
+
 @per_run
 def _grid_plane(ctx, plane: str, n: int):
     """Grid of ``n x n`` points on the plane z = l1 (``"xy"``) or y = 0 (``"xz"``) [m] and their truth."""
-    u = np.linspace(-0.95, 0.95, n)
-    if plane == "xy":
-        X, Y = np.meshgrid(u, u)
-        P = np.column_stack([X.ravel(), Y.ravel(), np.full(X.size, ARM.l1)])
-        ext = (-0.95, 0.95, -0.95, 0.95)
-    else:
-        X, Z = np.meshgrid(u, np.linspace(-0.55, 1.15, n))
-        P = np.column_stack([X.ravel(), np.zeros(X.size), Z.ravel()])
-        ext = (-0.95, 0.95, -0.55, 1.15)
-    return P, oracle_for(ctx).classify(P).reachable, X.shape, ext
+    _, b, (lo, hi) = _PLANES[plane]
+    X, V = np.meshgrid(np.linspace(-0.95, 0.95, n), np.linspace(lo, hi, n))
+    P = np.zeros((X.size, 3))
+    P[:, 2] = ARM.l1
+    P[:, 0], P[:, b] = X.ravel(), V.ravel()
+    return P, oracle_for(ctx).classify(P).reachable, X.shape, (-0.95, 0.95, lo, hi)
 
 
 def _map_figure(ctx, name: str) -> str:
     """Cross-sections (z = l1 and y = 0): truth, Eq 36-41 printed and corrected, disagreements."""
     fig = new_figure(figsize=(12, 5.2))
-    for k, plane in enumerate(("xy", "xz")):
+    for k, (plane, (title, b, _)) in enumerate(_PLANES.items()):
         P, truth, shape, ext = _grid_plane(ctx, plane, ctx.n(80, 40))
         ax = fig.add_subplot(1, 2, k + 1)
-        ax.imshow(
-            truth.reshape(shape), origin="lower", extent=ext, cmap="Greys", alpha=0.35, vmin=0, vmax=1.6
-        )
-        printed = eq36_41_printed(P)
-        corrected = in_workspace(P, ARM)
-        for pred, col, lab in (
-            (printed, "red", "Eq 36-41 as printed"),
-            (corrected, "blue", "iik.in_workspace (corrected)"),
+        ax.imshow(truth.reshape(shape), origin="lower", extent=ext, cmap="Greys", alpha=0.35, vmin=0,
+                  vmax=1.6)
+        for pred, short, col, lab, size, marker, c_out, c_in in (
+            (eq36_41_printed(P), "printed", "red", "Eq 36-41 as printed", 6, "s", "orange", "magenta"),
+            (in_workspace(P, ARM), "corrected", "blue", "iik.in_workspace (corrected)", 10, "x", "cyan", "k"),
         ):
-            ax.contour(
-                pred.reshape(shape).astype(float), levels=[0.5], colors=col, extent=ext, linewidths=1.2
-            )
+            ax.contour(pred.reshape(shape).astype(float), levels=[0.5], colors=col, extent=ext,
+                       linewidths=1.2)
             ax.plot([], [], color=col, label=lab)
-        a, b = (0, 1) if plane == "xy" else (0, 2)
-        for wrong, s, c, marker, lab in (
-            (~printed & truth, 6, "orange", "s", "printed: false outside"),
-            (printed & ~truth, 6, "magenta", "s", "printed: false inside"),
-            (~corrected & truth, 10, "cyan", "x", "corrected: false outside"),
-            (corrected & ~truth, 10, "k", "x", "corrected: false inside"),
-        ):
-            ax.scatter(P[wrong, a], P[wrong, b], s=s, c=c, marker=marker, label=lab)
-        ax.set_aspect("equal")
-        ax.set_xlabel("x [m]")
-        ax.set_ylabel("y [m]" if plane == "xy" else "z [m]")
-        ax.set_title(
-            f"plane {'z = l1' if plane == 'xy' else 'y = 0'} (grey: reachable, ground truth)", fontsize=9
-        )
-        if k == 1:
-            ax.legend(fontsize=7, loc="lower right")
+            for wrong, c, what in ((~pred & truth, c_out, "outside"), (pred & ~truth, c_in, "inside")):
+                ax.scatter(P[wrong, 0], P[wrong, b], s=size, c=c, marker=marker,
+                           label=f"{short}: false {what}")
+        ax.set(aspect="equal", xlabel="x [m]", ylabel=f"{'xyz'[b]} [m]")
+        ax.set_title(f"plane {title} (grey: reachable, ground truth)", fontsize=9)
+    ax.legend(fontsize=7, loc="lower right")
     return ctx.save_figure(fig, name, dpi=80)
-
-
-def _fmt_point(tp, i) -> str:
-    P, truth = tp["p"], tp["truth"]
-    s = (
-        f"p = {fmt_vec(P[i])} m is {'reachable' if truth[i] else 'unreachable'} (IK residual "
-        f"{tp['residual'][i]:.1e} m"
-    )
-    return s + (", q[1..5] = " + fmt_vec(tp["q"][i]) + " rad)" if truth[i] else ")")
 
 
 def _test_domain(tp) -> str:
@@ -253,8 +239,7 @@ def _test_domain(tp) -> str:
 
 def _selected(tp, region: str) -> np.ndarray:
     P = tp["p"]
-    r23 = np.abs(np.arctan2(P[:, 1], P[:, 0])) >= 160 * _D
-    return tp["graded"] & {"all": np.ones(len(P), bool), "1": ~r23, "23": r23}[region]
+    return tp["graded"] & {"all": np.ones(len(P), bool), "1": ~_behind(P), "23": _behind(P)}[region]
 
 
 def classification_reading(ctx, test, region: str, printed: str):
@@ -296,7 +281,10 @@ def _classification_row(ctx, form, key, method, region: str, printed: str, corre
     bad = np.nonzero(sel & (pred != truth))[0]
     erratum = None
     if len(bad):
-        where = _fmt_point(tp, bad[0]) + f"; the form says {'inside' if pred[bad[0]] else 'outside'}"
+        i = bad[0]
+        q = f", q[1..5] = {fmt_vec(tp['q'][i])} rad" if truth[i] else ""
+        where = (f"p = {fmt_vec(P[i])} m is {'reachable' if truth[i] else 'unreachable'} (IK residual "
+                 f"{tp['residual'][i]:.1e} m{q}); the form says {'inside' if pred[i] else 'outside'}")
         erratum = Erratum(key, printed, corrected, where)
     row = Row.graded(
         claim or f"{title_of(key)}.",
@@ -347,8 +335,7 @@ def eq36_41(ctx, test):
         ctx,
         test,
         "Sec 3.4.4, Eq 36-41",
-        _COMPOSITE + "; 10000 points uniform in a box around the arm plus 4000 at azimuth 150-210 deg "
-        "(quick: 1500 + 600). Map: cross-sections z = l1, y = 0",
+        _COMPOSITE + ". Map: cross-sections z = l1, y = 0",
         "all",
         "Eq 36-41 as printed",
         "Eq 39 and Eq 40 corrected (rows workspace.eq39, workspace.eq40)",
@@ -360,11 +347,6 @@ def eq36_41(ctx, test):
     if test is not eq36_41_printed:
         return row
     return row.replace(figures=(_map_figure(ctx, "workspace_eq36_41_map.png"),))
-
-
-def eq36_printed(P):
-    """Eq 36: phi = atan2(py, px) [rad]."""
-    return np.arctan2(P[:, 1], P[:, 0])
 
 
 def _dh_frames(q) -> np.ndarray:
@@ -410,10 +392,10 @@ def _eq36_points(ctx) -> tuple[np.ndarray, np.ndarray]:
     box = np.column_stack([rng.uniform(-0.95, 0.95, (n, 2)), rng.uniform(-0.55, 1.15, n)])
     r = 10 ** rng.uniform(-6, -3, n)  # 1 um .. 1 mm from the axis
     az = rng.uniform(-np.pi, np.pi, n)
-    axis = np.column_stack([r * np.cos(az), r * np.sin(az), rng.uniform(-0.55, 1.15, n)])
+    axis = _polar(r, az, rng.uniform(-0.55, 1.15, n))
     lim = rng.choice([-160.0, 160.0, 180.0], n) * _D + rng.uniform(-1e-3, 1e-3, n) * _D
     rr = rng.uniform(0.05, 0.95, n)
-    edge = np.column_stack([rr * np.cos(lim), rr * np.sin(lim), rng.uniform(-0.55, 1.15, n)])
+    edge = _polar(rr, lim, rng.uniform(-0.55, 1.15, n))
     P = np.vstack([box, axis, edge])
     grid = np.linspace(-np.pi, np.pi, 3600, endpoint=False)
     return P, _nearest_angle(P, grid, partial(_joints_at, th2=0.0, frame=2),
@@ -426,12 +408,12 @@ def _eq36_points(ctx) -> tuple[np.ndarray, np.ndarray]:
     forms=Forms.right(
         eq36_printed,
         (
-            Slip(SlipKind.SWAP, "atan2(px, py): the arguments exchanged", lambda P: np.arctan2(P[:, 0], P[:,
-                1])),
+            Slip(SlipKind.SWAP, "atan2(px, py): the arguments exchanged",
+                 lambda P: np.arctan2(P[:, 0], P[:, 1])),
             Slip(SlipKind.FUNCTION, "atan(py / px) for atan2 (the quadrant lost)",
                  lambda P: np.arctan(P[:, 1] / P[:, 0])),
             Slip(SlipKind.BRANCH, "atan2(py, px) + pi (the opposite side)",
-                 lambda P: np.arctan2(P[:, 1], P[:, 0]) + np.pi),
+                 lambda P: eq36_printed(P) + np.pi),
         ),
         tolerance=epsilon(eq36_printed, 1e-6, "phi + 1 urad"),
     ),
@@ -530,8 +512,8 @@ def _rear_sample(ctx) -> RearPoints:
     n = ctx.n(400, 60)
     phi = rng.uniform(160 * _D, 200 * _D, n)
     r = np.where(np.arange(n) % 4 == 0, rng.uniform(0.01, 0.2, n), rng.uniform(0.05, 0.9, n))  # 1/4 near axis
-    P = np.column_stack([r * np.cos(phi), r * np.sin(phi), rng.uniform(-0.5, 1.1, n)])
-    P = P[np.arctan2(P[:, 1], P[:, 0]) >= 160 * _D]
+    P = _polar(r, phi, rng.uniform(-0.5, 1.1, n))
+    P = P[eq36_printed(P) >= 160 * _D]
     lo, hi = ARM.lower[1], ARM.upper[1]
     at = partial(_joints_at, 160 * _D, frame=2, frames=partial(iik.joint_frames, arm=ARM))  # joint 4
     best = _nearest_angle(P, np.linspace(lo, hi, 2001), at, lo=lo, hi=hi, iters=45)
@@ -711,8 +693,7 @@ def _distance_to_surface(B: np.ndarray, spec: tuple, n: int) -> np.ndarray:
     _, idx = cKDTree(pts).query(B)
     q = q[idx].copy()
     free = [j - 1 for j in spec[1]]
-    lo = np.array([a for a, _ in spec[1].values()]) * _D
-    hi = np.array([b for _, b in spec[1].values()]) * _D
+    lo, hi = np.array(list(spec[1].values())).T * _D
     for _ in range(25):
         G = tool_positions(q, ARM)
         J = iik.position_jacobian(np.column_stack([q, np.zeros(len(q))]), ARM)[:, :, :5][:, :, free]
@@ -741,8 +722,7 @@ def three_surface_boundary(ctx, surfaces):
                   for spec in surfaces.values()])
     dist, nearest = d.min(axis=0), np.array(list(surfaces))[d.argmin(axis=0)]
     covered = dist <= _COVER_TOL
-    phiB = np.degrees(np.arctan2(B[:, 1], B[:, 0]))
-    front = np.abs(phiB) < 160
+    front = ~_behind(B)
     lines = [
         f"{len(B)} exterior-boundary points (farthest of the oracle's samples in each of {na}x{ne} "
         "equal-area direction cells from (0, 0, l1), refined along the ray by IK bisection to 1.25 mm); "
@@ -755,7 +735,7 @@ def three_surface_boundary(ctx, surfaces):
     fig = None
     if surfaces is BOUNDARY_SURFACES_PRINTED:
         lines += _side_test(ctx)
-        fig = _coverage_figure(ctx, phiB, B, dist)
+        fig = _coverage_figure(ctx, B, dist)
     return Row.graded(
         "The exterior workspace boundary consists of f(1) (s(1), th1 in [-160,160], th2 in [-120,95]), f(2) "
         "(th1=160, th3=90, th5=0; th2 in [-100,95], th4 in [0,41]) and f(3) (th1=-160, same, th4 in "
@@ -799,10 +779,11 @@ def _side_test(ctx) -> list[str]:
     return out
 
 
-def _coverage_figure(ctx, phiB, B, dist) -> str:
+def _coverage_figure(ctx, B, dist) -> str:
+    """The boundary points ``B`` (n, 3) [m] by azimuth and height, coloured by ``dist`` [m] to a surface."""
     fig = new_figure(figsize=(7, 3.6))
     ax = fig.add_subplot(111)
-    sc = ax.scatter(phiB, B[:, 2], c=np.minimum(dist * 1e3, 100), s=8, cmap="viridis")
+    sc = ax.scatter(np.degrees(eq36_printed(B)), B[:, 2], c=np.minimum(dist * 1e3, 100), s=8, cmap="viridis")
     fig.colorbar(sc, ax=ax, label="distance to f(1)-f(3) [mm]")
     ax.axvline(160, color="r", lw=0.8)
     ax.axvline(-160, color="r", lw=0.8)
@@ -838,9 +819,8 @@ def no_interior_boundary(ctx, margin):
     """Sec 3.4.3: 'the 6-DOF manipulator does not have interior boundaries' (no void inside the outer one)."""
     tp = _test_points(ctx)
     P, truth = tp["p"], tp["truth"]
-    phi = np.arctan2(P[:, 1], P[:, 0])
     reach = ARM.l3 + ARM.l4 + ARM.l5 - margin
-    deep = (np.linalg.norm(P - eq37_printed(phi), axis=1) <= reach) & (np.abs(phi) < 160 * _D)
+    deep = (np.linalg.norm(P - eq37_printed(eq36_printed(P)), axis=1) <= reach) & ~_behind(P)
     core = _core(ctx)
     n_void = int(np.sum(deep & ~truth)) + int((~core).sum())
     return Row.graded(
@@ -865,7 +845,7 @@ def radial_projection(p, arm=ARM, *, rear: bool = True) -> np.ndarray:
     around joint 4, Eq 41 with corrected Eq 39-40). ``rear`` False: onto the region-1 sphere everywhere."""
     p = np.atleast_2d(p).astype(float)
     l1, l2, l3, l4, l5 = arm.lengths
-    phi = np.arctan2(p[:, 1], p[:, 0])
+    phi = eq36_printed(p)
     c = eq37_printed(phi, arm)
     R = np.full(len(p), l3 + l4 + l5)
     for region, th1 in ((phi >= arm.upper[0], arm.upper[0]), (phi <= arm.lower[0], arm.lower[0])):
@@ -925,7 +905,7 @@ def app_g_relocation(ctx, relocate):
     inward = R + 1e-4 * (R - P) / np.maximum(d_rel[:, None], 1e-12)  # 0.1 mm back inside, off the boundary
     ok = oracle_for(ctx).classify(inward).reachable
     extra = d_rel - closest.distance
-    r23 = np.abs(np.arctan2(P[:, 1], P[:, 0])) >= 160 * _D
+    r23 = _behind(P)
     fk_err = np.abs(iik.fk(closest.q, ARM)[:, :3, 3] - closest.point).max()
     return Row.graded(
         "A point outside the workspace is relocated to the closest position inside it.",
