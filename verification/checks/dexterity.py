@@ -40,6 +40,7 @@ SECTION = Section("Dexterity (Sec 3.5, Eq 42-51)", depends_on=EXACT_GEOMETRY, or
 
 
 # ----------------------------------------------------------------------------- printed forms
+@np.errstate(invalid="ignore", divide="ignore")
 def printed_admits(p, alpha35, beta35) -> np.ndarray:
     """Eq 43-51 as printed (their transcriptions below, one per equation): is (alpha, beta) in the thesis's
     own angles [rad] admitted at ``p`` (3,) [m]?
@@ -100,9 +101,6 @@ class Pose35:
     def phi(self) -> np.ndarray:
         return np.arctan2(self.p[:, 1], self.p[:, 0])
 
-    def keep(self, mask) -> Pose35:
-        return Pose35(self.q[mask], self.p[mask], self.S[mask], self.J2[mask], self.kind)
-
     def __len__(self) -> int:
         return len(self.q)
 
@@ -117,23 +115,21 @@ class Pose35:
                 "10^U(-6, -1.5) rad of +-90 deg (link 3 vertical)")
 
 
-def _pose35(q, kind: str = "") -> Pose35:
+def _pose35(q, kind: str = "", r=None) -> Pose35:
     F = joint_placements(q)
-    return Pose35(q, F[:, 6, :3, 3], F[:, 5, :3, 3], F[:, 2, :3, 3], kind)
+    return Pose35(q, F[:, 6, :3, 3], F[:, 5, :3, 3], F[:, 2, :3, 3], kind, r)
 
 
 @per_run
 def configurations(ctx, kind: str) -> Pose35:
-    """Configurations the text describes (cached): ``"aligned-planar"`` (theta3 = theta4 = 0),
-    ``"contracted-planar"`` (theta3 = 0, theta4 = +-119 deg), ``"aligned"`` (theta4 = 0), ``"contracted"``
-    (theta4 = +-119 deg), ``"planar"`` (both planar families, with their ``r``); theta2 over the whole of
-    Table I, a third of the samples within 10^U(-6, -1.5) rad of theta2 = +-90 deg (link 3 vertical: where
-    the inclination formulas are hardest); the planar ones keep p in front of the base axis (its azimuth is
-    theta1)."""
+    """The configurations the text describes (cached), the family ``kind`` (:data:`_KIND_TEXT`; "planar": both
+    planar families, with their ``r``): theta2 over the whole of Table I, a third of the samples within
+    10^U(-6, -1.5) rad of +-90 deg (link 3 vertical: where the inclination formulas are hardest); the planar
+    ones keep p in front of the base axis (its azimuth is theta1)."""
     if kind == "planar":
         c, c2 = configurations(ctx, "aligned-planar"), configurations(ctx, "contracted-planar")
-        both = (np.concatenate([getattr(c, f), getattr(c2, f)]) for f in ("q", "p", "S", "J2"))
-        return Pose35(*both, kind, np.concatenate([np.full(len(c.q), L3 + L4), np.full(len(c2.q), D_IN)]))
+        r = np.concatenate([np.full(len(c.q), L3 + L4), np.full(len(c2.q), D_IN)])
+        return _pose35(np.concatenate([c.q, c2.q]), kind, r)
     rng = ctx.rng(f"dex-{kind}")
     n = ctx.n(3000, 300)
     q = rng.uniform(ARM.q_min, ARM.q_max, (n, 6))
@@ -141,14 +137,11 @@ def configurations(ctx, kind: str) -> Pose35:
     q[near, 1] = (rng.choice([-1.0, 1.0], n) * np.pi / 2 + rng.choice([-1.0, 1.0], n)
                   * 10 ** rng.uniform(-6, -1.5, n))[near]
     q[:, 1] = np.clip(q[:, 1], ARM.q_min[1], ARM.q_max[1])
-    if kind.startswith("aligned"):
-        q[:, 3] = 0.0
-    else:
-        q[:, 3] = rng.choice([-1.0, 1.0], n) * 119 * _D
+    q[:, 3] = 0.0 if kind.startswith("aligned") else rng.choice([-1.0, 1.0], n) * 119 * _D
     if kind.endswith("planar"):
         q[:, 2] = 0.0
     c = _pose35(q, kind)
-    return c.keep(np.abs(wrap(c.phi - q[:, 0])) < 1e-9) if kind.endswith("planar") else c
+    return _pose35(q[np.abs(wrap(c.phi - q[:, 0])) < 1e-9], kind) if kind.endswith("planar") else c
 
 
 _KIND_TEXT = {
@@ -174,7 +167,7 @@ def _length(v: np.ndarray) -> np.ndarray:
 
 def _inclination(v: np.ndarray) -> np.ndarray:
     """The inclination [rad] of vectors (n, 3) from the horizontal."""
-    return np.arcsin(v[:, 2] / np.linalg.norm(v, axis=1))
+    return np.arcsin(v[:, 2] / _length(v))
 
 
 # ----------------------------------------------------------------------------- Eq 43-47
@@ -239,44 +232,36 @@ def _dir(alpha: np.ndarray, beta: np.ndarray) -> np.ndarray:
     return np.cos(beta)[:, None] * horizontal + np.sin(beta)[:, None] * np.array([0.0, 0.0, 1.0])
 
 
-def eq43_signed_run(p):
-    """Eq 43 with the run's sign kept: atan2(pz - z2, |p_xy| - l2), the inclination of J2 -> p in the vertical
-    half-plane of azimuth atan2(py, px) (past 90 deg where p lies between the base axis and joint 2)."""
-    return np.arctan2(p[:, 2] - L1, np.hypot(p[:, 0], p[:, 1]) - L2)
-
-
 def _link5_error(c: Pose35, r, alpha: np.ndarray, nominal=eq43_printed, delta=eq44_delta) -> np.ndarray:
     """|link 5 - the direction at (alpha, beta' +- delta)|, the nearer of the two (Eq 43-45's beta;
     ``nominal`` gives beta', ``delta(rho, r)`` the half-angle)."""
     bp, d = nominal(c.p), delta(_length(c.p - c.J2), r)
     return np.minimum(np.linalg.norm(_dir(alpha, bp + d) - c.a, axis=1),
                       np.linalg.norm(_dir(alpha, bp - d) - c.a, axis=1))
-def eq46_reading(ctx, c: Pose35, r: np.ndarray, eq46):
+
+
+def eq46_reading(ctx, c: Pose35, eq46):
     """Second reading of Eq 46 (the form): link 5 against the direction the thesis's angles describe, under
     the stated convention (beta the inclination in the arm's vertical plane, past 90 deg as Eq 44 gives it,
     beta' by Eq 43 as printed), with Eq 43's run signed (|p_xy| - l2: the sign its square root drops), with
     (px, py) seen from joint 2, and under our former reading (beta within +-90 deg, alpha the azimuth of
     link 5's horizontal projection). The signed run comes first: it keeps Eq 46 as printed."""
-    from_j2 = _from_joint2(c.p)  # p seen from joint 2 (Eq 37)
-    stated = {"convention": "thesis", "p": c.p, "run": "unsigned"}
+    stated = {"p": c.p, "beta'": eq43_printed, "projection": False}
 
     def misfit(x) -> float:
         alpha = np.asarray(eq46(x["p"]), float)
-        if x["convention"] == "thesis":
-            nominal = eq43_printed if x["run"] == "unsigned" else eq43_signed_run
-            return float(_link5_error(c, r, alpha, nominal).max())
-        return float(np.abs(wrap(alpha - c.alpha)).max())
+        if x["projection"]:
+            return float(np.abs(wrap(alpha - c.alpha)).max())
+        return float(_link5_error(c, c.r, alpha, x["beta'"]).max())
 
     readings = [
         Reading(Kind.SIGN, "Eq 43's run with its sign: beta' = atan2(pz - z2, |p_xy| - l2) (the square root "
                 "drops the sign where p lies between the base axis and joint 2; Eq 46 as printed)",
-                {"run": "signed"}),
-        Reading(Kind.WHICH,
-            "(px, py) measured from joint 2, as Eq 43 measures beta' (they differ by pi where p is "
-                "horizontally within l2 of the base axis)", {"p": from_j2}),
-        Reading(Kind.CONVENTION,
-            "beta within +-90 deg, alpha the azimuth of link 5's horizontal projection (the "
-                "reading that made Eq 46 an erratum)", {"convention": "projection"}),
+                {"beta'": lambda p: np.arctan2(p[:, 2] - L1, np.hypot(p[:, 0], p[:, 1]) - L2)}),
+        Reading(Kind.WHICH, "(px, py) measured from joint 2, as Eq 43 measures beta' (they differ by pi "
+                "where p is horizontally within l2 of the base axis)", {"p": _from_joint2(c.p)}),
+        Reading(Kind.CONVENTION, "beta within +-90 deg, alpha the azimuth of link 5's horizontal projection "
+                "(the reading that made Eq 46 an erratum)", {"projection": True}),
     ]
     return search(stated, readings, misfit, TOL, printed="alpha' = atan2(py, px)",
                   stated_text="Sec 3.5's angles: alpha the azimuth of the arm's vertical plane, beta the "
@@ -330,6 +315,8 @@ def eq48_corrected(h, r):
 
 #: d (Eq 45) = phi (Eq 50, 51) with its angle 180 - 119 = 61 taken as radians.
 D_IN_RAD = float(np.sqrt(L3**2 + L4**2 - 2 * L3 * L4 * np.cos(61.0)))
+
+
 def inclination_reading(c: Pose35, truth: np.ndarray, r: float, form, printed: str):
     """Second reading of Eq 48 / Eq 50 (the form): the inclination of links 3-4 under each nearby reading of
     its stated inputs (the height measured from the base, delta measured downward, and for the contracted
@@ -352,17 +339,12 @@ def inclination_reading(c: Pose35, truth: np.ndarray, r: float, form, printed: s
                   measure="max |form - inclination| [rad]")
 
 
-
-
-def _links34(c: Pose35) -> np.ndarray:
-    """The true inclination [rad] of links 3-4 (joint 2 -> SLJ)."""
-    return _inclination(c.S - c.J2)
-
-
 def _delta(key: str, r: float, text: str, good_is: str, corrected: str) -> Formula:
-    """Eq 48 / Eq 50: the inclination of links 3-4 (the segment of length ``r``) from the true h_SLJ."""
+    """Eq 48 / Eq 50: the inclination of links 3-4 (the segment of length ``r``, joint 2 -> SLJ) from the true
+    h_SLJ."""
     what = "aligned" if r > D_IN else "contracted (theta4 = +-119 deg)"
-    return Formula(key, eq48_printed, lambda c, f: np.abs(f(c.S[:, 2], r) - _links34(c)), TOL, "rad", (
+    err = lambda c, f: np.abs(f(c.S[:, 2], r) - _inclination(c.S - c.J2))
+    return Formula(key, eq48_printed, err, TOL, "rad", (
         Slip(SlipKind.FUNCTION, "atan for asin (as printed)", eq48_printed),
         Slip(SlipKind.LENGTH, "l3 for the segment's length", lambda h, r: eq48_corrected(h, L3 + 0 * r)),
         Slip(SlipKind.SIGN, "h_SLJ + l1 (the base height added)", lambda h, r: eq48_corrected(h + 2 * L1, r)),
@@ -371,7 +353,7 @@ def _delta(key: str, r: float, text: str, good_is: str, corrected: str) -> Formu
         method=f"random configurations with links 3-4 {what} (Pinocchio): inclination of J2 -> SLJ vs the "
         "form with the true h_SLJ",
         note=lambda c, err: f"|J2 - SLJ| = {r:.4f} m: the rise over the segment's length is a sine, not a "
-        "tangent", reread=lambda ctx, c, f: inclination_reading(c, _links34(c), r, f, text))
+        "tangent", reread=lambda ctx, c, f: inclination_reading(c, _inclination(c.S - c.J2), r, f, text))
 
 
 def eq49_sigma(rho, beta, delta, r, reach=None):
@@ -387,10 +369,6 @@ def _cos_law(rho, lb, far, sign: float = 1.0):
     """The angle at the base axis of the triangle with sides ``rho`` (to p), ``lb`` (link 5 projected) and
     ``far`` (to the SLJ) [rad]; ``sign`` -1: the slip rho^2 - lb^2."""
     return _acos((rho**2 + sign * lb**2 - far**2) / (2 * rho * lb))
-
-
-def _sigma_true(rho, beta, delta, r, reach):
-    return _cos_law(rho, L5 * np.cos(beta), reach)
 
 
 #: The slips of the printed law of cosines of Eq 49 and Eq 51.
@@ -413,11 +391,6 @@ def _sigma_inputs(c: Pose35):
     out = np.stack([np.cos(c.q[:, 0]), np.sin(c.q[:, 0])], 1)  # joint 1's vertical plane, outward
     delta = np.arctan2(v[:, 2], np.einsum("ni,ni->n", v[:, :2], out))
     return np.hypot(c.p[:, 0], c.p[:, 1]), delta, np.hypot(c.S[:, 0], c.S[:, 1])
-
-
-def _sigma_error(c: Pose35, form, r: float) -> np.ndarray:
-    rho, delta, reach = _sigma_inputs(c)
-    return np.abs(np.abs(wrap(c.alpha - c.phi)) - form(rho, c.beta, delta, r, reach))
 
 
 def sigma_reading(c: Pose35, form, r: float, printed: str):
@@ -443,6 +416,10 @@ def sigma_reading(c: Pose35, form, r: float, printed: str):
 
 def _alpha_limits(key: str, r: float, text: str, corrected: str = "-") -> Formula:
     """Eq 49 / Eq 51: link 5's azimuth deviation |alpha - alpha'| is sigma, with the true delta fed in."""
+    def error(c, f):
+        rho, delta, reach = _sigma_inputs(c)
+        return np.abs(np.abs(wrap(c.alpha - c.phi)) - f(rho, c.beta, delta, r, reach))
+
     def note(c, err):
         rho, delta, _ = _sigma_inputs(c)
         printed_delta = eq48_printed(c.S[:, 2], r)
@@ -451,9 +428,9 @@ def _alpha_limits(key: str, r: float, text: str, corrected: str = "-") -> Formul
                 "rad; link 3 leaning back over the axis (delta past 90 deg) in "
                 f"{np.mean(np.abs(delta) > np.pi / 2):.0%} of the configurations")
 
-    return Formula(key, eq49_sigma, lambda c, f: _sigma_error(c, f, r), TOL, "rad", _SIGMA_SLIPS,
-                   good=_sigma_true, good_is="the law of cosines with the SLJ's true horizontal distance",
-                   eps=1e-6,
+    return Formula(key, eq49_sigma, error, TOL, "rad", _SIGMA_SLIPS,
+                   good=lambda rho, beta, delta, r, reach: _cos_law(rho, L5 * np.cos(beta), reach),
+                   good_is="the law of cosines with the SLJ's true horizontal distance", eps=1e-6,
                    eps_is="that sigma + 1 urad", text=text, corrected=corrected, measure=_GEOMETRY, note=note,
                    method="random configurations with links 3-4 "
                    f"{'aligned (theta4 = 0)' if r > D_IN else 'contracted (theta4 = +-119 deg)'} and any "
@@ -512,7 +489,7 @@ CHECKS = {
             "- SLJ) vs the unit vector at azimuth alpha' and inclination beta' +- delta in that vertical "
             "plane (Sec 3.5's angles: beta runs past 90 deg when link 5 tilts back over the vertical, Figs "
             "21c, 24c)",
-            reread=lambda ctx, c, f: eq46_reading(ctx, c, c.r, f)),
+            reread=eq46_reading),
     ),
     **SECTION.formulas(
         _family("aligned"),
@@ -554,14 +531,42 @@ def sec35_to_eq42(alpha35, beta35):
     return wrap(alpha35 + np.pi), beta35 + np.pi / 2
 
 
+def _z6_gap(a, b, z6: np.ndarray, elevation: bool = False) -> np.ndarray:
+    """The angle difference [rad] of Eq 42 angles (``a``, ``b``) from the azimuth and polar angle of ``z6``
+    (n, 3) (with ``elevation``: its elevation from the horizontal); the azimuth not counted at the poles."""
+    beta = np.arcsin(np.clip(z6[:, 2], -1, 1)) if elevation else np.arccos(np.clip(z6[:, 2], -1, 1))
+    alpha = np.arctan2(z6[:, 1], z6[:, 0])
+    return np.maximum(np.abs(wrap(a - alpha)) * (np.abs(z6[:, 2]) < 1 - 1e-12), np.abs(b - beta))
+
+
 def _convention_error(c: Pose35, to_eq42) -> np.ndarray:
     """The angle difference [rad] of the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5) through ``to_eq42`` from
-    the Eq 42 angles of z6 (azimuth, polar angle; the azimuth not counted at the poles)."""
-    z6 = joint_placements(c.q)[:, 6, :3, 2]
-    beta42 = np.arccos(np.clip(z6[:, 2], -1, 1))
-    alpha42 = np.arctan2(z6[:, 1], z6[:, 0])
+    the Eq 42 angles of z6 (Pinocchio)."""
+    return _z6_gap(*to_eq42(c.alpha, c.beta), joint_placements(c.q)[:, 6, :3, 2])
+
+
+def convention_reading(ctx, c: Pose35, to_eq42):
+    """Second reading of the Sec 3.5 / Eq 42 convention (the form): Eq 42's angles of z6 from the iik.dh chain
+    under each nearby reading of the stated conventions (d6 = +l5: z6 along link 5; Eq 42's beta read as an
+    elevation from the horizontal), vs the form's angles."""
+    from .ik_equations import chain_frames
+
     a, b = to_eq42(c.alpha, c.beta)
-    return np.maximum(np.abs(wrap(a - alpha42)) * (np.sin(beta42) > 1e-6), np.abs(b - beta42))
+
+    def misfit(x) -> float:
+        return float(_z6_gap(a, b, chain_frames(c.q, d6=x["d6"])[:, 5, :3, 2], x["elevation"]).max())
+
+    readings = [
+        Reading(Kind.SIGN, "d6 = +l5 (z6 along link 5, as Eq 9 and App. B's 5_6T read it)", {"d6": L5}),
+        Reading(Kind.CONVENTION, "Eq 42's beta read as an elevation from the horizontal",
+                {"elevation": True}),
+    ]
+    return search({"d6": -L5, "elevation": False}, readings, misfit, TOL,
+                  printed="Sec 3.5's (alpha, beta) of link 5 used as Eq 42's",
+                  stated_text="Eq 42's matrix (r33 = cos beta: beta the polar angle of z6), Table II (d6 = "
+                  "-l5)",
+                  route="z6 of the Table II chain by iik.dh (not Pinocchio)",
+                  measure="max angle difference [rad]")
 
 
 CHECKS |= SECTION.formulas(_family("aligned"), Formula(
@@ -582,44 +587,14 @@ CHECKS |= SECTION.formulas(_family("aligned"), Formula(
     method="{n} configurations (Pinocchio): the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5: azimuth, "
     "inclination) through the form vs the Eq 42 angles of z6 (azimuth, polar angle)",
     measure="max angle difference", note=lambda c, err: "z6 = -a in every configuration (d6 = -l5)",
-    reread=lambda ctx, c, f: convention_reading(c, f)))
-
-
-def convention_reading(c: Pose35, to_eq42):
-    """Second reading of the Sec 3.5 / Eq 42 convention (the form): Eq 42's angles of z6 from the iik.dh chain
-    under each nearby reading of the stated conventions (d6 = +l5: z6 along link 5; Eq 42's beta read as an
-    elevation from the horizontal), vs the form's angles."""
-    from .ik_equations import chain_frames
-
-    a, b = to_eq42(c.alpha, c.beta)
-    stated = {"d6": -L5, "elevation": False}
-
-    def misfit(x) -> float:
-        z6 = chain_frames(c.q, d6=x["d6"])[:, 5, :3, 2]
-        beta = np.arcsin(np.clip(z6[:, 2], -1, 1)) if x["elevation"] else np.arccos(np.clip(z6[:, 2], -1, 1))
-        alpha = np.arctan2(z6[:, 1], z6[:, 0])
-        return float(np.maximum(np.abs(wrap(a - alpha)) * (np.abs(z6[:, 2]) < 1 - 1e-12),
-            np.abs(b - beta)).max())
-
-    readings = [
-        Reading(Kind.SIGN, "d6 = +l5 (z6 along link 5, as Eq 9 and App. B's 5_6T read it)", {"d6": L5}),
-        Reading(Kind.CONVENTION, "Eq 42's beta read as an elevation from the horizontal",
-            {"elevation": True}),
-    ]
-    return search(stated, readings, misfit, TOL, printed="Sec 3.5's (alpha, beta) of link 5 used as Eq 42's",
-                  stated_text="Eq 42's matrix (r33 = cos beta: beta the polar angle of z6), Table II (d6 = "
-                  "-l5)",
-                  route="z6 of the Table II chain by iik.dh (not Pinocchio)",
-                  measure="max angle difference [rad]")
+    reread=convention_reading))
 
 
 @per_run
 def sweep(ctx):
     """The exact admissible set on a grid: :func:`iik.dexterity.admissible` (IK feasibility) at
     ``na x nb`` orientations of each of ``npts`` reachable points (300 in the full report)."""
-    rng = ctx.rng("dexterity-points")
-    npts = ctx.n(300, 8)
-    q = rng.uniform(ARM.q_min, ARM.q_max, size=(npts, 6))
+    q = ctx.rng("dexterity-points").uniform(ARM.q_min, ARM.q_max, size=(ctx.n(300, 8), 6))
     P = iik.fk(q, ARM)[:, :3, 3]
     na, nb = ctx.n(36, 24), ctx.n(18, 12)
     A, B = np.meshgrid((np.arange(na) + 0.5) / na * 2 * np.pi - np.pi, (np.arange(nb) + 0.5) / nb * np.pi)
@@ -660,8 +635,7 @@ def rates(adm: np.ndarray, truth: np.ndarray) -> Rates:
 
 def admitted_printed(p, A, B):
     """Eq 43-51 as printed, the angles converted to Eq 42's (the reading of dexterity.beta_convention)."""
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return printed_admits(p, A - np.pi, B - np.pi / 2)
+    return printed_admits(p, A - np.pi, B - np.pi / 2)
 
 
 def shell_admits(p, A, B, arm) -> np.ndarray:
@@ -690,24 +664,8 @@ def _shell(p, A, B):
     return shell_admits(p, A, B, ARM)
 
 
-@dataclass(frozen=True)
-class SolvableOnly:
-    """Known-good admission: exactly the orientations the sweep found solvable (sound by construction)."""
-
-    truth: str = "sweep"
-
-
-def _unconverted(p, A, B):
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return printed_admits(p, A, B)
-
-
-def _admitted(form, sw, i, p):
-    if isinstance(form, SolvableOnly):
-        return sw["truth"][i]
-    return form(p, sw["A"], sw["B"])
-
-
+#: The known-good admission: exactly the orientations the sweep found solvable (sound by construction).
+SOLVABLE_ONLY = object()
 _SOUND = 0.999  # share of admitted orientations that must be solvable ("guarantees convergence")
 
 
@@ -715,12 +673,12 @@ def _sweep_forms(printed) -> Forms:
     """Forms of an admitted set graded on the sweep: good admits exactly the solved orientations, bad all."""
     return Forms(
         printed=printed,
-        good=SolvableOnly(),
+        good=SOLVABLE_ONLY,
         good_is="exactly the orientations the sweep solves",
         slips=(
             Slip(SlipKind.CLAIM, "every orientation", lambda p, A, B: np.ones(A.shape, bool)),
             Slip(SlipKind.MODEL, "the angles used without the Eq 42 conversion (Sec 3.5's read as Eq 42's)",
-                 _unconverted),
+                 printed_admits),
         ),
     )
 
@@ -732,7 +690,7 @@ def _sweep_row(ctx, admit, claim: str, reference: str, method: str, reason: str,
     :class:`Rates` (``{rates}``) and the solvable orientations (``{solvable}`` of ``{total}``); with
     ``figure`` the row shows the sets at the first points (:func:`_figure`)."""
     sw = sweep(ctx)
-    adm = np.array([_admitted(admit, sw, i, p) for i, p in enumerate(sw["P"])])
+    adm = sw["truth"] if admit is SOLVABLE_ONLY else np.array([admit(p, sw["A"], sw["B"]) for p in sw["P"]])
     r = rates(adm, sw["truth"])
     words = dict(na=sw["na"], nb=sw["nb"], npts=len(sw["P"]), rates=r.text(), total=sw["truth"].size,
                  solvable=int(sw["truth"].sum()))
@@ -801,18 +759,12 @@ def shell_model(ctx, admit):
 
 # ----------------------------------------------------------------------------- the exact sets
 _EDGE = 1e-7  # [rad]: a step across an interval end, 100 x the bisection tolerance
+_GRID = 2 * _D  # [rad]: the grid of the slip that leaves the ends unrefined
 
 
-def _grid_ends(p, beta, arm):
-    """A slip: the ends left on the 2 deg grid (no root-finding): each interval out to the next grid line."""
-    step = 2 * _D
-    return tuple((float(np.floor(lo / step) * step), float(np.ceil(hi / step) * step))
-                 for lo, hi in alpha_intervals(p, beta, arm))
-
-
-def _widened(p, beta, arm):
-    """A slip: the exact intervals widened by a quarter of a degree at each end."""
-    return tuple((lo - 0.25 * _D, hi + 0.25 * _D) for lo, hi in alpha_intervals(p, beta, arm))
+def _moved(ends):
+    """A slip: iik.dexterity's alpha intervals [rad] with each (lo, hi) replaced by ``ends(lo, hi)``."""
+    return lambda p, beta, arm: tuple(ends(lo, hi) for lo, hi in alpha_intervals(p, beta, arm))
 
 
 def _member(intervals, a):
@@ -856,8 +808,10 @@ def _beta_end_errors(p, d) -> int:
     51.5,
     depends_on=("l1", "lengths", "ik-sweep"),
     forms=Forms.right(alpha_intervals, (
-        Slip(SlipKind.MODEL, "interval ends left on the 2 deg grid (no root-finding)", _grid_ends),
-        Slip(SlipKind.CLAIM, "every interval a quarter degree wider at each end", _widened),
+        Slip(SlipKind.MODEL, "interval ends left on the 2 deg grid (no root-finding)", _moved(
+            lambda lo, hi: (float(np.floor(lo / _GRID) * _GRID), float(np.ceil(hi / _GRID) * _GRID)))),
+        Slip(SlipKind.CLAIM, "every interval a quarter degree wider at each end",
+             _moved(lambda lo, hi: (lo - 0.25 * _D, hi + 0.25 * _D))),
     )),
 )
 def iik_dexterity(ctx, intervals):
