@@ -30,6 +30,7 @@ from ..plotting import new_figure
 from ..registry import Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict
 from ..second_reading import Kind, Reading, search
 from ..shorthand import wrap
+from ..thesis_index import title_of
 
 ARM = THESIS_ARM
 _D = np.pi / 180
@@ -74,9 +75,10 @@ def _in_ring(dev, outer, inner, has_out: bool, has_in: bool):
 # ----------------------------------------------------------------------------- exact geometry
 @dataclass(frozen=True)
 class Pose35:
-    """Sec 3.5 quantities of configurations q (Pinocchio): tool point p, SLJ S, joint 2 J2, link-5 unit
-    vector a = (p - S)/l5, its inclination beta and azimuth alpha; ``kind`` (:data:`_KIND_TEXT`) and, for
-    the planar families, ``r`` the side of their triangle (l3 + l4 or d) per configuration."""
+    """Sec 3.5 quantities of configurations q (Pinocchio, base frame): tool point p, SLJ S, joint 2 J2 [m],
+    link-5 unit vector a = (p - S)/l5, its inclination beta and azimuth alpha, the point's azimuth phi [rad];
+    ``kind`` (:data:`_KIND_TEXT`) and, for the planar families, ``r`` the side of their triangle (l3 + l4 or
+    d) per configuration."""
 
     q: np.ndarray
     p: np.ndarray
@@ -85,21 +87,10 @@ class Pose35:
     kind: str = ""
     r: np.ndarray | None = None
 
-    @property
-    def a(self) -> np.ndarray:
-        return (self.p - self.S) / L5
-
-    @property
-    def beta(self) -> np.ndarray:
-        return np.arcsin(np.clip(self.a[:, 2], -1, 1))
-
-    @property
-    def alpha(self) -> np.ndarray:
-        return np.arctan2(self.a[:, 1], self.a[:, 0])
-
-    @property
-    def phi(self) -> np.ndarray:
-        return np.arctan2(self.p[:, 1], self.p[:, 0])
+    a = property(lambda self: (self.p - self.S) / L5)
+    beta = property(lambda self: np.arcsin(np.clip(self.a[:, 2], -1, 1)))
+    alpha = property(lambda self: np.arctan2(self.a[:, 1], self.a[:, 0]))
+    phi = property(lambda self: np.arctan2(self.p[:, 1], self.p[:, 0]))
 
     def __len__(self) -> int:
         return len(self.q)
@@ -152,7 +143,6 @@ _KIND_TEXT = {
     "planar": "theta3 = 0 and theta4 = 0 or +-119 deg",
     "aligned": "theta4 = 0 (links 3-4 aligned), theta3 free",
     "contracted": "theta4 = +-119 deg (links 3-4 contracted), theta3 free",
-    "": "the joints uniform in Table I",
 }
 
 
@@ -193,6 +183,11 @@ def eq44_delta(rho, r):
     return _acos((L5**2 + rho**2 - r**2) / (2 * L5 * rho))
 
 
+def _printed(key: str) -> str:
+    """The printed form of an index item: its title without the words after ": "."""
+    return title_of(key).split(": ")[0]
+
+
 #: The slips of the printed triangle of Eq 44 and Eq 45.
 _DELTA_SLIPS = (
     Slip(SlipKind.SIGN, "l5^2 - rho^2 - r^2 in the numerator",
@@ -204,7 +199,7 @@ _DELTA_SLIPS = (
 )
 
 
-def _beta_limits(key: str, r: float, method: str, note=None) -> Formula:
+def _beta_limits(key: str, r: float, note=None) -> Formula:
     """Eq 44 / Eq 45: link 5 at beta' +- delta (the printed triangle with side ``r``), as unit vectors, in
     the vertical plane of J2 and p."""
     def error(c, f):
@@ -213,7 +208,10 @@ def _beta_limits(key: str, r: float, method: str, note=None) -> Formula:
 
     return Formula(key, eq44_delta, error, TOL, "-", _DELTA_SLIPS,
                    good_is="the printed triangle (it is right)", eps=1e-6, eps_is="delta + 1 urad",
-                   measure=_GEOMETRY, method=method, note=note)
+                   measure=_GEOMETRY, note=note,
+                   method="Pinocchio: the link-5 direction vs the two directions at beta' +- delta in the "
+                   "plane of J2 and p (compared as unit vectors, so inclinations past 90 deg need no special "
+                   "case)")
 
 
 #: q [rad] of the counterexample that made Eq 46 an erratum before issue 19 (links 3-4 aligned, link 5 facing
@@ -283,10 +281,9 @@ def _eq46_note(c: Pose35, err) -> str:
     beta = np.degrees(eq43_printed(c.p) + eq44_delta(np.linalg.norm(c.p - c.J2, axis=1), c.r))
     close = np.hypot(c.p[:, 0], c.p[:, 1]) < L2
     far = ~close
-    old = _pose35(OLD_EQ46_COUNTEREXAMPLE[None])  # the configuration that made Eq 46 an erratum (issue 19)
-    old_r = np.array([L3 + L4])
-    old_beta = eq43_printed(old.p) + eq44_delta(np.linalg.norm(old.p - old.J2, axis=1), old_r)
-    old_err = _link5_error(old, old_r, eq46_printed(old.p))[0]
+    old = _pose35(OLD_EQ46_COUNTEREXAMPLE[None], r=np.array([L3 + L4]))  # the erratum's before issue 19
+    old_beta = eq43_printed(old.p) + eq44_delta(_length(old.p - old.J2), old.r)
+    old_err = _link5_error(old, old.r, eq46_printed(old.p))[0]
     return (
         f"link 5 faces the base axis in {inward.mean():.0%} of these configurations (beta' + delta up to "
         f"{beta.max():.1f} deg; past 90 deg in {(beta > 90).mean():.0%}): there too the angles describe "
@@ -339,19 +336,19 @@ def inclination_reading(c: Pose35, truth: np.ndarray, r: float, form, printed: s
                   measure="max |form - inclination| [rad]")
 
 
-def _delta(key: str, r: float, text: str, good_is: str, corrected: str) -> Formula:
+def _delta(key: str, r: float, why: str) -> Formula:
     """Eq 48 / Eq 50: the inclination of links 3-4 (the segment of length ``r``, joint 2 -> SLJ) from the true
-    h_SLJ."""
-    what = "aligned" if r > D_IN else "contracted (theta4 = +-119 deg)"
+    h_SLJ; corrected: asin for atan (``why``)."""
+    text = _printed(key)
+    good = text.replace("atan", "asin")
     err = lambda c, f: np.abs(f(c.S[:, 2], r) - _inclination(c.S - c.J2))
     return Formula(key, eq48_printed, err, TOL, "rad", (
         Slip(SlipKind.FUNCTION, "atan for asin (as printed)", eq48_printed),
         Slip(SlipKind.LENGTH, "l3 for the segment's length", lambda h, r: eq48_corrected(h, L3 + 0 * r)),
         Slip(SlipKind.SIGN, "h_SLJ + l1 (the base height added)", lambda h, r: eq48_corrected(h + 2 * L1, r)),
-    ), good=eq48_corrected, good_is=good_is, eps=1e-6, eps_is="the good delta + 1 urad", text=text,
-        corrected=corrected, measure=_GEOMETRY,
-        method=f"random configurations with links 3-4 {what} (Pinocchio): inclination of J2 -> SLJ vs the "
-        "form with the true h_SLJ",
+    ), good=eq48_corrected, good_is=good, eps=1e-6, eps_is="the good delta + 1 urad", text=text,
+        corrected=f"{good} ({why})", measure=_GEOMETRY,
+        method="Pinocchio: the inclination of J2 -> SLJ vs the form with the true h_SLJ",
         note=lambda c, err: f"|J2 - SLJ| = {r:.4f} m: the rise over the segment's length is a sine, not a "
         "tangent", reread=lambda ctx, c, f: inclination_reading(c, _inclination(c.S - c.J2), r, f, text))
 
@@ -414,7 +411,7 @@ def sigma_reading(c: Pose35, form, r: float, printed: str):
                   measure="max ||alpha - alpha'| - sigma| [rad]")
 
 
-def _alpha_limits(key: str, r: float, text: str, corrected: str = "-") -> Formula:
+def _alpha_limits(key: str, r: float, corrected: str = "-") -> Formula:
     """Eq 49 / Eq 51: link 5's azimuth deviation |alpha - alpha'| is sigma, with the true delta fed in."""
     def error(c, f):
         rho, delta, reach = _sigma_inputs(c)
@@ -428,13 +425,12 @@ def _alpha_limits(key: str, r: float, text: str, corrected: str = "-") -> Formul
                 "rad; link 3 leaning back over the axis (delta past 90 deg) in "
                 f"{np.mean(np.abs(delta) > np.pi / 2):.0%} of the configurations")
 
+    text = _printed(key)
     return Formula(key, eq49_sigma, error, TOL, "rad", _SIGMA_SLIPS,
                    good=lambda rho, beta, delta, r, reach: _cos_law(rho, L5 * np.cos(beta), reach),
                    good_is="the law of cosines with the SLJ's true horizontal distance", eps=1e-6,
                    eps_is="that sigma + 1 urad", text=text, corrected=corrected, measure=_GEOMETRY, note=note,
-                   method="random configurations with links 3-4 "
-                   f"{'aligned (theta4 = 0)' if r > D_IN else 'contracted (theta4 = +-119 deg)'} and any "
-                   "theta3 (link 5 leaves the vertical plane; Pinocchio): the deviation |alpha - alpha'| "
+                   method="Pinocchio (link 5 leaves the vertical plane): the deviation |alpha - alpha'| "
                    "of link 5's azimuth from the point's vs sigma, with the true delta fed in (the "
                    "inclination of links 3-4 in joint 1's vertical plane: Eq 48/50 corrected where link 3 "
                    "leans forward, past 90 deg where it leans back over the axis)",
@@ -442,8 +438,6 @@ def _alpha_limits(key: str, r: float, text: str, corrected: str = "-") -> Formul
 
 
 _GEOMETRY = "max |form - exact geometry|"
-_SIGMA_TEXT = ("alpha_max/min = alpha' +- sigma, sigma = acos((rho^2 + (l5 cos b)^2 - ({} cos d + l2)^2) / "
-               "(2 rho l5 cos b))")
 
 CHECKS = {
     **SECTION.formulas(
@@ -457,17 +451,12 @@ CHECKS = {
             method="printed beta' vs the inclination of p - J2 with J2 from Pinocchio (theta1 = phi)",
             basis="beta' = atan(rise / run) and the reference asin(rise / |p - J2|) are two expressions of "
             "the inclination of the same vector (joint 2 by Eq 37, graded in workspace.eq37): an identity"),
-        _beta_limits("Eq 44", L3 + L4, "configurations with theta3 = theta4 = 0 (links 3-4 aligned, the arm "
-                     "in one vertical plane, random theta1, theta2, theta5; Pinocchio): the link-5 "
-                     "direction vs the two directions at beta' +- delta in the plane of J2 and p (compared "
-                     "as unit vectors, so inclinations past 90 deg need no special case)"),
+        _beta_limits("Eq 44", L3 + L4),
     ),
     **SECTION.formulas(
         _family("contracted-planar"),
-        _beta_limits("Eq 45", D_IN, "configurations with theta3 = 0, theta4 = +-119 deg (Pinocchio): the "
-                     "link-5 direction vs the directions at beta' +- delta_in",
-                     note=lambda c, err: f"|J2 - SLJ| = d to {np.abs(_length(c.S - c.J2) - D_IN).max():.1e} "
-                     "m"),
+        _beta_limits("Eq 45", D_IN, note=lambda c, err: "|J2 - SLJ| = d to "
+                     f"{np.abs(_length(c.S - c.J2) - D_IN).max():.1e} m"),
     ),
     **SECTION.formulas(
         _family("planar"),
@@ -485,10 +474,9 @@ CHECKS = {
             corrected="Eq 46 stands; Eq 43's run keeps its sign: beta' = atan2(pz - z2, |p_xy| - l2) "
             "(equivalently alpha' the azimuth of p seen from joint 2); the two differ only where p lies "
             "horizontally between the base axis and joint 2",
-            method="configurations with theta3 = 0 (links 3-4 aligned or contracted; Pinocchio): link 5 (p "
-            "- SLJ) vs the unit vector at azimuth alpha' and inclination beta' +- delta in that vertical "
-            "plane (Sec 3.5's angles: beta runs past 90 deg when link 5 tilts back over the vertical, Figs "
-            "21c, 24c)",
+            method="Pinocchio: link 5 (p - SLJ) vs the unit vector at azimuth alpha' and inclination beta' "
+            "+- delta in that vertical plane (Sec 3.5's angles: beta runs past 90 deg when link 5 tilts back "
+            "over the vertical, Figs 21c, 24c)",
             reread=eq46_reading),
     ),
     **SECTION.formulas(
@@ -497,20 +485,16 @@ CHECKS = {
             Slip(SlipKind.FUNCTION, "l5 cos(beta) for l5 sin(beta)", lambda pz, b: pz - L5 * np.cos(b)),
             Slip(SlipKind.LENGTH, "l4 for l5", lambda pz, b: pz - L4 * np.sin(b)),
         ), eps_is="h + 1 nm", measure=_GEOMETRY,
-            method="random configurations with links 3-4 aligned (Pinocchio): z of joint 5 vs the form with "
-            "the link-5 inclination beta",
+            method="Pinocchio: z of joint 5 vs the form with the link-5 inclination beta",
             basis="beta is read from the same link-5 vector (asin of its rise over l5) whose rise the "
             "formula subtracts: pz - l5 sin(beta) is the SLJ's height by construction"),
-        _delta("Eq 48", L3 + L4, "delta = atan((h_SLJ - l1) / (l3 + l4))",
-               "delta = asin((h_SLJ - l1) / (l3 + l4))",
-               "delta = asin((h_SLJ - l1) / (l3 + l4)) (l3 + l4 is the segment's length, not its run)"),
-        _alpha_limits("Eq 49", L3 + L4, _SIGMA_TEXT.format("(l3 + l4)")),
+        _delta("Eq 48", L3 + L4, "l3 + l4 is the segment's length, not its run"),
+        _alpha_limits("Eq 49", L3 + L4),
     ),
     **SECTION.formulas(
         _family("contracted"),
-        _delta("Eq 50", D_IN, "delta = atan((h_SLJ - l1) / phi)", "delta = asin((h_SLJ - l1) / phi)",
-               "delta = asin((h_SLJ - l1) / phi) (phi = d is the segment's length)"),
-        _alpha_limits("Eq 51", D_IN, _SIGMA_TEXT.format("phi"),
+        _delta("Eq 50", D_IN, "phi = d is the segment's length"),
+        _alpha_limits("Eq 51", D_IN,
                       "no closed form of this shape: with theta4 = +-119 deg link 5 leaves the vertical "
                       "plane of joint 1 only if theta3 != 0, which takes link 4 and the SLJ out of it too, "
                       "so the SLJ is not at horizontal distance phi cos(delta) + l2 from the base axis (Fig "
@@ -611,15 +595,8 @@ class Rates:
     false_admits: int  # admitted, but no IK solution within the limits
     false_rejects: int  # rejected, but an IK solution within the limits exists
 
-    @property
-    def false_admit_rate(self) -> float:
-        """Share of the admitted orientations that have no solution."""
-        return self.false_admits / max(1, self.admitted)
-
-    @property
-    def false_reject_rate(self) -> float:
-        """Share of the rejected orientations that do have a solution."""
-        return self.false_rejects / max(1, self.rejected)
+    false_admit_rate = property(lambda self: self.false_admits / max(1, self.admitted))  # of the admitted
+    false_reject_rate = property(lambda self: self.false_rejects / max(1, self.rejected))  # of the rejected
 
     def text(self) -> str:
         return (f"admitted {self.admitted}, rejected {self.rejected}; false admits {self.false_admits} "
@@ -824,14 +801,12 @@ def iik_dexterity(ctx, intervals):
         for lo, hi in d.beta_intervals:
             for beta in np.linspace(lo, hi, 5)[1:-1]:
                 got = intervals(p, float(beta), ARM)
-                truth = admissible(p, dense, beta, ARM)
-                off = _member(got, dense) != truth
+                off = _member(got, dense) != admissible(p, dense, beta, ARM)
                 mismatch += int(np.sum(off & ~_near_end(got, dense, 1e-6)))
                 checked += dense.size
-                for a_lo, a_hi in got:
-                    if a_hi - a_lo >= 2 * np.pi - 1e-12:
-                        continue
-                    n_int += 1
+                ends = [(a, b) for a, b in got if b - a < 2 * np.pi - 1e-12]  # a full turn has no ends
+                n_int += len(ends)
+                for a_lo, a_hi in ends:
                     probe = np.array([a_lo - _EDGE, a_lo + _EDGE, a_hi - _EDGE, a_hi + _EDGE])
                     ends_bad += int(np.any(admissible(p, probe, beta, ARM) != [False, True, True, False]))
     m = (
@@ -894,24 +869,19 @@ def _figure(ctx, sw, adm_pr) -> str:
 )
 def gamma_free(ctx, unaffected):
     """Sec 3.5.1: gamma only changes joint 6 (a full turn), so any gamma works; ``unaffected`` joints stay."""
-    rng = ctx.rng("gamma")
-    q = rng.uniform(ARM.q_min, ARM.q_max, size=(ctx.n(40, 6), 6))
-    T = iik.fk(q, ARM)
-    ang = np.array([iik.euler_from_matrix(t[:3, :3]) for t in T])
+    T = iik.fk(ctx.rng("gamma").uniform(ARM.q_min, ARM.q_max, size=(ctx.n(40, 6), 6)), ARM)
     gam = np.linspace(-np.pi, np.pi, 13)[:-1]
-    ok, total, moved = 0, 0, 0.0
-    cols = [j - 1 for j in unaffected]
-    for t, (a, b, _) in zip(T, ang, strict=True):
-        k = len(gam)
+    k, ok, moved, cols = len(gam), 0, 0.0, [j - 1 for j in unaffected]
+    for t in T:
+        a, b, _ = iik.euler_from_matrix(t[:3, :3])
         poses = iik.pose_from_euler(np.tile(t[:3, 3], (k, 1)), np.full(k, a), np.full(k, b), gam)
         res = iik.solve_many(poses, ARM)
         ok += sum(len(r.q) > 0 for r in res)
-        total += k
-        base = res[0].q[:, cols] if len(res[0].q) else None
+        base = np.sort(res[0].q[:, cols], axis=0)
         for r in res[1:]:
-            if base is not None and len(r.q) == len(base):
-                d = np.abs(wrap(np.sort(r.q[:, cols], axis=0) - np.sort(base, axis=0))).max()
-                moved = max(moved, float(d))
+            if len(base) and len(r.q) == len(base):
+                moved = max(moved, float(np.abs(wrap(np.sort(r.q[:, cols], axis=0) - base)).max()))
+    total = len(T) * k
     m = (
         Measure("poses without a solution when gamma changes", total - ok, 0),
         Measure(f"max change of joints {list(unaffected)} across gamma", moved, 1e-6, "rad"),
@@ -926,5 +896,5 @@ def gamma_free(ctx, unaffected):
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="gamma_free",
-        domain=f"{len(q)} poses fk(q), q uniform in Table I, gamma at 12 values over a full turn each",
+        domain=f"{len(T)} poses fk(q), q uniform in Table I, gamma at 12 values over a full turn each",
     )
