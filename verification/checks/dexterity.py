@@ -15,6 +15,7 @@ transcribed one by one and composed in :func:`printed_admits`.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -371,30 +372,29 @@ def _cos_law(rho, lb, far, sign: float = 1.0):
 #: The slips of the printed law of cosines of Eq 49 and Eq 51.
 _SIGMA_SLIPS = (
     Slip(SlipKind.SIGN, "rho^2 - (l5 cos b)^2 in the numerator",
-         lambda rho, beta, delta, r, reach=None: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta) + L2,
-                                                          -1.0)),
+         lambda rho, beta, delta, r, reach: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta) + L2, -1.0)),
     Slip(SlipKind.FUNCTION, "l5 sin(b) for l5 cos(b)",
-         lambda rho, beta, delta, r, reach=None: eq49_sigma(rho, np.pi / 2 - beta, delta, r)),
+         lambda rho, beta, delta, r, reach: eq49_sigma(rho, np.pi / 2 - beta, delta, r)),
     Slip(SlipKind.LENGTH, "the SLJ's distance without l2",
-         lambda rho, beta, delta, r, reach=None: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta))),
+         lambda rho, beta, delta, r, reach: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta))),
 )
 
 
 def _sigma_inputs(c: Pose35):
-    """rho = |p_xy|, the true delta (the inclination of links 3-4 in joint 1's vertical plane, Sec 3.5's
-    convention: past 90 deg when link 3 leans over the axis; with link 3 leaning forward it is Eq 48/50
-    corrected) and the SLJ's true horizontal distance."""
+    """Link 5's azimuth deviation |alpha - alpha'| [rad], rho = |p_xy|, the true delta (the inclination of
+    links 3-4 in joint 1's vertical plane, Sec 3.5's convention: past 90 deg when link 3 leans over the axis;
+    with link 3 leaning forward it is Eq 48/50 corrected) and the SLJ's true horizontal distance."""
     v = c.S - c.J2
     out = np.stack([np.cos(c.q[:, 0]), np.sin(c.q[:, 0])], 1)  # joint 1's vertical plane, outward
     delta = np.arctan2(v[:, 2], np.einsum("ni,ni->n", v[:, :2], out))
-    return np.hypot(c.p[:, 0], c.p[:, 1]), delta, np.hypot(c.S[:, 0], c.S[:, 1])
+    rho, reach = np.hypot(c.p[:, 0], c.p[:, 1]), np.hypot(c.S[:, 0], c.S[:, 1])
+    return np.abs(wrap(c.alpha - c.phi)), rho, delta, reach
 
 
 def sigma_reading(c: Pose35, form, r: float, printed: str):
     """Second reading of Eq 49 / Eq 51 (the form): link 5's azimuth deviation under each nearby reading of
     delta's and beta's sign and of phi's 61 deg taken as radians."""
-    rho, delta, reach = _sigma_inputs(c)
-    target = np.abs(wrap(c.alpha - c.phi))
+    target, rho, delta, reach = _sigma_inputs(c)
     stated = {"delta": delta, "r": r, "beta": c.beta}
 
     def misfit(x) -> float:
@@ -414,13 +414,12 @@ def sigma_reading(c: Pose35, form, r: float, printed: str):
 def _alpha_limits(key: str, r: float, corrected: str = "-") -> Formula:
     """Eq 49 / Eq 51: link 5's azimuth deviation |alpha - alpha'| is sigma, with the true delta fed in."""
     def error(c, f):
-        rho, delta, reach = _sigma_inputs(c)
-        return np.abs(np.abs(wrap(c.alpha - c.phi)) - f(rho, c.beta, delta, r, reach))
+        dev, rho, delta, reach = _sigma_inputs(c)
+        return np.abs(dev - f(rho, c.beta, delta, r, reach))
 
     def note(c, err):
-        rho, delta, _ = _sigma_inputs(c)
-        printed_delta = eq48_printed(c.S[:, 2], r)
-        chained = np.abs(np.abs(wrap(c.alpha - c.phi)) - eq49_sigma(rho, c.beta, printed_delta, r))
+        dev, rho, delta, _ = _sigma_inputs(c)
+        chained = np.abs(dev - eq49_sigma(rho, c.beta, eq48_printed(c.S[:, 2], r), r))
         return (f"with the printed Eq {48 if r > D_IN else 50} delta chained in: max {chained.max():.3g} "
                 "rad; link 3 leaning back over the axis (delta past 90 deg) in "
                 f"{np.mean(np.abs(delta) > np.pi / 2):.0%} of the configurations")
@@ -637,8 +636,7 @@ def shell_admits(p, A, B, arm) -> np.ndarray:
     return (cos_ae <= min(c_in, 1.0) + 1e-12) & (cos_ae >= max(c_out, -1.0) - 1e-12)
 
 
-def _shell(p, A, B):
-    return shell_admits(p, A, B, ARM)
+_shell = partial(shell_admits, arm=ARM)
 
 
 #: The known-good admission: exactly the orientations the sweep found solvable (sound by construction).
@@ -660,31 +658,26 @@ def _sweep_forms(printed) -> Forms:
     )
 
 
-def _sweep_row(ctx, admit, claim: str, reference: str, method: str, reason: str, *, numbers: str = "{rates}",
-               figure: bool = False, **fields) -> Row:
-    """The row of the set ``admit`` admits, graded on the sweep: sound if at least ``_SOUND`` of what it
-    admits is solvable. ``method`` and ``numbers`` may name the grid (``{na}``, ``{nb}``, ``{npts}``), the
-    :class:`Rates` (``{rates}``) and the solvable orientations (``{solvable}`` of ``{total}``); with
-    ``figure`` the row shows the sets at the first points (:func:`_figure`)."""
+def _sweep_row(ctx, admit, claim: str, reference: str, versus: str, reason: str, **fields) -> Row:
+    """The row of the set ``admit`` admits (``versus`` in words), graded on the sweep: sound if at least
+    ``_SOUND`` of what it admits is solvable; the row of Eq 43-51 as printed shows the sets at the first
+    points (:func:`_figure`)."""
     sw = sweep(ctx)
     adm = sw["truth"] if admit is SOLVABLE_ONLY else np.array([admit(p, sw["A"], sw["B"]) for p in sw["P"]])
     r = rates(adm, sw["truth"])
-    words = dict(na=sw["na"], nb=sw["nb"], npts=len(sw["P"]), rates=r.text(), total=sw["truth"].size,
-                 solvable=int(sw["truth"].sum()))
     return Row.graded(
         claim,
         reference,
         "the exact admissible set on a grid: iik.dexterity.admissible (the complete IK, a solution within "
-        "Table I for pose_from_euler(p, alpha, beta, 0); gamma turns joint 6 alone) "
-        + method.format(**words),
-        numbers.format(**words),
+        f"Table I for pose_from_euler(p, alpha, beta, 0); gamma turns joint 6 alone) vs {versus}",
+        f"{r.text()}; of {sw['truth'].size} orientations {int(sw['truth'].sum())} are solvable",
         (Measure("share of admitted orientations that are solvable", 1.0 - r.false_admit_rate, _SOUND,
                  bound=">="),),
         fail=Verdict.DOES_NOT_HOLD,
         domain=f"{len(sw['P'])} reachable points (fk of q uniform in Table I), a {sw['na']} x {sw['nb']} "
         "(alpha, beta) grid over every orientation of z6 at each",
         reason=reason,
-        figures=(_figure(ctx, sw, adm),) if figure else (),
+        figures=(_figure(ctx, sw, adm),) if admit is admitted_printed else (),
         **fields,
     )
 
@@ -703,12 +696,9 @@ def printed_admitted_set(ctx, admit):
         "The orientations Eq 43-51 admit at a point inside the workspace are reachable (at least one IK "
         "solution), so choosing them guarantees convergence.",
         "Sec 3.5.2-3.5.3, Eq 43-51, Sec 5.2",
-        "over a {na} x {nb} (alpha, beta) grid at {npts} reachable points, vs the set Eq 43-51 admit (angles "
-        "converted to Eq 42's)",
+        "the set Eq 43-51 admit (angles converted to Eq 42's)",
         "the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the roll geometry, and Eq "
         "48/50/51 are wrong (rows above): admitted orientations without an IK solution",
-        numbers="{rates}; of {total} orientations {solvable} are solvable",
-        figure=admit is admitted_printed,
         id="admitted_set",
     )
 
@@ -726,7 +716,7 @@ def shell_model(ctx, admit):
         "Sec 3.5's model read exactly (the second-last joint inside the shell of Eq 44-45, the angles "
         "converted to Eq 42's) admits only reachable orientations.",
         "Sec 3.5.2-3.5.3 (Figs 18-21), Eq 44-45",
-        "vs the orientations whose link-5 direction lies in the cone between the Eq 44 and Eq 45 half-angles "
+        "the orientations whose link-5 direction lies in the cone between the Eq 44 and Eq 45 half-angles "
         "(the former iik.dexterity)",
         "the model ignores the joint-1, joint-2, joint-3 and joint-5 limits and where the wrist really is: "
         "it is neither a necessary nor a sufficient condition (false admits and false rejects above)",
@@ -744,19 +734,13 @@ def _moved(ends):
     return lambda p, beta, arm: tuple(ends(lo, hi) for lo, hi in alpha_intervals(p, beta, arm))
 
 
-def _member(intervals, a):
-    ok = np.zeros(np.shape(a), bool)
+def _member(intervals, a, eps: float) -> tuple[np.ndarray, np.ndarray]:
+    """Which alphas ``a`` [rad] lie in one of the ``intervals``, and which lie within ``eps`` of an end."""
+    inside, near = np.zeros(np.shape(a), bool), np.zeros(np.shape(a), bool)
     for lo, hi in intervals:
-        ok |= (a - lo) % (2 * np.pi) <= hi - lo + 1e-12
-    return ok
-
-
-def _near_end(intervals, a, eps):
-    near = np.zeros(np.shape(a), bool)
-    for lo, hi in intervals:
-        for e in (lo, hi):
-            near |= np.abs(wrap(a - e)) <= eps
-    return near
+        inside |= (a - lo) % (2 * np.pi) <= hi - lo + 1e-12
+        near |= (np.abs(wrap(a - lo)) <= eps) | (np.abs(wrap(a - hi)) <= eps)
+    return inside, near
 
 
 @per_run
@@ -801,8 +785,8 @@ def iik_dexterity(ctx, intervals):
         for lo, hi in d.beta_intervals:
             for beta in np.linspace(lo, hi, 5)[1:-1]:
                 got = intervals(p, float(beta), ARM)
-                off = _member(got, dense) != admissible(p, dense, beta, ARM)
-                mismatch += int(np.sum(off & ~_near_end(got, dense, 1e-6)))
+                inside, near = _member(got, dense, 1e-6)
+                mismatch += int(np.sum((inside != admissible(p, dense, beta, ARM)) & ~near))
                 checked += dense.size
                 ends = [(a, b) for a, b in got if b - a < 2 * np.pi - 1e-12]  # a full turn has no ends
                 n_int += len(ends)
@@ -835,11 +819,11 @@ def iik_dexterity(ctx, intervals):
 def _figure(ctx, sw, adm_pr) -> str:
     truth = sw["truth"]
     na, nb = sw["na"], sw["nb"]
-    picks = list(range(min(3, len(sw["P"]))))
-    fig = new_figure(figsize=(4 * len(picks), 3.4))
+    n = min(3, len(sw["P"]))
+    fig = new_figure(figsize=(4 * n, 3.4))
     ext = (-180, 180, 0, 180)
-    for k, i in enumerate(picks):
-        ax = fig.add_subplot(1, len(picks), k + 1)
+    for i in range(n):
+        ax = fig.add_subplot(1, n, i + 1)
         ax.imshow(truth[i].reshape(nb, na), origin="lower", extent=ext, aspect="auto", cmap="Greys",
                   vmin=0, vmax=1.5)
         p = sw["P"][i]
@@ -847,8 +831,7 @@ def _figure(ctx, sw, adm_pr) -> str:
             if adm.any() and not adm.all():
                 ax.contour(adm.reshape(nb, na).astype(float), levels=[0.5], colors=col, extent=ext)
         ax.set_title(f"p = [{p[0]:.2f}, {p[1]:.2f}, {p[2]:.2f}] m", fontsize=8)
-        ax.set_xlabel("alpha [deg] (Eq 42)")
-        ax.set_ylabel("beta [deg] (Eq 42)")
+        ax.set(xlabel="alpha [deg] (Eq 42)", ylabel="beta [deg] (Eq 42)")
     fig.suptitle("grey: exact (iik.dexterity: an IK solution within Table I); blue: Sec 3.5's model read "
                  "exactly; red: Eq 43-51 printed (converted)", fontsize=8)
     return ctx.save_figure(fig, "dexterity_alpha_beta.png", dpi=80)
