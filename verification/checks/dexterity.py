@@ -235,16 +235,12 @@ def _link5_error(c: Pose35, r, alpha: np.ndarray, nominal=eq43_printed, delta=eq
     """|link 5 - the direction at (alpha, beta' +- delta)|, the nearer of the two (Eq 43-45's beta;
     ``nominal`` gives beta', ``delta(rho, r)`` the half-angle)."""
     bp, d = nominal(c.p), delta(_length(c.p - c.J2), r)
-    return np.minimum(np.linalg.norm(_dir(alpha, bp + d) - c.a, axis=1),
-                      np.linalg.norm(_dir(alpha, bp - d) - c.a, axis=1))
+    return np.minimum(_length(_dir(alpha, bp + d) - c.a), _length(_dir(alpha, bp - d) - c.a))
 
 
 def eq46_reading(ctx, c: Pose35, eq46):
-    """Second reading of Eq 46 (the form): link 5 against the direction the thesis's angles describe, under
-    the stated convention (beta the inclination in the arm's vertical plane, past 90 deg as Eq 44 gives it,
-    beta' by Eq 43 as printed), with Eq 43's run signed (|p_xy| - l2: the sign its square root drops), with
-    (px, py) seen from joint 2, and under our former reading (beta within +-90 deg, alpha the azimuth of
-    link 5's horizontal projection). The signed run comes first: it keeps Eq 46 as printed."""
+    """Second reading of Eq 46 (the form): link 5 against the direction the thesis's angles describe, as
+    stated (beta' by Eq 43 as printed) and under each reading below (the signed run first: it keeps Eq 46)."""
     stated = {"p": c.p, "beta'": eq43_printed, "projection": False}
 
     def misfit(x) -> float:
@@ -279,10 +275,10 @@ def eq46_from_joint2(p):
 def _eq46_note(c: Pose35, err) -> str:
     """Where link 5 faces the base axis, where p lies between the axis and joint 2, the former erratum."""
     inward = np.einsum("ni,ni->n", c.a[:, :2], c.p[:, :2]) < 0
-    beta = np.degrees(eq43_printed(c.p) + eq44_delta(np.linalg.norm(c.p - c.J2, axis=1), c.r))
+    beta = np.degrees(eq43_printed(c.p) + eq44_delta(_length(c.p - c.J2), c.r))
     close = np.hypot(c.p[:, 0], c.p[:, 1]) < L2
     far = ~close
-    old = _pose35(OLD_EQ46_COUNTEREXAMPLE[None], r=np.array([L3 + L4]))  # the erratum's before issue 19
+    old = _pose35(OLD_EQ46_COUNTEREXAMPLE[None], r=np.array([L3 + L4]))  # the former erratum (issue 19)
     old_beta = eq43_printed(old.p) + eq44_delta(_length(old.p - old.J2), old.r)
     old_err = _link5_error(old, old.r, eq46_printed(old.p))[0]
     return (
@@ -316,9 +312,8 @@ D_IN_RAD = float(np.sqrt(L3**2 + L4**2 - 2 * L3 * L4 * np.cos(61.0)))
 
 
 def inclination_reading(c: Pose35, truth: np.ndarray, r: float, form, printed: str):
-    """Second reading of Eq 48 / Eq 50 (the form): the inclination of links 3-4 under each nearby reading of
-    its stated inputs (the height measured from the base, delta measured downward, and for the contracted
-    length its 61 deg taken as radians)."""
+    """Second reading of Eq 48 / Eq 50 (the form): the inclination of links 3-4 (``truth`` [rad]) under each
+    nearby reading of its stated inputs below."""
     stated = {"h": c.S[:, 2], "r": r, "sign": 1.0}
 
     def misfit(x) -> float:
@@ -530,8 +525,7 @@ def _convention_error(c: Pose35, to_eq42) -> np.ndarray:
 
 def convention_reading(ctx, c: Pose35, to_eq42):
     """Second reading of the Sec 3.5 / Eq 42 convention (the form): Eq 42's angles of z6 from the iik.dh chain
-    under each nearby reading of the stated conventions (d6 = +l5: z6 along link 5; Eq 42's beta read as an
-    elevation from the horizontal), vs the form's angles."""
+    under each nearby reading of the stated conventions below, vs the form's angles."""
     from .ik_equations import chain_frames
 
     a, b = to_eq42(c.alpha, c.beta)
@@ -817,14 +811,13 @@ def iik_dexterity(ctx, intervals):
 
 
 def _figure(ctx, sw, adm_pr) -> str:
-    truth = sw["truth"]
     na, nb = sw["na"], sw["nb"]
     n = min(3, len(sw["P"]))
     fig = new_figure(figsize=(4 * n, 3.4))
     ext = (-180, 180, 0, 180)
     for i in range(n):
         ax = fig.add_subplot(1, n, i + 1)
-        ax.imshow(truth[i].reshape(nb, na), origin="lower", extent=ext, aspect="auto", cmap="Greys",
+        ax.imshow(sw["truth"][i].reshape(nb, na), origin="lower", extent=ext, aspect="auto", cmap="Greys",
                   vmin=0, vmax=1.5)
         p = sw["P"][i]
         for adm, col in ((_shell(p, sw["A"], sw["B"]), "blue"), (adm_pr[i], "red")):
@@ -840,15 +833,10 @@ def _figure(ctx, sw, adm_pr) -> str:
 @SECTION.check(
     52.0,
     depends_on=("l1", "lengths", "complete-solver"),
-    forms=Forms(
-        printed=(1, 2, 3, 4, 5),
-        good=(1, 2, 3, 4, 5),
-        good_is="the printed claim (joints 1-5 unaffected)",
-        slips=(
-            Slip(SlipKind.CLAIM, "joints 1-6 unaffected", (1, 2, 3, 4, 5, 6)),
-            Slip(SlipKind.OFF_BY_ONE, "joints 2-6 unaffected (the joint numbers one off)", (2, 3, 4, 5, 6)),
-        ),
-    ),
+    forms=Forms.right((1, 2, 3, 4, 5), (
+        Slip(SlipKind.CLAIM, "joints 1-6 unaffected", (1, 2, 3, 4, 5, 6)),
+        Slip(SlipKind.OFF_BY_ONE, "joints 2-6 unaffected (the joint numbers one off)", (2, 3, 4, 5, 6)),
+    ), good_is="the printed claim (joints 1-5 unaffected)"),
 )
 def gamma_free(ctx, unaffected):
     """Sec 3.5.1: gamma only changes joint 6 (a full turn), so any gamma works; ``unaffected`` joints stay."""
