@@ -15,6 +15,7 @@ transcribed one by one and composed in :func:`printed_admits`.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -30,6 +31,7 @@ from ..plotting import new_figure
 from ..registry import Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict
 from ..second_reading import Kind, Reading, search
 from ..shorthand import wrap
+from ..thesis_index import title_of
 
 ARM = THESIS_ARM
 _D = np.pi / 180
@@ -40,6 +42,7 @@ SECTION = Section("Dexterity (Sec 3.5, Eq 42-51)", depends_on=EXACT_GEOMETRY, or
 
 
 # ----------------------------------------------------------------------------- printed forms
+@np.errstate(invalid="ignore", divide="ignore")
 def printed_admits(p, alpha35, beta35) -> np.ndarray:
     """Eq 43-51 as printed (their transcriptions below, one per equation): is (alpha, beta) in the thesis's
     own angles [rad] admitted at ``p`` (3,) [m]?
@@ -73,9 +76,10 @@ def _in_ring(dev, outer, inner, has_out: bool, has_in: bool):
 # ----------------------------------------------------------------------------- exact geometry
 @dataclass(frozen=True)
 class Pose35:
-    """Sec 3.5 quantities of configurations q (Pinocchio): tool point p, SLJ S, joint 2 J2, link-5 unit
-    vector a = (p - S)/l5, its inclination beta and azimuth alpha; ``kind`` (:data:`_KIND_TEXT`) and, for
-    the planar families, ``r`` the side of their triangle (l3 + l4 or d) per configuration."""
+    """Sec 3.5 quantities of configurations q (Pinocchio, base frame): tool point p, SLJ S, joint 2 J2 [m],
+    link-5 unit vector a = (p - S)/l5, its inclination beta and azimuth alpha, the point's azimuth phi [rad];
+    ``kind`` (:data:`_KIND_TEXT`) and, for the planar families, ``r`` the side of their triangle (l3 + l4 or
+    d) per configuration."""
 
     q: np.ndarray
     p: np.ndarray
@@ -84,24 +88,10 @@ class Pose35:
     kind: str = ""
     r: np.ndarray | None = None
 
-    @property
-    def a(self) -> np.ndarray:
-        return (self.p - self.S) / L5
-
-    @property
-    def beta(self) -> np.ndarray:
-        return np.arcsin(np.clip(self.a[:, 2], -1, 1))
-
-    @property
-    def alpha(self) -> np.ndarray:
-        return np.arctan2(self.a[:, 1], self.a[:, 0])
-
-    @property
-    def phi(self) -> np.ndarray:
-        return np.arctan2(self.p[:, 1], self.p[:, 0])
-
-    def keep(self, mask) -> Pose35:
-        return Pose35(self.q[mask], self.p[mask], self.S[mask], self.J2[mask], self.kind)
+    a = property(lambda self: (self.p - self.S) / L5)
+    beta = property(lambda self: np.arcsin(np.clip(self.a[:, 2], -1, 1)))
+    alpha = property(lambda self: np.arctan2(self.a[:, 1], self.a[:, 0]))
+    phi = property(lambda self: np.arctan2(self.p[:, 1], self.p[:, 0]))
 
     def __len__(self) -> int:
         return len(self.q)
@@ -117,23 +107,21 @@ class Pose35:
                 "10^U(-6, -1.5) rad of +-90 deg (link 3 vertical)")
 
 
-def _pose35(q, kind: str = "") -> Pose35:
+def _pose35(q, kind: str = "", r=None) -> Pose35:
     F = joint_placements(q)
-    return Pose35(q, F[:, 6, :3, 3], F[:, 5, :3, 3], F[:, 2, :3, 3], kind)
+    return Pose35(q, F[:, 6, :3, 3], F[:, 5, :3, 3], F[:, 2, :3, 3], kind, r)
 
 
 @per_run
 def configurations(ctx, kind: str) -> Pose35:
-    """Configurations the text describes (cached): ``"aligned-planar"`` (theta3 = theta4 = 0),
-    ``"contracted-planar"`` (theta3 = 0, theta4 = +-119 deg), ``"aligned"`` (theta4 = 0), ``"contracted"``
-    (theta4 = +-119 deg), ``"planar"`` (both planar families, with their ``r``); theta2 over the whole of
-    Table I, a third of the samples within 10^U(-6, -1.5) rad of theta2 = +-90 deg (link 3 vertical: where
-    the inclination formulas are hardest); the planar ones keep p in front of the base axis (its azimuth is
-    theta1)."""
+    """The configurations the text describes (cached), the family ``kind`` (:data:`_KIND_TEXT`; "planar": both
+    planar families, with their ``r``): theta2 over the whole of Table I, a third of the samples within
+    10^U(-6, -1.5) rad of +-90 deg (link 3 vertical: where the inclination formulas are hardest); the planar
+    ones keep p in front of the base axis (its azimuth is theta1)."""
     if kind == "planar":
         c, c2 = configurations(ctx, "aligned-planar"), configurations(ctx, "contracted-planar")
-        both = (np.concatenate([getattr(c, f), getattr(c2, f)]) for f in ("q", "p", "S", "J2"))
-        return Pose35(*both, kind, np.concatenate([np.full(len(c.q), L3 + L4), np.full(len(c2.q), D_IN)]))
+        r = np.concatenate([np.full(len(c.q), L3 + L4), np.full(len(c2.q), D_IN)])
+        return _pose35(np.concatenate([c.q, c2.q]), kind, r)
     rng = ctx.rng(f"dex-{kind}")
     n = ctx.n(3000, 300)
     q = rng.uniform(ARM.q_min, ARM.q_max, (n, 6))
@@ -141,14 +129,11 @@ def configurations(ctx, kind: str) -> Pose35:
     q[near, 1] = (rng.choice([-1.0, 1.0], n) * np.pi / 2 + rng.choice([-1.0, 1.0], n)
                   * 10 ** rng.uniform(-6, -1.5, n))[near]
     q[:, 1] = np.clip(q[:, 1], ARM.q_min[1], ARM.q_max[1])
-    if kind.startswith("aligned"):
-        q[:, 3] = 0.0
-    else:
-        q[:, 3] = rng.choice([-1.0, 1.0], n) * 119 * _D
+    q[:, 3] = 0.0 if kind.startswith("aligned") else rng.choice([-1.0, 1.0], n) * 119 * _D
     if kind.endswith("planar"):
         q[:, 2] = 0.0
     c = _pose35(q, kind)
-    return c.keep(np.abs(wrap(c.phi - q[:, 0])) < 1e-9) if kind.endswith("planar") else c
+    return _pose35(q[np.abs(wrap(c.phi - q[:, 0])) < 1e-9], kind) if kind.endswith("planar") else c
 
 
 _KIND_TEXT = {
@@ -159,7 +144,6 @@ _KIND_TEXT = {
     "planar": "theta3 = 0 and theta4 = 0 or +-119 deg",
     "aligned": "theta4 = 0 (links 3-4 aligned), theta3 free",
     "contracted": "theta4 = +-119 deg (links 3-4 contracted), theta3 free",
-    "": "the joints uniform in Table I",
 }
 
 
@@ -174,7 +158,7 @@ def _length(v: np.ndarray) -> np.ndarray:
 
 def _inclination(v: np.ndarray) -> np.ndarray:
     """The inclination [rad] of vectors (n, 3) from the horizontal."""
-    return np.arcsin(v[:, 2] / np.linalg.norm(v, axis=1))
+    return np.arcsin(v[:, 2] / _length(v))
 
 
 # ----------------------------------------------------------------------------- Eq 43-47
@@ -200,6 +184,11 @@ def eq44_delta(rho, r):
     return _acos((L5**2 + rho**2 - r**2) / (2 * L5 * rho))
 
 
+def _printed(key: str) -> str:
+    """The printed form of an index item: its title without the words after ": "."""
+    return title_of(key).split(": ")[0]
+
+
 #: The slips of the printed triangle of Eq 44 and Eq 45.
 _DELTA_SLIPS = (
     Slip(SlipKind.SIGN, "l5^2 - rho^2 - r^2 in the numerator",
@@ -211,7 +200,7 @@ _DELTA_SLIPS = (
 )
 
 
-def _beta_limits(key: str, r: float, method: str, note=None) -> Formula:
+def _beta_limits(key: str, r: float, note=None) -> Formula:
     """Eq 44 / Eq 45: link 5 at beta' +- delta (the printed triangle with side ``r``), as unit vectors, in
     the vertical plane of J2 and p."""
     def error(c, f):
@@ -220,7 +209,10 @@ def _beta_limits(key: str, r: float, method: str, note=None) -> Formula:
 
     return Formula(key, eq44_delta, error, TOL, "-", _DELTA_SLIPS,
                    good_is="the printed triangle (it is right)", eps=1e-6, eps_is="delta + 1 urad",
-                   measure=_GEOMETRY, method=method, note=note)
+                   measure=_GEOMETRY, note=note,
+                   method="Pinocchio: the link-5 direction vs the two directions at beta' +- delta in the "
+                   "plane of J2 and p (compared as unit vectors, so inclinations past 90 deg need no special "
+                   "case)")
 
 
 #: q [rad] of the counterexample that made Eq 46 an erratum before issue 19 (links 3-4 aligned, link 5 facing
@@ -239,44 +231,32 @@ def _dir(alpha: np.ndarray, beta: np.ndarray) -> np.ndarray:
     return np.cos(beta)[:, None] * horizontal + np.sin(beta)[:, None] * np.array([0.0, 0.0, 1.0])
 
 
-def eq43_signed_run(p):
-    """Eq 43 with the run's sign kept: atan2(pz - z2, |p_xy| - l2), the inclination of J2 -> p in the vertical
-    half-plane of azimuth atan2(py, px) (past 90 deg where p lies between the base axis and joint 2)."""
-    return np.arctan2(p[:, 2] - L1, np.hypot(p[:, 0], p[:, 1]) - L2)
-
-
 def _link5_error(c: Pose35, r, alpha: np.ndarray, nominal=eq43_printed, delta=eq44_delta) -> np.ndarray:
     """|link 5 - the direction at (alpha, beta' +- delta)|, the nearer of the two (Eq 43-45's beta;
     ``nominal`` gives beta', ``delta(rho, r)`` the half-angle)."""
     bp, d = nominal(c.p), delta(_length(c.p - c.J2), r)
-    return np.minimum(np.linalg.norm(_dir(alpha, bp + d) - c.a, axis=1),
-                      np.linalg.norm(_dir(alpha, bp - d) - c.a, axis=1))
-def eq46_reading(ctx, c: Pose35, r: np.ndarray, eq46):
-    """Second reading of Eq 46 (the form): link 5 against the direction the thesis's angles describe, under
-    the stated convention (beta the inclination in the arm's vertical plane, past 90 deg as Eq 44 gives it,
-    beta' by Eq 43 as printed), with Eq 43's run signed (|p_xy| - l2: the sign its square root drops), with
-    (px, py) seen from joint 2, and under our former reading (beta within +-90 deg, alpha the azimuth of
-    link 5's horizontal projection). The signed run comes first: it keeps Eq 46 as printed."""
-    from_j2 = _from_joint2(c.p)  # p seen from joint 2 (Eq 37)
-    stated = {"convention": "thesis", "p": c.p, "run": "unsigned"}
+    return np.minimum(_length(_dir(alpha, bp + d) - c.a), _length(_dir(alpha, bp - d) - c.a))
+
+
+def eq46_reading(ctx, c: Pose35, eq46):
+    """Second reading of Eq 46 (the form): link 5 against the direction the thesis's angles describe, as
+    stated (beta' by Eq 43 as printed) and under each reading below (the signed run first: it keeps Eq 46)."""
+    stated = {"p": c.p, "beta'": eq43_printed, "projection": False}
 
     def misfit(x) -> float:
         alpha = np.asarray(eq46(x["p"]), float)
-        if x["convention"] == "thesis":
-            nominal = eq43_printed if x["run"] == "unsigned" else eq43_signed_run
-            return float(_link5_error(c, r, alpha, nominal).max())
-        return float(np.abs(wrap(alpha - c.alpha)).max())
+        if x["projection"]:
+            return float(np.abs(wrap(alpha - c.alpha)).max())
+        return float(_link5_error(c, c.r, alpha, x["beta'"]).max())
 
     readings = [
         Reading(Kind.SIGN, "Eq 43's run with its sign: beta' = atan2(pz - z2, |p_xy| - l2) (the square root "
                 "drops the sign where p lies between the base axis and joint 2; Eq 46 as printed)",
-                {"run": "signed"}),
-        Reading(Kind.WHICH,
-            "(px, py) measured from joint 2, as Eq 43 measures beta' (they differ by pi where p is "
-                "horizontally within l2 of the base axis)", {"p": from_j2}),
-        Reading(Kind.CONVENTION,
-            "beta within +-90 deg, alpha the azimuth of link 5's horizontal projection (the "
-                "reading that made Eq 46 an erratum)", {"convention": "projection"}),
+                {"beta'": lambda p: np.arctan2(p[:, 2] - L1, np.hypot(p[:, 0], p[:, 1]) - L2)}),
+        Reading(Kind.WHICH, "(px, py) measured from joint 2, as Eq 43 measures beta' (they differ by pi "
+                "where p is horizontally within l2 of the base axis)", {"p": _from_joint2(c.p)}),
+        Reading(Kind.CONVENTION, "beta within +-90 deg, alpha the azimuth of link 5's horizontal projection "
+                "(the reading that made Eq 46 an erratum)", {"projection": True}),
     ]
     return search(stated, readings, misfit, TOL, printed="alpha' = atan2(py, px)",
                   stated_text="Sec 3.5's angles: alpha the azimuth of the arm's vertical plane, beta the "
@@ -295,13 +275,12 @@ def eq46_from_joint2(p):
 def _eq46_note(c: Pose35, err) -> str:
     """Where link 5 faces the base axis, where p lies between the axis and joint 2, the former erratum."""
     inward = np.einsum("ni,ni->n", c.a[:, :2], c.p[:, :2]) < 0
-    beta = np.degrees(eq43_printed(c.p) + eq44_delta(np.linalg.norm(c.p - c.J2, axis=1), c.r))
+    beta = np.degrees(eq43_printed(c.p) + eq44_delta(_length(c.p - c.J2), c.r))
     close = np.hypot(c.p[:, 0], c.p[:, 1]) < L2
     far = ~close
-    old = _pose35(OLD_EQ46_COUNTEREXAMPLE[None])  # the configuration that made Eq 46 an erratum (issue 19)
-    old_r = np.array([L3 + L4])
-    old_beta = eq43_printed(old.p) + eq44_delta(np.linalg.norm(old.p - old.J2, axis=1), old_r)
-    old_err = _link5_error(old, old_r, eq46_printed(old.p))[0]
+    old = _pose35(OLD_EQ46_COUNTEREXAMPLE[None], r=np.array([L3 + L4]))  # the former erratum (issue 19)
+    old_beta = eq43_printed(old.p) + eq44_delta(_length(old.p - old.J2), old.r)
+    old_err = _link5_error(old, old.r, eq46_printed(old.p))[0]
     return (
         f"link 5 faces the base axis in {inward.mean():.0%} of these configurations (beta' + delta up to "
         f"{beta.max():.1f} deg; past 90 deg in {(beta > 90).mean():.0%}): there too the angles describe "
@@ -330,10 +309,11 @@ def eq48_corrected(h, r):
 
 #: d (Eq 45) = phi (Eq 50, 51) with its angle 180 - 119 = 61 taken as radians.
 D_IN_RAD = float(np.sqrt(L3**2 + L4**2 - 2 * L3 * L4 * np.cos(61.0)))
+
+
 def inclination_reading(c: Pose35, truth: np.ndarray, r: float, form, printed: str):
-    """Second reading of Eq 48 / Eq 50 (the form): the inclination of links 3-4 under each nearby reading of
-    its stated inputs (the height measured from the base, delta measured downward, and for the contracted
-    length its 61 deg taken as radians)."""
+    """Second reading of Eq 48 / Eq 50 (the form): the inclination of links 3-4 (``truth`` [rad]) under each
+    nearby reading of its stated inputs below."""
     stated = {"h": c.S[:, 2], "r": r, "sign": 1.0}
 
     def misfit(x) -> float:
@@ -352,26 +332,21 @@ def inclination_reading(c: Pose35, truth: np.ndarray, r: float, form, printed: s
                   measure="max |form - inclination| [rad]")
 
 
-
-
-def _links34(c: Pose35) -> np.ndarray:
-    """The true inclination [rad] of links 3-4 (joint 2 -> SLJ)."""
-    return _inclination(c.S - c.J2)
-
-
-def _delta(key: str, r: float, text: str, good_is: str, corrected: str) -> Formula:
-    """Eq 48 / Eq 50: the inclination of links 3-4 (the segment of length ``r``) from the true h_SLJ."""
-    what = "aligned" if r > D_IN else "contracted (theta4 = +-119 deg)"
-    return Formula(key, eq48_printed, lambda c, f: np.abs(f(c.S[:, 2], r) - _links34(c)), TOL, "rad", (
+def _delta(key: str, r: float, why: str) -> Formula:
+    """Eq 48 / Eq 50: the inclination of links 3-4 (the segment of length ``r``, joint 2 -> SLJ) from the true
+    h_SLJ; corrected: asin for atan (``why``)."""
+    text = _printed(key)
+    good = text.replace("atan", "asin")
+    err = lambda c, f: np.abs(f(c.S[:, 2], r) - _inclination(c.S - c.J2))
+    return Formula(key, eq48_printed, err, TOL, "rad", (
         Slip(SlipKind.FUNCTION, "atan for asin (as printed)", eq48_printed),
         Slip(SlipKind.LENGTH, "l3 for the segment's length", lambda h, r: eq48_corrected(h, L3 + 0 * r)),
         Slip(SlipKind.SIGN, "h_SLJ + l1 (the base height added)", lambda h, r: eq48_corrected(h + 2 * L1, r)),
-    ), good=eq48_corrected, good_is=good_is, eps=1e-6, eps_is="the good delta + 1 urad", text=text,
-        corrected=corrected, measure=_GEOMETRY,
-        method=f"random configurations with links 3-4 {what} (Pinocchio): inclination of J2 -> SLJ vs the "
-        "form with the true h_SLJ",
+    ), good=eq48_corrected, good_is=good, eps=1e-6, eps_is="the good delta + 1 urad", text=text,
+        corrected=f"{good} ({why})", measure=_GEOMETRY,
+        method="Pinocchio: the inclination of J2 -> SLJ vs the form with the true h_SLJ",
         note=lambda c, err: f"|J2 - SLJ| = {r:.4f} m: the rise over the segment's length is a sine, not a "
-        "tangent", reread=lambda ctx, c, f: inclination_reading(c, _links34(c), r, f, text))
+        "tangent", reread=lambda ctx, c, f: inclination_reading(c, _inclination(c.S - c.J2), r, f, text))
 
 
 def eq49_sigma(rho, beta, delta, r, reach=None):
@@ -389,42 +364,32 @@ def _cos_law(rho, lb, far, sign: float = 1.0):
     return _acos((rho**2 + sign * lb**2 - far**2) / (2 * rho * lb))
 
 
-def _sigma_true(rho, beta, delta, r, reach):
-    return _cos_law(rho, L5 * np.cos(beta), reach)
-
-
 #: The slips of the printed law of cosines of Eq 49 and Eq 51.
 _SIGMA_SLIPS = (
     Slip(SlipKind.SIGN, "rho^2 - (l5 cos b)^2 in the numerator",
-         lambda rho, beta, delta, r, reach=None: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta) + L2,
-                                                          -1.0)),
+         lambda rho, beta, delta, r, reach: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta) + L2, -1.0)),
     Slip(SlipKind.FUNCTION, "l5 sin(b) for l5 cos(b)",
-         lambda rho, beta, delta, r, reach=None: eq49_sigma(rho, np.pi / 2 - beta, delta, r)),
+         lambda rho, beta, delta, r, reach: eq49_sigma(rho, np.pi / 2 - beta, delta, r)),
     Slip(SlipKind.LENGTH, "the SLJ's distance without l2",
-         lambda rho, beta, delta, r, reach=None: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta))),
+         lambda rho, beta, delta, r, reach: _cos_law(rho, L5 * np.cos(beta), r * np.cos(delta))),
 )
 
 
 def _sigma_inputs(c: Pose35):
-    """rho = |p_xy|, the true delta (the inclination of links 3-4 in joint 1's vertical plane, Sec 3.5's
-    convention: past 90 deg when link 3 leans over the axis; with link 3 leaning forward it is Eq 48/50
-    corrected) and the SLJ's true horizontal distance."""
+    """Link 5's azimuth deviation |alpha - alpha'| [rad], rho = |p_xy|, the true delta (the inclination of
+    links 3-4 in joint 1's vertical plane, Sec 3.5's convention: past 90 deg when link 3 leans over the axis;
+    with link 3 leaning forward it is Eq 48/50 corrected) and the SLJ's true horizontal distance."""
     v = c.S - c.J2
     out = np.stack([np.cos(c.q[:, 0]), np.sin(c.q[:, 0])], 1)  # joint 1's vertical plane, outward
     delta = np.arctan2(v[:, 2], np.einsum("ni,ni->n", v[:, :2], out))
-    return np.hypot(c.p[:, 0], c.p[:, 1]), delta, np.hypot(c.S[:, 0], c.S[:, 1])
-
-
-def _sigma_error(c: Pose35, form, r: float) -> np.ndarray:
-    rho, delta, reach = _sigma_inputs(c)
-    return np.abs(np.abs(wrap(c.alpha - c.phi)) - form(rho, c.beta, delta, r, reach))
+    rho, reach = np.hypot(c.p[:, 0], c.p[:, 1]), np.hypot(c.S[:, 0], c.S[:, 1])
+    return np.abs(wrap(c.alpha - c.phi)), rho, delta, reach
 
 
 def sigma_reading(c: Pose35, form, r: float, printed: str):
     """Second reading of Eq 49 / Eq 51 (the form): link 5's azimuth deviation under each nearby reading of
     delta's and beta's sign and of phi's 61 deg taken as radians."""
-    rho, delta, reach = _sigma_inputs(c)
-    target = np.abs(wrap(c.alpha - c.phi))
+    target, rho, delta, reach = _sigma_inputs(c)
     stated = {"delta": delta, "r": r, "beta": c.beta}
 
     def misfit(x) -> float:
@@ -441,23 +406,25 @@ def sigma_reading(c: Pose35, form, r: float, printed: str):
                   measure="max ||alpha - alpha'| - sigma| [rad]")
 
 
-def _alpha_limits(key: str, r: float, text: str, corrected: str = "-") -> Formula:
+def _alpha_limits(key: str, r: float, corrected: str = "-") -> Formula:
     """Eq 49 / Eq 51: link 5's azimuth deviation |alpha - alpha'| is sigma, with the true delta fed in."""
+    def error(c, f):
+        dev, rho, delta, reach = _sigma_inputs(c)
+        return np.abs(dev - f(rho, c.beta, delta, r, reach))
+
     def note(c, err):
-        rho, delta, _ = _sigma_inputs(c)
-        printed_delta = eq48_printed(c.S[:, 2], r)
-        chained = np.abs(np.abs(wrap(c.alpha - c.phi)) - eq49_sigma(rho, c.beta, printed_delta, r))
+        dev, rho, delta, _ = _sigma_inputs(c)
+        chained = np.abs(dev - eq49_sigma(rho, c.beta, eq48_printed(c.S[:, 2], r), r))
         return (f"with the printed Eq {48 if r > D_IN else 50} delta chained in: max {chained.max():.3g} "
                 "rad; link 3 leaning back over the axis (delta past 90 deg) in "
                 f"{np.mean(np.abs(delta) > np.pi / 2):.0%} of the configurations")
 
-    return Formula(key, eq49_sigma, lambda c, f: _sigma_error(c, f, r), TOL, "rad", _SIGMA_SLIPS,
-                   good=_sigma_true, good_is="the law of cosines with the SLJ's true horizontal distance",
-                   eps=1e-6,
+    text = _printed(key)
+    return Formula(key, eq49_sigma, error, TOL, "rad", _SIGMA_SLIPS,
+                   good=lambda rho, beta, delta, r, reach: _cos_law(rho, L5 * np.cos(beta), reach),
+                   good_is="the law of cosines with the SLJ's true horizontal distance", eps=1e-6,
                    eps_is="that sigma + 1 urad", text=text, corrected=corrected, measure=_GEOMETRY, note=note,
-                   method="random configurations with links 3-4 "
-                   f"{'aligned (theta4 = 0)' if r > D_IN else 'contracted (theta4 = +-119 deg)'} and any "
-                   "theta3 (link 5 leaves the vertical plane; Pinocchio): the deviation |alpha - alpha'| "
+                   method="Pinocchio (link 5 leaves the vertical plane): the deviation |alpha - alpha'| "
                    "of link 5's azimuth from the point's vs sigma, with the true delta fed in (the "
                    "inclination of links 3-4 in joint 1's vertical plane: Eq 48/50 corrected where link 3 "
                    "leans forward, past 90 deg where it leans back over the axis)",
@@ -465,8 +432,6 @@ def _alpha_limits(key: str, r: float, text: str, corrected: str = "-") -> Formul
 
 
 _GEOMETRY = "max |form - exact geometry|"
-_SIGMA_TEXT = ("alpha_max/min = alpha' +- sigma, sigma = acos((rho^2 + (l5 cos b)^2 - ({} cos d + l2)^2) / "
-               "(2 rho l5 cos b))")
 
 CHECKS = {
     **SECTION.formulas(
@@ -480,17 +445,12 @@ CHECKS = {
             method="printed beta' vs the inclination of p - J2 with J2 from Pinocchio (theta1 = phi)",
             basis="beta' = atan(rise / run) and the reference asin(rise / |p - J2|) are two expressions of "
             "the inclination of the same vector (joint 2 by Eq 37, graded in workspace.eq37): an identity"),
-        _beta_limits("Eq 44", L3 + L4, "configurations with theta3 = theta4 = 0 (links 3-4 aligned, the arm "
-                     "in one vertical plane, random theta1, theta2, theta5; Pinocchio): the link-5 "
-                     "direction vs the two directions at beta' +- delta in the plane of J2 and p (compared "
-                     "as unit vectors, so inclinations past 90 deg need no special case)"),
+        _beta_limits("Eq 44", L3 + L4),
     ),
     **SECTION.formulas(
         _family("contracted-planar"),
-        _beta_limits("Eq 45", D_IN, "configurations with theta3 = 0, theta4 = +-119 deg (Pinocchio): the "
-                     "link-5 direction vs the directions at beta' +- delta_in",
-                     note=lambda c, err: f"|J2 - SLJ| = d to {np.abs(_length(c.S - c.J2) - D_IN).max():.1e} "
-                     "m"),
+        _beta_limits("Eq 45", D_IN, note=lambda c, err: "|J2 - SLJ| = d to "
+                     f"{np.abs(_length(c.S - c.J2) - D_IN).max():.1e} m"),
     ),
     **SECTION.formulas(
         _family("planar"),
@@ -508,11 +468,10 @@ CHECKS = {
             corrected="Eq 46 stands; Eq 43's run keeps its sign: beta' = atan2(pz - z2, |p_xy| - l2) "
             "(equivalently alpha' the azimuth of p seen from joint 2); the two differ only where p lies "
             "horizontally between the base axis and joint 2",
-            method="configurations with theta3 = 0 (links 3-4 aligned or contracted; Pinocchio): link 5 (p "
-            "- SLJ) vs the unit vector at azimuth alpha' and inclination beta' +- delta in that vertical "
-            "plane (Sec 3.5's angles: beta runs past 90 deg when link 5 tilts back over the vertical, Figs "
-            "21c, 24c)",
-            reread=lambda ctx, c, f: eq46_reading(ctx, c, c.r, f)),
+            method="Pinocchio: link 5 (p - SLJ) vs the unit vector at azimuth alpha' and inclination beta' "
+            "+- delta in that vertical plane (Sec 3.5's angles: beta runs past 90 deg when link 5 tilts back "
+            "over the vertical, Figs 21c, 24c)",
+            reread=eq46_reading),
     ),
     **SECTION.formulas(
         _family("aligned"),
@@ -520,20 +479,16 @@ CHECKS = {
             Slip(SlipKind.FUNCTION, "l5 cos(beta) for l5 sin(beta)", lambda pz, b: pz - L5 * np.cos(b)),
             Slip(SlipKind.LENGTH, "l4 for l5", lambda pz, b: pz - L4 * np.sin(b)),
         ), eps_is="h + 1 nm", measure=_GEOMETRY,
-            method="random configurations with links 3-4 aligned (Pinocchio): z of joint 5 vs the form with "
-            "the link-5 inclination beta",
+            method="Pinocchio: z of joint 5 vs the form with the link-5 inclination beta",
             basis="beta is read from the same link-5 vector (asin of its rise over l5) whose rise the "
             "formula subtracts: pz - l5 sin(beta) is the SLJ's height by construction"),
-        _delta("Eq 48", L3 + L4, "delta = atan((h_SLJ - l1) / (l3 + l4))",
-               "delta = asin((h_SLJ - l1) / (l3 + l4))",
-               "delta = asin((h_SLJ - l1) / (l3 + l4)) (l3 + l4 is the segment's length, not its run)"),
-        _alpha_limits("Eq 49", L3 + L4, _SIGMA_TEXT.format("(l3 + l4)")),
+        _delta("Eq 48", L3 + L4, "l3 + l4 is the segment's length, not its run"),
+        _alpha_limits("Eq 49", L3 + L4),
     ),
     **SECTION.formulas(
         _family("contracted"),
-        _delta("Eq 50", D_IN, "delta = atan((h_SLJ - l1) / phi)", "delta = asin((h_SLJ - l1) / phi)",
-               "delta = asin((h_SLJ - l1) / phi) (phi = d is the segment's length)"),
-        _alpha_limits("Eq 51", D_IN, _SIGMA_TEXT.format("phi"),
+        _delta("Eq 50", D_IN, "phi = d is the segment's length"),
+        _alpha_limits("Eq 51", D_IN,
                       "no closed form of this shape: with theta4 = +-119 deg link 5 leaves the vertical "
                       "plane of joint 1 only if theta3 != 0, which takes link 4 and the SLJ out of it too, "
                       "so the SLJ is not at horizontal distance phi cos(delta) + l2 from the base axis (Fig "
@@ -554,14 +509,41 @@ def sec35_to_eq42(alpha35, beta35):
     return wrap(alpha35 + np.pi), beta35 + np.pi / 2
 
 
+def _z6_gap(a, b, z6: np.ndarray, elevation: bool = False) -> np.ndarray:
+    """The angle difference [rad] of Eq 42 angles (``a``, ``b``) from the azimuth and polar angle of ``z6``
+    (n, 3) (with ``elevation``: its elevation from the horizontal); the azimuth not counted at the poles."""
+    beta = np.arcsin(np.clip(z6[:, 2], -1, 1)) if elevation else np.arccos(np.clip(z6[:, 2], -1, 1))
+    alpha = np.arctan2(z6[:, 1], z6[:, 0])
+    return np.maximum(np.abs(wrap(a - alpha)) * (np.abs(z6[:, 2]) < 1 - 1e-12), np.abs(b - beta))
+
+
 def _convention_error(c: Pose35, to_eq42) -> np.ndarray:
     """The angle difference [rad] of the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5) through ``to_eq42`` from
-    the Eq 42 angles of z6 (azimuth, polar angle; the azimuth not counted at the poles)."""
-    z6 = joint_placements(c.q)[:, 6, :3, 2]
-    beta42 = np.arccos(np.clip(z6[:, 2], -1, 1))
-    alpha42 = np.arctan2(z6[:, 1], z6[:, 0])
+    the Eq 42 angles of z6 (Pinocchio)."""
+    return _z6_gap(*to_eq42(c.alpha, c.beta), joint_placements(c.q)[:, 6, :3, 2])
+
+
+def convention_reading(ctx, c: Pose35, to_eq42):
+    """Second reading of the Sec 3.5 / Eq 42 convention (the form): Eq 42's angles of z6 from the iik.dh chain
+    under each nearby reading of the stated conventions below, vs the form's angles."""
+    from .ik_equations import chain_frames
+
     a, b = to_eq42(c.alpha, c.beta)
-    return np.maximum(np.abs(wrap(a - alpha42)) * (np.sin(beta42) > 1e-6), np.abs(b - beta42))
+
+    def misfit(x) -> float:
+        return float(_z6_gap(a, b, chain_frames(c.q, d6=x["d6"])[:, 5, :3, 2], x["elevation"]).max())
+
+    readings = [
+        Reading(Kind.SIGN, "d6 = +l5 (z6 along link 5, as Eq 9 and App. B's 5_6T read it)", {"d6": L5}),
+        Reading(Kind.CONVENTION, "Eq 42's beta read as an elevation from the horizontal",
+                {"elevation": True}),
+    ]
+    return search({"d6": -L5, "elevation": False}, readings, misfit, TOL,
+                  printed="Sec 3.5's (alpha, beta) of link 5 used as Eq 42's",
+                  stated_text="Eq 42's matrix (r33 = cos beta: beta the polar angle of z6), Table II (d6 = "
+                  "-l5)",
+                  route="z6 of the Table II chain by iik.dh (not Pinocchio)",
+                  measure="max angle difference [rad]")
 
 
 CHECKS |= SECTION.formulas(_family("aligned"), Formula(
@@ -582,44 +564,14 @@ CHECKS |= SECTION.formulas(_family("aligned"), Formula(
     method="{n} configurations (Pinocchio): the Sec 3.5 angles of link 5 (a = (p - SLJ)/l5: azimuth, "
     "inclination) through the form vs the Eq 42 angles of z6 (azimuth, polar angle)",
     measure="max angle difference", note=lambda c, err: "z6 = -a in every configuration (d6 = -l5)",
-    reread=lambda ctx, c, f: convention_reading(c, f)))
-
-
-def convention_reading(c: Pose35, to_eq42):
-    """Second reading of the Sec 3.5 / Eq 42 convention (the form): Eq 42's angles of z6 from the iik.dh chain
-    under each nearby reading of the stated conventions (d6 = +l5: z6 along link 5; Eq 42's beta read as an
-    elevation from the horizontal), vs the form's angles."""
-    from .ik_equations import chain_frames
-
-    a, b = to_eq42(c.alpha, c.beta)
-    stated = {"d6": -L5, "elevation": False}
-
-    def misfit(x) -> float:
-        z6 = chain_frames(c.q, d6=x["d6"])[:, 5, :3, 2]
-        beta = np.arcsin(np.clip(z6[:, 2], -1, 1)) if x["elevation"] else np.arccos(np.clip(z6[:, 2], -1, 1))
-        alpha = np.arctan2(z6[:, 1], z6[:, 0])
-        return float(np.maximum(np.abs(wrap(a - alpha)) * (np.abs(z6[:, 2]) < 1 - 1e-12),
-            np.abs(b - beta)).max())
-
-    readings = [
-        Reading(Kind.SIGN, "d6 = +l5 (z6 along link 5, as Eq 9 and App. B's 5_6T read it)", {"d6": L5}),
-        Reading(Kind.CONVENTION, "Eq 42's beta read as an elevation from the horizontal",
-            {"elevation": True}),
-    ]
-    return search(stated, readings, misfit, TOL, printed="Sec 3.5's (alpha, beta) of link 5 used as Eq 42's",
-                  stated_text="Eq 42's matrix (r33 = cos beta: beta the polar angle of z6), Table II (d6 = "
-                  "-l5)",
-                  route="z6 of the Table II chain by iik.dh (not Pinocchio)",
-                  measure="max angle difference [rad]")
+    reread=convention_reading))
 
 
 @per_run
 def sweep(ctx):
     """The exact admissible set on a grid: :func:`iik.dexterity.admissible` (IK feasibility) at
     ``na x nb`` orientations of each of ``npts`` reachable points (300 in the full report)."""
-    rng = ctx.rng("dexterity-points")
-    npts = ctx.n(300, 8)
-    q = rng.uniform(ARM.q_min, ARM.q_max, size=(npts, 6))
+    q = ctx.rng("dexterity-points").uniform(ARM.q_min, ARM.q_max, size=(ctx.n(300, 8), 6))
     P = iik.fk(q, ARM)[:, :3, 3]
     na, nb = ctx.n(36, 24), ctx.n(18, 12)
     A, B = np.meshgrid((np.arange(na) + 0.5) / na * 2 * np.pi - np.pi, (np.arange(nb) + 0.5) / nb * np.pi)
@@ -636,15 +588,8 @@ class Rates:
     false_admits: int  # admitted, but no IK solution within the limits
     false_rejects: int  # rejected, but an IK solution within the limits exists
 
-    @property
-    def false_admit_rate(self) -> float:
-        """Share of the admitted orientations that have no solution."""
-        return self.false_admits / max(1, self.admitted)
-
-    @property
-    def false_reject_rate(self) -> float:
-        """Share of the rejected orientations that do have a solution."""
-        return self.false_rejects / max(1, self.rejected)
+    false_admit_rate = property(lambda self: self.false_admits / max(1, self.admitted))  # of the admitted
+    false_reject_rate = property(lambda self: self.false_rejects / max(1, self.rejected))  # of the rejected
 
     def text(self) -> str:
         return (f"admitted {self.admitted}, rejected {self.rejected}; false admits {self.false_admits} "
@@ -660,8 +605,7 @@ def rates(adm: np.ndarray, truth: np.ndarray) -> Rates:
 
 def admitted_printed(p, A, B):
     """Eq 43-51 as printed, the angles converted to Eq 42's (the reading of dexterity.beta_convention)."""
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return printed_admits(p, A - np.pi, B - np.pi / 2)
+    return printed_admits(p, A - np.pi, B - np.pi / 2)
 
 
 def shell_admits(p, A, B, arm) -> np.ndarray:
@@ -686,28 +630,11 @@ def shell_admits(p, A, B, arm) -> np.ndarray:
     return (cos_ae <= min(c_in, 1.0) + 1e-12) & (cos_ae >= max(c_out, -1.0) - 1e-12)
 
 
-def _shell(p, A, B):
-    return shell_admits(p, A, B, ARM)
+_shell = partial(shell_admits, arm=ARM)
 
 
-@dataclass(frozen=True)
-class SolvableOnly:
-    """Known-good admission: exactly the orientations the sweep found solvable (sound by construction)."""
-
-    truth: str = "sweep"
-
-
-def _unconverted(p, A, B):
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return printed_admits(p, A, B)
-
-
-def _admitted(form, sw, i, p):
-    if isinstance(form, SolvableOnly):
-        return sw["truth"][i]
-    return form(p, sw["A"], sw["B"])
-
-
+#: The known-good admission: exactly the orientations the sweep found solvable (sound by construction).
+SOLVABLE_ONLY = object()
 _SOUND = 0.999  # share of admitted orientations that must be solvable ("guarantees convergence")
 
 
@@ -715,41 +642,36 @@ def _sweep_forms(printed) -> Forms:
     """Forms of an admitted set graded on the sweep: good admits exactly the solved orientations, bad all."""
     return Forms(
         printed=printed,
-        good=SolvableOnly(),
+        good=SOLVABLE_ONLY,
         good_is="exactly the orientations the sweep solves",
         slips=(
             Slip(SlipKind.CLAIM, "every orientation", lambda p, A, B: np.ones(A.shape, bool)),
             Slip(SlipKind.MODEL, "the angles used without the Eq 42 conversion (Sec 3.5's read as Eq 42's)",
-                 _unconverted),
+                 printed_admits),
         ),
     )
 
 
-def _sweep_row(ctx, admit, claim: str, reference: str, method: str, reason: str, *, numbers: str = "{rates}",
-               figure: bool = False, **fields) -> Row:
-    """The row of the set ``admit`` admits, graded on the sweep: sound if at least ``_SOUND`` of what it
-    admits is solvable. ``method`` and ``numbers`` may name the grid (``{na}``, ``{nb}``, ``{npts}``), the
-    :class:`Rates` (``{rates}``) and the solvable orientations (``{solvable}`` of ``{total}``); with
-    ``figure`` the row shows the sets at the first points (:func:`_figure`)."""
+def _sweep_row(ctx, admit, claim: str, reference: str, versus: str, reason: str, **fields) -> Row:
+    """The row of the set ``admit`` admits (``versus`` in words), graded on the sweep: sound if at least
+    ``_SOUND`` of what it admits is solvable; the row of Eq 43-51 as printed shows the sets at the first
+    points (:func:`_figure`)."""
     sw = sweep(ctx)
-    adm = np.array([_admitted(admit, sw, i, p) for i, p in enumerate(sw["P"])])
+    adm = sw["truth"] if admit is SOLVABLE_ONLY else np.array([admit(p, sw["A"], sw["B"]) for p in sw["P"]])
     r = rates(adm, sw["truth"])
-    words = dict(na=sw["na"], nb=sw["nb"], npts=len(sw["P"]), rates=r.text(), total=sw["truth"].size,
-                 solvable=int(sw["truth"].sum()))
     return Row.graded(
         claim,
         reference,
         "the exact admissible set on a grid: iik.dexterity.admissible (the complete IK, a solution within "
-        "Table I for pose_from_euler(p, alpha, beta, 0); gamma turns joint 6 alone) "
-        + method.format(**words),
-        numbers.format(**words),
+        f"Table I for pose_from_euler(p, alpha, beta, 0); gamma turns joint 6 alone) vs {versus}",
+        f"{r.text()}; of {sw['truth'].size} orientations {int(sw['truth'].sum())} are solvable",
         (Measure("share of admitted orientations that are solvable", 1.0 - r.false_admit_rate, _SOUND,
                  bound=">="),),
         fail=Verdict.DOES_NOT_HOLD,
         domain=f"{len(sw['P'])} reachable points (fk of q uniform in Table I), a {sw['na']} x {sw['nb']} "
         "(alpha, beta) grid over every orientation of z6 at each",
         reason=reason,
-        figures=(_figure(ctx, sw, adm),) if figure else (),
+        figures=(_figure(ctx, sw, adm),) if admit is admitted_printed else (),
         **fields,
     )
 
@@ -768,12 +690,9 @@ def printed_admitted_set(ctx, admit):
         "The orientations Eq 43-51 admit at a point inside the workspace are reachable (at least one IK "
         "solution), so choosing them guarantees convergence.",
         "Sec 3.5.2-3.5.3, Eq 43-51, Sec 5.2",
-        "over a {na} x {nb} (alpha, beta) grid at {npts} reachable points, vs the set Eq 43-51 admit (angles "
-        "converted to Eq 42's)",
+        "the set Eq 43-51 admit (angles converted to Eq 42's)",
         "the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the roll geometry, and Eq "
         "48/50/51 are wrong (rows above): admitted orientations without an IK solution",
-        numbers="{rates}; of {total} orientations {solvable} are solvable",
-        figure=admit is admitted_printed,
         id="admitted_set",
     )
 
@@ -791,7 +710,7 @@ def shell_model(ctx, admit):
         "Sec 3.5's model read exactly (the second-last joint inside the shell of Eq 44-45, the angles "
         "converted to Eq 42's) admits only reachable orientations.",
         "Sec 3.5.2-3.5.3 (Figs 18-21), Eq 44-45",
-        "vs the orientations whose link-5 direction lies in the cone between the Eq 44 and Eq 45 half-angles "
+        "the orientations whose link-5 direction lies in the cone between the Eq 44 and Eq 45 half-angles "
         "(the former iik.dexterity)",
         "the model ignores the joint-1, joint-2, joint-3 and joint-5 limits and where the wrist really is: "
         "it is neither a necessary nor a sufficient condition (false admits and false rejects above)",
@@ -801,33 +720,21 @@ def shell_model(ctx, admit):
 
 # ----------------------------------------------------------------------------- the exact sets
 _EDGE = 1e-7  # [rad]: a step across an interval end, 100 x the bisection tolerance
+_GRID = 2 * _D  # [rad]: the grid of the slip that leaves the ends unrefined
 
 
-def _grid_ends(p, beta, arm):
-    """A slip: the ends left on the 2 deg grid (no root-finding): each interval out to the next grid line."""
-    step = 2 * _D
-    return tuple((float(np.floor(lo / step) * step), float(np.ceil(hi / step) * step))
-                 for lo, hi in alpha_intervals(p, beta, arm))
+def _moved(ends):
+    """A slip: iik.dexterity's alpha intervals [rad] with each (lo, hi) replaced by ``ends(lo, hi)``."""
+    return lambda p, beta, arm: tuple(ends(lo, hi) for lo, hi in alpha_intervals(p, beta, arm))
 
 
-def _widened(p, beta, arm):
-    """A slip: the exact intervals widened by a quarter of a degree at each end."""
-    return tuple((lo - 0.25 * _D, hi + 0.25 * _D) for lo, hi in alpha_intervals(p, beta, arm))
-
-
-def _member(intervals, a):
-    ok = np.zeros(np.shape(a), bool)
+def _member(intervals, a, eps: float) -> tuple[np.ndarray, np.ndarray]:
+    """Which alphas ``a`` [rad] lie in one of the ``intervals``, and which lie within ``eps`` of an end."""
+    inside, near = np.zeros(np.shape(a), bool), np.zeros(np.shape(a), bool)
     for lo, hi in intervals:
-        ok |= (a - lo) % (2 * np.pi) <= hi - lo + 1e-12
-    return ok
-
-
-def _near_end(intervals, a, eps):
-    near = np.zeros(np.shape(a), bool)
-    for lo, hi in intervals:
-        for e in (lo, hi):
-            near |= np.abs(wrap(a - e)) <= eps
-    return near
+        inside |= (a - lo) % (2 * np.pi) <= hi - lo + 1e-12
+        near |= (np.abs(wrap(a - lo)) <= eps) | (np.abs(wrap(a - hi)) <= eps)
+    return inside, near
 
 
 @per_run
@@ -856,8 +763,10 @@ def _beta_end_errors(p, d) -> int:
     51.5,
     depends_on=("l1", "lengths", "ik-sweep"),
     forms=Forms.right(alpha_intervals, (
-        Slip(SlipKind.MODEL, "interval ends left on the 2 deg grid (no root-finding)", _grid_ends),
-        Slip(SlipKind.CLAIM, "every interval a quarter degree wider at each end", _widened),
+        Slip(SlipKind.MODEL, "interval ends left on the 2 deg grid (no root-finding)", _moved(
+            lambda lo, hi: (float(np.floor(lo / _GRID) * _GRID), float(np.ceil(hi / _GRID) * _GRID)))),
+        Slip(SlipKind.CLAIM, "every interval a quarter degree wider at each end",
+             _moved(lambda lo, hi: (lo - 0.25 * _D, hi + 0.25 * _D))),
     )),
 )
 def iik_dexterity(ctx, intervals):
@@ -870,14 +779,12 @@ def iik_dexterity(ctx, intervals):
         for lo, hi in d.beta_intervals:
             for beta in np.linspace(lo, hi, 5)[1:-1]:
                 got = intervals(p, float(beta), ARM)
-                truth = admissible(p, dense, beta, ARM)
-                off = _member(got, dense) != truth
-                mismatch += int(np.sum(off & ~_near_end(got, dense, 1e-6)))
+                inside, near = _member(got, dense, 1e-6)
+                mismatch += int(np.sum((inside != admissible(p, dense, beta, ARM)) & ~near))
                 checked += dense.size
-                for a_lo, a_hi in got:
-                    if a_hi - a_lo >= 2 * np.pi - 1e-12:
-                        continue
-                    n_int += 1
+                ends = [(a, b) for a, b in got if b - a < 2 * np.pi - 1e-12]  # a full turn has no ends
+                n_int += len(ends)
+                for a_lo, a_hi in ends:
                     probe = np.array([a_lo - _EDGE, a_lo + _EDGE, a_hi - _EDGE, a_hi + _EDGE])
                     ends_bad += int(np.any(admissible(p, probe, beta, ARM) != [False, True, True, False]))
     m = (
@@ -904,22 +811,20 @@ def iik_dexterity(ctx, intervals):
 
 
 def _figure(ctx, sw, adm_pr) -> str:
-    truth = sw["truth"]
     na, nb = sw["na"], sw["nb"]
-    picks = list(range(min(3, len(sw["P"]))))
-    fig = new_figure(figsize=(4 * len(picks), 3.4))
+    n = min(3, len(sw["P"]))
+    fig = new_figure(figsize=(4 * n, 3.4))
     ext = (-180, 180, 0, 180)
-    for k, i in enumerate(picks):
-        ax = fig.add_subplot(1, len(picks), k + 1)
-        ax.imshow(truth[i].reshape(nb, na), origin="lower", extent=ext, aspect="auto", cmap="Greys",
+    for i in range(n):
+        ax = fig.add_subplot(1, n, i + 1)
+        ax.imshow(sw["truth"][i].reshape(nb, na), origin="lower", extent=ext, aspect="auto", cmap="Greys",
                   vmin=0, vmax=1.5)
         p = sw["P"][i]
         for adm, col in ((_shell(p, sw["A"], sw["B"]), "blue"), (adm_pr[i], "red")):
             if adm.any() and not adm.all():
                 ax.contour(adm.reshape(nb, na).astype(float), levels=[0.5], colors=col, extent=ext)
         ax.set_title(f"p = [{p[0]:.2f}, {p[1]:.2f}, {p[2]:.2f}] m", fontsize=8)
-        ax.set_xlabel("alpha [deg] (Eq 42)")
-        ax.set_ylabel("beta [deg] (Eq 42)")
+        ax.set(xlabel="alpha [deg] (Eq 42)", ylabel="beta [deg] (Eq 42)")
     fig.suptitle("grey: exact (iik.dexterity: an IK solution within Table I); blue: Sec 3.5's model read "
                  "exactly; red: Eq 43-51 printed (converted)", fontsize=8)
     return ctx.save_figure(fig, "dexterity_alpha_beta.png", dpi=80)
@@ -928,36 +833,26 @@ def _figure(ctx, sw, adm_pr) -> str:
 @SECTION.check(
     52.0,
     depends_on=("l1", "lengths", "complete-solver"),
-    forms=Forms(
-        printed=(1, 2, 3, 4, 5),
-        good=(1, 2, 3, 4, 5),
-        good_is="the printed claim (joints 1-5 unaffected)",
-        slips=(
-            Slip(SlipKind.CLAIM, "joints 1-6 unaffected", (1, 2, 3, 4, 5, 6)),
-            Slip(SlipKind.OFF_BY_ONE, "joints 2-6 unaffected (the joint numbers one off)", (2, 3, 4, 5, 6)),
-        ),
-    ),
+    forms=Forms.right((1, 2, 3, 4, 5), (
+        Slip(SlipKind.CLAIM, "joints 1-6 unaffected", (1, 2, 3, 4, 5, 6)),
+        Slip(SlipKind.OFF_BY_ONE, "joints 2-6 unaffected (the joint numbers one off)", (2, 3, 4, 5, 6)),
+    ), good_is="the printed claim (joints 1-5 unaffected)"),
 )
 def gamma_free(ctx, unaffected):
     """Sec 3.5.1: gamma only changes joint 6 (a full turn), so any gamma works; ``unaffected`` joints stay."""
-    rng = ctx.rng("gamma")
-    q = rng.uniform(ARM.q_min, ARM.q_max, size=(ctx.n(40, 6), 6))
-    T = iik.fk(q, ARM)
-    ang = np.array([iik.euler_from_matrix(t[:3, :3]) for t in T])
+    T = iik.fk(ctx.rng("gamma").uniform(ARM.q_min, ARM.q_max, size=(ctx.n(40, 6), 6)), ARM)
     gam = np.linspace(-np.pi, np.pi, 13)[:-1]
-    ok, total, moved = 0, 0, 0.0
-    cols = [j - 1 for j in unaffected]
-    for t, (a, b, _) in zip(T, ang, strict=True):
-        k = len(gam)
+    k, ok, moved, cols = len(gam), 0, 0.0, [j - 1 for j in unaffected]
+    for t in T:
+        a, b, _ = iik.euler_from_matrix(t[:3, :3])
         poses = iik.pose_from_euler(np.tile(t[:3, 3], (k, 1)), np.full(k, a), np.full(k, b), gam)
         res = iik.solve_many(poses, ARM)
         ok += sum(len(r.q) > 0 for r in res)
-        total += k
-        base = res[0].q[:, cols] if len(res[0].q) else None
+        base = np.sort(res[0].q[:, cols], axis=0)
         for r in res[1:]:
-            if base is not None and len(r.q) == len(base):
-                d = np.abs(wrap(np.sort(r.q[:, cols], axis=0) - np.sort(base, axis=0))).max()
-                moved = max(moved, float(d))
+            if len(base) and len(r.q) == len(base):
+                moved = max(moved, float(np.abs(wrap(np.sort(r.q[:, cols], axis=0) - base)).max()))
+    total = len(T) * k
     m = (
         Measure("poses without a solution when gamma changes", total - ok, 0),
         Measure(f"max change of joints {list(unaffected)} across gamma", moved, 1e-6, "rad"),
@@ -972,5 +867,5 @@ def gamma_free(ctx, unaffected):
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="gamma_free",
-        domain=f"{len(q)} poses fk(q), q uniform in Table I, gamma at 12 values over a full turn each",
+        domain=f"{len(T)} poses fk(q), q uniform in Table I, gamma at 12 values over a full turn each",
     )
