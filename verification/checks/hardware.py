@@ -202,19 +202,6 @@ def execute_scenario(
     return ctx.cache[key]
 
 
-def _note(lag: float) -> str:
-    """How the simulation rows are measured, on a simulated arm with tracking lag ``lag`` [s]."""
-    return (
-        "in-process simulated arm (hardware.sim: FSTEP = constant velocity to the target in the given time, "
-        "joints at rest between steps that do not overlap; measured signals lag the set-point by a pure "
-        f"delay of {lag * 1e3:.0f} ms, an assumption), host waits fast-forwarded and the host's own time "
-        f"(bus round trips, computation) counted at {LATENCY_SCALE:g} of its length, samples every 30 ms; "
-        "scenarios planned as `iik run` plans them (step-points at the times iik plan writes: TOPP-RA within "
-        "the Sec 3.2 limits, whole ms), validated, streamed by hardware.executor; step-point error = "
-        "|p(FK(measured q)) - planned p| (Eq 4, as in Sec 4.3)"
-    )
-
-
 # ----------------------------------------------------------------------------- Table V
 _ROUND_TRIP = (
     "a round trip of our driver against our simulated modules, both written from the same protocol "
@@ -395,13 +382,22 @@ def _simulated(order: float, forms: dict, **options):
 def _graded(claim, reference, method, numbers, measures, lag: float, reasons=None, **fields) -> Row:
     """The simulation of a Sec 4.3 claim, a project row graded by ``measures`` on the simulated arm with
     tracking lag ``lag`` [s] (consistent with our reconstruction, or not reproduced on it); ``method``
-    follows the simulation's description (:func:`_note`). ``reasons``: (if it holds, if not)."""
+    follows the simulation's description. ``reasons``: (if it holds, if not)."""
+    simulation = (
+        "in-process simulated arm (hardware.sim: FSTEP = constant velocity to the target in the given time, "
+        "joints at rest between steps that do not overlap; measured signals lag the set-point by a pure "
+        f"delay of {lag * 1e3:.0f} ms, an assumption), host waits fast-forwarded and the host's own time "
+        f"(bus round trips, computation) counted at {LATENCY_SCALE:g} of its length, samples every 30 ms; "
+        "scenarios planned as `iik run` plans them (step-points at the times iik plan writes: TOPP-RA within "
+        "the Sec 3.2 limits, whole ms), validated, streamed by hardware.executor; step-point error = "
+        "|p(FK(measured q)) - planned p| (Eq 4, as in Sec 4.3)"
+    )
     reason = f"on the simulated arm with a {lag * 1e3:.0f} ms lag (the real arm: see the not-checkable row)"
     holds, fails = reasons or (reason, reason)
     row = Row.graded(
         claim,
         reference,
-        _note(lag) + method,
+        simulation + method,
         numbers,
         measures,
         fail=Verdict.NOT_REPRODUCED,
