@@ -42,6 +42,7 @@ from scipy.spatial import cKDTree
 
 from .arm import Arm
 from .errors import InvalidInputError
+from .ik.angles import clip_angle
 from .kinematics import eq4_position, eq4_terms, fk, position_jacobian
 from .validation import as_points
 
@@ -96,7 +97,7 @@ def joint4_distance(p: np.ndarray, th1: float, arm: Arm) -> np.ndarray:
     [rad] and joint 2 aimed at them (corrected Eq 39-40, see the module docstring)."""
     l1, l2, l3 = arm.l1, arm.l2, arm.l3
     u = p[:, 0] * np.cos(th1) + p[:, 1] * np.sin(th1)
-    th2 = np.clip(-np.arctan2(p[:, 2] - l1, u - l2), arm.lower[1], arm.upper[1])  # Eq 39 (corrected)
+    th2 = clip_angle(-np.arctan2(p[:, 2] - l1, u - l2), arm.lower[1], arm.upper[1])  # Eq 39 (corrected)
     c2, s2 = np.cos(th2), np.sin(th2)
     x4 = (l2 + l3 * c2) * np.cos(th1)  # Eq 40 (corrected sign)
     y4 = (l2 + l3 * c2) * np.sin(th1)  # Eq 40 (corrected sign)

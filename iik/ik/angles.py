@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-__all__ = ["wrap", "wrap_angle", "gap", "angle_distance", "into_limits"]
+__all__ = ["wrap", "wrap_angle", "gap", "angle_distance", "into_limits", "clip_angle"]
 
 _TWO_PI = 2.0 * np.pi
 
@@ -64,3 +64,13 @@ def into_limits(Q: np.ndarray, lower, upper, tol: float) -> tuple[np.ndarray, np
         shifted = np.where(Q < lo, Q + _TWO_PI, np.where(Q > hi, Q - _TWO_PI, Q))
         ok = (shifted >= lo) & (shifted <= hi)
     return np.where(ok, shifted, Q), np.all(ok, axis=-1)
+
+
+def clip_angle(t, lo: float, hi: float) -> np.ndarray:
+    """Angles ``t`` [rad] in (-pi, pi] limited to [lo, hi] [rad] by the nearer limit *on the
+    circle*: a plain clip picks the wrong limit for an angle past one limit but nearer the other
+    across +-pi (joint 2 of the thesis arm, -120 .. 95 deg, aimed at 170 deg: -120 deg is 70 deg
+    away, 95 deg is 75)."""
+    t = np.asarray(t, float)
+    nearer = np.where(np.abs(wrap_angle(t - lo)) < np.abs(wrap_angle(t - hi)), lo, hi)
+    return np.where((t >= lo) & (t <= hi), t, nearer)

@@ -148,3 +148,35 @@ def test_another_arms_workspace_is_searched_with_its_own_fk():
     assert iik.closest_reachable(P[0], crx).distance == 0.0
     with pytest.raises(InvalidInputError):
         iik.in_workspace([np.nan, 0, 0], crx)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(-1.2, 1.2), st.floats(-1.2, 1.2), st.floats(-0.6, 1.4), st.sampled_from([0, 1]))
+def test_joint4_distance_is_the_nearest_over_joint_2s_range(x, y, z, end):
+    """rho_23 (Eq 41) is joint 4's distance to p with joint 2 aimed at p *within Table I*: the
+    minimum over joint 2's range. A plain clip of the aimed angle picks the wrong limit for an
+    aim past one limit but nearer the other across +-pi (found: 0.1 m too far)."""
+    from iik.workspace import joint4_distance
+
+    p = np.array([[x, y, z]])
+    th1 = (THESIS_ARM.lower[0], THESIS_ARM.upper[0])[end]
+    l1, l2, l3 = THESIS_ARM.l1, THESIS_ARM.l2, THESIS_ARM.l3
+    t2 = np.linspace(THESIS_ARM.lower[1], THESIS_ARM.upper[1], 20001)
+    j4 = np.stack([(l2 + l3 * np.cos(t2)) * np.cos(th1), (l2 + l3 * np.cos(t2)) * np.sin(th1),
+                   l1 - l3 * np.sin(t2)], axis=1)
+    dense = np.linalg.norm(j4 - p, axis=1).min()
+    assert joint4_distance(p, th1, THESIS_ARM)[0] == pytest.approx(dense, abs=2e-9)
+
+
+def test_joint4_distance_at_an_aim_across_pi():
+    """The point found by the property above: joint 2 aimed at about 170 deg (past 95 deg, 70 deg
+    from -120 deg across +-pi)."""
+    from iik.workspace import joint4_distance
+
+    p = np.array([[0.13986948, -0.2704922, 0.29736668]])
+    th1 = THESIS_ARM.upper[0]
+    t2 = THESIS_ARM.lower[1]  # the nearer limit on the circle
+    l1, l2, l3 = THESIS_ARM.l1, THESIS_ARM.l2, THESIS_ARM.l3
+    r = l2 + l3 * np.cos(t2)
+    j4 = np.array([r * np.cos(th1), r * np.sin(th1), l1 - l3 * np.sin(t2)])
+    assert joint4_distance(p, th1, THESIS_ARM)[0] == pytest.approx(np.linalg.norm(j4 - p[0]), abs=1e-12)

@@ -19,6 +19,7 @@ from scipy.spatial import cKDTree
 
 import iik
 from iik.dh import dh_chain
+from iik.ik.angles import clip_angle
 from iik.workspace import in_workspace, tool_positions
 
 from ..assumptions import EXACT_GEOMETRY
@@ -59,14 +60,6 @@ def _polar(r, phi, z) -> np.ndarray:
 def eq37_printed(phi, arm=ARM) -> np.ndarray:
     """Eq 37: joint 2 at [l2 cos(phi), l2 sin(phi), l1] [m] with joint 1 at phi [rad] -> (n, 3)."""
     return np.stack([arm.l2 * np.cos(phi), arm.l2 * np.sin(phi), np.full_like(phi, arm.l1)], 1)
-
-
-def clip_angle(t, lo: float, hi: float):
-    """``t`` [rad] limited to [lo, hi] by the nearer limit *on the circle* (a plain clip picks the wrong one
-    for an angle past one limit but nearer the other across +-pi)."""
-    t = np.asarray(t, float)
-    nearer = np.where(np.abs(wrap(t - lo)) < np.abs(wrap(t - hi)), lo, hi)
-    return np.where((t >= lo) & (t <= hi), t, nearer)
 
 
 def eq39_printed(P, th1, *, sign: float = -1.0, arm=ARM):
