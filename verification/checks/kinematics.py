@@ -16,12 +16,14 @@ from __future__ import annotations
 
 from dataclasses import replace
 from functools import partial, reduce
+from itertools import product
 
 import numpy as np
 import pinocchio as pin
+from scipy.optimize import minimize
 from scipy.spatial.transform import Rotation
 
-from iik.arm import THESIS_ARM
+from iik.arm import THESIS_ARM, thesis_arm
 from iik.dh import DHRow, DHTable, dh_chain, dh_link_transform
 from iik.kinematics import fk, jacobian, joint_frames, position_jacobian
 from iik.planning.output import draw_arm_bodies
@@ -30,11 +32,11 @@ from iik.rotations import rotation_angle
 from iik.urdf import thesis_urdf, urdf_from_dh
 
 from ..assumptions import EXACT_GEOMETRY
-from ..formula import Formula, Points, per_run
+from ..formula import Formula, Points, nudged, per_run
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements, thesis_model, tool_jacobians, tool_poses
 from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
-from ..plotting import draw_arm, draw_collision, draw_scene, new_figure
+from ..plotting import draw_arm, draw_collision, draw_scene, log_histogram, new_figure, paired_log_bars
 from ..registry import (
     Erratum,
     Forms,
@@ -53,11 +55,6 @@ from ..shorthand import cos_sin, evaluate, matrix
 from ..testing.strategies import BEYOND, sample_joints
 
 TOL_EXACT = 1e-12  # [m] and [-]: closed forms vs Pinocchio
-#: The sampled domain of the full-range kinematics rows.
-_JOINT_DOMAIN = (
-    "{n} q: uniform in Table I widened by " + str(BEYOND) + " rad on every joint (the whole range and past "
-    "it), plus in full runs the 729 corners {{lower, 0, upper}}^6 where the trigonometric signs flip"
-)
 TOL_FD = 1e-7  # [m/rad]: vs central finite differences (h = 1e-6)
 _DEG = np.pi / 180
 #: The joint vector [rad] used as counterexample where any generic q would do.
@@ -66,6 +63,17 @@ SECTION = Section(
     "Kinematics (Tables I-II, Eq 1, Eq 4, Eq 34-35, App. B, App. C, Eq 42)", depends_on=EXACT_GEOMETRY,
     order=10.0,
 )
+
+
+def _domain(qs) -> str:
+    """The sampled domain of the full-range kinematics rows (:func:`_samples`), ``len(qs)`` q."""
+    return (f"{len(qs)} q: uniform in Table I widened by {BEYOND} rad on every joint (the whole range and past "
+            "it), plus in full runs the 729 corners {lower, 0, upper}^6 where the trigonometric signs flip")
+
+
+def _q_points(qs, more: str = "") -> Points:
+    """The joint vectors ``qs`` [rad] (:func:`_samples`) as the sample of a :class:`Formula` row."""
+    return Points(qs, _domain(qs) + more, "rad", "q")
 
 
 def _symbols(q, arm=THESIS_ARM) -> dict:
@@ -180,14 +188,10 @@ APPB_TEXT = (
     "4_5T = [-s5 -c5 0 l4; c5 -s5 0 0; 0 0 1 0; 0 0 0 1]",
     "5_6T = [c6 -s6 0 0; 0 0 1 l5; -s6 c6 0 0; 0 0 0 1]",
 )
-APPB_CORRECTED = (
-    APPB_TEXT[0],
-    "1_2T = [s2 c2 0 l2; 0 0 1 0; c2 -s2 0 0; 0 0 0 1]",
-    "2_3T = [c3 -s3 0 0; 0 0 1 l3; -s3 -c3 0 0; 0 0 0 1]",
-    "3_4T = [s4 c4 0 0; 0 0 1 0; c4 -s4 0 0; 0 0 0 1]",
-    APPB_TEXT[4],
-    "5_6T = [c6 -s6 0 0; 0 0 1 -l5; -s6 -c6 0 0; 0 0 0 1]",
-)
+#: The corrected matrices: 2_3T and 5_6T fixed, the others as printed.
+APPB_CORRECTED = tuple({2: "2_3T = [c3 -s3 0 0; 0 0 1 l3; -s3 -c3 0 0; 0 0 0 1]",
+                        5: "5_6T = [c6 -s6 0 0; 0 0 1 -l5; -s6 -c6 0 0; 0 0 0 1]"}.get(
+    i, t.removesuffix(" (read from garbled text)")) for i, t in enumerate(APPB_TEXT))
 
 
 def appb_modified_printed(q, arm=THESIS_ARM) -> list[np.ndarray]:
@@ -222,22 +226,13 @@ def eq4_from_table_ii(q, arm=THESIS_ARM) -> np.ndarray:
     return dh_chain(table_ii_printed(arm), np.atleast_2d(q))
 
 
-def _nudged(f, index, eps=1e-9):
-    """``f`` with entry ``index`` of its (..., 4, 4) or (..., 3, 3) output moved by ``eps`` (the tolerance
-    test)."""
-
-    def g(*args):
-        T = np.array(f(*args), dtype=float, copy=True)
-        T[(...,) + index] += eps
-        return T
-
-    return g
+def _eps(what: str, form, eps: float, at: tuple[int, ...] = ()) -> Slip:
+    """The tolerance test: ``form`` with its output moved by ``eps`` (at ``at``, :func:`nudged`)."""
+    return Slip(SlipKind.EPSILON, what, nudged(form, eps, at))
 
 
 def _with_lengths(**lengths):
     """THESIS_ARM with some link lengths replaced (a wrong-link-length slip)."""
-    from iik.arm import thesis_arm
-
     t = THESIS_ARM.thesis_lengths
     vals = {k: lengths.get(k, getattr(t, k)) for k in ("l1", "l2", "l3", "l4", "l5")}
     return thesis_arm(**vals, lower=THESIS_ARM.lower, upper=THESIS_ARM.upper, name="slipped lengths")
@@ -258,25 +253,10 @@ def _transposed_rotation(f):
     return lambda q, arm=THESIS_ARM: _rotation_transposed(f(q, arm))
 
 
-_EQ4_SLIPS = (
-    Slip(SlipKind.SIGN, "p_z with -l3 s2 written +l3 s2", partial(eq4_printed, text=_EQ4_PZ_SIGN)),
-    Slip(SlipKind.LENGTH, "l4 written for l5",
-         lambda q, arm=THESIS_ARM: eq4_printed(q, _with_lengths(l5=arm.l4))),
-    Slip(SlipKind.TRANSPOSE, "the rotation block transposed", _transposed_rotation(eq4_printed)),
-)
-
-
 def appb_from_table_ii(q, arm=THESIS_ARM) -> list[np.ndarray]:
     """Known-good App. B (home-pose set): Craig's link formula on each Table II row."""
     table = table_ii_printed(arm)
     return [dh_link_transform(table.rows[i], np.array([q[i]]), "modified")[0] for i in range(6)]
-
-
-def _appb_nudged(q, arm=THESIS_ARM) -> list[np.ndarray]:
-    out = [m.copy() for m in appb_from_table_ii(q, arm)]
-    for m in out:
-        m[0, 3] += 1e-9
-    return out
 
 
 def appb_first_printed(qs, arm=THESIS_ARM) -> tuple[np.ndarray, np.ndarray]:
@@ -291,24 +271,10 @@ def appb_first_from_dh(qs, arm=THESIS_ARM) -> tuple[np.ndarray, np.ndarray]:
     return dh_link_transform(r1, qs[:, 0], "modified"), dh_link_transform(r2, qs[:, 1], "modified")[:, :2, :3]
 
 
-def _appb_first_nudged(qs, arm=THESIS_ARM):
-    T01, R12 = appb_first_from_dh(qs, arm)
-    return T01 + 1e-9, R12 + 1e-9
-
-
-def position_from_table_ii(q, arm=THESIS_ARM) -> np.ndarray:
-    """Known-good G_theta: position column of the Table II product -> (n, 3)."""
-    return eq4_from_table_ii(q, arm)[:, :3, 3]
-
-
 def appc_from_iik(q, arm=THESIS_ARM) -> dict[str, np.ndarray]:
     """Known-good App. C entries: iik.position_jacobian (the corrected analytic Jacobian)."""
     J = position_jacobian(np.atleast_2d(q), arm)[..., :5]
     return {f"df{i + 1}/dth{j + 1}": J[:, i, j] for i in range(3) for j in range(5)}
-
-
-def _appc_nudged(q, arm=THESIS_ARM) -> dict[str, np.ndarray]:
-    return {k: v + 1e-6 for k, v in appc_printed(q, arm).items()}
 
 
 #: Eq 34 / Eq 55 as printed: the joints each coordinate function takes (1-based).
@@ -328,9 +294,7 @@ def _axis_rotation(axis: str, t: np.ndarray) -> np.ndarray:
 
 
 #: Every Euler convention: the 12 axis sequences, intrinsic (R = R1 R2 R3) and extrinsic (R = R3 R2 R1).
-EULER_SEQUENCES = tuple(
-    a + b + c for a in "xyz" for b in "xyz" for c in "xyz" if a != b and b != c
-)
+EULER_SEQUENCES = tuple(a + b + c for a in "xyz" for b in "xyz" for c in "xyz" if a != b and b != c)
 
 
 def euler_matrix(seq: str, intrinsic: bool, a, b, g) -> np.ndarray:
@@ -340,34 +304,29 @@ def euler_matrix(seq: str, intrinsic: bool, a, b, g) -> np.ndarray:
     return R1 @ R2 @ R3 if intrinsic else R3 @ R2 @ R1
 
 
-def eq42_zyz(alpha, beta, gamma) -> np.ndarray:
-    """Known-good Eq 42: Craig's Z-Y-Z matrix Rz(alpha) Ry(beta) Rz(gamma) (the printed one, r21 fixed)."""
-    return euler_matrix("zyz", True, alpha, beta, gamma)
-
-
-def eq42_zxz(alpha, beta, gamma) -> np.ndarray:
-    """The Z-X-Z matrix R = Rz(alpha) Rx(beta) Rz(gamma)."""
-    return euler_matrix("zxz", True, alpha, beta, gamma)
+#: Known-good Eq 42: Craig's Z-Y-Z matrix Rz(alpha) Ry(beta) Rz(gamma) (the printed one, r21 fixed).
+eq42_zyz = partial(euler_matrix, "zyz", True)
+#: The Z-X-Z matrix R = Rz(alpha) Rx(beta) Rz(gamma).
+eq42_zxz = partial(euler_matrix, "zxz", True)
 
 
 # ----------------------------------------------------------------------------- ground truth
 
 
-def _fd_position_jacobian(qs: np.ndarray, h: float = 1e-6) -> np.ndarray:
-    """Central differences of the Pinocchio tool point, (n, 3, 6) [m/rad]."""
-    J = np.empty((len(qs), 3, 6))
-    for i in range(6):
-        dq = np.zeros(6)
-        dq[i] = h
-        J[:, :, i] = (tool_poses(qs + dq)[:, :3, 3] - tool_poses(qs - dq)[:, :3, 3]) / (2 * h)
-    return J
+def _fd_tool_point(qs: np.ndarray, step: np.ndarray, h: float = 1e-6) -> np.ndarray:
+    """Central difference of the Pinocchio tool point along the joint direction ``step`` (6,) or (n, 6),
+    (n, 3) [m/rad]."""
+    return (tool_poses(qs + h * step)[:, :3, 3] - tool_poses(qs - h * step)[:, :3, 3]) / (2 * h)
+
+
+def _fd_position_jacobian(qs: np.ndarray) -> np.ndarray:
+    """Central differences (h = 1e-6 rad) of the Pinocchio tool point, (n, 3, 6) [m/rad]."""
+    return np.stack([_fd_tool_point(qs, e) for e in np.eye(6)], -1)
 
 
 def _special_joints() -> np.ndarray:
     """The 3^6 = 729 corners {lower, 0, upper} of Table I (exact limits, where signs flip)."""
-    grid = np.stack([THESIS_ARM.q_min, np.zeros(6), THESIS_ARM.q_max], axis=1)  # (6, 3)
-    idx = np.indices((3,) * 6).reshape(6, -1).T
-    return grid[np.arange(6), idx]
+    return np.array(list(product(*zip(THESIS_ARM.q_min, np.zeros(6), THESIS_ARM.q_max, strict=True))))
 
 
 def _samples(ctx, salt: str, full: int, quick: int) -> np.ndarray:
@@ -391,32 +350,10 @@ def _jacobians(ctx):
     return tool_jacobians(qs), _fd_position_jacobian(qs)
 
 
-def _hist(ctx, name, series, xlabel, title):
-    fig = new_figure(figsize=(6.4, 3.6))
-    ax = fig.add_subplot()
-    for label, v in series:
-        v = np.maximum(np.asarray(v), 1e-19)
-        ax.hist(np.log10(v), bins=40, alpha=0.6, label=label)
-    ax.set(xlabel=xlabel, ylabel="count", title=title)
-    ax.legend(fontsize=8)
-    return ctx.save_figure(fig, name, dpi=90)
-
-
 #: The axis labels of a 3-D figure in base frame 0.
 _XYZ_M = {"xlabel": "x [m]", "ylabel": "y [m]", "zlabel": "z [m]"}
 
 
-def _bars(ctx, name, labels, series, ylabel, title, *, floor=1e-19, figsize=(7.5, 3.4), **ticks) -> str:
-    """Two error series per label (``[(legend, values)] * 2``) as log-scale bars, saved as figures/name."""
-    fig = new_figure(figsize=figsize)
-    ax = fig.add_subplot()
-    x = np.arange(len(labels))
-    for k, (label, v) in enumerate(series):
-        ax.bar(x + (k - 0.5) * 0.4, np.maximum(v, floor), 0.4, label=label)
-    ax.set(yscale="log", ylabel=ylabel, title=title)
-    ax.set_xticks(x, labels, **ticks)
-    ax.legend(fontsize=8)
-    return ctx.save_figure(fig, name)
 # ----------------------------------------------------------------------------- checks
 
 
@@ -525,8 +462,13 @@ def urdf_is_generated(ctx):
         printed=eq4_printed,
         good=eq4_from_table_ii,
         good_is="the modified-DH product of Table II (iik.dh)",
-        slips=_EQ4_SLIPS,
-        tolerance=Slip(SlipKind.EPSILON, "Eq 4 with p_z moved by 1 nm", _nudged(eq4_printed, (2, 3))),
+        slips=(
+            Slip(SlipKind.SIGN, "p_z with -l3 s2 written +l3 s2", partial(eq4_printed, text=_EQ4_PZ_SIGN)),
+            Slip(SlipKind.LENGTH, "l4 written for l5",
+                 lambda q, arm=THESIS_ARM: eq4_printed(q, _with_lengths(l5=arm.l4))),
+            Slip(SlipKind.TRANSPOSE, "the rotation block transposed", _transposed_rotation(eq4_printed)),
+        ),
+        tolerance=_eps("Eq 4 with p_z moved by 1 nm", eq4_printed, 1e-9, (2, 3)),
     ),
 )
 def eq4_vs_pinocchio(ctx, eq4):
@@ -540,9 +482,9 @@ def eq4_vs_pinocchio(ctx, eq4):
         Measure("max |dR_ij| vs Pinocchio", dR.max(), TOL_EXACT),
     )
     dp_w, k = worst(dp)
-    figs = (_hist(ctx, "eq4_errors.png", [("Eq 4 printed |dp|", dp), ("Eq 4 printed max |dR_ij|", dR)],
-                  "log10 error vs Pinocchio [m or -]", f"Eq 4 vs Pinocchio, {len(qs)} q"),
-            _arm_figure(ctx)) if eq4 is eq4_printed else ()
+    figs = (ctx.save_figure(log_histogram([("Eq 4 printed |dp|", dp), ("Eq 4 printed max |dR_ij|", dR)],
+                                          "log10 error vs Pinocchio [m or -]", f"Eq 4 vs Pinocchio, {len(qs)} q"),
+                            "eq4_errors.png"), _arm_figure(ctx)) if eq4 is eq4_printed else ()
     return Row.graded(
         "Eq 4 gives the pose of frame 6 (position of the end-effector point and orientation).",
         "Eq 4 (with Table II, Fig 8)",
@@ -551,7 +493,7 @@ def eq4_vs_pinocchio(ctx, eq4):
         None,
         m,
         id="eq4",
-        domain=_JOINT_DOMAIN.format(n=len(qs)),
+        domain=_domain(qs),
         figures=figs,
         erratum=Erratum("Eq 4", "the printed entries", "the Table II product (iik.fk)",
                         f"{fmt_q(qs[k])}: position off by {dp_w:.3g} m"),
@@ -643,11 +585,10 @@ def table_ii_vs_eq4(ctx, table):
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="table_ii_product",
-        domain=_JOINT_DOMAIN.format(n=len(qs)),
+        domain=_domain(qs),
     )
 
 
-_APPB_NAMES = ("0_1T", "1_2T", "2_3T", "3_4T", "4_5T", "5_6T")
 _APPB_WHAT = {
     2: "entry (3,2) has the wrong sign: with alpha2 = -90 deg it is -c3 (the printed rotation block "
     "is not orthonormal: det = s3^2 - c3^2)",
@@ -674,11 +615,10 @@ def appb_reading(i: int, printed: np.ndarray, qs: np.ndarray, text: str = ""):
             x["convention"])
         return float(np.abs(x["P"] - (_rotation_transposed(T) if x["transpose"] else T)).max())
 
+    flipped = {"alpha": f"alpha{i} = {np.degrees(-row.alpha):+.0f} deg", "d": f"d{i + 1} = {-row.d:+.3f} m",
+               "a": f"a{i} = {-row.a:+.3f} m"}
     readings = [
-        *(Reading(Kind.SIGN, f"alpha{i} = {np.degrees(-row.alpha):+.0f} deg", {"alpha": -row.alpha})
-          for _ in (0,) if row.alpha),
-        *(Reading(Kind.SIGN, f"d{i + 1} = {-row.d:+.3f} m", {"d": -row.d}) for _ in (0,) if row.d),
-        *(Reading(Kind.SIGN, f"a{i} = {-row.a:+.3f} m", {"a": -row.a}) for _ in (0,) if row.a),
+        *(Reading(Kind.SIGN, text, {k: -getattr(row, k)}) for k, text in flipped.items() if getattr(row, k)),
         Reading(Kind.SIGN, f"theta{i + 1} measured the other way", {"sign": -1.0}),
         *choices(Kind.CONVENTION, "convention", {"standard DH (Rz Tz Tx Rx)": "standard"}),
         *choices(Kind.SWAP, "transpose", {"the rotation transposed (row vs column vectors)": True}),
@@ -720,27 +660,22 @@ def appb_product_reading(printed: np.ndarray, qs: np.ndarray):
 
 def _appb_slip(i: int, fix):
     """The good App. B matrices with matrix ``i`` replaced by ``fix(M, arm)``."""
-    return lambda q, arm=THESIS_ARM: [fix(m.copy(), arm) if k == i else m
-                                      for k, m in enumerate(appb_from_table_ii(q, arm))]
+    return lambda q, arm=THESIS_ARM: [fix(m, arm) if k == i else m for k, m in enumerate(appb_from_table_ii(q, arm))]
 
 
-def _entry(r, c, value):
-    """A fix of :func:`_appb_slip`: entry (r, c) set to ``value(entry, arm)``."""
-
-    def fix(M, arm):
-        M[r, c] = value(M[r, c], arm)
-        return M
-
-    return fix
+def _entry(M: np.ndarray, r: int, c: int, value: float) -> np.ndarray:
+    """``M`` with entry (r, c) (0-based) set to ``value``."""
+    M = M.copy()
+    M[r, c] = value
+    return M
 
 
 _APPB_SLIPS = (
-    Slip(SlipKind.SIGN, "4_5T with the sign of its (1,1) entry flipped",
-         _appb_slip(4, _entry(0, 0, lambda v, a: -v))),
-    Slip(SlipKind.TRANSPOSE, "3_4T's rotation transposed",
-         _appb_slip(3, lambda M, a: _rotation_transposed(M))),
-    Slip(SlipKind.LENGTH, "2_3T with l4 for l3 in its (2,4) entry",
-         _appb_slip(2, _entry(1, 3, lambda v, a: a.l4))),
+    Slip(SlipKind.SIGN, "4_5T with the sign of its (1,1) entry flipped", _appb_slip(4, lambda M, a: _entry(
+        M, 0, 0, -M[0, 0]))),
+    Slip(SlipKind.TRANSPOSE, "3_4T's rotation transposed", _appb_slip(3, lambda M, a: _rotation_transposed(M))),
+    Slip(SlipKind.LENGTH, "2_3T with l4 for l3 in its (2,4) entry", _appb_slip(2, lambda M, a: _entry(
+        M, 1, 3, a.l4))),
 )
 
 
@@ -765,7 +700,7 @@ def _appb_truth(ctx):
         good=appb_from_table_ii,
         good_is="Craig's link formula on each Table II row",
         slips=_APPB_SLIPS,
-        tolerance=Slip(SlipKind.EPSILON, "the good matrices with (1,4) moved by 1 nm", _appb_nudged),
+        tolerance=_eps("the good matrices with (1,4) moved by 1 nm", appb_from_table_ii, 1e-9, (0, 3)),
     ),
 )
 def appendix_b(ctx, appb):
@@ -775,7 +710,7 @@ def appendix_b(ctx, appb):
     printed = np.stack([np.stack(appb(q), 0) for q in qs], 0)  # (n, 6, 4, 4)
     P_q, T_q = appb(Q_COUNTEREXAMPLE), _pin_links(Q_COUNTEREXAMPLE[None])[0]
     rows = []
-    for i, nm in enumerate(_APPB_NAMES):
+    for i, nm in enumerate(t[:4] for t in APPB_TEXT):  # "0_1T", ...
         det = np.linalg.det(printed[:, i, :3, :3])
         diff = np.argwhere(np.abs(P_q[i] - T_q[i]) > 1e-9)
         entries = ", ".join(f"({r + 1},{c + 1}): printed {P_q[i][r, c]:+.4f}, true {T_q[i][r, c]:+.4f}"
@@ -793,7 +728,7 @@ def appendix_b(ctx, appb):
                             f"{fmt_q(Q_COUNTEREXAMPLE)}: {entries}. {_APPB_WHAT.get(i, '')}".strip()),
             reason="may partly be a text-extraction loss of a minus sign; the printed product does not "
             "reproduce Eq 4 either (next row)" if i == 2 else "",
-            domain=_JOINT_DOMAIN.format(n=len(qs)),
+            domain=_domain(qs),
         ).reread_if_erratum(lambda i=i: appb_reading(i, printed[:, i], qs)))
     prod = reduce(np.matmul, np.moveaxis(printed, 1, 0))  # 0_1T 1_2T ... 5_6T
     p_home = np.linalg.multi_dot(appb(np.zeros(6)))[:3, 3]
@@ -813,7 +748,7 @@ def appendix_b(ctx, appb):
                         "product with the corrected 2_3T and 5_6T (= Table II, = Eq 4)",
                         f"{fmt_q(Q_COUNTEREXAMPLE)}: the product puts the tool point at {p_ce} m, Eq 4 at "
                         f"{p_ce4} m"),
-        domain=_JOINT_DOMAIN.format(n=len(qs)),
+        domain=_domain(qs),
     ).reread_if_erratum(lambda: appb_product_reading(printed, qs)))
     return rows
 
@@ -834,7 +769,7 @@ def appendix_b(ctx, appb):
                  lambda qs, arm=THESIS_ARM: (appb_first_from_dh(qs, arm)[0],
                                              appb_first_from_dh(qs, arm)[1] * np.array([1.0, -1.0, 1.0]))),
         ),
-        tolerance=Slip(SlipKind.EPSILON, "every entry moved by 1 nm", _appb_first_nudged),
+        tolerance=_eps("every entry moved by 1 nm", appb_first_from_dh, 1e-9),
         rows=("appb.first_legible",),
     ),
 )
@@ -847,7 +782,7 @@ def appendix_b_first_set(ctx, first):
     r12 = (_axis_rotation("x", table_ii_printed().rows[1].alpha) @ _axis_rotation("z", qs[:, 1]))[:, :2, :]
     err = np.maximum(np.abs(T01 - t01_pin).max(axis=(1, 2)), np.abs(R12 - r12).max(axis=(1, 2)))
     return [
-        _FIRST_LEGIBLE.row(Points(qs, _JOINT_DOMAIN.format(n=len(qs)), "rad", "q"), err),
+        _FIRST_LEGIBLE.row(_q_points(qs), err),
         Row(
             "Appendix B first set ('original transformations', Craig's convention without the home offsets).",
             "App. B, first set",
@@ -877,7 +812,7 @@ _FIRST_LEGIBLE = Formula(
     "Eq 34a",
     forms=Forms(
         eq55_printed,
-        position_from_table_ii,
+        lambda q, arm=THESIS_ARM: eq4_from_table_ii(q, arm)[:, :3, 3],
         "the position column of the Table II product",
         slips=(
             Slip(SlipKind.SIGN, "f3 with -l3 s2 written +l3 s2",
@@ -891,7 +826,7 @@ _FIRST_LEGIBLE = Formula(
 def eq34_position(ctx, g_theta):
     """Eq 34a-c and Eq 55 (printed identically): the coordinate functions f1, f2, f3 vs Pinocchio."""
     qs, T_pin = _truth_poses(ctx, "appc", 3000, 200)
-    s = Points(qs, _JOINT_DOMAIN.format(n=len(qs)), "rad", "q")
+    s = _q_points(qs)
     err = np.abs(g_theta(qs) - T_pin[:, :3, 3])
     return [f.row(s, e) for f, e in zip(_COORDINATES, (*err.T, np.linalg.norm(err, axis=1)), strict=True)]
 
@@ -932,26 +867,29 @@ def eq34_arguments(ctx, arguments):
         q2 = qs.copy()
         q2[:, j] = rng.uniform(THESIS_ARM.q_min[j], THESIS_ARM.q_max[j], len(qs))
         change[j + 1] = np.abs(tool_poses(q2)[:, :3, 3] - p0).max(axis=0)  # (3,) per coordinate
-    worst_missing, lines = 0.0, []
+    missing, lines = [0.0], []
     for k, f in enumerate(("f1", "f2", "f3")):
         absent = [j for j in range(1, 7) if j not in arguments[f]]
-        d = max((change[j][k] for j in absent), default=0.0)
-        worst_missing = max(worst_missing, d)
-        lines.append(
-            f"{f}({', '.join(f'th{j}' for j in arguments[f])}): max change when a joint not in the "
-            f"list moves ({', '.join(f'th{j}' for j in absent)}) = {d:.1e} m"
-        )
+        missing.append(max((change[j][k] for j in absent), default=0.0))
+        lines.append(f"{f}({', '.join(f'th{j}' for j in arguments[f])}): max change when a joint not in the "
+                     f"list moves ({', '.join(f'th{j}' for j in absent)}) = {missing[-1]:.1e} m")
     return Row.graded(
         "Eq 34: joint 6 does not move the end-effector point, and f3 does not depend on theta1.",
         "Eq 34",
         f"Pinocchio tool position at {len(qs)} random q in Table I; each joint resampled in turn",
         "; ".join(lines),
-        (Measure("max coordinate change from a joint not in the argument list", worst_missing, TOL_EXACT,
+        (Measure("max coordinate change from a joint not in the argument list", max(missing), TOL_EXACT,
                  "m"),),
         fail=Verdict.DOES_NOT_HOLD,
         id="eq34",
         domain=f"{len(qs)} q uniform in Table I; each joint in turn resampled uniformly over its whole range",
     )
+
+
+def _appc_slip(change):
+    """The good App. C entries (:func:`appc_from_iik`, ``J``) with ``change(J, q, arm)`` ({key: entry})
+    in place of some."""
+    return lambda q, arm=THESIS_ARM: (J := appc_from_iik(q, arm)) | change(J, np.atleast_2d(q), arm)
 
 
 @SECTION.check(
@@ -961,17 +899,14 @@ def eq34_arguments(ctx, arguments):
         good=appc_from_iik,
         good_is="iik.position_jacobian (the analytic Jacobian)",
         slips=(
-            Slip(SlipKind.SIGN, "df1/dth1 with -l2 s1 written +l2 s1", lambda q, arm=THESIS_ARM: {
-                **appc_from_iik(q, arm), "df1/dth1": appc_from_iik(q, arm)["df1/dth1"]
-                + 2 * arm.l2 * np.sin(np.atleast_2d(q)[:, 0])}),
-            Slip(SlipKind.SWAP, "the columns dth2 and dth3 of row f1 exchanged", lambda q, arm=THESIS_ARM: {
-                **appc_from_iik(q, arm), "df1/dth2": appc_from_iik(q, arm)["df1/dth3"],
-                "df1/dth3": appc_from_iik(q, arm)["df1/dth2"]}),
-            Slip(SlipKind.TERM, "df3/dth2 without its -l3 c2 term", lambda q, arm=THESIS_ARM: {
-                **appc_from_iik(q, arm), "df3/dth2": appc_from_iik(q, arm)["df3/dth2"]
-                + arm.l3 * np.cos(np.atleast_2d(q)[:, 1])}),
+            Slip(SlipKind.SIGN, "df1/dth1 with -l2 s1 written +l2 s1", _appc_slip(
+                lambda J, q, arm: {"df1/dth1": J["df1/dth1"] + 2 * arm.l2 * np.sin(q[:, 0])})),
+            Slip(SlipKind.SWAP, "the columns dth2 and dth3 of row f1 exchanged", _appc_slip(
+                lambda J, q, arm: {"df1/dth2": J["df1/dth3"], "df1/dth3": J["df1/dth2"]})),
+            Slip(SlipKind.TERM, "df3/dth2 without its -l3 c2 term", _appc_slip(
+                lambda J, q, arm: {"df3/dth2": J["df3/dth2"] + arm.l3 * np.cos(q[:, 1])})),
         ),
-        tolerance=Slip(SlipKind.EPSILON, "each entry moved by 1 um/rad", _appc_nudged),
+        tolerance=_eps("each entry moved by 1 um/rad", appc_printed, 1e-6),
     ),
 )
 def appendix_c(ctx, appc):
@@ -979,11 +914,10 @@ def appendix_c(ctx, appc):
     qs = _samples(ctx, "appc", 3000, 200)
     J_pin, J_fd = _jacobians(ctx)
     pr = appc(qs)
-    details, worst_ = [], {}
+    details = []
     for key, val in pr.items():
         i, j = int(key[2]) - 1, int(key[-1]) - 1
         d_pin, d_fd = np.abs(val - J_pin[:, i, j]), np.abs(val - J_fd[:, i, j])
-        worst_[key] = (d_pin.max(), d_fd.max())
         k = int(np.argmax(d_pin))
         details.append(Row.graded(
             f"{key} = {APPC_TEXT[key]}",
@@ -999,35 +933,32 @@ def appendix_c(ctx, appc):
         ))
     n_ok = sum(d.verdict is Verdict.HOLDS for d in details)
     group_m = (Measure("entries not matching", 15 - n_ok, 0),)
-    fig = _bars(ctx, "appc_errors.png", list(worst_), [(w, [worst_[k][i] for k in worst_]) for i, w in
-                enumerate(("vs Pinocchio", "vs central FD"))], "max |error| [m/rad]",
-                f"Appendix C entries as printed, {len(qs)} q", rotation=60, fontsize=7)
+    worst_ = np.array([[m.value for m in d.measures] for d in details])  # (15, 2): vs Pinocchio, vs FD
+    fig = ctx.save_figure(paired_log_bars(list(pr), [(w, worst_[:, i]) for i, w in enumerate(
+        ("vs Pinocchio", "vs central FD"))], "max |error| [m/rad]", f"Appendix C entries as printed, {len(qs)} q",
+        rotation=60, fontsize=7), "appc_errors.png")
     group = Row(
         "Appendix C: the 15 printed entries of the 3x5 Jacobian (Eq 56) are the derivatives of Eq 55.",
         "Eq 56 (App. C)",
         "each printed entry vs Pinocchio computeFrameJacobian(frame 'tool', LOCAL_WORLD_ALIGNED) and "
         f"central differences (h = 1e-6 rad) of the Pinocchio tool point, {len(qs)} q",
-        f"{n_ok} of 15 entries match (worst |printed - Pinocchio| = {max(w[0] for w in worst_.values()):.1e} "
+        f"{n_ok} of 15 entries match (worst |printed - Pinocchio| = {worst_[:, 0].max():.1e} "
         "m/rad)",
         verdict_of(group_m),
         id="appc",
         measures=group_m,
         details=tuple(details),
-        domain=_JOINT_DOMAIN.format(n=len(qs)),
+        domain=_domain(qs),
         figures=(fig,),
         errata=tuple(e for d in details for e in d.errata),
     )
     # Eq 35: the assembled 3x5 matrix maps joint increments to tool-point increments
     J = np.stack([np.stack([pr[f"df{i + 1}/dth{j + 1}"] for j in range(5)], -1) for i in range(3)], 1)
-    rng = ctx.rng("eq35")
-    dq = rng.normal(size=(len(qs), 5))
+    dq = ctx.rng("eq35").normal(size=(len(qs), 5))
     dq /= np.linalg.norm(dq, axis=1, keepdims=True)
-    h = 1e-6
-    step = np.pad(h * dq, ((0, 0), (0, 1)))  # theta6 fixed
-    fd = (tool_poses(qs + step)[:, :3, 3] - tool_poses(qs - step)[:, :3, 3]) / (2 * h)
+    fd = _fd_tool_point(qs, np.pad(dq, ((0, 0), (0, 1))))  # theta6 fixed
     e35 = np.linalg.norm(np.einsum("nij,nj->ni", J, dq) - fd, axis=1)
-    s35 = Points(qs, _JOINT_DOMAIN.format(n=len(qs)) + "; one random unit joint direction per q", "rad", "q")
-    return [group, _EQ35.row(s35, e35)]
+    return [group, _EQ35.row(_q_points(qs, "; one random unit joint direction per q"), e35)]
 
 
 #: Eq 35 with the printed App. C matrix (the claim is the index's).
@@ -1056,7 +987,7 @@ _EQ35 = Formula(
                  (fk, lambda q, arm=THESIS_ARM: np.concatenate([jacobian(q, arm)[..., 3:, :],
                                                                 jacobian(q, arm)[..., :3, :]], -2))),
         ),
-        tolerance=Slip(SlipKind.EPSILON, "iik.fk with p_z moved by 1 nm", (_nudged(fk, (2, 3)), jacobian)),
+        tolerance=Slip(SlipKind.EPSILON, "iik.fk with p_z moved by 1 nm", (nudged(fk, 1e-9, (2, 3)), jacobian)),
     ),
 )
 def iik_kinematics(ctx, impl):
@@ -1078,7 +1009,7 @@ def iik_kinematics(ctx, impl):
         fail=Verdict.DOES_NOT_HOLD,
         id="iik_kinematics",
         scope=Scope.PROJECT,
-        domain=_JOINT_DOMAIN.format(n=len(qs)),
+        domain=_domain(qs),
     )
 
 
@@ -1116,7 +1047,7 @@ def _eq42_compare(ctx, eq42):
                 [[1, 1, 1], [1, 1, 1], [-1, 1, 1]])),
             Slip(SlipKind.SWAP, "alpha and gamma exchanged", lambda a, b, g: eq42_zyz(g, b, a)),
         ),
-        tolerance=Slip(SlipKind.EPSILON, "the good matrix with r33 moved by 1e-9", _nudged(eq42_zyz, (2, 2))),
+        tolerance=_eps("the good matrix with r33 moved by 1e-9", eq42_zyz, 1e-9, (2, 2)),
     ),
 )
 def eq42_matrix(ctx, eq42):
@@ -1129,9 +1060,10 @@ def eq42_matrix(ctx, eq42):
         Measure("max |R^T R - I|", orth, TOL_EXACT),
     )
     bad_entries = [(r + 1, c + 1) for r in range(3) for c in range(3) if dev[best][:, r, c].max() > TOL_EXACT]
-    fig = _bars(ctx, "eq42_entries.png", [f"r{r + 1}{c + 1}" for r in range(3) for c in range(3)],
-                [(f"vs scipy '{c}'", dev[c].max(axis=0).ravel()) for c in _CONVENTIONS], "max |form - scipy|",
-                f"Eq 42 entry by entry ({len(a)} angle triples)", floor=1e-17, figsize=(6.4, 3.2))
+    fig = ctx.save_figure(paired_log_bars(
+        [f"r{r + 1}{c + 1}" for r in range(3) for c in range(3)], [(f"vs scipy '{c}'", dev[c].max(axis=0).ravel())
+                                                                  for c in _CONVENTIONS], "max |form - scipy|",
+        f"Eq 42 entry by entry ({len(a)} angle triples)", floor=1e-17, figsize=(6.4, 3.2)), "eq42_entries.png")
     a0, b0, g0 = _EULER_AT
     P0, Z0 = eq42(a0, b0, g0), Rotation.from_euler(best, [a0, b0, g0]).as_matrix()
     r, c = (bad_entries or [(2, 1)])[0]  # the first entry that differs (the erratum, if the row fails)
@@ -1259,48 +1191,46 @@ _GEN_FORMS = Forms(
 )
 
 
-def _generated_vs_reference(fk_pair, qs, generator, base, tool):
-    """The generated URDF's poses (``fk_pair``, at ``qs``) mapped by the frozen ``base``, ``tool`` vs the
-    reference file's: position errors [m], rotation angles [rad], their measures (1e-9 each: a generator
-    that is right), and how far the base and tool solved in closed form from 50 q are from the frozen ones."""
+def _generator_row(fk_pair, qs, generator, base, tool, within: str, note: str, **fields):
+    """The generated URDF's poses (``fk_pair``, at ``qs`` uniform ``within``) mapped by the frozen ``base``,
+    ``tool`` vs the reference file's: the row graded on position errors [m] and rotation angles [rad] <=
+    1e-9 each (a generator that is right), and the errors; ``note`` introduces how far the base and tool
+    solved in closed form from 50 q are from the frozen ones."""
     Tg, Tr = fk_pair(qs, generator=generator)
     B, E = solve_base_tool(Tg[:50], Tr[:50])
     T = base @ Tg @ tool
     dp = np.linalg.norm(T[:, :3, 3] - Tr[:, :3, 3], axis=1)
     dr = rotation_angle(T[:, :3, :3], Tr[:, :3, :3])
-    m = (Measure("max |dp|", dp.max(), 1e-9, "m"), Measure("max rotation angle", dr.max(), 1e-9, "rad"))
-    return dp, dr, m, max(np.abs(B - base).max(), np.abs(E - tool).max())
+    return Row.graded(
+        **fields,
+        numbers=f"max |dp| = {dp.max():.1e} m, max rotation angle = {dr.max():.1e} rad (tolerance 1e-9"
+        f"{note} {max(np.abs(B - base).max(), np.abs(E - tool).max()):.1e}",
+        measures=(Measure("max |dp|", dp.max(), 1e-9, "m"), Measure("max rotation angle", dr.max(), 1e-9,
+                                                                     "rad")),
+        fail=Verdict.DOES_NOT_HOLD,
+        scope=Scope.PROJECT,
+        domain=f"{len(qs)} q uniform {within}",
+    ), dp, dr
 
 
 @SECTION.check(17.0, depends_on=(), forms=_GEN_FORMS)
 def ur5_generator_check(ctx, generator):
     """The URDF generator on a robot nobody here wrote: UR5 from its standard DH table."""
     qs = np.random.default_rng([ctx.seed, 5]).uniform(-np.pi, np.pi, (ctx.n(2000, 100), 6))
-    dp, dr, m, d_solved = _generated_vs_reference(ur5_fk_pair, qs, generator, UR5_BASE, UR5_TOOL)
-    rel = _hist(
-        ctx,
-        "ur5_errors.png",
-        [("|dp| [m]", dp), ("rotation angle [rad]", dr)],
-        "log10 error, generated UR5 vs ur5_robot.urdf",
-        f"UR5 from its DH table, {len(qs)} q",
-    )
-    return Row.graded(
-        "(Project) The DH -> URDF generator is right: the UR5 built from its published standard DH table "
-        "matches example-robot-data's ur5_robot.urdf.",
-        "iik.urdf (Sec 3.2 method: DH description)",
-        f"Pinocchio FK of the generated URDF (frame 'tool') vs ur5_robot.urdf (frame 'tool0') at {len(qs)} q "
-        "uniform in [-pi, pi]^6, after T_ref = B T_dh E with frozen B = RotZ(pi), E = I (solved in closed "
-        "form from 50 q, see verification/oracles/ur5.py)",
-        f"max |dp| = {dp.max():.1e} m, max rotation angle = {dr.max():.1e} rad (tolerance 1e-9; the "
-        "reference "
-        f"file rounds pi/2 to 1.57079632679); solved B, E differ from the frozen ones by {d_solved:.1e}",
-        m,
-        fail=Verdict.DOES_NOT_HOLD,
-        figures=(rel,),
+    row, dp, dr = _generator_row(
+        ur5_fk_pair, qs, generator, UR5_BASE, UR5_TOOL, "in [-pi, pi]^6",
+        "; the reference file rounds pi/2 to 1.57079632679); solved B, E differ from the frozen ones by",
+        claim="(Project) The DH -> URDF generator is right: the UR5 built from its published standard DH "
+        "table matches example-robot-data's ur5_robot.urdf.",
+        reference="iik.urdf (Sec 3.2 method: DH description)",
+        method=f"Pinocchio FK of the generated URDF (frame 'tool') vs ur5_robot.urdf (frame 'tool0') at "
+        f"{len(qs)} q uniform in [-pi, pi]^6, after T_ref = B T_dh E with frozen B = RotZ(pi), E = I (solved "
+        "in closed form from 50 q, see verification/oracles/ur5.py)",
         id="ur5",
-        scope=Scope.PROJECT,
-        domain=f"{len(qs)} q uniform in [-pi, pi]^6",
     )
+    fig = log_histogram([("|dp| [m]", dp), ("rotation angle [rad]", dr)],
+                        "log10 error, generated UR5 vs ur5_robot.urdf", f"UR5 from its DH table, {len(qs)} q")
+    return row.replace(figures=(ctx.save_figure(fig, "ur5_errors.png"),))
 
 
 @SECTION.check(17.5, depends_on=(), forms=_GEN_FORMS)
@@ -1311,22 +1241,17 @@ def panda_generator_check(ctx, generator):
     _, _, ref, _ = panda_models()
     lo, hi = ref.lowerPositionLimit[:7], ref.upperPositionLimit[:7]
     qs = np.random.default_rng([ctx.seed, 7]).uniform(lo, hi, (ctx.n(2000, 100), 7))
-    dp, dr, m, d_id = _generated_vs_reference(panda_fk_pair, qs, generator, np.eye(4), np.eye(4))
-    return Row.graded(
-        "(Project) The DH -> URDF generator maps Craig's modified DH (Table II's convention) right: the "
+    return _generator_row(
+        panda_fk_pair, qs, generator, np.eye(4), np.eye(4), "within the Panda's limits",
+        "); solved base/tool transforms differ from the identity by",
+        claim="(Project) The DH -> URDF generator maps Craig's modified DH (Table II's convention) right: the "
         "Franka Panda built from its published modified DH table matches example-robot-data's panda.urdf.",
-        "iik.urdf (Sec 3.2 method: Craig's convention)",
-        f"Pinocchio FK of the generated URDF (frame 'tool' = frame 7 + 0.107 m flange) vs panda.urdf (frame "
-        f"'panda_link8') at {len(qs)} q uniform within the Panda's limits; base and tool transforms solved "
-        "in closed form from 50 q",
-        f"max |dp| = {dp.max():.1e} m, max rotation angle = {dr.max():.1e} rad (tolerance 1e-9); solved "
-        f"base/tool transforms differ from the identity by {d_id:.1e}",
-        m,
-        fail=Verdict.DOES_NOT_HOLD,
+        reference="iik.urdf (Sec 3.2 method: Craig's convention)",
+        method=f"Pinocchio FK of the generated URDF (frame 'tool' = frame 7 + 0.107 m flange) vs panda.urdf "
+        f"(frame 'panda_link8') at {len(qs)} q uniform within the Panda's limits; base and tool transforms "
+        "solved in closed form from 50 q",
         id="panda",
-        scope=Scope.PROJECT,
-        domain=f"{len(qs)} q uniform within the Panda's limits",
-    )
+    )[0]
 
 
 def _tool_to_upper_arm(qs):
@@ -1338,13 +1263,18 @@ def _tool_to_upper_arm(qs):
 
 
 def _limits(lo_deg, hi_deg) -> tuple[np.ndarray, np.ndarray]:
+    """Joint limits given in degrees as (lower, upper) [rad]."""
     return np.radians(np.array(lo_deg, float)), np.radians(np.array(hi_deg, float))
 
 
+def _wrist_limits(w: float) -> tuple[np.ndarray, np.ndarray]:
+    """Table I with theta2 <= 80 deg and theta4, theta5 within +-w deg [rad]."""
+    return _limits([-160, -120, -160, -w, -w, -180], [160, 80, 160, w, w, 180])
+
+
 #: Table I as printed [rad]; a narrower set the claim holds for; and that set with joints 4-5 widened again.
-TABLE_I_LIMITS = _limits([lo for lo, _ in TABLE_I_PRINTED], [hi for _, hi in TABLE_I_PRINTED])
-SAFE_LIMITS = _limits([-160, -120, -160, -30, -30, -180], [160, 80, 160, 30, 30, 180])
-UNSAFE_LIMITS = _limits([-160, -120, -160, -119, -119, -180], [160, 80, 160, 119, 119, 180])
+TABLE_I_LIMITS = _limits(*zip(*TABLE_I_PRINTED, strict=True))
+SAFE_LIMITS, UNSAFE_LIMITS = _wrist_limits(30), _wrist_limits(119)
 #: A self-collision must stay this far [m] from the upper-arm axis to be "avoided" (a PowerCube half-width).
 MIN_CLEARANCE = 0.05
 
@@ -1359,15 +1289,12 @@ MIN_CLEARANCE = 0.05
         slips=(
             Slip(SlipKind.LIMIT, "the same with theta4, theta5 back to +-119 deg", UNSAFE_LIMITS),
             Slip(SlipKind.UNIT, "theta4, theta5 limits of +-30 read as rad (no limit at all)",
-                 _limits([-160, -120, -160, -np.degrees(30), -np.degrees(30), -180],
-                         [160, 80, 160, np.degrees(30), np.degrees(30), 180])),
+                 _wrist_limits(np.degrees(30))),
         ),
     ),
 )
 def table_i_self_collision(ctx, limits):
     """Sec 3.2: the Table I limits (the form) were chosen "to avoid hitting the manipulator itself"."""
-    from scipy.optimize import minimize
-
     lo, hi = limits
     tm = thesis_model(THESIS_ARM)
     data, gdata = tm.model.createData(), pin.GeometryData(tm.collision_model)
