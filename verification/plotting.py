@@ -9,7 +9,7 @@ from iik.kinematics import joint_frames
 from iik.planning.output import box_faces, collision_faces
 from iik.scene import THESIS_SCENE, Scene
 
-__all__ = ["arm_points", "draw_arm", "draw_scene", "new_figure", "draw_collision", "log_histogram", "paired_log_bars"]
+__all__ = ["arm_points", "draw_arm", "draw_scene", "new_figure", "draw_collision"]
 
 
 def new_figure(*args, **kwargs):
@@ -69,30 +69,3 @@ def draw_collision(ax, model, collision_model, q, *, colours=None, alpha: float 
                             autolim=False)
         used[link] = c
     return used
-
-
-def log_histogram(series, xlabel: str, title: str):
-    """Histograms of log10 of error series (``[(legend, values)]``, values floored at 1e-19) on one axes;
-    returns the figure (:meth:`verification.registry.Context.save_figure` saves it)."""
-    fig = new_figure(figsize=(6.4, 3.6))
-    ax = fig.add_subplot()
-    for label, v in series:
-        ax.hist(np.log10(np.maximum(np.asarray(v), 1e-19)), bins=40, alpha=0.6, label=label)
-    ax.set(xlabel=xlabel, ylabel="count", title=title)
-    ax.legend(fontsize=8)
-    return fig
-
-
-def paired_log_bars(labels, series, ylabel: str, title: str, *, floor: float = 1e-19, figsize=(7.5, 3.4),
-                    **ticks):
-    """Two series per label (``[(legend, values)] * 2``, floored at ``floor``) as side-by-side bars on a log
-    scale; ``ticks``: keywords of the labels (``rotation``, ``fontsize``); returns the figure."""
-    fig = new_figure(figsize=figsize)
-    ax = fig.add_subplot()
-    x = np.arange(len(labels))
-    for k, (label, v) in enumerate(series):
-        ax.bar(x + (k - 0.5) * 0.4, np.maximum(v, floor), 0.4, label=label)
-    ax.set(yscale="log", ylabel=ylabel, title=title)
-    ax.set_xticks(x, labels, **ticks)
-    ax.legend(fontsize=8)
-    return fig

@@ -36,7 +36,7 @@ from ..formula import Formula, Points, nudged, per_run
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements, thesis_model, tool_jacobians, tool_poses
 from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
-from ..plotting import draw_arm, draw_collision, draw_scene, log_histogram, new_figure, paired_log_bars
+from ..plotting import draw_arm, draw_collision, draw_scene, new_figure
 from ..registry import (
     Erratum,
     Forms,
@@ -55,6 +55,11 @@ from ..shorthand import cos_sin, evaluate, matrix
 from ..testing.strategies import BEYOND, sample_joints
 
 TOL_EXACT = 1e-12  # [m] and [-]: closed forms vs Pinocchio
+#: The sampled domain of the full-range kinematics rows.
+_JOINT_DOMAIN = (
+    "{n} q: uniform in Table I widened by " + str(BEYOND) + " rad on every joint (the whole range and past "
+    "it), plus in full runs the 729 corners {{lower, 0, upper}}^6 where the trigonometric signs flip"
+)
 TOL_FD = 1e-7  # [m/rad]: vs central finite differences (h = 1e-6)
 _DEG = np.pi / 180
 #: The joint vector [rad] used as counterexample where any generic q would do.
@@ -63,17 +68,6 @@ SECTION = Section(
     "Kinematics (Tables I-II, Eq 1, Eq 4, Eq 34-35, App. B, App. C, Eq 42)", depends_on=EXACT_GEOMETRY,
     order=10.0,
 )
-
-
-def _domain(qs) -> str:
-    """The sampled domain of the full-range kinematics rows (:func:`_samples`), ``len(qs)`` q."""
-    return (f"{len(qs)} q: uniform in Table I widened by {BEYOND} rad on every joint (the whole range and past "
-            "it), plus in full runs the 729 corners {lower, 0, upper}^6 where the trigonometric signs flip")
-
-
-def _q_points(qs, more: str = "") -> Points:
-    """The joint vectors ``qs`` [rad] (:func:`_samples`) as the sample of a :class:`Formula` row."""
-    return Points(qs, _domain(qs) + more, "rad", "q")
 
 
 def _symbols(q, arm=THESIS_ARM) -> dict:
@@ -350,6 +344,30 @@ def _jacobians(ctx):
     return tool_jacobians(qs), _fd_position_jacobian(qs)
 
 
+def _hist(ctx, name, series, xlabel, title):
+    """Histograms of log10 of error series (``[(legend, values)]``, floored at 1e-19) as figures/name."""
+    fig = new_figure(figsize=(6.4, 3.6))
+    ax = fig.add_subplot()
+    for label, v in series:
+        ax.hist(np.log10(np.maximum(np.asarray(v), 1e-19)), bins=40, alpha=0.6, label=label)
+    ax.set(xlabel=xlabel, ylabel="count", title=title)
+    ax.legend(fontsize=8)
+    return ctx.save_figure(fig, name, dpi=90)
+
+
+def _bars(ctx, name, labels, series, ylabel, title, *, floor=1e-19, figsize=(7.5, 3.4), **ticks) -> str:
+    """Two error series per label (``[(legend, values)] * 2``) as log-scale bars, saved as figures/name."""
+    fig = new_figure(figsize=figsize)
+    ax = fig.add_subplot()
+    x = np.arange(len(labels))
+    for k, (label, v) in enumerate(series):
+        ax.bar(x + (k - 0.5) * 0.4, np.maximum(v, floor), 0.4, label=label)
+    ax.set(yscale="log", ylabel=ylabel, title=title)
+    ax.set_xticks(x, labels, **ticks)
+    ax.legend(fontsize=8)
+    return ctx.save_figure(fig, name)
+
+
 #: The axis labels of a 3-D figure in base frame 0.
 _XYZ_M = {"xlabel": "x [m]", "ylabel": "y [m]", "zlabel": "z [m]"}
 
@@ -482,9 +500,9 @@ def eq4_vs_pinocchio(ctx, eq4):
         Measure("max |dR_ij| vs Pinocchio", dR.max(), TOL_EXACT),
     )
     dp_w, k = worst(dp)
-    figs = (ctx.save_figure(log_histogram([("Eq 4 printed |dp|", dp), ("Eq 4 printed max |dR_ij|", dR)],
-                                          "log10 error vs Pinocchio [m or -]", f"Eq 4 vs Pinocchio, {len(qs)} q"),
-                            "eq4_errors.png"), _arm_figure(ctx)) if eq4 is eq4_printed else ()
+    figs = (_hist(ctx, "eq4_errors.png", [("Eq 4 printed |dp|", dp), ("Eq 4 printed max |dR_ij|", dR)],
+                  "log10 error vs Pinocchio [m or -]", f"Eq 4 vs Pinocchio, {len(qs)} q"),
+            _arm_figure(ctx)) if eq4 is eq4_printed else ()
     return Row.graded(
         "Eq 4 gives the pose of frame 6 (position of the end-effector point and orientation).",
         "Eq 4 (with Table II, Fig 8)",
@@ -493,7 +511,7 @@ def eq4_vs_pinocchio(ctx, eq4):
         None,
         m,
         id="eq4",
-        domain=_domain(qs),
+        domain=_JOINT_DOMAIN.format(n=len(qs)),
         figures=figs,
         erratum=Erratum("Eq 4", "the printed entries", "the Table II product (iik.fk)",
                         f"{fmt_q(qs[k])}: position off by {dp_w:.3g} m"),
@@ -585,7 +603,7 @@ def table_ii_vs_eq4(ctx, table):
         m,
         fail=Verdict.DOES_NOT_HOLD,
         id="table_ii_product",
-        domain=_domain(qs),
+        domain=_JOINT_DOMAIN.format(n=len(qs)),
     )
 
 
@@ -660,7 +678,8 @@ def appb_product_reading(printed: np.ndarray, qs: np.ndarray):
 
 def _appb_slip(i: int, fix):
     """The good App. B matrices with matrix ``i`` replaced by ``fix(M, arm)``."""
-    return lambda q, arm=THESIS_ARM: [fix(m, arm) if k == i else m for k, m in enumerate(appb_from_table_ii(q, arm))]
+    return lambda q, arm=THESIS_ARM: [fix(m, arm) if k == i else m
+                                      for k, m in enumerate(appb_from_table_ii(q, arm))]
 
 
 def _entry(M: np.ndarray, r: int, c: int, value: float) -> np.ndarray:
@@ -673,7 +692,8 @@ def _entry(M: np.ndarray, r: int, c: int, value: float) -> np.ndarray:
 _APPB_SLIPS = (
     Slip(SlipKind.SIGN, "4_5T with the sign of its (1,1) entry flipped", _appb_slip(4, lambda M, a: _entry(
         M, 0, 0, -M[0, 0]))),
-    Slip(SlipKind.TRANSPOSE, "3_4T's rotation transposed", _appb_slip(3, lambda M, a: _rotation_transposed(M))),
+    Slip(SlipKind.TRANSPOSE, "3_4T's rotation transposed", _appb_slip(3, lambda M, a: _rotation_transposed(
+        M))),
     Slip(SlipKind.LENGTH, "2_3T with l4 for l3 in its (2,4) entry", _appb_slip(2, lambda M, a: _entry(
         M, 1, 3, a.l4))),
 )
@@ -728,7 +748,7 @@ def appendix_b(ctx, appb):
                             f"{fmt_q(Q_COUNTEREXAMPLE)}: {entries}. {_APPB_WHAT.get(i, '')}".strip()),
             reason="may partly be a text-extraction loss of a minus sign; the printed product does not "
             "reproduce Eq 4 either (next row)" if i == 2 else "",
-            domain=_domain(qs),
+            domain=_JOINT_DOMAIN.format(n=len(qs)),
         ).reread_if_erratum(lambda i=i: appb_reading(i, printed[:, i], qs)))
     prod = reduce(np.matmul, np.moveaxis(printed, 1, 0))  # 0_1T 1_2T ... 5_6T
     p_home = np.linalg.multi_dot(appb(np.zeros(6)))[:3, 3]
@@ -748,7 +768,7 @@ def appendix_b(ctx, appb):
                         "product with the corrected 2_3T and 5_6T (= Table II, = Eq 4)",
                         f"{fmt_q(Q_COUNTEREXAMPLE)}: the product puts the tool point at {p_ce} m, Eq 4 at "
                         f"{p_ce4} m"),
-        domain=_domain(qs),
+        domain=_JOINT_DOMAIN.format(n=len(qs)),
     ).reread_if_erratum(lambda: appb_product_reading(printed, qs)))
     return rows
 
@@ -775,14 +795,14 @@ def appendix_b(ctx, appb):
 )
 def appendix_b_first_set(ctx, first):
     """Appendix B, first set ('original transformations'): the legible entries, and what is not legible."""
-    qs = _samples(ctx, "appb", 2000, 100)
+    qs, pin_links = _appb_truth(ctx)
     T01, R12 = first(qs)
-    t01_pin = joint_placements(qs)[:, 1]  # joint 1 has no offset: 0_1T is the same in both sets
+    t01_pin = pin_links[:, 0]  # joint 1 has no offset: 0_1T is the same in both sets
     # rotation rows 1-2 of Craig's link transform for Table II row 2 with no offset (alpha1 = -90 deg)
     r12 = (_axis_rotation("x", table_ii_printed().rows[1].alpha) @ _axis_rotation("z", qs[:, 1]))[:, :2, :]
     err = np.maximum(np.abs(T01 - t01_pin).max(axis=(1, 2)), np.abs(R12 - r12).max(axis=(1, 2)))
     return [
-        _FIRST_LEGIBLE.row(_q_points(qs), err),
+        _FIRST_LEGIBLE.row(Points(qs, _JOINT_DOMAIN.format(n=len(qs)), "rad", "q"), err),
         Row(
             "Appendix B first set ('original transformations', Craig's convention without the home offsets).",
             "App. B, first set",
@@ -826,7 +846,7 @@ _FIRST_LEGIBLE = Formula(
 def eq34_position(ctx, g_theta):
     """Eq 34a-c and Eq 55 (printed identically): the coordinate functions f1, f2, f3 vs Pinocchio."""
     qs, T_pin = _truth_poses(ctx, "appc", 3000, 200)
-    s = _q_points(qs)
+    s = Points(qs, _JOINT_DOMAIN.format(n=len(qs)), "rad", "q")
     err = np.abs(g_theta(qs) - T_pin[:, :3, 3])
     return [f.row(s, e) for f, e in zip(_COORDINATES, (*err.T, np.linalg.norm(err, axis=1)), strict=True)]
 
@@ -934,9 +954,9 @@ def appendix_c(ctx, appc):
     n_ok = sum(d.verdict is Verdict.HOLDS for d in details)
     group_m = (Measure("entries not matching", 15 - n_ok, 0),)
     worst_ = np.array([[m.value for m in d.measures] for d in details])  # (15, 2): vs Pinocchio, vs FD
-    fig = ctx.save_figure(paired_log_bars(list(pr), [(w, worst_[:, i]) for i, w in enumerate(
-        ("vs Pinocchio", "vs central FD"))], "max |error| [m/rad]", f"Appendix C entries as printed, {len(qs)} q",
-        rotation=60, fontsize=7), "appc_errors.png")
+    fig = _bars(ctx, "appc_errors.png", list(pr), [(w, worst_[:, i]) for i, w in
+                enumerate(("vs Pinocchio", "vs central FD"))], "max |error| [m/rad]",
+                f"Appendix C entries as printed, {len(qs)} q", rotation=60, fontsize=7)
     group = Row(
         "Appendix C: the 15 printed entries of the 3x5 Jacobian (Eq 56) are the derivatives of Eq 55.",
         "Eq 56 (App. C)",
@@ -948,7 +968,7 @@ def appendix_c(ctx, appc):
         id="appc",
         measures=group_m,
         details=tuple(details),
-        domain=_domain(qs),
+        domain=_JOINT_DOMAIN.format(n=len(qs)),
         figures=(fig,),
         errata=tuple(e for d in details for e in d.errata),
     )
@@ -958,7 +978,8 @@ def appendix_c(ctx, appc):
     dq /= np.linalg.norm(dq, axis=1, keepdims=True)
     fd = _fd_tool_point(qs, np.pad(dq, ((0, 0), (0, 1))))  # theta6 fixed
     e35 = np.linalg.norm(np.einsum("nij,nj->ni", J, dq) - fd, axis=1)
-    return [group, _EQ35.row(_q_points(qs, "; one random unit joint direction per q"), e35)]
+    s35 = Points(qs, _JOINT_DOMAIN.format(n=len(qs)) + "; one random unit joint direction per q", "rad", "q")
+    return [group, _EQ35.row(s35, e35)]
 
 
 #: Eq 35 with the printed App. C matrix (the claim is the index's).
@@ -987,7 +1008,8 @@ _EQ35 = Formula(
                  (fk, lambda q, arm=THESIS_ARM: np.concatenate([jacobian(q, arm)[..., 3:, :],
                                                                 jacobian(q, arm)[..., :3, :]], -2))),
         ),
-        tolerance=Slip(SlipKind.EPSILON, "iik.fk with p_z moved by 1 nm", (nudged(fk, 1e-9, (2, 3)), jacobian)),
+        tolerance=Slip(SlipKind.EPSILON, "iik.fk with p_z moved by 1 nm",
+                       (nudged(fk, 1e-9, (2, 3)), jacobian)),
     ),
 )
 def iik_kinematics(ctx, impl):
@@ -1009,11 +1031,13 @@ def iik_kinematics(ctx, impl):
         fail=Verdict.DOES_NOT_HOLD,
         id="iik_kinematics",
         scope=Scope.PROJECT,
-        domain=_domain(qs),
+        domain=_JOINT_DOMAIN.format(n=len(qs)),
     )
 
 
+@per_run
 def _euler_samples(ctx):
+    """Eq 42's angle sample [rad]: alpha, gamma uniform in [-pi, pi], beta uniform in [0, pi]."""
     rng = ctx.rng("eq42")
     n = ctx.n(20000, 500)
     return rng.uniform(-np.pi, np.pi, n), rng.uniform(0, np.pi, n), rng.uniform(-np.pi, np.pi, n)
@@ -1025,12 +1049,13 @@ _EULER_AT = (0.5, 0.7, 0.3)
 
 
 def _eq42_compare(ctx, eq42):
-    """The form on sampled angles: angles, matrices, |form - scipy| and matching entries per convention."""
+    """The form on sampled angles: angles, matrices, |form - scipy| and matching entries per convention, and
+    the form at the counterexample angles :data:`_EULER_AT`."""
     a, b, g = _euler_samples(ctx)
     P = eq42(a, b, g)
-    ang = np.stack([a, b, g], -1)
-    dev = {c: np.abs(P - Rotation.from_euler(c, ang).as_matrix()) for c in _CONVENTIONS}
-    return (a, b, g), P, dev, {c: int(np.sum(dev[c].max(axis=0) <= TOL_EXACT)) for c in _CONVENTIONS}
+    dev = {c: np.abs(P - Rotation.from_euler(c, np.stack([a, b, g], -1)).as_matrix()) for c in _CONVENTIONS}
+    counts = {c: int(np.sum(dev[c].max(axis=0) <= TOL_EXACT)) for c in _CONVENTIONS}
+    return (a, b, g), P, dev, counts, eq42(*_EULER_AT)
 
 
 @SECTION.check(
@@ -1052,7 +1077,7 @@ def _eq42_compare(ctx, eq42):
 )
 def eq42_matrix(ctx, eq42):
     """Eq 42 (the form) is the Euler-angle rotation matrix of some Z-?-Z convention (scipy as reference)."""
-    (a, b, g), P, dev, matching = _eq42_compare(ctx, eq42)
+    (a, b, g), P, dev, matching, P0 = _eq42_compare(ctx, eq42)
     best = max(_CONVENTIONS, key=lambda c: (matching[c], -dev[c].max()))  # the convention most entries follow
     orth = np.abs(np.einsum("nji,njk->nik", P, P) - np.eye(3)).max()
     m = (
@@ -1060,12 +1085,11 @@ def eq42_matrix(ctx, eq42):
         Measure("max |R^T R - I|", orth, TOL_EXACT),
     )
     bad_entries = [(r + 1, c + 1) for r in range(3) for c in range(3) if dev[best][:, r, c].max() > TOL_EXACT]
-    fig = ctx.save_figure(paired_log_bars(
-        [f"r{r + 1}{c + 1}" for r in range(3) for c in range(3)], [(f"vs scipy '{c}'", dev[c].max(axis=0).ravel())
-                                                                  for c in _CONVENTIONS], "max |form - scipy|",
-        f"Eq 42 entry by entry ({len(a)} angle triples)", floor=1e-17, figsize=(6.4, 3.2)), "eq42_entries.png")
+    fig = _bars(ctx, "eq42_entries.png", [f"r{r + 1}{c + 1}" for r in range(3) for c in range(3)],
+                [(f"vs scipy '{c}'", dev[c].max(axis=0).ravel()) for c in _CONVENTIONS], "max |form - scipy|",
+                f"Eq 42 entry by entry ({len(a)} angle triples)", floor=1e-17, figsize=(6.4, 3.2))
     a0, b0, g0 = _EULER_AT
-    P0, Z0 = eq42(a0, b0, g0), Rotation.from_euler(best, [a0, b0, g0]).as_matrix()
+    Z0 = Rotation.from_euler(best, _EULER_AT).as_matrix()
     r, c = (bad_entries or [(2, 1)])[0]  # the first entry that differs (the erratum, if the row fails)
     return Row.graded(
         "Eq 42 is an Euler-angle orientation matrix R = Rz(alpha) R(beta) Rz(gamma).",
@@ -1105,10 +1129,9 @@ def eq42_matrix(ctx, eq42):
 )
 def eq42_convention(ctx, eq42):
     """Sec 3.5.1 names Eq 42 'the Z-X-Z convention of [2]': how many of the form's entries are Z-X-Z?"""
-    (a, b, g), _, _, counts = _eq42_compare(ctx, eq42)
+    (a, b, g), _, _, counts, P0 = _eq42_compare(ctx, eq42)
     m = (Measure("entries of Eq 42 that are not Z-X-Z", 9 - counts["ZXZ"], 0),)
     a0, b0, g0 = _EULER_AT
-    P0 = eq42(a0, b0, g0)
     return Row.graded(
         "Eq 42 follows 'the Z-X-Z representation convention described in [2]'.",
         "Eq 42, Sec 3.5.1",
@@ -1123,7 +1146,7 @@ def eq42_convention(ctx, eq42):
             "[c_a s_b, s_a s_b, c_b], alpha its azimuth, beta its polar angle; iik uses Z-Y-Z (how Sec "
             "3.5's own alpha, beta map to these is checked in the Dexterity section)",
             f"alpha, beta, gamma = {a0}, {b0}, {g0} rad: printed r13 = {P0[0, 2]:.6f} = Z-Y-Z r13; Z-X-Z "
-            f"r13 = s_a s_b = {Rotation.from_euler('ZXZ', [a0, b0, g0]).as_matrix()[0, 2]:.6f}",
+            f"r13 = s_a s_b = {Rotation.from_euler('ZXZ', _EULER_AT).as_matrix()[0, 2]:.6f}",
         ),
         domain=f"{len(a)} angle triples: alpha, gamma uniform in [-pi, pi], beta uniform in [0, pi]",
     ).reread_if_erratum(lambda: eq42_reading(
@@ -1228,9 +1251,9 @@ def ur5_generator_check(ctx, generator):
         "in closed form from 50 q, see verification/oracles/ur5.py)",
         id="ur5",
     )
-    fig = log_histogram([("|dp| [m]", dp), ("rotation angle [rad]", dr)],
-                        "log10 error, generated UR5 vs ur5_robot.urdf", f"UR5 from its DH table, {len(qs)} q")
-    return row.replace(figures=(ctx.save_figure(fig, "ur5_errors.png"),))
+    return row.replace(figures=(_hist(ctx, "ur5_errors.png", [("|dp| [m]", dp), ("rotation angle [rad]", dr)],
+                                      "log10 error, generated UR5 vs ur5_robot.urdf",
+                                      f"UR5 from its DH table, {len(qs)} q"),))
 
 
 @SECTION.check(17.5, depends_on=(), forms=_GEN_FORMS)
@@ -1244,8 +1267,9 @@ def panda_generator_check(ctx, generator):
     return _generator_row(
         panda_fk_pair, qs, generator, np.eye(4), np.eye(4), "within the Panda's limits",
         "); solved base/tool transforms differ from the identity by",
-        claim="(Project) The DH -> URDF generator maps Craig's modified DH (Table II's convention) right: the "
-        "Franka Panda built from its published modified DH table matches example-robot-data's panda.urdf.",
+        claim="(Project) The DH -> URDF generator maps Craig's modified DH (Table II's convention) right: "
+        "the Franka Panda built from its published modified DH table matches example-robot-data's "
+        "panda.urdf.",
         reference="iik.urdf (Sec 3.2 method: Craig's convention)",
         method=f"Pinocchio FK of the generated URDF (frame 'tool' = frame 7 + 0.107 m flange) vs panda.urdf "
         f"(frame 'panda_link8') at {len(qs)} q uniform within the Panda's limits; base and tool transforms "
