@@ -433,26 +433,17 @@ def urdf_is_generated(ctx):
     """The committed URDF is the generator's output (and a picture of its assumed shapes)."""
     committed = urdf_path().read_text(encoding="utf-8")
     same = committed == thesis_urdf(THESIS_ARM)
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
-
     tm = thesis_model(THESIS_ARM)
     fig = new_figure(figsize=(11, 5.6))
     for k, q in enumerate((np.zeros(6), np.array([0.5, -0.6, 0.4, 1.1, 0.7, 0.3]))):
         ax = fig.add_subplot(1, 2, k + 1, projection="3d")
-        used = draw_collision(ax, tm.model, tm.collision_model, q)
-        draw_arm(ax, q, color="k", lw=1, markersize=2)
+        draw_collision(ax, tm.model, tm.collision_model, q)
+        draw_arm(ax, q, color="k", lw=1, markersize=2, label="frame origins (Table II)")
         ax.set(xlim=(-0.2, 1.0), ylim=(-0.5, 0.5), zlim=(0.0, 1.0), **_XYZ_M)
         ax.set_box_aspect((1.2, 1.0, 1.0))  # equal scales: the limits' spans
         ax.view_init(elev=20, azim=-60)
         ax.set_title(("home pose (Fig 8)" if k == 0 else fmt_q(q)), fontsize=7)
-    fig.legend(
-        handles=[Patch(facecolor=c, alpha=0.5, label=link) for link, c in used.items()]
-        + [Line2D([], [], color="k", marker="o", ms=2, lw=1, label="frame origins (Table II)")],
-        loc="lower center",
-        ncol=8,
-        fontsize=7,
-    )
+    fig.legend(*ax.get_legend_handles_labels(), loc="lower center", ncol=8, fontsize=7)  # the links' shapes
     fig.suptitle(
         "Assumed PowerCube collision shapes of urdf/thesis_arm.urdf (one colour per link); base frame 0, "
         "x/y/z [m]",
@@ -519,9 +510,7 @@ def eq4_vs_pinocchio(ctx, eq4):
 
 
 def _arm_figure(ctx) -> str:
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
-
+    """The arm at 4 poses over the scene (a figure of the Eq 4 row)."""
     f2 = new_figure(figsize=(6.4, 5.6))
     ax = f2.add_subplot(projection="3d")
     draw_scene(ax)
@@ -543,15 +532,7 @@ def _arm_figure(ctx) -> str:
         "point;\nplatform and floor (iik.scene); base frame 0, x/y/z [m], equal scales",
         fontsize=8,
     )
-    ax.legend(
-        handles=ax.get_legend_handles_labels()[0]
-        + [
-            Patch(facecolor="0.45", alpha=0.3, label="platform"),
-            Line2D([], [], color="0.6", lw=0.6, label="floor"),
-        ],
-        fontsize=6,
-        loc="upper left",
-    )
+    ax.legend(fontsize=6, loc="upper left")
     return ctx.save_figure(f2, "arm_poses.png")
 
 
