@@ -596,9 +596,6 @@ _APPB_WHAT = {
 }
 
 
-_CRAIG = "Craig's modified-DH link formula (iik.dh.dh_link_transform) on the Table II row, not Pinocchio"
-
-
 def appb_reading(i: int, printed: np.ndarray, qs: np.ndarray, text: str = ""):
     """Second reading of App. B's link matrix ``i`` (0-based; ``printed`` (n, 4, 4) at ``qs``): Craig's
     formula on Table II row i+1 under each nearby reading of the row (the twist's sign, the offset d's
@@ -628,7 +625,8 @@ def appb_reading(i: int, printed: np.ndarray, qs: np.ndarray, text: str = ""):
                   stated_text=f"Table II row {i + 1} (alpha{i} = {np.degrees(row.alpha):.0f} deg, a{i} = "
                   f"{row.a:.3f} m, d{i + 1} = {row.d:.3f} m, offset {np.degrees(row.offset):.0f} deg), "
                   "modified DH",
-                  route=_CRAIG, measure="max |printed - re-derived| entry over the sampled q")
+                  route="Craig's modified-DH link formula (iik.dh.dh_link_transform) on the Table II row, "
+                  "not Pinocchio", measure="max |printed - re-derived| entry over the sampled q")
 
 
 def appb_product_reading(printed: np.ndarray, qs: np.ndarray):
@@ -1133,9 +1131,6 @@ def eq42_convention(ctx, eq42):
         "the entries of Eq 42 other than r21 (r21 is a typo of its own, row kinematics.eq42)", count=True))
 
 
-_ELEMENTARY = "elementary rotations composed by hand (euler_matrix), not scipy"
-
-
 def eq42_reading(ctx, eq42, entries, printed: str, *, count: bool):
     """Second reading of Eq 42 (the form ``eq42``) on the check's angle sample: under every Euler convention,
     the angles' signs, alpha and gamma swapped and the matrix transposed. ``entries``: the (row, column)
@@ -1166,7 +1161,8 @@ def eq42_reading(ctx, eq42, entries, printed: str, *, count: bool):
     return search(stated, readings, misfit, 0.0 if count else TOL_EXACT, printed=printed,
                   stated_text="'the Z-X-Z representation convention described in [2]' (Sec 3.5.1), "
                   "R = Rz(alpha) Rx(beta) Rz(gamma)",
-                  route=_ELEMENTARY + f", on {len(a)} of the angle triples",
+                  route=f"elementary rotations composed by hand (euler_matrix), not scipy, on {len(a)} of "
+                  "the angle triples",
                   measure=(f"entries of {which} that differ (> {TOL_EXACT:g})" if count
                            else f"max |printed - re-derived| of {which}"))
 
