@@ -37,7 +37,8 @@ def draw_arm(ax, q, arm: Arm = THESIS_ARM, **kwargs):
 
 def draw_scene(ax, scene: Scene = THESIS_SCENE) -> None:
     """The platform box (translucent) and a 2 m x 2 m patch of the floor on a 3-D axes, base frame 0
-    [m], with equal scales on x, y and z (limits x, y in [-1, 1], z from the floor to 1.2 m)."""
+    [m], with equal scales on x, y and z (limits x, y in [-1, 1], z from the floor to 1.2 m); labelled
+    "platform" and "floor" for a legend."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     from iik.planning.viewer import style
@@ -45,10 +46,10 @@ def draw_scene(ax, scene: Scene = THESIS_SCENE) -> None:
     p = scene.platform
     grey = style.rgb01(style.PLATFORM)
     ax.add_collection3d(Poly3DCollection(box_faces(p.center, p.size), facecolor=grey, edgecolor=grey,
-                                         alpha=0.2, linewidth=0.5))
+                                         alpha=0.2, linewidth=0.5, label="platform"))
     g = np.linspace(-1, 1, 9)
     X, Y = np.meshgrid(g, g)
-    ax.plot_wireframe(X, Y, np.full_like(X, scene.floor.z), color="0.6", lw=0.4)
+    ax.plot_wireframe(X, Y, np.full_like(X, scene.floor.z), color="0.6", lw=0.4, label="floor")
     ax.set_xlim(-1, 1)
     ax.set_ylim(-1, 1)
     ax.set_zlim(scene.floor.z, 1.2)
@@ -59,13 +60,13 @@ def draw_scene(ax, scene: Scene = THESIS_SCENE) -> None:
 def draw_collision(ax, model, collision_model, q, *, colours=None, alpha: float = 0.35) -> dict[str, tuple]:
     """Draw the collision shapes of a Pinocchio model at ``q`` [rad] (base frame 0, m) as translucent
     polygons placed by Pinocchio's ``oMg``, one colour per link (``colours``: {link: RGB}, default
-    matplotlib's cycle); returns {link: colour} for a legend."""
+    matplotlib's cycle), each labelled by its link for a legend; returns {link: colour}."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     used = {}
     for i, (link, faces) in enumerate(collision_faces(model, collision_model, q).items()):
         c = (colours or {}).get(link, f"C{i % 10}")
-        ax.add_collection3d(Poly3DCollection(faces, facecolor=c, edgecolor=c, linewidth=0.3, alpha=alpha),
-                            autolim=False)
+        ax.add_collection3d(Poly3DCollection(faces, facecolor=c, edgecolor=c, linewidth=0.3, alpha=alpha,
+                                             label=link), autolim=False)
         used[link] = c
     return used

@@ -16,12 +16,14 @@ from __future__ import annotations
 
 from dataclasses import replace
 from functools import partial, reduce
+from itertools import product
 
 import numpy as np
 import pinocchio as pin
+from scipy.optimize import minimize
 from scipy.spatial.transform import Rotation
 
-from iik.arm import THESIS_ARM
+from iik.arm import THESIS_ARM, thesis_arm
 from iik.dh import DHRow, DHTable, dh_chain, dh_link_transform
 from iik.kinematics import fk, jacobian, joint_frames, position_jacobian
 from iik.planning.output import draw_arm_bodies
@@ -30,7 +32,7 @@ from iik.rotations import rotation_angle
 from iik.urdf import thesis_urdf, urdf_from_dh
 
 from ..assumptions import EXACT_GEOMETRY
-from ..formula import Formula, Points, per_run
+from ..formula import Formula, Points, nudged, per_run
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements, thesis_model, tool_jacobians, tool_poses
 from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
@@ -180,14 +182,10 @@ APPB_TEXT = (
     "4_5T = [-s5 -c5 0 l4; c5 -s5 0 0; 0 0 1 0; 0 0 0 1]",
     "5_6T = [c6 -s6 0 0; 0 0 1 l5; -s6 c6 0 0; 0 0 0 1]",
 )
-APPB_CORRECTED = (
-    APPB_TEXT[0],
-    "1_2T = [s2 c2 0 l2; 0 0 1 0; c2 -s2 0 0; 0 0 0 1]",
-    "2_3T = [c3 -s3 0 0; 0 0 1 l3; -s3 -c3 0 0; 0 0 0 1]",
-    "3_4T = [s4 c4 0 0; 0 0 1 0; c4 -s4 0 0; 0 0 0 1]",
-    APPB_TEXT[4],
-    "5_6T = [c6 -s6 0 0; 0 0 1 -l5; -s6 -c6 0 0; 0 0 0 1]",
-)
+#: The corrected matrices: 2_3T and 5_6T fixed, the others as printed.
+APPB_CORRECTED = tuple({2: "2_3T = [c3 -s3 0 0; 0 0 1 l3; -s3 -c3 0 0; 0 0 0 1]",
+                        5: "5_6T = [c6 -s6 0 0; 0 0 1 -l5; -s6 -c6 0 0; 0 0 0 1]"}.get(
+    i, t.removesuffix(" (read from garbled text)")) for i, t in enumerate(APPB_TEXT))
 
 
 def appb_modified_printed(q, arm=THESIS_ARM) -> list[np.ndarray]:
@@ -222,22 +220,13 @@ def eq4_from_table_ii(q, arm=THESIS_ARM) -> np.ndarray:
     return dh_chain(table_ii_printed(arm), np.atleast_2d(q))
 
 
-def _nudged(f, index, eps=1e-9):
-    """``f`` with entry ``index`` of its (..., 4, 4) or (..., 3, 3) output moved by ``eps`` (the tolerance
-    test)."""
-
-    def g(*args):
-        T = np.array(f(*args), dtype=float, copy=True)
-        T[(...,) + index] += eps
-        return T
-
-    return g
+def _eps(what: str, form, eps: float, at: tuple[int, ...] = ()) -> Slip:
+    """The tolerance test: ``form`` with its output moved by ``eps`` (at ``at``, :func:`nudged`)."""
+    return Slip(SlipKind.EPSILON, what, nudged(form, eps, at))
 
 
 def _with_lengths(**lengths):
     """THESIS_ARM with some link lengths replaced (a wrong-link-length slip)."""
-    from iik.arm import thesis_arm
-
     t = THESIS_ARM.thesis_lengths
     vals = {k: lengths.get(k, getattr(t, k)) for k in ("l1", "l2", "l3", "l4", "l5")}
     return thesis_arm(**vals, lower=THESIS_ARM.lower, upper=THESIS_ARM.upper, name="slipped lengths")
@@ -258,25 +247,10 @@ def _transposed_rotation(f):
     return lambda q, arm=THESIS_ARM: _rotation_transposed(f(q, arm))
 
 
-_EQ4_SLIPS = (
-    Slip(SlipKind.SIGN, "p_z with -l3 s2 written +l3 s2", partial(eq4_printed, text=_EQ4_PZ_SIGN)),
-    Slip(SlipKind.LENGTH, "l4 written for l5",
-         lambda q, arm=THESIS_ARM: eq4_printed(q, _with_lengths(l5=arm.l4))),
-    Slip(SlipKind.TRANSPOSE, "the rotation block transposed", _transposed_rotation(eq4_printed)),
-)
-
-
 def appb_from_table_ii(q, arm=THESIS_ARM) -> list[np.ndarray]:
     """Known-good App. B (home-pose set): Craig's link formula on each Table II row."""
     table = table_ii_printed(arm)
     return [dh_link_transform(table.rows[i], np.array([q[i]]), "modified")[0] for i in range(6)]
-
-
-def _appb_nudged(q, arm=THESIS_ARM) -> list[np.ndarray]:
-    out = [m.copy() for m in appb_from_table_ii(q, arm)]
-    for m in out:
-        m[0, 3] += 1e-9
-    return out
 
 
 def appb_first_printed(qs, arm=THESIS_ARM) -> tuple[np.ndarray, np.ndarray]:
@@ -291,24 +265,10 @@ def appb_first_from_dh(qs, arm=THESIS_ARM) -> tuple[np.ndarray, np.ndarray]:
     return dh_link_transform(r1, qs[:, 0], "modified"), dh_link_transform(r2, qs[:, 1], "modified")[:, :2, :3]
 
 
-def _appb_first_nudged(qs, arm=THESIS_ARM):
-    T01, R12 = appb_first_from_dh(qs, arm)
-    return T01 + 1e-9, R12 + 1e-9
-
-
-def position_from_table_ii(q, arm=THESIS_ARM) -> np.ndarray:
-    """Known-good G_theta: position column of the Table II product -> (n, 3)."""
-    return eq4_from_table_ii(q, arm)[:, :3, 3]
-
-
 def appc_from_iik(q, arm=THESIS_ARM) -> dict[str, np.ndarray]:
     """Known-good App. C entries: iik.position_jacobian (the corrected analytic Jacobian)."""
     J = position_jacobian(np.atleast_2d(q), arm)[..., :5]
     return {f"df{i + 1}/dth{j + 1}": J[:, i, j] for i in range(3) for j in range(5)}
-
-
-def _appc_nudged(q, arm=THESIS_ARM) -> dict[str, np.ndarray]:
-    return {k: v + 1e-6 for k, v in appc_printed(q, arm).items()}
 
 
 #: Eq 34 / Eq 55 as printed: the joints each coordinate function takes (1-based).
@@ -328,9 +288,7 @@ def _axis_rotation(axis: str, t: np.ndarray) -> np.ndarray:
 
 
 #: Every Euler convention: the 12 axis sequences, intrinsic (R = R1 R2 R3) and extrinsic (R = R3 R2 R1).
-EULER_SEQUENCES = tuple(
-    a + b + c for a in "xyz" for b in "xyz" for c in "xyz" if a != b and b != c
-)
+EULER_SEQUENCES = tuple(a + b + c for a in "xyz" for b in "xyz" for c in "xyz" if a != b and b != c)
 
 
 def euler_matrix(seq: str, intrinsic: bool, a, b, g) -> np.ndarray:
@@ -340,34 +298,29 @@ def euler_matrix(seq: str, intrinsic: bool, a, b, g) -> np.ndarray:
     return R1 @ R2 @ R3 if intrinsic else R3 @ R2 @ R1
 
 
-def eq42_zyz(alpha, beta, gamma) -> np.ndarray:
-    """Known-good Eq 42: Craig's Z-Y-Z matrix Rz(alpha) Ry(beta) Rz(gamma) (the printed one, r21 fixed)."""
-    return euler_matrix("zyz", True, alpha, beta, gamma)
-
-
-def eq42_zxz(alpha, beta, gamma) -> np.ndarray:
-    """The Z-X-Z matrix R = Rz(alpha) Rx(beta) Rz(gamma)."""
-    return euler_matrix("zxz", True, alpha, beta, gamma)
+#: Known-good Eq 42: Craig's Z-Y-Z matrix Rz(alpha) Ry(beta) Rz(gamma) (the printed one, r21 fixed).
+eq42_zyz = partial(euler_matrix, "zyz", True)
+#: The Z-X-Z matrix R = Rz(alpha) Rx(beta) Rz(gamma).
+eq42_zxz = partial(euler_matrix, "zxz", True)
 
 
 # ----------------------------------------------------------------------------- ground truth
 
 
-def _fd_position_jacobian(qs: np.ndarray, h: float = 1e-6) -> np.ndarray:
-    """Central differences of the Pinocchio tool point, (n, 3, 6) [m/rad]."""
-    J = np.empty((len(qs), 3, 6))
-    for i in range(6):
-        dq = np.zeros(6)
-        dq[i] = h
-        J[:, :, i] = (tool_poses(qs + dq)[:, :3, 3] - tool_poses(qs - dq)[:, :3, 3]) / (2 * h)
-    return J
+def _fd_tool_point(qs: np.ndarray, step: np.ndarray, h: float = 1e-6) -> np.ndarray:
+    """Central difference of the Pinocchio tool point along the joint direction ``step`` (6,) or (n, 6),
+    (n, 3) [m/rad]."""
+    return (tool_poses(qs + h * step)[:, :3, 3] - tool_poses(qs - h * step)[:, :3, 3]) / (2 * h)
+
+
+def _fd_position_jacobian(qs: np.ndarray) -> np.ndarray:
+    """Central differences (h = 1e-6 rad) of the Pinocchio tool point, (n, 3, 6) [m/rad]."""
+    return np.stack([_fd_tool_point(qs, e) for e in np.eye(6)], -1)
 
 
 def _special_joints() -> np.ndarray:
     """The 3^6 = 729 corners {lower, 0, upper} of Table I (exact limits, where signs flip)."""
-    grid = np.stack([THESIS_ARM.q_min, np.zeros(6), THESIS_ARM.q_max], axis=1)  # (6, 3)
-    idx = np.indices((3,) * 6).reshape(6, -1).T
-    return grid[np.arange(6), idx]
+    return np.array(list(product(*zip(THESIS_ARM.q_min, np.zeros(6), THESIS_ARM.q_max, strict=True))))
 
 
 def _samples(ctx, salt: str, full: int, quick: int) -> np.ndarray:
@@ -392,18 +345,14 @@ def _jacobians(ctx):
 
 
 def _hist(ctx, name, series, xlabel, title):
+    """Histograms of log10 of error series (``[(legend, values)]``, floored at 1e-19) as figures/name."""
     fig = new_figure(figsize=(6.4, 3.6))
     ax = fig.add_subplot()
     for label, v in series:
-        v = np.maximum(np.asarray(v), 1e-19)
-        ax.hist(np.log10(v), bins=40, alpha=0.6, label=label)
+        ax.hist(np.log10(np.maximum(np.asarray(v), 1e-19)), bins=40, alpha=0.6, label=label)
     ax.set(xlabel=xlabel, ylabel="count", title=title)
     ax.legend(fontsize=8)
     return ctx.save_figure(fig, name, dpi=90)
-
-
-#: The axis labels of a 3-D figure in base frame 0.
-_XYZ_M = {"xlabel": "x [m]", "ylabel": "y [m]", "zlabel": "z [m]"}
 
 
 def _bars(ctx, name, labels, series, ylabel, title, *, floor=1e-19, figsize=(7.5, 3.4), **ticks) -> str:
@@ -417,6 +366,12 @@ def _bars(ctx, name, labels, series, ylabel, title, *, floor=1e-19, figsize=(7.5
     ax.set_xticks(x, labels, **ticks)
     ax.legend(fontsize=8)
     return ctx.save_figure(fig, name)
+
+
+#: The axis labels of a 3-D figure in base frame 0.
+_XYZ_M = {"xlabel": "x [m]", "ylabel": "y [m]", "zlabel": "z [m]"}
+
+
 # ----------------------------------------------------------------------------- checks
 
 
@@ -478,26 +433,17 @@ def urdf_is_generated(ctx):
     """The committed URDF is the generator's output (and a picture of its assumed shapes)."""
     committed = urdf_path().read_text(encoding="utf-8")
     same = committed == thesis_urdf(THESIS_ARM)
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
-
     tm = thesis_model(THESIS_ARM)
     fig = new_figure(figsize=(11, 5.6))
     for k, q in enumerate((np.zeros(6), np.array([0.5, -0.6, 0.4, 1.1, 0.7, 0.3]))):
         ax = fig.add_subplot(1, 2, k + 1, projection="3d")
-        used = draw_collision(ax, tm.model, tm.collision_model, q)
-        draw_arm(ax, q, color="k", lw=1, markersize=2)
+        draw_collision(ax, tm.model, tm.collision_model, q)
+        draw_arm(ax, q, color="k", lw=1, markersize=2, label="frame origins (Table II)")
         ax.set(xlim=(-0.2, 1.0), ylim=(-0.5, 0.5), zlim=(0.0, 1.0), **_XYZ_M)
         ax.set_box_aspect((1.2, 1.0, 1.0))  # equal scales: the limits' spans
         ax.view_init(elev=20, azim=-60)
         ax.set_title(("home pose (Fig 8)" if k == 0 else fmt_q(q)), fontsize=7)
-    fig.legend(
-        handles=[Patch(facecolor=c, alpha=0.5, label=link) for link, c in used.items()]
-        + [Line2D([], [], color="k", marker="o", ms=2, lw=1, label="frame origins (Table II)")],
-        loc="lower center",
-        ncol=8,
-        fontsize=7,
-    )
+    fig.legend(*ax.get_legend_handles_labels(), loc="lower center", ncol=8, fontsize=7)  # the links' shapes
     fig.suptitle(
         "Assumed PowerCube collision shapes of urdf/thesis_arm.urdf (one colour per link); base frame 0, "
         "x/y/z [m]",
@@ -525,8 +471,13 @@ def urdf_is_generated(ctx):
         printed=eq4_printed,
         good=eq4_from_table_ii,
         good_is="the modified-DH product of Table II (iik.dh)",
-        slips=_EQ4_SLIPS,
-        tolerance=Slip(SlipKind.EPSILON, "Eq 4 with p_z moved by 1 nm", _nudged(eq4_printed, (2, 3))),
+        slips=(
+            Slip(SlipKind.SIGN, "p_z with -l3 s2 written +l3 s2", partial(eq4_printed, text=_EQ4_PZ_SIGN)),
+            Slip(SlipKind.LENGTH, "l4 written for l5",
+                 lambda q, arm=THESIS_ARM: eq4_printed(q, _with_lengths(l5=arm.l4))),
+            Slip(SlipKind.TRANSPOSE, "the rotation block transposed", _transposed_rotation(eq4_printed)),
+        ),
+        tolerance=_eps("Eq 4 with p_z moved by 1 nm", eq4_printed, 1e-9, (2, 3)),
     ),
 )
 def eq4_vs_pinocchio(ctx, eq4):
@@ -559,9 +510,7 @@ def eq4_vs_pinocchio(ctx, eq4):
 
 
 def _arm_figure(ctx) -> str:
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
-
+    """The arm at 4 poses over the scene (a figure of the Eq 4 row)."""
     f2 = new_figure(figsize=(6.4, 5.6))
     ax = f2.add_subplot(projection="3d")
     draw_scene(ax)
@@ -583,15 +532,7 @@ def _arm_figure(ctx) -> str:
         "point;\nplatform and floor (iik.scene); base frame 0, x/y/z [m], equal scales",
         fontsize=8,
     )
-    ax.legend(
-        handles=ax.get_legend_handles_labels()[0]
-        + [
-            Patch(facecolor="0.45", alpha=0.3, label="platform"),
-            Line2D([], [], color="0.6", lw=0.6, label="floor"),
-        ],
-        fontsize=6,
-        loc="upper left",
-    )
+    ax.legend(fontsize=6, loc="upper left")
     return ctx.save_figure(f2, "arm_poses.png")
 
 
@@ -647,16 +588,12 @@ def table_ii_vs_eq4(ctx, table):
     )
 
 
-_APPB_NAMES = ("0_1T", "1_2T", "2_3T", "3_4T", "4_5T", "5_6T")
 _APPB_WHAT = {
     2: "entry (3,2) has the wrong sign: with alpha2 = -90 deg it is -c3 (the printed rotation block "
     "is not orthonormal: det = s3^2 - c3^2)",
     5: "entry (2,4) is +l5 but Table II has d6 = -l5 (so it must be -l5, as Eq 4 also requires), "
     "and entry (3,2) has the wrong sign (-c6), as in 2_3T",
 }
-
-
-_CRAIG = "Craig's modified-DH link formula (iik.dh.dh_link_transform) on the Table II row, not Pinocchio"
 
 
 def appb_reading(i: int, printed: np.ndarray, qs: np.ndarray, text: str = ""):
@@ -674,11 +611,10 @@ def appb_reading(i: int, printed: np.ndarray, qs: np.ndarray, text: str = ""):
             x["convention"])
         return float(np.abs(x["P"] - (_rotation_transposed(T) if x["transpose"] else T)).max())
 
+    flipped = {"alpha": f"alpha{i} = {np.degrees(-row.alpha):+.0f} deg", "d": f"d{i + 1} = {-row.d:+.3f} m",
+               "a": f"a{i} = {-row.a:+.3f} m"}
     readings = [
-        *(Reading(Kind.SIGN, f"alpha{i} = {np.degrees(-row.alpha):+.0f} deg", {"alpha": -row.alpha})
-          for _ in (0,) if row.alpha),
-        *(Reading(Kind.SIGN, f"d{i + 1} = {-row.d:+.3f} m", {"d": -row.d}) for _ in (0,) if row.d),
-        *(Reading(Kind.SIGN, f"a{i} = {-row.a:+.3f} m", {"a": -row.a}) for _ in (0,) if row.a),
+        *(Reading(Kind.SIGN, text, {k: -getattr(row, k)}) for k, text in flipped.items() if getattr(row, k)),
         Reading(Kind.SIGN, f"theta{i + 1} measured the other way", {"sign": -1.0}),
         *choices(Kind.CONVENTION, "convention", {"standard DH (Rz Tz Tx Rx)": "standard"}),
         *choices(Kind.SWAP, "transpose", {"the rotation transposed (row vs column vectors)": True}),
@@ -689,7 +625,8 @@ def appb_reading(i: int, printed: np.ndarray, qs: np.ndarray, text: str = ""):
                   stated_text=f"Table II row {i + 1} (alpha{i} = {np.degrees(row.alpha):.0f} deg, a{i} = "
                   f"{row.a:.3f} m, d{i + 1} = {row.d:.3f} m, offset {np.degrees(row.offset):.0f} deg), "
                   "modified DH",
-                  route=_CRAIG, measure="max |printed - re-derived| entry over the sampled q")
+                  route="Craig's modified-DH link formula (iik.dh.dh_link_transform) on the Table II row, "
+                  "not Pinocchio", measure="max |printed - re-derived| entry over the sampled q")
 
 
 def appb_product_reading(printed: np.ndarray, qs: np.ndarray):
@@ -720,27 +657,24 @@ def appb_product_reading(printed: np.ndarray, qs: np.ndarray):
 
 def _appb_slip(i: int, fix):
     """The good App. B matrices with matrix ``i`` replaced by ``fix(M, arm)``."""
-    return lambda q, arm=THESIS_ARM: [fix(m.copy(), arm) if k == i else m
+    return lambda q, arm=THESIS_ARM: [fix(m, arm) if k == i else m
                                       for k, m in enumerate(appb_from_table_ii(q, arm))]
 
 
-def _entry(r, c, value):
-    """A fix of :func:`_appb_slip`: entry (r, c) set to ``value(entry, arm)``."""
-
-    def fix(M, arm):
-        M[r, c] = value(M[r, c], arm)
-        return M
-
-    return fix
+def _entry(M: np.ndarray, r: int, c: int, value: float) -> np.ndarray:
+    """``M`` with entry (r, c) (0-based) set to ``value``."""
+    M = M.copy()
+    M[r, c] = value
+    return M
 
 
 _APPB_SLIPS = (
-    Slip(SlipKind.SIGN, "4_5T with the sign of its (1,1) entry flipped",
-         _appb_slip(4, _entry(0, 0, lambda v, a: -v))),
-    Slip(SlipKind.TRANSPOSE, "3_4T's rotation transposed",
-         _appb_slip(3, lambda M, a: _rotation_transposed(M))),
-    Slip(SlipKind.LENGTH, "2_3T with l4 for l3 in its (2,4) entry",
-         _appb_slip(2, _entry(1, 3, lambda v, a: a.l4))),
+    Slip(SlipKind.SIGN, "4_5T with the sign of its (1,1) entry flipped", _appb_slip(4, lambda M, a: _entry(
+        M, 0, 0, -M[0, 0]))),
+    Slip(SlipKind.TRANSPOSE, "3_4T's rotation transposed", _appb_slip(3, lambda M, a: _rotation_transposed(
+        M))),
+    Slip(SlipKind.LENGTH, "2_3T with l4 for l3 in its (2,4) entry", _appb_slip(2, lambda M, a: _entry(
+        M, 1, 3, a.l4))),
 )
 
 
@@ -765,7 +699,7 @@ def _appb_truth(ctx):
         good=appb_from_table_ii,
         good_is="Craig's link formula on each Table II row",
         slips=_APPB_SLIPS,
-        tolerance=Slip(SlipKind.EPSILON, "the good matrices with (1,4) moved by 1 nm", _appb_nudged),
+        tolerance=_eps("the good matrices with (1,4) moved by 1 nm", appb_from_table_ii, 1e-9, (0, 3)),
     ),
 )
 def appendix_b(ctx, appb):
@@ -775,7 +709,7 @@ def appendix_b(ctx, appb):
     printed = np.stack([np.stack(appb(q), 0) for q in qs], 0)  # (n, 6, 4, 4)
     P_q, T_q = appb(Q_COUNTEREXAMPLE), _pin_links(Q_COUNTEREXAMPLE[None])[0]
     rows = []
-    for i, nm in enumerate(_APPB_NAMES):
+    for i, nm in enumerate(t[:4] for t in APPB_TEXT):  # "0_1T", ...
         det = np.linalg.det(printed[:, i, :3, :3])
         diff = np.argwhere(np.abs(P_q[i] - T_q[i]) > 1e-9)
         entries = ", ".join(f"({r + 1},{c + 1}): printed {P_q[i][r, c]:+.4f}, true {T_q[i][r, c]:+.4f}"
@@ -834,15 +768,15 @@ def appendix_b(ctx, appb):
                  lambda qs, arm=THESIS_ARM: (appb_first_from_dh(qs, arm)[0],
                                              appb_first_from_dh(qs, arm)[1] * np.array([1.0, -1.0, 1.0]))),
         ),
-        tolerance=Slip(SlipKind.EPSILON, "every entry moved by 1 nm", _appb_first_nudged),
+        tolerance=_eps("every entry moved by 1 nm", appb_first_from_dh, 1e-9),
         rows=("appb.first_legible",),
     ),
 )
 def appendix_b_first_set(ctx, first):
     """Appendix B, first set ('original transformations'): the legible entries, and what is not legible."""
-    qs = _samples(ctx, "appb", 2000, 100)
+    qs, pin_links = _appb_truth(ctx)
     T01, R12 = first(qs)
-    t01_pin = joint_placements(qs)[:, 1]  # joint 1 has no offset: 0_1T is the same in both sets
+    t01_pin = pin_links[:, 0]  # joint 1 has no offset: 0_1T is the same in both sets
     # rotation rows 1-2 of Craig's link transform for Table II row 2 with no offset (alpha1 = -90 deg)
     r12 = (_axis_rotation("x", table_ii_printed().rows[1].alpha) @ _axis_rotation("z", qs[:, 1]))[:, :2, :]
     err = np.maximum(np.abs(T01 - t01_pin).max(axis=(1, 2)), np.abs(R12 - r12).max(axis=(1, 2)))
@@ -877,7 +811,7 @@ _FIRST_LEGIBLE = Formula(
     "Eq 34a",
     forms=Forms(
         eq55_printed,
-        position_from_table_ii,
+        lambda q, arm=THESIS_ARM: eq4_from_table_ii(q, arm)[:, :3, 3],
         "the position column of the Table II product",
         slips=(
             Slip(SlipKind.SIGN, "f3 with -l3 s2 written +l3 s2",
@@ -910,16 +844,14 @@ _COORDINATES = tuple(
 @SECTION.check(
     "Eq 34",
     depends_on=("pinocchio",),
-    forms=Forms(
-        printed=EQ34_ARGUMENTS,
-        good=dict(EQ34_ARGUMENTS),
-        good_is="the printed argument lists (theta6 in none, theta1 not in f3)",
-        slips=(
+    forms=Forms.right(
+        EQ34_ARGUMENTS,
+        (
             Slip(SlipKind.OFF_BY_ONE, "f3 listed with theta1..theta4 (the joint numbers one off)",
-                 {"f1": (1, 2, 3, 4, 5), "f2": (1, 2, 3, 4, 5), "f3": (1, 2, 3, 4)}),
-            Slip(SlipKind.CLAIM, "f3 written without theta2", {"f1": (1, 2, 3, 4, 5), "f2": (1, 2, 3, 4, 5),
-                                                              "f3": (1, 3, 4, 5)}),
+                 {**EQ34_ARGUMENTS, "f3": (1, 2, 3, 4)}),
+            Slip(SlipKind.CLAIM, "f3 written without theta2", {**EQ34_ARGUMENTS, "f3": (1, 3, 4, 5)}),
         ),
+        good_is="the printed argument lists (theta6 in none, theta1 not in f3)",
     ),
 )
 def eq34_arguments(ctx, arguments):
@@ -932,26 +864,29 @@ def eq34_arguments(ctx, arguments):
         q2 = qs.copy()
         q2[:, j] = rng.uniform(THESIS_ARM.q_min[j], THESIS_ARM.q_max[j], len(qs))
         change[j + 1] = np.abs(tool_poses(q2)[:, :3, 3] - p0).max(axis=0)  # (3,) per coordinate
-    worst_missing, lines = 0.0, []
+    missing, lines = [0.0], []
     for k, f in enumerate(("f1", "f2", "f3")):
         absent = [j for j in range(1, 7) if j not in arguments[f]]
-        d = max((change[j][k] for j in absent), default=0.0)
-        worst_missing = max(worst_missing, d)
-        lines.append(
-            f"{f}({', '.join(f'th{j}' for j in arguments[f])}): max change when a joint not in the "
-            f"list moves ({', '.join(f'th{j}' for j in absent)}) = {d:.1e} m"
-        )
+        missing.append(max((change[j][k] for j in absent), default=0.0))
+        lines.append(f"{f}({', '.join(f'th{j}' for j in arguments[f])}): max change when a joint not in the "
+                     f"list moves ({', '.join(f'th{j}' for j in absent)}) = {missing[-1]:.1e} m")
     return Row.graded(
         "Eq 34: joint 6 does not move the end-effector point, and f3 does not depend on theta1.",
         "Eq 34",
         f"Pinocchio tool position at {len(qs)} random q in Table I; each joint resampled in turn",
         "; ".join(lines),
-        (Measure("max coordinate change from a joint not in the argument list", worst_missing, TOL_EXACT,
+        (Measure("max coordinate change from a joint not in the argument list", max(missing), TOL_EXACT,
                  "m"),),
         fail=Verdict.DOES_NOT_HOLD,
         id="eq34",
         domain=f"{len(qs)} q uniform in Table I; each joint in turn resampled uniformly over its whole range",
     )
+
+
+def _appc_slip(change):
+    """The good App. C entries (:func:`appc_from_iik`, ``J``) with ``change(J, q, arm)`` ({key: entry})
+    in place of some."""
+    return lambda q, arm=THESIS_ARM: (J := appc_from_iik(q, arm)) | change(J, np.atleast_2d(q), arm)
 
 
 @SECTION.check(
@@ -961,17 +896,14 @@ def eq34_arguments(ctx, arguments):
         good=appc_from_iik,
         good_is="iik.position_jacobian (the analytic Jacobian)",
         slips=(
-            Slip(SlipKind.SIGN, "df1/dth1 with -l2 s1 written +l2 s1", lambda q, arm=THESIS_ARM: {
-                **appc_from_iik(q, arm), "df1/dth1": appc_from_iik(q, arm)["df1/dth1"]
-                + 2 * arm.l2 * np.sin(np.atleast_2d(q)[:, 0])}),
-            Slip(SlipKind.SWAP, "the columns dth2 and dth3 of row f1 exchanged", lambda q, arm=THESIS_ARM: {
-                **appc_from_iik(q, arm), "df1/dth2": appc_from_iik(q, arm)["df1/dth3"],
-                "df1/dth3": appc_from_iik(q, arm)["df1/dth2"]}),
-            Slip(SlipKind.TERM, "df3/dth2 without its -l3 c2 term", lambda q, arm=THESIS_ARM: {
-                **appc_from_iik(q, arm), "df3/dth2": appc_from_iik(q, arm)["df3/dth2"]
-                + arm.l3 * np.cos(np.atleast_2d(q)[:, 1])}),
+            Slip(SlipKind.SIGN, "df1/dth1 with -l2 s1 written +l2 s1", _appc_slip(
+                lambda J, q, arm: {"df1/dth1": J["df1/dth1"] + 2 * arm.l2 * np.sin(q[:, 0])})),
+            Slip(SlipKind.SWAP, "the columns dth2 and dth3 of row f1 exchanged", _appc_slip(
+                lambda J, q, arm: {"df1/dth2": J["df1/dth3"], "df1/dth3": J["df1/dth2"]})),
+            Slip(SlipKind.TERM, "df3/dth2 without its -l3 c2 term", _appc_slip(
+                lambda J, q, arm: {"df3/dth2": J["df3/dth2"] + arm.l3 * np.cos(q[:, 1])})),
         ),
-        tolerance=Slip(SlipKind.EPSILON, "each entry moved by 1 um/rad", _appc_nudged),
+        tolerance=_eps("each entry moved by 1 um/rad", appc_printed, 1e-6),
     ),
 )
 def appendix_c(ctx, appc):
@@ -979,11 +911,10 @@ def appendix_c(ctx, appc):
     qs = _samples(ctx, "appc", 3000, 200)
     J_pin, J_fd = _jacobians(ctx)
     pr = appc(qs)
-    details, worst_ = [], {}
+    details = []
     for key, val in pr.items():
         i, j = int(key[2]) - 1, int(key[-1]) - 1
         d_pin, d_fd = np.abs(val - J_pin[:, i, j]), np.abs(val - J_fd[:, i, j])
-        worst_[key] = (d_pin.max(), d_fd.max())
         k = int(np.argmax(d_pin))
         details.append(Row.graded(
             f"{key} = {APPC_TEXT[key]}",
@@ -999,7 +930,8 @@ def appendix_c(ctx, appc):
         ))
     n_ok = sum(d.verdict is Verdict.HOLDS for d in details)
     group_m = (Measure("entries not matching", 15 - n_ok, 0),)
-    fig = _bars(ctx, "appc_errors.png", list(worst_), [(w, [worst_[k][i] for k in worst_]) for i, w in
+    worst_ = np.array([[m.value for m in d.measures] for d in details])  # (15, 2): vs Pinocchio, vs FD
+    fig = _bars(ctx, "appc_errors.png", list(pr), [(w, worst_[:, i]) for i, w in
                 enumerate(("vs Pinocchio", "vs central FD"))], "max |error| [m/rad]",
                 f"Appendix C entries as printed, {len(qs)} q", rotation=60, fontsize=7)
     group = Row(
@@ -1007,7 +939,7 @@ def appendix_c(ctx, appc):
         "Eq 56 (App. C)",
         "each printed entry vs Pinocchio computeFrameJacobian(frame 'tool', LOCAL_WORLD_ALIGNED) and "
         f"central differences (h = 1e-6 rad) of the Pinocchio tool point, {len(qs)} q",
-        f"{n_ok} of 15 entries match (worst |printed - Pinocchio| = {max(w[0] for w in worst_.values()):.1e} "
+        f"{n_ok} of 15 entries match (worst |printed - Pinocchio| = {worst_[:, 0].max():.1e} "
         "m/rad)",
         verdict_of(group_m),
         id="appc",
@@ -1019,12 +951,9 @@ def appendix_c(ctx, appc):
     )
     # Eq 35: the assembled 3x5 matrix maps joint increments to tool-point increments
     J = np.stack([np.stack([pr[f"df{i + 1}/dth{j + 1}"] for j in range(5)], -1) for i in range(3)], 1)
-    rng = ctx.rng("eq35")
-    dq = rng.normal(size=(len(qs), 5))
+    dq = ctx.rng("eq35").normal(size=(len(qs), 5))
     dq /= np.linalg.norm(dq, axis=1, keepdims=True)
-    h = 1e-6
-    step = np.pad(h * dq, ((0, 0), (0, 1)))  # theta6 fixed
-    fd = (tool_poses(qs + step)[:, :3, 3] - tool_poses(qs - step)[:, :3, 3]) / (2 * h)
+    fd = _fd_tool_point(qs, np.pad(dq, ((0, 0), (0, 1))))  # theta6 fixed
     e35 = np.linalg.norm(np.einsum("nij,nj->ni", J, dq) - fd, axis=1)
     s35 = Points(qs, _JOINT_DOMAIN.format(n=len(qs)) + "; one random unit joint direction per q", "rad", "q")
     return [group, _EQ35.row(s35, e35)]
@@ -1056,7 +985,8 @@ _EQ35 = Formula(
                  (fk, lambda q, arm=THESIS_ARM: np.concatenate([jacobian(q, arm)[..., 3:, :],
                                                                 jacobian(q, arm)[..., :3, :]], -2))),
         ),
-        tolerance=Slip(SlipKind.EPSILON, "iik.fk with p_z moved by 1 nm", (_nudged(fk, (2, 3)), jacobian)),
+        tolerance=Slip(SlipKind.EPSILON, "iik.fk with p_z moved by 1 nm",
+                       (nudged(fk, 1e-9, (2, 3)), jacobian)),
     ),
 )
 def iik_kinematics(ctx, impl):
@@ -1082,7 +1012,9 @@ def iik_kinematics(ctx, impl):
     )
 
 
+@per_run
 def _euler_samples(ctx):
+    """Eq 42's angle sample [rad]: alpha, gamma uniform in [-pi, pi], beta uniform in [0, pi]."""
     rng = ctx.rng("eq42")
     n = ctx.n(20000, 500)
     return rng.uniform(-np.pi, np.pi, n), rng.uniform(0, np.pi, n), rng.uniform(-np.pi, np.pi, n)
@@ -1094,12 +1026,13 @@ _EULER_AT = (0.5, 0.7, 0.3)
 
 
 def _eq42_compare(ctx, eq42):
-    """The form on sampled angles: angles, matrices, |form - scipy| and matching entries per convention."""
+    """The form on sampled angles: angles, matrices, |form - scipy| and matching entries per convention, and
+    the form at the counterexample angles :data:`_EULER_AT`."""
     a, b, g = _euler_samples(ctx)
     P = eq42(a, b, g)
-    ang = np.stack([a, b, g], -1)
-    dev = {c: np.abs(P - Rotation.from_euler(c, ang).as_matrix()) for c in _CONVENTIONS}
-    return (a, b, g), P, dev, {c: int(np.sum(dev[c].max(axis=0) <= TOL_EXACT)) for c in _CONVENTIONS}
+    dev = {c: np.abs(P - Rotation.from_euler(c, np.stack([a, b, g], -1)).as_matrix()) for c in _CONVENTIONS}
+    counts = {c: int(np.sum(dev[c].max(axis=0) <= TOL_EXACT)) for c in _CONVENTIONS}
+    return (a, b, g), P, dev, counts, eq42(*_EULER_AT)
 
 
 @SECTION.check(
@@ -1116,12 +1049,12 @@ def _eq42_compare(ctx, eq42):
                 [[1, 1, 1], [1, 1, 1], [-1, 1, 1]])),
             Slip(SlipKind.SWAP, "alpha and gamma exchanged", lambda a, b, g: eq42_zyz(g, b, a)),
         ),
-        tolerance=Slip(SlipKind.EPSILON, "the good matrix with r33 moved by 1e-9", _nudged(eq42_zyz, (2, 2))),
+        tolerance=_eps("the good matrix with r33 moved by 1e-9", eq42_zyz, 1e-9, (2, 2)),
     ),
 )
 def eq42_matrix(ctx, eq42):
     """Eq 42 (the form) is the Euler-angle rotation matrix of some Z-?-Z convention (scipy as reference)."""
-    (a, b, g), P, dev, matching = _eq42_compare(ctx, eq42)
+    (a, b, g), P, dev, matching, P0 = _eq42_compare(ctx, eq42)
     best = max(_CONVENTIONS, key=lambda c: (matching[c], -dev[c].max()))  # the convention most entries follow
     orth = np.abs(np.einsum("nji,njk->nik", P, P) - np.eye(3)).max()
     m = (
@@ -1133,7 +1066,7 @@ def eq42_matrix(ctx, eq42):
                 [(f"vs scipy '{c}'", dev[c].max(axis=0).ravel()) for c in _CONVENTIONS], "max |form - scipy|",
                 f"Eq 42 entry by entry ({len(a)} angle triples)", floor=1e-17, figsize=(6.4, 3.2))
     a0, b0, g0 = _EULER_AT
-    P0, Z0 = eq42(a0, b0, g0), Rotation.from_euler(best, [a0, b0, g0]).as_matrix()
+    Z0 = Rotation.from_euler(best, _EULER_AT).as_matrix()
     r, c = (bad_entries or [(2, 1)])[0]  # the first entry that differs (the erratum, if the row fails)
     return Row.graded(
         "Eq 42 is an Euler-angle orientation matrix R = Rz(alpha) R(beta) Rz(gamma).",
@@ -1173,10 +1106,9 @@ def eq42_matrix(ctx, eq42):
 )
 def eq42_convention(ctx, eq42):
     """Sec 3.5.1 names Eq 42 'the Z-X-Z convention of [2]': how many of the form's entries are Z-X-Z?"""
-    (a, b, g), _, _, counts = _eq42_compare(ctx, eq42)
+    (a, b, g), _, _, counts, P0 = _eq42_compare(ctx, eq42)
     m = (Measure("entries of Eq 42 that are not Z-X-Z", 9 - counts["ZXZ"], 0),)
     a0, b0, g0 = _EULER_AT
-    P0 = eq42(a0, b0, g0)
     return Row.graded(
         "Eq 42 follows 'the Z-X-Z representation convention described in [2]'.",
         "Eq 42, Sec 3.5.1",
@@ -1191,15 +1123,12 @@ def eq42_convention(ctx, eq42):
             "[c_a s_b, s_a s_b, c_b], alpha its azimuth, beta its polar angle; iik uses Z-Y-Z (how Sec "
             "3.5's own alpha, beta map to these is checked in the Dexterity section)",
             f"alpha, beta, gamma = {a0}, {b0}, {g0} rad: printed r13 = {P0[0, 2]:.6f} = Z-Y-Z r13; Z-X-Z "
-            f"r13 = s_a s_b = {Rotation.from_euler('ZXZ', [a0, b0, g0]).as_matrix()[0, 2]:.6f}",
+            f"r13 = s_a s_b = {Rotation.from_euler('ZXZ', _EULER_AT).as_matrix()[0, 2]:.6f}",
         ),
         domain=f"{len(a)} angle triples: alpha, gamma uniform in [-pi, pi], beta uniform in [0, pi]",
     ).reread_if_erratum(lambda: eq42_reading(
         ctx, eq42, [(r, c) for r in range(3) for c in range(3) if (r, c) != (1, 0)],
         "the entries of Eq 42 other than r21 (r21 is a typo of its own, row kinematics.eq42)", count=True))
-
-
-_ELEMENTARY = "elementary rotations composed by hand (euler_matrix), not scipy"
 
 
 def eq42_reading(ctx, eq42, entries, printed: str, *, count: bool):
@@ -1232,7 +1161,8 @@ def eq42_reading(ctx, eq42, entries, printed: str, *, count: bool):
     return search(stated, readings, misfit, 0.0 if count else TOL_EXACT, printed=printed,
                   stated_text="'the Z-X-Z representation convention described in [2]' (Sec 3.5.1), "
                   "R = Rz(alpha) Rx(beta) Rz(gamma)",
-                  route=_ELEMENTARY + f", on {len(a)} of the angle triples",
+                  route=f"elementary rotations composed by hand (euler_matrix), not scipy, on {len(a)} of "
+                  "the angle triples",
                   measure=(f"entries of {which} that differ (> {TOL_EXACT:g})" if count
                            else f"max |printed - re-derived| of {which}"))
 
@@ -1244,11 +1174,9 @@ def _edited_generator(edit):
 
 #: A deliberately wrong generator: d of the first row moved by 1 um.
 SHIFTED_GENERATOR = _edited_generator(lambda t: _table_edit(0, t, d=t.rows[0].d + 1e-6))
-_GEN_FORMS = Forms(
-    printed=urdf_from_dh,
-    good=urdf_from_dh,
-    good_is="iik.urdf.urdf_from_dh (the generator under test)",
-    slips=(
+_GEN_FORMS = Forms.right(
+    urdf_from_dh,
+    (
         Slip(SlipKind.MODEL, "the table read in the other DH convention (standard <-> modified)",
              _edited_generator(lambda t: replace(t, convention="standard" if t.convention == "modified"
                                                  else "modified"))),
@@ -1256,51 +1184,50 @@ _GEN_FORMS = Forms(
             lambda t: replace(t, rows=tuple(replace(r, alpha=-r.alpha) for r in t.rows)))),
     ),
     tolerance=Slip(SlipKind.EPSILON, "a generator that moves d of the first row by 1 um", SHIFTED_GENERATOR),
+    good_is="iik.urdf.urdf_from_dh (the generator under test)",
 )
 
 
-def _generated_vs_reference(fk_pair, qs, generator, base, tool):
-    """The generated URDF's poses (``fk_pair``, at ``qs``) mapped by the frozen ``base``, ``tool`` vs the
-    reference file's: position errors [m], rotation angles [rad], their measures (1e-9 each: a generator
-    that is right), and how far the base and tool solved in closed form from 50 q are from the frozen ones."""
+def _generator_row(fk_pair, qs, generator, base, tool, within: str, note: str, **fields):
+    """The generated URDF's poses (``fk_pair``, at ``qs`` uniform ``within``) mapped by the frozen ``base``,
+    ``tool`` vs the reference file's: the row graded on position errors [m] and rotation angles [rad] <=
+    1e-9 each (a generator that is right), and the errors; ``note`` introduces how far the base and tool
+    solved in closed form from 50 q are from the frozen ones."""
     Tg, Tr = fk_pair(qs, generator=generator)
     B, E = solve_base_tool(Tg[:50], Tr[:50])
     T = base @ Tg @ tool
     dp = np.linalg.norm(T[:, :3, 3] - Tr[:, :3, 3], axis=1)
     dr = rotation_angle(T[:, :3, :3], Tr[:, :3, :3])
-    m = (Measure("max |dp|", dp.max(), 1e-9, "m"), Measure("max rotation angle", dr.max(), 1e-9, "rad"))
-    return dp, dr, m, max(np.abs(B - base).max(), np.abs(E - tool).max())
+    return Row.graded(
+        **fields,
+        numbers=f"max |dp| = {dp.max():.1e} m, max rotation angle = {dr.max():.1e} rad (tolerance 1e-9"
+        f"{note} {max(np.abs(B - base).max(), np.abs(E - tool).max()):.1e}",
+        measures=(Measure("max |dp|", dp.max(), 1e-9, "m"), Measure("max rotation angle", dr.max(), 1e-9,
+                                                                     "rad")),
+        fail=Verdict.DOES_NOT_HOLD,
+        scope=Scope.PROJECT,
+        domain=f"{len(qs)} q uniform {within}",
+    ), dp, dr
 
 
 @SECTION.check(17.0, depends_on=(), forms=_GEN_FORMS)
 def ur5_generator_check(ctx, generator):
     """The URDF generator on a robot nobody here wrote: UR5 from its standard DH table."""
     qs = np.random.default_rng([ctx.seed, 5]).uniform(-np.pi, np.pi, (ctx.n(2000, 100), 6))
-    dp, dr, m, d_solved = _generated_vs_reference(ur5_fk_pair, qs, generator, UR5_BASE, UR5_TOOL)
-    rel = _hist(
-        ctx,
-        "ur5_errors.png",
-        [("|dp| [m]", dp), ("rotation angle [rad]", dr)],
-        "log10 error, generated UR5 vs ur5_robot.urdf",
-        f"UR5 from its DH table, {len(qs)} q",
-    )
-    return Row.graded(
-        "(Project) The DH -> URDF generator is right: the UR5 built from its published standard DH table "
-        "matches example-robot-data's ur5_robot.urdf.",
-        "iik.urdf (Sec 3.2 method: DH description)",
-        f"Pinocchio FK of the generated URDF (frame 'tool') vs ur5_robot.urdf (frame 'tool0') at {len(qs)} q "
-        "uniform in [-pi, pi]^6, after T_ref = B T_dh E with frozen B = RotZ(pi), E = I (solved in closed "
-        "form from 50 q, see verification/oracles/ur5.py)",
-        f"max |dp| = {dp.max():.1e} m, max rotation angle = {dr.max():.1e} rad (tolerance 1e-9; the "
-        "reference "
-        f"file rounds pi/2 to 1.57079632679); solved B, E differ from the frozen ones by {d_solved:.1e}",
-        m,
-        fail=Verdict.DOES_NOT_HOLD,
-        figures=(rel,),
+    row, dp, dr = _generator_row(
+        ur5_fk_pair, qs, generator, UR5_BASE, UR5_TOOL, "in [-pi, pi]^6",
+        "; the reference file rounds pi/2 to 1.57079632679); solved B, E differ from the frozen ones by",
+        claim="(Project) The DH -> URDF generator is right: the UR5 built from its published standard DH "
+        "table matches example-robot-data's ur5_robot.urdf.",
+        reference="iik.urdf (Sec 3.2 method: DH description)",
+        method=f"Pinocchio FK of the generated URDF (frame 'tool') vs ur5_robot.urdf (frame 'tool0') at "
+        f"{len(qs)} q uniform in [-pi, pi]^6, after T_ref = B T_dh E with frozen B = RotZ(pi), E = I (solved "
+        "in closed form from 50 q, see verification/oracles/ur5.py)",
         id="ur5",
-        scope=Scope.PROJECT,
-        domain=f"{len(qs)} q uniform in [-pi, pi]^6",
     )
+    return row.replace(figures=(_hist(ctx, "ur5_errors.png", [("|dp| [m]", dp), ("rotation angle [rad]", dr)],
+                                      "log10 error, generated UR5 vs ur5_robot.urdf",
+                                      f"UR5 from its DH table, {len(qs)} q"),))
 
 
 @SECTION.check(17.5, depends_on=(), forms=_GEN_FORMS)
@@ -1311,22 +1238,18 @@ def panda_generator_check(ctx, generator):
     _, _, ref, _ = panda_models()
     lo, hi = ref.lowerPositionLimit[:7], ref.upperPositionLimit[:7]
     qs = np.random.default_rng([ctx.seed, 7]).uniform(lo, hi, (ctx.n(2000, 100), 7))
-    dp, dr, m, d_id = _generated_vs_reference(panda_fk_pair, qs, generator, np.eye(4), np.eye(4))
-    return Row.graded(
-        "(Project) The DH -> URDF generator maps Craig's modified DH (Table II's convention) right: the "
-        "Franka Panda built from its published modified DH table matches example-robot-data's panda.urdf.",
-        "iik.urdf (Sec 3.2 method: Craig's convention)",
-        f"Pinocchio FK of the generated URDF (frame 'tool' = frame 7 + 0.107 m flange) vs panda.urdf (frame "
-        f"'panda_link8') at {len(qs)} q uniform within the Panda's limits; base and tool transforms solved "
-        "in closed form from 50 q",
-        f"max |dp| = {dp.max():.1e} m, max rotation angle = {dr.max():.1e} rad (tolerance 1e-9); solved "
-        f"base/tool transforms differ from the identity by {d_id:.1e}",
-        m,
-        fail=Verdict.DOES_NOT_HOLD,
+    return _generator_row(
+        panda_fk_pair, qs, generator, np.eye(4), np.eye(4), "within the Panda's limits",
+        "); solved base/tool transforms differ from the identity by",
+        claim="(Project) The DH -> URDF generator maps Craig's modified DH (Table II's convention) right: "
+        "the Franka Panda built from its published modified DH table matches example-robot-data's "
+        "panda.urdf.",
+        reference="iik.urdf (Sec 3.2 method: Craig's convention)",
+        method=f"Pinocchio FK of the generated URDF (frame 'tool' = frame 7 + 0.107 m flange) vs panda.urdf "
+        f"(frame 'panda_link8') at {len(qs)} q uniform within the Panda's limits; base and tool transforms "
+        "solved in closed form from 50 q",
         id="panda",
-        scope=Scope.PROJECT,
-        domain=f"{len(qs)} q uniform within the Panda's limits",
-    )
+    )[0]
 
 
 def _tool_to_upper_arm(qs):
@@ -1338,13 +1261,18 @@ def _tool_to_upper_arm(qs):
 
 
 def _limits(lo_deg, hi_deg) -> tuple[np.ndarray, np.ndarray]:
+    """Joint limits given in degrees as (lower, upper) [rad]."""
     return np.radians(np.array(lo_deg, float)), np.radians(np.array(hi_deg, float))
 
 
+def _wrist_limits(w: float) -> tuple[np.ndarray, np.ndarray]:
+    """Table I with theta2 <= 80 deg and theta4, theta5 within +-w deg [rad]."""
+    return _limits([-160, -120, -160, -w, -w, -180], [160, 80, 160, w, w, 180])
+
+
 #: Table I as printed [rad]; a narrower set the claim holds for; and that set with joints 4-5 widened again.
-TABLE_I_LIMITS = _limits([lo for lo, _ in TABLE_I_PRINTED], [hi for _, hi in TABLE_I_PRINTED])
-SAFE_LIMITS = _limits([-160, -120, -160, -30, -30, -180], [160, 80, 160, 30, 30, 180])
-UNSAFE_LIMITS = _limits([-160, -120, -160, -119, -119, -180], [160, 80, 160, 119, 119, 180])
+TABLE_I_LIMITS = _limits(*zip(*TABLE_I_PRINTED, strict=True))
+SAFE_LIMITS, UNSAFE_LIMITS = _wrist_limits(30), _wrist_limits(119)
 #: A self-collision must stay this far [m] from the upper-arm axis to be "avoided" (a PowerCube half-width).
 MIN_CLEARANCE = 0.05
 
@@ -1359,15 +1287,12 @@ MIN_CLEARANCE = 0.05
         slips=(
             Slip(SlipKind.LIMIT, "the same with theta4, theta5 back to +-119 deg", UNSAFE_LIMITS),
             Slip(SlipKind.UNIT, "theta4, theta5 limits of +-30 read as rad (no limit at all)",
-                 _limits([-160, -120, -160, -np.degrees(30), -np.degrees(30), -180],
-                         [160, 80, 160, np.degrees(30), np.degrees(30), 180])),
+                 _wrist_limits(np.degrees(30))),
         ),
     ),
 )
 def table_i_self_collision(ctx, limits):
     """Sec 3.2: the Table I limits (the form) were chosen "to avoid hitting the manipulator itself"."""
-    from scipy.optimize import minimize
-
     lo, hi = limits
     tm = thesis_model(THESIS_ARM)
     data, gdata = tm.model.createData(), pin.GeometryData(tm.collision_model)
