@@ -90,7 +90,6 @@ def step_length(ctx, steps):
         basis="the paths are our reconstruction (scenarios/p1-p3.toml): the thesis prints neither the start, "
         "the via-points nor the goal of its predefined paths, only their heights (0.8 m table, 0.45 m "
         "platform, the floor); step lengths follow from the segment lengths we chose",
-        id="step_length",
         domain=f"the three reconstructed predefined paths {', '.join(PATHS)}, every step",
     )
 
@@ -113,11 +112,10 @@ _DOMAIN = f"every step-point of the reconstructed paths {', '.join(PATHS)}"
 def iik_along_paths(ctx, solver):
     """Sec 4.2.1 / 5.2: the IIK computed the joint angles at every position of the predefined paths."""
     complete = Solver("complete", "complete")
-    lines, n_solvable, n_missed, n_none = [], 0, 0, 0
+    lines, n_missed, n_none = [], 0, 0
     for name, T in _poses(ctx).items():
         solvable = np.array([len(r) > 0 for r in _solutions(complete, T)])
         missed = solvable & np.array([len(g) == 0 for g in _solutions(solver, T)])
-        n_solvable += int(solvable.sum())
         n_missed += int(missed.sum())
         n_none += int((~solvable).sum())
         lines.append(
@@ -135,7 +133,6 @@ def iik_along_paths(ctx, solver):
         "orientation",
         (Measure("solvable step-points without a solution from the form", n_missed, 0),),
         fail=Verdict.DOES_NOT_HOLD,
-        id="iik_along_paths",
         domain=f"{_DOMAIN} (the misses are the IIK's own, as on random poses: ik.completeness)",
         reason="the theta1 grid misses roots and c3 = +-sqrt(1 - s3^2) (Eq 21) loses accuracy near theta3 = "
         "+-90 deg (see ik.completeness)",
