@@ -99,13 +99,10 @@ def _sqrt3_half(half) -> np.ndarray:
     return math.sqrt(3.0) * np.asarray(half, float)
 
 
-def _corner_misfit(sizes, radii: Callable) -> np.ndarray:
-    """max |Eq 52 - 1| at the 8 corners of each box of ``sizes`` (n, 3) [m] with the radii ``radii(half)``."""
-    out = []
-    for s in sizes:
-        box = Box((0.0, 0.0, 0.0), tuple(s))
-        out.append(np.abs(ellipsoid_value(box.corners, box.center, radii(box.half)) - 1.0).max())  # Eq 52
-    return np.array(out)
+def _corner_values(sizes, radii: Callable) -> np.ndarray:
+    """Eq 52 at the 8 corners (n, 8) of each box of ``sizes`` (n, 3) [m] with the radii ``radii(half)``."""
+    boxes = [Box((0.0, 0.0, 0.0), tuple(s)) for s in sizes]
+    return np.array([ellipsoid_value(b.corners, b.center, radii(b.half)) for b in boxes])  # Eq 52
 
 
 #: Eq 53 as printed, in both readings of w, d, h (the text calls them width, depth and height).
@@ -139,13 +136,9 @@ def check_eq53_ellipsoid(ctx, readings) -> Row:
     d, h)."""
     rng = ctx.rng("eq53")
     sizes = np.vstack([[0.30, 0.20, 0.50], rng.uniform(0.05, 1.0, size=(ctx.n(2000, 100), 3))])
-    worst = {name: float(_corner_misfit(sizes, radii).max()) for name, radii in readings.items()}
-    best = min(worst, key=worst.get)
-    example = Box((0.0, 0.0, 0.0), (0.30, 0.20, 0.50))
-    values = {
-        n: float(ellipsoid_value(example.corners[:1], example.center, r(example.half))[0])
-        for n, r in readings.items()
-    }
+    ev = {name: _corner_values(sizes, radii) for name, radii in readings.items()}
+    worst = {n: float(np.abs(v - 1.0).max()) for n, v in ev.items()}
+    values = {n: float(v[0, 0]) for n, v in ev.items()}  # the first corner of the 0.30 x 0.20 x 0.50 m box
     row = Row.graded(
         claim="The ellipsoid of Eq 53 touches every corner of the w x d x h box (Sec 3.6.2.1)",
         reference="Eq 52-53",
@@ -157,7 +150,7 @@ def check_eq53_ellipsoid(ctx, readings) -> Row:
             f"{worst[n]:.3g}"
             for n in readings
         ),
-        measures=(Measure("max |Eq 52 at the 8 corners - 1|, best reading", worst[best], 1e-9),),
+        measures=(Measure("max |Eq 52 at the 8 corners - 1|, best reading", min(worst.values()), 1e-9),),
         erratum=Erratum(
             equation="Eq 53",
             printed=_EQ53_TEXT,
@@ -184,7 +177,7 @@ def eq53_reading(sizes):
         def radii(half):
             return eq53_printed(*(x["dims"] * 2 * np.asarray(half, float)), a=x["a"], z_angle=x["z_angle"])
 
-        return float(_corner_misfit(sizes, radii).max())
+        return float(np.abs(_corner_values(sizes, radii) - 1.0).max())
 
     readings = [
         Reading(Kind.WHICH, "w, d, h the half dimensions of the box", {"dims": 0.5}),
@@ -330,7 +323,6 @@ def check_table_iii(ctx, via) -> Row:
         ),
         measures=m,
         fail=Verdict.DOES_NOT_HOLD,
-        id="check_table_iii",
         domain="the four printed via-points",
         reason="a via-point is unreachable, inside the platform's zone or below the floor's",
     )
@@ -632,10 +624,6 @@ class _Choice:
     index: int
     tried: tuple[Clearance, ...]
 
-    @property
-    def clearance(self) -> Clearance | None:
-        return self.tried[self.index] if self.q is not None else None
-
 
 @per_run
 def _choose(ctx, source: PathSource, name: str) -> _Choice:
@@ -649,22 +637,16 @@ def _choose(ctx, source: PathSource, name: str) -> _Choice:
     return _Choice(None if pick is None else paths[pick], pick or 0, tuple(tried))
 
 
-def _details(ctx, detail: Callable, among=None) -> list[Row]:
-    """One detail row per scenario planned in this run (of ``among``): ``detail(name, plan result)``."""
-    return [detail(n, _planned(ctx)[n][0]) for n in _planned(ctx) if among is None or n in among]
-
-
-def _detail(sc, method: str, numbers: str, measures=(), *, claim: str = "", section: str = "Sec 4.2",
-            scope: Scope = Scope.THESIS) -> Row:
-    """The detail row of scenario ``sc`` in a claim over the scenarios, graded on ``measures``
-    (DOES_NOT_HOLD if one fails); without measures, a scenario the form offers no path for (``numbers``
-    says why; it does not hold, claimed as ``sc.title``). Its claim is ``sc.title`` unless given, its
-    reference the scenario's own, else ``section``."""
+def _detail(sc, numbers: str, measures=(), *, claim: str = "", section: str = "Sec 4.2") -> Row:
+    """The detail row of scenario ``sc`` in a claim over the scenarios (:func:`_grouped` adds its method
+    and scope), graded on ``measures`` (DOES_NOT_HOLD if one fails); without measures, a scenario the form
+    offers no path for (``numbers`` says why; it does not hold, claimed as ``sc.title``). Its claim is
+    ``sc.title`` unless given, its reference the scenario's own, else ``section``."""
     if not measures:
-        return Row(sc.title, sc.reference or "Sec 4.2", method, numbers, Verdict.DOES_NOT_HOLD,
-                   reason=numbers, id=sc.name, scope=scope)
-    return Row.graded(claim or sc.title, sc.reference or section, method, numbers, measures,
-                      fail=Verdict.DOES_NOT_HOLD, id=sc.name, scope=scope)
+        return Row(sc.title, sc.reference or "Sec 4.2", "", numbers, Verdict.DOES_NOT_HOLD, reason=numbers,
+                   id=sc.name)
+    return Row.graded(claim or sc.title, sc.reference or section, "", numbers, measures,
+                      fail=Verdict.DOES_NOT_HOLD, id=sc.name)
 
 
 #: What the scenario rows rest on.
@@ -676,11 +658,19 @@ _SCENES = (
 _WHOLE_ARM = "whole-arm Coal clearance every 2 mm of arm motion"
 
 
-def _grouped(details: list[Row], what: str, failing: Callable[[list[Row]], str], *,
-             on_reconstruction: bool = False, **fields) -> Row:
-    """A claim over the scenarios, counted once with one detail per scenario: it holds if every detail
-    passes; ``failing(rows)`` words the reason from the failing details. ``on_reconstruction``: the verdict
-    rests on the reconstructed scenes (consistent with / not reproduced on our reconstruction)."""
+def _grouped(ctx, detail: Callable, what: str, label: str, *, among=None, failing: Callable | None = None,
+             shown: Callable | None = None, on_reconstruction: bool = False, scope: Scope = Scope.THESIS,
+             method: str, domain: str, **fields) -> Row:
+    """A claim over the scenarios planned in this run (of ``among``, default all), counted once with one
+    detail row per scenario, ``detail(name, plan result)`` (its method ``label``, its scope ``scope``): it
+    holds if every detail passes. ``failing(rows)`` words the reason from the failing details (default:
+    their numbers); the numbers give ``shown(detail)`` per scenario (default: its whole-arm clearance);
+    ``method`` gets a sentence naming the scenarios quick mode skipped, ``domain`` the number planned
+    (``{n}``). ``on_reconstruction``: the verdict rests on the reconstructed scenes (consistent with / not
+    reproduced on our reconstruction)."""
+    planned = _planned(ctx)
+    names = [n for n in planned if among is None or n in among]
+    details = [detail(n, planned[n][0]).replace(method=label, scope=scope) for n in names]
     bad = [d for d in details if not d.verdict.passes]
     m = (Measure(f"scenarios where {what} fails", len(bad), 0),)
     if on_reconstruction:
@@ -688,19 +678,13 @@ def _grouped(details: list[Row], what: str, failing: Callable[[list[Row]], str],
         fields.setdefault("basis", _SCENES)
     else:
         verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
-    return Row(
-        verdict=verdict, measures=m, details=tuple(details), reason=failing(bad) if bad else "", **fields
-    )
-
-
-def _quick_note(ctx, among=None) -> str:
-    """A sentence naming the scenarios quick mode skipped (of ``among``, default every shipped one)."""
-    among = among or [p.stem for p in thesis_scenario_paths()]
-    skipped = [n for n in among if n not in _planned(ctx)]
-    if not (ctx.quick and skipped):
-        return ""
-    planned = [n for n in _planned(ctx) if n in among]
-    return f" Quick mode: only {', '.join(planned)} planned ({', '.join(skipped)} skipped)."
+    failing = failing or (lambda rows: "; ".join(f"{d.id}: {d.numbers}" for d in rows))
+    skipped = [n for n in among or [p.stem for p in thesis_scenario_paths()] if n not in planned]
+    if ctx.quick and skipped:
+        method += f" Quick mode: only {', '.join(names)} planned ({', '.join(skipped)} skipped)."
+    numbers = "; ".join(f"{d.id}: {(shown or _mm)(d)}" for d in details)
+    return Row(method=method, numbers=numbers, verdict=verdict, measures=m, details=tuple(details),
+               reason=failing(bad) if bad else "", scope=scope, domain=domain.format(n=len(names)), **fields)
 
 
 def _mm(row: Row) -> str:
@@ -717,9 +701,9 @@ def check_scenarios(ctx, source: PathSource) -> Row:
     def detail(name, res) -> Row:
         sc, ch = res.scenario, _choose(ctx, source, name)
         if ch.q is None:
-            return _detail(sc, source.name, "no IK branch covers every step-point")
-        ev, dbox = _tool_zone(sc, ch.q)
-        m = (Measure("whole-arm clearance (no contact)", ch.clearance.value, 0.0, "m", bound=">="),)
+            return _detail(sc, "no IK branch covers every step-point")
+        ev, dbox, c = *_tool_zone(sc, ch.q), ch.tried[ch.index]
+        m = (Measure("whole-arm clearance (no contact)", c.value, 0.0, "m", bound=">="),)
         tool = "no obstacle to repel from (supports only)"
         if math.isfinite(ev):
             padded = "smallest Eq 52 value of the tool step-points, ellipsoids + 30 mm zone"
@@ -732,32 +716,31 @@ def check_scenarios(ctx, source: PathSource) -> Row:
         numbers = (
             f"IK branch {ch.index + 1} of {len(source.paths(ctx, name))}"
             + (f" (earlier branches touch the scene: {touched} mm)" if touched else "")
-            + f"; {tool}; whole arm: min {ch.clearance.mm()}; {len(branch_switches(ch.q))} branch switches"
+            + f"; {tool}; whole arm: min {c.mm()}; {len(branch_switches(ch.q))} branch switches"
         )
-        return _detail(sc, source.name, numbers, m, section="Sec 4.2.2")
+        return _detail(sc, numbers, m, section="Sec 4.2.2")
 
-    details = _details(ctx, detail, FIG42)
     figs, views = _illustrations(ctx)
     return _grouped(
-        details,
+        ctx,
+        detail,
         "the thesis's criterion",
-        lambda bad: "; ".join(f"{d.id}: {d.numbers}" for d in bad),
+        source.name,
+        among=FIG42,
+        shown=lambda d: d.verdict.value + (f" (arm {_mm(d)})" if d.measures else ""),
         claim=f"{title_of('Claim 4.8')} (Fig 42), by the thesis's own criterion: every tool step-point "
         "outside the ellipsoids padded by the 30 mm zone, no part of the arm touching the scene",
         reference="Sec 4.2.2, Sec 3.6, Fig 42",
         method=f"{source.name}, on the reconstructed scenes (scenarios/*.toml): Eq 52 at the FK tool point "
         "of every step-point with the corrected Eq 53 radii + the scenario's safety zone; whole-arm Coal "
         "distances of the URDF collision shapes to the obstacles, supports, platform and floor at every "
-        "step-point and every 2 mm of arm motion between them." + _quick_note(ctx, FIG42),
-        numbers="; ".join(
-            f"{d.id}: {d.verdict.value}" + (f" (arm {_mm(d)})" if d.measures else "") for d in details
-        ),
+        "step-point and every 2 mm of arm motion between them.",
         figures=figs,
         views=views,
         id="scenarios",
         on_reconstruction=True,
-        domain=f"the {len(details)} reconstructed scenes of Fig 42 planned in this run, every step-point and "
-        "every 2 mm of arm motion",
+        domain="the {n} reconstructed scenes of Fig 42 planned in this run, every step-point and every 2 mm "
+        "of arm motion",
     )
 
 
@@ -769,7 +752,7 @@ def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
     def detail(name, res) -> Row:
         sc, ch = res.scenario, _choose(ctx, source, name)
         if ch.q is None:
-            return _detail(sc, source.name, "no IK branch covers every step-point", scope=Scope.PROJECT)
+            return _detail(sc, "no IK branch covers every step-point")
         c = measure_clearance(_checker(ctx, name), ch.q, sc.safety_zone)
         numbers = (
             f"whole arm: min {c.mm()} (certified >= {c.lower * 1e3:.1f} mm); for comparison "
@@ -778,21 +761,19 @@ def check_scenarios_whole_arm(ctx, source: PathSource) -> Row:
             "proven: a lower bound, not the minimum; planning.planner measures that path's minimum)"
         )
         m = (Measure("whole-arm clearance", c.value, sc.safety_zone, "m", bound=">="),)
-        claim = f"{sc.title}: whole arm >= {sc.safety_zone * 1e3:.0f} mm"
-        return _detail(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT)
+        return _detail(sc, numbers, m, claim=f"{sc.title}: whole arm >= {sc.safety_zone * 1e3:.0f} mm")
 
-    details = _details(ctx, detail)
     return _grouped(
-        details,
+        ctx,
+        detail,
         "the whole-arm 30 mm standard",
-        lambda bad: "below the zone: " + ", ".join(f"{d.id} ({_mm(d)})" for d in bad),
+        source.name,
+        failing=lambda bad: "below the zone: " + ", ".join(f"{d.id} ({_mm(d)})" for d in bad),
         claim="(Project standard) The Sec 3.6 planner's own path keeps the whole arm -- every link, not "
         "only the tool point -- at least the 30 mm safety zone from the scene, on every step-point and "
         "motion",
         reference="Sec 4.2, Sec 3.6",
-        method=f"{source.name}; {_WHOLE_ARM} (certified bisection where the bound is undecided)."
-        + _quick_note(ctx),
-        numbers="; ".join(f"{d.id}: {_mm(d)}" for d in details),
+        method=f"{source.name}; {_WHOLE_ARM} (certified bisection where the bound is undecided).",
         scope=Scope.PROJECT,
         id="scenarios_whole_arm",
         domain="every planned scenario of this run, every step-point and every 2 mm of arm motion",
@@ -815,7 +796,7 @@ def check_planner(ctx, source: PathSource) -> Row:
     def detail(name, res) -> Row:
         sc, wall, paths = res.scenario, _planned(ctx)[name][1], source.paths(ctx, name)
         if not paths:
-            return _detail(sc, source.name, f"no path ({res.reason or 'none offered'})", scope=Scope.PROJECT)
+            return _detail(sc, f"no path ({res.reason or 'none offered'})")
         cs = [measure_clearance(_checker(ctx, name), q, sc.safety_zone) for q in paths]
         m = tuple(
             Measure(f"whole-arm clearance, {labels[min(k, 1)]}", c.value, sc.safety_zone, "m", bound=">=")
@@ -827,21 +808,18 @@ def check_planner(ctx, source: PathSource) -> Row:
             + (f"; {res.trajectory.duration:.2f} s" if res.trajectory is not None else "")
             + f"; planned in {wall:.2f} s"
         )
-        claim = f"{sc.title}: iik.planning.plan"
-        return _detail(sc, source.name, numbers, m, claim=claim, scope=Scope.PROJECT)
+        return _detail(sc, numbers, m, claim=f"{sc.title}: iik.planning.plan")
 
-    details = _details(ctx, detail)
     return _grouped(
-        details,
+        ctx,
+        detail,
         "the planner's 30 mm standard",
-        lambda bad: "; ".join(f"{d.id}: {d.numbers}" for d in bad),
+        source.name,
         claim="(Project standard) iik.planning.plan gives a path and a timed trajectory that keep the whole "
         "arm at least the 30 mm safety zone from the scene in every shipped scenario",
         reference="Sec 4.2, Sec 3.6",
         method=f"{source.name}: the planner (thesis path, other IK branches, arc route, redesigns, "
-        f"RRT-Connect; TOPP-RA), re-measured here independently of its acceptance rule: {_WHOLE_ARM}."
-        + _quick_note(ctx),
-        numbers="; ".join(f"{d.id}: {_mm(d)}" for d in details),
+        f"RRT-Connect; TOPP-RA), re-measured here independently of its acceptance rule: {_WHOLE_ARM}.",
         scope=Scope.PROJECT,
         id="planner",
         domain="every planned scenario of this run, every 2 mm of arm motion of the path and its timed "
@@ -883,7 +861,7 @@ def check_smooth_joints(ctx, form: Callable) -> Row:
     def detail(name, res) -> Row:
         q = _choose(ctx, THESIS_PATH, name).q
         if q is None or len(q) < 2:
-            return _detail(res.scenario, "thesis path", "no IK branch covers every step-point")
+            return _detail(res.scenario, "no IK branch covers every step-point")
         dq = np.abs(np.diff(form(q), axis=0))
         step = dq.max(axis=1)
         k = int(step.argmax())
@@ -894,71 +872,61 @@ def check_smooth_joints(ctx, form: Callable) -> Row:
             f"of 1-6) between step-points {k} and {k + 1} of 0-{len(q) - 1}; median "
             f"{math.degrees(float(np.median(step))):.2f} deg"
         )
-        return _detail(res.scenario, "thesis path", numbers, m, section="Sec 4.2.2")
+        return _detail(res.scenario, numbers, m, section="Sec 4.2.2")
 
-    details = _details(ctx, detail, FIG42)
     return _grouped(
-        details,
+        ctx,
+        detail,
         "smoothness",
-        lambda bad: (
+        "thesis path",
+        among=FIG42,
+        failing=lambda bad: (
             "jumps in "
             + ", ".join(d.id for d in bad)
             + ": where the nominal orientation has no IK solution the reconstructed path needs the "
             "orientation search, which may turn the gripper by half a turn (joint 6) or change IK branch "
             "between two step-points"
         ),
+        shown=lambda d: f"{math.degrees(d.measures[0].value):.1f} deg" if d.measures else "-",
         claim=f"{title_of('Claim 4.10')} (no jump to another IK branch)",
         reference="Sec 4.2.2 (Figs 43-44)",
         method="the thesis's own path (as in planning.scenarios); a step is a jump if a joint changes by "
         f"more than {math.degrees(BRANCH_SWITCH_STEP):.1f} deg (iik.joint_path.BRANCH_SWITCH_STEP, the "
-        "project's branch-switch threshold)." + _quick_note(ctx, FIG42),
-        numbers="; ".join(
-            f"{d.id}: {math.degrees(d.measures[0].value):.1f} deg" if d.measures else f"{d.id}: -"
-            for d in details
-        ),
+        "project's branch-switch threshold).",
         id="smooth_joints",
         on_reconstruction=True,
         basis=_SCENES + "; the jumps come from the orientation search our reconstruction needs where the "
         "nominal orientation has no solution",
-        domain=f"the {len(details)} reconstructed scenes planned in this run, every pair of consecutive "
-        "step-points",
+        domain="the {n} reconstructed scenes planned in this run, every pair of consecutive step-points",
     )
 
 
 # ----------------------------------------------------------------------------- the figures and 3D views
 @per_run
 def _illustrations(ctx) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """Figures of scenario j's plan and the offline 3D views of j and p1 (quick: j): relative paths."""
-    planned = {n: res for n, (res, _) in _planned(ctx).items() if len(res.q)}
-    figs = _figures(ctx, planned["j"]) if "j" in planned else ()
-    views = _VIEWS_QUICK if ctx.quick else _VIEWS
-    return figs, tuple(_export_view(ctx, n, planned[n]) for n in views if n in planned)
-
-
-def _figures(ctx, res) -> tuple[str, ...]:
+    """Figures of scenario j's plan and the offline 3D views of j and p1 (quick: j), pages that play from
+    disk (``views/NAME/index.html``): relative paths."""
     from iik.planning import plot_effort, plot_joints, plot_scene
+    from iik.planning.viewer import PlanScene, export, plan_scene
 
     from ..plotting import new_figure
 
-    rels = []
+    planned = {n: res for n, (res, _) in _planned(ctx).items() if len(res.q)}
+    figs, views = [], []
     for name, fn, kw, size in (
-        ("planning_j_scene.png", plot_scene, {"projection": "3d"}, (7.5, 6.5)),
-        ("planning_j_joints.png", plot_joints, {}, (7, 3.5)),
-        ("planning_j_effort.png", plot_effort, {}, (7, 3.5)),
+        ("scene", plot_scene, {"projection": "3d"}, (7.5, 6.5)),
+        ("joints", plot_joints, {}, (7, 3.5)),
+        ("effort", plot_effort, {}, (7, 3.5)),
     ):
-        fig = new_figure(figsize=size)
-        fn(res, fig.add_subplot(111, **kw))
-        rels.append(ctx.save_figure(fig, name))
-    return tuple(rels)
-
-
-def _export_view(ctx, name: str, res) -> str:
-    """Export the plan of ``name`` as a page that plays from disk (``views/NAME/index.html``)."""
-    from iik.planning.viewer import PlanScene, export, plan_scene
-
-    path, rel = ctx.view_path(name)
-    export(PlanScene(plan_scene(res)), path, force=True)
-    return rel
+        if "j" in planned:
+            fig = new_figure(figsize=size)
+            fn(planned["j"], fig.add_subplot(111, **kw))
+            figs.append(ctx.save_figure(fig, f"planning_j_{name}.png"))
+    for name in (n for n in (_VIEWS_QUICK if ctx.quick else _VIEWS) if n in planned):
+        path, rel = ctx.view_path(name)
+        export(PlanScene(plan_scene(planned[name])), path, force=True)
+        views.append(rel)
+    return tuple(figs), tuple(views)
 
 
 # ----------------------------------------------------------------------------- timing (Eq 54)
