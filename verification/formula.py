@@ -34,11 +34,11 @@ from typing import Any
 
 import numpy as np
 
-from .numbers import fmt_vec, worst
+from .numbers import fmt_matrix, fmt_vec, worst
 from .registry import Erratum, Forms, Measure, Row, Slip, Verdict, epsilon
 from .thesis_index import title_of
 
-__all__ = ["Formula", "Points", "error_row", "RIGHT", "per_run"]
+__all__ = ["Formula", "Points", "Printed", "error_row", "RIGHT", "per_run"]
 
 #: What the good form is when the printed one is right.
 RIGHT = "the printed form (it is right)"
@@ -249,3 +249,75 @@ def per_run(func: Callable) -> Callable:
         return ctx.cache[key]
 
     return cached
+
+
+# --- added in r6
+@dataclass(frozen=True)
+class Printed:
+    """A printed number, vector or matrix vs the same quantity recomputed: a table value graded within the
+    printed rounding.
+
+    The row holds if ``|printed - ours| <= tol + rel |ours|`` at every graded entry; its measure is ``max
+    |printed - ours|`` [``unit``] against ``tol`` (or the ``limit`` given to :meth:`row`). Derived: the claim
+    (what, its printed value if it is a scalar or a vector, the reference), the numbers (printed and ours; for
+    a matrix the entry that differs most) and the erratum of a failing row (printed vs ours, ``why`` its
+    counterexample), re-read by ``reread()`` before it stands (:meth:`~verification.registry.Row.reread`).
+
+    Attributes:
+        id: Local row id.
+        what: The quantity in words (``"N0"``, ``"the diagonal of H*"``).
+        tol: Absolute rounding [``unit``].
+        unit: Unit of the values (display only).
+        rel: Relative rounding (a share of ``|ours|``).
+        digits: Decimals shown.
+        measure: The measure's name.
+    """
+
+    id: str
+    what: str
+    tol: float
+    unit: str = ""
+    rel: float = 0.0
+    digits: int = 4
+    measure: str = "max |printed - ours|"
+
+    def _fmt(self, v: np.ndarray, digits: int | None = None) -> str:
+        d = self.digits if digits is None else digits
+        return fmt_matrix(v, d) if v.ndim == 2 else (fmt_vec(v, d) if v.ndim else f"{float(v):.{d}f}")
+
+    def row(self, reference: str, printed, ours, *, mask=None, limit: float | None = None, note: str = "",
+            why: str = "", corrected: str = "", erratum: Erratum | None = None,
+            reread: Callable | None = None, **fields) -> Row:
+        """The row of ``printed`` vs ``ours`` (entries where ``mask`` is true, default all); ``note`` follows
+        the numbers; ``fields`` go to :class:`~verification.registry.Row` (a ``basis``: a pass holds by
+        construction)."""
+        p, o = np.asarray(printed, float), np.asarray(ours, float)
+        d = np.abs(p - o) if mask is None else np.where(mask, np.abs(p - o), 0.0)
+        ok = bool(np.all(d <= self.tol + self.rel * np.abs(o)))
+        unit = f" {self.unit}" if self.unit else ""
+        if p.ndim == 2:
+            k = np.unravel_index(np.argmax(d), d.shape)
+            shown, numbers = self.what, (
+                f"largest difference {d[k]:.3g}{unit} at ({k[0] + 1},{k[1] + 1}): printed "
+                f"{p[k]:.{self.digits}f}, ours {o[k]:.{self.digits + 1}f}"
+            )
+        else:
+            shown = f"{self.what} = {self._fmt(p)}{unit}"
+            numbers = f"printed {self._fmt(p)} | ours {self._fmt(o, self.digits + 1)}{unit}"
+        numbers += note
+        claim = f"{shown} ({reference})."
+        if erratum is None:
+            erratum = Erratum(reference, f"{self.what} = {self._fmt(p)}",
+                              corrected or f"{self.what} = {self._fmt(o, self.digits + 1)}", why or numbers)
+        row = Row(
+            claim,
+            reference,
+            "",
+            numbers,
+            (Verdict.IDENTITY if fields.get("basis") else Verdict.HOLDS) if ok else Verdict.ERRATUM,
+            id=self.id,
+            measures=(Measure(self.measure, d.max(), self.tol if limit is None else limit, self.unit),),
+            errata=() if ok else (erratum,),
+            **fields,
+        )
+        return row.reread(reread()) if not ok and reread is not None else row

@@ -21,7 +21,7 @@ import iik
 from iik import THESIS_ARM
 
 from ..assumptions import EXACT_GEOMETRY
-from ..formula import Formula, Points, per_run
+from ..formula import Formula, Points, Printed, per_run
 from ..numbers import fmt_matrix, fmt_vec
 from ..oracles.abdel_malek import eq67_dq, normal_acceleration
 from ..oracles.normal_distance import parameters, surface_point, tool_point
@@ -301,96 +301,52 @@ def reading_dq(pv: dict):
 
 
 # ----------------------------------------------------------------------------- rows
-def _printed(name, rid, what, eq, printed, ours, tol, unit="", *, numbers, rel=0.0, limit=None, erratum=None,
-             reread=None, measure="max |printed - ours|", **fields) -> Row:
-    """``what``, printed at point ``name`` (``eq``), vs ours: it holds if ``|printed - ours| <= tol + rel
-    |ours|`` everywhere (the printed rounding); the measure is ``max |printed - ours|`` [``unit``] against
-    ``limit`` (default ``tol``). The claim is "name: what (eq).", the reference "App. E, name, eq". With a
-    ``basis`` a pass holds by construction; a failing row is an erratum (default: the claim vs "the recomputed
-    value"), re-read by ``reread()`` before it stands."""
-    claim, ref = f"{name}: {what} ({eq}).", f"App. E, {name}, {eq}"
-    p, o = np.asarray(printed, float), np.asarray(ours, float)
-    ok = bool(np.all(np.abs(p - o) <= tol + rel * np.abs(o)))
-    m = Measure(measure, np.abs(p - o).max(), tol if limit is None else limit, unit)
-    row = Row(
-        claim,
-        ref,
-        "",
-        numbers,
-        (Verdict.IDENTITY if fields.get("basis") else Verdict.HOLDS) if ok else Verdict.ERRATUM,
-        id=rid,
-        measures=(m,),
-        errata=() if ok else (erratum or Erratum(ref, claim, "the recomputed value", numbers),),
-        **fields,
-    )
-    return row.reread(reread()) if not ok and reread is not None else row
-
-
-def _u0(pv, r) -> Row:
-    return _printed(
-        "A1",
-        "u0",
-        "u0 = [1.0654 0.1165 0 0 0], the parameters of q0",
-        "Eq 58",
-        pv["u0"],
-        r.lam0,
-        _TOL_UNIT,
-        numbers=f"printed {fmt_vec(pv['u0'])} | ours {fmt_vec(r.lam0)} (Eq 58 inverted at q0)",
-        erratum=Erratum(
-            "App. E, A1, u0",
-            f"u0 = {fmt_vec(pv['u0'])}",
-            f"u0 = {fmt_vec(r.lam0)} (Eq 58 inverted at theta1 = -7 pi/9: sin(lambda1) = -140/160)",
-            f"q1(lambda = +1.0654) = {np.degrees(2.7925 * np.sin(1.0654)):.1f} deg, not -140 deg",
-        ),
-        reread=lambda: reading_u0(pv),
-    )
+#: The quantities App. E prints at a point, graded within their printed rounding.
+_U0 = Printed("u0", "u0", _TOL_UNIT)
+_N0 = Printed("n0", "N0", _TOL_UNIT, measure="max |printed - ours| (up to sign)")
+_H_OFF = Printed("h_offdiag", "the off-diagonal entries of H*", _ABS, "mm", _REL, 1,
+                 "max |printed - ours| off the diagonal")
+_H_DIAG = Printed("h_diag", "the diagonal of H*", _ABS, "mm", _REL, 1, "max |printed - ours| on the diagonal")
+_B = Printed("b", "B (rows (2,3) as the thesis chose)", _TOL_B, "1/mm")
+_Q = Printed("q", "Q*", _ABS, "mm", _REL, 2)
+_EIG = Printed("eig", "eig(Q*), sorted,", _ABS, "mm", _REL, 2, "max |printed - ours| (sorted)")
+_SIGMA = Printed("sigma", "|sigma|", 1e-3, "mm", 1e-3, 4, "|printed - ours|")
 
 
 def _n0(name, pv, r) -> Row:
     norm = float(np.linalg.norm(pv["N0"]))
     # N0's sign is a convention: ours along the printed one
     n0 = r.N0 if np.abs(pv["N0"] - r.N0).max() <= np.abs(pv["N0"] + r.N0).max() else -r.N0
-    return _printed(
-        name,
-        "n0",
-        f"N0 = {fmt_vec(pv['N0'])}",
-        "Eq 59",
+    return _N0.row(
+        f"App. E, {name}, Eq 59",
         pv["N0"],
         n0,
-        _TOL_UNIT,
-        numbers=f"printed {fmt_vec(pv['N0'])} (norm {norm:.4f}) | ours {fmt_vec(r.N0)} (left null vector of "
-        "G_q q_s)",
-        measure="max |printed - ours| (up to sign)",
-        erratum=Erratum(
-            f"App. E, {name}, N0",
-            f"N0 = {fmt_vec(pv['N0'])}",
-            f"N0 = {fmt_vec(r.N0)}",
-            f"at q0 = {fmt_vec(r.q0)} rad the normal of the surface is {fmt_vec(r.N0)}; the printed "
-            f"vector has norm {norm:.3f}" + ("" if abs(norm - 1) < 1e-3 else " (not a unit vector)"),
-        ),
+        note=f" (left null vector of G_q q_s); printed norm {norm:.4f}",
+        why=f"at q0 = {fmt_vec(r.q0)} rad the normal of the surface is {fmt_vec(r.N0)}; the printed "
+        f"vector has norm {norm:.3f}" + ("" if abs(norm - 1) < 1e-3 else " (not a unit vector)"),
         reread=lambda: reading_n0(name, pv),
     )
 
 
-def _matrices(pv, r) -> list[Row]:
-    """A1's H* (off the diagonal; on it, circular), B and Q*."""
-    mm = r.in_mm()
-    pH, off = np.asarray(pv["H"], float), ~np.eye(5, dtype=bool)
-    dH = np.abs(pH - mm["H"])
-    k = np.unravel_index(np.argmax(np.where(off, dH, 0)), (5, 5))
-    mm_rounding = dict(tol=_ABS, unit="mm", rel=_REL)
+def _a1(pv, r) -> list[Row]:
+    """A1's u0, N0, H* (off the diagonal; on it, circular), B and Q*."""
+    mm, off = r.in_mm(), ~np.eye(5, dtype=bool)
     return [
-        _printed(
-            "A1",
-            "h_offdiag",
-            "the off-diagonal entries of H*",
-            "Eq 61",
-            pH[off],
-            mm["H"][off],
-            **mm_rounding,
-            numbers=f"largest difference {dH[k]:.3g} mm at H*({k[0] + 1},{k[1] + 1}): printed {pH[k]:.1f}, "
-            f"ours {mm['H'][k]:.1f}",
-            measure="max |printed - ours| off the diagonal",
+        _U0.row(
+            "App. E, A1, Eq 58",
+            pv["u0"],
+            r.lam0,
+            note=" (Eq 58 inverted at q0)",
+            corrected=f"u0 = {fmt_vec(r.lam0)} (Eq 58 inverted at theta1 = -7 pi/9: sin(lambda1) = -140/160)",
+            why=f"q1(lambda = +1.0654) = {np.degrees(2.7925 * np.sin(1.0654)):.1f} deg, not -140 deg",
+            reread=lambda: reading_u0(pv),
+        ),
+        _n0("A1", pv, r),
+        _H_OFF.row(
+            "App. E, A1, Eq 61",
+            pv["H"],
+            mm["H"],
+            mask=off,
             erratum=Erratum(
                 "App. E, A1, H*(4,2)",
                 "H*(4,2) = +1703 (with H*(2,4) = -1703)",
@@ -401,69 +357,30 @@ def _matrices(pv, r) -> list[Row]:
             ),
             reread=lambda: reading_h(pv, off, "the off-diagonal entries of H* as printed (H*(4,2) = +1703)"),
         ),
-        _printed(
-            "A1",
-            "h_diag",
-            "the diagonal of H*",
-            "Eq 61",
-            pH.diagonal(),
+        _H_DIAG.row(
+            "App. E, A1, Eq 61",
+            np.diagonal(pv["H"]),
             mm["H"].diagonal(),
-            **mm_rounding,
-            numbers=f"largest difference {dH.diagonal().max():.3g} mm: CIRCULAR, l2..l5 were fitted to these "
-            "four numbers",
-            measure="max |printed - ours| on the diagonal",
+            note=": CIRCULAR, l2..l5 were fitted to these four numbers",
             depends_on=("lengths-circular", "pinocchio"),
             basis="circular: l2..l5 were recovered from these four numbers (docs/ARM.md), so they agree by "
             "construction",
         ),
-        _printed(
-            "A1",
-            "b",
-            "B = [0 -0.0014 0; 0 0 -0.0013], rows (2,3) as the thesis chose",
-            "Eq 63",
-            pv["B"],
-            mm["B"],
-            _TOL_B,
-            "1/mm",
-            numbers=f"printed {fmt_matrix(pv['B'], 4)} | ours {fmt_matrix(mm['B'], 5)} 1/mm",
-        ),
-        _printed(
-            "A1",
-            "q",
-            "Q*",
-            "Eq 62-65",
-            pv["Q"],
-            mm["Q"],
-            **mm_rounding,
-            numbers=f"largest difference {np.abs(np.asarray(pv['Q']) - mm['Q']).max():.3g} mm (printed "
-            f"Q*(4,4) {pv['Q'][3][3]}, ours {mm['Q'][3, 3]:.2f})",
-        ),
+        _B.row("App. E, A1, Eq 63", pv["B"], mm["B"]),
+        _Q.row("App. E, A1, Eq 62-65", pv["Q"], mm["Q"]),
     ]
 
 
 def _eig(name, pv, mm) -> Row:
-    ours, pr, eig_h = np.sort(mm["eig"]), np.sort(np.asarray(pv["eig"], float)), _eig_h(mm)
-    return _printed(
-        name,
-        "eig",
-        f"eig(Q*) = {fmt_vec(pr, 2)} mm",
-        "Eq 65",
+    pr, eig_h = np.sort(np.asarray(pv["eig"], float)), _eig_h(mm)
+    return _EIG.row(
+        f"App. E, {name}, Eq 65",
         pr,
-        ours,
-        _ABS,
-        "mm",
-        rel=_REL,
-        numbers=f"printed {fmt_vec(pr, 2)} | ours {fmt_vec(ours, 2)} mm (sorted); eig(H*) = "
-        f"{fmt_vec(eig_h, 1)} mm",
-        measure="max |printed - ours| (sorted)",
-        erratum=Erratum(
-            f"App. E, {name}, eig(Q*)",
-            f"eig(Q*) = {fmt_vec(pr, 2)}",
-            f"eig(Q*) = {fmt_vec(ours, 2)}",
-            f"moving only a free joint {PRINTED[name]['free']} moves the point along the surface, so "
-            f"eta = 0 and Q* has zero eigenvalues; the printed list has {int(np.sum(np.abs(pr) < 1e-9))} "
-            f"zeros (eig(H*) = {fmt_vec(eig_h, 1)} mm)",
-        ),
+        np.sort(mm["eig"]),
+        note=f"; eig(H*) = {fmt_vec(eig_h, 1)} mm",
+        why=f"moving only a free joint {PRINTED[name]['free']} moves the point along the surface, so "
+        f"eta = 0 and Q* has zero eigenvalues; the printed list has {int(np.sum(np.abs(pr) < 1e-9))} "
+        f"zeros (eig(H*) = {fmt_vec(eig_h, 1)} mm)",
         reread=lambda: reading_eig(name, pv),
     )
 
@@ -472,22 +389,14 @@ def _sigma(pv, r, side) -> list[Row]:
     """A2's sigma (Eq 66, with the printed step) and its step delta q1 (Eq 67)."""
     mm, eq67 = r.in_mm(), _eq67(r)
     # Eq 66 with the printed step: sigma = N0 . G_q1 * (printed delta q1)
-    s_pr, s_ours = pv["sigma"][1], mm["sigma"][1] * pv["dq"].get(1, 0.0) / eq67[1]
+    s_ours = mm["sigma"][1] * pv["dq"].get(1, 0.0) / eq67[1]
     return [
-        _printed(
-            "A2",
-            "sigma",
-            "|sigma| = 389.2341 mm",
-            "Eq 66",
-            s_pr,
+        _SIGMA.row(
+            "App. E, A2, Eq 66",
+            pv["sigma"][1],
             s_ours,
-            1e-3,
-            "mm",
-            rel=1e-3,
-            numbers=f"printed {s_pr} | ours {s_ours:.4f} mm (Eq 66 with the printed delta q1 = "
-            f"{pv['dq'].get(1)})",
-            measure="|printed - ours|",
             limit=1e-3 * abs(s_ours),
+            note=f" (Eq 66 with the printed delta q1 = {pv['dq'].get(1)})",
         ),
         Row.graded(
             "A2: delta q1 = -1 because joint 1 is at its lower limit (Eq 67).",
@@ -582,9 +491,9 @@ def _point(name, pv, res, sides) -> Row:
             f"{sides[A2_READ]}: the local test is right there, the point is still reached from both sides by "
             "other configurations"
         )
-    details = [_u0(pv, r)] if "u0" in pv else []
-    details += [_n0(name, pv, r)] + (_matrices(pv, r) if "H" in pv else []) + [_eig(name, pv, r.in_mm())]
-    details += (_sigma(pv, r, side) if "sigma" in pv else []) + [_conclusion(name, pv, side, r, note)]
+    details = _a1(pv, r) if name == "A1" else [_n0(name, pv, r)]
+    details += [_eig(name, pv, r.in_mm())]
+    details += (_sigma(pv, r, side) if name == "A2" else []) + [_conclusion(name, pv, side, r, note)]
     verdict = next((v for v in _WORST if any(d.verdict is v for d in details)), Verdict.HOLDS)
     wrong = [d.id for d in details if not d.verdict.passes]
     slips = [d for d in details if d.verdict is Verdict.INPUT_SLIP]
