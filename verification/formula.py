@@ -86,20 +86,22 @@ def error_row(
     scale: tuple[str, np.ndarray] | None = None,
     measure: str = "max |form - truth|",
     domain: str = "",
+    count: bool = False,
 ) -> Row:
     """A row graded on ``max |err| <= tol`` [``unit``] over ``sample`` (NaN counts as infinite).
 
     With ``scale = (name, x)`` it is graded on ``max |err| |x|`` (the conditioning of a division by x). A
     failing row is an erratum (printed form, ``corrected``, the worst sample as counterexample), or with
     ``fail`` DOES_NOT_HOLD a refutation naming the worst sample; with ``basis`` (why it is an identity) a
-    passing row holds by construction. The numbers are the measure and ``note``."""
+    passing row holds by construction; with ``count`` it is graded on the number of samples where ``|err| >
+    tol`` (limit 0). The numbers are the measure and ``note``."""
     raw = np.abs(np.asarray(err, float))
     if scale is not None:
         measure += f" x |{scale[0]}|"
         raw_scaled = np.where(np.isnan(raw), np.inf, raw) * np.abs(scale[1])
     graded = raw if scale is None else raw_scaled
     w, k = worst(graded) if len(graded) else (0.0, 0)
-    m = Measure(measure, w, tol, unit)
+    m = Measure(measure, np.sum(~(graded <= tol)), 0, unit) if count else Measure(measure, w, tol, unit)
     numbers = f"{m} over {len(graded)} samples"
     if scale is not None:
         at = np.abs(scale[1][int(np.argmax(raw))])
@@ -156,6 +158,7 @@ class Formula:
         name: The check function's name; default: the id.
         depends_on: Assumptions of the row, if not the section's.
         order: The check's place in its section, if not the key's (a number, as for ``SECTION.check``).
+        count: Grade the number of samples where ``|error| > tol`` (limit 0), not ``max |error|``.
     """
 
     key: str
@@ -182,6 +185,7 @@ class Formula:
     name: str = ""
     depends_on: tuple[str, ...] | None = None
     order: float | None = None
+    count: bool = False
 
     @property
     def rid(self) -> str:
@@ -217,6 +221,7 @@ class Formula:
             basis=self.basis,
             scale=None if self.scale is None else (self.scale[0], self.scale[1](sample)),
             measure=self.measure,
+            count=self.count,
         )
 
     def check(self, sample_of: Callable) -> Callable:
@@ -252,25 +257,22 @@ def per_run(func: Callable) -> Callable:
 
 
 # --- added in r6
+def _shown(v: np.ndarray, digits: int) -> str:
+    """A scalar, vector or matrix with ``digits`` decimals."""
+    return fmt_matrix(v, digits) if v.ndim == 2 else (fmt_vec(v, digits) if v.ndim else f"{v:.{digits}f}")
+
+
 @dataclass(frozen=True)
 class Printed:
-    """A printed number, vector or matrix vs the same quantity recomputed: a table value graded within the
-    printed rounding.
-
-    The row holds if ``|printed - ours| <= tol + rel |ours|`` at every graded entry; its measure is ``max
-    |printed - ours|`` [``unit``] against ``tol`` (or the ``limit`` given to :meth:`row`). Derived: the claim
-    (what, its printed value if it is a scalar or a vector, the reference), the numbers (printed and ours; for
-    a matrix the entry that differs most) and the erratum of a failing row (printed vs ours, ``why`` its
-    counterexample), re-read by ``reread()`` before it stands (:meth:`~verification.registry.Row.reread`).
+    """A printed number, vector or matrix vs the same quantity recomputed (a table value), graded within the
+    printed rounding: the row holds if ``|printed - ours| <= tol + rel |ours|`` at every graded entry; its
+    measure is ``max |printed - ours|`` [``unit``] against ``tol`` (or the ``limit`` given to :meth:`row`).
+    Derived: the claim, the numbers (for a matrix the entry that differs most) and the erratum (printed vs
+    ours, ``why`` its counterexample); a failing row is re-read by ``reread()`` before it stands.
 
     Attributes:
-        id: Local row id.
-        what: The quantity in words (``"N0"``, ``"the diagonal of H*"``).
-        tol: Absolute rounding [``unit``].
-        unit: Unit of the values (display only).
-        rel: Relative rounding (a share of ``|ours|``).
-        digits: Decimals shown.
-        measure: The measure's name.
+        id: Local row id. what: The quantity in words (``"N0"``). tol, unit, rel: The printed rounding
+            (absolute [``unit``], and a share of ``|ours|``). digits: Decimals shown. measure: Its name.
     """
 
     id: str
@@ -281,42 +283,32 @@ class Printed:
     digits: int = 4
     measure: str = "max |printed - ours|"
 
-    def _fmt(self, v: np.ndarray, digits: int | None = None) -> str:
-        d = self.digits if digits is None else digits
-        return fmt_matrix(v, d) if v.ndim == 2 else (fmt_vec(v, d) if v.ndim else f"{float(v):.{d}f}")
-
     def row(self, reference: str, printed, ours, *, mask=None, limit: float | None = None, note: str = "",
             why: str = "", corrected: str = "", erratum: Erratum | None = None,
             reread: Callable | None = None, **fields) -> Row:
-        """The row of ``printed`` vs ``ours`` (entries where ``mask`` is true, default all); ``note`` follows
-        the numbers; ``fields`` go to :class:`~verification.registry.Row` (a ``basis``: a pass holds by
-        construction)."""
-        p, o = np.asarray(printed, float), np.asarray(ours, float)
+        """The row of ``printed`` vs ``ours`` (the entries where ``mask`` is true, default all); ``note``
+        follows the numbers; ``fields`` go to :class:`~verification.registry.Row` (with a ``basis`` a pass
+        holds by construction)."""
+        p, o, n = np.asarray(printed, float), np.asarray(ours, float), self.digits
         d = np.abs(p - o) if mask is None else np.where(mask, np.abs(p - o), 0.0)
         ok = bool(np.all(d <= self.tol + self.rel * np.abs(o)))
-        unit = f" {self.unit}" if self.unit else ""
-        if p.ndim == 2:
-            k = np.unravel_index(np.argmax(d), d.shape)
-            shown, numbers = self.what, (
-                f"largest difference {d[k]:.3g}{unit} at ({k[0] + 1},{k[1] + 1}): printed "
-                f"{p[k]:.{self.digits}f}, ours {o[k]:.{self.digits + 1}f}"
-            )
-        else:
-            shown = f"{self.what} = {self._fmt(p)}{unit}"
-            numbers = f"printed {self._fmt(p)} | ours {self._fmt(o, self.digits + 1)}{unit}"
-        numbers += note
-        claim = f"{shown} ({reference})."
-        if erratum is None:
-            erratum = Erratum(reference, f"{self.what} = {self._fmt(p)}",
-                              corrected or f"{self.what} = {self._fmt(o, self.digits + 1)}", why or numbers)
+        unit, k = f" {self.unit}" if self.unit else "", np.unravel_index(np.argmax(d), d.shape)
+        numbers = f"printed {_shown(p, n)} | ours {_shown(o, n + 1)}{unit}" if p.ndim < 2 else (
+            f"largest difference {d[k]:.3g}{unit} at {tuple(int(i) + 1 for i in k)}: printed {p[k]:.{n}f}, "
+            f"ours {o[k]:.{n + 1}f}")
+        claim = f"{self.what}{f' = {_shown(p, n)}{unit}' if p.ndim < 2 else ''} ({reference})."
+        erratum = erratum or Erratum(reference, f"{self.what} = {_shown(p, n)}",
+                                     corrected or f"{self.what} = {_shown(o, n + 1)}", why or numbers + note)
+        verdict = (Verdict.IDENTITY if fields.get("basis") else Verdict.HOLDS) if ok else Verdict.ERRATUM
+        m = Measure(self.measure, d.max(), self.tol if limit is None else limit, self.unit)
         row = Row(
             claim,
             reference,
             "",
-            numbers,
-            (Verdict.IDENTITY if fields.get("basis") else Verdict.HOLDS) if ok else Verdict.ERRATUM,
+            numbers + note,
+            verdict,
             id=self.id,
-            measures=(Measure(self.measure, d.max(), self.tol if limit is None else limit, self.unit),),
+            measures=(m,),
             errata=() if ok else (erratum,),
             **fields,
         )

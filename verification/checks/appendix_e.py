@@ -15,6 +15,8 @@ sigma are independent confirmations.
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 
 import iik
@@ -33,8 +35,8 @@ from ..shorthand import cos_sin
 
 _D = np.pi / 180
 EPS = 2e-3  # [m] probe distance along N0
-_DEP = ("lengths", "pinocchio", "reachability")
-SECTION = Section("Normal-acceleration boundary test (App. E, Eq 57-69)", depends_on=_DEP)
+SECTION = Section("Normal-acceleration boundary test (App. E, Eq 57-69)",
+                  depends_on=("lengths", "pinocchio", "reachability"))
 
 #: App. E as printed (mm, rad; conclusions as printed).
 PRINTED = {
@@ -103,22 +105,29 @@ def _results(ctx) -> tuple[dict, dict]:
         sides[name] = "both" if (plus and minus) else ("+N0" if plus else ("-N0" if minus else "none"))
     return res, sides
 
+
 def printed_values(ctx) -> dict:
     """The form as printed."""
     return PRINTED
 
 
-def recomputed_values(ctx) -> dict:
-    """Known-good form: our numbers, with each conclusion the ground-truth side."""
+def recomputed_values(ctx, slip: str = "") -> dict:
+    """Known-good form: our numbers, with each conclusion the ground-truth side. With ``slip`` a realistic
+    slip in them: ``"eig_h"`` the eigenvalues of H* for those of Q* (Eq 65's curvature term left out),
+    ``"dq"`` Eq 67 read the other way (-1 at a lower limit, sigma computed with it), ``"limits"`` Eq 58
+    inverted with q^U and q^L exchanged (u0 of A1 with both signs flipped)."""
     res, sides = _results(ctx)
     out = {}
     for name, d in PRINTED.items():
         r, mm = res[name], res[name].in_mm()
-        v = dict(d, N0=r.N0, eig=np.sort(mm["eig"]), conclusion=sides[name])
+        eig = _eig_h(mm) if slip == "eig_h" else np.sort(mm["eig"])
+        v = dict(d, N0=r.N0, eig=eig, conclusion=sides[name])
         if name == "A1":
-            v.update(u0=r.lam0, H=mm["H"], B=mm["B"], Q=mm["Q"])
+            v.update(u0=-r.lam0 if slip == "limits" else r.lam0, H=mm["H"], B=mm["B"], Q=mm["Q"])
         if name == "A2":
-            v.update(dq=_eq67(r), sigma=mm["sigma"])
+            sign = -1.0 if slip == "dq" else 1.0
+            v.update(dq={j: sign * x for j, x in _eq67(r).items()})
+            v.update(sigma={j: sign * x for j, x in mm["sigma"].items()})
         out[name] = v
     return out
 
@@ -131,27 +140,6 @@ def _eq67(r) -> dict:
 def _eig_h(mm: dict) -> np.ndarray:
     """The sorted eigenvalues of (the symmetric part of) H* [mm]."""
     return np.sort(np.linalg.eigvalsh(0.5 * (mm["H"] + mm["H"].T)))
-
-
-def eig_of_h_values(ctx) -> dict:
-    """A realistic slip: the eigenvalues of H* reported for those of Q* (Eq 65's curvature term left out)."""
-    res, _ = _results(ctx)
-    return {name: dict(v, eig=_eig_h(res[name].in_mm())) for name, v in recomputed_values(ctx).items()}
-
-
-def inverted_dq_values(ctx) -> dict:
-    """A realistic slip: Eq 67 read the other way (-1 at a lower limit), sigma computed with it."""
-    out = recomputed_values(ctx)
-    a2 = out["A2"]
-    out["A2"] = dict(a2, **{k: {j: -v for j, v in a2[k].items()} for k in ("dq", "sigma")})
-    return out
-
-
-def swapped_limits_values(ctx) -> dict:
-    """A realistic slip: Eq 58 inverted with q^U and q^L exchanged (u0 of A1 with both signs flipped)."""
-    out = recomputed_values(ctx)
-    out["A1"] = dict(out["A1"], u0=-np.asarray(out["A1"]["u0"]))
-    return out
 
 
 def perturbed_values(ctx) -> dict:
@@ -309,7 +297,7 @@ _H_OFF = Printed("h_offdiag", "the off-diagonal entries of H*", _ABS, "mm", _REL
 _H_DIAG = Printed("h_diag", "the diagonal of H*", _ABS, "mm", _REL, 1, "max |printed - ours| on the diagonal")
 _B = Printed("b", "B (rows (2,3) as the thesis chose)", _TOL_B, "1/mm")
 _Q = Printed("q", "Q*", _ABS, "mm", _REL, 2)
-_EIG = Printed("eig", "eig(Q*), sorted,", _ABS, "mm", _REL, 2, "max |printed - ours| (sorted)")
+_EIG = Printed("eig", "sorted eig(Q*)", _ABS, "mm", _REL, 2, "max |printed - ours| (sorted)")
 _SIGMA = Printed("sigma", "|sigma|", 1e-3, "mm", 1e-3, 4, "|printed - ours|")
 
 
@@ -526,9 +514,12 @@ def _point(name, pv, res, sides) -> Row:
         good=recomputed_values,
         good_is="our recomputed numbers, conclusions from ground truth",
         slips=(
-            Slip(SlipKind.TERM, "eig(H*) for eig(Q*) (Eq 65's curvature term left out)", eig_of_h_values),
-            Slip(SlipKind.SIGN, "Eq 67 read the other way (-1 at a lower limit)", inverted_dq_values),
-            Slip(SlipKind.LIMIT, "Eq 58 inverted with q^U and q^L exchanged", swapped_limits_values),
+            Slip(SlipKind.TERM, "eig(H*) for eig(Q*) (Eq 65's curvature term left out)",
+                 partial(recomputed_values, slip="eig_h")),
+            Slip(SlipKind.SIGN, "Eq 67 read the other way (-1 at a lower limit)",
+                 partial(recomputed_values, slip="dq")),
+            Slip(SlipKind.LIMIT, "Eq 58 inverted with q^U and q^L exchanged",
+                 partial(recomputed_values, slip="limits")),
         ),
         tolerance=Slip(SlipKind.EPSILON, "our numbers 5 % off, conclusions and step signs flipped",
                        perturbed_values),
@@ -572,17 +563,18 @@ def eq69_printed(q):
     )
 
 
-def _f1(q, L):
-    """The tool point [m] on s(1) (theta4 = theta5 = 0) with links 3-5 of length L [m]."""
+def _f1(q, L, sign: float = 1.0):
+    """The tool point [m] on s(1) (theta4 = theta5 = 0) with links 3-5 of length L [m]; ``sign`` -1: the slip
+    l1 + L s2 for l1 - L s2."""
     l1, l2 = iik.THESIS_ARM.lengths[:2]
     c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
-    return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - L * s2], 1)
+    return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - sign * L * s2], 1)
 
 
-def eq69_corrected(q):
+def eq69_corrected(q, sign: float = 1.0):
     """f(1) on s(1) (theta4 = theta5 = 0): [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5."""
     _, _, l3, l4, l5 = iik.THESIS_ARM.lengths
-    return _f1(q, l3 + l4 + l5)
+    return _f1(q, l3 + l4 + l5, sign)
 
 
 def eq69_reading(ctx, f1):
@@ -607,12 +599,6 @@ def eq69_reading(ctx, f1):
                   measure="max |f(1) - tool point| [m]")
 
 
-def _eq69_sign(q):
-    out = eq69_corrected(q)
-    out[:, 2] += 2 * float(np.sum(iik.THESIS_ARM.lengths[2:])) * np.sin(q[:, 1])
-    return out
-
-
 def _on_s1(ctx) -> Points:
     """Joint vectors [rad] uniform in Table I on s(1) (theta4 = theta5 = 0)."""
     q = ctx.rng("eq69").uniform(THESIS_ARM.q_min, THESIS_ARM.q_max, (ctx.n(400, 50), 6))
@@ -624,7 +610,7 @@ def _on_s1(ctx) -> Points:
 CHECKS = SECTION.formulas(_on_s1, Formula(
     "Eq 69 (App. E)", eq69_printed, lambda s, f: np.linalg.norm(f(s.values) - iik.fk(s.values, THESIS_ARM)[
         :, :3, 3], axis=1), 1e-12, "m", (
-        Slip(SlipKind.SIGN, "l1 + L s2 for l1 - L s2", _eq69_sign),
+        Slip(SlipKind.SIGN, "l1 + L s2 for l1 - L s2", lambda q: eq69_corrected(q, -1.0)),
         Slip(SlipKind.LENGTH, "L = l3 + l4 (l5 left out)", lambda q: _f1(q, sum(THESIS_ARM.lengths[2:4]))),
     ), good=eq69_corrected, good_is="f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
     eps_is="the good point + 1 nm", order=48.5, depends_on=EXACT_GEOMETRY, id="eq69", name="eq69_surface",

@@ -41,7 +41,6 @@ from .appendix_e import PRINTED
 from .appendix_e import SECTION as _POINTS
 
 ARM = iik.THESIS_ARM
-_D = np.pi / 180
 SECTION = Section(_POINTS.title, depends_on=("lengths", "pinocchio"), prefix="appendix_e", order=47.5)
 TOL = 1e-3  # [mm]: a formula vs its meaning (both in floating point, central differences: ~1e-5 mm)
 _ROUTE = (
@@ -104,12 +103,8 @@ def _probe(name, q0, free) -> Probe | None:
     return Probe(name, q0, tuple(free), Gq, hessian(q0), qs, qss, sp, sp.rows)
 
 
-#: The singular sets sampled besides A1, A2, A6: (name, fixed {joint: value [rad]}, free joints).
-_SETS = (
-    ("s(1)", {3: 0.0, 4: 0.0, 5: 0.0}, (1, 2)),
-    ("s(2)", {1: -160 * _D, 3: 90 * _D, 5: 0.0}, (2, 4)),
-    ("s(26)", {2: 95 * _D, 3: 0.0, 4: -119 * _D}, (1, 5)),
-)
+#: The singular sets sampled besides A1, A2, A6: each point's set (its joints but the free ones held).
+_SETS = {"s(1)": "A1", "s(2)": "A2", "s(26)": "A6"}
 
 
 class Probes(tuple):
@@ -133,11 +128,12 @@ def probes(ctx) -> Probes:
     """A1, A2, A6 and random points of s(1), s(2), s(26) (free joints uniform in Table I)."""
     out = [_probe(n, d["q0"], d["free"]) for n, d in PRINTED.items()]
     rng = ctx.rng("appendix-e-formulas")
-    for name, fixed, free in _SETS:
+    for name, at in _SETS.items():
+        q0, free = PRINTED[at]["q0"], PRINTED[at]["free"]
+        held = [j for j in range(5) if j + 1 not in free]
         for k in range(ctx.n(6, 2)):
             q = rng.uniform(ARM.q_min[:5], ARM.q_max[:5])
-            for j, v in fixed.items():
-                q[j - 1] = v
+            q[held] = q0[held]
             out.append(_probe(f"{name} #{k + 1}", q, free))
     out = [p for p in out if p is not None]
     return Probes(out, _domain(out))
@@ -272,14 +268,6 @@ def eq66_67_printed(N0, Gq, q0):
     return {j: float(N0 @ Gq[:, j - 1] * dq) for j, dq in eq67_dq(q0, ARM).items()}
 
 
-def _sigma_inverted(N0, Gq, q0):
-    return {j: -v for j, v in eq66_67_printed(N0, Gq, q0).items()}
-
-
-def _sigma_next_joint(N0, Gq, q0):
-    return {j: float(N0 @ Gq[:, j % 5] * dq) for j, dq in eq67_dq(q0, ARM).items()}
-
-
 def _limit_joints(ctx) -> Probes:
     """``(joint, probe)`` for each joint at a limit of the probes that have one (A2, A6, s(2), s(26))."""
     ps = [p for p in probes(ctx) if eq67_dq(p.q0, ARM)]
@@ -298,8 +286,10 @@ def _sigma_error(jp: tuple[int, Probe], eq66) -> float:
 
 FORMULAS |= SECTION.formulas(_limit_joints, Formula(
     "Eq 66-67", eq66_67_printed, _per_probe(_sigma_error), TOL, "mm", (
-        Slip(SlipKind.LIMIT, "dq = -1 at a lower limit, +1 at an upper one", _sigma_inverted),
-        Slip(SlipKind.OFF_BY_ONE, "G_q of the next joint", _sigma_next_joint),
+        Slip(SlipKind.LIMIT, "dq = -1 at a lower limit, +1 at an upper one",
+             lambda N0, Gq, q0: {j: -v for j, v in eq66_67_printed(N0, Gq, q0).items()}),
+        Slip(SlipKind.OFF_BY_ONE, "G_q of the next joint",
+             lambda N0, Gq, q0: {j: float(N0 @ Gq[:, j % 5] * dq) for j, dq in eq67_dq(q0, ARM).items()}),
     ), eps=None, id="eq66_67", name="eq66_67_sigma", text="sigma = N0 G_qi dq_i",
     claim="Eq 66-67: sigma = N0 G_qi dq_i, dq_i = +1 at a lower limit and -1 at an upper one, is the "
     "first-order motion of the tool along N0 when joint i leaves its limit (into Table I).",
@@ -433,45 +423,29 @@ def rule_reading(pts, rule):
     )
 
 
-@SECTION.check(
-    "Eq 68",
-    forms=Forms(
-        rule_printed,
-        rule_corrected,
-        "K-bar > 0 -> the -N0 side (K-bar is minus the normal distance's curvature)",
-        slips=(
-            Slip(SlipKind.SIGN, "K-bar > 0 -> the +N0 side (as printed)", rule_printed),
-            Slip(SlipKind.CLAIM, "always the +N0 side", lambda k: 1.0),
-        ),
-    ),
-)
-def eq68_rule(ctx, rule):
-    """Eq 68's rule: where sigma = 0, K-bar > 0 means the surface admits motion along +N0."""
-    pts = _sigma_zero_points(ctx)
-    pred, seen = _sides(pts, rule)
-    wrong = int(np.sum(pred != seen))
-    detail = "; ".join(
-        f"K-bar_{j} = {_kbar_at(p, j, eq68_printed) * 1e3:.0f} mm -> {'+' if seen[k] > 0 else '-'}N0"
-        for k, (j, p) in enumerate(pts)
+def _measured(pts, err) -> str:
+    """K-bar at each point and the side the tool goes to (the rule's row's note)."""
+    seen = _sides(pts, rule_printed)[1]
+    return "measured: " + "; ".join(
+        f"K-bar_{j} = {_kbar_at(p, j, eq68_printed) * 1e3:.0f} mm -> {'+' if s > 0 else '-'}N0"
+        for s, (j, p) in zip(seen, pts, strict=True)
     )
-    row = Row.graded(
-        "Eq 68: 'If K-bar > 0 the singular surface admits motion in the direction of N0. If K-bar < 0 the "
-        "singular surface admits motion in the opposite direction of N0.'",
-        "Eq 68",
-        "at the points where sigma_i = 0 (row eq68): the side the rule predicts from K-bar's sign vs the "
-        "side "
-        f"of the surface the tool goes to when joint i leaves its limit by {_STEP:g} rad (the sign of its "
-        "normal distance, verification.oracles.normal_distance)",
-        f"the rule is wrong at {wrong} of {len(pts)} points; measured: {detail}",
-        (Measure("points where the rule predicts the wrong side", wrong, 0),),
-        id="eq68.rule",
-        domain=f"{len(pts)} points of s(24)-s(27) where sigma_4 = 0 or sigma_2 = 0",
-        erratum=Erratum(
-            "Eq 68 (sign rule)",
-            "K-bar > 0: motion in the direction of N0; K-bar < 0: opposite",
-            "K-bar > 0: motion opposite to N0 (the tool's normal distance is about -K-bar t^2 / 2), or K-bar "
-            "with its two terms exchanged",
-            detail,
-        ),
-    )
-    return row.reread_if_erratum(lambda: rule_reading(pts, rule))
+
+
+FORMULAS |= SECTION.formulas(_sigma_zero_points, Formula(
+    "Eq 68", rule_printed, lambda pts, rule: np.not_equal(*_sides(pts, rule)), 0, "", (
+        Slip(SlipKind.SIGN, "K-bar > 0 -> the +N0 side (as printed)", rule_printed),
+        Slip(SlipKind.CLAIM, "always the +N0 side", lambda k: 1.0),
+    ), good=rule_corrected,
+    good_is="K-bar > 0 -> the -N0 side (K-bar is minus the normal distance's curvature)",
+    eps=None, id="eq68.rule", name="eq68_rule", count=True, note=_measured,
+    measure="points where the rule predicts the wrong side",
+    text="K-bar > 0: motion in the direction of N0; K-bar < 0: opposite",
+    corrected="K-bar > 0: motion opposite to N0 (the tool's normal distance is about -K-bar t^2 / 2), or "
+    "K-bar with its two terms exchanged",
+    claim="Eq 68: 'If K-bar > 0 the singular surface admits motion in the direction of N0. If K-bar < 0 the "
+    "singular surface admits motion in the opposite direction of N0.'",
+    method="at the points where sigma_i = 0 (row eq68): the side the rule predicts from K-bar's sign vs the "
+    f"side of the surface the tool goes to when joint i leaves its limit by {_STEP:g} rad (the sign of its "
+    "normal distance, verification.oracles.normal_distance)",
+    reread=lambda ctx, pts, rule: rule_reading(pts, rule)))
