@@ -264,11 +264,9 @@ def _shown(v: np.ndarray, digits: int) -> str:
 
 @dataclass(frozen=True)
 class Printed:
-    """A printed number, vector or matrix vs the same quantity recomputed (a table value), graded within the
-    printed rounding: the row holds if ``|printed - ours| <= tol + rel |ours|`` at every graded entry; its
+    """A printed number, vector or matrix (a table value) vs the same quantity recomputed, graded within the
+    printed rounding: its row holds if ``|printed - ours| <= tol + rel |ours|`` at every graded entry; the
     measure is ``max |printed - ours|`` [``unit``] against ``tol`` (or the ``limit`` given to :meth:`row`).
-    Derived: the claim, the numbers (for a matrix the entry that differs most) and the erratum (printed vs
-    ours, ``why`` its counterexample); a failing row is re-read by ``reread()`` before it stands.
 
     Attributes:
         id: Local row id. what: The quantity in words (``"N0"``). tol, unit, rel: The printed rounding
@@ -284,31 +282,29 @@ class Printed:
     measure: str = "max |printed - ours|"
 
     def row(self, reference: str, printed, ours, *, mask=None, limit: float | None = None, note: str = "",
-            why: str = "", corrected: str = "", erratum: Erratum | None = None,
-            reread: Callable | None = None, **fields) -> Row:
-        """The row of ``printed`` vs ``ours`` (the entries where ``mask`` is true, default all); ``note``
-        follows the numbers; ``fields`` go to :class:`~verification.registry.Row` (with a ``basis`` a pass
-        holds by construction)."""
+            why: str = "", reread: Callable | None = None, **fields) -> Row:
+        """The row of ``printed`` vs ``ours`` (the entries where ``mask`` is true, default all). Derived: the
+        claim, the numbers (printed and ours, for a matrix the entry that differs most; then ``note``) and the
+        erratum of a failing row (printed vs ours, ``why`` its counterexample), re-read by ``reread()``
+        before it stands. ``fields`` go to :class:`~verification.registry.Row` (with a ``basis`` a pass holds
+        by construction)."""
         p, o, n = np.asarray(printed, float), np.asarray(ours, float), self.digits
         d = np.abs(p - o) if mask is None else np.where(mask, np.abs(p - o), 0.0)
         ok = bool(np.all(d <= self.tol + self.rel * np.abs(o)))
         unit, k = f" {self.unit}" if self.unit else "", np.unravel_index(np.argmax(d), d.shape)
         numbers = f"printed {_shown(p, n)} | ours {_shown(o, n + 1)}{unit}" if p.ndim < 2 else (
             f"largest difference {d[k]:.3g}{unit} at {tuple(int(i) + 1 for i in k)}: printed {p[k]:.{n}f}, "
-            f"ours {o[k]:.{n + 1}f}")
-        claim = f"{self.what}{f' = {_shown(p, n)}{unit}' if p.ndim < 2 else ''} ({reference})."
-        erratum = erratum or Erratum(reference, f"{self.what} = {_shown(p, n)}",
-                                     corrected or f"{self.what} = {_shown(o, n + 1)}", why or numbers + note)
-        verdict = (Verdict.IDENTITY if fields.get("basis") else Verdict.HOLDS) if ok else Verdict.ERRATUM
-        m = Measure(self.measure, d.max(), self.tol if limit is None else limit, self.unit)
+            f"ours {o[k]:.{n + 1}f}") + note
+        erratum = Erratum(reference, f"{self.what} = {_shown(p, n)}", f"{self.what} = {_shown(o, n + 1)}",
+                          why or numbers)
         row = Row(
-            claim,
+            f"{self.what}{f' = {_shown(p, n)}{unit}' if p.ndim < 2 else ''} ({reference}).",
             reference,
             "",
-            numbers + note,
-            verdict,
+            numbers,
+            (Verdict.IDENTITY if fields.get("basis") else Verdict.HOLDS) if ok else Verdict.ERRATUM,
             id=self.id,
-            measures=(m,),
+            measures=(Measure(self.measure, d.max(), self.tol if limit is None else limit, self.unit),),
             errata=() if ok else (erratum,),
             **fields,
         )

@@ -325,8 +325,8 @@ def _a1(pv, r) -> list[Row]:
             pv["u0"],
             r.lam0,
             note=" (Eq 58 inverted at q0)",
-            corrected=f"u0 = {fmt_vec(r.lam0)} (Eq 58 inverted at theta1 = -7 pi/9: sin(lambda1) = -140/160)",
-            why=f"q1(lambda = +1.0654) = {np.degrees(2.7925 * np.sin(1.0654)):.1f} deg, not -140 deg",
+            why=f"q1(lambda = +1.0654) = {np.degrees(2.7925 * np.sin(1.0654)):.1f} deg, not -140 deg (Eq 58 "
+            "inverted at theta1 = -7 pi/9: sin(lambda1) = -140/160)",
             reread=lambda: reading_u0(pv),
         ),
         _n0("A1", pv, r),
@@ -335,14 +335,9 @@ def _a1(pv, r) -> list[Row]:
             pv["H"],
             mm["H"],
             mask=off,
-            erratum=Erratum(
-                "App. E, A1, H*(4,2)",
-                "H*(4,2) = +1703 (with H*(2,4) = -1703)",
-                f"H*(4,2) = H*(2,4) = {mm['H'][3, 1]:.1f} (a Hessian-based quadratic form: symmetric)",
-                f"Eq 61 at q0 = {fmt_vec(r.q0)} rad gives H*(2,4) = {mm['H'][1, 3]:.2f}, H*(4,2) = "
-                f"{mm['H'][3, 1]:.2f} mm; only the symmetric value reproduces the printed Q*(2,4) = Q*(4,2) "
-                "= 0",
-            ),
+            why=f"H*(4,2) = +1703 is printed with H*(2,4) = -1703; Eq 61 at q0 = {fmt_vec(r.q0)} rad gives "
+            f"H*(2,4) = {mm['H'][1, 3]:.2f}, H*(4,2) = {mm['H'][3, 1]:.2f} mm (a Hessian-based quadratic "
+            "form: symmetric); only the symmetric value reproduces the printed Q*(2,4) = Q*(4,2) = 0",
             reread=lambda: reading_h(pv, off, "the off-diagonal entries of H* as printed (H*(4,2) = +1703)"),
         ),
         _H_DIAG.row(

@@ -176,10 +176,9 @@ def eq58_parameterisation(ctx, eq58):
     """Eq 58: lambda in [-pi/2, pi/2] maps onto Table I; q_s = (qU - qL)/2 cos(lambda) is its derivative."""
     lo, hi = ARM.q_min[:5], ARM.q_max[:5]
     lam = np.concatenate([[-np.pi / 2, np.pi / 2], np.linspace(-np.pi / 2, np.pi / 2, ctx.n(201, 21))])
-    q = np.array([eq58(lo, hi, v) for v in lam])  # (m, 5)
+    q, h = eq58(lo, hi, lam[:, None]), 1e-6  # (m, 5)
     ends = max(np.abs(q[0] - lo).max(), np.abs(q[1] - hi).max())
-    h = 1e-6
-    fd = np.array([(eq58(lo, hi, v + h) - eq58(lo, hi, v - h)) / (2 * h) for v in lam])
+    fd = (eq58(lo, hi, lam[:, None] + h) - eq58(lo, hi, lam[:, None] - h)) / (2 * h)
     d_qs = np.abs(fd - (hi - lo) / 2 * np.cos(lam)[:, None]).max()  # vs q_s = (qU - qL)/2 cos(lambda)
     inside = np.all((q >= lo - 1e-12) & (q <= hi + 1e-12))
     return Row.graded(
@@ -354,22 +353,6 @@ def _kbar_at(p: Probe, j: int, form) -> float:
     return float(form(p.Gq[:, j - 1], eq63_b(p.f_u, p.rows), p.nf_uu(), NG_qq[j - 1, j - 1]))
 
 
-FORMULAS.update(SECTION.formulas(
-    _sigma_zero_points,
-    Formula("Eq 68", eq68_printed, lambda pts, f: np.array(
-        [abs(_kbar_at(p, j, f) - p.meaning("kbar", j, p.rows)) * 1e3 for j, p in pts]), TOL, "mm", (
-        Slip(SlipKind.SIGN, "the two terms of Eq 68 exchanged",
-             lambda g, B, Nf, NG: -eq68_kbar(g, B, Nf, NG)),
-        Slip(SlipKind.TERM, "without the G_qi^T B^T [N0 G]_uu B G_qi term", lambda g, B, Nf, NG: float(-NG)),
-    ), eps=1e-6, text="K-bar = ...",
-        method="Eq 68 as printed (Pinocchio) vs the second derivative of the normal distance phi along "
-        "joint i alone (verification.oracles.normal_distance), at the points where sigma_i = 0",
-        note=lambda pts, err: "K-bar = "
-        + ", ".join(f"{_kbar_at(p, j, eq68_printed) * 1e3:.1f}" for j, p in pts) + " mm",
-        measure="max |K-bar of Eq 68 - (-d2 phi/dq_i^2)|"),
-))
-
-
 def rule_printed(kbar: float) -> float:
     """The printed rule: K-bar > 0 -> motion along +N0 (+1), K-bar < 0 -> along -N0 (-1)."""
     return float(np.sign(kbar))
@@ -432,20 +415,33 @@ def _measured(pts, err) -> str:
     )
 
 
-FORMULAS |= SECTION.formulas(_sigma_zero_points, Formula(
-    "Eq 68", rule_printed, lambda pts, rule: np.not_equal(*_sides(pts, rule)), 0, "", (
+FORMULAS |= SECTION.formulas(
+    _sigma_zero_points,
+    Formula("Eq 68", eq68_printed, lambda pts, f: np.array(
+        [abs(_kbar_at(p, j, f) - p.meaning("kbar", j, p.rows)) * 1e3 for j, p in pts]), TOL, "mm", (
+        Slip(SlipKind.SIGN, "the two terms of Eq 68 exchanged",
+             lambda g, B, Nf, NG: -eq68_kbar(g, B, Nf, NG)),
+        Slip(SlipKind.TERM, "without the G_qi^T B^T [N0 G]_uu B G_qi term", lambda g, B, Nf, NG: float(-NG)),
+    ), eps=1e-6, text="K-bar = ...",
+        method="Eq 68 as printed (Pinocchio) vs the second derivative of the normal distance phi along "
+        "joint i alone (verification.oracles.normal_distance), at the points where sigma_i = 0",
+        note=lambda pts, err: "K-bar = "
+        + ", ".join(f"{_kbar_at(p, j, eq68_printed) * 1e3:.1f}" for j, p in pts) + " mm",
+        measure="max |K-bar of Eq 68 - (-d2 phi/dq_i^2)|"),
+    Formula("Eq 68", rule_printed, lambda pts, rule: np.not_equal(*_sides(pts, rule)), 0, "", (
         Slip(SlipKind.SIGN, "K-bar > 0 -> the +N0 side (as printed)", rule_printed),
         Slip(SlipKind.CLAIM, "always the +N0 side", lambda k: 1.0),
     ), good=rule_corrected,
-    good_is="K-bar > 0 -> the -N0 side (K-bar is minus the normal distance's curvature)",
-    eps=None, id="eq68.rule", name="eq68_rule", count=True, note=_measured,
-    measure="points where the rule predicts the wrong side",
-    text="K-bar > 0: motion in the direction of N0; K-bar < 0: opposite",
-    corrected="K-bar > 0: motion opposite to N0 (the tool's normal distance is about -K-bar t^2 / 2), or "
-    "K-bar with its two terms exchanged",
-    claim="Eq 68: 'If K-bar > 0 the singular surface admits motion in the direction of N0. If K-bar < 0 the "
-    "singular surface admits motion in the opposite direction of N0.'",
-    method="at the points where sigma_i = 0 (row eq68): the side the rule predicts from K-bar's sign vs the "
-    f"side of the surface the tool goes to when joint i leaves its limit by {_STEP:g} rad (the sign of its "
-    "normal distance, verification.oracles.normal_distance)",
-    reread=lambda ctx, pts, rule: rule_reading(pts, rule)))
+        good_is="K-bar > 0 -> the -N0 side (K-bar is minus the normal distance's curvature)",
+        eps=None, id="eq68.rule", name="eq68_rule", count=True, note=_measured,
+        measure="points where the rule predicts the wrong side",
+        text="K-bar > 0: motion in the direction of N0; K-bar < 0: opposite",
+        corrected="K-bar > 0: motion opposite to N0 (the tool's normal distance is about -K-bar t^2 / 2), or "
+        "K-bar with its two terms exchanged",
+        claim="Eq 68: 'If K-bar > 0 the singular surface admits motion in the direction of N0. If K-bar < 0 "
+        "the singular surface admits motion in the opposite direction of N0.'",
+        method="at the points where sigma_i = 0 (row eq68): the side the rule predicts from K-bar's sign vs "
+        f"the side of the surface the tool goes to when joint i leaves its limit by {_STEP:g} rad (the sign "
+        "of its normal distance, verification.oracles.normal_distance)",
+        reread=lambda ctx, pts, rule: rule_reading(pts, rule)),
+)
