@@ -292,13 +292,17 @@ class Printed:
         d = np.abs(p - o) if mask is None else np.where(mask, np.abs(p - o), 0.0)
         ok = bool(np.all(d <= self.tol + self.rel * np.abs(o)))
         unit, k = f" {self.unit}" if self.unit else "", np.unravel_index(np.argmax(d), d.shape)
-        numbers = f"printed {_shown(p, n)} | ours {_shown(o, n + 1)}{unit}" if p.ndim < 2 else (
-            f"largest difference {d[k]:.3g}{unit} at {tuple(int(i) + 1 for i in k)}: printed {p[k]:.{n}f}, "
-            f"ours {o[k]:.{n + 1}f}") + note
-        erratum = Erratum(reference, f"{self.what} = {_shown(p, n)}", f"{self.what} = {_shown(o, n + 1)}",
-                          why or numbers)
+        if p.ndim < 2:
+            what, mine, theirs = self.what, _shown(p, n), _shown(o, n + 1)
+            numbers = f"printed {mine} | ours {theirs}{unit}{note}"
+        else:  # a matrix: the entry that differs most; the whole matrices in the report's appendix
+            what = f"{self.what}, entry {tuple(int(i) + 1 for i in k)}"
+            mine, theirs = f"{p[k]:.{n}f}", f"{o[k]:.{n + 1}f}"
+            numbers = f"largest difference {d[k]:.3g}{unit} at {what}: printed {mine}, ours {theirs}{note}"
+            fields.setdefault("appendix", f"printed: {fmt_matrix(p, n)}\nours:    {fmt_matrix(o, n + 1)}")
+        erratum = Erratum(reference, f"{what} = {mine}", f"{what} = {theirs}", why or numbers)
         row = Row(
-            f"{self.what}{f' = {_shown(p, n)}{unit}' if p.ndim < 2 else ''} ({reference}).",
+            f"{self.what}{f' = {mine}{unit}' if p.ndim < 2 else ''} ({reference}).",
             reference,
             "",
             numbers,
