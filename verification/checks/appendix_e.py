@@ -38,7 +38,7 @@ EPS = 2e-3  # [m] probe distance along N0
 SECTION = Section("Normal-acceleration boundary test (App. E, Eq 57-69)",
                   depends_on=("lengths", "pinocchio", "reachability"))
 
-#: App. E as printed (mm, rad; conclusions as printed).
+#: App. E as printed (mm, rad; conclusions as printed; each point's claim and reference for its row).
 PRINTED = {
     "A1": dict(
         q0=np.array([-7 * np.pi / 9, 0, 0, 0, 0]),
@@ -59,6 +59,9 @@ PRINTED = {
         Q=np.array([[0, 0, 0, 0, 0]] * 3 + [[0, 0, 0, 825.96, 497.45], [0, 0, 0, 497.45, 754.25]], float),
         eig=np.array([0, 0, 0, 291.4, 1288.9]),
         conclusion="+N0",
+        claim="A1 on f(1) (s(1)): u0, N0, H*, B, Q*, eig(Q*) as printed; Q* semi-positive definite, so the "
+        "normal acceleration is admissible only along +N0 (f(1) is a boundary there).",
+        ref="App. E, point A1 (Eq 58-65)",
     ),
     "A2": dict(
         q0=np.array([-160 * _D, np.pi / 12, 90 * _D, -np.pi / 3, 0]),
@@ -69,6 +72,9 @@ PRINTED = {
         dq={1: -1.0},
         sigma={1: 389.2341},
         conclusion="+N0",
+        claim="A2 on f(2) (s(2)): joint 1 at its limit, Q* positive definite, sigma = 389.2341 has the sign "
+        "of the eigenvalues, so motion only along +N0 (f(2) is a boundary there).",
+        ref="App. E, point A2 (Eq 59-67)",
     ),
     "A6": dict(
         q0=np.array([0, 95 * _D, 0, -119 * _D, np.pi / 3]),
@@ -77,6 +83,8 @@ PRINTED = {
         N0=np.array([-0.698, 0, -0.9976]),
         eig=np.array([-83.2630, 91.8674, 295.45, 314.77, 852.52]),
         conclusion="both",
+        claim="A6 on f(26): Q* indefinite, so the surface admits motion both ways (not a boundary).",
+        ref="App. E, point A6 (Eq 59-68)",
     ),
 }
 #: A2 read with theta1 at its upper limit (+160 deg): the reading that reproduces its N0, delta q1 and sigma.
@@ -126,15 +134,10 @@ def recomputed_values(ctx, slip: str = "") -> dict:
             v.update(u0=-r.lam0 if slip == "limits" else r.lam0, H=mm["H"], B=mm["B"], Q=mm["Q"])
         if name == "A2":
             sign = -1.0 if slip == "dq" else 1.0
-            v.update(dq={j: sign * x for j, x in _eq67(r).items()})
+            v.update(dq={j: sign * x for j, x in eq67_dq(r.q0).items()})
             v.update(sigma={j: sign * x for j, x in mm["sigma"].items()})
         out[name] = v
     return out
-
-
-def _eq67(r) -> dict:
-    """Eq 67's steps at our point ``r``: +1 at a lower limit, -1 at an upper one."""
-    return {j: (1.0 if b == "lower" else -1.0) for j, b in r.at_limit}
 
 
 def _eig_h(mm: dict) -> np.ndarray:
@@ -370,7 +373,7 @@ def _eig(name, pv, mm) -> Row:
 
 def _sigma(pv, r, side) -> list[Row]:
     """A2's sigma (Eq 66, with the printed step) and its step delta q1 (Eq 67)."""
-    mm, eq67 = r.in_mm(), _eq67(r)
+    mm, eq67 = r.in_mm(), eq67_dq(r.q0)
     # Eq 66 with the printed step: sigma = N0 . G_q1 * (printed delta q1)
     s_ours = mm["sigma"][1] * pv["dq"].get(1, 0.0) / eq67[1]
     return [
@@ -414,25 +417,6 @@ def _conclusion(name, pv, side, r, note: str = "") -> Row:
         reason="ground truth disagrees",
         id="conclusion",
     )
-
-
-#: Each point's row: its claim and reference (App. E).
-_CLAIMS = {
-    "A1": (
-        "A1 on f(1) (s(1)): u0, N0, H*, B, Q*, eig(Q*) as printed; Q* semi-positive definite, so the "
-        "normal acceleration is admissible only along +N0 (f(1) is a boundary there).",
-        "App. E, point A1 (Eq 58-65)",
-    ),
-    "A2": (
-        "A2 on f(2) (s(2)): joint 1 at its limit, Q* positive definite, sigma = 389.2341 has the sign "
-        "of the eigenvalues, so motion only along +N0 (f(2) is a boundary there).",
-        "App. E, point A2 (Eq 59-67)",
-    ),
-    "A6": (
-        "A6 on f(26): Q* indefinite, so the surface admits motion both ways (not a boundary).",
-        "App. E, point A6 (Eq 59-68)",
-    ),
-}
 
 
 def _appendix(name, pv, r) -> str:
@@ -479,7 +463,8 @@ def _point(name, pv, res, sides) -> Row:
     wrong = [d.id for d in details if not d.verdict.passes]
     slips = [d for d in details if d.verdict is Verdict.INPUT_SLIP]
     return Row(
-        *_CLAIMS[name],
+        PRINTED[name]["claim"],
+        PRINTED[name]["ref"],
         "every printed quantity vs the same quantity recomputed with Pinocchio (Eq 58-68 by "
         "verification.oracles.abdel_malek; Hessians by central differences), within the printed "
         f"rounding (N0, u0 {_TOL_UNIT:g}; B {_TOL_B:g} 1/mm; mm values {_REL:.1%} + {_ABS} mm); the "

@@ -307,41 +307,34 @@ def _sigma_zero_points(ctx) -> Probes:
     sets = [(t2, t4) for t2 in (ARM.q_min[1], ARM.q_max[1]) for t4 in (ARM.q_min[3], ARM.q_max[3])]
     for t2, t4 in sets[: ctx.n(4, 2)]:
         t1 = rng.uniform(ARM.q_min[0], ARM.q_max[0])
-
-        def q_at(t5, t2=t2, t4=t4, t1=t1):
-            return np.array([t1, t2, 0.0, t4, t5])
-
-        out.append(("sigma_4", q_at(0.0)))
-        grid = np.linspace(ARM.q_min[4] + 1e-3, ARM.q_max[4] - 1e-3, 241)
-        vals = _s2_grid(q_at, grid)
-        for k in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
-            a, b = grid[k], grid[k + 1]
-            for _ in range(50):
-                c = 0.5 * (a + b)
-                a, b = (c, b) if np.prod(np.sign(_s2_grid(q_at, [a, c]))) > 0 else (a, c)
-            out.append(("sigma_2", q_at(0.5 * (a + b))))
-    res = []
-    for which, q in out:
-        p = _probe(f"s(24-27) {which} = 0 at {fmt_vec(np.degrees(q), 1)} deg", q, (1, 5))
-        j = int(which[-1])
-        # a sign change of the unnormalised normal through zero (tangents parallel) is not a root of sigma
-        if p is not None and abs(p.sp.sigma(j, 1.0)) < 1e-7:
-            res.append((j, p))
-    return Probes(res, f"{len(res)} points of s(24)-s(27) (theta2, theta4 at limits, theta3 = 0) where "
+        for j, t5 in [(4, 0.0)] + [(2, t5) for t5 in _sigma2_roots(t1, t2, t4)]:
+            q = np.array([t1, t2, 0.0, t4, t5])
+            p = _probe(f"s(24-27) sigma_{j} = 0 at {fmt_vec(np.degrees(q), 1)} deg", q, (1, 5))
+            # a sign change of the unnormalised normal through zero (tangents parallel) is not a root of sigma
+            if p is not None and abs(p.sp.sigma(j, 1.0)) < 1e-7:
+                out.append((j, p))
+    return Probes(out, f"{len(out)} points of s(24)-s(27) (theta2, theta4 at limits, theta3 = 0) where "
                   "sigma_4 = 0 (theta5 = 0) or sigma_2 = 0 (roots in theta5), theta1 random in Table I")
 
 
-def _s2_grid(q_at, grid) -> np.ndarray:
-    """The unnormalised normal (f_theta1 x f_theta5) dotted with G_q2 on a theta5 grid (continuous in
-    theta5, unlike the unit normal)."""
-    q = np.array([q_at(t) for t in grid])
+def _sigma2_roots(t1: float, t2: float, t4: float) -> list[float]:
+    """The theta5 [rad] in Table I where the unnormalised normal (f_theta1 x f_theta5) is orthogonal to G_q2
+    at [t1, t2, 0, t4, theta5] (a grid, then bisection; continuous in theta5, unlike the unit normal)."""
 
-    def d(j):
-        e = np.zeros(5)
-        e[j] = 1e-6
-        return (tool_point(q + e) - tool_point(q - e)) / 2e-6
+    def s2(t5) -> np.ndarray:
+        q = np.array([[t1, t2, 0.0, t4, t] for t in np.atleast_1d(t5)])
+        d = [(tool_point(q + e) - tool_point(q - e)) / 2e-6 for e in np.eye(5)[[0, 4, 1]] * 1e-6]
+        return np.einsum("ni,ni->n", np.cross(d[0], d[1]), d[2])
 
-    return np.einsum("ni,ni->n", np.cross(d(0), d(4)), d(1))
+    grid = np.linspace(ARM.q_min[4] + 1e-3, ARM.q_max[4] - 1e-3, 241)
+    vals, out = s2(grid), []
+    for k in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
+        a, b = grid[k], grid[k + 1]
+        for _ in range(50):
+            c = 0.5 * (a + b)
+            a, b = (c, b) if np.prod(np.sign(s2([a, c]))) > 0 else (a, c)
+        out.append(0.5 * (a + b))
+    return out
 
 
 #: Eq 68 as printed (verification.oracles.abdel_malek).
