@@ -258,15 +258,15 @@ def per_run(func: Callable) -> Callable:
 
 # --- added in r6
 def _shown(v: np.ndarray, digits: int) -> str:
-    """A scalar, vector or matrix with ``digits`` decimals."""
-    return fmt_matrix(v, digits) if v.ndim == 2 else (fmt_vec(v, digits) if v.ndim else f"{v:.{digits}f}")
+    """A scalar or a vector with ``digits`` decimals."""
+    return fmt_vec(v, digits) if v.ndim else f"{v:.{digits}f}"
 
 
 @dataclass(frozen=True)
 class Printed:
     """A printed number, vector or matrix (a table value) vs the same quantity recomputed, graded within the
-    printed rounding: its row holds if ``|printed - ours| <= tol + rel |ours|`` at every graded entry; the
-    measure is ``max |printed - ours|`` [``unit``] against ``tol`` (or the ``limit`` given to :meth:`row`).
+    printed rounding: its row holds if ``|printed - ours| <= tol + rel |ours|`` at every entry; the measure
+    is ``max |printed - ours|`` [``unit``] against ``tol`` (or the ``limit`` given to :meth:`row`).
 
     Attributes:
         id: Local row id. what: The quantity in words (``"N0"``). tol, unit, rel: The printed rounding
@@ -281,21 +281,21 @@ class Printed:
     digits: int = 4
     measure: str = "max |printed - ours|"
 
-    def row(self, reference: str, printed, ours, *, mask=None, limit: float | None = None, note: str = "",
-            why: str = "", reread: Callable | None = None, **fields) -> Row:
-        """The row of ``printed`` vs ``ours`` (the entries where ``mask`` is true, default all). Derived: the
-        claim, the numbers (printed and ours, for a matrix the entry that differs most; then ``note``) and the
-        erratum of a failing row (printed vs ours, ``why`` its counterexample), re-read by ``reread()``
-        before it stands. ``fields`` go to :class:`~verification.registry.Row` (with a ``basis`` a pass holds
-        by construction)."""
+    def row(self, reference: str, printed, ours, *, limit: float | None = None, note: str = "", why: str = "",
+            reread: Callable | None = None, **fields) -> Row:
+        """The row of ``printed`` vs ``ours``. Derived: the claim, the numbers (printed and ours; of a matrix
+        the entry that differs most, the whole in the row's appendix; then ``note``) and the erratum of a
+        failing row (printed vs ours, ``why`` its counterexample), re-read by ``reread()`` before it stands.
+        ``fields`` go to :class:`~verification.registry.Row` (with a ``basis``: a pass holds by
+        construction)."""
         p, o, n = np.asarray(printed, float), np.asarray(ours, float), self.digits
-        d = np.abs(p - o) if mask is None else np.where(mask, np.abs(p - o), 0.0)
+        d, unit = np.abs(p - o), f" {self.unit}" if self.unit else ""
         ok = bool(np.all(d <= self.tol + self.rel * np.abs(o)))
-        unit, k = f" {self.unit}" if self.unit else "", np.unravel_index(np.argmax(d), d.shape)
         if p.ndim < 2:
             what, mine, theirs = self.what, _shown(p, n), _shown(o, n + 1)
             numbers = f"printed {mine} | ours {theirs}{unit}{note}"
-        else:  # a matrix: the entry that differs most; the whole matrices in the report's appendix
+        else:
+            k = np.unravel_index(np.argmax(d), d.shape)
             what = f"{self.what}, entry {tuple(int(i) + 1 for i in k)}"
             mine, theirs = f"{p[k]:.{n}f}", f"{o[k]:.{n + 1}f}"
             numbers = f"largest difference {d[k]:.3g}{unit} at {what}: printed {mine}, ours {theirs}{note}"

@@ -335,9 +335,8 @@ def _a1(pv, r) -> list[Row]:
         _n0("A1", pv, r),
         _H_OFF.row(
             "App. E, A1, Eq 61",
-            pv["H"],
-            mm["H"],
-            mask=off,
+            np.where(off, pv["H"], 0.0),
+            np.where(off, mm["H"], 0.0),
             why=f"H*(4,2) = +1703 is printed with H*(2,4) = -1703; Eq 61 at q0 = {fmt_vec(r.q0)} rad gives "
             f"H*(2,4) = {mm['H'][1, 3]:.2f}, H*(4,2) = {mm['H'][3, 1]:.2f} mm (a Hessian-based quadratic "
             "form: symmetric); only the symmetric value reproduces the printed Q*(2,4) = Q*(4,2) = 0",
