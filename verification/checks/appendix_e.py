@@ -346,7 +346,6 @@ def _a1(pv, r) -> list[Row]:
             "App. E, A1, Eq 61",
             np.diagonal(pv["H"]),
             mm["H"].diagonal(),
-            note=": CIRCULAR, l2..l5 were fitted to these four numbers",
             depends_on=("lengths-circular", "pinocchio"),
             basis="circular: l2..l5 were recovered from these four numbers (docs/ARM.md), so they agree by "
             "construction",
@@ -418,25 +417,24 @@ def _conclusion(name, pv, side, r, note: str = "") -> Row:
     )
 
 
-def _appendix(name, pv, r) -> str:
-    """The point's long numbers (for the report's appendix)."""
+#: Remarks on a point, after its numbers in the report's appendix.
+_REMARKS = {
+    "A1": "The text says Q* is semi-definite only when a joint is at a limit; at A1 no joint is at a limit "
+    "and Q* still has three zero eigenvalues (th1, th2 move along the surface; th3 does not move the tool).",
+    "A2": "A2's th4 = -60 deg is also outside the printed range of f(3) (th4 in [-41, 0]).",
+}
+
+
+def _appendix(name, r) -> str:
+    """The point's long numbers (for the report's appendix): our Q*, sigma and K-bar (Eq 66, 68) [mm]."""
     mm = r.in_mm()
-    head = f"{name}, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\n"
-    if name == "A1":
-        return head + (
-            "H*, B and Q* printed and ours: in the appendix of their rows (a1.h_offdiag, a1.b, a1.q).\n"
-            "The text says Q* is semi-definite only when a joint is at a limit; at A1 no joint is at a limit "
-            "and Q* still has three zero eigenvalues (th1, th2 move along the surface; th3 does not move the "
-            "tool)."
-        )
-    if name == "A2":
-        return head + (
-            f"Q* ours: {fmt_matrix(mm['Q'], 1)}\nK-bar (Eq 68): {mm['kbar']}; A2's th4 = -60 deg is also "
-            "outside the printed range of f(3) (th4 in [-41, 0])"
-        )
-    sigma = ", ".join(f"th{j}: {v:.2f}" for j, v in mm["sigma"].items())
-    kbar = ", ".join(f"th{j}: {v:.1f}" for j, v in mm["kbar"].items())
-    return head + f"Q* ours: {fmt_matrix(mm['Q'], 2)}\nsigma: {sigma} mm; K-bar (Eq 68): {kbar} mm"
+    sigma = ", ".join(f"th{j}: {v:.2f}" for j, v in mm["sigma"].items()) or "-"
+    kbar = ", ".join(f"th{j}: {v:.1f}" for j, v in mm["kbar"].items()) or "-"
+    return (
+        f"{name}, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\n"
+        f"Q* ours: {fmt_matrix(mm['Q'], 2)}\nsigma: {sigma} mm; K-bar (Eq 68): {kbar} mm\n"
+        + _REMARKS.get(name, "")
+    ).rstrip()
 
 
 #: The worst verdict of a point's details first: its row's verdict.
@@ -476,7 +474,7 @@ def _point(name, pv, res, sides) -> Row:
         details=tuple(details),
         domain=f"the printed point {name} (q0 as stated) and its +-{EPS * 1e3:.0f} mm probes along N0",
         errata=tuple(e for d in details for e in d.errata),
-        appendix=_appendix(name, pv, r),
+        appendix=_appendix(name, r),
         second_reading=slips[0].second_reading if verdict is Verdict.INPUT_SLIP else None,
         reason="the printed conclusion disagrees with ground truth"
         if verdict is Verdict.DOES_NOT_HOLD
@@ -557,10 +555,7 @@ def eq69_corrected(q, sign: float = 1.0):
 def eq69_reading(ctx, f1):
     """Second reading of Eq 69 (the form): which singular set's surface it is. The tool point of the Table II
     chain (iik.dh) with each pair of joints held at 0, the others uniform in Table I, vs the form."""
-    rng = ctx.rng("eq69-reading")
-    arm = iik.THESIS_ARM
-    q = rng.uniform(arm.q_min, arm.q_max, (ctx.n(200, 40), 6))
-    stated = {"pair": (4, 5)}
+    q = ctx.rng("eq69-reading").uniform(THESIS_ARM.q_min, THESIS_ARM.q_max, (ctx.n(200, 40), 6))
 
     def misfit(x) -> float:
         qq = q.copy()
@@ -569,7 +564,7 @@ def eq69_reading(ctx, f1):
 
     pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != (4, 5)]
     readings = choices(Kind.WHICH, "pair", {f"the set [theta{p[0]} = 0, theta{p[1]} = 0]": p for p in pairs})
-    return search(stated, readings, misfit, 1e-12,
+    return search({"pair": (4, 5)}, readings, misfit, 1e-12,
         printed="f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; ...; "
                   "l5 c3 s5 + l1]", stated_text="s(1) = [theta4 = 0, theta5 = 0] (App. E, Table VI)",
                   route="the tool point of the Table II chain by iik.dh with the pair held at 0",
