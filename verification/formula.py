@@ -257,11 +257,6 @@ def per_run(func: Callable) -> Callable:
 
 
 # --- added in r6
-def _shown(v: np.ndarray, digits: int) -> str:
-    """A scalar or a vector with ``digits`` decimals."""
-    return fmt_vec(v, digits) if v.ndim else f"{v:.{digits}f}"
-
-
 @dataclass(frozen=True)
 class Printed:
     """A printed number, vector or matrix (a table value) vs the same quantity recomputed, graded within the
@@ -292,7 +287,7 @@ class Printed:
         d, unit = np.abs(p - o), f" {self.unit}" if self.unit else ""
         ok = bool(np.all(d <= self.tol + self.rel * np.abs(o)))
         if p.ndim < 2:
-            what, mine, theirs = self.what, _shown(p, n), _shown(o, n + 1)
+            what, mine, theirs = self.what, fmt_vec(p, n), fmt_vec(o, n + 1)
             numbers = f"printed {mine} | ours {theirs}{unit}{note}"
         else:
             k = np.unravel_index(np.argmax(d), d.shape)
