@@ -34,11 +34,11 @@ from typing import Any
 
 import numpy as np
 
-from .numbers import fmt_vec, worst
+from .numbers import fmt_matrix, fmt_vec, worst
 from .registry import Erratum, Forms, Measure, Row, Slip, Verdict, epsilon
 from .thesis_index import title_of
 
-__all__ = ["Formula", "Points", "error_row", "RIGHT", "per_run", "nudged"]
+__all__ = ["Formula", "Points", "Printed", "error_row", "RIGHT", "per_run", "nudged"]
 
 #: What the good form is when the printed one is right.
 RIGHT = "the printed form (it is right)"
@@ -86,20 +86,22 @@ def error_row(
     scale: tuple[str, np.ndarray] | None = None,
     measure: str = "max |form - truth|",
     domain: str = "",
+    count: bool = False,
 ) -> Row:
     """A row graded on ``max |err| <= tol`` [``unit``] over ``sample`` (NaN counts as infinite).
 
     With ``scale = (name, x)`` it is graded on ``max |err| |x|`` (the conditioning of a division by x). A
     failing row is an erratum (printed form, ``corrected``, the worst sample as counterexample), or with
     ``fail`` DOES_NOT_HOLD a refutation naming the worst sample; with ``basis`` (why it is an identity) a
-    passing row holds by construction. The numbers are the measure and ``note``."""
+    passing row holds by construction; with ``count`` it is graded on the number of samples where ``|err| >
+    tol`` (limit 0). The numbers are the measure and ``note``."""
     raw = np.abs(np.asarray(err, float))
     if scale is not None:
         measure += f" x |{scale[0]}|"
         raw_scaled = np.where(np.isnan(raw), np.inf, raw) * np.abs(scale[1])
     graded = raw if scale is None else raw_scaled
     w, k = worst(graded) if len(graded) else (0.0, 0)
-    m = Measure(measure, w, tol, unit)
+    m = Measure(measure, np.sum(~(graded <= tol)), 0, unit) if count else Measure(measure, w, tol, unit)
     numbers = f"{m} over {len(graded)} samples"
     if scale is not None:
         at = np.abs(scale[1][int(np.argmax(raw))])
@@ -156,6 +158,7 @@ class Formula:
         name: The check function's name; default: the id.
         depends_on: Assumptions of the row, if not the section's.
         order: The check's place in its section, if not the key's (a number, as for ``SECTION.check``).
+        count: Grade the number of samples where ``|error| > tol`` (limit 0), not ``max |error|``.
     """
 
     key: str
@@ -182,6 +185,7 @@ class Formula:
     name: str = ""
     depends_on: tuple[str, ...] | None = None
     order: float | None = None
+    count: bool = False
 
     @property
     def rid(self) -> str:
@@ -217,6 +221,7 @@ class Formula:
             basis=self.basis,
             scale=None if self.scale is None else (self.scale[0], self.scale[1](sample)),
             measure=self.measure,
+            count=self.count,
         )
 
     def check(self, sample_of: Callable) -> Callable:
@@ -269,3 +274,57 @@ def nudged(form: Callable, eps: float, at: tuple[int, ...] = ()) -> Callable:
         return v
 
     return lambda *args, **kwargs: move(form(*args, **kwargs))
+
+
+# --- added in r6
+@dataclass(frozen=True)
+class Printed:
+    """A printed number, vector or matrix (a table value) vs the same quantity recomputed, graded within the
+    printed rounding: its row holds if ``|printed - ours| <= tol + rel |ours|`` at every entry; the measure
+    is ``max |printed - ours|`` [``unit``] against ``tol`` (or the ``limit`` given to :meth:`row`).
+
+    Attributes:
+        id: Local row id. what: The quantity in words (``"N0"``). tol, unit, rel: The printed rounding
+            (absolute [``unit``], and a share of ``|ours|``). digits: Decimals shown. measure: Its name.
+    """
+
+    id: str
+    what: str
+    tol: float
+    unit: str = ""
+    rel: float = 0.0
+    digits: int = 4
+    measure: str = "max |printed - ours|"
+
+    def row(self, reference: str, printed, ours, *, limit: float | None = None, note: str = "", why: str = "",
+            reread: Callable | None = None, **fields) -> Row:
+        """The row of ``printed`` vs ``ours``. Derived: the claim, the numbers (printed and ours; of a matrix
+        the entry that differs most, the whole in the row's appendix; then ``note``) and the erratum of a
+        failing row (printed vs ours, ``why`` its counterexample), re-read by ``reread()`` before it stands.
+        ``fields`` go to :class:`~verification.registry.Row` (with a ``basis``: a pass holds by
+        construction)."""
+        p, o, n = np.asarray(printed, float), np.asarray(ours, float), self.digits
+        d, unit = np.abs(p - o), f" {self.unit}" if self.unit else ""
+        ok = bool(np.all(d <= self.tol + self.rel * np.abs(o)))
+        if p.ndim < 2:
+            what, mine, theirs = self.what, fmt_vec(p, n), fmt_vec(o, n + 1)
+            numbers = f"printed {mine} | ours {theirs}{unit}{note}"
+        else:
+            k = np.unravel_index(np.argmax(d), d.shape)
+            what = f"{self.what}, entry {tuple(int(i) + 1 for i in k)}"
+            mine, theirs = f"{p[k]:.{n}f}", f"{o[k]:.{n + 1}f}"
+            numbers = f"largest difference {d[k]:.3g}{unit} at {what}: printed {mine}, ours {theirs}{note}"
+            fields.setdefault("appendix", f"printed: {fmt_matrix(p, n)}\nours:    {fmt_matrix(o, n + 1)}")
+        erratum = Erratum(reference, f"{what} = {mine}", f"{what} = {theirs}", why or numbers)
+        row = Row(
+            f"{self.what}{f' = {mine}{unit}' if p.ndim < 2 else ''} ({reference}).",
+            reference,
+            "",
+            numbers,
+            (Verdict.IDENTITY if fields.get("basis") else Verdict.HOLDS) if ok else Verdict.ERRATUM,
+            id=self.id,
+            measures=(Measure(self.measure, d.max(), self.tol if limit is None else limit, self.unit),),
+            errata=() if ok else (erratum,),
+            **fields,
+        )
+        return row.reread(reread()) if not ok and reread is not None else row

@@ -9,7 +9,7 @@ import pytest
 
 from verification import registry
 from verification.errors import RegistrationError
-from verification.formula import RIGHT, Formula, Points, nudged, per_run
+from verification.formula import RIGHT, Formula, Points, Printed, nudged, per_run
 from verification.registry import Context, Erratum, Measure, Row, Section, Slip, SlipKind, Verdict
 from verification.second_reading import search
 from verification.self_test import self_test_check
@@ -141,3 +141,44 @@ def test_nudged_moves_every_array_of_the_output_or_one_entry():
     T = nudged(lambda q: np.zeros((len(q), 4, 4)), 1e-9, (2, 3))(q)
     assert np.all(T[:, 2, 3] == 1e-9) and np.count_nonzero(T) == len(q)
     assert np.all(form(q)["T"] == 0.0)
+
+
+# --- added in r6
+def test_count_grades_the_samples_off_by_more_than_the_tolerance(ctx):
+    """``count``: the measure is the number of samples with |error| > tol (limit 0), not the max."""
+    f = Formula("Eq 16", _sine, SINE.error, 1e-12, "", SINE.slips, count=True, measure="points off")
+    s = _sample(ctx)
+    assert f.row(s, np.zeros(len(s))).verdict is Verdict.HOLDS
+    row = f.row(s, np.r_[np.zeros(len(s) - 3), 1.0, 2.0, np.nan])
+    assert row.verdict is Verdict.ERRATUM and row.measures[0].value == 3 and row.measures[0].limit == 0
+    assert row.numbers.startswith("points off = 3 (<= 0)")
+
+
+def test_printed_values_are_graded_within_their_rounding():
+    """A printed value holds if |printed - ours| <= tol + rel |ours| at every entry; claim, numbers and
+    erratum are derived; a matrix reports its worst entry and carries both matrices in its appendix."""
+    n0 = Printed("n0", "N0", 1e-3)
+    ok = n0.row("App. E, A1, Eq 59", [0.766, 0.6428, 0.0], [0.76604, 0.64279, 0.0], note=" (null vector)")
+    assert ok.verdict is Verdict.HOLDS and ok.id == "n0" and ok.reference == "App. E, A1, Eq 59"
+    assert ok.claim == "N0 = [0.7660 0.6428 0.0000] (App. E, A1, Eq 59)."
+    assert ok.numbers == "printed [0.7660 0.6428 0.0000] | ours [0.76604 0.64279 0.00000] (null vector)"
+    bad = n0.row("App. E, A6, Eq 59", [-0.698, 0, -0.9976], [-0.8988, 0, -0.4384], why="not a unit vector")
+    assert bad.verdict is Verdict.ERRATUM and bad.measures[0].value == pytest.approx(0.5592)
+    assert bad.errata[0].printed == "N0 = [-0.6980 0.0000 -0.9976]" and bad.errata[0].counterexample == (
+        "not a unit vector")
+    q = Printed("q", "Q*", 0.1, "mm", 2e-3, 1)
+    rel = q.row("App. E", [[1000.0, 0.0], [0.0, 1.0]], [[1001.5, 0.0], [0.0, 1.0]])  # 1.5 <= 0.1 + 2.003
+    assert rel.verdict is Verdict.HOLDS and not rel.measures[0].holds  # the measure is against tol alone
+    calls = []
+
+    def reread():
+        calls.append(1)
+        return search({}, [], lambda x: 1.0, 0.0, printed="Q*", stated_text="-", route="-", measure="-")
+
+    off = q.row("App. E", [[1.0, 5.0], [0.0, 1.0]], [[1.0, 0.0], [0.0, 1.0]], reread=reread)
+    assert off.verdict is Verdict.ERRATUM and off.claim == "Q* (App. E)." and "(1, 2)" in off.numbers
+    assert off.appendix.startswith("printed: [1.0 5.0; 0.0 1.0]") and off.errata[0].printed.endswith("= 5.0")
+    assert off.second_reading is not None and calls == [1]  # re-read only when it fails
+    assert rel.second_reading is None
+    diag = q.row("App. E", [1.0], [1.0], basis="circular")
+    assert diag.verdict is Verdict.IDENTITY

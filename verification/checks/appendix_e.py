@@ -15,13 +15,15 @@ sigma are independent confirmations.
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 
 import iik
 from iik import THESIS_ARM
 
 from ..assumptions import EXACT_GEOMETRY
-from ..formula import Formula, Points, per_run
+from ..formula import Formula, Points, Printed, per_run
 from ..numbers import fmt_matrix, fmt_vec
 from ..oracles.abdel_malek import eq67_dq, normal_acceleration
 from ..oracles.normal_distance import parameters, surface_point, tool_point
@@ -33,10 +35,10 @@ from ..shorthand import cos_sin
 
 _D = np.pi / 180
 EPS = 2e-3  # [m] probe distance along N0
-_DEP = ("lengths", "pinocchio", "reachability")
-SECTION = Section("Normal-acceleration boundary test (App. E, Eq 57-69)", depends_on=_DEP)
+SECTION = Section("Normal-acceleration boundary test (App. E, Eq 57-69)",
+                  depends_on=("lengths", "pinocchio", "reachability"))
 
-#: App. E as printed (mm, rad; conclusions as printed).
+#: App. E as printed (mm, rad; conclusions as printed; each point's claim and reference for its row).
 PRINTED = {
     "A1": dict(
         q0=np.array([-7 * np.pi / 9, 0, 0, 0, 0]),
@@ -57,6 +59,9 @@ PRINTED = {
         Q=np.array([[0, 0, 0, 0, 0]] * 3 + [[0, 0, 0, 825.96, 497.45], [0, 0, 0, 497.45, 754.25]], float),
         eig=np.array([0, 0, 0, 291.4, 1288.9]),
         conclusion="+N0",
+        claim="A1 on f(1) (s(1)): u0, N0, H*, B, Q*, eig(Q*) as printed; Q* semi-positive definite, so the "
+        "normal acceleration is admissible only along +N0 (f(1) is a boundary there).",
+        ref="App. E, point A1 (Eq 58-65)",
     ),
     "A2": dict(
         q0=np.array([-160 * _D, np.pi / 12, 90 * _D, -np.pi / 3, 0]),
@@ -67,6 +72,9 @@ PRINTED = {
         dq={1: -1.0},
         sigma={1: 389.2341},
         conclusion="+N0",
+        claim="A2 on f(2) (s(2)): joint 1 at its limit, Q* positive definite, sigma = 389.2341 has the sign "
+        "of the eigenvalues, so motion only along +N0 (f(2) is a boundary there).",
+        ref="App. E, point A2 (Eq 59-67)",
     ),
     "A6": dict(
         q0=np.array([0, 95 * _D, 0, -119 * _D, np.pi / 3]),
@@ -75,6 +83,8 @@ PRINTED = {
         N0=np.array([-0.698, 0, -0.9976]),
         eig=np.array([-83.2630, 91.8674, 295.45, 314.77, 852.52]),
         conclusion="both",
+        claim="A6 on f(26): Q* indefinite, so the surface admits motion both ways (not a boundary).",
+        ref="App. E, point A6 (Eq 59-68)",
     ),
 }
 #: A2 read with theta1 at its upper limit (+160 deg): the reading that reproduces its N0, delta q1 and sigma.
@@ -109,44 +119,30 @@ def printed_values(ctx) -> dict:
     return PRINTED
 
 
-def recomputed_values(ctx) -> dict:
-    """Known-good form: our numbers, with each conclusion the ground-truth side."""
+def recomputed_values(ctx, slip: str = "") -> dict:
+    """Known-good form: our numbers, with each conclusion the ground-truth side. With ``slip`` a realistic
+    slip in them: ``"eig_h"`` the eigenvalues of H* for those of Q* (Eq 65's curvature term left out),
+    ``"dq"`` Eq 67 read the other way (-1 at a lower limit, sigma computed with it), ``"limits"`` Eq 58
+    inverted with q^U and q^L exchanged (u0 of A1 with both signs flipped)."""
     res, sides = _results(ctx)
     out = {}
     for name, d in PRINTED.items():
         r, mm = res[name], res[name].in_mm()
-        v = dict(d, N0=r.N0, eig=np.sort(mm["eig"]), conclusion=sides[name])
+        eig = _eig_h(mm) if slip == "eig_h" else np.sort(mm["eig"])
+        v = dict(d, N0=r.N0, eig=eig, conclusion=sides[name])
         if name == "A1":
-            v.update(u0=r.lam0, H=mm["H"], B=mm["B"], Q=mm["Q"])
+            v.update(u0=-r.lam0 if slip == "limits" else r.lam0, H=mm["H"], B=mm["B"], Q=mm["Q"])
         if name == "A2":
-            v.update(dq={j: (1.0 if b == "lower" else -1.0) for j, b in r.at_limit}, sigma=mm["sigma"])
+            sign = -1.0 if slip == "dq" else 1.0
+            v.update(dq={j: sign * x for j, x in eq67_dq(r.q0).items()})
+            v.update(sigma={j: sign * x for j, x in mm["sigma"].items()})
         out[name] = v
     return out
 
 
-def eig_of_h_values(ctx) -> dict:
-    """A realistic slip: the eigenvalues of H* reported for those of Q* (Eq 65's curvature term left out)."""
-    res, _ = _results(ctx)
-    out = recomputed_values(ctx)
-    for name in out:
-        H = res[name].in_mm()["H"]
-        out[name] = dict(out[name], eig=np.sort(np.linalg.eigvalsh(0.5 * (H + H.T))))
-    return out
-
-
-def inverted_dq_values(ctx) -> dict:
-    """A realistic slip: Eq 67 read the other way (-1 at a lower limit), sigma computed with it."""
-    out = recomputed_values(ctx)
-    a2 = out["A2"]
-    out["A2"] = dict(a2, **{k: {j: -v for j, v in a2[k].items()} for k in ("dq", "sigma")})
-    return out
-
-
-def swapped_limits_values(ctx) -> dict:
-    """A realistic slip: Eq 58 inverted with q^U and q^L exchanged (u0 of A1 with both signs flipped)."""
-    out = recomputed_values(ctx)
-    out["A1"] = dict(out["A1"], u0=-np.asarray(out["A1"]["u0"]))
-    return out
+def _eig_h(mm: dict) -> np.ndarray:
+    """The sorted eigenvalues of (the symmetric part of) H* [mm]."""
+    return np.sort(np.linalg.eigvalsh(0.5 * (mm["H"] + mm["H"].T)))
 
 
 def perturbed_values(ctx) -> dict:
@@ -172,30 +168,22 @@ _MEANING = "what the quantity means (verification.oracles.normal_distance: the T
 _CACHE: dict = {}
 
 
-def _point(q0, free, hint):
-    """``(N0, eig(Q*) [mm], H* [mm])`` by their meaning at joints ``q0`` on the surface with free joints
-    ``free``, N0's sign chosen along ``hint``; None where the surface has no normal (cached per process: a
-    pure function of its inputs)."""
-    key = (np.asarray(q0, float).round(12).tobytes(), tuple(free))
+def _by_meaning(x: dict, hint, misfit) -> float:
+    """``misfit(N0, eig(Q*) [mm], H* [mm])`` by their meaning at the reading ``x`` (its q0 and free joints),
+    N0's sign chosen along ``hint``; inf where the surface has no normal (the surface's quantities are cached
+    per process: a pure function of q0 and the free joints)."""
+    key = (np.asarray(x["q0"], float).round(12).tobytes(), tuple(x["free"]))
     if key not in _CACHE:
         try:
-            sp = surface_point(q0, free)
+            sp = surface_point(x["q0"], x["free"])
             _CACHE[key] = (sp.N0, np.linalg.eigvalsh(sp.q_star()) * 1e3, sp.h_star() * 1e3)
         except (iik.InvalidInputError, np.linalg.LinAlgError):
             _CACHE[key] = None
-    got = _CACHE[key]
-    if got is None:
-        return None
-    n, eig, H = got
+    if _CACHE[key] is None:
+        return float("inf")
+    n, eig, H = _CACHE[key]
     sgn = -1.0 if np.dot(n, hint) < 0 else 1.0
-    return sgn * n, np.sort(sgn * eig), sgn * H
-
-
-def _by_meaning(x: dict, hint, misfit) -> float:
-    """``misfit(N0, eig(Q*), H*)`` of :func:`_point` at the reading ``x`` (its q0 and free joints), inf where
-    the surface has no normal."""
-    sp = _point(x["q0"], x["free"], hint)
-    return float("inf") if sp is None else float(misfit(*sp))
+    return float(misfit(sgn * n, np.sort(sgn * eig), sgn * H))
 
 
 def _scaled(printed, ours):
@@ -221,20 +209,16 @@ def _q0_readings(name: str) -> list[Reading]:
     return out
 
 
-def _free_readings(name: str) -> list[Reading]:
-    """The other pairs of free joints (which joints span the surface)."""
-    pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != tuple(PRINTED[name]["free"])]
-    return choices(Kind.WHICH, "free", {f"free joints {a}, {b}": (a, b) for a, b in pairs})
-
-
-def _stated(name: str, pv: dict) -> dict:
+def _search(name: str, pv: dict, readings, misfit, tol: float, printed: str, measure: str,
+            route: str = _MEANING, **stated):
+    """:func:`~verification.second_reading.search` of a value printed at point ``name``: stated are its q0,
+    its free joints, the quantities printed there (``pv``) and ``stated``."""
     d = PRINTED[name]
-    return {"q0": d["q0"], "free": d["free"], **{k: pv[k] for k in ("u0", "N0", "eig", "H", "dq") if k in pv}}
-
-
-def _stated_text(name: str) -> str:
-    d = PRINTED[name]
-    return f"q0 = {fmt_vec(np.degrees(d['q0']), 1)} deg on {d['surface']}, free joints {d['free']}"
+    given = {k: pv[k] for k in ("u0", "N0", "eig", "H", "dq") if k in pv}
+    return search({"q0": d["q0"], "free": d["free"], **given, **stated}, readings, misfit, tol,
+                  printed=printed, route=route, measure=measure,
+                  stated_text=f"q0 = {fmt_vec(np.degrees(d['q0']), 1)} deg on {d['surface']}, free joints "
+                  f"{d['free']}")
 
 
 def _n0_misfit(x) -> float:
@@ -245,22 +229,22 @@ def _n0_misfit(x) -> float:
 def reading_n0(name: str, pv: dict):
     """Second reading of a printed N0: the surface normal at each nearby reading of the point, vs the printed
     vector read as typed or one digit slip away (sign of N0 free)."""
-    return search(_stated(name, pv), _q0_readings(name) + digit_slips("N0", pv["N0"]), _n0_misfit, _TOL_UNIT,
-                  printed=f"N0 = {fmt_vec(pv['N0'])}", stated_text=_stated_text(name), route=_MEANING,
-                  measure="max |printed - surface normal| (up to sign)")
+    return _search(name, pv, _q0_readings(name) + digit_slips("N0", pv["N0"]), _n0_misfit, _TOL_UNIT,
+                   f"N0 = {fmt_vec(pv['N0'])}", "max |printed - surface normal| (up to sign)")
 
 
 def reading_eig(name: str, pv: dict):
     """Second reading of printed eigenvalues of Q*: Q* as the Hessian of the normal distance at each nearby
-    reading of the point and of its free joints, vs the printed values (sorted)."""
+    reading of the point and of its free joints (the other pairs), vs the printed values (sorted)."""
     pr = np.sort(np.asarray(pv["eig"], float))
+    pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != tuple(PRINTED[name]["free"])]
+    readings = choices(Kind.WHICH, "free", {f"free joints {a}, {b}": (a, b) for a, b in pairs})
 
     def misfit(x) -> float:
         return _by_meaning(x, PRINTED[name]["N0"], lambda n, eig, H: _scaled(pr, eig).max())
 
-    return search(_stated(name, pv), _q0_readings(name) + _free_readings(name), misfit, 1.0,
-                  printed=f"eig(Q*) = {fmt_vec(pr, 2)} mm", stated_text=_stated_text(name), route=_MEANING,
-                  measure=f"max |printed - ours| / ({_ABS} mm + {_REL:.1%}) over the sorted eigenvalues")
+    return _search(name, pv, _q0_readings(name) + readings, misfit, 1.0, f"eig(Q*) = {fmt_vec(pr, 2)} mm",
+                   f"max |printed - ours| / ({_ABS} mm + {_REL:.1%}) over the sorted eigenvalues")
 
 
 def reading_u0(pv: dict):
@@ -268,7 +252,6 @@ def reading_u0(pv: dict):
     vs the printed u0 read as typed, one digit slip away or with an entry's sign flipped. A reading of q0 must
     also keep the N0 printed beside u0 from the same q0 (it holds as stated): a q0 that reproduces u0 but not
     N0 does not explain the slip."""
-    stated = {**_stated("A1", pv), "swap": False}
 
     def misfit(x) -> float:
         lam = parameters(x["q0"])
@@ -276,11 +259,11 @@ def reading_u0(pv: dict):
         return max(u0, _n0_misfit(x))
 
     readings = _q0_readings("A1") + [Reading(Kind.LIMIT, "Eq 58 with q^U and q^L exchanged", {"swap": True})]
-    return search(stated, readings + digit_slips("u0", pv["u0"]) + sign_typos("u0", pv["u0"]), misfit,
-                  _TOL_UNIT, printed=f"u0 = {fmt_vec(pv['u0'])}", stated_text=_stated_text("A1"),
-                  route="Eq 58 inverted (arcsin) at the reading's joints; the N0 printed beside it by its "
-                  "meaning (verification.oracles.normal_distance) at the same joints",
-                  measure="max(|printed u0 - lambda(q0)|, |printed N0 - surface normal|)")
+    readings += digit_slips("u0", pv["u0"]) + sign_typos("u0", pv["u0"])
+    return _search("A1", pv, readings, misfit, _TOL_UNIT, f"u0 = {fmt_vec(pv['u0'])}",
+                   "max(|printed u0 - lambda(q0)|, |printed N0 - surface normal|)",
+                   "Eq 58 inverted (arcsin) at the reading's joints; the N0 printed beside it by its meaning "
+                   "(verification.oracles.normal_distance) at the same joints", swap=False)
 
 
 def reading_h(pv: dict, mask: np.ndarray, what: str):
@@ -293,8 +276,7 @@ def reading_h(pv: dict, mask: np.ndarray, what: str):
     readings = _q0_readings("A1") + [Reading(Kind.SWAP, "H* transposed", {"H": np.asarray(pv["H"], float).T})]
     readings += moved_entries("H", pv["H"]) + moved_entries("H", pv["H"], within="row")
     readings += sign_typos("H", pv["H"])
-    return search(_stated("A1", pv), readings, misfit, 1.0, printed=what, stated_text=_stated_text("A1"),
-                  route=_MEANING, measure=f"max |printed - ours| / ({_ABS} mm + {_REL:.1%})")
+    return _search("A1", pv, readings, misfit, 1.0, what, f"max |printed - ours| / ({_ABS} mm + {_REL:.1%})")
 
 
 def reading_dq(pv: dict):
@@ -303,273 +285,102 @@ def reading_dq(pv: dict):
         ours = eq67_dq(x["q0"])
         return float(max(abs(x["dq"].get(j, 0.0) - ours.get(j, 0.0)) for j in set(ours) | set(x["dq"])))
 
-    return search(_stated("A2", pv), _q0_readings("A2"), misfit, 0.0,
-                  printed=f"delta q = {pv['dq']} 'because joint 1 is at its lower limit'",
-                  stated_text=_stated_text("A2"),
-                      route="Eq 67 at the reading's joints (+1 at a lower limit, -1 at "
-                  "an upper one)", measure="largest difference of the printed step from Eq 67's")
+    return _search("A2", pv, _q0_readings("A2"), misfit, 0.0,
+                   f"delta q = {pv['dq']} 'because joint 1 is at its lower limit'",
+                   "largest difference of the printed step from Eq 67's",
+                   "Eq 67 at the reading's joints (+1 at a lower limit, -1 at an upper one)")
 
 
-def _printed(
-    rid,
-    claim,
-    ref,
-    numbers,
-    printed,
-    ours,
-    tol,
-    unit="",
-    *,
-    rel=0.0,
-    limit=None,
-    erratum=None,
-    reread=None,
-    measure="max |printed - ours|",
-    **fields,
-) -> Row:
-    """A printed value vs ours: it holds if ``|printed - ours| <= tol + rel |ours|`` everywhere (the printed
-    rounding); the measure is ``max |printed - ours|`` [``unit``] against ``limit`` (default ``tol``). With a
-    ``basis`` a pass holds by construction; a failing row is an erratum (default: the claim vs "the
-    recomputed value"), re-read by ``reread()`` before it stands."""
-    p, o = np.asarray(printed, float), np.asarray(ours, float)
-    ok = bool(np.all(np.abs(p - o) <= tol + rel * np.abs(o)))
-    m = Measure(measure, np.abs(p - o).max(), tol if limit is None else limit, unit)
-    row = Row(
-        claim,
-        ref,
-        "",
-        numbers,
-        (Verdict.IDENTITY if fields.get("basis") else Verdict.HOLDS) if ok else Verdict.ERRATUM,
-        id=rid,
-        measures=(m,),
-        errata=() if ok else (erratum or Erratum(ref, claim, "the recomputed value", numbers),),
-        **fields,
-    )
-    return row.reread(reread()) if not ok and reread is not None else row
+# ----------------------------------------------------------------------------- rows
+#: The quantities App. E prints at a point, graded within their printed rounding.
+_MM = (_ABS, "mm", _REL)  # tolerance, unit, relative tolerance of the values in mm
+_U0 = Printed("u0", "u0", _TOL_UNIT)
+_N0 = Printed("n0", "N0", _TOL_UNIT, measure="max |printed - ours| (up to sign)")
+_H_OFF = Printed("h_offdiag", "H* off the diagonal", *_MM, 1, "max |printed - ours| off the diagonal")
+_H_DIAG = Printed("h_diag", "the diagonal of H*", *_MM, 1, "max |printed - ours| on the diagonal")
+_B = Printed("b", "B (rows (2,3) as the thesis chose)", _TOL_B, "1/mm")
+_Q = Printed("q", "Q*", *_MM, 2)
+_EIG = Printed("eig", "sorted eig(Q*)", *_MM, 2, "max |printed - ours| (sorted)")
+_SIGMA = Printed("sigma", "|sigma|", 1e-3, "mm", 1e-3, 4, "|printed - ours|")
 
 
-def _n0_detail(name, pv, r) -> Row:
+def _n0(name, pv, r) -> Row:
     norm = float(np.linalg.norm(pv["N0"]))
     # N0's sign is a convention: ours along the printed one
     n0 = r.N0 if np.abs(pv["N0"] - r.N0).max() <= np.abs(pv["N0"] + r.N0).max() else -r.N0
-    return _printed(
-        "n0",
-        f"{name}: N0 = {fmt_vec(pv['N0'])} (Eq 59).",
+    return _N0.row(
         f"App. E, {name}, Eq 59",
-        f"printed {fmt_vec(pv['N0'])} (norm {norm:.4f}) | ours {fmt_vec(r.N0)} (left null vector of G_q q_s)",
         pv["N0"],
         n0,
-        _TOL_UNIT,
-        measure="max |printed - ours| (up to sign)",
-        erratum=Erratum(
-            f"App. E, {name}, N0",
-            f"N0 = {fmt_vec(pv['N0'])}",
-            f"N0 = {fmt_vec(r.N0)}",
-            f"at q0 = {fmt_vec(r.q0)} rad the normal of the surface is {fmt_vec(r.N0)}; the printed "
-            f"vector has norm {norm:.3f}" + ("" if abs(norm - 1) < 1e-3 else " (not a unit vector)"),
-        ),
+        note=f" (left null vector of G_q q_s); printed norm {norm:.4f}",
+        why=f"at q0 = {fmt_vec(r.q0)} rad the normal of the surface is {fmt_vec(r.N0)}; the printed "
+        f"vector has norm {norm:.3f}" + ("" if abs(norm - 1) < 1e-3 else " (not a unit vector)"),
         reread=lambda: reading_n0(name, pv),
     )
 
 
-def _eig_detail(name, pv, mm) -> Row:
-    ours, pr = np.sort(mm["eig"]), np.sort(np.asarray(pv["eig"], float))
-    eig_h = np.sort(np.linalg.eigvalsh(0.5 * (mm["H"] + mm["H"].T)))
-    return _printed(
-        "eig",
-        f"{name}: eig(Q*) = {fmt_vec(pr, 2)} mm (Eq 65).",
-        f"App. E, {name}, Eq 65",
-        f"printed {fmt_vec(pr, 2)} | ours {fmt_vec(ours, 2)} mm (sorted); eig(H*) = {fmt_vec(eig_h, 1)} mm",
-        pr,
-        ours,
-        _ABS,
-        "mm",
-        rel=_REL,
-        measure="max |printed - ours| (sorted)",
-        erratum=Erratum(
-            f"App. E, {name}, eig(Q*)",
-            f"eig(Q*) = {fmt_vec(pr, 2)}",
-            f"eig(Q*) = {fmt_vec(ours, 2)}",
-            f"moving only a free joint {PRINTED[name]['free']} moves the point along the surface, so "
-            f"eta = 0 and Q* has zero eigenvalues; the printed list has {int(np.sum(np.abs(pr) < 1e-9))} "
-            f"zeros (eig(H*) = {fmt_vec(eig_h, 1)} mm)",
-        ),
-        reread=lambda: reading_eig(name, pv),
-    )
-
-
-_SIDE_TEXT = {"+N0": "only along +N0 (a boundary)", "both": "both ways (not a boundary)"}
-
-
-def _conclusion_detail(name, pv, side, r, note: str = "") -> Row:
-    return Row.graded(
-        f"{name}: motion is admissible {_SIDE_TEXT.get(pv['conclusion'], pv['conclusion'])}.",
-        f"App. E, {name}",
-        "",
-        f"printed {pv['conclusion']} | ground truth {side} (reachability of p +- 2 mm "
-        f"N0, p = {fmt_vec(r.point * 1e3, 1)} mm) | Abdel-Malek's test with our numbers: {r.verdict}" + note,
-        (Measure("printed side differs from ground truth", float(pv["conclusion"] != side), 0.0),),
-        fail=Verdict.DOES_NOT_HOLD,
-        reason="ground truth disagrees",
-        id="conclusion",
-    )
-
-
-#: The worst verdict of a point's details first: its row's verdict.
-_WORST = (Verdict.DOES_NOT_HOLD, Verdict.ERRATUM, Verdict.INPUT_SLIP)
-
-
-def _group(name, claim, ref, r, details: list[Row], appendix: str) -> Row:
-    """The point's row: the worst of its details (does not hold, erratum, input slip, holds); ``r`` its
-    :class:`~verification.oracles.abdel_malek.NormalAcceleration`, ``appendix`` its long numbers."""
-    verdict = next((v for v in _WORST if any(d.verdict is v for d in details)), Verdict.HOLDS)
-    wrong = [d.id for d in details if not d.verdict.passes]
-    m = (Measure("printed quantities that disagree", len(wrong), 0),)
-    slips = [d for d in details if d.verdict is Verdict.INPUT_SLIP]
-    return Row(
-        claim,
-        ref,
-        "every printed quantity vs the same quantity recomputed with Pinocchio (Eq 58-68 by "
-        "verification.oracles.abdel_malek; Hessians by central differences), within the printed "
-        f"rounding (N0, u0 {_TOL_UNIT:g}; B {_TOL_B:g} 1/mm; mm values {_REL:.1%} + {_ABS} mm); the "
-        "conclusion vs reachability of p +- 2 mm N0 (ground truth)",
-        f"{len(details) - len(wrong)} of {len(details)} printed quantities agree"
-        + (f"; disagree: {', '.join(wrong)}" if wrong else ""),
-        verdict,
-        id=name.lower(),
-        measures=m,
-        details=tuple(details),
-        domain=f"the printed point {name} (q0 as stated) and its +-{EPS * 1e3:.0f} mm probes along N0",
-        errata=tuple(e for d in details for e in d.errata),
-        appendix=f"{name}, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\n{appendix}",
-        second_reading=slips[0].second_reading if verdict is Verdict.INPUT_SLIP else None,
-        reason="the printed conclusion disagrees with ground truth"
-        if verdict is Verdict.DOES_NOT_HOLD
-        else "",
-    )
-
-
-def _a1(pv, r, side) -> Row:
-    mm = r.in_mm()
-    pH, off = np.asarray(pv["H"], float), ~np.eye(5, dtype=bool)
-    dH = np.abs(pH - mm["H"])
-    k = np.unravel_index(np.argmax(np.where(off, dH, 0)), (5, 5))
-    details = [
-        _printed(
-            "u0",
-            "A1: u0 = [1.0654 0.1165 0 0 0] (Eq 58 parameters of q0).",
+def _a1(pv, r) -> list[Row]:
+    """A1's u0, N0, H* (off the diagonal; on it, circular), B and Q*."""
+    mm, off = r.in_mm(), ~np.eye(5, dtype=bool)
+    return [
+        _U0.row(
             "App. E, A1, Eq 58",
-            f"printed {fmt_vec(pv['u0'])} | ours {fmt_vec(r.lam0)} (Eq 58 inverted at q0)",
             pv["u0"],
             r.lam0,
-            _TOL_UNIT,
-            erratum=Erratum(
-                "App. E, A1, u0",
-                f"u0 = {fmt_vec(pv['u0'])}",
-                f"u0 = {fmt_vec(r.lam0)} (Eq 58 inverted at theta1 = -7 pi/9: sin(lambda1) = -140/160)",
-                f"q1(lambda = +1.0654) = {np.degrees(2.7925 * np.sin(1.0654)):.1f} deg, not -140 deg",
-            ),
+            note=" (Eq 58 inverted at q0)",
+            why=f"q1(lambda = +1.0654) = {np.degrees(2.7925 * np.sin(1.0654)):.1f} deg, not -140 deg (Eq 58 "
+            "inverted at theta1 = -7 pi/9: sin(lambda1) = -140/160)",
             reread=lambda: reading_u0(pv),
         ),
-        _n0_detail("A1", pv, r),
-        _printed(
-            "h_offdiag",
-            "A1: the off-diagonal entries of H* (Eq 61).",
+        _n0("A1", pv, r),
+        _H_OFF.row(
             "App. E, A1, Eq 61",
-            f"largest difference {dH[k]:.3g} mm at H*({k[0] + 1},{k[1] + 1}): printed {pH[k]:.1f}, ours "
-            f"{mm['H'][k]:.1f}",
-            pH[off],
-            mm["H"][off],
-            _ABS,
-            "mm",
-            rel=_REL,
-            measure="max |printed - ours| off the diagonal",
-            erratum=Erratum(
-                "App. E, A1, H*(4,2)",
-                "H*(4,2) = +1703 (with H*(2,4) = -1703)",
-                f"H*(4,2) = H*(2,4) = {mm['H'][3, 1]:.1f} (a Hessian-based quadratic form: symmetric)",
-                f"Eq 61 at q0 = {fmt_vec(r.q0)} rad gives H*(2,4) = {mm['H'][1, 3]:.2f}, H*(4,2) = "
-                f"{mm['H'][3, 1]:.2f} mm; only the symmetric value reproduces the printed Q*(2,4) = Q*(4,2) "
-                "= 0",
-            ),
+            np.where(off, pv["H"], 0.0),
+            np.where(off, mm["H"], 0.0),
+            why=f"H*(4,2) = +1703 is printed with H*(2,4) = -1703; Eq 61 at q0 = {fmt_vec(r.q0)} rad gives "
+            f"H*(2,4) = {mm['H'][1, 3]:.2f}, H*(4,2) = {mm['H'][3, 1]:.2f} mm (a Hessian-based quadratic "
+            "form: symmetric); only the symmetric value reproduces the printed Q*(2,4) = Q*(4,2) = 0",
             reread=lambda: reading_h(pv, off, "the off-diagonal entries of H* as printed (H*(4,2) = +1703)"),
         ),
-        _printed(
-            "h_diag",
-            "A1: the diagonal of H* (Eq 61).",
+        _H_DIAG.row(
             "App. E, A1, Eq 61",
-            f"largest difference {dH.diagonal().max():.3g} mm: CIRCULAR, l2..l5 were fitted to these four "
-            "numbers",
-            pH.diagonal(),
+            np.diagonal(pv["H"]),
             mm["H"].diagonal(),
-            _ABS,
-            "mm",
-            rel=_REL,
-            measure="max |printed - ours| on the diagonal",
             depends_on=("lengths-circular", "pinocchio"),
             basis="circular: l2..l5 were recovered from these four numbers (docs/ARM.md), so they agree by "
             "construction",
         ),
-        _printed(
-            "b",
-            "A1: B = [0 -0.0014 0; 0 0 -0.0013] (Eq 63, rows (2,3) as the thesis chose).",
-            "App. E, A1, Eq 63",
-            f"printed {fmt_matrix(pv['B'], 4)} | ours {fmt_matrix(mm['B'], 5)} 1/mm",
-            pv["B"],
-            mm["B"],
-            _TOL_B,
-            "1/mm",
-        ),
-        _printed(
-            "q",
-            "A1: Q* (Eq 62-65).",
-            "App. E, A1, Eq 62-65",
-            f"largest difference {np.abs(np.asarray(pv['Q']) - mm['Q']).max():.3g} mm (printed Q*(4,4) "
-            f"{pv['Q'][3][3]}, ours {mm['Q'][3, 3]:.2f})",
-            pv["Q"],
-            mm["Q"],
-            _ABS,
-            "mm",
-            rel=_REL,
-        ),
-        _eig_detail("A1", pv, mm),
-        _conclusion_detail("A1", pv, side, r),
+        _B.row("App. E, A1, Eq 63", pv["B"], mm["B"]),
+        _Q.row("App. E, A1, Eq 62-65", pv["Q"], mm["Q"]),
     ]
-    return _group(
-        "A1",
-        "A1 on f(1) (s(1)): u0, N0, H*, B, Q*, eig(Q*) as printed; Q* semi-positive definite, so the "
-        "normal acceleration is admissible only along +N0 (f(1) is a boundary there).",
-        "App. E, point A1 (Eq 58-65)",
-        r,
-        details,
-        f"H* printed: {fmt_matrix(pv['H'])}\nH* ours:    {fmt_matrix(mm['H'])}\n"
-        f"B printed:  {fmt_matrix(pv['B'], 4)}\nB ours:     {fmt_matrix(mm['B'], 5)}\n"
-        f"Q* printed: {fmt_matrix(pv['Q'], 2)}\nQ* ours:    {fmt_matrix(mm['Q'], 2)}\n"
-        "The text says Q* is semi-definite only when a joint is at a limit; at A1 no joint is at a limit and "
-        "Q* still has three zero eigenvalues (th1, th2 move along the surface; th3 does not move the tool).",
+
+
+def _eig(name, pv, mm) -> Row:
+    pr, eig_h = np.sort(np.asarray(pv["eig"], float)), _eig_h(mm)
+    return _EIG.row(
+        f"App. E, {name}, Eq 65",
+        pr,
+        np.sort(mm["eig"]),
+        note=f"; eig(H*) = {fmt_vec(eig_h, 1)} mm",
+        why=f"moving only a free joint {PRINTED[name]['free']} moves the point along the surface, so "
+        f"eta = 0 and Q* has zero eigenvalues; the printed list has {int(np.sum(np.abs(pr) < 1e-9))} "
+        f"zeros (eig(H*) = {fmt_vec(eig_h, 1)} mm)",
+        reread=lambda: reading_eig(name, pv),
     )
 
 
-def _a2(pv, r, side, r_read, side_read: str) -> Row:
-    mm = r.in_mm()
-    eq67 = {j: (1.0 if b == "lower" else -1.0) for j, b in r.at_limit}
+def _sigma(pv, r, side) -> list[Row]:
+    """A2's sigma (Eq 66, with the printed step) and its step delta q1 (Eq 67)."""
+    mm, eq67 = r.in_mm(), eq67_dq(r.q0)
     # Eq 66 with the printed step: sigma = N0 . G_q1 * (printed delta q1)
-    s_pr, s_ours = pv["sigma"][1], mm["sigma"][1] * pv["dq"].get(1, 0.0) / eq67[1]
-    details = [
-        _n0_detail("A2", pv, r),
-        _eig_detail("A2", pv, mm),
-        _printed(
-            "sigma",
-            "A2: |sigma| = 389.2341 mm (Eq 66).",
+    s_ours = mm["sigma"][1] * pv["dq"].get(1, 0.0) / eq67[1]
+    return [
+        _SIGMA.row(
             "App. E, A2, Eq 66",
-            f"printed {s_pr} | ours {s_ours:.4f} mm (Eq 66 with the printed delta q1 = {pv['dq'].get(1)})",
-            s_pr,
+            pv["sigma"][1],
             s_ours,
-            1e-3,
-            "mm",
-            rel=1e-3,
-            measure="|printed - ours|",
             limit=1e-3 * abs(s_ours),
+            note=f" (Eq 66 with the printed delta q1 = {pv['dq'].get(1)})",
         ),
         Row.graded(
             "A2: delta q1 = -1 because joint 1 is at its lower limit (Eq 67).",
@@ -586,41 +397,88 @@ def _a2(pv, r, side, r_read, side_read: str) -> Row:
             ),
             id="dq",
         ).reread_if_erratum(lambda: reading_dq(pv)),
-        _conclusion_detail(
-            "A2",
-            pv,
-            side,
-            r,
-            f" | second reading with theta1 = +160 deg (the reading that reproduces the printed N0, delta q1 "
-            f"and the sign of sigma): Abdel-Malek's test {r_read.verdict} as printed, ground truth "
-            f"{side_read}: the local test is right there, the point is still reached from both sides by "
-            "other configurations",
-        ),
     ]
-    return _group(
-        "A2",
-        "A2 on f(2) (s(2)): joint 1 at its limit, Q* positive definite, sigma = 389.2341 has the sign "
-        "of the eigenvalues, so motion only along +N0 (f(2) is a boundary there).",
-        "App. E, point A2 (Eq 59-67)",
-        r,
-        details,
-        f"Q* ours: {fmt_matrix(mm['Q'], 1)}\nK-bar (Eq 68): {mm['kbar']}; A2's th4 = -60 deg is also outside "
-        "the printed range of f(3) (th4 in [-41, 0])",
+
+
+_SIDE_TEXT = {"+N0": "only along +N0 (a boundary)", "both": "both ways (not a boundary)"}
+
+
+def _conclusion(name, pv, side, r, note: str = "") -> Row:
+    return Row.graded(
+        f"{name}: motion is admissible {_SIDE_TEXT.get(pv['conclusion'], pv['conclusion'])}.",
+        f"App. E, {name}",
+        "",
+        f"printed {pv['conclusion']} | ground truth {side} (reachability of p +- 2 mm "
+        f"N0, p = {fmt_vec(r.point * 1e3, 1)} mm) | Abdel-Malek's test with our numbers: {r.verdict}" + note,
+        (Measure("printed side differs from ground truth", float(pv["conclusion"] != side), 0.0),),
+        fail=Verdict.DOES_NOT_HOLD,
+        reason="ground truth disagrees",
+        id="conclusion",
     )
 
 
-def _a6(pv, r, side) -> Row:
+#: Remarks on a point, after its numbers in the report's appendix.
+_REMARKS = {
+    "A1": "The text says Q* is semi-definite only when a joint is at a limit; at A1 no joint is at a limit "
+    "and Q* still has three zero eigenvalues (th1, th2 move along the surface; th3 does not move the tool).",
+    "A2": "A2's th4 = -60 deg is also outside the printed range of f(3) (th4 in [-41, 0]).",
+}
+
+
+def _appendix(name, r) -> str:
+    """The point's long numbers (for the report's appendix): our Q*, sigma and K-bar (Eq 66, 68) [mm]."""
     mm = r.in_mm()
-    details = [_n0_detail("A6", pv, r), _eig_detail("A6", pv, mm), _conclusion_detail("A6", pv, side, r)]
-    sigma = ", ".join(f"th{j}: {v:.2f}" for j, v in mm["sigma"].items())
-    kbar = ", ".join(f"th{j}: {v:.1f}" for j, v in mm["kbar"].items())
-    return _group(
-        "A6",
-        "A6 on f(26): Q* indefinite, so the surface admits motion both ways (not a boundary).",
-        "App. E, point A6 (Eq 59-68)",
-        r,
-        details,
-        f"Q* ours: {fmt_matrix(mm['Q'], 2)}\nsigma: {sigma} mm; K-bar (Eq 68): {kbar} mm",
+    sigma = ", ".join(f"th{j}: {v:.2f}" for j, v in mm["sigma"].items()) or "-"
+    kbar = ", ".join(f"th{j}: {v:.1f}" for j, v in mm["kbar"].items()) or "-"
+    return (
+        f"{name}, q0 = {fmt_vec(r.q0)} rad, p = {fmt_vec(r.point * 1e3, 1)} mm\n"
+        f"Q* ours: {fmt_matrix(mm['Q'], 2)}\nsigma: {sigma} mm; K-bar (Eq 68): {kbar} mm\n"
+        + _REMARKS.get(name, "")
+    ).rstrip()
+
+
+#: The worst verdict of a point's details first: its row's verdict.
+_WORST = (Verdict.DOES_NOT_HOLD, Verdict.ERRATUM, Verdict.INPUT_SLIP)
+
+
+def _point(name, pv, res, sides) -> Row:
+    """Point ``name``'s row: one detail per quantity printed there (u0, N0, H*, B, Q*, eig(Q*), sigma, delta
+    q, the conclusion), its verdict the worst of theirs (does not hold, erratum, input slip, holds)."""
+    r, side = res[name], sides[name]
+    note = ""
+    if name == "A2":
+        note = (
+            f" | second reading with theta1 = +160 deg (the reading that reproduces the printed N0, delta q1 "
+            f"and the sign of sigma): Abdel-Malek's test {res[A2_READ].verdict} as printed, ground truth "
+            f"{sides[A2_READ]}: the local test is right there, the point is still reached from both sides by "
+            "other configurations"
+        )
+    details = _a1(pv, r) if name == "A1" else [_n0(name, pv, r)]
+    details += [_eig(name, pv, r.in_mm())]
+    details += (_sigma(pv, r, side) if name == "A2" else []) + [_conclusion(name, pv, side, r, note)]
+    verdict = next((v for v in _WORST if any(d.verdict is v for d in details)), Verdict.HOLDS)
+    wrong = [d.id for d in details if not d.verdict.passes]
+    slips = [d for d in details if d.verdict is Verdict.INPUT_SLIP]
+    return Row(
+        PRINTED[name]["claim"],
+        PRINTED[name]["ref"],
+        "every printed quantity vs the same quantity recomputed with Pinocchio (Eq 58-68 by "
+        "verification.oracles.abdel_malek; Hessians by central differences), within the printed "
+        f"rounding (N0, u0 {_TOL_UNIT:g}; B {_TOL_B:g} 1/mm; mm values {_REL:.1%} + {_ABS} mm); the "
+        "conclusion vs reachability of p +- 2 mm N0 (ground truth)",
+        f"{len(details) - len(wrong)} of {len(details)} printed quantities agree"
+        + (f"; disagree: {', '.join(wrong)}" if wrong else ""),
+        verdict,
+        id=name.lower(),
+        measures=(Measure("printed quantities that disagree", len(wrong), 0),),
+        details=tuple(details),
+        domain=f"the printed point {name} (q0 as stated) and its +-{EPS * 1e3:.0f} mm probes along N0",
+        errata=tuple(e for d in details for e in d.errata),
+        appendix=_appendix(name, r),
+        second_reading=slips[0].second_reading if verdict is Verdict.INPUT_SLIP else None,
+        reason="the printed conclusion disagrees with ground truth"
+        if verdict is Verdict.DOES_NOT_HOLD
+        else "",
     )
 
 
@@ -631,9 +489,12 @@ def _a6(pv, r, side) -> Row:
         good=recomputed_values,
         good_is="our recomputed numbers, conclusions from ground truth",
         slips=(
-            Slip(SlipKind.TERM, "eig(H*) for eig(Q*) (Eq 65's curvature term left out)", eig_of_h_values),
-            Slip(SlipKind.SIGN, "Eq 67 read the other way (-1 at a lower limit)", inverted_dq_values),
-            Slip(SlipKind.LIMIT, "Eq 58 inverted with q^U and q^L exchanged", swapped_limits_values),
+            Slip(SlipKind.TERM, "eig(H*) for eig(Q*) (Eq 65's curvature term left out)",
+                 partial(recomputed_values, slip="eig_h")),
+            Slip(SlipKind.SIGN, "Eq 67 read the other way (-1 at a lower limit)",
+                 partial(recomputed_values, slip="dq")),
+            Slip(SlipKind.LIMIT, "Eq 58 inverted with q^U and q^L exchanged",
+                 partial(recomputed_values, slip="limits")),
         ),
         tolerance=Slip(SlipKind.EPSILON, "our numbers 5 % off, conclusions and step signs flipped",
                        perturbed_values),
@@ -643,22 +504,18 @@ def appendix_e(ctx, values):
     """A1, A2, A6: every printed number vs ours; every conclusion vs reachability (one row per point)."""
     res, sides = _results(ctx)
     pv = values(ctx)
-    rows = [
-        _a1(pv["A1"], res["A1"], sides["A1"]),
-        _a2(pv["A2"], res["A2"], sides["A2"], res[A2_READ], sides[A2_READ]),
-        _a6(pv["A6"], res["A6"], sides["A6"]),
-    ]
+    rows = [_point(name, pv[name], res, sides) for name in PRINTED]
     rows[0] = rows[0].replace(figures=(_eig_figure(ctx, res, pv),))
     return rows
 
 
 def _eig_figure(ctx, results, pv) -> str:
     fig = new_figure(figsize=(10, 3))
-    for k, (name, r) in enumerate((n, v) for n, v in results.items() if n in PRINTED):
+    for k, name in enumerate(PRINTED):
         ax = fig.add_subplot(1, 3, k + 1)
         x = np.arange(5)
         ax.bar(x - 0.2, np.sort(np.asarray(pv[name]["eig"], float)), 0.4, label="thesis (printed)")
-        ax.bar(x + 0.2, np.sort(r.eig * 1e3), 0.4, label="ours (Pinocchio)")
+        ax.bar(x + 0.2, np.sort(results[name].eig * 1e3), 0.4, label="ours (Pinocchio)")
         ax.axhline(0, color="k", lw=0.5)
         ax.set_title(f"{name}: eig(Q*) [mm], sorted", fontsize=9)
         ax.set_xticks(x)
@@ -681,26 +538,24 @@ def eq69_printed(q):
     )
 
 
-def _f1(q, L):
-    """The tool point [m] on s(1) (theta4 = theta5 = 0) with links 3-5 of length L [m]."""
+def _f1(q, L, sign: float = 1.0):
+    """The tool point [m] on s(1) (theta4 = theta5 = 0) with links 3-5 of length L [m]; ``sign`` -1: the slip
+    l1 + L s2 for l1 - L s2."""
     l1, l2 = iik.THESIS_ARM.lengths[:2]
     c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
-    return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - L * s2], 1)
+    return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - sign * L * s2], 1)
 
 
-def eq69_corrected(q):
+def eq69_corrected(q, sign: float = 1.0):
     """f(1) on s(1) (theta4 = theta5 = 0): [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5."""
     _, _, l3, l4, l5 = iik.THESIS_ARM.lengths
-    return _f1(q, l3 + l4 + l5)
+    return _f1(q, l3 + l4 + l5, sign)
 
 
 def eq69_reading(ctx, f1):
     """Second reading of Eq 69 (the form): which singular set's surface it is. The tool point of the Table II
     chain (iik.dh) with each pair of joints held at 0, the others uniform in Table I, vs the form."""
-    rng = ctx.rng("eq69-reading")
-    arm = iik.THESIS_ARM
-    q = rng.uniform(arm.q_min, arm.q_max, (ctx.n(200, 40), 6))
-    stated = {"pair": (4, 5)}
+    q = ctx.rng("eq69-reading").uniform(THESIS_ARM.q_min, THESIS_ARM.q_max, (ctx.n(200, 40), 6))
 
     def misfit(x) -> float:
         qq = q.copy()
@@ -709,17 +564,11 @@ def eq69_reading(ctx, f1):
 
     pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != (4, 5)]
     readings = choices(Kind.WHICH, "pair", {f"the set [theta{p[0]} = 0, theta{p[1]} = 0]": p for p in pairs})
-    return search(stated, readings, misfit, 1e-12,
+    return search({"pair": (4, 5)}, readings, misfit, 1e-12,
         printed="f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; ...; "
                   "l5 c3 s5 + l1]", stated_text="s(1) = [theta4 = 0, theta5 = 0] (App. E, Table VI)",
                   route="the tool point of the Table II chain by iik.dh with the pair held at 0",
                   measure="max |f(1) - tool point| [m]")
-
-
-def _eq69_sign(q):
-    out = eq69_corrected(q)
-    out[:, 2] += 2 * float(np.sum(iik.THESIS_ARM.lengths[2:])) * np.sin(q[:, 1])
-    return out
 
 
 def _on_s1(ctx) -> Points:
@@ -733,7 +582,7 @@ def _on_s1(ctx) -> Points:
 CHECKS = SECTION.formulas(_on_s1, Formula(
     "Eq 69 (App. E)", eq69_printed, lambda s, f: np.linalg.norm(f(s.values) - iik.fk(s.values, THESIS_ARM)[
         :, :3, 3], axis=1), 1e-12, "m", (
-        Slip(SlipKind.SIGN, "l1 + L s2 for l1 - L s2", _eq69_sign),
+        Slip(SlipKind.SIGN, "l1 + L s2 for l1 - L s2", lambda q: eq69_corrected(q, -1.0)),
         Slip(SlipKind.LENGTH, "L = l3 + l4 (l5 left out)", lambda q: _f1(q, sum(THESIS_ARM.lengths[2:4]))),
     ), good=eq69_corrected, good_is="f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
     eps_is="the good point + 1 nm", order=48.5, depends_on=EXACT_GEOMETRY, id="eq69", name="eq69_surface",

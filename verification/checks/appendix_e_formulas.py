@@ -41,7 +41,6 @@ from .appendix_e import PRINTED
 from .appendix_e import SECTION as _POINTS
 
 ARM = iik.THESIS_ARM
-_D = np.pi / 180
 SECTION = Section(_POINTS.title, depends_on=("lengths", "pinocchio"), prefix="appendix_e", order=47.5)
 TOL = 1e-3  # [mm]: a formula vs its meaning (both in floating point, central differences: ~1e-5 mm)
 _ROUTE = (
@@ -104,12 +103,8 @@ def _probe(name, q0, free) -> Probe | None:
     return Probe(name, q0, tuple(free), Gq, hessian(q0), qs, qss, sp, sp.rows)
 
 
-#: The singular sets sampled besides A1, A2, A6: (name, fixed {joint: value [rad]}, free joints).
-_SETS = (
-    ("s(1)", {3: 0.0, 4: 0.0, 5: 0.0}, (1, 2)),
-    ("s(2)", {1: -160 * _D, 3: 90 * _D, 5: 0.0}, (2, 4)),
-    ("s(26)", {2: 95 * _D, 3: 0.0, 4: -119 * _D}, (1, 5)),
-)
+#: The singular sets sampled besides A1, A2, A6: each point's set (its joints but the free ones held).
+_SETS = {"s(1)": "A1", "s(2)": "A2", "s(26)": "A6"}
 
 
 class Probes(tuple):
@@ -133,11 +128,12 @@ def probes(ctx) -> Probes:
     """A1, A2, A6 and random points of s(1), s(2), s(26) (free joints uniform in Table I)."""
     out = [_probe(n, d["q0"], d["free"]) for n, d in PRINTED.items()]
     rng = ctx.rng("appendix-e-formulas")
-    for name, fixed, free in _SETS:
+    for name, at in _SETS.items():
+        q0, free = PRINTED[at]["q0"], PRINTED[at]["free"]
+        held = [j for j in range(5) if j + 1 not in free]
         for k in range(ctx.n(6, 2)):
             q = rng.uniform(ARM.q_min[:5], ARM.q_max[:5])
-            for j, v in fixed.items():
-                q[j - 1] = v
+            q[held] = q0[held]
             out.append(_probe(f"{name} #{k + 1}", q, free))
     out = [p for p in out if p is not None]
     return Probes(out, _domain(out))
@@ -180,10 +176,9 @@ def eq58_parameterisation(ctx, eq58):
     """Eq 58: lambda in [-pi/2, pi/2] maps onto Table I; q_s = (qU - qL)/2 cos(lambda) is its derivative."""
     lo, hi = ARM.q_min[:5], ARM.q_max[:5]
     lam = np.concatenate([[-np.pi / 2, np.pi / 2], np.linspace(-np.pi / 2, np.pi / 2, ctx.n(201, 21))])
-    q = np.array([eq58(lo, hi, v) for v in lam])  # (m, 5)
+    q, h = eq58(lo, hi, lam[:, None]), 1e-6  # (m, 5)
     ends = max(np.abs(q[0] - lo).max(), np.abs(q[1] - hi).max())
-    h = 1e-6
-    fd = np.array([(eq58(lo, hi, v + h) - eq58(lo, hi, v - h)) / (2 * h) for v in lam])
+    fd = (eq58(lo, hi, lam[:, None] + h) - eq58(lo, hi, lam[:, None] - h)) / (2 * h)
     d_qs = np.abs(fd - (hi - lo) / 2 * np.cos(lam)[:, None]).max()  # vs q_s = (qU - qL)/2 cos(lambda)
     inside = np.all((q >= lo - 1e-12) & (q <= hi + 1e-12))
     return Row.graded(
@@ -272,14 +267,6 @@ def eq66_67_printed(N0, Gq, q0):
     return {j: float(N0 @ Gq[:, j - 1] * dq) for j, dq in eq67_dq(q0, ARM).items()}
 
 
-def _sigma_inverted(N0, Gq, q0):
-    return {j: -v for j, v in eq66_67_printed(N0, Gq, q0).items()}
-
-
-def _sigma_next_joint(N0, Gq, q0):
-    return {j: float(N0 @ Gq[:, j % 5] * dq) for j, dq in eq67_dq(q0, ARM).items()}
-
-
 def _limit_joints(ctx) -> Probes:
     """``(joint, probe)`` for each joint at a limit of the probes that have one (A2, A6, s(2), s(26))."""
     ps = [p for p in probes(ctx) if eq67_dq(p.q0, ARM)]
@@ -298,8 +285,10 @@ def _sigma_error(jp: tuple[int, Probe], eq66) -> float:
 
 FORMULAS |= SECTION.formulas(_limit_joints, Formula(
     "Eq 66-67", eq66_67_printed, _per_probe(_sigma_error), TOL, "mm", (
-        Slip(SlipKind.LIMIT, "dq = -1 at a lower limit, +1 at an upper one", _sigma_inverted),
-        Slip(SlipKind.OFF_BY_ONE, "G_q of the next joint", _sigma_next_joint),
+        Slip(SlipKind.LIMIT, "dq = -1 at a lower limit, +1 at an upper one",
+             lambda N0, Gq, q0: {j: -v for j, v in eq66_67_printed(N0, Gq, q0).items()}),
+        Slip(SlipKind.OFF_BY_ONE, "G_q of the next joint",
+             lambda N0, Gq, q0: {j: float(N0 @ Gq[:, j % 5] * dq) for j, dq in eq67_dq(q0, ARM).items()}),
     ), eps=None, id="eq66_67", name="eq66_67_sigma", text="sigma = N0 G_qi dq_i",
     claim="Eq 66-67: sigma = N0 G_qi dq_i, dq_i = +1 at a lower limit and -1 at an upper one, is the "
     "first-order motion of the tool along N0 when joint i leaves its limit (into Table I).",
@@ -318,41 +307,34 @@ def _sigma_zero_points(ctx) -> Probes:
     sets = [(t2, t4) for t2 in (ARM.q_min[1], ARM.q_max[1]) for t4 in (ARM.q_min[3], ARM.q_max[3])]
     for t2, t4 in sets[: ctx.n(4, 2)]:
         t1 = rng.uniform(ARM.q_min[0], ARM.q_max[0])
-
-        def q_at(t5, t2=t2, t4=t4, t1=t1):
-            return np.array([t1, t2, 0.0, t4, t5])
-
-        out.append(("sigma_4", q_at(0.0)))
-        grid = np.linspace(ARM.q_min[4] + 1e-3, ARM.q_max[4] - 1e-3, 241)
-        vals = _s2_grid(q_at, grid)
-        for k in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
-            a, b = grid[k], grid[k + 1]
-            for _ in range(50):
-                c = 0.5 * (a + b)
-                a, b = (c, b) if np.prod(np.sign(_s2_grid(q_at, [a, c]))) > 0 else (a, c)
-            out.append(("sigma_2", q_at(0.5 * (a + b))))
-    res = []
-    for which, q in out:
-        p = _probe(f"s(24-27) {which} = 0 at {fmt_vec(np.degrees(q), 1)} deg", q, (1, 5))
-        j = int(which[-1])
-        # a sign change of the unnormalised normal through zero (tangents parallel) is not a root of sigma
-        if p is not None and abs(p.sp.sigma(j, 1.0)) < 1e-7:
-            res.append((j, p))
-    return Probes(res, f"{len(res)} points of s(24)-s(27) (theta2, theta4 at limits, theta3 = 0) where "
+        for j, t5 in [(4, 0.0)] + [(2, t5) for t5 in _sigma2_roots(t1, t2, t4)]:
+            q = np.array([t1, t2, 0.0, t4, t5])
+            p = _probe(f"s(24-27) sigma_{j} = 0 at {fmt_vec(np.degrees(q), 1)} deg", q, (1, 5))
+            # a sign change of the unnormalised normal through zero (tangents parallel) is not a root of sigma
+            if p is not None and abs(p.sp.sigma(j, 1.0)) < 1e-7:
+                out.append((j, p))
+    return Probes(out, f"{len(out)} points of s(24)-s(27) (theta2, theta4 at limits, theta3 = 0) where "
                   "sigma_4 = 0 (theta5 = 0) or sigma_2 = 0 (roots in theta5), theta1 random in Table I")
 
 
-def _s2_grid(q_at, grid) -> np.ndarray:
-    """The unnormalised normal (f_theta1 x f_theta5) dotted with G_q2 on a theta5 grid (continuous in
-    theta5, unlike the unit normal)."""
-    q = np.array([q_at(t) for t in grid])
+def _sigma2_roots(t1: float, t2: float, t4: float) -> list[float]:
+    """The theta5 [rad] in Table I where the unnormalised normal (f_theta1 x f_theta5) is orthogonal to G_q2
+    at [t1, t2, 0, t4, theta5] (a grid, then bisection; continuous in theta5, unlike the unit normal)."""
 
-    def d(j):
-        e = np.zeros(5)
-        e[j] = 1e-6
-        return (tool_point(q + e) - tool_point(q - e)) / 2e-6
+    def s2(t5) -> np.ndarray:
+        q = np.array([[t1, t2, 0.0, t4, t] for t in np.atleast_1d(t5)])
+        d = [(tool_point(q + e) - tool_point(q - e)) / 2e-6 for e in np.eye(5)[[0, 4, 1]] * 1e-6]
+        return np.einsum("ni,ni->n", np.cross(d[0], d[1]), d[2])
 
-    return np.einsum("ni,ni->n", np.cross(d(0), d(4)), d(1))
+    grid = np.linspace(ARM.q_min[4] + 1e-3, ARM.q_max[4] - 1e-3, 241)
+    vals, out = s2(grid), []
+    for k in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
+        a, b = grid[k], grid[k + 1]
+        for _ in range(50):
+            c = 0.5 * (a + b)
+            a, b = (c, b) if np.prod(np.sign(s2([a, c]))) > 0 else (a, c)
+        out.append(0.5 * (a + b))
+    return out
 
 
 #: Eq 68 as printed (verification.oracles.abdel_malek).
@@ -362,22 +344,6 @@ eq68_printed = eq68_kbar
 def _kbar_at(p: Probe, j: int, form) -> float:
     NG_qq = np.einsum("k,kij->ij", p.N0, p.Hq)
     return float(form(p.Gq[:, j - 1], eq63_b(p.f_u, p.rows), p.nf_uu(), NG_qq[j - 1, j - 1]))
-
-
-FORMULAS.update(SECTION.formulas(
-    _sigma_zero_points,
-    Formula("Eq 68", eq68_printed, lambda pts, f: np.array(
-        [abs(_kbar_at(p, j, f) - p.meaning("kbar", j, p.rows)) * 1e3 for j, p in pts]), TOL, "mm", (
-        Slip(SlipKind.SIGN, "the two terms of Eq 68 exchanged",
-             lambda g, B, Nf, NG: -eq68_kbar(g, B, Nf, NG)),
-        Slip(SlipKind.TERM, "without the G_qi^T B^T [N0 G]_uu B G_qi term", lambda g, B, Nf, NG: float(-NG)),
-    ), eps=1e-6, text="K-bar = ...",
-        method="Eq 68 as printed (Pinocchio) vs the second derivative of the normal distance phi along "
-        "joint i alone (verification.oracles.normal_distance), at the points where sigma_i = 0",
-        note=lambda pts, err: "K-bar = "
-        + ", ".join(f"{_kbar_at(p, j, eq68_printed) * 1e3:.1f}" for j, p in pts) + " mm",
-        measure="max |K-bar of Eq 68 - (-d2 phi/dq_i^2)|"),
-))
 
 
 def rule_printed(kbar: float) -> float:
@@ -433,45 +399,42 @@ def rule_reading(pts, rule):
     )
 
 
-@SECTION.check(
-    "Eq 68",
-    forms=Forms(
-        rule_printed,
-        rule_corrected,
-        "K-bar > 0 -> the -N0 side (K-bar is minus the normal distance's curvature)",
-        slips=(
-            Slip(SlipKind.SIGN, "K-bar > 0 -> the +N0 side (as printed)", rule_printed),
-            Slip(SlipKind.CLAIM, "always the +N0 side", lambda k: 1.0),
-        ),
-    ),
+def _measured(pts, err) -> str:
+    """K-bar at each point and the side the tool goes to (the rule's row's note)."""
+    seen = _sides(pts, rule_printed)[1]
+    return "measured: " + "; ".join(
+        f"K-bar_{j} = {_kbar_at(p, j, eq68_printed) * 1e3:.0f} mm -> {'+' if s > 0 else '-'}N0"
+        for s, (j, p) in zip(seen, pts, strict=True)
+    )
+
+
+FORMULAS |= SECTION.formulas(
+    _sigma_zero_points,
+    Formula("Eq 68", eq68_printed, lambda pts, f: np.array(
+        [abs(_kbar_at(p, j, f) - p.meaning("kbar", j, p.rows)) * 1e3 for j, p in pts]), TOL, "mm", (
+        Slip(SlipKind.SIGN, "the two terms of Eq 68 exchanged",
+             lambda g, B, Nf, NG: -eq68_kbar(g, B, Nf, NG)),
+        Slip(SlipKind.TERM, "without the G_qi^T B^T [N0 G]_uu B G_qi term", lambda g, B, Nf, NG: float(-NG)),
+    ), eps=1e-6, text="K-bar = ...",
+        method="Eq 68 as printed (Pinocchio) vs the second derivative of the normal distance phi along "
+        "joint i alone (verification.oracles.normal_distance), at the points where sigma_i = 0",
+        note=lambda pts, err: "K-bar = "
+        + ", ".join(f"{_kbar_at(p, j, eq68_printed) * 1e3:.1f}" for j, p in pts) + " mm",
+        measure="max |K-bar of Eq 68 - (-d2 phi/dq_i^2)|"),
+    Formula("Eq 68", rule_printed, lambda pts, rule: np.not_equal(*_sides(pts, rule)), 0, "", (
+        Slip(SlipKind.SIGN, "K-bar > 0 -> the +N0 side (as printed)", rule_printed),
+        Slip(SlipKind.CLAIM, "always the +N0 side", lambda k: 1.0),
+    ), good=rule_corrected,
+        good_is="K-bar > 0 -> the -N0 side (K-bar is minus the normal distance's curvature)",
+        eps=None, id="eq68.rule", name="eq68_rule", count=True, note=_measured,
+        measure="points where the rule predicts the wrong side",
+        text="K-bar > 0: motion in the direction of N0; K-bar < 0: opposite",
+        corrected="K-bar > 0: motion opposite to N0 (the tool's normal distance is about -K-bar t^2 / 2), or "
+        "K-bar with its two terms exchanged",
+        claim="Eq 68: 'If K-bar > 0 the singular surface admits motion in the direction of N0. If K-bar < 0 "
+        "the singular surface admits motion in the opposite direction of N0.'",
+        method="at the points where sigma_i = 0 (row eq68): the side the rule predicts from K-bar's sign vs "
+        f"the side of the surface the tool goes to when joint i leaves its limit by {_STEP:g} rad (the sign "
+        "of its normal distance, verification.oracles.normal_distance)",
+        reread=lambda ctx, pts, rule: rule_reading(pts, rule)),
 )
-def eq68_rule(ctx, rule):
-    """Eq 68's rule: where sigma = 0, K-bar > 0 means the surface admits motion along +N0."""
-    pts = _sigma_zero_points(ctx)
-    pred, seen = _sides(pts, rule)
-    wrong = int(np.sum(pred != seen))
-    detail = "; ".join(
-        f"K-bar_{j} = {_kbar_at(p, j, eq68_printed) * 1e3:.0f} mm -> {'+' if seen[k] > 0 else '-'}N0"
-        for k, (j, p) in enumerate(pts)
-    )
-    row = Row.graded(
-        "Eq 68: 'If K-bar > 0 the singular surface admits motion in the direction of N0. If K-bar < 0 the "
-        "singular surface admits motion in the opposite direction of N0.'",
-        "Eq 68",
-        "at the points where sigma_i = 0 (row eq68): the side the rule predicts from K-bar's sign vs the "
-        "side "
-        f"of the surface the tool goes to when joint i leaves its limit by {_STEP:g} rad (the sign of its "
-        "normal distance, verification.oracles.normal_distance)",
-        f"the rule is wrong at {wrong} of {len(pts)} points; measured: {detail}",
-        (Measure("points where the rule predicts the wrong side", wrong, 0),),
-        id="eq68.rule",
-        domain=f"{len(pts)} points of s(24)-s(27) where sigma_4 = 0 or sigma_2 = 0",
-        erratum=Erratum(
-            "Eq 68 (sign rule)",
-            "K-bar > 0: motion in the direction of N0; K-bar < 0: opposite",
-            "K-bar > 0: motion opposite to N0 (the tool's normal distance is about -K-bar t^2 / 2), or K-bar "
-            "with its two terms exchanged",
-            detail,
-        ),
-    )
-    return row.reread_if_erratum(lambda: rule_reading(pts, rule))

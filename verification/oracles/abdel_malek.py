@@ -86,7 +86,6 @@ class NormalAcceleration:
     at_limit: tuple[tuple[int, str], ...]  # (joint, "lower"/"upper")
     sigma: dict = field(default_factory=dict)  # joint -> sigma [m]
     kbar: dict = field(default_factory=dict)  # joint -> K-bar [m]
-    null_sv: float = 0.0  # smallest singular value of G_q q_s [m]
 
     def in_mm(self) -> dict:
         """The thesis's display units (mm)."""
@@ -182,7 +181,6 @@ def normal_acceleration(q0, free: tuple[int, int], arm: iik.Arm = iik.THESIS_ARM
     q0 = np.asarray(q0, dtype=float)[:5]
     lam, qs, qss = eq58_rates(q0, arm)  # Eq 58
     G, Gq = position_and_jacobian(q0)
-    S = np.linalg.svd(Gq * qs[None, :], compute_uv=False)
     N0 = eq59_normal(Gq, qs)  # Eq 59
     if normal_hint is not None and np.dot(N0, normal_hint) < 0:
         N0 = -N0
@@ -211,5 +209,4 @@ def normal_acceleration(q0, free: tuple[int, int], arm: iik.Arm = iik.THESIS_ARM
         at_limit.append((j, "lower" if dq > 0 else "upper"))
         sigma[j] = float(NG_q[j - 1] * dq)  # Eq 66
         kbar[j] = eq68_kbar(Gq[:, j - 1], B, Nf_uu, NG_qq[j - 1, j - 1])  # Eq 68
-    return NormalAcceleration(q0, lam, G, tuple(free), N0, H, E_rows, B, Q, eig, tuple(at_limit),
-                              sigma, kbar, float(S[2]))
+    return NormalAcceleration(q0, lam, G, tuple(free), N0, H, E_rows, B, Q, eig, tuple(at_limit), sigma, kbar)
