@@ -412,11 +412,14 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
                 rep.setflags(write=False)
                 rows.append(rep)
                 conts.append((dataclasses.replace(c, representative=rep),))
-    cert = _certificate(h)
+    cert, approx = _certificate(h), False
     if all(o is None for o in owner):  # no theta1 continuum reaches the pose: the slow path
-        rows = _with_reference(T, rows, arm, opts, within_only)
+        exact = _with_reference(T, rows, arm, opts, within_only)
+        approx = not exact and bool(h[L.H_APPROX])  # else the kernel's approximate rows, flagged
+        rows = rows if approx else exact
         conts = [()] * len(rows)
-        cert = dataclasses.replace(cert, path=L.SLOW_PATH, certified=False, reason=_NO_CONTINUUM)
+        cert = dataclasses.replace(cert, path=L.SLOW_PATH, certified=False,
+                                   reason=_NO_CONTINUUM + (_APPROXIMATE if approx else ""))
     Q = np.array(rows).reshape(-1, 6)
     pres, rres = pose_residuals(Q, np.broadcast_to(T, (len(Q), 4, 4)), arm) if len(Q) else (np.zeros(0),) * 2
     free = tuple(_FREE_JOINTS[L.FREE_Q1](arm.solver.reversed) if c else () for c in conts)
@@ -431,7 +434,7 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
         free,
         reason,
         method,
-        _ro(np.zeros(len(Q), bool)),
+        _ro(np.full(len(Q), approx)),
         tuple(conts),
         float(h[L.H_PROJECTION]),
         cert,
@@ -442,6 +445,13 @@ _NO_CONTINUUM = (
     "the eliminant vanishes within its rounding on the whole circle (taken for a theta1 continuum), "
     "but no theta1 continuum reaches the pose within the tolerances: its isolated roots cannot be "
     "told from the rounding, so the rows are merged with the NumPy reference's (slow path)"
+)
+
+
+_APPROXIMATE = (
+    "; neither the kernel's rows nor the reference's reach it within the tolerances: the rows "
+    "returned are the kernel's within IKOptions.approximate_tol, flagged approximate (an exact "
+    "solution may still have been missed)"
 )
 
 
