@@ -7,16 +7,16 @@ streaming with the thesis's early update) on a simulated arm; the real arm's err
 checkable here.
 
 Time base. Executions run on a *fast-forward* clock shared by the simulator and the executor
-(:func:`fast_forward_clock`): every wait of the executor advances the clock by its full length but sleeps
-only 1/:data:`FAST_FORWARD` of it, and the host's own time (computation and bus round trips) counts
-:data:`LATENCY_SCALE` of its real length. So what is graded is the streaming scheme, not this host's load:
-whether the next step arrives within the last 5 % of the previous one depends on the scheme alone, and two
-runs give the same verdicts. (With bus round trips at their real length, p3's 95 % update left 0-6 of 696
-joint rests depending on the load, and one such rest too many flipped the Sec 4.3 row between two runs;
-the early-update row still reports that real-latency count, ungraded.) The simulator's motion is an
-analytic function of the clock, so the jumps are exact. The executor samples every 30 ms
-(:data:`SAMPLE_PERIOD`; on p3 the errors agree with 10 ms sampling to 0.05 mm). The Table V round trips
-use the same clock, so their timings do not depend on the host's load either.
+(:class:`hardware.clock.FastForwardClock`): every wait of the executor advances the clock by its full length
+but sleeps only 1/:data:`FAST_FORWARD` of it, and the host's own time (computation and bus round trips)
+counts :data:`LATENCY_SCALE` of its real length. So what is graded is the streaming scheme, not this host's
+load: whether the next step arrives within the last 5 % of the previous one depends on the scheme alone, and
+two runs give the same verdicts. (With bus round trips at their real length, p3's 95 % update left 0-6 of
+696 joint rests depending on the load, and one such rest too many flipped the Sec 4.3 row between two runs;
+the early-update row still reports that real-latency count, ungraded.) The simulator's motion is an analytic
+function of the clock, so the jumps are exact. The executor samples every 30 ms (:data:`SAMPLE_PERIOD`; on
+p3 the errors agree with 10 ms sampling to 0.05 mm). The Table V round trips use the same clock, so their
+timings do not depend on the host's load either.
 
 Grades. Each Sec 4.3 claim is about the real arm: *not checkable* here; the simulation that reproduces it
 is a separate *project* row (:func:`_simulated`), decided by the simulator's assumed 20 ms lag, not by the
@@ -38,6 +38,7 @@ import numpy as np
 from hardware import analyse, execute, read_run_log
 from hardware import protocol as P
 from hardware.analysis import SAFETY_ZONE_PREDEFINED
+from hardware.clock import FastForwardClock
 from hardware.errors import SimulatorError
 from hardware.executor import EARLY_UPDATE, ExecutionOptions
 from hardware.sim import SIM_VERSION, simulated_arm
@@ -56,7 +57,6 @@ __all__ = [
     "SECTION",
     "SimArm",
     "SimRun",
-    "fast_forward_clock",
     "execute_scenario",
 ]
 
@@ -85,27 +85,6 @@ _MOTION = {
 _DEP = ("sim-arm", "speed-limits", "scene", "l1", "lengths")
 SECTION = Section("Hardware execution (Sec 4.3, App. A)", depends_on=_DEP)
 _ON_REAL_ARM = "`iik run SCENARIO --interface socketcan --channel can0 --bitrate 500000`"
-
-
-def fast_forward_clock(factor: float = FAST_FORWARD, latency: float = 1.0):
-    """``(clock, sleep)``: a monotonic clock [s] on which ``sleep(s)`` advances it by ``s``
-    while sleeping only ``s / factor`` of real time, and the host's own time (everything
-    but those sleeps) counts ``latency`` of its real length (1: real speed).
-
-    Give both to the simulator and the executor: idle waits are skipped, and with
-    ``latency < 1`` computation and bus round trips shrink on the simulated timeline."""
-    t0 = time.monotonic()
-    skipped = [0.0]
-
-    def clock() -> float:
-        return t0 + (time.monotonic() - t0) * latency + skipped[0]
-
-    def sleep(seconds: float) -> None:
-        seconds = max(seconds, 0.0)
-        skipped[0] += seconds - seconds / factor * latency
-        time.sleep(seconds / factor)
-
-    return clock, sleep
 
 
 @dataclass(frozen=True)
@@ -176,7 +155,8 @@ def execute_scenario(
     if key in ctx.cache:
         return ctx.cache[key]
     traj, scenario = _planned(ctx, name, limit)
-    clock, sleep = fast_forward_clock(latency=latency)
+    ff = FastForwardClock(FAST_FORWARD, latency)
+    clock, sleep = ff.now, ff.sleep
     options = ExecutionOptions(early=early, update=update, sample_period=SAMPLE_PERIOD)
     with tempfile.TemporaryDirectory(prefix="iik-verify-hw-") as tmp:
         log_path = Path(tmp) / f"{name}.jsonl"
@@ -227,7 +207,8 @@ _WIRE = {
 )
 def check_table_v(ctx) -> Row:
     """Every Table V function round-trips against the simulated modules."""
-    clock, wait_for = fast_forward_clock(latency=LATENCY_SCALE)  # waits in simulated time [s]
+    ff = FastForwardClock(FAST_FORWARD, LATENCY_SCALE)
+    clock, wait_for = ff.now, ff.sleep  # waits in simulated time [s]
     q0 = np.full(6, 0.1)  # [rad], away from home
     ok: dict[str, bool] = {}
 
@@ -598,7 +579,8 @@ def check_set_max_cur(ctx, quantity: str) -> Row:
     unit = _UNITS[quantity]
 
     # PCube_setMaxCur(0.3) then a 0.6 rad/s velocity command for 1 s on the simulated modules
-    clock, wait_for = fast_forward_clock(latency=LATENCY_SCALE)
+    ff = FastForwardClock(FAST_FORWARD, LATENCY_SCALE)
+    clock, wait_for = ff.now, ff.sleep
     with simulated_arm(clock=clock, timeout=REQUEST_TIMEOUT, arm=THESIS_ARM) as (sim, arm):
         arm.open()
         m = arm.modules[0]
