@@ -13,7 +13,8 @@ Per family (:mod:`verification.testing.families`, any shipped arm): ``n`` config
   **within limits**: for the q* inside the joint limits, the default call (limits applied)
   contains it too;
 * **wrong rows**: rows that miss the pose by more than the tolerance by the oracle's own
-  forward kinematics (NumPy DH product, not the kernel's);
+  forward kinematics (NumPy DH product, not the kernel's), or, for a row flagged approximate
+  (returned only when no row reaches the pose), by more than ``IKOptions.approximate_tol``;
 * **continua**: poses with a continuum row flagged (by kind);
 * **uncertified**: poses whose certificate does not hold (each with its reason); **paths**: how
   often each certificate path ran;
@@ -40,7 +41,8 @@ from verification.oracles.multistart import OracleOptions, multistart_ik, pose_r
 from verification.testing.completeness import agreement, contains, coverage
 from verification.testing.families import FAMILIES, Family, FamilyEmpty
 
-__all__ = ["RecoveryOptions", "RecoveryRow", "recovery", "recovery_table", "print_recovery"]
+__all__ = ["RecoveryOptions", "RecoveryRow", "recovery", "recovery_table", "print_recovery", "pose_stats",
+           "PoseStats"]
 
 _TOL = (1e-10, 1e-10)
 
@@ -90,15 +92,32 @@ class RecoveryRow:
     examples: tuple = ()
 
 
-def _pose_stats(arm: Arm, q, T, r):
-    """(found, inside, found inside, wrong rows, continuum kinds) of one pose."""
+@dataclass(frozen=True)
+class PoseStats:
+    """What the recovery table counts for one pose (module docstring).
+
+    Attributes:
+        found: The answer contains q*. inside: q* is inside the joint limits. found_inside: the
+            default call (limits applied) contains it too. wrong: Rows that miss the pose.
+        kinds: Kinds of the continua flagged.
+    """
+
+    found: bool
+    inside: bool
+    found_inside: bool
+    wrong: int
+    kinds: tuple[str, ...]
+
+
+def pose_stats(arm: Arm, q, T, r) -> PoseStats:
+    """The counts of one pose: q* (6,) [rad], its pose T (4, 4) [m] and the kernel's answer r."""
     found = contains(r, q, T, arm, _TOL)
     inside = bool(arm.within_limits(q, tol=-1e-6))
     found_in = inside and contains(iik.solve(T, arm), q, T, arm, _TOL)
     pres, rres = pose_residuals_np(arm, r.q, T) if r.count else (np.zeros(0), np.zeros(0))
-    wrong = int(np.count_nonzero((pres > _TOL[0]) | (rres > _TOL[1])))
-    kinds = sorted({c.kind for cs in r.continua for c in cs})
-    return found, inside, found_in, wrong, kinds
+    tp, tr = (np.where(r.approximate, iik.ik.DEFAULT_OPTIONS.approximate_tol, t) for t in _TOL)
+    wrong = int(np.count_nonzero((pres > tp) | (rres > tr)))
+    return PoseStats(found, inside, found_in, wrong, tuple(sorted({c.kind for cs in r.continua for c in cs})))
 
 
 def recovery(fam: Family, arm: Arm, opts: RecoveryOptions = RecoveryOptions()) -> RecoveryRow:
@@ -113,13 +132,13 @@ def recovery(fam: Family, arm: Arm, opts: RecoveryOptions = RecoveryOptions()) -
     c = Counter()
     kinds, paths, examples = Counter(), Counter(r.certificate.path for r in results), []
     for i, (q, T, r) in enumerate(zip(Q, Ts, results, strict=True)):
-        found, inside, found_in, wrong, ks = _pose_stats(arm, q, T, r)
+        st = pose_stats(arm, q, T, r)
         cert = r.certificate.certified
-        c.update(found=found, inside=inside, found_inside=found_in, wrong=wrong, uncert=not cert,
-                 silent=cert and not found)
-        kinds.update(ks)
-        c["continua"] += bool(ks)
-        if not found and len(examples) < 3:
+        c.update(found=st.found, inside=st.inside, found_inside=st.found_inside, wrong=st.wrong,
+                 uncert=not cert, silent=cert and not st.found)
+        kinds.update(st.kinds)
+        c["continua"] += bool(st.kinds)
+        if not st.found and len(examples) < 3:
             examples.append(q.tolist())
         if opts.oracle_every and i % opts.oracle_every == 0:
             o = multistart_ik(T, arm, OracleOptions(starts=opts.starts, seed=i))
