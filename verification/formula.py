@@ -38,7 +38,7 @@ from .numbers import fmt_matrix, fmt_vec, worst
 from .registry import Erratum, Forms, Measure, Row, Slip, Verdict, epsilon
 from .thesis_index import title_of
 
-__all__ = ["Formula", "Points", "Printed", "error_row", "RIGHT", "per_run", "nudged"]
+__all__ = ["Formula", "Points", "Printed", "error_row", "RIGHT", "per_run"]
 
 #: What the good form is when the printed one is right.
 RIGHT = "the printed form (it is right)"
@@ -254,26 +254,6 @@ def per_run(func: Callable) -> Callable:
         return ctx.cache[key]
 
     return cached
-
-
-# --- added in r1
-
-
-def nudged(form: Callable, eps: float, at: tuple[int, ...] = ()) -> Callable:
-    """The tolerance test's form of a form whose output is an array, or a list, tuple or dict of arrays:
-    ``form`` with every array of its output moved by ``eps``, at the trailing index ``at`` only (e.g.
-    ``(2, 3)``: p_z of (..., 4, 4) poses) or, by default, in every entry."""
-
-    def move(v):
-        if isinstance(v, dict):
-            return {k: move(x) for k, x in v.items()}
-        if isinstance(v, (list, tuple)):
-            return type(v)(move(x) for x in v)
-        v = np.array(v, dtype=float, copy=True)
-        v[(..., *at)] += eps
-        return v
-
-    return lambda *args, **kwargs: move(form(*args, **kwargs))
 
 
 # --- added in r6

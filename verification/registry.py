@@ -387,9 +387,9 @@ class Slip:
             raise RegistrationError(self.what, f"slip kind must be a SlipKind, got {self.kind!r}")
 
 
-def epsilon(form: Callable, eps: float, what: str = "") -> Slip:
-    """The tolerance test: ``form`` with its output moved by ``eps`` (:func:`off_by`)."""
-    return Slip(SlipKind.EPSILON, what or f"the good form moved by {eps:g}", off_by(form, eps))
+def epsilon(form: Callable, eps: float, what: str = "", at: tuple[int, ...] = ()) -> Slip:
+    """The tolerance test: ``form`` with its output moved by ``eps`` (at ``at``, :func:`off_by`)."""
+    return Slip(SlipKind.EPSILON, what or f"the good form moved by {eps:g}", off_by(form, eps, at))
 
 
 @dataclass(frozen=True)
@@ -442,13 +442,21 @@ class Forms:
         return "; ".join(parts)
 
 
-def off_by(form: Callable, eps: float) -> Callable:
-    """``form`` with its output moved by ``eps`` (the tolerance test's form)."""
+def off_by(form: Callable, eps: float, at: tuple[int, ...] = ()) -> Callable:
+    """``form`` with its output moved by ``eps`` (the tolerance test's form): every entry of an array
+    output, or only the trailing index ``at`` (e.g. ``(2, 3)``: p_z of (..., 4, 4) poses); a list,
+    tuple or dict of arrays is moved array by array."""
 
-    def slipped(*args, **kwargs):
-        return np.asarray(form(*args, **kwargs)) + eps
+    def move(v):
+        if isinstance(v, dict):
+            return {k: move(x) for k, x in v.items()}
+        if isinstance(v, (list, tuple)):
+            return type(v)(move(x) for x in v)
+        v = np.array(v, dtype=float, copy=True)
+        v[(..., *at)] += eps
+        return v
 
-    return slipped
+    return lambda *args, **kwargs: move(form(*args, **kwargs))
 
 
 def check_seed(seed) -> int:

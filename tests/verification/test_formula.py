@@ -9,7 +9,7 @@ import pytest
 
 from verification import registry
 from verification.errors import RegistrationError
-from verification.formula import RIGHT, Formula, Points, Printed, nudged, per_run
+from verification.formula import RIGHT, Formula, Points, Printed, per_run
 from verification.registry import Context, Erratum, Measure, Row, Section, Slip, SlipKind, Verdict
 from verification.second_reading import search
 from verification.self_test import self_test_check
@@ -127,23 +127,6 @@ def test_per_run_computes_once_per_run_args_and_sample_size(tmp_path):
     assert draw(Context(out_dir=tmp_path), 1) is not first  # a new run starts with an empty cache
 
 
-def test_nudged_moves_every_array_of_the_output_or_one_entry():
-    """The tolerance form of a form with structured output: the form itself is left alone."""
-
-    def form(q):
-        return {"T": np.zeros((len(q), 4, 4)), "pair": (np.ones(2), [np.zeros(3)])}
-
-    q = np.zeros(5)
-    out = nudged(form, 1e-9)(q)
-    assert np.all(out["T"] == 1e-9) and np.all(out["pair"][0] == 1.0 + 1e-9)
-    assert isinstance(out["pair"], tuple) and isinstance(out["pair"][1], list)
-    assert np.all(out["pair"][1][0] == 1e-9)
-    T = nudged(lambda q: np.zeros((len(q), 4, 4)), 1e-9, (2, 3))(q)
-    assert np.all(T[:, 2, 3] == 1e-9) and np.count_nonzero(T) == len(q)
-    assert np.all(form(q)["T"] == 0.0)
-
-
-# --- added in r6
 def test_count_grades_the_samples_off_by_more_than_the_tolerance(ctx):
     """``count``: the measure is the number of samples with |error| > tol (limit 0), not the max."""
     f = Formula("Eq 16", _sine, SINE.error, 1e-12, "", SINE.slips, count=True, measure="points off")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from iik.errors import IIKError
@@ -168,3 +169,22 @@ def test_grades_that_are_not_measurements_name_their_basis():
 def test_off_by_moves_the_output_only():
     slipped = off_by(lambda x, scale=1.0: scale * x, 1e-3)
     assert slipped(2.0, scale=3.0) == pytest.approx(6.001)
+
+
+def test_off_by_moves_every_array_of_the_output_or_one_entry():
+    """The tolerance form of a form with structured output: the form itself is left alone."""
+
+    def form(q):
+        return {"T": np.zeros((len(q), 4, 4)), "pair": (np.ones(2), [np.zeros(3)])}
+
+    q = np.zeros(5)
+    out = off_by(form, 1e-9)(q)
+    assert np.all(out["T"] == 1e-9) and np.all(out["pair"][0] == 1.0 + 1e-9)
+    assert isinstance(out["pair"], tuple) and isinstance(out["pair"][1], list)
+    assert np.all(out["pair"][1][0] == 1e-9)
+    T = off_by(lambda q: np.zeros((len(q), 4, 4)), 1e-9, (2, 3))(q)
+    assert np.all(T[:, 2, 3] == 1e-9) and np.count_nonzero(T) == len(q)
+    assert np.all(form(q)["T"] == 0.0)
+
+
+# --- added in r6

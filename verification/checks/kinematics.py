@@ -32,7 +32,7 @@ from iik.rotations import rotation_angle
 from iik.urdf import thesis_urdf, urdf_from_dh
 
 from ..assumptions import EXACT_GEOMETRY
-from ..formula import Formula, Points, nudged, per_run
+from ..formula import Formula, Points, per_run
 from ..numbers import fmt_q, worst
 from ..oracles.pinocchio_model import joint_placements, thesis_model, tool_jacobians, tool_poses
 from ..oracles.ur5 import UR5_BASE, UR5_TOOL, solve_base_tool, ur5_fk_pair
@@ -48,6 +48,7 @@ from ..registry import (
     SlipKind,
     Verdict,
     epsilon,
+    off_by,
     verdict_of,
 )
 from ..second_reading import Kind, Reading, choices, moved_entries, search, sign_typos
@@ -218,11 +219,6 @@ def eq42_printed(alpha, beta, gamma) -> np.ndarray:
 def eq4_from_table_ii(q, arm=THESIS_ARM) -> np.ndarray:
     """Known-good Eq 4: the modified-DH product of Table II (iik.dh) -> (n, 4, 4)."""
     return dh_chain(table_ii_printed(arm), np.atleast_2d(q))
-
-
-def _eps(what: str, form, eps: float, at: tuple[int, ...] = ()) -> Slip:
-    """The tolerance test: ``form`` with its output moved by ``eps`` (at ``at``, :func:`nudged`)."""
-    return Slip(SlipKind.EPSILON, what, nudged(form, eps, at))
 
 
 def _with_lengths(**lengths):
@@ -477,7 +473,7 @@ def urdf_is_generated(ctx):
                  lambda q, arm=THESIS_ARM: eq4_printed(q, _with_lengths(l5=arm.l4))),
             Slip(SlipKind.TRANSPOSE, "the rotation block transposed", _transposed_rotation(eq4_printed)),
         ),
-        tolerance=_eps("Eq 4 with p_z moved by 1 nm", eq4_printed, 1e-9, (2, 3)),
+        tolerance=epsilon(eq4_printed, 1e-9, "Eq 4 with p_z moved by 1 nm", (2, 3)),
     ),
 )
 def eq4_vs_pinocchio(ctx, eq4):
@@ -699,7 +695,7 @@ def _appb_truth(ctx):
         good=appb_from_table_ii,
         good_is="Craig's link formula on each Table II row",
         slips=_APPB_SLIPS,
-        tolerance=_eps("the good matrices with (1,4) moved by 1 nm", appb_from_table_ii, 1e-9, (0, 3)),
+        tolerance=epsilon(appb_from_table_ii, 1e-9, "the good matrices with (1,4) moved by 1 nm", (0, 3)),
     ),
 )
 def appendix_b(ctx, appb):
@@ -768,7 +764,7 @@ def appendix_b(ctx, appb):
                  lambda qs, arm=THESIS_ARM: (appb_first_from_dh(qs, arm)[0],
                                              appb_first_from_dh(qs, arm)[1] * np.array([1.0, -1.0, 1.0]))),
         ),
-        tolerance=_eps("every entry moved by 1 nm", appb_first_from_dh, 1e-9),
+        tolerance=epsilon(appb_first_from_dh, 1e-9, "every entry moved by 1 nm"),
         rows=("appb.first_legible",),
     ),
 )
@@ -903,7 +899,7 @@ def _appc_slip(change):
             Slip(SlipKind.TERM, "df3/dth2 without its -l3 c2 term", _appc_slip(
                 lambda J, q, arm: {"df3/dth2": J["df3/dth2"] + arm.l3 * np.cos(q[:, 1])})),
         ),
-        tolerance=_eps("each entry moved by 1 um/rad", appc_printed, 1e-6),
+        tolerance=epsilon(appc_printed, 1e-6, "each entry moved by 1 um/rad"),
     ),
 )
 def appendix_c(ctx, appc):
@@ -986,7 +982,7 @@ _EQ35 = Formula(
                                                                 jacobian(q, arm)[..., :3, :]], -2))),
         ),
         tolerance=Slip(SlipKind.EPSILON, "iik.fk with p_z moved by 1 nm",
-                       (nudged(fk, 1e-9, (2, 3)), jacobian)),
+                       (off_by(fk, 1e-9, (2, 3)), jacobian)),
     ),
 )
 def iik_kinematics(ctx, impl):
@@ -1049,7 +1045,7 @@ def _eq42_compare(ctx, eq42):
                 [[1, 1, 1], [1, 1, 1], [-1, 1, 1]])),
             Slip(SlipKind.SWAP, "alpha and gamma exchanged", lambda a, b, g: eq42_zyz(g, b, a)),
         ),
-        tolerance=_eps("the good matrix with r33 moved by 1e-9", eq42_zyz, 1e-9, (2, 2)),
+        tolerance=epsilon(eq42_zyz, 1e-9, "the good matrix with r33 moved by 1e-9", (2, 2)),
     ),
 )
 def eq42_matrix(ctx, eq42):
