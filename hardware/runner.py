@@ -266,7 +266,7 @@ def run(targets: StepTargets, bus: BusConfig, options: RunOptions = RunOptions()
         log_path = reserve_log_path(log, targets.name)
         if options.execution.watchdog:
             say(f"watchdog on: WATCHDOG broadcast every {WATCHDOG_PERIOD * 1e3:.0f} ms; the modules stop "
-                "if it stays away (--no-watchdog to turn it off)")
+                "if it stays away (the watchdog option turns it off)")
         clock = bus.sim.clock if bus.sim is not None else REAL_TIME
         try:
             with connect(bus, arm=targets.arm) as (host, sim):
