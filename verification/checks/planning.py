@@ -68,7 +68,7 @@ from iik.safety import SAFETY_ZONE
 from iik.scene import THESIS_SCENE
 
 from ..formula import per_run
-from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict
 from ..second_reading import Kind, Reading, search
 from ..thesis_index import title_of
 
@@ -661,30 +661,34 @@ _WHOLE_ARM = "whole-arm Coal clearance every 2 mm of arm motion"
 def _grouped(ctx, detail: Callable, what: str, label: str, *, among=None, failing: Callable | None = None,
              shown: Callable | None = None, on_reconstruction: bool = False, scope: Scope = Scope.THESIS,
              method: str, domain: str, **fields) -> Row:
-    """A claim over the scenarios planned in this run (of ``among``, default all), counted once with one
-    detail row per scenario, ``detail(name, plan result)`` (its method ``label``, its scope ``scope``): it
-    holds if every detail passes. ``failing(rows)`` words the reason from the failing details (default:
-    their numbers); the numbers give ``shown(detail)`` per scenario (default: its whole-arm clearance);
-    ``method`` gets a sentence naming the scenarios quick mode skipped, ``domain`` the number planned
-    (``{n}``). ``on_reconstruction``: the verdict rests on the reconstructed scenes (consistent with / not
-    reproduced on our reconstruction)."""
+    """A claim over the scenarios planned in this run (of ``among``, default all): :meth:`Row.grouped` over
+    one detail row per scenario, ``detail(name, plan result)`` (its method ``label``, its scope ``scope``),
+    counting those where ``what`` fails. ``failing(rows)`` words the reason from the failing details
+    (default: their numbers); the numbers give ``shown(detail)`` per scenario (default: its whole-arm
+    clearance); ``method`` gets a sentence naming the scenarios quick mode skipped, ``domain`` the number
+    planned (``{n}``). ``on_reconstruction``: the verdict rests on the reconstructed scenes (consistent with
+    / not reproduced on our reconstruction)."""
     planned = _planned(ctx)
     names = [n for n in planned if among is None or n in among]
     details = [detail(n, planned[n][0]).replace(method=label, scope=scope) for n in names]
-    bad = [d for d in details if not d.verdict.passes]
-    m = (Measure(f"scenarios where {what} fails", len(bad), 0),)
-    if on_reconstruction:
-        verdict = Verdict.NOT_REPRODUCED if bad else Verdict.RECONSTRUCTION
-        fields.setdefault("basis", _SCENES)
-    else:
-        verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
     failing = failing or (lambda rows: "; ".join(f"{d.id}: {d.numbers}" for d in rows))
     skipped = [n for n in among or [p.stem for p in thesis_scenario_paths()] if n not in planned]
     if ctx.quick and skipped:
         method += f" Quick mode: only {', '.join(names)} planned ({', '.join(skipped)} skipped)."
-    numbers = "; ".join(f"{d.id}: {(shown or _mm)(d)}" for d in details)
-    return Row(method=method, numbers=numbers, verdict=verdict, measures=m, details=tuple(details),
-               reason=failing(bad) if bad else "", scope=scope, domain=domain.format(n=len(names)), **fields)
+    if on_reconstruction:
+        fields.setdefault("basis", _SCENES)
+    return Row.grouped(
+        method=method,
+        numbers="; ".join(f"{d.id}: {(shown or _mm)(d)}" for d in details),
+        details=details,
+        counted=f"scenarios where {what} fails",
+        fail=Verdict.NOT_REPRODUCED if on_reconstruction else Verdict.DOES_NOT_HOLD,
+        holds_as=Verdict.RECONSTRUCTION if on_reconstruction else Verdict.HOLDS,
+        reason=failing([d for d in details if not d.verdict.passes]),
+        scope=scope,
+        domain=domain.format(n=len(names)),
+        **fields,
+    )
 
 
 def _mm(row: Row) -> str:
