@@ -889,9 +889,7 @@ def app_g_points(rng: np.random.Generator, m: int, arm=ARM) -> np.ndarray:
     d /= np.linalg.norm(d, axis=1, keepdims=True)
     back = np.arange(m) < m // 2
     az = rng.uniform(160 * _D, 200 * _D, m)
-    d[back, 0] = np.cos(az[back]) * np.hypot(d[back, 0], d[back, 1])
-    d[back, 1] = np.sin(az[back]) * np.hypot(d[back, 0], d[back, 1])
-    d /= np.linalg.norm(d, axis=1, keepdims=True)
+    d[back, :2] = np.hypot(d[back, 0], d[back, 1])[:, None] * np.column_stack([np.cos(az), np.sin(az)])[back]
     return np.array([0.0, 0.0, arm.l1]) + d * rng.uniform(0.5, 1.3, size=(m, 1))
 
 
