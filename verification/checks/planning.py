@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -544,21 +543,16 @@ def _tool_zone(sc, q) -> tuple[float, float]:
 # ----------------------------------------------------------------------------- scenarios: planning
 @per_run
 def _planned(ctx) -> dict:
-    """:func:`iik.planning.plan` of every shipped scenario (quick: j and b): name -> (result, wall [s])."""
+    """:func:`iik.planning.plan` of every shipped scenario (quick: j and b): name -> its result."""
     from iik.planning import PlanOptions, plan
 
-    out = {}
-    for p in thesis_scenario_paths():
-        if not ctx.quick or p.stem in _QUICK:
-            t0 = time.perf_counter()
-            res = plan(p, PlanOptions(rrt_time=1.0, seed=ctx.seed % 1000 + 1))
-            out[p.stem] = (res, time.perf_counter() - t0)
-    return out
+    options = PlanOptions(rrt_time=1.0, seed=ctx.seed % 1000 + 1)
+    return {p.stem: plan(p, options) for p in thesis_scenario_paths() if not ctx.quick or p.stem in _QUICK}
 
 
 @per_run
 def _checker(ctx, name: str) -> SceneCollision:
-    return SceneCollision(_planned(ctx)[name][0].scenario.obstacles, scene=THESIS_SCENE, arm=THESIS_ARM)
+    return SceneCollision(_planned(ctx)[name].scenario.obstacles, scene=THESIS_SCENE, arm=THESIS_ARM)
 
 
 def _branches(sc) -> tuple[np.ndarray, ...]:
@@ -573,7 +567,7 @@ def _branches(sc) -> tuple[np.ndarray, ...]:
 @per_run
 def _paths(ctx, kind: str, name: str) -> tuple[np.ndarray, ...]:
     """The joint paths of :attr:`PathSource.kind` ``kind`` for scenario ``name``."""
-    res = _planned(ctx)[name][0]
+    res = _planned(ctx)[name]
     sc, planned = res.scenario, (res.q,) if len(res.q) else ()
     if kind == "thesis":
         return _branches(sc)
@@ -670,7 +664,7 @@ def _grouped(ctx, detail: Callable, what: str, label: str, *, among=None, failin
     / not reproduced on our reconstruction)."""
     planned = _planned(ctx)
     names = [n for n in planned if among is None or n in among]
-    details = [detail(n, planned[n][0]).replace(method=label, scope=scope) for n in names]
+    details = [detail(n, planned[n]).replace(method=label, scope=scope) for n in names]
     failing = failing or (lambda rows: "; ".join(f"{d.id}: {d.numbers}" for d in rows))
     skipped = [n for n in among or [p.stem for p in thesis_scenario_paths()] if n not in planned]
     if ctx.quick and skipped:
@@ -798,7 +792,7 @@ def check_planner(ctx, source: PathSource) -> Row:
     labels = ("path", "timed trajectory")
 
     def detail(name, res) -> Row:
-        sc, wall, paths = res.scenario, _planned(ctx)[name][1], source.paths(ctx, name)
+        sc, paths = res.scenario, source.paths(ctx, name)
         if not paths:
             return _detail(sc, f"no path ({res.reason or 'none offered'})")
         cs = [measure_clearance(_checker(ctx, name), q, sc.safety_zone) for q in paths]
@@ -810,7 +804,7 @@ def check_planner(ctx, source: PathSource) -> Row:
             f"'{res.method}', {len(res.q)} step-points; "
             + "; ".join(f"{labels[min(k, 1)]}: min {c.mm()}" for k, c in enumerate(cs))
             + (f"; {res.trajectory.duration:.2f} s" if res.trajectory is not None else "")
-            + f"; planned in {wall:.2f} s"
+            + f"; planned in {res.planning_time:.2f} s (TOPP-RA apart)"
         )
         return _detail(sc, numbers, m, claim=f"{sc.title}: iik.planning.plan")
 
@@ -915,7 +909,7 @@ def _illustrations(ctx) -> tuple[tuple[str, ...], tuple[str, ...]]:
 
     from ..plotting import new_figure
 
-    planned = {n: res for n, (res, _) in _planned(ctx).items() if len(res.q)}
+    planned = {n: res for n, res in _planned(ctx).items() if len(res.q)}
     figs, views = [], []
     for name, fn, kw, size in (
         ("scene", plot_scene, {"projection": "3d"}, (7.5, 6.5)),
@@ -964,7 +958,7 @@ def _toppra_double_limits(q, arm):
 def check_thesis_timing(ctx, timing: Callable) -> Row:
     """Project standard: timing the paths with speeds proportional to the effort index respects the limits."""
     arm, peaks, per = THESIS_ARM, [], []
-    for name, (res, _) in _planned(ctx).items():
+    for name, res in _planned(ctx).items():
         if len(res.q) < 2:
             continue
         tr = timing(res.q, arm)
