@@ -325,6 +325,52 @@ class Row:
             **fields,
         )
 
+    @classmethod
+    def grouped(
+        cls,
+        claim: str,
+        reference: str,
+        method: str,
+        numbers: str | None,
+        details: Iterable[Row],
+        counted: str,
+        *,
+        fail: Verdict | None = Verdict.DOES_NOT_HOLD,
+        holds_as: Verdict = Verdict.HOLDS,
+        passing: str = "pass",
+        failing: str = "not",
+        reason: str = "",
+        **fields,
+    ) -> Row:
+        """A group row over its ``details`` (App. C entries, Table VI sets, scenarios, the quantities
+        printed at a point): it counts once and lists them below it. Graded on one measure named
+        ``counted``, the number of details that do not pass (bound 0): ``holds_as`` if none fails, else
+        ``fail`` (None: the worst verdict among the failing details, in the order of :data:`_WORST`). It
+        carries its details' errata; an ``INPUT_SLIP`` group the second reading of its first input-slip
+        detail; ``reason`` only if it fails. ``numbers`` None: ``"k of n {passing}"`` and, if any fail,
+        ``"; {failing}: "`` with their ids."""
+        details = tuple(details)
+        bad = [d for d in details if not d.verdict.passes]
+        verdict = (fail or next(v for v in _WORST if any(d.verdict is v for d in bad))) if bad else holds_as
+        if numbers is None:
+            numbers = f"{len(details) - len(bad)} of {len(details)} {passing}"
+            numbers += f"; {failing}: {', '.join(d.id for d in bad)}" if bad else ""
+        if verdict is Verdict.INPUT_SLIP:
+            slips = (d.second_reading for d in bad if d.verdict is Verdict.INPUT_SLIP)
+            fields.setdefault("second_reading", next(slips, None))
+        return cls(
+            claim,
+            reference,
+            method,
+            numbers,
+            verdict,
+            measures=(Measure(counted, len(bad), 0),),
+            details=details,
+            errata=tuple(e for d in details for e in d.errata),
+            reason=reason if bad else "",
+            **fields,
+        )
+
     def reread_if_erratum(self, second: Callable[[], SecondReading]) -> Row:
         """:meth:`reread` by ``second()`` if this row is an erratum (the search runs only then), else the
         row itself."""
@@ -347,6 +393,14 @@ class Row:
                        second_reading=replace(second, before=self.verdict.value))
 
 
+#: A failing group's verdict when it takes its details' worst (:meth:`Row.grouped`), worst first.
+_WORST = (
+    Verdict.DOES_NOT_HOLD,
+    Verdict.ERRATUM,
+    Verdict.INPUT_SLIP,
+    Verdict.NOT_REPRODUCED,
+    Verdict.NOT_CHECKABLE,
+)
 _RIGHT = "the printed form (it is right)"
 
 

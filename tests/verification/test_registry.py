@@ -23,6 +23,7 @@ from verification import (
     register,
 )
 from verification.registry import Section, off_by, registered_checks, verdict_of
+from verification.second_reading import AS_STATED, Kind, Reading, SecondReading, Trial
 from verification.thesis_index import parse_refs
 
 
@@ -131,6 +132,32 @@ def test_graded_rows_keep_erratum_and_reason_only_when_failing():
     assert (refuted.verdict, refuted.errata, refuted.reason) == (Verdict.DOES_NOT_HOLD, (), "why")
     with pytest.raises(RowError, match="errata"):  # an erratum without its record is still refused
         Row.graded("c", "Eq 4", "m", "1", [Measure("x", 2.0, 1.0)])
+
+
+def test_grouped_rows_count_the_failing_details():
+    """A group row is graded on how many details fail; its verdict, numbers, errata and reason follow."""
+    e = Erratum("Eq 1", "p", "c", "x")
+    ok, wrong = _row(id="a"), _row(id="b", verdict=Verdict.ERRATUM, errata=(e,))
+    refuted = _row(id="c", verdict=Verdict.DOES_NOT_HOLD)
+    held = Row.grouped("c", "Eq 4", "m", None, [ok, ok], "wrong", passing="agree", reason="why")
+    assert (held.verdict, held.numbers, held.reason, held.errata, len(held.details)) == (
+        Verdict.HOLDS, "2 of 2 agree", "", (), 2)
+    assert held.measures == (Measure("wrong", 0, 0),)
+    bad = Row.grouped("c", "Eq 4", "m", None, [ok, wrong, refuted], "wrong", fail=Verdict.ERRATUM, reason="w")
+    assert (bad.verdict, bad.numbers, bad.reason, bad.errata) == (Verdict.ERRATUM, "1 of 3 pass; not: b, c",
+                                                                   "w", (e,))
+    assert not bad.measures[0].holds and bad.measures[0].value == 2
+    worst = Row.grouped("c", "Eq 4", "m", "n", [wrong, refuted], "w", fail=None)  # the worst: does not hold
+    assert worst.verdict is Verdict.DOES_NOT_HOLD
+    by_construction = Row.grouped("c", "Eq 4", "m", "n", [ok], "w", holds_as=Verdict.IDENTITY, basis="b")
+    assert by_construction.verdict is Verdict.IDENTITY
+    read = SecondReading("p", "s", "r", "m", 0.0, (Trial((AS_STATED,), 1.0, False),
+                                                     Trial((Reading(Kind.SIGN, "-1"),), 0.0, True)))
+    slip = wrong.reread(read)
+    worst = Row.grouped("c", "Eq 4", "m", "n", [ok, wrong, slip], "w", fail=None)  # the worst: erratum
+    assert (worst.verdict, worst.second_reading) == (Verdict.ERRATUM, None)
+    only_slip = Row.grouped("c", "Eq 4", "m", "n", [ok, slip], "w", fail=None)
+    assert (only_slip.verdict, only_slip.second_reading) == (Verdict.INPUT_SLIP, slip.second_reading)
 
 
 def test_section_defaults_reach_its_checks():

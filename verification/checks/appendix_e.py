@@ -437,10 +437,6 @@ def _appendix(name, r) -> str:
     ).rstrip()
 
 
-#: The worst verdict of a point's details first: its row's verdict.
-_WORST = (Verdict.DOES_NOT_HOLD, Verdict.ERRATUM, Verdict.INPUT_SLIP)
-
-
 def _point(name, pv, res, sides) -> Row:
     """Point ``name``'s row: one detail per quantity printed there (u0, N0, H*, B, Q*, eig(Q*), sigma, delta
     q, the conclusion), its verdict the worst of theirs (does not hold, erratum, input slip, holds)."""
@@ -456,29 +452,24 @@ def _point(name, pv, res, sides) -> Row:
     details = _a1(pv, r) if name == "A1" else [_n0(name, pv, r)]
     details += [_eig(name, pv, r.in_mm())]
     details += (_sigma(pv, r, side) if name == "A2" else []) + [_conclusion(name, pv, side, r, note)]
-    verdict = next((v for v in _WORST if any(d.verdict is v for d in details)), Verdict.HOLDS)
-    wrong = [d.id for d in details if not d.verdict.passes]
-    slips = [d for d in details if d.verdict is Verdict.INPUT_SLIP]
-    return Row(
+    refuted = any(d.verdict is Verdict.DOES_NOT_HOLD for d in details)
+    return Row.grouped(
         PRINTED[name]["claim"],
         PRINTED[name]["ref"],
         "every printed quantity vs the same quantity recomputed with Pinocchio (Eq 58-68 by "
         "verification.oracles.abdel_malek; Hessians by central differences), within the printed "
         f"rounding (N0, u0 {_TOL_UNIT:g}; B {_TOL_B:g} 1/mm; mm values {_REL:.1%} + {_ABS} mm); the "
         "conclusion vs reachability of p +- 2 mm N0 (ground truth)",
-        f"{len(details) - len(wrong)} of {len(details)} printed quantities agree"
-        + (f"; disagree: {', '.join(wrong)}" if wrong else ""),
-        verdict,
+        None,
+        details,
+        "printed quantities that disagree",
+        fail=None,
+        passing="printed quantities agree",
+        failing="disagree",
+        reason="the printed conclusion disagrees with ground truth" if refuted else "",
         id=name.lower(),
-        measures=(Measure("printed quantities that disagree", len(wrong), 0),),
-        details=tuple(details),
         domain=f"the printed point {name} (q0 as stated) and its +-{EPS * 1e3:.0f} mm probes along N0",
-        errata=tuple(e for d in details for e in d.errata),
         appendix=_appendix(name, r),
-        second_reading=slips[0].second_reading if verdict is Verdict.INPUT_SLIP else None,
-        reason="the printed conclusion disagrees with ground truth"
-        if verdict is Verdict.DOES_NOT_HOLD
-        else "",
     )
 
 

@@ -567,8 +567,28 @@ CHECKS |= SECTION.formulas(_family("aligned"), Formula(
     reread=convention_reading))
 
 
+@dataclass(frozen=True)
+class Sweep:
+    """The exact admissible set on an orientation grid at reachable points (:func:`sweep`).
+
+    Attributes:
+        p: The points [m], base frame, shape (n, 3): fk of q uniform in Table I.
+        alpha, beta: Eq 42's angles of the grid [rad], shape (nb * na,), alpha varying fastest: alpha at
+            the ``na`` cell centres of [-pi, pi], beta at the ``nb`` of [0, pi].
+        truth: Shape (n, nb * na): an IK solution within Table I for pose_from_euler(p, alpha, beta, 0).
+        na, nb: The grid's numbers of alphas and betas.
+    """
+
+    p: np.ndarray
+    alpha: np.ndarray
+    beta: np.ndarray
+    truth: np.ndarray
+    na: int
+    nb: int
+
+
 @per_run
-def sweep(ctx):
+def sweep(ctx) -> Sweep:
     """The exact admissible set on a grid: :func:`iik.dexterity.admissible` (IK feasibility) at
     ``na x nb`` orientations of each of ``npts`` reachable points (300 in the full report)."""
     q = ctx.rng("dexterity-points").uniform(ARM.q_min, ARM.q_max, size=(ctx.n(300, 8), 6))
@@ -576,7 +596,7 @@ def sweep(ctx):
     na, nb = ctx.n(36, 24), ctx.n(18, 12)
     A, B = np.meshgrid((np.arange(na) + 0.5) / na * 2 * np.pi - np.pi, (np.arange(nb) + 0.5) / nb * np.pi)
     A, B = A.ravel(), B.ravel()
-    return dict(P=P, A=A, B=B, truth=np.array([admissible(p, A, B, ARM) for p in P]), na=na, nb=nb)
+    return Sweep(P, A, B, np.array([admissible(p, A, B, ARM) for p in P]), na, nb)
 
 
 @dataclass(frozen=True)
@@ -657,18 +677,18 @@ def _sweep_row(ctx, admit, claim: str, reference: str, versus: str, reason: str,
     ``_SOUND`` of what it admits is solvable; the row of Eq 43-51 as printed shows the sets at the first
     points (:func:`_figure`)."""
     sw = sweep(ctx)
-    adm = sw["truth"] if admit is SOLVABLE_ONLY else np.array([admit(p, sw["A"], sw["B"]) for p in sw["P"]])
-    r = rates(adm, sw["truth"])
+    adm = sw.truth if admit is SOLVABLE_ONLY else np.array([admit(p, sw.alpha, sw.beta) for p in sw.p])
+    r = rates(adm, sw.truth)
     return Row.graded(
         claim,
         reference,
         "the exact admissible set on a grid: iik.dexterity.admissible (the complete IK, a solution within "
         f"Table I for pose_from_euler(p, alpha, beta, 0); gamma turns joint 6 alone) vs {versus}",
-        f"{r.text()}; of {sw['truth'].size} orientations {int(sw['truth'].sum())} are solvable",
+        f"{r.text()}; of {sw.truth.size} orientations {int(sw.truth.sum())} are solvable",
         (Measure("share of admitted orientations that are solvable", 1.0 - r.false_admit_rate, _SOUND,
                  bound=">="),),
         fail=Verdict.DOES_NOT_HOLD,
-        domain=f"{len(sw['P'])} reachable points (fk of q uniform in Table I), a {sw['na']} x {sw['nb']} "
+        domain=f"{len(sw.p)} reachable points (fk of q uniform in Table I), a {sw.na} x {sw.nb} "
         "(alpha, beta) grid over every orientation of z6 at each",
         reason=reason,
         figures=(_figure(ctx, sw, adm),) if admit is admitted_printed else (),
@@ -810,17 +830,17 @@ def iik_dexterity(ctx, intervals):
     )
 
 
-def _figure(ctx, sw, adm_pr) -> str:
-    na, nb = sw["na"], sw["nb"]
-    n = min(3, len(sw["P"]))
+def _figure(ctx, sw: Sweep, adm_pr) -> str:
+    na, nb = sw.na, sw.nb
+    n = min(3, len(sw.p))
     fig = new_figure(figsize=(4 * n, 3.4))
     ext = (-180, 180, 0, 180)
     for i in range(n):
         ax = fig.add_subplot(1, n, i + 1)
-        ax.imshow(sw["truth"][i].reshape(nb, na), origin="lower", extent=ext, aspect="auto", cmap="Greys",
+        ax.imshow(sw.truth[i].reshape(nb, na), origin="lower", extent=ext, aspect="auto", cmap="Greys",
                   vmin=0, vmax=1.5)
-        p = sw["P"][i]
-        for adm, col in ((_shell(p, sw["A"], sw["B"]), "blue"), (adm_pr[i], "red")):
+        p = sw.p[i]
+        for adm, col in ((_shell(p, sw.alpha, sw.beta), "blue"), (adm_pr[i], "red")):
             if adm.any() and not adm.all():
                 ax.contour(adm.reshape(nb, na).astype(float), levels=[0.5], colors=col, extent=ext)
         ax.set_title(f"p = [{p[0]:.2f}, {p[1]:.2f}, {p[2]:.2f}] m", fontsize=8)

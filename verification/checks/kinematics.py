@@ -49,7 +49,6 @@ from ..registry import (
     Verdict,
     epsilon,
     off_by,
-    verdict_of,
 )
 from ..second_reading import Kind, Reading, choices, moved_entries, search, sign_typos
 from ..shorthand import cos_sin, evaluate, matrix
@@ -925,25 +924,23 @@ def appendix_c(ctx, appc):
                             f"{fmt_q(qs[k])}: printed {val[k]:.6f}, true {J_pin[k, i, j]:.6f}"),
         ))
     n_ok = sum(d.verdict is Verdict.HOLDS for d in details)
-    group_m = (Measure("entries not matching", 15 - n_ok, 0),)
     worst_ = np.array([[m.value for m in d.measures] for d in details])  # (15, 2): vs Pinocchio, vs FD
     fig = _bars(ctx, "appc_errors.png", list(pr), [(w, worst_[:, i]) for i, w in
                 enumerate(("vs Pinocchio", "vs central FD"))], "max |error| [m/rad]",
                 f"Appendix C entries as printed, {len(qs)} q", rotation=60, fontsize=7)
-    group = Row(
+    group = Row.grouped(
         "Appendix C: the 15 printed entries of the 3x5 Jacobian (Eq 56) are the derivatives of Eq 55.",
         "Eq 56 (App. C)",
         "each printed entry vs Pinocchio computeFrameJacobian(frame 'tool', LOCAL_WORLD_ALIGNED) and "
         f"central differences (h = 1e-6 rad) of the Pinocchio tool point, {len(qs)} q",
         f"{n_ok} of 15 entries match (worst |printed - Pinocchio| = {worst_[:, 0].max():.1e} "
         "m/rad)",
-        verdict_of(group_m),
+        details,
+        "entries not matching",
+        fail=Verdict.ERRATUM,
         id="appc",
-        measures=group_m,
-        details=tuple(details),
         domain=_JOINT_DOMAIN.format(n=len(qs)),
         figures=(fig,),
-        errata=tuple(e for d in details for e in d.errata),
     )
     # Eq 35: the assembled 3x5 matrix maps joint increments to tool-point increments
     J = np.stack([np.stack([pr[f"df{i + 1}/dth{j + 1}"] for j in range(5)], -1) for i in range(3)], 1)

@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -68,7 +67,7 @@ from iik.safety import SAFETY_ZONE
 from iik.scene import THESIS_SCENE
 
 from ..formula import per_run
-from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict, verdict_of
+from ..registry import Erratum, Forms, Measure, Row, Scope, Section, Slip, SlipKind, Verdict
 from ..second_reading import Kind, Reading, search
 from ..thesis_index import title_of
 
@@ -544,21 +543,16 @@ def _tool_zone(sc, q) -> tuple[float, float]:
 # ----------------------------------------------------------------------------- scenarios: planning
 @per_run
 def _planned(ctx) -> dict:
-    """:func:`iik.planning.plan` of every shipped scenario (quick: j and b): name -> (result, wall [s])."""
+    """:func:`iik.planning.plan` of every shipped scenario (quick: j and b): name -> its result."""
     from iik.planning import PlanOptions, plan
 
-    out = {}
-    for p in thesis_scenario_paths():
-        if not ctx.quick or p.stem in _QUICK:
-            t0 = time.perf_counter()
-            res = plan(p, PlanOptions(rrt_time=1.0, seed=ctx.seed % 1000 + 1))
-            out[p.stem] = (res, time.perf_counter() - t0)
-    return out
+    options = PlanOptions(rrt_time=1.0, seed=ctx.seed % 1000 + 1)
+    return {p.stem: plan(p, options) for p in thesis_scenario_paths() if not ctx.quick or p.stem in _QUICK}
 
 
 @per_run
 def _checker(ctx, name: str) -> SceneCollision:
-    return SceneCollision(_planned(ctx)[name][0].scenario.obstacles, scene=THESIS_SCENE, arm=THESIS_ARM)
+    return SceneCollision(_planned(ctx)[name].scenario.obstacles, scene=THESIS_SCENE, arm=THESIS_ARM)
 
 
 def _branches(sc) -> tuple[np.ndarray, ...]:
@@ -573,7 +567,7 @@ def _branches(sc) -> tuple[np.ndarray, ...]:
 @per_run
 def _paths(ctx, kind: str, name: str) -> tuple[np.ndarray, ...]:
     """The joint paths of :attr:`PathSource.kind` ``kind`` for scenario ``name``."""
-    res = _planned(ctx)[name][0]
+    res = _planned(ctx)[name]
     sc, planned = res.scenario, (res.q,) if len(res.q) else ()
     if kind == "thesis":
         return _branches(sc)
@@ -661,30 +655,34 @@ _WHOLE_ARM = "whole-arm Coal clearance every 2 mm of arm motion"
 def _grouped(ctx, detail: Callable, what: str, label: str, *, among=None, failing: Callable | None = None,
              shown: Callable | None = None, on_reconstruction: bool = False, scope: Scope = Scope.THESIS,
              method: str, domain: str, **fields) -> Row:
-    """A claim over the scenarios planned in this run (of ``among``, default all), counted once with one
-    detail row per scenario, ``detail(name, plan result)`` (its method ``label``, its scope ``scope``): it
-    holds if every detail passes. ``failing(rows)`` words the reason from the failing details (default:
-    their numbers); the numbers give ``shown(detail)`` per scenario (default: its whole-arm clearance);
-    ``method`` gets a sentence naming the scenarios quick mode skipped, ``domain`` the number planned
-    (``{n}``). ``on_reconstruction``: the verdict rests on the reconstructed scenes (consistent with / not
-    reproduced on our reconstruction)."""
+    """A claim over the scenarios planned in this run (of ``among``, default all): :meth:`Row.grouped` over
+    one detail row per scenario, ``detail(name, plan result)`` (its method ``label``, its scope ``scope``),
+    counting those where ``what`` fails. ``failing(rows)`` words the reason from the failing details
+    (default: their numbers); the numbers give ``shown(detail)`` per scenario (default: its whole-arm
+    clearance); ``method`` gets a sentence naming the scenarios quick mode skipped, ``domain`` the number
+    planned (``{n}``). ``on_reconstruction``: the verdict rests on the reconstructed scenes (consistent with
+    / not reproduced on our reconstruction)."""
     planned = _planned(ctx)
     names = [n for n in planned if among is None or n in among]
-    details = [detail(n, planned[n][0]).replace(method=label, scope=scope) for n in names]
-    bad = [d for d in details if not d.verdict.passes]
-    m = (Measure(f"scenarios where {what} fails", len(bad), 0),)
-    if on_reconstruction:
-        verdict = Verdict.NOT_REPRODUCED if bad else Verdict.RECONSTRUCTION
-        fields.setdefault("basis", _SCENES)
-    else:
-        verdict = verdict_of(m, fail=Verdict.DOES_NOT_HOLD)
+    details = [detail(n, planned[n]).replace(method=label, scope=scope) for n in names]
     failing = failing or (lambda rows: "; ".join(f"{d.id}: {d.numbers}" for d in rows))
     skipped = [n for n in among or [p.stem for p in thesis_scenario_paths()] if n not in planned]
     if ctx.quick and skipped:
         method += f" Quick mode: only {', '.join(names)} planned ({', '.join(skipped)} skipped)."
-    numbers = "; ".join(f"{d.id}: {(shown or _mm)(d)}" for d in details)
-    return Row(method=method, numbers=numbers, verdict=verdict, measures=m, details=tuple(details),
-               reason=failing(bad) if bad else "", scope=scope, domain=domain.format(n=len(names)), **fields)
+    if on_reconstruction:
+        fields.setdefault("basis", _SCENES)
+    return Row.grouped(
+        method=method,
+        numbers="; ".join(f"{d.id}: {(shown or _mm)(d)}" for d in details),
+        details=details,
+        counted=f"scenarios where {what} fails",
+        fail=Verdict.NOT_REPRODUCED if on_reconstruction else Verdict.DOES_NOT_HOLD,
+        holds_as=Verdict.RECONSTRUCTION if on_reconstruction else Verdict.HOLDS,
+        reason=failing([d for d in details if not d.verdict.passes]),
+        scope=scope,
+        domain=domain.format(n=len(names)),
+        **fields,
+    )
 
 
 def _mm(row: Row) -> str:
@@ -794,7 +792,7 @@ def check_planner(ctx, source: PathSource) -> Row:
     labels = ("path", "timed trajectory")
 
     def detail(name, res) -> Row:
-        sc, wall, paths = res.scenario, _planned(ctx)[name][1], source.paths(ctx, name)
+        sc, paths = res.scenario, source.paths(ctx, name)
         if not paths:
             return _detail(sc, f"no path ({res.reason or 'none offered'})")
         cs = [measure_clearance(_checker(ctx, name), q, sc.safety_zone) for q in paths]
@@ -806,7 +804,7 @@ def check_planner(ctx, source: PathSource) -> Row:
             f"'{res.method}', {len(res.q)} step-points; "
             + "; ".join(f"{labels[min(k, 1)]}: min {c.mm()}" for k, c in enumerate(cs))
             + (f"; {res.trajectory.duration:.2f} s" if res.trajectory is not None else "")
-            + f"; planned in {wall:.2f} s"
+            + f"; planned in {res.planning_time:.2f} s (TOPP-RA apart)"
         )
         return _detail(sc, numbers, m, claim=f"{sc.title}: iik.planning.plan")
 
@@ -911,7 +909,7 @@ def _illustrations(ctx) -> tuple[tuple[str, ...], tuple[str, ...]]:
 
     from ..plotting import new_figure
 
-    planned = {n: res for n, (res, _) in _planned(ctx).items() if len(res.q)}
+    planned = {n: res for n, res in _planned(ctx).items() if len(res.q)}
     figs, views = [], []
     for name, fn, kw, size in (
         ("scene", plot_scene, {"projection": "3d"}, (7.5, 6.5)),
@@ -960,7 +958,7 @@ def _toppra_double_limits(q, arm):
 def check_thesis_timing(ctx, timing: Callable) -> Row:
     """Project standard: timing the paths with speeds proportional to the effort index respects the limits."""
     arm, peaks, per = THESIS_ARM, [], []
-    for name, (res, _) in _planned(ctx).items():
+    for name, res in _planned(ctx).items():
         if len(res.q) < 2:
             continue
         tr = timing(res.q, arm)

@@ -85,29 +85,11 @@ def _shifted_joints(sets):
     return tuple(replace(s, fixed=tuple(((j % 5) + 1, v) for j, v in s.fixed)) for s in sets)
 
 
-def _graded(claim: str, source: str, numbers: str, measure: Measure, rid: str, basis: str = "", *,
-            method: str = "", **fields) -> Row:
-    """A row of Table VI or VII (the table, or one entry: a set or a group of sets): it holds when singular
-    on every sample (with ``basis``, by construction)."""
-    return Row.graded(claim, source, method, numbers, (measure,), fail=Verdict.DOES_NOT_HOLD, id=rid,
-                      holds_as=Verdict.IDENTITY if basis else Verdict.HOLDS, basis=basis, **fields)
-
-
-def _table(table: str, sets, what: str, details: list[Row], entries: str, basis: str = "", **fields) -> Row:
-    """The grouped row of Table ``table`` (one entry per set or group of ``sets``, the ``details``): it holds
-    when every entry is singular on every sample."""
-    bad = [d.id for d in details if not d.verdict.passes]
-    return _graded(
-        f"The {len(sets)} sets of Table {table} ({what}) are singularity sets of the arm.",
-        f"Table {table} (App. D)",
-        f"{len(details) - len(bad)} of {len(details)} {entries} singular on every sample"
-        + (f"; not: {', '.join(bad)}" if bad else ""),
-        Measure(f"{entries} with a sample of full rank", len(bad), 0),
-        f"table_{table.lower()}",
-        basis,
-        details=tuple(details),
-        **fields,
-    )
+def _graded(claim: str, source: str, numbers: str, measure: Measure, rid: str, basis: str = "") -> Row:
+    """An entry of Table VI or VII (a set or a group of sets): it holds when singular on every sample
+    (with ``basis``, by construction)."""
+    return Row.graded(claim, source, "", numbers, (measure,), fail=Verdict.DOES_NOT_HOLD, id=rid,
+                      holds_as=Verdict.IDENTITY if basis else Verdict.HOLDS, basis=basis)
 
 
 def _note(s) -> str:
@@ -148,10 +130,16 @@ def table_vi(ctx, sets):
         claim = f"{s.name} = {_set_label(s)} is a type {s.kind} singularity set."
         m = Measure("share of samples with full rank", 1 - frac, 0.0)
         details.append(_graded(claim, f"App. D, Table VI, {s.name}", numbers + _note(s), m, f"s{s.index}"))
-    return _table(
-        "VI", sets, "type I and II", details, "sets",
-        method=f"Pinocchio position Jacobian (reduced: columns of joints at a limit dropped) on {n} random "
+    return Row.grouped(
+        f"The {len(sets)} sets of Table VI (type I and II) are singularity sets of the arm.",
+        "Table VI (App. D)",
+        f"Pinocchio position Jacobian (reduced: columns of joints at a limit dropped) on {n} random "
         "samples of each set's free joints within Table I; singular = rank < 3",
+        None,
+        details,
+        "sets with a sample of full rank",
+        passing="sets singular on every sample",
+        id="table_vi",
         domain=f"{n} samples per set, each free joint uniform over its whole Table I range",
     )
 
@@ -186,9 +174,18 @@ def table_vii(ctx, sets):
             f"s{s0.index}-{group[-1].index}",
             basis,
         ))
-    return _table(
-        "VII", sets, "type III: three joints at limits", details, "groups", basis,
-        method=f"Pinocchio reduced Jacobian (columns of the joints at limits dropped) on {n} samples per set",
+    return Row.grouped(
+        f"The {len(sets)} sets of Table VII (type III: three joints at limits) are singularity sets of the "
+        "arm.",
+        "Table VII (App. D)",
+        f"Pinocchio reduced Jacobian (columns of the joints at limits dropped) on {n} samples per set",
+        None,
+        details,
+        "groups with a sample of full rank",
+        holds_as=Verdict.IDENTITY,
+        passing="groups singular on every sample",
+        id="table_vii",
+        basis=basis,
         domain=f"{n} samples per set, the free joints uniform over Table I",
     )
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..registry import Erratum, Measure, Row, Section, Verdict
+from ..registry import Erratum, Row, Section, Verdict
 from ..second_reading import numbering_slips, search
 
 SECTION = Section("The text (cross-references)", depends_on=("text",))
@@ -133,24 +133,22 @@ SLIPS = (
 )
 def cross_references(ctx):
     """The cross-reference slips of the text, one erratum record each."""
-    m = (Measure("citations whose target is not what the sentence describes", len(SLIPS), 0),)
     details = tuple(
         Row(f"{s.where}: '{s.quote}'", f"{s.where} (citation)", "", f"cited target: {s.cited_is}; described: "
             f"{s.correct}", Verdict.ERRATUM, id=f"c{k + 1}", errata=(s.erratum,)).reread(s.reading())
         for k, s in enumerate(SLIPS)
     )
-    return Row(
+    return Row.grouped(
         "The tables, figures, sections, equations, points and references the text cites are the ones it "
         "describes.",
         "Cross-references (whole text)",
         "every numbered citation read against the List of Figures, List of Tables, Table of Contents and "
         "equation numbering of the thesis and its reference list",
         "; ".join(f"{s.where}: '{s.quote}' -> {s.correct}" for s in SLIPS),
-        Verdict.ERRATUM if SLIPS else Verdict.HOLDS,
+        details,
+        "citations whose target is not what the sentence describes",
+        fail=Verdict.ERRATUM,
         id="cross_references",
-        measures=m,
         covers=("Cross-references",),
-        details=details,
         domain=f"the {len(SLIPS)} citations found wrong by reading every numbered citation",
-        errata=tuple(s.erratum for s in SLIPS),
     )

@@ -163,8 +163,45 @@ def surface_points(name: str, n1: int, n2: int, arm=ARM) -> tuple[np.ndarray, np
 
 
 # ----------------------------------------------------------------------------- ground truth
+@dataclass(frozen=True)
+class ClassifiedPoints:
+    """The test points of the classification checks and the oracle's verdict on each (:func:`_test_points`).
+
+    Attributes:
+        p: The points [m], base frame, shape (n, 3): the first ``n_box`` uniform in the box [-0.95, 0.95]^2
+            x [-0.55, 1.15] m, the rest behind the arm (azimuth 150-210 deg, radius up to 0.95 m).
+        n_box: How many of ``p`` are the box's.
+        truth: Reachable by the oracle (IK residual < 1e-6 m), shape (n,).
+        residual: The oracle's best IK residual [m], shape (n,).
+        q: The oracle's best joints 1-5 [rad], shape (n, 5).
+        graded: Decided clearly by the oracle (residual not in its boundary band), shape (n,).
+    """
+
+    p: np.ndarray
+    n_box: int
+    truth: np.ndarray
+    residual: np.ndarray
+    q: np.ndarray
+    graded: np.ndarray
+
+    def selected(self, region: str) -> np.ndarray:
+        """The graded points of ``region``: ``"all"``, ``"1"`` or ``"23"`` (behind the arm, Eq 36)."""
+        return self.graded & {"all": np.ones(len(self.p), bool), "1": ~_behind(self.p),
+                              "23": _behind(self.p)}[region]
+
+    @property
+    def domain(self) -> str:
+        """The points in words (a row's domain)."""
+        return (
+            f"{self.n_box} points uniform in the box [-0.95, 0.95]^2 x [-0.55, 1.15] m around the arm plus "
+            f"{len(self.p) - self.n_box} at azimuth 150-210 deg (behind the arm, across joint 1's limits, "
+            "where regions 2/3 begin), radius up to 0.95 m; points the oracle leaves undecided (IK residual "
+            "1e-6..1e-4 m: the boundary band) are not graded"
+        )
+
+
 @per_run
-def _test_points(ctx) -> dict:
+def _test_points(ctx) -> ClassifiedPoints:
     """Uniform box points + points concentrated in regions 2/3, classified by the oracle; ``graded``: those
     it decides clearly (not in its boundary band)."""
     rng = ctx.rng("workspace-test-points")
@@ -178,8 +215,7 @@ def _test_points(ctx) -> dict:
     pts = np.vstack([box, back])
     cls = oracle_for(ctx).classify(pts)
     graded = ~((cls.residual > 1e-6) & (cls.residual < AMBIGUOUS))
-    return {"p": pts, "n_box": n1, "truth": cls.reachable, "residual": cls.residual, "q": cls.q,
-            "graded": graded}
+    return ClassifiedPoints(pts, n1, cls.reachable, cls.residual, cls.q, graded)
 
 
 #: The map's cross-sections: plane -> (in words, the index of its vertical axis, that axis's range [m]).
@@ -221,33 +257,19 @@ def _map_figure(ctx, name: str) -> str:
     return ctx.save_figure(fig, name, dpi=80)
 
 
-def _test_domain(tp) -> str:
-    return (
-        f"{tp['n_box']} points uniform in the box [-0.95, 0.95]^2 x [-0.55, 1.15] m around the arm plus "
-        f"{len(tp['p']) - tp['n_box']} at azimuth 150-210 deg (behind the arm, across joint 1's limits, "
-        "where regions 2/3 begin), radius up to 0.95 m; points the oracle leaves undecided (IK residual "
-        "1e-6..1e-4 m: the boundary band) are not graded"
-    )
-
-
-def _selected(tp, region: str) -> np.ndarray:
-    P = tp["p"]
-    return tp["graded"] & {"all": np.ones(len(P), bool), "1": ~_behind(P), "23": _behind(P)}[region]
-
-
 def classification_reading(ctx, test, region: str, printed: str):
     """Second reading of the Sec 3.4.4 test (``test``, a partial of :func:`eq36_41_test` or the printed
     one): the misclassified test points under each nearby reading of its stated inputs (joint 1 in regions
     2/3 at 160 deg in both, as Eq 40 prints it, or at the other limit; theta2 of Eq 39 measured the other
     way), against the oracle."""
     tp = _test_points(ctx)
-    sel = _selected(tp, region)
+    sel = tp.selected(region)
     kw = dict(getattr(test, "keywords", {}) or {})
     stated = {"th1_rule": kw.pop("th1_rule", "region"), "eq39_sign": kw.pop("eq39_sign", -1.0)}
 
     def misfit(x) -> float:
-        pred = eq36_41_test(tp["p"], **kw, **x)
-        return float(np.sum(pred[sel] != tp["truth"][sel]))
+        pred = eq36_41_test(tp.p, **kw, **x)
+        return float(np.sum(pred[sel] != tp.truth[sel]))
 
     readings = [
         Reading(Kind.LIMIT, "joint 1 at 160 deg in both regions 2 and 3 (Eq 40's cos 160, sin 160 literally)",
@@ -267,29 +289,29 @@ def _classification_row(ctx, form, key, method, region: str, printed: str, corre
     """The row of a classification test (the form) on the graded test points of ``region`` ("all", "1",
     "23"); the id and the claim default to the index key's (``"Eq 38"`` -> ``eq38``, its title)."""
     tp = _test_points(ctx)
-    P, truth = tp["p"], tp["truth"]
-    sel = _selected(tp, region)
+    P, truth = tp.p, tp.truth
+    sel = tp.selected(region)
     pred = form(P)
     fi, fo = int(np.sum(pred[sel] & ~truth[sel])), int(np.sum(~pred[sel] & truth[sel]))
     bad = np.nonzero(sel & (pred != truth))[0]
     erratum = None
     if len(bad):
         i = bad[0]
-        q = f", q[1..5] = {fmt_vec(tp['q'][i])} rad" if truth[i] else ""
+        q = f", q[1..5] = {fmt_vec(tp.q[i])} rad" if truth[i] else ""
         where = (f"p = {fmt_vec(P[i])} m is {'reachable' if truth[i] else 'unreachable'} (IK residual "
-                 f"{tp['residual'][i]:.1e} m{q}); the form says {'inside' if pred[i] else 'outside'}")
+                 f"{tp.residual[i]:.1e} m{q}); the form says {'inside' if pred[i] else 'outside'}")
         erratum = Erratum(key, printed, corrected, where)
     row = Row.graded(
         claim or f"{title_of(key)}.",
         key,
         method,
         f"{int(sel.sum())} graded test points ({int(truth[sel].sum())} reachable; "
-        f"{int((~tp['graded']).sum())} in the oracle's boundary band not graded): false inside {fi}, "
+        f"{int((~tp.graded).sum())} in the oracle's boundary band not graded): false inside {fi}, "
         f"false outside {fo}",
         (Measure("misclassified test points", fi + fo, 0),),
         erratum=erratum,
         id=rid or key.lower().replace(" ", ""),
-        domain=_test_domain(tp) + {"all": "", "1": "; region 1 only", "23": "; regions 2/3 only"}[region],
+        domain=tp.domain + {"all": "", "1": "; region 1 only", "23": "; regions 2/3 only"}[region],
     )
     return row.reread_if_erratum(lambda: classification_reading(ctx, form, region, printed))
 
@@ -811,7 +833,7 @@ def _core(ctx) -> np.ndarray:
 def no_interior_boundary(ctx, margin):
     """Sec 3.4.3: 'the 6-DOF manipulator does not have interior boundaries' (no void inside the outer one)."""
     tp = _test_points(ctx)
-    P, truth = tp["p"], tp["truth"]
+    P, truth = tp.p, tp.truth
     reach = ARM.l3 + ARM.l4 + ARM.l5 - margin
     deep = (np.linalg.norm(P - eq37_printed(eq36_printed(P)), axis=1) <= reach) & ~_behind(P)
     core = _core(ctx)
@@ -827,7 +849,7 @@ def no_interior_boundary(ctx, margin):
         (Measure("unreachable points inside the tested region", n_void, 0),),
         fail=Verdict.DOES_NOT_HOLD,
         id="no_interior_boundary",
-        domain=_test_domain(tp) + f"; those at least {margin * 1e3:.0f} mm inside the f(1) sphere, plus "
+        domain=tp.domain + f"; those at least {margin * 1e3:.0f} mm inside the f(1) sphere, plus "
         f"{len(core)} points in a 0.7 m cube around joint 2",
     )
 
@@ -859,19 +881,22 @@ def _pushed_out(P) -> np.ndarray:
     return r + 0.005 * (P - r) / np.linalg.norm(P - r, axis=1, keepdims=True)
 
 
+def app_g_points(rng: np.random.Generator, m: int, arm=ARM) -> np.ndarray:
+    """App. G's sample before the workspace test: ``m`` points (m, 3) [m], base frame, 0.5-1.3 m from
+    (0, 0, l1) in uniform directions, the first ``m // 2`` turned behind the arm (azimuth 160-200 deg, their
+    elevation kept)."""
+    d = rng.normal(size=(m, 3))
+    d /= np.linalg.norm(d, axis=1, keepdims=True)
+    back = np.arange(m) < m // 2
+    az = rng.uniform(160 * _D, 200 * _D, m)
+    d[back, :2] = np.hypot(d[back, 0], d[back, 1])[:, None] * np.column_stack([np.cos(az), np.sin(az)])[back]
+    return np.array([0.0, 0.0, arm.l1]) + d * rng.uniform(0.5, 1.3, size=(m, 1))
+
+
 @per_run
 def _outside_points(ctx):
     """Points outside the workspace, half of them behind the arm, and their closest reachable points."""
-    rng = ctx.rng("app-g")
-    m = ctx.n(110, 30)
-    d = rng.normal(size=(m, 3))
-    d /= np.linalg.norm(d, axis=1, keepdims=True)
-    back = np.arange(m) < m // 2  # half of them behind the arm (regions 2/3)
-    az = rng.uniform(160 * _D, 200 * _D, m)
-    d[back, 0] = np.cos(az[back]) * np.hypot(d[back, 0], d[back, 1])
-    d[back, 1] = np.sin(az[back]) * np.hypot(d[back, 0], d[back, 1])
-    d /= np.linalg.norm(d, axis=1, keepdims=True)
-    P = np.array([0.0, 0.0, ARM.l1]) + d * rng.uniform(0.5, 1.3, size=(m, 1))
+    P = app_g_points(ctx.rng("app-g"), ctx.n(110, 30))
     P = P[~in_workspace(P, ARM)]
     return P, iik.closest_reachable(P, ARM)
 

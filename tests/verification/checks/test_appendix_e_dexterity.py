@@ -104,7 +104,7 @@ def test_dexterity_is_graded_from_the_printed_equations(ctx):
     assert "false admits" in row.numbers and "false rejects" in row.numbers
     # the thesis's model read exactly is neither necessary nor sufficient: both rates are measured non-zero
     sw = X.sweep(ctx)
-    shell = X.rates([X.shell_admits(p, sw["A"], sw["B"], X.ARM) for p in sw["P"]], sw["truth"])
+    shell = X.rates([X.shell_admits(p, sw.alpha, sw.beta, X.ARM) for p in sw.p], sw.truth)
     assert shell.false_admits > 0 and shell.false_rejects > 0
     assert X.shell_model(ctx, X._shell).verdict is Verdict.DOES_NOT_HOLD
     assert X.iik_dexterity(ctx, X.alpha_intervals).verdict is Verdict.HOLDS

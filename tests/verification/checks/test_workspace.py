@@ -73,6 +73,17 @@ def test_boundary_claims(ctx):
     assert W.app_g_relocation(ctx, W.radial_projection).verdict is Verdict.RECONSTRUCTION
 
 
+def test_app_g_points_behind_the_arm_lie_in_the_stated_band():
+    """The first half of App. G's sample lies at azimuth 160-200 deg (the row's domain says so), 0.5-1.3 m
+    from (0, 0, l1); the other half is spread over every azimuth."""
+    P = W.app_g_points(np.random.default_rng(0), 4000)
+    az = np.degrees(np.arctan2(P[:, 1], P[:, 0])) % 360
+    assert np.all((az[:2000] >= 160) & (az[:2000] <= 200))
+    assert np.mean((az[2000:] < 160) | (az[2000:] > 200)) > 0.8
+    r = np.linalg.norm(P - [0.0, 0.0, THESIS_ARM.l1], axis=1)
+    assert np.all((r >= 0.5) & (r <= 1.3))
+
+
 def test_singularity_tables_are_grouped(ctx):
     vi = S.table_vi(ctx, S.TABLE_VI)
     assert vi.verdict is Verdict.HOLDS and len(vi.details) == 37
