@@ -325,6 +325,8 @@ NEAR_POSITION = 1e-3
 NEAR_ROTATION = 1e-2
 #: Rows closer than this [rad] joined by a segment within the tolerance are one solution.
 CONNECTED = 1e-3
+#: Steps of the path along a curved valley between two such rows (:func:`_bent_path`).
+BENT_STEPS = 8
 #: Near threshold of the isolation: |F| within this many (tolerance / reach) of its magnitude.
 NEAR_FACTOR = 64.0
 #: Certified roots closer than this in joint 1 [rad] are one for the certificate (a near-double
@@ -1136,6 +1138,8 @@ def _aligned_theta2(t1, P, v, th2, n):
 _ALL6 = np.arange(6)
 _COLS_FWD = np.array([0, 1, 5])  # solver joints 1, 2, 6 as user columns
 _COLS_REV = np.array([5, 4, 0])
+#: Row j: every user column but j (the joints refit while joint j is held).
+_ALL_BUT = np.array([[k for k in range(6) if k != j] for j in range(6)])
 _COLS_NO3_FWD = np.array([0, 1, 3, 4, 5])  # every joint but solver joint 3, as user columns
 _COLS_NO3_REV = np.array([5, 4, 2, 1, 0])
 
@@ -1279,9 +1283,10 @@ def _continua(cand, nc, v, Ru, T, opt, ws, wm, lo, hi) -> None:
 def _same(cand, ia, ib, v, Ru, T, opt, ws, wm):
     """Are rows ia and ib one solution? Equal to DISTINCT_TOL in every joint; or one exact
     theta3/theta6 continuum (its fixed joints and its coupling equal); or joined, within
-    CONNECTED rad, by a segment that stays within the tolerance of the pose (7 points): near a
-    singularity the configurations within the tolerance form a thin valley in which the
-    rounded pose's eliminant has several roots, one solution at the tolerance."""
+    CONNECTED rad, by a segment that stays within the tolerance of the pose (7 points) or by a
+    bent path along it (:func:`_bent_path`): near a singularity the configurations within the
+    tolerance form a thin valley in which the rounded pose's eliminant has several roots, one
+    solution at the tolerance."""
     dmax = 0.0
     for j in range(6):
         dmax = max(dmax, abs(wrap(cand[ia, j] - cand[ib, j])))
@@ -1312,7 +1317,9 @@ def _same(cand, ia, ib, v, Ru, T, opt, ws, wm):
     if cand[ia, _C_FREE] == L.FREE_NUMERICAL and cand[ib, _C_FREE] == L.FREE_NUMERICAL:
         if _one_tube(cand[ia], cand[ib], v, Ru, T, opt, ws, wm):
             return True
-    return _connected(cand[ia], cand[ib], v, Ru, T, opt, ws)
+    return _connected(cand[ia], cand[ib], v, Ru, T, opt, ws) or _bent_path(
+        cand[ia], cand[ib], v, Ru, T, opt, ws, wm
+    )
 
 
 @_inner
@@ -1331,6 +1338,42 @@ def _connected(a, b, v, Ru, T, opt, ws):
         if pr > opt[L.OPT_POSITION_TOL] or rr > opt[L.OPT_ROTATION_TOL]:
             return False
     return True
+
+
+@_inner
+def _bent_path(a, b, v, Ru, T, opt, ws, wm):
+    """Are a and b within CONNECTED rad of each other in every joint and joined along the floor of
+    a curved valley of the tolerance (at a multiple root the configurations within the tolerance
+    form a flat, curved blob that no straight segment crosses)? The joint that differs most is
+    stepped from a's value to b's in BENT_STEPS steps, the other five refit from the previous
+    point at each step; every point must reach the pose, no step may move a joint by more than
+    a quarter of the distance (a jump to another solution), and the last point must be
+    connected to b (:func:`_connected`)."""
+    held, size = 0, 0.0
+    for k in range(6):
+        d = abs(wrap(b[k] - a[k]))
+        if d > CONNECTED:
+            return False
+        if d > size:
+            held, size = k, d
+    if size <= L.DISTINCT_TOL:
+        return True
+    prev, q = ws[_W_Q : _W_Q + 6], ws[_W_Q2 : _W_Q2 + 6]
+    for k in range(6):
+        prev[k] = a[k]
+    step = wrap(b[held] - a[held])
+    target = 1e-3 * min(opt[L.OPT_POSITION_TOL], opt[L.OPT_ROTATION_TOL])
+    for i in range(1, BENT_STEPS + 1):
+        for k in range(6):
+            q[k] = prev[k]
+        q[held] = a[held] + step * i / BENT_STEPS
+        _polish(q, v, Ru, T, ws, wm, _ALL_BUT[held], 5, 8, target)
+        pr, rr = _residuals(q, v, Ru, T)
+        if pr > opt[L.OPT_POSITION_TOL] or rr > opt[L.OPT_ROTATION_TOL] or _distance(q, prev) > 0.25 * size:
+            return False
+        for k in range(6):
+            prev[k] = q[k]
+    return _connected(prev, b, v, Ru, T, opt, ws)
 
 
 @_inner
