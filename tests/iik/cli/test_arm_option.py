@@ -148,7 +148,7 @@ def test_the_crx_scenario_runs_across_processes_on_udp_multicast(udp_bus, tmp_pa
     run = udp_bus.process("run", "crx_j", "--arm", "crx10ia", *udp_bus.args, "--timeout", timeout,
                           "--sim-start", "plan", "--out", str(log), "--no-figures")
     out, err = run.communicate(timeout=600)  # (a hang detector: a cold start compiles the IK kernel)
-    assert run.returncode == 0, err
+    assert run.returncode == 0, (out, err)
     assert out.strip().splitlines()[-1].startswith("status: ok"), out
     assert same_arm(read_run_log(log).arm, CRX)
     sim.terminate()
