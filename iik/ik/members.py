@@ -41,6 +41,11 @@ STEP = 0.05
 #: Resolution of the ends of a feasible interval [rad].
 RESOLUTION = 1e-6
 _JUMP = 0.5  # a member more than this from the previous one [rad]: the continuation lost the curve
+#: The orthonormality bound the marches check the continuum's pose against: the pose passed
+#: iik.solve's check with the caller's IKOptions.orthonormal_tol (always below this), and the
+#: marches need only its projected rotation. (A fixed 1e-4 or 1e-3 refused poses the IK had
+#: solved with the default 1e-3 or a larger option: ValueError from a continuum's members.)
+POSE_CHECK_TOL = 0.5
 
 
 def _kernel():
@@ -58,7 +63,7 @@ def _march(c, thetas: np.ndarray, q0=None):
     coupled = -1 if c.coupled_joint is None else c.coupled_joint - 1
     out_q = np.empty((len(thetas), 6))
     out_r = np.empty((len(thetas), 2))
-    opt = np.array([c.tolerance[0], c.tolerance[1], 1e-5, 1e-4, 1e-7])
+    opt = np.array([c.tolerance[0], c.tolerance[1], 1e-5, POSE_CHECK_TOL, 1e-7])
     data = k.arm_data(c.arm).vector
     ok = k.continuum_members(
         np.ascontiguousarray(c.pose, dtype=float),
@@ -106,7 +111,7 @@ def _march_closed(c, thetas: np.ndarray, q0=None, starts=None):
     ok = k.closed_form_march(
         np.ascontiguousarray(c.pose, dtype=float),
         k.arm_data(c.arm).vector,
-        np.array([c.tolerance[0], c.tolerance[1], 1e-5, 1e-3, 1e-7]),
+        np.array([c.tolerance[0], c.tolerance[1], 1e-5, POSE_CHECK_TOL, 1e-7]),
         np.array(c.representative if q0 is None else q0, dtype=float).reshape(-1, 6),
         np.asarray(starts, dtype=np.int64),
         joint1,

@@ -584,8 +584,8 @@ def solve(
     if h[L.H_STATUS] != _poses.OK:
         _raise_first_bad(hdr, "T", False, opts)
     if method == "complete" and h[L.H_COUNT] and not (h[L.H_FREE] or h[L.H_APPROX]) and (
-        h[L.H_PATH] != L.PATH_DEGENERATE
-    ) and not _band_candidate(h):
+        h[L.H_PATH] == L.PATH_DOUBLE or (h[L.H_PATH] != L.PATH_DEGENERATE and not _band_candidate(h))
+    ):
         return _isolated_result(q, info, flags, h)
     return _results(Tb, q, info, flags, hdr, method, opts, arm, within_limits)[0]
 
