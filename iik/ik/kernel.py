@@ -1009,9 +1009,13 @@ def _h3_of(q, P, v):
 
 
 @_inner
-def _configurations(t1, kind, root, P, terms, v, Ru, T, opt, ws, wm, cand, nc, best):
+def _configurations(t1, kind, root, P, terms, v, Ru, T, opt, ws, wm, cand, nc, best, both):
     """Every configuration of one theta1 candidate (both wrist branches of every theta2 option),
-    verified against the pose (and polished when it misses by a little) into cand."""
+    verified against the pose (and polished when it misses by a little) into cand. Near the
+    collinear continuum the tube restarts (:func:`_tube_restarts`) start from the last wrist
+    branch, or with ``both`` (the degenerate path) from each: there the restarts are what finds
+    the band beside the theta1 continuum, and the coupling keeps the sign of joint 5, so the
+    restarts of one branch never reach its wrist flip (docs/IK_CLASS.md section 6)."""
     th2, qc, q = ws[_W_TH2 : _W_TH2 + 8], ws[_W_Q2 : _W_Q2 + 6], ws[_W_Q : _W_Q + 6]
     st = ws[_W_STATS : _W_STATS + N_STATS]
     n2, rel = _theta2_options(terms, t1, kind, th2)
@@ -1025,8 +1029,9 @@ def _configurations(t1, kind, root, P, terms, v, Ru, T, opt, ws, wm, cand, nc, b
         u1, u2 = _refine_12(terms, t1, th2[k])
         c2, s2 = math.cos(u2), math.sin(u2)
         r2, r30, e, hv, h = _upper_arm(math.cos(u1), math.sin(u1), c2, s2, P, v)
-        qc[0], qc[1] = u1 - v[L.A_SOLVER_DH + 4], u2 - v[L.A_SOLVER_DH + 9]
-        for branch in range(2 if h > FREE_TOL else 1):
+        nb = 2 if h > FREE_TOL else 1
+        for branch in range(nb):
+            qc[0], qc[1] = u1 - v[L.A_SOLVER_DH + 4], u2 - v[L.A_SOLVER_DH + 9]
             st[2] += 1.0
             _wrist(r30, e, hv, h, branch, P, v, qc)
             _to_user(qc, q, v)
@@ -1034,9 +1039,9 @@ def _configurations(t1, kind, root, P, terms, v, Ru, T, opt, ws, wm, cand, nc, b
             nc = _verified(q, h, kind, root, iters, P, v, Ru, T, opt, ws, wm, cand, nc, best)
             if free2 and k == 0 and nc > n0:
                 cand[nc - 1, _C_FREE] = L.FREE_Q2
-        if h <= RESTART_H:
-            _to_user(qc, q, v)
-            nc = _tube_restarts(q, kind, root, P, v, Ru, T, opt, ws, wm, cand, nc, best)
+            if h <= RESTART_H and (both or branch == nb - 1):
+                _to_user(qc, q, v)
+                nc = _tube_restarts(q, kind, root, P, v, Ru, T, opt, ws, wm, cand, nc, best)
     if not free2 and rel <= NEAR_FREE2:
         nc = _theta2_restarts(t1, kind, root, P, v, Ru, T, opt, ws, wm, cand, nc, best)
     return nc
@@ -1627,7 +1632,9 @@ def _all_candidates(P, terms, mags, v, Ru, T, opt, ws, wm, cand, hdr, best, thr_
     st[1] += n1
     nc = 0
     for i in range(n1):
-        nc = _configurations(th1[i], kinds[i], float(i), P, terms, v, Ru, T, opt, ws, wm, cand, nc, best)
+        nc = _configurations(
+            th1[i], kinds[i], float(i), P, terms, v, Ru, T, opt, ws, wm, cand, nc, best, degenerate
+        )
     hdr[L.H_CERT] = L.CERT_OK
     if degenerate:
         hdr[L.H_PATH] = L.PATH_DEGENERATE
@@ -1644,7 +1651,7 @@ def _all_candidates(P, terms, mags, v, Ru, T, opt, ws, wm, cand, hdr, best, thr_
         if kinds[i] == L.KIND_ROOT and not _exact_from(cand, nc, i, th1, kinds, n1, v):
             st[9] += 1.0
             nc = _configurations(
-                th1[i], L.KIND_NEAR, float(i), P, terms, v, Ru, T, opt, ws, wm, cand, nc, best
+                th1[i], L.KIND_NEAR, float(i), P, terms, v, Ru, T, opt, ws, wm, cand, nc, best, False
             )
             if not _exact_from(cand, nc, i, th1, kinds, n1, v):
                 st[10] += 1.0

@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from .angles import angle_distance, into_limits
+from .angles import angle_distance, into_limits, wrap_angle
 
 __all__ = [
     "follow",
@@ -29,6 +29,8 @@ __all__ = [
     "on_continuum",
     "theta1_branches",
     "inside_member",
+    "closes",
+    "theta1_bands",
     "along",
     "STEP",
     "RESOLUTION",
@@ -39,6 +41,11 @@ STEP = 0.05
 #: Resolution of the ends of a feasible interval [rad].
 RESOLUTION = 1e-6
 _JUMP = 0.5  # a member more than this from the previous one [rad]: the continuation lost the curve
+#: The orthonormality bound the marches check the continuum's pose against: the pose passed
+#: iik.solve's check with the caller's IKOptions.orthonormal_tol (always below this), and the
+#: marches need only its projected rotation. (A fixed 1e-4 or 1e-3 refused poses the IK had
+#: solved with the default 1e-3 or a larger option: ValueError from a continuum's members.)
+POSE_CHECK_TOL = 0.5
 
 
 def _kernel():
@@ -56,7 +63,7 @@ def _march(c, thetas: np.ndarray, q0=None):
     coupled = -1 if c.coupled_joint is None else c.coupled_joint - 1
     out_q = np.empty((len(thetas), 6))
     out_r = np.empty((len(thetas), 2))
-    opt = np.array([c.tolerance[0], c.tolerance[1], 1e-5, 1e-4, 1e-7])
+    opt = np.array([c.tolerance[0], c.tolerance[1], 1e-5, POSE_CHECK_TOL, 1e-7])
     data = k.arm_data(c.arm).vector
     ok = k.continuum_members(
         np.ascontiguousarray(c.pose, dtype=float),
@@ -104,7 +111,7 @@ def _march_closed(c, thetas: np.ndarray, q0=None, starts=None):
     ok = k.closed_form_march(
         np.ascontiguousarray(c.pose, dtype=float),
         k.arm_data(c.arm).vector,
-        np.array([c.tolerance[0], c.tolerance[1], 1e-5, 1e-3, 1e-7]),
+        np.array([c.tolerance[0], c.tolerance[1], 1e-5, POSE_CHECK_TOL, 1e-7]),
         np.array(c.representative if q0 is None else q0, dtype=float).reshape(-1, 6),
         np.asarray(starts, dtype=np.int64),
         joint1,
@@ -337,3 +344,61 @@ def inside_member(c):
         if i is not None:
             found.append((abs(path[i] - start), _inside(arm, qs[i])[0]))
     return min(found, key=lambda f: f[0])[1] if found else None
+
+
+def closes(c) -> bool:
+    """Does the theta1 continuum c close around the circle: its members, followed from the
+    representative once around (steps of at most :data:`STEP` rad), all reach the pose? False
+    for a band beside the continuum (the wrist point just off the joint-1 axis: members within
+    the tolerance only over part of the circle, docs/IK_CLASS.md section 5). (Jumps are allowed:
+    on an exact continuum the wrist joints swing by more than 1 rad within one step where the
+    curve passes near a wrist singularity.)"""
+    x = float(c.representative[c.free_joint - 1])
+    return bool(np.all(_reaches(c, _toward(c, x + 2.0 * math.pi)[2])))
+
+
+#: A row is on a band of joint 1 when its member this far [rad] along joint 1, on either side,
+#: reaches the pose (an isolated solution's set within the tolerance is ~1e-10 rad wide).
+BAND_PROBE = 1e-3
+#: A row lies on a band when the band's member at its joint 1 is within this [rad] of it in
+#: every joint and the segment between them stays within the tolerance (7 points).
+BAND_NEAR = 1e-3
+
+
+def _on_band(c, Q) -> np.ndarray:
+    """Is each configuration of Q (n, 6) on the band c: c's member at its joint 1 (followed from
+    the representative) reaches the pose, lies within BAND_NEAR of it and is joined to it by a
+    segment within the tolerance?"""
+    from .compare import pose_residuals
+
+    j = c.free_joint - 1
+    out = np.zeros(len(Q), dtype=bool)
+    for i, q in enumerate(Q):
+        m, r = follow(c, [float(q[j])])
+        m = m[0]
+        if not _reaches(c, r[0]) or float(angle_distance(m, q)) > BAND_NEAR:
+            continue
+        pts = q + np.linspace(0.0, 1.0, 9)[1:-1, None] * wrap_angle(m - q)[None]
+        pres, rres = pose_residuals(pts, np.broadcast_to(c.pose, (len(pts), 4, 4)), c.arm)
+        out[i] = bool(np.all(pres <= c.tolerance[0]) and np.all(rres <= c.tolerance[1]))
+    return out
+
+
+def theta1_bands(continua) -> list[int | None]:
+    """For the isolated rows of a degenerate pose (one numerical :class:`Continuum` of joint 1
+    each, in the result's order): the index of the row whose band each row lies on (itself for
+    the first of a band), or None for a row that is no band's (its members one BAND_PROBE away
+    along joint 1 miss the pose on both sides). Beside the theta1 continuum the configurations
+    within the tolerance form bands in joint 1 (0.09 rad wide with the wrist point 3.4e-7 m off
+    the joint-1 axis) in which the eliminant's rounded roots fall anywhere: one row per band."""
+    out: list[int | None] = []
+    reps = np.array([c.representative for c in continua], dtype=float).reshape(-1, 6)
+    for i, c in enumerate(continua):
+        owner = next((k for k in range(i) if out[k] == k and _on_band(continua[k], reps[i : i + 1])[0]), None)
+        if owner is None:
+            x = float(c.representative[c.free_joint - 1])
+            _, r = follow(c, [x - BAND_PROBE, x + BAND_PROBE])
+            if _reaches(c, r).any():
+                owner = i
+        out.append(owner)
+    return out

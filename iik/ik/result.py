@@ -40,13 +40,15 @@ class Continuum:
       continuum: the configurations within the tolerance form a thin tube around the broken
       circle, in which the pose fixes the free joint only loosely. :meth:`member` refits the
       other joints with the free one held; :attr:`interval` is where that stays within the
-      tolerance.
+      tolerance. With no coupled joint (free joint 1, or 6 for an arm read from the flange):
+      a band of joint 1 beside a theta1 continuum (the wrist point just off the joint-1 axis),
+      followed the same way.
 
     Attributes:
         kind: ``"collinear"``, ``"theta1"``, ``"theta2"`` or ``"numerical"``.
         free_joint: The joint (1-based) that moves freely.
         coupled_joint: The joint (1-based) that follows it with ``sign`` (collinear and
-            numerical kinds), else None.
+            numerical kinds), else None (also for a numerical band of joint 1).
         sign: +1 or -1 (or 0 for the theta1 kind).
         representative: The row of the result (6,) [rad]; inside the limits whenever any
             member found is.

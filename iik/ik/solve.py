@@ -343,7 +343,18 @@ def _results(
         )
         if within_only and h[L.H_FREE] and not within[i, :k].all():
             out[-1] = _theta2_inside(out[-1], Tb[i], arm)
+        if _band_candidate(h):
+            out[-1] = _with_bands(out[-1], Tb[i], arm, opts)
     return out
+
+
+def _band_candidate(h) -> bool:
+    """May a pose (its header row, a list) of the complete method lie beside a theta1 continuum
+    without having taken the degenerate path: two or more rows from the extended or
+    multiple-root path with near roots tried? (Never a pose of the double path: the usual case.)"""
+    return (h[L.H_PATH] == L.PATH_EXTENDED or h[L.H_PATH] == L.PATH_MULTIPLE) and h[L.H_NEAR] > 0 and (
+        h[L.H_COUNT] > 1
+    )
 
 
 def _theta2_inside(r: IKResult, T: np.ndarray, arm: Arm) -> IKResult:
@@ -392,7 +403,7 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
     import dataclasses
 
     from .compare import pose_residuals
-    from .members import inside_member, theta1_branches
+    from .members import closes, inside_member, theta1_branches
 
     flagged = [r for r, c in enumerate(cont) if c]
     owner: list = [None] * len(cont)
@@ -420,9 +431,14 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
         conts = [()] * len(rows)
         cert = dataclasses.replace(cert, path=L.SLOW_PATH, certified=False,
                                    reason=_NO_CONTINUUM + (_APPROXIMATE if approx else ""))
+    elif not all(closes(c[0]) for c in conts if c):  # a band beside the theta1 continuum
+        cert = dataclasses.replace(cert, certified=False, reason=_NOT_CLOSED)
+    if not approx:
+        keep, conts = _bands(rows, conts, T, arm, opts)
+        rows = [rows[i] for i in keep]
     Q = np.array(rows).reshape(-1, 6)
     pres, rres = pose_residuals(Q, np.broadcast_to(T, (len(Q), 4, 4)), arm) if len(Q) else (np.zeros(0),) * 2
-    free = tuple(_FREE_JOINTS[L.FREE_Q1](arm.solver.reversed) if c else () for c in conts)
+    free = tuple(_FREE_JOINTS[L.FREE_Q1](arm.solver.reversed) if c else () for c in conts)  # (bands too)
     Q, inside = into_limits(Q, arm.q_min, arm.q_max, LIMIT_TOL)
     reason = "" if len(Q) else _reason(0, int(h[L.H_TOTAL]), False, h[L.H_BEST_P], h[L.H_BEST_R], opts)
     reason = reason or cert.reason
@@ -446,6 +462,60 @@ _NO_CONTINUUM = (
     "but no theta1 continuum reaches the pose within the tolerances: its isolated roots cannot be "
     "told from the rounding, so the rows are merged with the NumPy reference's (slow path)"
 )
+
+
+_NOT_CLOSED = (
+    "the theta1 continuum's members do not close around the circle: it is a band of joint 1 "
+    "beside the continuum (the wrist point just off the joint-1 axis), whose branches and "
+    "isolated solutions are found by restarts, not proven complete"
+)
+
+
+def _bands(rows, conts, T, arm: Arm, opts: IKOptions) -> tuple[list, list]:
+    """The isolated rows (6,) [rad] of a degenerate pose sorted into bands of joint 1
+    (:func:`iik.ik.members.theta1_bands`): beside the theta1 continuum the configurations within
+    the tolerance fill intervals of joint 1, on which the rounded eliminant's roots fall anywhere.
+    One row per band, flagged as a ``"numerical"`` continuum of joint 1 (no coupled joint: its
+    members hold joint 1 and refit the others): the indices of the rows kept and their continua
+    (the other rows' unchanged)."""
+    from .members import theta1_bands
+
+    iso = [i for i, c in enumerate(conts) if not c]
+    if not iso:
+        return list(range(len(rows))), list(conts)
+    Tc = _ro(np.array(T, dtype=float))
+    j1, tol = (6 if arm.solver.reversed else 1), (opts.position_tol, opts.rotation_tol)
+    bands = [Continuum("numerical", j1, None, 0, _ro(rows[i]), None, arm, Tc, tol) for i in iso]
+    owner = dict(zip(iso, theta1_bands(bands), strict=True))
+    keep, out = [], []
+    for i, c in enumerate(conts):
+        o = owner.get(i)
+        if c or o is None or iso[o] == i:
+            keep.append(i)
+            out.append(c if c or o is None else (bands[o],))
+    return keep, out
+
+
+def _with_bands(r: IKResult, T, arm: Arm, opts: IKOptions) -> IKResult:
+    """:func:`_bands` on a result of the extended or multiple-root path with near roots (beside
+    the theta1 continuum, farther from it than the degenerate path reaches, the eliminant's near
+    roots fall along the bands of joint 1): one flagged row per band."""
+    import dataclasses
+
+    if r.count < 1 or r.approximate.any():
+        return r
+    keep, conts = _bands(list(r.q), list(r.continua), T, arm, opts)
+    if not any(c and c[0].coupled_joint is None and c[0].kind == "numerical" for c in conts):
+        return r
+    free = tuple(
+        _FREE_JOINTS[L.FREE_Q1](arm.solver.reversed) if c and c[0].coupled_joint is None else r.free_joints[i]
+        for i, c in zip(keep, conts, strict=True)
+    )
+    return dataclasses.replace(
+        r, q=_ro(r.q[keep]), position_residual=_ro(r.position_residual[keep]),
+        rotation_residual=_ro(r.rotation_residual[keep]), within_limits=_ro(r.within_limits[keep]),
+        free_joints=free, approximate=_ro(r.approximate[keep]), continua=tuple(conts),
+    )
 
 
 _APPROXIMATE = (
@@ -514,7 +584,7 @@ def solve(
     if h[L.H_STATUS] != _poses.OK:
         _raise_first_bad(hdr, "T", False, opts)
     if method == "complete" and h[L.H_COUNT] and not (h[L.H_FREE] or h[L.H_APPROX]) and (
-        h[L.H_PATH] != L.PATH_DEGENERATE
+        h[L.H_PATH] == L.PATH_DOUBLE or (h[L.H_PATH] != L.PATH_DEGENERATE and not _band_candidate(h))
     ):
         return _isolated_result(q, info, flags, h)
     return _results(Tb, q, info, flags, hdr, method, opts, arm, within_limits)[0]

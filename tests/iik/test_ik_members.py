@@ -9,7 +9,18 @@ import pytest
 import iik
 from iik.arm import LIMIT_TOL
 from iik.ik.angles import angle_distance, into_limits
-from iik.ik.members import RESOLUTION, STEP, follow, inside_member, on_continuum, theta1_branches
+from iik.ik.members import (
+    BAND_PROBE,
+    RESOLUTION,
+    STEP,
+    closes,
+    follow,
+    inside_member,
+    on_continuum,
+    theta1_bands,
+    theta1_branches,
+)
+from iik.ik.result import Continuum
 from verification.testing.families import family
 
 ARM = iik.THESIS_ARM
@@ -99,3 +110,48 @@ def test_inside_member_is_the_first_inside_member_on_a_grid_of_follows(seed):
             continue
         assert _inside(m)
         assert np.allclose(iik.fk(m, ARM), c.pose, atol=1e-9)
+
+
+def _reach(c, r) -> np.ndarray:
+    return (r[:, 0] <= c.tolerance[0]) & (r[:, 1] <= c.tolerance[1])
+
+
+#: A near-wrist-on-axis1-theta4 configuration (the wrist point just off the joint-1 axis): the
+#: configurations within the tolerance form a band of joint 1, 1.93 ... 2.12 rad.
+BAND_Q = np.array([2.0892141898825627, -1.8104374472579947, -2.2258776810259655, 4.7e-17,
+                   -0.009284016978601706, 2.204080270915197])
+
+
+def test_closes_holds_on_exact_theta1_continua_and_not_on_a_band():
+    """closes(c) against members followed to 8 points around the circle (each march from the
+    representative): all reach the pose on an exact continuum (theta4 = pi there, where the
+    wrist joints swing by 1.2 rad within one step), some miss on the band."""
+    grid = np.linspace(0.0, 2.0 * np.pi, 9)[1:]
+    for c in _theta1_continua(1, n=2):
+        x = float(c.representative[0])
+        assert closes(c) and bool(np.all(_reach(c, follow(c, x + grid)[1])))
+    r = iik.solve(iik.fk(BAND_Q, ARM), ARM, within_limits=False)
+    band = [cs[0] for cs in r.continua if cs and cs[0].kind == "theta1"]
+    assert band
+    for c in band:
+        x = float(c.representative[0])
+        assert not closes(c) and not bool(np.all(_reach(c, follow(c, x + grid)[1])))
+
+
+def test_theta1_bands_puts_members_of_one_band_together_and_an_isolated_point_alone():
+    """Candidates: members of a band of joint 1 (followed by refits with joint 1 held) at
+    several values of joint 1, the band's wrist flip, and a configuration of another pose's
+    solution set moved 0.3 rad (no band through it: not a band's member)."""
+    T = iik.fk(BAND_Q, ARM)
+    tol = (1e-10, 1e-10)
+    band = Continuum("numerical", 1, None, 0, BAND_Q.copy(), None, ARM, T, tol)
+    flip = BAND_Q + np.array([0.0, 0.0, np.pi, 0.0, 0.0, np.pi])
+    flip[4] = -flip[4]
+    members, r = follow(band, BAND_Q[0] + np.array([-0.1, -0.04, 0.01]))
+    assert bool(np.all(_reach(band, r)))
+    rows = [BAND_Q, *members, flip, BAND_Q + 0.3]
+    got = theta1_bands([Continuum("numerical", 1, None, 0, q, None, ARM, T, tol) for q in rows])
+    assert got == [0, 0, 0, 0, 4, None]
+    m, r = follow(Continuum("numerical", 1, None, 0, BAND_Q + 0.3, None, ARM, T, tol),
+                  [BAND_Q[0] + 0.3 - BAND_PROBE, BAND_Q[0] + 0.3 + BAND_PROBE])
+    assert not bool(np.any(_reach(band, r)))  # (the last row is no band: its probes miss)
