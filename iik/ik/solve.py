@@ -343,18 +343,31 @@ def _results(
         )
         if within_only and h[L.H_FREE] and not within[i, :k].all():
             out[-1] = _theta2_inside(out[-1], Tb[i], arm)
-        if _band_candidate(h):
+        if _band_candidate(h, Tb[i], arm):
             out[-1] = _with_bands(out[-1], Tb[i], arm, opts)
     return out
 
 
-def _band_candidate(h) -> bool:
-    """May a pose (its header row, a list) of the complete method lie beside a theta1 continuum
-    without having taken the degenerate path: two or more rows from the extended or
-    multiple-root path with near roots tried? (Never a pose of the double path: the usual case.)"""
-    return (h[L.H_PATH] == L.PATH_EXTENDED or h[L.H_PATH] == L.PATH_MULTIPLE) and h[L.H_NEAR] > 0 and (
-        h[L.H_COUNT] > 1
-    )
+#: Bands of joint 1 are looked for only with the wrist point within this fraction of the arm's
+#: reach of the joint-1 axis (they exist beside a theta1 continuum: the family
+#: near-wrist-on-axis1-theta4 puts the wrist point up to ~5e-4 of the reach off the axis).
+BAND_NEAR = 1e-3
+
+
+def _band_candidate(h, T: np.ndarray, arm: Arm) -> bool:
+    """May a pose T (4, 4) (its header row h, a list) of the complete method lie beside a theta1
+    continuum without having taken the degenerate path: two or more rows from the extended or
+    multiple-root path with near roots tried, and the wrist point (the origin of the solver
+    chain's frame 6) within BAND_NEAR of the reach from the joint-1 axis? (Never a pose of the
+    double path: the usual case.)"""
+    if not (h[L.H_PATH] == L.PATH_EXTENDED or h[L.H_PATH] == L.PATH_MULTIPLE):
+        return False
+    if h[L.H_NEAR] == 0 or h[L.H_COUNT] < 2:
+        return False
+    s = arm.solver
+    X = np.linalg.inv(T) if s.reversed else T
+    D = np.linalg.solve(s.base, X @ np.linalg.inv(s.tool))[:2, 3]  # solver frame 0: z on axis 1
+    return float(np.hypot(D[0], D[1])) <= BAND_NEAR * arm.reach
 
 
 def _theta2_inside(r: IKResult, T: np.ndarray, arm: Arm) -> IKResult:
@@ -583,9 +596,10 @@ def solve(
     h = hdr[0].tolist()
     if h[L.H_STATUS] != _poses.OK:
         _raise_first_bad(hdr, "T", False, opts)
-    if method == "complete" and h[L.H_COUNT] and not (h[L.H_FREE] or h[L.H_APPROX]) and (
-        h[L.H_PATH] == L.PATH_DOUBLE or (h[L.H_PATH] != L.PATH_DEGENERATE and not _band_candidate(h))
-    ):
+    plain = h[L.H_PATH] == L.PATH_DOUBLE or (
+        h[L.H_PATH] != L.PATH_DEGENERATE and not _band_candidate(h, Tb[0], arm)
+    )
+    if method == "complete" and h[L.H_COUNT] and not (h[L.H_FREE] or h[L.H_APPROX]) and plain:
         return _isolated_result(q, info, flags, h)
     return _results(Tb, q, info, flags, hdr, method, opts, arm, within_limits)[0]
 
