@@ -364,10 +364,31 @@ def _band_candidate(h, T: np.ndarray, arm: Arm) -> bool:
         return False
     if h[L.H_NEAR] == 0 or h[L.H_COUNT] < 2:
         return False
+    base_xy, tool_origin, near = _wrist_data(arm)
+    if arm.solver.reversed:  # the solver solves the inverse pose: T^-1 applied to the point
+        x = T[:3, :3].T @ (tool_origin[:3] - T[:3, 3])
+    else:
+        x = T[:3, :3] @ tool_origin[:3] + T[:3, 3]
+    D = base_xy[:, :3] @ x + base_xy[:, 3]  # x, y of the wrist point in solver frame 0 (z: axis 1)
+    return float(np.hypot(D[0], D[1])) <= near
+
+
+_WRIST: dict[int, tuple] = {}
+
+
+def _wrist_data(arm: Arm) -> tuple:
+    """(rows x, y of the solver base's inverse (2, 4); the solver tool's inverse applied to the
+    origin (4,) [m]; BAND_NEAR times the reach [m]) of ``arm``, built once per arm object: the
+    wrist point of a pose T is base^-1 T tool^-1 applied to the origin."""
+    hit = _WRIST.get(id(arm))
+    if hit is not None and hit[0] is arm:
+        return hit[1]
     s = arm.solver
-    X = np.linalg.inv(T) if s.reversed else T
-    D = np.linalg.solve(s.base, X @ np.linalg.inv(s.tool))[:2, 3]  # solver frame 0: z on axis 1
-    return float(np.hypot(D[0], D[1])) <= BAND_NEAR * arm.reach
+    data = (np.linalg.inv(s.base)[:2], np.linalg.inv(s.tool)[:, 3], BAND_NEAR * arm.reach)
+    if len(_WRIST) > 64:
+        _WRIST.clear()
+    _WRIST[id(arm)] = (arm, data)
+    return data
 
 
 def _theta2_inside(r: IKResult, T: np.ndarray, arm: Arm) -> IKResult:
