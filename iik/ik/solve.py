@@ -351,14 +351,14 @@ def _results(
 #: Bands of joint 1 are looked for only with the wrist point within this fraction of the arm's
 #: reach of the joint-1 axis (they exist beside a theta1 continuum: the family
 #: near-wrist-on-axis1-theta4 puts the wrist point up to ~5e-4 of the reach off the axis).
-BAND_NEAR = 1e-3
+BAND_AXIS_NEAR = 1e-3
 
 
 def _band_candidate(h, T: np.ndarray, arm: Arm) -> bool:
     """May a pose T (4, 4) (its header row h, a list) of the complete method lie beside a theta1
     continuum without having taken the degenerate path: two or more rows from the extended or
     multiple-root path with near roots tried, and the wrist point (the origin of the solver
-    chain's frame 6) within BAND_NEAR of the reach from the joint-1 axis? (Never a pose of the
+    chain's frame 6) within BAND_AXIS_NEAR of the reach from the joint-1 axis? (Never a pose of the
     double path: the usual case.)"""
     if not (h[L.H_PATH] == L.PATH_EXTENDED or h[L.H_PATH] == L.PATH_MULTIPLE):
         return False
@@ -378,13 +378,13 @@ _WRIST: dict[int, tuple] = {}
 
 def _wrist_data(arm: Arm) -> tuple:
     """(rows x, y of the solver base's inverse (2, 4); the solver tool's inverse applied to the
-    origin (4,) [m]; BAND_NEAR times the reach [m]) of ``arm``, built once per arm object: the
+    origin (4,) [m]; BAND_AXIS_NEAR times the reach [m]) of ``arm``, built once per arm object: the
     wrist point of a pose T is base^-1 T tool^-1 applied to the origin."""
     hit = _WRIST.get(id(arm))
     if hit is not None and hit[0] is arm:
         return hit[1]
     s = arm.solver
-    data = (np.linalg.inv(s.base)[:2], np.linalg.inv(s.tool)[:, 3], BAND_NEAR * arm.reach)
+    data = (np.linalg.inv(s.base)[:2], np.linalg.inv(s.tool)[:, 3], BAND_AXIS_NEAR * arm.reach)
     if len(_WRIST) > 64:
         _WRIST.clear()
     _WRIST[id(arm)] = (arm, data)
