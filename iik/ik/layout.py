@@ -43,6 +43,7 @@ __all__ = [
     "PATH_EXTENDED",
     "PATH_MULTIPLE",
     "PATH_DEGENERATE",
+    "PATH_REFERENCE",
     "PATH_NAMES",
     "SLOW_PATH",
     "CERT_OK",
@@ -56,6 +57,7 @@ __all__ = [
     "FREE_Q3",
     "FREE_NUMERICAL",
     "FREE_Q2",
+    "FREE_BAND",
     "FREE_JOINTS_CANONICAL",
     "KIND_ROOT",
     "KIND_NEAR",
@@ -142,10 +144,11 @@ PATH_MULTIPLE = 2
 #: The eliminant vanishes identically within its rounding bound: every theta1 solves the
 #: elimination (a theta1 continuum); solved by the degenerate-case analysis.
 PATH_DEGENERATE = 3
-PATH_NAMES = ("double", "extended", "multiple-root", "degenerate")
 #: The path of a degenerate pose without a theta1 continuum, re-solved by the NumPy reference
-#: (:func:`iik.ik.solve.solve`; not a kernel path).
-SLOW_PATH = "reference"
+#: (:func:`iik.ik.solve.solve`; not a kernel path: only ``solve_batch`` writes the code).
+PATH_REFERENCE = 4
+PATH_NAMES = ("double", "extended", "multiple-root", "degenerate", "reference")
+SLOW_PATH = PATH_NAMES[PATH_REFERENCE]
 
 #: The certificate: every real root became configurations (CERT_OK); else why not.
 CERT_OK = 0
@@ -169,6 +172,9 @@ CERT_NAMES = (
 #: tolerance the pose fixes theta3 only loosely; no exact members), or theta2 free (both
 #: conditions on theta2 vanish at a theta1: D on axis 2, docs/IK_CLASS.md section 5 C).
 FREE_NONE, FREE_Q1, FREE_Q3, FREE_NUMERICAL, FREE_Q2 = 0, 1, 2, 4, 8
+#: A numerical continuum of joint 1 (a band beside a theta1 continuum, no coupled joint): found by
+#: :mod:`iik.ik.solve`, not the kernel (only ``solve_batch`` writes the code).
+FREE_BAND = FREE_NUMERICAL | FREE_Q1
 #: The canonical free joint of each bit (1-based).
 FREE_JOINTS_CANONICAL = ((FREE_Q1, 1), (FREE_Q3, 3))
 

@@ -222,22 +222,15 @@ class IKResult:
         certificate=None,
     ) -> IKResult:
         """Build without copying or checking, for the solvers: read-only arrays ((k, 6), (k,),
-        (k,), (k,) bool, (k,) bool) and per-row ``free_joints`` / ``continua`` tuples."""
+        (k,), (k,) bool, (k,) bool) and per-row ``free_joints`` / ``continua`` tuples. (Item by
+        item into the instance dict: a single pose's call is made of steps like this one.)"""
         self = object.__new__(cls)
-        self.__dict__.update(
-            q=q,
-            position_residual=position_residual,
-            rotation_residual=rotation_residual,
-            within_limits=within_limits,
-            free_joints=free_joints,
-            reason=reason,
-            method=method,
-            info={},
-            approximate=approximate,
-            continua=continua,
-            rotation_projection=rotation_projection,
-            certificate=certificate if certificate is not None else Certificate(),
-        )
+        d = self.__dict__
+        d["q"], d["position_residual"], d["rotation_residual"] = q, position_residual, rotation_residual
+        d["within_limits"], d["free_joints"], d["reason"] = within_limits, free_joints, reason
+        d["method"], d["info"], d["approximate"] = method, {}, approximate
+        d["continua"], d["rotation_projection"] = continua, rotation_projection
+        d["certificate"] = certificate if certificate is not None else Certificate()
         return self
 
     def __len__(self) -> int:
@@ -309,7 +302,8 @@ class IKResult:
 @dataclass(frozen=True)
 class IKBatch:
     """All solutions of n poses as padded arrays (read-only): the array form of
-    :func:`iik.solve_many`, for code that wants no Python object per pose.
+    :func:`iik.solve_many` (the same rows, flags, continuum codes and certificate), for code
+    that wants no Python object per pose.
 
     Row ``i`` of pose ``n`` is valid for ``i < count[n]``; the rest is padding (NaN / False / 0).
 
@@ -318,16 +312,17 @@ class IKBatch:
         count: (n,) rows returned per pose.
         position_residual, rotation_residual: (n, 16) against the poses as given [m], [rad].
         within_limits, approximate: (n, 16) bool, as in :class:`IKResult`.
-        free: (n, 16) int continuum kind (:mod:`iik.ik.layout` ``FREE_*``; 0 for isolated rows).
-        info: (n, 16, N_INFO) the kernel's row data (:mod:`iik.ik.layout` ``I_*``).
+        free: (n, 16) int continuum kind (:mod:`iik.ik.layout` ``FREE_*``; 0 for isolated rows;
+            ``FREE_BAND`` for a band of joint 1 beside a theta1 continuum).
+        info: (n, 16, N_INFO) the kernel's row data (:mod:`iik.ik.layout` ``I_*``). For a pose
+            whose rows :func:`iik.solve_many` sorts (theta1 continua and bands, continuum rows
+            moved into the limits) the rows are solve_many's: I_KIND and I_H3 are NaN there.
         total: (n,) solutions that reach the pose exactly, before the joint-limit filter.
         rotation_projection: (n,) as in :class:`IKResult`.
         closest: (n, 2) least position [m] and rotation [rad] residuals of the candidates
             examined (inf if none): how far an unreachable pose is from the nearest one found.
-        path, certified: (n,) the path code (``PATH_*``) and whether the certificate holds.
-            A degenerate pose's rows are the kernel's raw theta1 candidates: only
-            :func:`iik.solve_many` sorts them into continua (or takes the slow path), so here it
-            is not certified.
+        path, certified: (n,) the path code (``PATH_*``; ``PATH_REFERENCE`` for the slow path)
+            and whether the certificate holds, as in :attr:`IKResult.certificate`.
         method: The method used.
     """
 

@@ -269,6 +269,12 @@ _FREE_JOINTS = {
     L.FREE_NUMERICAL: lambda r: (4, 1) if r else (3, 6),
     L.FREE_Q1: lambda r: (6,) if r else (1,),
     L.FREE_Q2: lambda r: (5,) if r else (2,),
+    L.FREE_BAND: lambda r: (6,) if r else (1,),
+}
+#: The continuum code (FREE_*) of each kind of :class:`Continuum` (a numerical one without a
+#: coupled joint: a band of joint 1).
+_FREE_CODES = {
+    "collinear": L.FREE_Q3, "theta1": L.FREE_Q1, "theta2": L.FREE_Q2, "numerical": L.FREE_NUMERICAL,
 }
 
 
@@ -608,7 +614,7 @@ def solve(
     """
     opts = _check_args(method, options, arm)
     if type(T) is np.ndarray and T.dtype is _F64 and T.shape == (4, 4):
-        Tb, batched = T.reshape(1, 4, 4), False  # fast path: no copy
+        Tb, batched = T[None], False  # fast path: no copy
     else:
         Tb, batched = _poses.as_pose_batch(T, "T")
         if batched:
@@ -632,12 +638,10 @@ def _isolated_result(q, info, flags, h) -> IKResult:
     """:func:`_results` for one pose whose rows are all isolated exact solutions (the usual
     case), with less Python: what a single call's time is mostly made of."""
     k = int(h[L.H_COUNT])
-    for a in (q, info, flags):
-        a.setflags(write=False)
-    f = flags[0, :k]
+    q.setflags(False), info.setflags(False), flags.setflags(False)  # (write; positional: cheaper)
     return IKResult.trusted(
-        q[0, :k], info[0, :k, L.I_PRES], info[0, :k, L.I_RRES], f[:, 0], _EMPTY[k], "", "complete",
-        f[:, 1], _EMPTY[k], h[L.H_PROJECTION], _certificate(h),
+        q[0, :k], info[0, :k, L.I_PRES], info[0, :k, L.I_RRES], flags[0, :k, 0], _EMPTY[k], "",
+        "complete", flags[0, :k, 1], _EMPTY[k], h[L.H_PROJECTION], _certificate(h),
     )
 
 
@@ -674,6 +678,7 @@ def solve_batch(
     Tb, batched = _poses.as_pose_batch(Ts, "Ts")
     q, info, flags, hdr = _run(Tb, arm, opts, within_limits, method)
     _raise_first_bad(hdr, "Ts", batched, opts)
+    certified = _settled(Tb, q, info, flags, hdr, arm, opts, within_limits)
     count = hdr[:, L.H_COUNT].astype(int)  # (rows past the count are padding: NaN / free 0 / False)
     for a in (q, info, flags):
         a.setflags(write=False)
@@ -684,7 +689,7 @@ def solve_batch(
         hdr[:, L.H_BEST_P : L.H_BEST_R + 1].copy(),
         info[:, :, L.I_FREE].astype(int),
         hdr[:, L.H_PATH].astype(int),
-        (hdr[:, L.H_CERT] == L.CERT_OK) & (hdr[:, L.H_PATH] != L.PATH_DEGENERATE),  # (see IKBatch)
+        certified,
     ]
     for a in out:
         a.setflags(write=False)
@@ -704,6 +709,55 @@ def solve_batch(
         certified=out[6],
         method=method,
     )
+
+
+def _settled(Tb, q, info, flags, hdr, arm: Arm, opts: IKOptions, within_only: bool) -> np.ndarray:
+    """The padded outputs of poses Tb (n, 4, 4) made :func:`solve_many`'s answer, in place: the
+    poses whose kernel rows :func:`_results` changes (:func:`_changed`) are solved into an
+    :class:`IKResult` and written back (:func:`_write_result`). Returns the certified mask (n,)."""
+    certified = (hdr[:, L.H_CERT] == L.CERT_OK) & (hdr[:, L.H_PATH] != L.PATH_DEGENERATE)
+    idx = _changed(Tb, flags, hdr, arm, within_only)
+    if not idx:
+        return certified
+    res = _results(Tb[idx], q[idx], info[idx], flags[idx], hdr[idx], "complete", opts, arm, within_only)
+    for i, r in zip(idx, res, strict=True):
+        _write_result(r, q[i], info[i], flags[i], hdr[i])
+        certified[i] = r.certificate.certified
+    return certified
+
+
+def _changed(Tb, flags, hdr, arm: Arm, within_only: bool) -> list[int]:
+    """The poses whose kernel rows :func:`_results` changes: the degenerate path's (continua and
+    bands), those beside a theta1 continuum (:func:`_band_candidate`) and, ``within_only``, those
+    with a continuum row outside the limits (vectorised: the usual pose costs no Python)."""
+    path, k = hdr[:, L.H_PATH], hdr[:, L.H_COUNT]
+    out = (path == L.PATH_DEGENERATE) & (k > 0)
+    if within_only:
+        rows = np.arange(L.MAX_SOLUTIONS)[None, :] < k[:, None]
+        out |= (hdr[:, L.H_FREE] > 0) & np.any(rows & ~flags[:, :, 0], axis=1)
+    band = ((path == L.PATH_EXTENDED) | (path == L.PATH_MULTIPLE)) & (hdr[:, L.H_NEAR] > 0) & (k >= 2)
+    near = [i for i in np.flatnonzero(band & ~out).tolist() if _band_candidate(hdr[i].tolist(), Tb[i], arm)]
+    return sorted(np.flatnonzero(out).tolist() + near)
+
+
+def _write_result(r: IKResult, q: np.ndarray, info: np.ndarray, flags: np.ndarray, h: np.ndarray) -> None:
+    """One pose's :class:`IKResult` into its padded rows q (16, 6), info (16, N_INFO), flags
+    (16, 2) and header h (N_HDR,). Columns only the kernel knows (I_KIND, I_H3) are NaN."""
+    k = r.count
+    q[:], info[:], flags[:] = np.nan, np.nan, False
+    q[:k], info[:, L.I_FREE] = r.q, L.FREE_NONE
+    info[:k, L.I_PRES], info[:k, L.I_RRES] = r.position_residual, r.rotation_residual
+    flags[:k, 0], flags[:k, 1] = r.within_limits, r.approximate
+    for j, cs in enumerate(r.continua):
+        if cs:
+            c = cs[0]
+            band = c.kind == "numerical" and c.coupled_joint is None
+            info[j, L.I_FREE], info[j, L.I_CSIGN] = L.FREE_BAND if band else _FREE_CODES[c.kind], c.sign
+            if c.limits_interval is not None:
+                info[j, L.I_CLO], info[j, L.I_CHI] = c.limits_interval
+    h[L.H_COUNT], h[L.H_FREE], h[L.H_APPROX] = k, sum(map(bool, r.continua)), float(r.approximate.any())
+    if r.certificate.path == L.SLOW_PATH:
+        h[L.H_PATH] = L.PATH_REFERENCE
 
 
 #: What :func:`compile_notice` says.

@@ -29,6 +29,7 @@ from hypothesis import HealthCheck, given, settings
 
 import iik
 from iik import arms
+from iik.ik import layout as L
 from iik.ik.angles import angle_distance
 from iik.ik.members import RESOLUTION
 from verification.oracles.multistart import OracleOptions, multistart_ik, pose_residuals_np
@@ -41,6 +42,7 @@ _THOROUGH = os.environ.get("HYPOTHESIS_PROFILE") == "thorough"
 RECOVERY = 100_000 if _THOROUGH else 12
 REFERENCE = 5_000 if _THOROUGH else 3
 ORACLE = 500 if _THOROUGH else 1
+BATCH = 2_000 if _THOROUGH else 8
 TOL = (1e-10, 1e-10)
 #: Families whose every pose lies on a continuum (its row must be flagged).
 CONTINUUM_FAMILIES = ("continuum", "wrist-on-axis1-theta4")
@@ -103,6 +105,39 @@ def test_family_recovers_generating_q(arm_name, fam):
             assert contains(iik.solve(T, arm), q, T, arm, TOL), q.tolist()
 
     check()
+
+
+#: The continuum code (iik.ik.layout FREE_*) of each kind of row.
+_CODES = {"collinear": L.FREE_Q3, "theta1": L.FREE_Q1, "theta2": L.FREE_Q2, "numerical": L.FREE_NUMERICAL}
+
+
+def _code(row_continua) -> int:
+    if not row_continua:
+        return L.FREE_NONE
+    c = row_continua[0]
+    return L.FREE_BAND if c.kind == "numerical" and c.coupled_joint is None else _CODES[c.kind]
+
+
+@pytest.mark.parametrize("within", [True, False], ids=["within", "all"])
+@pytest.mark.parametrize("arm_name, fam", _CASES)
+def test_solve_batch_is_solve_many_as_arrays(arm_name, fam, within):
+    """solve_batch returns solve_many's answer as padded arrays on every family: the same rows,
+    residuals, flags, continuum codes and certificate (it used to return the kernel's raw rows
+    where solve_many sorts them: theta1 continua and bands, continuum rows outside the limits)."""
+    arm = _arm_and_family(arm_name, fam)
+    T = iik.fk(fam.sample(arm, np.random.default_rng(7), BATCH), arm)
+    many = iik.solve_many(T, arm, within_limits=within)
+    b = iik.ik.solve_batch(T, arm, within_limits=within)
+    for i, r in enumerate(many):
+        k = r.count
+        assert b.count[i] == k, (i, T[i].tolist())
+        assert np.array_equal(b.q[i, :k], r.q) and np.all(np.isnan(b.q[i, k:]))
+        pairs = ((b.position_residual, r.position_residual), (b.rotation_residual, r.rotation_residual),
+                 (b.within_limits, r.within_limits), (b.approximate, r.approximate))
+        for got, want in pairs:
+            assert np.array_equal(got[i, :k], want), i
+        assert b.free[i, :k].tolist() == [_code(c) for c in r.continua], i
+        assert b.certified[i] == r.certificate.certified, (i, r.certificate)
 
 
 @pytest.mark.parametrize("arm_name, fam", _SET_CASES)
