@@ -40,6 +40,7 @@ from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Ve
 from ..second_reading import Kind, Reading, search
 from ..shorthand import cos_sin, wrap
 from ..thesis_index import title_of
+from .kinematics import appb_reading, rotation_transposed
 
 ARM = iik.THESIS_ARM
 L1, L2, L3, L4, L5 = ARM.lengths
@@ -732,12 +733,6 @@ def _links(q: np.ndarray, first: int, last: int) -> np.ndarray:
     return T
 
 
-def _rot_t(T):
-    T = np.array(T, copy=True)
-    T[:, :3, :3] = np.swapaxes(T[:, :3, :3], -1, -2)
-    return T
-
-
 def _matrix(*rows) -> np.ndarray:
     """The (n, r, c) matrices of ``rows`` of entries (arrays over n samples, or numbers)."""
     entries = np.broadcast_arrays(*(np.asarray(e, float) for r in rows for e in r))
@@ -772,7 +767,7 @@ def _eq18_dh(q):
 def _eq18_not_transposed(q):
     """0_2T^-1 written with R for R^T (the translation -R^T p kept)."""
     inv, t25 = _eq18_dh(q)
-    return _rot_t(inv), t25
+    return rotation_transposed(inv), t25
 
 
 def _eq18_t25_sign(q):
@@ -986,7 +981,7 @@ def eq30_t56_corrected(q):
 
 
 def _eq30_t56_transposed(q):
-    return eq30_row3_printed(q), _rot_t(eq30_t56_corrected(q))
+    return eq30_row3_printed(q), rotation_transposed(eq30_t56_corrected(q))
 
 
 @SECTION.check("Eq 30", forms=Forms(
@@ -1000,8 +995,6 @@ def _eq30_t56_transposed(q):
          lambda q: (eq30_row3_printed(q) + 1e-9, eq30_t56_corrected(q) + 1e-9))))
 def eq30_matrices(ctx, mats):
     """Eq 30: the printed row 3 of 0_5T^-1 and the printed 5_6T vs Pinocchio."""
-    from .kinematics import appb_reading
-
     s = sample(ctx)
     row3, t56 = mats(s.q)
     rows = [
@@ -1039,7 +1032,8 @@ _ATAN2_SLIPS = (
 )
 _COMPOSE_SLIPS = (
     Slip(SlipKind.SWAP, "the factors in the wrong order", lambda a, b: b @ a),
-    Slip(SlipKind.TRANSPOSE, "the second factor's rotation transposed", lambda a, b: a @ _rot_t(b)),
+    Slip(SlipKind.TRANSPOSE, "the second factor's rotation transposed",
+         lambda a, b: a @ rotation_transposed(b)),
 )
 
 
