@@ -979,7 +979,7 @@ def iik_kinematics(ctx, impl):
         "Pinocchio framesForwardKinematics and computeFrameJacobian (LOCAL_WORLD_ALIGNED)",
         Measure("max |dp|", dp, TOL_EXACT, "m"), Measure("max rotation angle", dr, TOL_EXACT, "rad"),
         Measure("max |dJ|", np.abs(jac_f(qs, THESIS_ARM) - J_pin).max(), TOL_EXACT, "m/rad or -"),
-        fail=Verdict.DOES_NOT_HOLD, id="iik_kinematics", scope=Scope.PROJECT,
+        fail=Verdict.DOES_NOT_HOLD, scope=Scope.PROJECT,
     )
 
 
@@ -1086,7 +1086,6 @@ def eq42_convention(ctx, eq42):
         f"each of the 9 entries vs scipy 'ZXZ' and 'ZYZ' (intrinsic) on {len(a)} angle triples",
         f"entries matching Z-X-Z: {counts['ZXZ']} of 9; matching Z-Y-Z: {counts['ZYZ']} of 9",
         m,
-        id="eq42_convention",
         erratum=Erratum(
             "Eq 42 / Sec 3.5.1 convention",
             "'Z-X-Z representation convention' (Sec 3.5.1)",
@@ -1288,7 +1287,6 @@ def table_i_self_collision(ctx, limits):
         (Measure("min distance tool point - upper-arm axis", d_star, MIN_CLEARANCE, "m", bound=">="),
          Measure("fraction of sampled q in self-collision (Coal)", hit.mean(), 0.0)),
         fail=Verdict.DOES_NOT_HOLD,
-        id="table_i_self_collision",
         domain=f"{len(qs)} q uniform within the limits under test, then a bounded local search from the "
         "worst",
         reason="the limits bound each joint separately; theta4 + theta5 can reach 238 deg, so the gripper "
