@@ -130,7 +130,6 @@ def _counts_row(ctx, claim: CountClaim, within: bool) -> Row:
         + f"; max FK residual {np.nanmax(P):.1e} m / {np.nanmax(R):.1e} rad",
         m,
         fail=Verdict.DOES_NOT_HOLD,
-        id="solution_counts" + ("_table_i" if within else ""),
         reason="; ".join(reasons),
         domain=f"{len(q)} poses fk(q), q uniform in Table I (the generating q is a solution of each)",
     )

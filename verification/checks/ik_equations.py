@@ -40,6 +40,7 @@ from ..registry import Erratum, Forms, Measure, Row, Section, Slip, SlipKind, Ve
 from ..second_reading import Kind, Reading, search
 from ..shorthand import cos_sin, wrap
 from ..thesis_index import title_of
+from .kinematics import appb_reading, rotation_transposed
 
 ARM = iik.THESIS_ARM
 L1, L2, L3, L4, L5 = ARM.lengths
@@ -204,10 +205,6 @@ def eq7_printed(th1, th2):
 def _link3(th1, th2):
     """The unit vector of link 3 (from B to C)."""
     return np.stack([np.cos(th2) * np.cos(th1), np.cos(th2) * np.sin(th1), -np.sin(th2)], 1)
-
-
-def _eq7_geom(th1, th2):
-    return _eq6_rot(th1) + L3 * _link3(th1, th2)
 
 
 def eq8_printed(R, D, th1, th2):
@@ -732,12 +729,6 @@ def _links(q: np.ndarray, first: int, last: int) -> np.ndarray:
     return T
 
 
-def _rot_t(T):
-    T = np.array(T, copy=True)
-    T[:, :3, :3] = np.swapaxes(T[:, :3, :3], -1, -2)
-    return T
-
-
 def _matrix(*rows) -> np.ndarray:
     """The (n, r, c) matrices of ``rows`` of entries (arrays over n samples, or numbers)."""
     entries = np.broadcast_arrays(*(np.asarray(e, float) for r in rows for e in r))
@@ -769,12 +760,6 @@ def _eq18_dh(q):
     return np.linalg.inv(_links(q, 1, 2)), _links(q, 3, 5)
 
 
-def _eq18_not_transposed(q):
-    """0_2T^-1 written with R for R^T (the translation -R^T p kept)."""
-    inv, t25 = _eq18_dh(q)
-    return _rot_t(inv), t25
-
-
 def _eq18_t25_sign(q):
     inv, t25 = _eq18_dh(q)
     t25 = t25.copy()
@@ -785,7 +770,8 @@ def _eq18_t25_sign(q):
 @SECTION.check("Eq 18", forms=Forms(
     lambda q: (eq18_inverse_printed(q), eq18_t25_printed(q)), _eq18_dh,
     "inverse of the Table II product 0_2T, and 2_5T from Table II",
-    (Slip(SlipKind.TRANSPOSE, "0_2T^-1 with R for R^T", _eq18_not_transposed),
+    (Slip(SlipKind.TRANSPOSE, "0_2T^-1 with R for R^T",  # the translation -R^T p kept
+          lambda q: (rotation_transposed(_eq18_dh(q)[0]), _eq18_dh(q)[1])),
      Slip(SlipKind.SIGN, "2_5T's (2,4) entry l4 c4 - l3", _eq18_t25_sign)),
     Slip(SlipKind.EPSILON, "both moved by 1e-9", lambda q: tuple(M + 1e-9 for M in _eq18_dh(q))),
     rows=("eq18.inverse", "eq18.t25")))
@@ -985,23 +971,18 @@ def eq30_t56_corrected(q):
     return T
 
 
-def _eq30_t56_transposed(q):
-    return eq30_row3_printed(q), _rot_t(eq30_t56_corrected(q))
-
-
 @SECTION.check("Eq 30", forms=Forms(
     lambda q: (eq30_row3_printed(q), eq30_t56_printed(q)),
     lambda q: (eq30_row3_printed(q), eq30_t56_corrected(q)),
     "row 3 as printed and 5_6T with -l5 in entry (2,4) (Table II: d6 = -l5 along y5)",
     (Slip(SlipKind.SIGN, "row 3's -c2 s3 written +c2 s3",
           lambda q: (eq30_row3_printed(q) * np.array([1.0, 1.0, -1.0]), eq30_t56_corrected(q))),
-     Slip(SlipKind.TRANSPOSE, "5_6T's rotation transposed", _eq30_t56_transposed)),
+     Slip(SlipKind.TRANSPOSE, "5_6T's rotation transposed",
+          lambda q: (eq30_row3_printed(q), rotation_transposed(eq30_t56_corrected(q))))),
     Slip(SlipKind.EPSILON, "the good matrices moved by 1e-9",
          lambda q: (eq30_row3_printed(q) + 1e-9, eq30_t56_corrected(q) + 1e-9))))
 def eq30_matrices(ctx, mats):
     """Eq 30: the printed row 3 of 0_5T^-1 and the printed 5_6T vs Pinocchio."""
-    from .kinematics import appb_reading
-
     s = sample(ctx)
     row3, t56 = mats(s.q)
     rows = [
@@ -1039,7 +1020,8 @@ _ATAN2_SLIPS = (
 )
 _COMPOSE_SLIPS = (
     Slip(SlipKind.SWAP, "the factors in the wrong order", lambda a, b: b @ a),
-    Slip(SlipKind.TRANSPOSE, "the second factor's rotation transposed", lambda a, b: a @ _rot_t(b)),
+    Slip(SlipKind.TRANSPOSE, "the second factor's rotation transposed",
+         lambda a, b: a @ rotation_transposed(b)),
 )
 
 
@@ -1093,7 +1075,8 @@ CHECKS = SECTION.formulas(
                          0 * t1], 1)),
         Slip(SlipKind.LENGTH, "l4 for l3",
              lambda t1, t2: _eq6_rot(t1) + (eq7_printed(t1, t2) - _eq6_rot(t1)) * (L4 / L3)),
-    ), good=_eq7_geom, good_is="p_B + l3 (unit vector of link 3)", eps_is="each coordinate moved by 1 nm",
+    ), good=lambda t1, t2: _eq6_rot(t1) + L3 * _link3(t1, t2), good_is="p_B + l3 (unit vector of link 3)",
+        eps_is="each coordinate moved by 1 nm",
         method="printed p_C vs the origin of frames 3-4 (Pinocchio) minus l1 e_z"),
     Formula("Eq 9", eq9_printed, _eq9_miss, TOL_ANGLE, "rad", (
         Slip(SlipKind.SIGN, "tan(theta2) = +P/Q", lambda R, D, t: -eq9_corrected(R, D, t)),

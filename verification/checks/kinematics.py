@@ -231,7 +231,8 @@ def _with_lengths(**lengths):
 _EQ4_PZ_SIGN = tuple(tuple(e.replace("- l3 s2", "+ l3 s2") for e in row) for row in EQ4_TEXT)
 
 
-def _rotation_transposed(T: np.ndarray) -> np.ndarray:
+def rotation_transposed(T: np.ndarray) -> np.ndarray:
+    """(..., 4, 4) poses with their rotation blocks transposed (a slip)."""
     T = np.array(T, dtype=float, copy=True)
     T[..., :3, :3] = np.swapaxes(T[..., :3, :3], -1, -2)
     return T
@@ -239,7 +240,7 @@ def _rotation_transposed(T: np.ndarray) -> np.ndarray:
 
 def _transposed_rotation(f):
     """``f`` with the rotation block of its (..., 4, 4) output transposed (a slip)."""
-    return lambda q, arm=THESIS_ARM: _rotation_transposed(f(q, arm))
+    return lambda q, arm=THESIS_ARM: rotation_transposed(f(q, arm))
 
 
 def appb_from_table_ii(q, arm=THESIS_ARM) -> list[np.ndarray]:
@@ -313,15 +314,18 @@ def _fd_position_jacobian(qs: np.ndarray) -> np.ndarray:
     return np.stack([_fd_tool_point(qs, e) for e in np.eye(6)], -1)
 
 
-def _special_joints() -> np.ndarray:
-    """The 3^6 = 729 corners {lower, 0, upper} of Table I (exact limits, where signs flip)."""
-    return np.array(list(product(*zip(THESIS_ARM.q_min, np.zeros(6), THESIS_ARM.q_max, strict=True))))
-
-
 def _samples(ctx, salt: str, full: int, quick: int) -> np.ndarray:
-    """Uniform q in Table I widened by BEYOND, plus (full runs) the 729 limit corners."""
+    """Uniform q in Table I widened by BEYOND, plus (full runs) the 3^6 = 729 corners {lower, 0, upper} of
+    Table I (exact limits, where signs flip)."""
+    corners = product(*zip(THESIS_ARM.q_min, np.zeros(6), THESIS_ARM.q_max, strict=True))
     qs = sample_joints(ctx.rng(salt), ctx.n(full, quick))
-    return qs if ctx.quick else np.concatenate([qs, _special_joints()])
+    return qs if ctx.quick else np.concatenate([qs, np.array(list(corners))])
+
+
+def _joint_row(qs, claim: str, reference: str, method: str, *measures: Measure, **fields) -> Row:
+    """A row graded on ``measures`` over the joint sample ``qs`` (:func:`_samples`), numbers from them."""
+    return Row.graded(claim, reference, method, None, measures, domain=_JOINT_DOMAIN.format(n=len(qs)),
+                      **fields)
 
 
 @per_run
@@ -481,24 +485,15 @@ def eq4_vs_pinocchio(ctx, eq4):
     T = eq4(qs)
     dp = np.linalg.norm(T[:, :3, 3] - T_pin[:, :3, 3], axis=1)
     dR = np.abs(T[:, :3, :3] - T_pin[:, :3, :3]).max(axis=(1, 2))
-    m = (
-        Measure("max |dp| vs Pinocchio", dp.max(), TOL_EXACT, "m"),
-        Measure("max |dR_ij| vs Pinocchio", dR.max(), TOL_EXACT),
-    )
     dp_w, k = worst(dp)
     figs = (_hist(ctx, "eq4_errors.png", [("Eq 4 printed |dp|", dp), ("Eq 4 printed max |dR_ij|", dR)],
                   "log10 error vs Pinocchio [m or -]", f"Eq 4 vs Pinocchio, {len(qs)} q"),
             _arm_figure(ctx)) if eq4 is eq4_printed else ()
-    return Row.graded(
-        "Eq 4 gives the pose of frame 6 (position of the end-effector point and orientation).",
-        "Eq 4 (with Table II, Fig 8)",
-        f"Eq 4 transcribed as printed vs Pinocchio framesForwardKinematics of urdf/thesis_arm.urdf (frame "
-        f"'tool'), {len(qs)} q (the domain below)",
-        None,
-        m,
-        id="eq4",
-        domain=_JOINT_DOMAIN.format(n=len(qs)),
-        figures=figs,
+    return _joint_row(
+        qs, "Eq 4 gives the pose of frame 6 (position of the end-effector point and orientation).",
+        "Eq 4 (with Table II, Fig 8)", "Eq 4 transcribed as printed vs Pinocchio framesForwardKinematics of "
+        "urdf/thesis_arm.urdf (frame 'tool')", Measure("max |dp| vs Pinocchio", dp.max(), TOL_EXACT, "m"),
+        Measure("max |dR_ij| vs Pinocchio", dR.max(), TOL_EXACT), id="eq4", figures=figs,
         erratum=Erratum("Eq 4", "the printed entries", "the Table II product (iik.fk)",
                         f"{fmt_q(qs[k])}: position off by {dp_w:.3g} m"),
     )
@@ -568,18 +563,13 @@ def table_ii_vs_eq4(ctx, table):
     """Eq 1 with Table II: the product of the link transforms vs Eq 4 as printed and vs Pinocchio."""
     qs, T_pin = _truth_poses(ctx, "eq4", 20000, 400)
     T = dh_chain(table, qs)
-    m = (Measure("max |T_TableII - T_Eq4|", np.abs(T - eq4_printed(qs)).max(), TOL_EXACT),
-         Measure("max |T_TableII - T_Pinocchio|", np.abs(T - T_pin).max(), TOL_EXACT))
-    return Row.graded(
-        "Eq 4 is the product 0_1T ... 5_6T (Eq 1) of the Table II link transforms.",
+    return _joint_row(
+        qs, "Eq 4 is the product 0_1T ... 5_6T (Eq 1) of the Table II link transforms.",
         "Eq 1, Table II, Eq 4",
-        f"Modified-DH product (Craig) of the printed Table II vs Eq 4 as printed and vs Pinocchio, {len(qs)} "
-        "q (m for p, - for R)",
-        None,
-        m,
-        fail=Verdict.DOES_NOT_HOLD,
-        id="table_ii_product",
-        domain=_JOINT_DOMAIN.format(n=len(qs)),
+        "Modified-DH product (Craig) of the printed Table II vs Eq 4 as printed and vs Pinocchio (m for p, - "
+        "for R)", Measure("max |T_TableII - T_Eq4|", np.abs(T - eq4_printed(qs)).max(), TOL_EXACT),
+        Measure("max |T_TableII - T_Pinocchio|", np.abs(T - T_pin).max(), TOL_EXACT),
+        fail=Verdict.DOES_NOT_HOLD, id="table_ii_product",
     )
 
 
@@ -604,7 +594,7 @@ def appb_reading(i: int, printed: np.ndarray, qs: np.ndarray, text: str = ""):
     def misfit(x) -> float:
         T = dh_link_transform(DHRow(x["alpha"], x["a"], x["d"], row.offset), x["sign"] * theta,
             x["convention"])
-        return float(np.abs(x["P"] - (_rotation_transposed(T) if x["transpose"] else T)).max())
+        return float(np.abs(x["P"] - (rotation_transposed(T) if x["transpose"] else T)).max())
 
     flipped = {"alpha": f"alpha{i} = {np.degrees(-row.alpha):+.0f} deg", "d": f"d{i + 1} = {-row.d:+.3f} m",
                "a": f"a{i} = {-row.a:+.3f} m"}
@@ -635,7 +625,7 @@ def appb_product_reading(printed: np.ndarray, qs: np.ndarray):
         truth = dh_chain(_table_edit(2, _table_edit(5, base, d=x["d6"]), alpha=x["alpha2"]), qs)
         mats = printed if x["order"] == "forward" else printed[:, ::-1]
         prod = reduce(np.matmul, np.moveaxis(mats, 1, 0))
-        return float(np.abs((_rotation_transposed(prod) if x["transpose"] else prod) - truth).max())
+        return float(np.abs((rotation_transposed(prod) if x["transpose"] else prod) - truth).max())
 
     readings = [
         Reading(Kind.SIGN, "d6 = +l5", {"d6": -base.rows[5].d}),
@@ -666,7 +656,7 @@ def _entry(M: np.ndarray, r: int, c: int, value: float) -> np.ndarray:
 _APPB_SLIPS = (
     Slip(SlipKind.SIGN, "4_5T with the sign of its (1,1) entry flipped", _appb_slip(4, lambda M, a: _entry(
         M, 0, 0, -M[0, 0]))),
-    Slip(SlipKind.TRANSPOSE, "3_4T's rotation transposed", _appb_slip(3, lambda M, a: _rotation_transposed(
+    Slip(SlipKind.TRANSPOSE, "3_4T's rotation transposed", _appb_slip(3, lambda M, a: rotation_transposed(
         M))),
     Slip(SlipKind.LENGTH, "2_3T with l4 for l3 in its (2,4) entry", _appb_slip(2, lambda M, a: _entry(
         M, 1, 3, a.l4))),
@@ -709,40 +699,34 @@ def appendix_b(ctx, appb):
         diff = np.argwhere(np.abs(P_q[i] - T_q[i]) > 1e-9)
         entries = ", ".join(f"({r + 1},{c + 1}): printed {P_q[i][r, c]:+.4f}, true {T_q[i][r, c]:+.4f}"
                             for r, c in diff) or "differences below 1e-9"
-        rows.append(Row.graded(
-            f"Appendix B (home-pose set) {nm} is the Table II link transform.",
-            f"App. B, {nm}",
+        rows.append(_joint_row(
+            qs, f"Appendix B (home-pose set) {nm} is the Table II link transform.", f"App. B, {nm}",
             f"Printed matrix ({'read from garbled extracted text' if i in (1, 3) else 'cleanly printed'}) vs "
-            f"Pinocchio's joint-to-joint placement oMi[{i}]^-1 oMi[{i + 1}], {len(qs)} q; det of the printed "
-            f"rotation in [{det.min():.3f}, {det.max():.3f}]",
-            None,
-            (Measure(f"max |{nm} - Pinocchio|", np.abs(printed[:, i] - pin_links[:, i]).max(), TOL_EXACT),),
+            f"Pinocchio's joint-to-joint placement oMi[{i}]^-1 oMi[{i + 1}]; det of the printed rotation in "
+            f"[{det.min():.3f}, {det.max():.3f}]",
+            Measure(f"max |{nm} - Pinocchio|", np.abs(printed[:, i] - pin_links[:, i]).max(), TOL_EXACT),
             id=f"appb.t{nm[0]}{nm[2]}",
             erratum=Erratum(f"App. B {nm}", APPB_TEXT[i], APPB_CORRECTED[i],
                             f"{fmt_q(Q_COUNTEREXAMPLE)}: {entries}. {_APPB_WHAT.get(i, '')}".strip()),
             reason="may partly be a text-extraction loss of a minus sign; the printed product does not "
             "reproduce Eq 4 either (next row)" if i == 2 else "",
-            domain=_JOINT_DOMAIN.format(n=len(qs)),
         ).reread_if_erratum(lambda i=i: appb_reading(i, printed[:, i], qs)))
     prod = reduce(np.matmul, np.moveaxis(printed, 1, 0))  # 0_1T 1_2T ... 5_6T
     p_home = np.linalg.multi_dot(appb(np.zeros(6)))[:3, 3]
+    p_home4 = eq4_printed(np.zeros(6))[0, :3, 3]
     p_ce = np.round(np.linalg.multi_dot(P_q)[:3, 3], 4).tolist()
     p_ce4 = np.round(eq4_printed(Q_COUNTEREXAMPLE)[0, :3, 3], 4).tolist()
-    rows.append(Row.graded(
-        "The product of the Appendix B (home-pose set) matrices gives Eq 4.",
-        "App. B, Eq 4",
-        f"Product of the six matrices vs Eq 4 as printed, {len(qs)} q; at q = 0 the product puts the tool "
-        f"point at {np.round(p_home, 3).tolist()} m, Eq 4 at "
-        f"{np.round(eq4_printed(np.zeros(6))[0, :3, 3], 3).tolist()} m",
-        None,
-        (Measure("max |product - Eq 4|", np.abs(prod - eq4_printed(qs)).max(), TOL_EXACT),),
+    rows.append(_joint_row(
+        qs, "The product of the Appendix B (home-pose set) matrices gives Eq 4.", "App. B, Eq 4",
+        f"Product of the six matrices vs Eq 4 as printed; at q = 0 the product puts the tool point at "
+        f"{np.round(p_home, 3).tolist()} m, Eq 4 at {np.round(p_home4, 3).tolist()} m",
+        Measure("max |product - Eq 4|", np.abs(prod - eq4_printed(qs)).max(), TOL_EXACT),
         id="appb.product",
         erratum=Erratum("App. B (product 0_1T..5_6T)",
                         "product of the printed matrices (2_3T, 5_6T as printed)",
                         "product with the corrected 2_3T and 5_6T (= Table II, = Eq 4)",
                         f"{fmt_q(Q_COUNTEREXAMPLE)}: the product puts the tool point at {p_ce} m, Eq 4 at "
                         f"{p_ce4} m"),
-        domain=_JOINT_DOMAIN.format(n=len(qs)),
     ).reread_if_erratum(lambda: appb_product_reading(printed, qs)))
     return rows
 
@@ -990,18 +974,12 @@ def iik_kinematics(ctx, impl):
     T = fk_f(qs, THESIS_ARM)
     dp = np.linalg.norm(T[:, :3, 3] - T_pin[:, :3, 3], axis=1).max()
     dr = float(np.max(rotation_angle(T[:, :3, :3], T_pin[:, :3, :3])))
-    dj = np.abs(jac_f(qs, THESIS_ARM) - J_pin).max()
-    return Row.graded(
-        "(Project) iik.fk and the 6x6 iik.jacobian agree with Pinocchio.",
-        "iik.kinematics (Eq 4, Eq 56)",
-        f"Pinocchio framesForwardKinematics and computeFrameJacobian (LOCAL_WORLD_ALIGNED), {len(qs)} q",
-        None,
-        (Measure("max |dp|", dp, TOL_EXACT, "m"), Measure("max rotation angle", dr, TOL_EXACT, "rad"),
-         Measure("max |dJ|", dj, TOL_EXACT, "m/rad or -")),
-        fail=Verdict.DOES_NOT_HOLD,
-        id="iik_kinematics",
-        scope=Scope.PROJECT,
-        domain=_JOINT_DOMAIN.format(n=len(qs)),
+    return _joint_row(
+        qs, "(Project) iik.fk and the 6x6 iik.jacobian agree with Pinocchio.", "iik.kinematics (Eq 4, Eq 56)",
+        "Pinocchio framesForwardKinematics and computeFrameJacobian (LOCAL_WORLD_ALIGNED)",
+        Measure("max |dp|", dp, TOL_EXACT, "m"), Measure("max rotation angle", dr, TOL_EXACT, "rad"),
+        Measure("max |dJ|", np.abs(jac_f(qs, THESIS_ARM) - J_pin).max(), TOL_EXACT, "m/rad or -"),
+        fail=Verdict.DOES_NOT_HOLD, scope=Scope.PROJECT,
     )
 
 
@@ -1108,7 +1086,6 @@ def eq42_convention(ctx, eq42):
         f"each of the 9 entries vs scipy 'ZXZ' and 'ZYZ' (intrinsic) on {len(a)} angle triples",
         f"entries matching Z-X-Z: {counts['ZXZ']} of 9; matching Z-Y-Z: {counts['ZYZ']} of 9",
         m,
-        id="eq42_convention",
         erratum=Erratum(
             "Eq 42 / Sec 3.5.1 convention",
             "'Z-X-Z representation convention' (Sec 3.5.1)",
@@ -1310,7 +1287,6 @@ def table_i_self_collision(ctx, limits):
         (Measure("min distance tool point - upper-arm axis", d_star, MIN_CLEARANCE, "m", bound=">="),
          Measure("fraction of sampled q in self-collision (Coal)", hit.mean(), 0.0)),
         fail=Verdict.DOES_NOT_HOLD,
-        id="table_i_self_collision",
         domain=f"{len(qs)} q uniform within the limits under test, then a bounded local search from the "
         "worst",
         reason="the limits bound each joint separately; theta4 + theta5 can reach 238 deg, so the gripper "

@@ -80,11 +80,6 @@ def _moved(sets, joint_value: float = 10.0):
     return tuple(out)
 
 
-def _shifted_joints(sets):
-    """The sets with each fixed joint number one higher (the table's columns read one off; joint 5 -> 1)."""
-    return tuple(replace(s, fixed=tuple(((j % 5) + 1, v) for j, v in s.fixed)) for s in sets)
-
-
 def _graded(claim: str, source: str, numbers: str, measure: Measure, rid: str, basis: str = "") -> Row:
     """An entry of Table VI or VII (a set or a group of sets): it holds when singular on every sample
     (with ``basis``, by construction)."""
@@ -104,7 +99,7 @@ def _note(s) -> str:
             Slip(SlipKind.MODEL, "each set with one non-limit fixed joint 10 deg off (or one limit released)",
                  _moved(TABLE_VI)),
             Slip(SlipKind.OFF_BY_ONE, "each set's fixed joints one joint number off",
-                _shifted_joints(TABLE_VI)),
+                 tuple(replace(s, fixed=tuple((j % 5 + 1, v) for j, v in s.fixed)) for s in TABLE_VI)),
         ),
         good_is="Table VI as printed (every set is singular)",
     ),
@@ -139,7 +134,6 @@ def table_vi(ctx, sets):
         details,
         "sets with a sample of full rank",
         passing="sets singular on every sample",
-        id="table_vi",
         domain=f"{n} samples per set, each free joint uniform over its whole Table I range",
     )
 
@@ -184,7 +178,6 @@ def table_vii(ctx, sets):
         "groups with a sample of full rank",
         holds_as=Verdict.IDENTITY,
         passing="groups singular on every sample",
-        id="table_vii",
         basis=basis,
         domain=f"{n} samples per set, the free joints uniform over Table I",
     )
