@@ -557,18 +557,15 @@ def _paths(ctx, kind: str, name: str) -> tuple[np.ndarray, ...]:
     """The joint paths of :attr:`PathSource.kind` ``kind`` for scenario ``name``."""
     res = _planned(ctx)[name]
     sc, planned = res.scenario, (res.q,) if len(res.q) else ()
-    if kind == "thesis":
-        return _branches(sc)
-    if kind == "unrepelled":
-        supports = tuple(b for b in sc.obstacles if b.kind != "obstacle")
-        return _branches(dataclasses.replace(sc, obstacles=supports))
-    if kind == "plan":
-        return planned
-    if kind == "plan+timed":
-        return planned + ((res.trajectory.q,) if planned and res.trajectory is not None else ())
-    if kind == "held":
-        return (res.q[:1],) if planned else ()
-    raise ValueError(f"unknown path source {kind!r}")
+    timed = (res.trajectory.q,) if planned and res.trajectory is not None else ()
+    supports = tuple(b for b in sc.obstacles if b.kind != "obstacle")
+    return {
+        "thesis": lambda: _branches(sc),
+        "unrepelled": lambda: _branches(dataclasses.replace(sc, obstacles=supports)),
+        "plan": lambda: planned,
+        "plan+timed": lambda: planned + timed,
+        "held": lambda: (res.q[:1],) if planned else (),
+    }[kind]()
 
 
 @dataclass(frozen=True)
