@@ -14,6 +14,7 @@ transcribed one by one and composed in :func:`printed_admits`.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
 
@@ -696,46 +697,39 @@ def _sweep_row(ctx, admit, claim: str, reference: str, versus: str, reason: str,
     )
 
 
-@SECTION.check(
-    51.0,
-    depends_on=("l1", "lengths", "ik-sweep", "sec35-angles"),
-    forms=_sweep_forms(admitted_printed),
-)
-def printed_admitted_set(ctx, admit):
-    """Sec 3.5 / Sec 5.2: the orientations Eq 43-51 admit at a point can be reached ('at least one solution
-    ... when suitable orientations were chosen ... guarantees the convergence of the inverse kinematics')."""
-    return _sweep_row(
-        ctx,
-        admit,
-        "The orientations Eq 43-51 admit at a point inside the workspace are reachable (at least one IK "
-        "solution), so choosing them guarantees convergence.",
-        "Sec 3.5.2-3.5.3, Eq 43-51, Sec 5.2",
-        "the set Eq 43-51 admit (angles converted to Eq 42's)",
-        "the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the roll geometry, and Eq "
-        "48/50/51 are wrong (rows above): admitted orientations without an IK solution",
-        id="admitted_set",
-    )
+def _sweep_check(order: float, name: str, printed, claim: str, reference: str, versus: str, reason: str,
+                 depends_on: tuple[str, ...] = ("l1", "lengths", "ik-sweep")) -> Callable:
+    """Register the check ``name`` of the set ``printed`` admits (:func:`_sweep_row`; its row id: ``name``
+    without "printed_")."""
+
+    def check(ctx, admit):
+        return _sweep_row(ctx, admit, claim, reference, versus, reason, id=name.removeprefix("printed_"))
+
+    check.__name__ = check.__qualname__ = name
+    check.__doc__ = f"{reference}: {claim}"
+    return SECTION.check(order, depends_on=depends_on, forms=_sweep_forms(printed))(check)
 
 
-@SECTION.check(
-    51.2,
-    depends_on=("l1", "lengths", "ik-sweep"),
-    forms=_sweep_forms(_shell),
+printed_admitted_set = _sweep_check(
+    51.0, "printed_admitted_set", admitted_printed,
+    "The orientations Eq 43-51 admit at a point inside the workspace are reachable (at least one IK "
+    "solution), so choosing them guarantees convergence.",
+    "Sec 3.5.2-3.5.3, Eq 43-51, Sec 5.2",
+    "the set Eq 43-51 admit (angles converted to Eq 42's)",
+    "the SLJ-shell model ignores the joint-1, joint-2 and joint-5 limits and the roll geometry, and Eq "
+    "48/50/51 are wrong (rows above): admitted orientations without an IK solution",
+    ("l1", "lengths", "ik-sweep", "sec35-angles"),
 )
-def shell_model(ctx, admit):
-    """Sec 3.5's model (the SLJ in the shell of Eq 44-45) read exactly, vs the same sweep."""
-    return _sweep_row(
-        ctx,
-        admit,
-        "Sec 3.5's model read exactly (the second-last joint inside the shell of Eq 44-45, the angles "
-        "converted to Eq 42's) admits only reachable orientations.",
-        "Sec 3.5.2-3.5.3 (Figs 18-21), Eq 44-45",
-        "the orientations whose link-5 direction lies in the cone between the Eq 44 and Eq 45 half-angles "
-        "(the former iik.dexterity)",
-        "the model ignores the joint-1, joint-2, joint-3 and joint-5 limits and where the wrist really is: "
-        "it is neither a necessary nor a sufficient condition (false admits and false rejects above)",
-        id="shell_model",
-    )
+shell_model = _sweep_check(
+    51.2, "shell_model", _shell,
+    "Sec 3.5's model read exactly (the second-last joint inside the shell of Eq 44-45, the angles converted "
+    "to Eq 42's) admits only reachable orientations.",
+    "Sec 3.5.2-3.5.3 (Figs 18-21), Eq 44-45",
+    "the orientations whose link-5 direction lies in the cone between the Eq 44 and Eq 45 half-angles (the "
+    "former iik.dexterity)",
+    "the model ignores the joint-1, joint-2, joint-3 and joint-5 limits and where the wrist really is: it is "
+    "neither a necessary nor a sufficient condition (false admits and false rejects above)",
+)
 
 
 # ----------------------------------------------------------------------------- the exact sets
@@ -808,8 +802,9 @@ def iik_dexterity(ctx, intervals):
                     probe = np.array([a_lo - _EDGE, a_lo + _EDGE, a_hi - _EDGE, a_hi + _EDGE])
                     ends_bad += int(np.any(admissible(p, probe, beta, ARM) != [False, True, True, False]))
     m = (
-        Measure("grid orientations whose membership differs from IK feasibility", mismatch, 0),
-        Measure("alpha interval ends that are not a change of feasibility within 1e-7 rad", ends_bad, 0),
+        Measure(f"grid orientations (of {checked}) whose membership is not IK feasibility", mismatch, 0),
+        Measure(f"alpha interval ends (of {n_int}) that are not a change of feasibility within 1e-7 rad",
+                ends_bad, 0),
         Measure("beta interval ends that are not a change of feasibility within 1e-7 rad", beta_bad, 0),
     )
     return Row.graded(
@@ -819,11 +814,9 @@ def iik_dexterity(ctx, intervals):
         "at random reachable points: iik.dexterity's beta intervals; at 3 betas inside each, its alpha "
         "intervals vs iik.dexterity.admissible on 1440 alphas; each alpha end probed 1e-7 rad on either "
         "side; each beta end: a witness alpha 1e-7 rad inside, none of 7200 alphas 1e-7 rad outside",
-        f"{mismatch} of {checked} grid orientations differ; {ends_bad} of {n_int} alpha ends and {beta_bad} "
-        "beta ends are not a change of feasibility",
+        None,
         m,
         fail=Verdict.DOES_NOT_HOLD,
-        id="iik_dexterity",
         domain=f"{len(sample)} points fk(q), q uniform in Table I; 3 betas per beta interval",
         scope=Scope.PROJECT,
         reason="an interval end is not where the IK's feasibility changes",
@@ -872,20 +865,17 @@ def gamma_free(ctx, unaffected):
         for r in res[1:]:
             if len(base) and len(r.q) == len(base):
                 moved = max(moved, float(np.abs(wrap(np.sort(r.q[:, cols], axis=0) - base)).max()))
-    total = len(T) * k
     m = (
-        Measure("poses without a solution when gamma changes", total - ok, 0),
+        Measure(f"poses of {len(T) * k} without a solution when gamma changes", len(T) * k - ok, 0),
         Measure(f"max change of joints {list(unaffected)} across gamma", moved, 1e-6, "rad"),
     )
     return Row.graded(
-        "gamma has no limits: it only modifies joint 6, which spans +-180 deg.",
+        f"{title_of('Claim 3.9')}, which spans +-180 deg.",
         "Sec 3.5.1, Eq 42",
         "for poses fk(q) of random q, gamma replaced by 12 values over a full turn, solved with iik.solve "
         "(within Table I); solutions compared joint by joint (same solution count)",
-        f"{ok} of {total} poses solvable; max change of joints {list(unaffected)} across gamma {moved:.1e} "
-        "rad",
+        None,
         m,
         fail=Verdict.DOES_NOT_HOLD,
-        id="gamma_free",
         domain=f"{len(T)} poses fk(q), q uniform in Table I, gamma at 12 values over a full turn each",
     )

@@ -138,29 +138,20 @@ def check_eq53_ellipsoid(ctx, readings) -> Row:
     ev = {name: _corner_values(sizes, radii) for name, radii in readings.items()}
     worst = {n: float(np.abs(v - 1.0).max()) for n, v in ev.items()}
     values = {n: float(v[0, 0]) for n, v in ev.items()}  # the first corner of the 0.30 x 0.20 x 0.50 m box
+    example = "; ".join(f"{n}: {v:.4f} ({'inside' if v < 1 else 'outside'}, should be 1)"
+                        for n, v in values.items())
     row = Row.graded(
-        claim="The ellipsoid of Eq 53 touches every corner of the w x d x h box (Sec 3.6.2.1)",
-        reference="Eq 52-53",
-        method=f"Eq 52 evaluated at the 8 corners of {len(sizes)} boxes (0.30 x 0.20 x 0.50 m and random "
-        "sizes 0.05-1 m) with the radii of each reading of Eq 53; holds if one reading puts every corner on "
-        "the ellipsoid (Eq 52 = 1 to 1e-9)",
-        numbers="; ".join(
-            f"{n}: Eq 52 at the corners of the 0.30 x 0.20 x 0.50 m box = {values[n]:.4f}, max |Eq 52 - 1| = "
-            f"{worst[n]:.3g}"
-            for n in readings
-        ),
-        measures=(Measure("max |Eq 52 at the 8 corners - 1|, best reading", min(worst.values()), 1e-9),),
-        erratum=Erratum(
-            equation="Eq 53",
-            printed=_EQ53_TEXT,
-            corrected="z_r = h/sin(b), with w, d, h the HALF dimensions: (x_r, y_r, z_r) = sqrt(3)(w, "
-            "d, h)",
-            counterexample="box 0.30 x 0.20 x 0.50 m, Eq 52 at its corners: "
-            + "; ".join(
-                f"{n}: {v:.4f} ({'inside' if v < 1 else 'outside'}, should be 1)"
-                for n, v in values.items()
-            ),
-        ),
+        f"{title_of('Claim 3.10')} (w x d x h, Sec 3.6.2.1)",
+        "Eq 52-53",
+        f"Eq 52 evaluated at the 8 corners of {len(sizes)} boxes (0.30 x 0.20 x 0.50 m and random sizes "
+        "0.05-1 m) with the radii of each reading of Eq 53; holds if one reading puts every corner on the "
+        "ellipsoid (Eq 52 = 1 to 1e-9)",
+        "; ".join(f"{n}: Eq 52 at the corners of the 0.30 x 0.20 x 0.50 m box = {values[n]:.4f}, max |Eq 52 "
+                  f"- 1| = {worst[n]:.3g}" for n in readings),
+        (Measure("max |Eq 52 at the 8 corners - 1|, best reading", min(worst.values()), 1e-9),),
+        erratum=Erratum("Eq 53", _EQ53_TEXT, "z_r = h/sin(b), with w, d, h the HALF dimensions: (x_r, y_r, "
+                        "z_r) = sqrt(3)(w, d, h)", f"box 0.30 x 0.20 x 0.50 m, Eq 52 at its corners: "
+                        f"{example}"),
         domain=f"{len(sizes)} boxes: 0.30 x 0.20 x 0.50 m and sizes uniform in 0.05-1 m per side (flat, long "
         "and cubic), every corner",
     )
@@ -447,23 +438,20 @@ def check_arc_route(ctx, route) -> list[Row]:
         line, alt = straight_route(sc), route(sc)
         n_line, n_alt, n = _unsolved(*line), _unsolved(*alt), len(line[0])
         m = (
-            Measure("steps of the straight line without an IK solution", n_line, 1, bound=">="),
-            Measure("steps of the route without an IK solution", n_alt, 0),
+            Measure(f"steps of the straight line (of {n}) without an IK solution", n_line, 1, bound=">="),
+            Measure(f"steps of the route (of {len(alt[0])}) without an IK solution", n_alt, 0),
         )
+        worse = f"the arc fails {'more' if n_alt > n_line else 'as many or fewer'} steps than the line"
         reasons = ["the straight line has a solution at every step"] if n_line < 1 else []
-        if n_alt > 0:
-            reasons.append(
-                f"the route itself has {n_alt} of {len(alt[0])} steps without a solution (the arc fails "
-                f"{'more' if n_alt > n_line else 'as many or fewer'} steps than the line, {n_line})"
-            )
+        reasons += [f"the route itself has steps without a solution ({worse})"] if n_alt > 0 else []
         rows.append(Row.graded(
-            claim=f"{name}: {title_of('Claim 4.2')}",
-            reference="Sec 4.2.1.1, 4.2.1.2",
-            method=f"scenarios/{name}.toml (reconstructed via-points and orientations: the thesis prints "
-            f"neither); complete IK (iik.solve, within Table I) at each of the {n} steps of the middle "
-            "segment at the nominal (gradual Euler) orientation, for the straight line and the route",
-            numbers=f"steps without a solution: straight line {n_line}/{n}, route {n_alt}/{len(alt[0])}",
-            measures=m,
+            f"{name}: {title_of('Claim 4.2')}",
+            "Sec 4.2.1.1, 4.2.1.2",
+            f"scenarios/{name}.toml (reconstructed via-points and orientations: the thesis prints neither); "
+            f"complete IK (iik.solve, within Table I) at each of the {n} steps of the middle segment at the "
+            "nominal (gradual Euler) orientation, for the straight line and the route",
+            None,
+            m,
             fail=Verdict.NOT_REPRODUCED,
             holds_as=Verdict.RECONSTRUCTION,
             reason="; ".join(reasons) + "; depends on the reconstructed via-points and orientations",
@@ -569,18 +557,15 @@ def _paths(ctx, kind: str, name: str) -> tuple[np.ndarray, ...]:
     """The joint paths of :attr:`PathSource.kind` ``kind`` for scenario ``name``."""
     res = _planned(ctx)[name]
     sc, planned = res.scenario, (res.q,) if len(res.q) else ()
-    if kind == "thesis":
-        return _branches(sc)
-    if kind == "unrepelled":
-        supports = tuple(b for b in sc.obstacles if b.kind != "obstacle")
-        return _branches(dataclasses.replace(sc, obstacles=supports))
-    if kind == "plan":
-        return planned
-    if kind == "plan+timed":
-        return planned + ((res.trajectory.q,) if planned and res.trajectory is not None else ())
-    if kind == "held":
-        return (res.q[:1],) if planned else ()
-    raise ValueError(f"unknown path source {kind!r}")
+    timed = (res.trajectory.q,) if planned and res.trajectory is not None else ()
+    supports = tuple(b for b in sc.obstacles if b.kind != "obstacle")
+    return {
+        "thesis": lambda: _branches(sc),
+        "unrepelled": lambda: _branches(dataclasses.replace(sc, obstacles=supports)),
+        "plan": lambda: planned,
+        "plan+timed": lambda: planned + timed,
+        "held": lambda: (res.q[:1],) if planned else (),
+    }[kind]()
 
 
 @dataclass(frozen=True)

@@ -11,6 +11,7 @@ transcribed in :func:`eq36_41_printed`.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
 
@@ -284,10 +285,11 @@ def classification_reading(ctx, test, region: str, printed: str):
                   "joint samples + position IK)", measure="misclassified graded test points")
 
 
-def _classification_row(ctx, form, key, method, region: str, printed: str, corrected: str = "-", *,
-                        claim: str = "", rid: str = "") -> Row:
+def _classification_row(ctx, form, key, region: str, printed: str, corrected: str = "-", *, claim: str = "",
+                        rid: str = "", method: str = "") -> Row:
     """The row of a classification test (the form) on the graded test points of ``region`` ("all", "1",
-    "23"); the id and the claim default to the index key's (``"Eq 38"`` -> ``eq38``, its title)."""
+    "23"); the id and the claim default to the index key's (``"Eq 38"`` -> ``eq38``, its title); ``method``
+    is added to :data:`_COMPOSITE`."""
     tp = _test_points(ctx)
     P, truth = tp.p, tp.truth
     sel = tp.selected(region)
@@ -304,7 +306,7 @@ def _classification_row(ctx, form, key, method, region: str, printed: str, corre
     row = Row.graded(
         claim or f"{title_of(key)}.",
         key,
-        method,
+        _COMPOSITE + method,
         f"{int(sel.sum())} graded test points ({int(truth[sel].sum())} reachable; "
         f"{int((~tp.graded).sum())} in the oracle's boundary band not graded): false inside {fi}, "
         f"false outside {fo}",
@@ -347,21 +349,15 @@ def _corrected(**kw):
 def eq36_41(ctx, test):
     """Sec 3.4.4 / Sec 5.2: the whole test (Eq 36-41) decides whether a point is inside the workspace."""
     row = _classification_row(
-        ctx,
-        test,
-        "Sec 3.4.4, Eq 36-41",
-        _COMPOSITE + ". Map: cross-sections z = l1, y = 0",
-        "all",
-        "Eq 36-41 as printed",
-        "Eq 39 and Eq 40 corrected (rows workspace.eq39, workspace.eq40)",
-        rid="eq36_41",
+        ctx, test, "Sec 3.4.4, Eq 36-41", "all", "Eq 36-41 as printed",
+        "Eq 39 and Eq 40 corrected (rows workspace.eq39, workspace.eq40)", rid="eq36_41",
+        method=". Map: cross-sections z = l1, y = 0",
         claim="Eq 36-41 decide whether a point is inside the workspace (region 1: |p - joint 2| <= l3+l4+l5; "
         "regions 2/3: |p - joint 4| <= l4+l5 with joint 1 at its limit); 'the algorithm was capable of "
         "recognizing whether a given position was inside of the workspace ... during every trial' (Sec 5.2).",
     )
-    if test is not eq36_41_printed:
-        return row
-    return row.replace(figures=(_map_figure(ctx, "workspace_eq36_41_map.png"),))
+    figure = test is eq36_41_printed
+    return row.replace(figures=(_map_figure(ctx, "workspace_eq36_41_map.png"),)) if figure else row
 
 
 def _dh_frames(q) -> np.ndarray:
@@ -479,34 +475,34 @@ def _phi_sample(ctx) -> Points:
                   "= phi, the other joints 0)", "rad", "phi")
 
 
-def _region_forms(good_is: str, bad_is: str, slips: tuple, **test) -> Forms:
-    """Forms of one region's test (:func:`eq36_41_test` with ``test``): right as printed; ``slips`` are
-    ``(kind, what, extra keywords)``; the tolerance test has its reach 5 mm short (``bad_is``)."""
-    right = partial(eq36_41_test, **test)
-    return Forms.right(
-        right,
+def _region_check(key: str, name: str, region: str, printed: str, good_is: str, bad_is: str, slips: tuple,
+                  **test) -> Callable:
+    """Register the check of one region's test (:func:`eq36_41_test` with ``test``) on the graded test points
+    of ``region``: right as printed (``good_is``); ``slips`` are ``(kind, what, extra keywords)``; the
+    tolerance test has its reach 5 mm short (``bad_is``)."""
+    forms = Forms.right(
+        partial(eq36_41_test, **test),
         tuple(Slip(k, what, partial(eq36_41_test, **{**test, **kw})) for k, what, kw in slips),
         tolerance=Slip(SlipKind.EPSILON, bad_is, partial(eq36_41_test, margin=-0.005, **test)),
         good_is=good_is,
     )
 
+    def check(ctx, test):
+        return _classification_row(ctx, test, key, region, printed)
 
-@SECTION.check(
-    "Eq 38",
-    forms=_region_forms(
-        "the printed test (it is right)",
-        "the reach l3 + l4 + l5 shortened by 5 mm",
-        (
-            (SlipKind.LENGTH, "reach l3 + l4 (l5 left out)", {"reach1": ARM.l3 + ARM.l4}),
-            (SlipKind.LENGTH, "reach l2 + l3 + l4 + l5 (from the base axis)",
-             {"reach1": ARM.l2 + ARM.l3 + ARM.l4 + ARM.l5}),
-        ),
+    check.__name__ = check.__qualname__ = name
+    check.__doc__ = f"{key}: {title_of(key)}."
+    return SECTION.check(key, forms=forms)(check)
+
+
+eq38_region1 = _region_check(
+    "Eq 38", "eq38_region1", "1", "rho1 > l3 + l4 + l5", "the printed test (it is right)",
+    "the reach l3 + l4 + l5 shortened by 5 mm", (
+        (SlipKind.LENGTH, "reach l3 + l4 (l5 left out)", {"reach1": ARM.l3 + ARM.l4}),
+        (SlipKind.LENGTH, "reach l2 + l3 + l4 + l5 (from the base axis)",
+         {"reach1": ARM.l2 + ARM.l3 + ARM.l4 + ARM.l5}),
     ),
 )
-def eq38_region1(ctx, test):
-    """Eq 38: in region 1 (|phi| < 160 deg) the point is outside iff rho1 > l3 + l4 + l5."""
-    return _classification_row(ctx, test, "Eq 38", _COMPOSITE + "; region-1 points only", "1",
-                               "rho1 > l3 + l4 + l5")
 
 
 @dataclass(frozen=True)
@@ -653,23 +649,15 @@ CHECKS = {
 }
 
 
-@SECTION.check(
-    "Eq 41",
-    forms=_region_forms(
-        "the printed test (with Eq 39-40 corrected it is right)",
-        "the reach l4 + l5 shortened by 5 mm",
-        (
-            (SlipKind.LENGTH, "reach l4 (l5 left out)", {"reach23": ARM.l4}),
-            (SlipKind.LIMIT, "joint 1 at the other limit", {"th1_rule": "other"}),
-        ),
-        eq39="corrected",
-        eq40_sign=1.0,
+eq41_regions23 = _region_check(
+    "Eq 41", "eq41_regions23", "23", "rho23 > l4 + l5",
+    "the printed test (with Eq 39-40 corrected it is right)", "the reach l4 + l5 shortened by 5 mm", (
+        (SlipKind.LENGTH, "reach l4 (l5 left out)", {"reach23": ARM.l4}),
+        (SlipKind.LIMIT, "joint 1 at the other limit", {"th1_rule": "other"}),
     ),
+    eq39="corrected",
+    eq40_sign=1.0,
 )
-def eq41_regions23(ctx, test):
-    """Eq 41 (with Eq 39-40 corrected): in regions 2/3 the point is outside iff rho23 > l4 + l5."""
-    return _classification_row(ctx, test, "Eq 41", _COMPOSITE + "; region 2/3 points only (joint 4 from Eq "
-                               "39-40 corrected)", "23", "rho23 > l4 + l5")
 
 
 @per_run
@@ -839,7 +827,7 @@ def no_interior_boundary(ctx, margin):
     core = _core(ctx)
     n_void = int(np.sum(deep & ~truth)) + int((~core).sum())
     return Row.graded(
-        "The workspace has no interior boundary (no unreachable void inside the exterior boundary).",
+        f"{title_of('Claim 3.6')} (no unreachable void inside the exterior boundary).",
         "Sec 3.4.3",
         f"ground-truth reachability of the test points at least {margin * 1e3:.0f} mm inside the f(1) sphere "
         "(|azimuth| < 160 deg) and of a dense cube of points around joint 2 (+-0.35 m), where Fig 12d shows "
@@ -848,7 +836,6 @@ def no_interior_boundary(ctx, margin):
         f"unreachable; {len(core)} points in the core cube: {int((~core).sum())} unreachable",
         (Measure("unreachable points inside the tested region", n_void, 0),),
         fail=Verdict.DOES_NOT_HOLD,
-        id="no_interior_boundary",
         domain=tp.domain + f"; those at least {margin * 1e3:.0f} mm inside the f(1) sphere, plus "
         f"{len(core)} points in a 0.7 m cube around joint 2",
     )
