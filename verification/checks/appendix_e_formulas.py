@@ -127,10 +127,10 @@ class Probes(tuple):
 @per_run
 def probes(ctx) -> Probes:
     """A1, A2, A6 and random points of s(1), s(2), s(26) (free joints uniform in Table I)."""
-    out = [_probe(n, d["q0"], d["free"]) for n, d in PRINTED.items()]
+    out = [_probe(n, d.q0, d.free) for n, d in PRINTED.items()]
     rng = ctx.rng("appendix-e-formulas")
     for name, at in _SETS.items():
-        q0, free = PRINTED[at]["q0"], PRINTED[at]["free"]
+        q0, free = PRINTED[at].q0, PRINTED[at].free
         held = [j for j in range(5) if j + 1 not in free]
         for k in range(ctx.n(6, 2)):
             q = rng.uniform(ARM.q_min[:5], ARM.q_max[:5])
