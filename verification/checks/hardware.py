@@ -156,28 +156,24 @@ def execute_scenario(
         return ctx.cache[key]
     traj, scenario = _planned(ctx, name, limit)
     ff = FastForwardClock(FAST_FORWARD, latency)
-    clock, sleep = ff.now, ff.sleep
     options = ExecutionOptions(early=early, update=update, sample_period=SAMPLE_PERIOD)
     with tempfile.TemporaryDirectory(prefix="iik-verify-hw-") as tmp:
         log_path = Path(tmp) / f"{name}.jsonl"
         with simulated_arm(
-            initial=traj.q[0], clock=clock, lag=lag, timeout=REQUEST_TIMEOUT, arm=THESIS_ARM
+            initial=traj.q[0], clock=ff.now, lag=lag, timeout=REQUEST_TIMEOUT, arm=THESIS_ARM
         ) as (sim, arm):
             arm.open()
-            execute(arm, traj, log_path, options=options, clock=clock, sleep=sleep)
+            execute(arm, traj, log_path, options=options, clock=ff.now, sleep=ff.sleep)
             rests = sum(len(m.stops) for m in sim.modules.values())
             errors = list(sim.errors)
         run = read_run_log(log_path)
     if errors:
         raise SimulatorError(f"simulated arm raised while serving {name}: {errors[:3]}")
     checker = SceneCollision(scenario.obstacles, arm=THESIS_ARM)
+    clearance = float(min(checker.nearest(q).distance for q in run.samples_q))
+    label = name if limit is None else f"{name}[:{limit}]"
     ctx.cache[key] = SimRun(
-        name=name if limit is None else f"{name}[:{limit}]",
-        steps=len(traj),
-        rests=rests,
-        changes=6 * max(len(traj) - 2, 0),
-        ee_error=analyse(run).ee_error,
-        min_clearance=float(min(checker.nearest(q).distance for q in run.samples_q)),
+        label, len(traj), rests, 6 * max(len(traj) - 2, 0), analyse(run).ee_error, clearance
     )
     return ctx.cache[key]
 
