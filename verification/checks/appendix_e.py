@@ -15,6 +15,7 @@ sigma are independent confirmations.
 
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
 from functools import partial
 
 import numpy as np
@@ -25,7 +26,7 @@ from iik import THESIS_ARM
 from ..assumptions import EXACT_GEOMETRY
 from ..formula import Formula, Points, Printed, per_run
 from ..numbers import fmt_matrix, fmt_vec
-from ..oracles.abdel_malek import eq67_dq, normal_acceleration
+from ..oracles.abdel_malek import NormalAcceleration, eq67_dq, normal_acceleration
 from ..oracles.normal_distance import parameters, surface_point, tool_point
 from ..oracles.reachability import oracle_for
 from ..plotting import new_figure
@@ -38,9 +39,38 @@ EPS = 2e-3  # [m] probe distance along N0
 SECTION = Section("Normal-acceleration boundary test (App. E, Eq 57-69)",
                   depends_on=("lengths", "pinocchio", "reachability"))
 
+
+@dataclass(frozen=True)
+class Point:
+    """What App. E prints at a point (or the same quantities recomputed), in its units (mm, rad).
+
+    Attributes:
+        q0: Joints 1-5 [rad]. free: The free joints (1-based). surface: Its singular set, as printed.
+        N0: The surface normal. eig: eig(Q*) [mm]. conclusion: The side motion is admissible to (``"+N0"``,
+            ``"-N0"``, ``"both"`` or ``"none"``). claim, ref: The claim and reference of the point's row.
+        u0, H, B, Q: Printed at A1 only: Eq 58's lambda at q0, H* [mm], B [1/mm], Q* [mm].
+        dq, sigma: Printed at A2 only: ``{joint: delta q}`` (Eq 67), ``{joint: sigma [mm]}`` (Eq 66).
+    """
+
+    q0: np.ndarray
+    free: tuple[int, int]
+    surface: str
+    N0: np.ndarray
+    eig: np.ndarray
+    conclusion: str
+    claim: str
+    ref: str
+    u0: np.ndarray | None = None
+    H: np.ndarray | None = None
+    B: np.ndarray | None = None
+    Q: np.ndarray | None = None
+    dq: dict[int, float] | None = None
+    sigma: dict[int, float] | None = None
+
+
 #: App. E as printed (mm, rad; conclusions as printed; each point's claim and reference for its row).
 PRINTED = {
-    "A1": dict(
+    "A1": Point(
         q0=np.array([-7 * np.pi / 9, 0, 0, 0, 0]),
         free=(1, 2),
         surface="f(1), s(1) = [th4 = 0, th5 = 0]",
@@ -63,7 +93,7 @@ PRINTED = {
         "normal acceleration is admissible only along +N0 (f(1) is a boundary there).",
         ref="App. E, point A1 (Eq 58-65)",
     ),
-    "A2": dict(
+    "A2": Point(
         q0=np.array([-160 * _D, np.pi / 12, 90 * _D, -np.pi / 3, 0]),
         free=(2, 4),
         surface="f(2), s(2) = [th1 = -160, th3 = 90, th5 = 0]",
@@ -76,7 +106,7 @@ PRINTED = {
         "of the eigenvalues, so motion only along +N0 (f(2) is a boundary there).",
         ref="App. E, point A2 (Eq 59-67)",
     ),
-    "A6": dict(
+    "A6": Point(
         q0=np.array([0, 95 * _D, 0, -119 * _D, np.pi / 3]),
         free=(1, 5),
         surface="f(26), s(26) = [th2 = 95, th3 = 0, th4 = -119]",
@@ -95,47 +125,52 @@ _REL, _ABS = 2e-3, 0.1  # H*, Q*, eig, sigma [mm]: 0.2 % (the lengths are known 
 
 
 @per_run
-def _results(ctx) -> tuple[dict, dict]:
-    """Our numbers at each point (and A2 read with theta1 = +160 deg), and the side each can move to
-    (reachability of p +- EPS N0: "+N0", "-N0", "both" or "none")."""
+def _results(ctx) -> dict[str, NormalAcceleration]:
+    """Our numbers at each point, and at A2 read with theta1 = +160 deg (:data:`A2_READ`)."""
     res = {
         name: normal_acceleration(
-            d["q0"], d["free"], normal_hint=d["N0"], prefer_rows=(1, 2) if name == "A1" else None
+            d.q0, d.free, normal_hint=d.N0, prefer_rows=(1, 2) if name == "A1" else None
         )
         for name, d in PRINTED.items()
     }
     a2 = PRINTED["A2"]
-    res[A2_READ] = normal_acceleration(np.r_[-a2["q0"][0], a2["q0"][1:]], a2["free"], normal_hint=a2["N0"])
+    res[A2_READ] = normal_acceleration(np.r_[-a2.q0[0], a2.q0[1:]], a2.free, normal_hint=a2.N0)
+    return res
+
+
+@per_run
+def _sides(ctx) -> dict[str, str]:
+    """The side each of :func:`_results`' points can move to (ground truth): reachability of p +- EPS N0,
+    ``"+N0"``, ``"-N0"``, ``"both"`` or ``"none"``."""
     sides = {}
-    for name, r in res.items():
+    for name, r in _results(ctx).items():
         cls = oracle_for(ctx).classify(np.array([r.point + EPS * r.N0, r.point - EPS * r.N0]))
         plus, minus = bool(cls.reachable[0]), bool(cls.reachable[1])
         sides[name] = "both" if (plus and minus) else ("+N0" if plus else ("-N0" if minus else "none"))
-    return res, sides
+    return sides
 
 
-def printed_values(ctx) -> dict:
+def printed_values(ctx) -> dict[str, Point]:
     """The form as printed."""
     return PRINTED
 
 
-def recomputed_values(ctx, slip: str = "") -> dict:
+def recomputed_values(ctx, slip: str = "") -> dict[str, Point]:
     """Known-good form: our numbers, with each conclusion the ground-truth side. With ``slip`` a realistic
     slip in them: ``"eig_h"`` the eigenvalues of H* for those of Q* (Eq 65's curvature term left out),
     ``"dq"`` Eq 67 read the other way (-1 at a lower limit, sigma computed with it), ``"limits"`` Eq 58
     inverted with q^U and q^L exchanged (u0 of A1 with both signs flipped)."""
-    res, sides = _results(ctx)
-    out = {}
+    res, sides, out = _results(ctx), _sides(ctx), {}
     for name, d in PRINTED.items():
         r, mm = res[name], res[name].in_mm()
         eig = _eig_h(mm) if slip == "eig_h" else np.sort(mm["eig"])
-        v = dict(d, N0=r.N0, eig=eig, conclusion=sides[name])
+        v = replace(d, N0=r.N0, eig=eig, conclusion=sides[name])
         if name == "A1":
-            v.update(u0=-r.lam0 if slip == "limits" else r.lam0, H=mm["H"], B=mm["B"], Q=mm["Q"])
+            v = replace(v, u0=-r.lam0 if slip == "limits" else r.lam0, H=mm["H"], B=mm["B"], Q=mm["Q"])
         if name == "A2":
             sign = -1.0 if slip == "dq" else 1.0
-            v.update(dq={j: sign * x for j, x in eq67_dq(r.q0).items()})
-            v.update(sigma={j: sign * x for j, x in mm["sigma"].items()})
+            v = replace(v, dq={j: sign * x for j, x in eq67_dq(r.q0).items()},
+                        sigma={j: sign * x for j, x in mm["sigma"].items()})
         out[name] = v
     return out
 
@@ -145,20 +180,16 @@ def _eig_h(mm: dict) -> np.ndarray:
     return np.sort(np.linalg.eigvalsh(0.5 * (mm["H"] + mm["H"].T)))
 
 
-def perturbed_values(ctx) -> dict:
+def perturbed_values(ctx) -> dict[str, Point]:
     """Deliberately wrong: the recomputed numbers 5 % off, the conclusions flipped, the step signs flipped."""
     flip = {"+N0": "-N0", "-N0": "+N0", "both": "+N0", "none": "both"}
     out = {}
     for name, v in recomputed_values(ctx).items():
-        w = dict(v)
-        for k in ("u0", "N0", "H", "B", "Q", "eig"):
-            if k in w:
-                w[k] = np.asarray(w[k]) * 1.05 + (0.05 if k in ("u0", "N0") else 0.0)
-        if "sigma" in w:
-            w["sigma"] = {j: s * 1.05 for j, s in w["sigma"].items()}
-            w["dq"] = {j: -s for j, s in w["dq"].items()}
-        w["conclusion"] = flip[w["conclusion"]]
-        out[name] = w
+        off = {k: np.asarray(x) * 1.05 + (0.05 if k in ("u0", "N0") else 0.0)
+               for k in ("u0", "N0", "H", "B", "Q", "eig") if (x := getattr(v, k)) is not None}
+        if v.sigma is not None:
+            off.update(sigma={j: s * 1.05 for j, s in v.sigma.items()}, dq={j: -s for j, s in v.dq.items()})
+        out[name] = replace(v, conclusion=flip[v.conclusion], **off)
     return out
 
 
@@ -194,8 +225,8 @@ def _scaled(printed, ours):
 def _q0_readings(name: str) -> list[Reading]:
     """Nearby readings of point ``name``'s stated joints: each non-zero angle's sign, a joint at a limit at
     its other limit, and (A2) Sec 3.4.3's s(2) with theta1 = +160 deg."""
-    q0 = PRINTED[name]["q0"]
-    lo, hi = iik.THESIS_ARM.q_min[:5], iik.THESIS_ARM.q_max[:5]
+    q0 = PRINTED[name].q0
+    lo, hi = THESIS_ARM.q_min[:5], THESIS_ARM.q_max[:5]
     out = []
     for j in range(5):
         v = q0[j]
@@ -209,16 +240,15 @@ def _q0_readings(name: str) -> list[Reading]:
     return out
 
 
-def _search(name: str, pv: dict, readings, misfit, tol: float, printed: str, measure: str,
-            route: str = _MEANING, **stated):
-    """:func:`~verification.second_reading.search` of a value printed at point ``name``: stated are its q0,
-    its free joints, the quantities printed there (``pv``) and ``stated``."""
-    d = PRINTED[name]
-    given = {k: pv[k] for k in ("u0", "N0", "eig", "H", "dq") if k in pv}
-    return search({"q0": d["q0"], "free": d["free"], **given, **stated}, readings, misfit, tol,
+def _search(pv: Point, readings, misfit, tol: float, printed: str, measure: str, route: str = _MEANING,
+            **stated):
+    """:func:`~verification.second_reading.search` of a value printed at the point ``pv``: stated are its q0,
+    its free joints, the quantities printed there and ``stated``."""
+    given = {k: getattr(pv, k) for k in ("u0", "N0", "eig", "H", "dq") if getattr(pv, k) is not None}
+    return search({"q0": pv.q0, "free": pv.free, **given, **stated}, readings, misfit, tol,
                   printed=printed, route=route, measure=measure,
-                  stated_text=f"q0 = {fmt_vec(np.degrees(d['q0']), 1)} deg on {d['surface']}, free joints "
-                  f"{d['free']}")
+                  stated_text=f"q0 = {fmt_vec(np.degrees(pv.q0), 1)} deg on {pv.surface}, free joints "
+                  f"{pv.free}")
 
 
 def _n0_misfit(x) -> float:
@@ -226,28 +256,28 @@ def _n0_misfit(x) -> float:
     return _by_meaning(x, x["N0"], lambda n, eig, H: np.abs(np.asarray(x["N0"], float) - n).max())
 
 
-def reading_n0(name: str, pv: dict):
+def reading_n0(name: str, pv: Point):
     """Second reading of a printed N0: the surface normal at each nearby reading of the point, vs the printed
     vector read as typed or one digit slip away (sign of N0 free)."""
-    return _search(name, pv, _q0_readings(name) + digit_slips("N0", pv["N0"]), _n0_misfit, _TOL_UNIT,
-                   f"N0 = {fmt_vec(pv['N0'])}", "max |printed - surface normal| (up to sign)")
+    return _search(pv, _q0_readings(name) + digit_slips("N0", pv.N0), _n0_misfit, _TOL_UNIT,
+                   f"N0 = {fmt_vec(pv.N0)}", "max |printed - surface normal| (up to sign)")
 
 
-def reading_eig(name: str, pv: dict):
+def reading_eig(name: str, pv: Point):
     """Second reading of printed eigenvalues of Q*: Q* as the Hessian of the normal distance at each nearby
     reading of the point and of its free joints (the other pairs), vs the printed values (sorted)."""
-    pr = np.sort(np.asarray(pv["eig"], float))
-    pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != tuple(PRINTED[name]["free"])]
+    pr = np.sort(np.asarray(pv.eig, float))
+    pairs = [(a, b) for a in range(1, 6) for b in range(a + 1, 6) if (a, b) != pv.free]
     readings = choices(Kind.WHICH, "free", {f"free joints {a}, {b}": (a, b) for a, b in pairs})
 
     def misfit(x) -> float:
-        return _by_meaning(x, PRINTED[name]["N0"], lambda n, eig, H: _scaled(pr, eig).max())
+        return _by_meaning(x, PRINTED[name].N0, lambda n, eig, H: _scaled(pr, eig).max())
 
-    return _search(name, pv, _q0_readings(name) + readings, misfit, 1.0, f"eig(Q*) = {fmt_vec(pr, 2)} mm",
+    return _search(pv, _q0_readings(name) + readings, misfit, 1.0, f"eig(Q*) = {fmt_vec(pr, 2)} mm",
                    f"max |printed - ours| / ({_ABS} mm + {_REL:.1%}) over the sorted eigenvalues")
 
 
-def reading_u0(pv: dict):
+def reading_u0(pv: Point):
     """Second reading of A1's u0: Eq 58 inverted at each nearby reading of q0 (and with the limits exchanged),
     vs the printed u0 read as typed, one digit slip away or with an entry's sign flipped. A reading of q0 must
     also keep the N0 printed beside u0 from the same q0 (it holds as stated): a q0 that reproduces u0 but not
@@ -259,34 +289,33 @@ def reading_u0(pv: dict):
         return max(u0, _n0_misfit(x))
 
     readings = _q0_readings("A1") + [Reading(Kind.LIMIT, "Eq 58 with q^U and q^L exchanged", {"swap": True})]
-    readings += digit_slips("u0", pv["u0"]) + sign_typos("u0", pv["u0"])
-    return _search("A1", pv, readings, misfit, _TOL_UNIT, f"u0 = {fmt_vec(pv['u0'])}",
+    readings += digit_slips("u0", pv.u0) + sign_typos("u0", pv.u0)
+    return _search(pv, readings, misfit, _TOL_UNIT, f"u0 = {fmt_vec(pv.u0)}",
                    "max(|printed u0 - lambda(q0)|, |printed N0 - surface normal|)",
                    "Eq 58 inverted (arcsin) at the reading's joints; the N0 printed beside it by its meaning "
                    "(verification.oracles.normal_distance) at the same joints", swap=False)
 
 
-def reading_h(pv: dict, mask: np.ndarray, what: str):
+def reading_h(pv: Point, mask: np.ndarray, what: str):
     """Second reading of A1's printed H* entries ``mask``: the Hessian of N0.G(q(s)) at each nearby reading,
     vs the printed matrix as typed, transposed or with an entry moved."""
     def misfit(x) -> float:
         pr = np.asarray(x["H"], float)
-        return _by_meaning(x, PRINTED["A1"]["N0"], lambda n, eig, H: _scaled(pr, H)[mask].max())
+        return _by_meaning(x, PRINTED["A1"].N0, lambda n, eig, H: _scaled(pr, H)[mask].max())
 
-    readings = _q0_readings("A1") + [Reading(Kind.SWAP, "H* transposed", {"H": np.asarray(pv["H"], float).T})]
-    readings += moved_entries("H", pv["H"]) + moved_entries("H", pv["H"], within="row")
-    readings += sign_typos("H", pv["H"])
-    return _search("A1", pv, readings, misfit, 1.0, what, f"max |printed - ours| / ({_ABS} mm + {_REL:.1%})")
+    readings = _q0_readings("A1") + [Reading(Kind.SWAP, "H* transposed", {"H": np.asarray(pv.H, float).T})]
+    readings += moved_entries("H", pv.H) + moved_entries("H", pv.H, within="row") + sign_typos("H", pv.H)
+    return _search(pv, readings, misfit, 1.0, what, f"max |printed - ours| / ({_ABS} mm + {_REL:.1%})")
 
 
-def reading_dq(pv: dict):
+def reading_dq(pv: Point):
     """Second reading of A2's delta q1: Eq 67 at each nearby reading of q0, vs the printed step."""
     def misfit(x) -> float:
         ours = eq67_dq(x["q0"])
         return float(max(abs(x["dq"].get(j, 0.0) - ours.get(j, 0.0)) for j in set(ours) | set(x["dq"])))
 
-    return _search("A2", pv, _q0_readings("A2"), misfit, 0.0,
-                   f"delta q = {pv['dq']} 'because joint 1 is at its lower limit'",
+    return _search(pv, _q0_readings("A2"), misfit, 0.0,
+                   f"delta q = {pv.dq} 'because joint 1 is at its lower limit'",
                    "largest difference of the printed step from Eq 67's",
                    "Eq 67 at the reading's joints (+1 at a lower limit, -1 at an upper one)")
 
@@ -305,12 +334,12 @@ _SIGMA = Printed("sigma", "|sigma|", 1e-3, "mm", 1e-3, 4, "|printed - ours|")
 
 
 def _n0(name, pv, r) -> Row:
-    norm = float(np.linalg.norm(pv["N0"]))
+    norm = float(np.linalg.norm(pv.N0))
     # N0's sign is a convention: ours along the printed one
-    n0 = r.N0 if np.abs(pv["N0"] - r.N0).max() <= np.abs(pv["N0"] + r.N0).max() else -r.N0
+    n0 = r.N0 if np.abs(pv.N0 - r.N0).max() <= np.abs(pv.N0 + r.N0).max() else -r.N0
     return _N0.row(
         f"App. E, {name}, Eq 59",
-        pv["N0"],
+        pv.N0,
         n0,
         note=f" (left null vector of G_q q_s); printed norm {norm:.4f}",
         why=f"at q0 = {fmt_vec(r.q0)} rad the normal of the surface is {fmt_vec(r.N0)}; the printed "
@@ -325,7 +354,7 @@ def _a1(pv, r) -> list[Row]:
     return [
         _U0.row(
             "App. E, A1, Eq 58",
-            pv["u0"],
+            pv.u0,
             r.lam0,
             note=" (Eq 58 inverted at q0)",
             why=f"q1(lambda = +1.0654) = {np.degrees(2.7925 * np.sin(1.0654)):.1f} deg, not -140 deg (Eq 58 "
@@ -335,7 +364,7 @@ def _a1(pv, r) -> list[Row]:
         _n0("A1", pv, r),
         _H_OFF.row(
             "App. E, A1, Eq 61",
-            np.where(off, pv["H"], 0.0),
+            np.where(off, pv.H, 0.0),
             np.where(off, mm["H"], 0.0),
             why=f"H*(4,2) = +1703 is printed with H*(2,4) = -1703; Eq 61 at q0 = {fmt_vec(r.q0)} rad gives "
             f"H*(2,4) = {mm['H'][1, 3]:.2f}, H*(4,2) = {mm['H'][3, 1]:.2f} mm (a Hessian-based quadratic "
@@ -344,25 +373,25 @@ def _a1(pv, r) -> list[Row]:
         ),
         _H_DIAG.row(
             "App. E, A1, Eq 61",
-            np.diagonal(pv["H"]),
+            np.diagonal(pv.H),
             mm["H"].diagonal(),
             depends_on=("lengths-circular", "pinocchio"),
             basis="circular: l2..l5 were recovered from these four numbers (docs/ARM.md), so they agree by "
             "construction",
         ),
-        _B.row("App. E, A1, Eq 63", pv["B"], mm["B"]),
-        _Q.row("App. E, A1, Eq 62-65", pv["Q"], mm["Q"]),
+        _B.row("App. E, A1, Eq 63", pv.B, mm["B"]),
+        _Q.row("App. E, A1, Eq 62-65", pv.Q, mm["Q"]),
     ]
 
 
 def _eig(name, pv, mm) -> Row:
-    pr, eig_h = np.sort(np.asarray(pv["eig"], float)), _eig_h(mm)
+    pr, eig_h = np.sort(np.asarray(pv.eig, float)), _eig_h(mm)
     return _EIG.row(
         f"App. E, {name}, Eq 65",
         pr,
         np.sort(mm["eig"]),
         note=f"; eig(H*) = {fmt_vec(eig_h, 1)} mm",
-        why=f"moving only a free joint {PRINTED[name]['free']} moves the point along the surface, so "
+        why=f"moving only a free joint {pv.free} moves the point along the surface, so "
         f"eta = 0 and Q* has zero eigenvalues; the printed list has {int(np.sum(np.abs(pr) < 1e-9))} "
         f"zeros (eig(H*) = {fmt_vec(eig_h, 1)} mm)",
         reread=lambda: reading_eig(name, pv),
@@ -373,21 +402,21 @@ def _sigma(pv, r, side) -> list[Row]:
     """A2's sigma (Eq 66, with the printed step) and its step delta q1 (Eq 67)."""
     mm, eq67 = r.in_mm(), eq67_dq(r.q0)
     # Eq 66 with the printed step: sigma = N0 . G_q1 * (printed delta q1)
-    s_ours = mm["sigma"][1] * pv["dq"].get(1, 0.0) / eq67[1]
+    s_ours = mm["sigma"][1] * pv.dq.get(1, 0.0) / eq67[1]
     return [
         _SIGMA.row(
             "App. E, A2, Eq 66",
-            pv["sigma"][1],
+            pv.sigma[1],
             s_ours,
             limit=1e-3 * abs(s_ours),
-            note=f" (Eq 66 with the printed delta q1 = {pv['dq'].get(1)})",
+            note=f" (Eq 66 with the printed delta q1 = {pv.dq.get(1)})",
         ),
         Row.graded(
             "A2: delta q1 = -1 because joint 1 is at its lower limit (Eq 67).",
             "App. E, A2, Eq 67",
             "",
-            f"printed delta q = {pv['dq']} | Eq 67 gives {eq67} (+1 at a lower limit)",
-            (Measure("signs differing from Eq 67", float(pv["dq"] != eq67), 0.0),),
+            f"printed delta q = {pv.dq} | Eq 67 gives {eq67} (+1 at a lower limit)",
+            (Measure("signs differing from Eq 67", float(pv.dq != eq67), 0.0),),
             erratum=Erratum(
                 "App. E, A2, delta q1",
                 "delta q1 = -1 because joint 1 is at its lower limit",
@@ -405,12 +434,12 @@ _SIDE_TEXT = {"+N0": "only along +N0 (a boundary)", "both": "both ways (not a bo
 
 def _conclusion(name, pv, side, r, note: str = "") -> Row:
     return Row.graded(
-        f"{name}: motion is admissible {_SIDE_TEXT.get(pv['conclusion'], pv['conclusion'])}.",
+        f"{name}: motion is admissible {_SIDE_TEXT.get(pv.conclusion, pv.conclusion)}.",
         f"App. E, {name}",
         "",
-        f"printed {pv['conclusion']} | ground truth {side} (reachability of p +- 2 mm "
+        f"printed {pv.conclusion} | ground truth {side} (reachability of p +- 2 mm "
         f"N0, p = {fmt_vec(r.point * 1e3, 1)} mm) | Abdel-Malek's test with our numbers: {r.verdict}" + note,
-        (Measure("printed side differs from ground truth", float(pv["conclusion"] != side), 0.0),),
+        (Measure("printed side differs from ground truth", float(pv.conclusion != side), 0.0),),
         fail=Verdict.DOES_NOT_HOLD,
         reason="ground truth disagrees",
         id="conclusion",
@@ -454,8 +483,8 @@ def _point(name, pv, res, sides) -> Row:
     details += (_sigma(pv, r, side) if name == "A2" else []) + [_conclusion(name, pv, side, r, note)]
     refuted = any(d.verdict is Verdict.DOES_NOT_HOLD for d in details)
     return Row.grouped(
-        PRINTED[name]["claim"],
-        PRINTED[name]["ref"],
+        pv.claim,
+        pv.ref,
         "every printed quantity vs the same quantity recomputed with Pinocchio (Eq 58-68 by "
         "verification.oracles.abdel_malek; Hessians by central differences), within the printed "
         f"rounding (N0, u0 {_TOL_UNIT:g}; B {_TOL_B:g} 1/mm; mm values {_REL:.1%} + {_ABS} mm); the "
@@ -493,8 +522,7 @@ def _point(name, pv, res, sides) -> Row:
 )
 def appendix_e(ctx, values):
     """A1, A2, A6: every printed number vs ours; every conclusion vs reachability (one row per point)."""
-    res, sides = _results(ctx)
-    pv = values(ctx)
+    res, sides, pv = _results(ctx), _sides(ctx), values(ctx)
     rows = [_point(name, pv[name], res, sides) for name in PRINTED]
     rows[0] = rows[0].replace(figures=(_eig_figure(ctx, res, pv),))
     return rows
@@ -505,7 +533,7 @@ def _eig_figure(ctx, results, pv) -> str:
     for k, name in enumerate(PRINTED):
         ax = fig.add_subplot(1, 3, k + 1)
         x = np.arange(5)
-        ax.bar(x - 0.2, np.sort(np.asarray(pv[name]["eig"], float)), 0.4, label="thesis (printed)")
+        ax.bar(x - 0.2, np.sort(np.asarray(pv[name].eig, float)), 0.4, label="thesis (printed)")
         ax.bar(x + 0.2, np.sort(results[name].eig * 1e3), 0.4, label="ours (Pinocchio)")
         ax.axhline(0, color="k", lw=0.5)
         ax.set_title(f"{name}: eig(Q*) [mm], sorted", fontsize=9)
@@ -517,7 +545,7 @@ def _eig_figure(ctx, results, pv) -> str:
 
 def eq69_printed(q):
     """Eq 69 as printed: f(1) at A1 -> (n, 3) [m]."""
-    l1, l2, l3, l4, l5 = iik.THESIS_ARM.lengths
+    l1, l2, l3, l4, l5 = THESIS_ARM.lengths
     c1, s1, c3, s3, c5, s5 = cos_sin(q[:, 0], q[:, 2], q[:, 4])
     return np.stack(
         [
@@ -529,18 +557,13 @@ def eq69_printed(q):
     )
 
 
-def _f1(q, L, sign: float = 1.0):
-    """The tool point [m] on s(1) (theta4 = theta5 = 0) with links 3-5 of length L [m]; ``sign`` -1: the slip
-    l1 + L s2 for l1 - L s2."""
-    l1, l2 = iik.THESIS_ARM.lengths[:2]
+def eq69_corrected(q, sign: float = 1.0, links: slice = slice(2, 5)):
+    """f(1) on s(1) (theta4 = theta5 = 0): [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2] [m], L = l3 + l4 + l5;
+    slips: ``sign`` -1 (l1 + L s2), ``links`` other lengths summed into L."""
+    l1, l2 = THESIS_ARM.lengths[:2]
+    L = sum(THESIS_ARM.lengths[links])
     c1, s1, c2, s2 = cos_sin(q[:, 0], q[:, 1])
     return np.stack([(l2 + L * c2) * c1, (l2 + L * c2) * s1, l1 - sign * L * s2], 1)
-
-
-def eq69_corrected(q, sign: float = 1.0):
-    """f(1) on s(1) (theta4 = theta5 = 0): [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5."""
-    _, _, l3, l4, l5 = iik.THESIS_ARM.lengths
-    return _f1(q, l3 + l4 + l5, sign)
 
 
 def eq69_reading(ctx, f1):
@@ -574,7 +597,7 @@ CHECKS = SECTION.formulas(_on_s1, Formula(
     "Eq 69 (App. E)", eq69_printed, lambda s, f: np.linalg.norm(f(s.values) - iik.fk(s.values, THESIS_ARM)[
         :, :3, 3], axis=1), 1e-12, "m", (
         Slip(SlipKind.SIGN, "l1 + L s2 for l1 - L s2", lambda q: eq69_corrected(q, -1.0)),
-        Slip(SlipKind.LENGTH, "L = l3 + l4 (l5 left out)", lambda q: _f1(q, sum(THESIS_ARM.lengths[2:4]))),
+        Slip(SlipKind.LENGTH, "L = l3 + l4 (l5 left out)", lambda q: eq69_corrected(q, links=slice(2, 4))),
     ), good=eq69_corrected, good_is="f(1) = [(l2 + L c2) c1, (l2 + L c2) s1, l1 - L s2], L = l3 + l4 + l5",
     eps_is="the good point + 1 nm", order=48.5, depends_on=EXACT_GEOMETRY, id="eq69", name="eq69_surface",
     text="f(1) = [(l2+l3+l4) c1 + l5 c1 c5 + l5 s1 s3 s5; (l2+l3+l4) s1 + l5 s1 c5 - l5 c1 s3 s5; l5 c3 s5 + "

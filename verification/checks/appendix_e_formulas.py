@@ -18,6 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.optimize import brentq
 
 import iik
 
@@ -126,10 +127,10 @@ class Probes(tuple):
 @per_run
 def probes(ctx) -> Probes:
     """A1, A2, A6 and random points of s(1), s(2), s(26) (free joints uniform in Table I)."""
-    out = [_probe(n, d["q0"], d["free"]) for n, d in PRINTED.items()]
+    out = [_probe(n, d.q0, d.free) for n, d in PRINTED.items()]
     rng = ctx.rng("appendix-e-formulas")
     for name, at in _SETS.items():
-        q0, free = PRINTED[at]["q0"], PRINTED[at]["free"]
+        q0, free = PRINTED[at].q0, PRINTED[at].free
         held = [j for j in range(5) if j + 1 not in free]
         for k in range(ctx.n(6, 2)):
             q = rng.uniform(ARM.q_min[:5], ARM.q_max[:5])
@@ -319,7 +320,7 @@ def _sigma_zero_points(ctx) -> Probes:
 
 def _sigma2_roots(t1: float, t2: float, t4: float) -> list[float]:
     """The theta5 [rad] in Table I where the unnormalised normal (f_theta1 x f_theta5) is orthogonal to G_q2
-    at [t1, t2, 0, t4, theta5] (a grid, then bisection; continuous in theta5, unlike the unit normal)."""
+    at [t1, t2, 0, t4, theta5] (a grid, then Brent's method; continuous in theta5, unlike the unit normal)."""
 
     def s2(t5) -> np.ndarray:
         q = np.array([[t1, t2, 0.0, t4, t] for t in np.atleast_1d(t5)])
@@ -327,14 +328,9 @@ def _sigma2_roots(t1: float, t2: float, t4: float) -> list[float]:
         return np.einsum("ni,ni->n", np.cross(d[0], d[1]), d[2])
 
     grid = np.linspace(ARM.q_min[4] + 1e-3, ARM.q_max[4] - 1e-3, 241)
-    vals, out = s2(grid), []
-    for k in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
-        a, b = grid[k], grid[k + 1]
-        for _ in range(50):
-            c = 0.5 * (a + b)
-            a, b = (c, b) if np.prod(np.sign(s2([a, c]))) > 0 else (a, c)
-        out.append(0.5 * (a + b))
-    return out
+    vals = s2(grid)
+    sign_changes = np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]
+    return [brentq(lambda t: s2(t)[0], grid[k], grid[k + 1], xtol=1e-15) for k in sign_changes]
 
 
 #: Eq 68 as printed (verification.oracles.abdel_malek).

@@ -156,28 +156,24 @@ def execute_scenario(
         return ctx.cache[key]
     traj, scenario = _planned(ctx, name, limit)
     ff = FastForwardClock(FAST_FORWARD, latency)
-    clock, sleep = ff.now, ff.sleep
     options = ExecutionOptions(early=early, update=update, sample_period=SAMPLE_PERIOD)
     with tempfile.TemporaryDirectory(prefix="iik-verify-hw-") as tmp:
         log_path = Path(tmp) / f"{name}.jsonl"
         with simulated_arm(
-            initial=traj.q[0], clock=clock, lag=lag, timeout=REQUEST_TIMEOUT, arm=THESIS_ARM
+            initial=traj.q[0], clock=ff.now, lag=lag, timeout=REQUEST_TIMEOUT, arm=THESIS_ARM
         ) as (sim, arm):
             arm.open()
-            execute(arm, traj, log_path, options=options, clock=clock, sleep=sleep)
+            execute(arm, traj, log_path, options=options, clock=ff.now, sleep=ff.sleep)
             rests = sum(len(m.stops) for m in sim.modules.values())
             errors = list(sim.errors)
         run = read_run_log(log_path)
     if errors:
         raise SimulatorError(f"simulated arm raised while serving {name}: {errors[:3]}")
     checker = SceneCollision(scenario.obstacles, arm=THESIS_ARM)
+    clearance = float(min(checker.nearest(q).distance for q in run.samples_q))
+    label = name if limit is None else f"{name}[:{limit}]"
     ctx.cache[key] = SimRun(
-        name=name if limit is None else f"{name}[:{limit}]",
-        steps=len(traj),
-        rests=rests,
-        changes=6 * max(len(traj) - 2, 0),
-        ee_error=analyse(run).ee_error,
-        min_clearance=float(min(checker.nearest(q).distance for q in run.samples_q)),
+        label, len(traj), rests, 6 * max(len(traj) - 2, 0), analyse(run).ee_error, clearance
     )
     return ctx.cache[key]
 
@@ -410,16 +406,15 @@ def check_early_update(ctx, early: float) -> Row:
     )
     runs = [[execute_scenario(ctx, name, limit=limit, **o) for _, o in schemes] for name, limit in compared]
     pairs = [(wait, thesis) for wait, thesis, _ in runs]
+    fewest = min(w.rests for w, _ in pairs)
+    left = max(t.rests / max(w.rests, 1) for w, t in pairs)
+    added = min(t.ee_error.mean() - w.ee_error.mean() for w, t in pairs)
     m = (
-        Measure("fewest joint rests of the waiting scheme", min(w.rests for w, _ in pairs), 1, bound=">="),
-        Measure(
-            "largest share of the waiting scheme's rests left by the early update",
-            max(t.rests / max(w.rests, 1) for w, t in pairs),
-            0.1,
-        ),
+        Measure("fewest joint rests of the waiting scheme", fewest, 1, bound=">="),
+        Measure("largest share of the waiting scheme's rests left by the early update", left, 0.1),
         Measure(
             "smallest increase of the mean end-effector error by the early update",
-            min(t.ee_error.mean() - w.ee_error.mean() for w, t in pairs),
+            added,
             0.0,
             "m",
             bound=">=",
@@ -558,6 +553,7 @@ def check_real_arm(ctx) -> Row:
 # ----------------------------------------------------------------------------- App. A, Table V descriptions
 #: What a Table V description may say a limit command limits, and the quantity's unit.
 _UNITS = {"velocity": "rad/s", "current": "A", "position": "rad"}
+_SET_MAX_CUR = "PCube_setMaxCur(0.3), then a 0.6 rad/s velocity command for 1 s"
 
 
 @SECTION.check(
@@ -577,17 +573,14 @@ def check_set_max_cur(ctx, quantity: str) -> Row:
     """Table V: PCube_setMaxCur limits ... 'by specifying the new value in rad/s' (``quantity``: what the
     value limits, in its unit :data:`_UNITS`)."""
     unit = _UNITS[quantity]
-
-    # PCube_setMaxCur(0.3) then a 0.6 rad/s velocity command for 1 s on the simulated modules
     ff = FastForwardClock(FAST_FORWARD, LATENCY_SCALE)
-    clock, wait_for = ff.now, ff.sleep
-    with simulated_arm(clock=clock, timeout=REQUEST_TIMEOUT, arm=THESIS_ARM) as (sim, arm):
+    with simulated_arm(clock=ff.now, timeout=REQUEST_TIMEOUT, arm=THESIS_ARM) as (sim, arm):
         arm.open()
         m = arm.modules[0]
         p0 = m.get_pos()
         m.set_max_cur(0.3)
         m.move_vel(0.6)  # [rad/s], twice "0.3 rad/s"
-        wait_for(1.0)
+        ff.sleep(1.0)
         observed = {
             "velocity": abs(m.get_vel()),
             "current": abs(m.get_cur()),
@@ -599,41 +592,33 @@ def check_set_max_cur(ctx, quantity: str) -> Row:
         f"0x{int(frames[0].param):02X}, {frames[0].param.name}, {frames[0].value}" if frames else "nothing"
     )
     held = min(observed, key=lambda k: abs(observed[k] - 0.3))  # the quantity the command held at 0.3
+    misplaced = Reading(
+        Kind.MOVED,
+        "'rad/s' a unit misplaced from the neighbouring rows (PCube_getVel, PCube_moveRamp): this row's own "
+        "'maximum current' gives A",
+        {"unit": "A"},
+    )
     return Row.graded(
-        domain="one simulated module: PCube_setMaxCur(0.3), then a 0.6 rad/s velocity command for 1 s",
-        claim=f"PCube_setMaxCur limits the {quantity}, 'specifying ... the new value in {unit}' (Table V)",
-        reference="App. A, Table V",
-        method="the driver's PCube_setMaxCur(0.3) on the virtual bus (the frame it writes, POWERCUBE.md's "
-        "parameter table), then a 0.6 rad/s velocity command for 1 s on the simulated module: is the "
-        f"{quantity} held at 0.3 {unit}?",
-        numbers=f"SETPARAM written: ({wrote}); after 1 s: velocity {observed['velocity']:.3f} rad/s, current "
+        f"PCube_setMaxCur limits the {quantity}, 'specifying ... the new value in {unit}' (Table V)",
+        "App. A, Table V",
+        "the driver's PCube_setMaxCur(0.3) on the virtual bus (the frame it writes, POWERCUBE.md's parameter "
+        f"table), then a 0.6 rad/s velocity command for 1 s on the simulated module: is the {quantity} held "
+        f"at 0.3 {unit}?",
+        f"SETPARAM written: ({wrote}); after 1 s: velocity {observed['velocity']:.3f} rad/s, current "
         f"{observed['current']:.3f} A, moved {observed['position']:.3f} rad",
-        measures=(
-            Measure(
-                f"|{quantity}| [{unit}] after PCube_setMaxCur(0.3) and a 0.6 rad/s command",
-                observed[quantity],
-                0.3 * (1 + 1e-3),
-            ),
-        ),
+        (Measure(f"|{quantity}| [{unit}] after {_SET_MAX_CUR}", observed[quantity], 0.3 * (1 + 1e-3)),),
         erratum=Erratum(
-            equation="Table V (PCube_setMaxCur)",
-            printed=f"the new value in {unit}",
-            corrected="the new value in A (parameter FMAXCUR 0x4C, a current; speeds are FMAXVEL 0x48)",
-            counterexample=f"PCube_setMaxCur(0.3) writes ({wrote}); a 0.6 rad/s velocity command still "
-            f"reaches {observed['velocity']:.2f} rad/s while the current is held at "
-            f"{observed['current']:.2f} A",
+            "Table V (PCube_setMaxCur)",
+            f"the new value in {unit}",
+            "the new value in A (parameter FMAXCUR 0x4C, a current; speeds are FMAXVEL 0x48)",
+            f"PCube_setMaxCur(0.3) writes ({wrote}); a 0.6 rad/s velocity command still reaches "
+            f"{observed['velocity']:.2f} rad/s while the current is held at {observed['current']:.2f} A",
         ),
+        domain=f"one simulated module: {_SET_MAX_CUR}",
     ).reread_if_erratum(
         lambda: search(
             {"unit": unit},
-            [
-                Reading(
-                    Kind.MOVED,
-                    "'rad/s' a unit misplaced from the neighbouring rows (PCube_getVel, PCube_moveRamp): "
-                    "this row's own 'maximum current' gives A",
-                    {"unit": "A"},
-                )
-            ],
+            [misplaced],
             lambda x: 0.0 if x["unit"] == _UNITS[held] else 1.0,
             0.0,
             printed=f"PCube_setMaxCur ... 'the new value in {unit}'",

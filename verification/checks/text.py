@@ -28,9 +28,12 @@ class Slip:
     correct: str
     cite: tuple = (None, None)
 
-    @property
-    def erratum(self) -> Erratum:
-        return Erratum(f"{self.where} (citation)", self.quote, self.correct, f"cited target: {self.cited_is}")
+    def row(self, id: str) -> Row:
+        """The citation's erratum row (``id``), after the second reading."""
+        cited = f"cited target: {self.cited_is}"
+        erratum = Erratum(f"{self.where} (citation)", self.quote, self.correct, cited)
+        return Row(f"{self.where}: '{self.quote}'", f"{self.where} (citation)", "", f"{cited}; described: "
+                   f"{self.correct}", Verdict.ERRATUM, id=id, errata=(erratum,)).reread(self.reading())
 
     def reading(self):
         """Second reading: is the right target one number or letter off the printed one (a typo)?"""
@@ -133,11 +136,7 @@ SLIPS = (
 )
 def cross_references(ctx):
     """The cross-reference slips of the text, one erratum record each."""
-    details = tuple(
-        Row(f"{s.where}: '{s.quote}'", f"{s.where} (citation)", "", f"cited target: {s.cited_is}; described: "
-            f"{s.correct}", Verdict.ERRATUM, id=f"c{k + 1}", errata=(s.erratum,)).reread(s.reading())
-        for k, s in enumerate(SLIPS)
-    )
+    details = tuple(s.row(f"c{k + 1}") for k, s in enumerate(SLIPS))
     return Row.grouped(
         "The tables, figures, sections, equations, points and references the text cites are the ones it "
         "describes.",
