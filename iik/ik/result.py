@@ -3,6 +3,7 @@ as padded arrays (:class:`IKBatch`), and the description of a continuum (:class:
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -235,6 +236,17 @@ class IKResult:
 
     def __len__(self) -> int:
         return len(self.q)
+
+    def rows(self, keep) -> IKResult:
+        """The result with only the rows ``keep`` (indices or a (k,) bool mask), in that order;
+        every other field unchanged."""
+        idx = np.arange(self.count)[np.asarray(keep)]
+        return dataclasses.replace(
+            self, q=self.q[idx], position_residual=self.position_residual[idx],
+            rotation_residual=self.rotation_residual[idx], within_limits=self.within_limits[idx],
+            approximate=self.approximate[idx], free_joints=tuple(self.free_joints[i] for i in idx),
+            continua=tuple(self.continua[i] for i in idx),
+        )
 
     @property
     def count(self) -> int:

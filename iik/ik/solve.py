@@ -551,11 +551,7 @@ def _with_bands(r: IKResult, T, arm: Arm, opts: IKOptions) -> IKResult:
         _FREE_JOINTS[L.FREE_Q1](arm.solver.reversed) if c and c[0].coupled_joint is None else r.free_joints[i]
         for i, c in zip(keep, conts, strict=True)
     )
-    return dataclasses.replace(
-        r, q=_ro(r.q[keep]), position_residual=_ro(r.position_residual[keep]),
-        rotation_residual=_ro(r.rotation_residual[keep]), within_limits=_ro(r.within_limits[keep]),
-        free_joints=free, approximate=_ro(r.approximate[keep]), continua=tuple(conts),
-    )
+    return dataclasses.replace(r.rows(keep), free_joints=free, continua=tuple(conts))
 
 
 _APPROXIMATE = (

@@ -108,6 +108,18 @@ def test_result_is_frozen():
         r.reason = "x"  # type: ignore[misc]
 
 
+def test_rows_keeps_the_chosen_rows_of_every_per_row_field_in_order():
+    r = iik.solve(iik.fk(np.array([0.3, -0.4, 0.5, 0.6, -0.7, 0.8]), ARM), ARM, within_limits=False)
+    assert r.count >= 3
+    sub = r.rows([2, 0])
+    assert np.array_equal(sub.q, r.q[[2, 0]]) and sub.count == 2
+    assert np.array_equal(sub.position_residual, r.position_residual[[2, 0]])
+    assert np.array_equal(sub.within_limits, r.within_limits[[2, 0]])
+    assert sub.free_joints == (r.free_joints[2], r.free_joints[0]) and sub.certificate == r.certificate
+    mask = np.arange(r.count) != 1
+    assert np.array_equal(r.rows(mask).q, r.q[mask]) and not r.rows(mask).q.flags.writeable
+
+
 # ----------------------------------------------------------------------------- the examples
 EXAMPLE_THETA3 = [-1.4720058155065561, 0.87525106835483468, -2.6193481295067045e-07, -1.2350860980201843,
                   0.066116570625837756, 0.68674543598878923]
