@@ -20,7 +20,8 @@ Per family (:mod:`verification.testing.families`, any shipped arm): ``n`` config
   often each certificate path ran;
 * **oracle**: on every ``oracle_every``-th pose, the dense multi-start Levenberg-Marquardt
   search (:mod:`verification.oracles.multistart`, ``starts`` starts): its solutions the
-  answer does not contain (missed);
+  answer does not contain (missed), and how many of them on poses whose certificate held (a
+  silent loss);
 * **reference**: on every ``reference_every``-th pose, the NumPy reference; poses whose
   solution sets differ (:func:`~verification.testing.completeness.agreement`).
 
@@ -86,6 +87,7 @@ class RecoveryRow:
     oracle_poses: int = 0
     oracle_solutions: int = 0
     missed_vs_oracle: int = 0
+    missed_vs_oracle_certified: int = 0
     reference_poses: int = 0
     reference_differs: int = 0
     empty: str = ""
@@ -142,14 +144,15 @@ def recovery(fam: Family, arm: Arm, opts: RecoveryOptions = RecoveryOptions()) -
             examples.append(q.tolist())
         if opts.oracle_every and i % opts.oracle_every == 0:
             o = multistart_ik(T, arm, OracleOptions(starts=opts.starts, seed=i))
-            c.update(oracle=1, oracle_sols=len(o.q), missed=len(coverage(r, o, T, arm, _TOL).missed))
+            missed = len(coverage(r, o, T, arm, _TOL).missed)
+            c.update(oracle=1, oracle_sols=len(o.q), missed=missed, missed_cert=missed if cert else 0)
         if opts.reference_every and i % opts.reference_every == 0:
             ref = iik.solve(T, arm, method="reference", within_limits=False)
             c.update(ref=1, ref_diff=not agreement(r, ref, T, arm, _TOL).same)
     return RecoveryRow(
         fam.name, len(Q), c["found"], c["silent"], c["inside"], c["found_inside"], c["wrong"],
         {"any": c["continua"], **dict(kinds)}, c["uncert"], dict(paths), c["oracle"], c["oracle_sols"],
-        c["missed"], c["ref"], c["ref_diff"], "", tuple(examples),
+        c["missed"], c["missed_cert"], c["ref"], c["ref_diff"], "", tuple(examples),
     )
 
 
@@ -172,17 +175,18 @@ def print_recovery(rows, out=sys.stdout, header: bool = True) -> None:
     p = lambda *a: print(*a, file=out, flush=True)  # noqa: E731
     if header:
         p("| family | poses | q* found % | q* missed, certified | q* inside limits: found with limits % "
-          "| solutions missed vs oracle (poses, oracle solutions) | wrong rows | continua flagged "
-          "(poses; kinds) | uncertified | differs from reference (poses) | paths |")
-        p("|---|---|---|---|---|---|---|---|---|---|---|")
+          "| solutions missed vs oracle (poses, oracle solutions) | of them on certified poses | wrong rows "
+          "| continua flagged (poses; kinds) | uncertified | differs from reference (poses) | paths |")
+        p("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         if r.empty:
-            p(f"| {r.family} | 0 | - | - | - | - | - | - | - | - | empty for this arm |")
+            p(f"| {r.family} | 0 | - | - | - | - | - | - | - | - | - | empty for this arm |")
             continue
         kinds = ", ".join(f"{k} {v}" for k, v in r.continua.items() if k != "any")
         paths = ", ".join(f"{k} {v}" for k, v in sorted(r.paths.items()))
         p(f"| {r.family} | {r.poses} | {_pct(r.found, r.poses)} | {r.silent} "
           f"| {_pct(r.found_inside, r.inside)} ({r.inside}) "
-          f"| {r.missed_vs_oracle} ({r.oracle_poses}, {r.oracle_solutions}) | {r.wrong_rows} "
+          f"| {r.missed_vs_oracle} ({r.oracle_poses}, {r.oracle_solutions}) | {r.missed_vs_oracle_certified} "
+          f"| {r.wrong_rows} "
           f"| {r.continua.get('any', 0)}{'; ' + kinds if kinds else ''} | {r.uncertified} "
           f"| {r.reference_differs} ({r.reference_poses}) | {paths} |")

@@ -1,11 +1,14 @@
-"""verification.testing.recovery.pose_stats: what the recovery table counts as a wrong row."""
+"""verification.testing.recovery: what the recovery table counts as a wrong row, and the oracle
+solutions missed on certified poses (silent losses) counted apart."""
 
 import dataclasses
 
 import numpy as np
+import pytest
 
 import iik
-from verification.testing.recovery import pose_stats
+from verification.testing.families import family
+from verification.testing.recovery import RecoveryOptions, pose_stats, recovery
 
 ARM = iik.arms.get("thesis")
 Q = np.array([0.3, -0.4, 0.5, 0.6, -0.7, 0.8])
@@ -31,3 +34,26 @@ def test_a_row_off_the_pose_is_wrong_unless_flagged_approximate_within_its_toler
     assert pose_stats(ARM, Q, T, _with_row(near, approximate=False)).wrong == 1
     assert pose_stats(ARM, Q, T, _with_row(near, approximate=True)).wrong == 0
     assert pose_stats(ARM, Q, T, _with_row(far, approximate=True)).wrong == 1
+
+
+def _dropping_first_row(certified: bool):
+    """iik.solve_many with each answer's first row left out, its certificate held or not."""
+    real = iik.solve_many
+
+    def solve_many(Ts, arm, **kw):
+        out = []
+        for r in real(Ts, arm, **kw):
+            cert = dataclasses.replace(r.certificate, certified=certified, reason="" if certified else "test")
+            out.append(dataclasses.replace(r.rows(np.arange(1, r.count)), certificate=cert))
+        return out
+
+    return solve_many
+
+
+@pytest.mark.parametrize("certified", [True, False])
+def test_oracle_solutions_missed_on_certified_poses_are_counted_apart(monkeypatch, certified):
+    monkeypatch.setattr(iik, "solve_many", _dropping_first_row(certified))
+    opts = RecoveryOptions(n=2, oracle_every=1, starts=64, reference_every=0)
+    row = recovery(family("uniform"), ARM, opts)
+    assert row.oracle_poses == 2 and row.missed_vs_oracle >= 1
+    assert row.missed_vs_oracle_certified == (row.missed_vs_oracle if certified else 0)
