@@ -727,6 +727,8 @@ def _changed(Tb, flags, hdr, arm: Arm, within_only: bool) -> list[int]:
     bands), those beside a theta1 continuum (:func:`_band_candidate`) and, ``within_only``, those
     with a continuum row outside the limits (vectorised: the usual pose costs no Python)."""
     path, k = hdr[:, L.H_PATH], hdr[:, L.H_COUNT]
+    if not ((path != L.PATH_DOUBLE).any() or hdr[:, L.H_FREE].any()):  # all on the double path, none free
+        return []
     out = (path == L.PATH_DEGENERATE) & (k > 0)
     if within_only:
         rows = np.arange(L.MAX_SOLUTIONS)[None, :] < k[:, None]
