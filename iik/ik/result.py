@@ -82,6 +82,12 @@ class Continuum:
         return f"theta{self.free_joint} {'-' if self.sign > 0 else '+'} theta{self.coupled_joint}"
 
     @property
+    def band(self) -> bool:
+        """Is this a band of joint 1 beside a theta1 continuum (kind ``"numerical"`` without a
+        coupled joint)?"""
+        return self.kind == "numerical" and self.coupled_joint is None
+
+    @property
     def value(self) -> float:
         """``theta_free - sign * theta_coupled`` [rad], wrapped (the collinear kind's invariant)."""
         if self.coupled_joint is None:

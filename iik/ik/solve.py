@@ -545,10 +545,10 @@ def _with_bands(r: IKResult, T, arm: Arm, opts: IKOptions) -> IKResult:
     if r.count < 1 or r.approximate.any():
         return r
     keep, conts = _bands(list(r.q), list(r.continua), T, arm, opts)
-    if not any(c and c[0].coupled_joint is None and c[0].kind == "numerical" for c in conts):
+    if not any(c and c[0].band for c in conts):
         return r
     free = tuple(
-        _FREE_JOINTS[L.FREE_Q1](arm.solver.reversed) if c and c[0].coupled_joint is None else r.free_joints[i]
+        _FREE_JOINTS[L.FREE_BAND](arm.solver.reversed) if c and c[0].band else r.free_joints[i]
         for i, c in zip(keep, conts, strict=True)
     )
     return dataclasses.replace(r.rows(keep), free_joints=free, continua=tuple(conts))
@@ -749,8 +749,7 @@ def _write_result(r: IKResult, q: np.ndarray, info: np.ndarray, flags: np.ndarra
     for j, cs in enumerate(r.continua):
         if cs:
             c = cs[0]
-            band = c.kind == "numerical" and c.coupled_joint is None
-            info[j, L.I_FREE], info[j, L.I_CSIGN] = L.FREE_BAND if band else _FREE_CODES[c.kind], c.sign
+            info[j, L.I_FREE], info[j, L.I_CSIGN] = L.FREE_BAND if c.band else _FREE_CODES[c.kind], c.sign
             if c.limits_interval is not None:
                 info[j, L.I_CLO], info[j, L.I_CHI] = c.limits_interval
     h[L.H_COUNT], h[L.H_FREE], h[L.H_APPROX] = k, sum(map(bool, r.continua)), float(r.approximate.any())
