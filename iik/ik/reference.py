@@ -263,12 +263,16 @@ def _theta2(x, own, th1):
 
 
 # ----------------------------------------------------------------------------- the solver
-def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL, tol_r: float = ROTATION_TOL):
+def solve_arrays(
+    T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL, tol_r: float = ROTATION_TOL, cut=None
+):
     """Every solution of each pose T (n, 4, 4) (validated, rotations proper).
 
     Returns ``(Q, V, F, P, R)``: configurations (n, MAX_SOLUTIONS, 6) [rad], valid mask
     (n, MAX_SOLUTIONS), continuum kinds (:mod:`iik.ik.layout` ``FREE_*``), position and
-    rotation residuals [m, rad]; rows sorted valid-first and lexicographically.
+    rotation residuals [m, rad]; rows sorted valid-first and lexicographically. ``cut`` (n,)
+    bool, if given, is set where a pose had more distinct rows than MAX_SOLUTIONS (the first
+    ones in that order are kept).
     """
     n = len(T)
     P = _solver_poses(T, arm)
@@ -303,7 +307,7 @@ def solve_arrays(T: np.ndarray, arm: Arm, *, tol_p: float = POSITION_TOL, tol_r:
     hval = hval.copy()
     hval[keep] = _wrist(arm, P[own3[keep]], qk[:, 0], qk[:, 1], np.ones(int(keep.sum())))[1]
     return _collect(
-        n, q[keep], own3[keep], pres[keep], rres[keep], hval[keep], f2[keep], flat, T, arm, tol_p, tol_r
+        n, q[keep], own3[keep], pres[keep], rres[keep], hval[keep], f2[keep], flat, T, arm, tol_p, tol_r, cut
     )
 
 
@@ -505,8 +509,9 @@ def _snap(arm: Arm, q, T, tol_p, tol_r):
     return qn[0] if pr[0] <= tol_p and rr[0] <= tol_r else None
 
 
-def _collect(n, q, own, pres, rres, hval, f2, flat, T, arm, tol_p, tol_r):
-    """Distinct rows per pose, continua flagged (theta2 continua first), in the kernel's layout."""
+def _collect(n, q, own, pres, rres, hval, f2, flat, T, arm, tol_p, tol_r, cut):
+    """Distinct rows per pose, continua flagged (theta2 continua first), in the kernel's layout;
+    ``cut`` (n,) (or None) set where more than MAX_SOLUTIONS were distinct."""
     M = L.MAX_SOLUTIONS
     Q, V, F = np.full((n, M, 6), np.nan), np.zeros((n, M), bool), np.zeros((n, M), int)
     Pr, Rr = np.full((n, M), np.nan), np.full((n, M), np.nan)
@@ -534,6 +539,8 @@ def _collect(n, q, own, pres, rres, hval, f2, flat, T, arm, tol_p, tol_r):
             kept.append(row)
             kinds.append(kind)
         order = sorted(range(len(kept)), key=lambda k: tuple(np.round(kept[k], 9)))[:M]
+        if cut is not None:
+            cut[i] = len(kept) > M
         for m, k in enumerate(order):
             Q[i, m], V[i, m], F[i, m] = kept[k], True, kinds[k]
         if order:

@@ -141,7 +141,8 @@ class Certificate:
             tolerances (else ``reason`` says what failed).
         roots: Real roots of the eliminant found; ``clusters``: clusters re-expanded;
             ``near``: near roots tried (minima of |F| within the tolerance-derived bound).
-        reason: Empty when certified.
+        reason: Empty when certified. For the NumPy methods (never certified): empty, or that
+            more distinct solutions were found than MAX_SOLUTIONS rows hold (some left out).
     """
 
     path: str = "numpy"

@@ -140,14 +140,16 @@ def _numpy_method(Tb: np.ndarray, arm: Arm, opts: IKOptions, within: bool, metho
         return q, info, flags, hdr
     Tu = Tb[good].copy()
     Tu[:, :3, :3] = Ru[good]
+    cut = np.zeros(len(good), bool)
     if method == "thesis":
         from .thesis import solve_thesis_arrays
 
-        Q, V, F, _P, _R = solve_thesis_arrays(Tu, arm)
+        Q, V, F, _P, _R = solve_thesis_arrays(Tu, arm, cut=cut)
     else:
         from .reference import solve_arrays
 
-        Q, V, F, _P, _R = solve_arrays(Tu, arm, tol_p=opts.position_tol, tol_r=opts.rotation_tol)
+        Q, V, F, _P, _R = solve_arrays(Tu, arm, tol_p=opts.position_tol, tol_r=opts.rotation_tol, cut=cut)
+    hdr[good[cut], L.H_CERT] = L.CERT_ROWS_DROPPED  # (a NumPy method's certificate says so)
     Q, inside = into_limits(Q, arm.q_min, arm.q_max, LIMIT_TOL)
     inside &= V
     keep = inside if within else V
@@ -288,13 +290,14 @@ def _certificate(h) -> Certificate:
     if hit is not None:
         return hit
     path, cert = int(h[L.H_PATH]), int(h[L.H_CERT])
-    out = Certificate() if path < 0 else Certificate(
+    reason = "" if cert == L.CERT_OK else L.CERT_NAMES[cert]
+    out = Certificate(reason=reason) if path < 0 else Certificate(  # (path < 0: a NumPy method)
         path=L.PATH_NAMES[path],
         certified=cert == L.CERT_OK,
         roots=int(h[L.H_ROOTS]),
         clusters=int(h[L.H_CLUSTERS]),
         near=int(h[L.H_NEAR]),
-        reason="" if cert == L.CERT_OK else L.CERT_NAMES[cert],
+        reason=reason,
     )
     if len(_CERTIFICATES) > 4096:
         _CERTIFICATES.clear()
@@ -321,7 +324,8 @@ def _results(
             cont = tuple(_continua(q[i, r], info[i, r], arm, Tb[i], opts) for r in range(k))
         else:
             free = cont = ((),) * k
-        if h[L.H_PATH] == L.PATH_DEGENERATE and k:
+        steps = _rewrites(h, within[i], Tb[i], arm, within_only)
+        if steps & _DEGENERATE:
             out.append(
                 _degenerate_result(Tb[i], q[i, :k], within[i, :k], cont, h, arm, opts, method, within_only)
             )
@@ -347,11 +351,29 @@ def _results(
                 _certificate(h),
             )
         )
-        if within_only and h[L.H_FREE] and not within[i, :k].all():
+        if steps & _INSIDE:
             out[-1] = _theta2_inside(out[-1], Tb[i], arm)
-        if _band_candidate(h, Tb[i], arm):
+        if steps & _BANDS:
             out[-1] = _with_bands(out[-1], Tb[i], arm, opts)
     return out
+
+
+#: What :func:`_results` does to a pose's kernel rows (:func:`_rewrites`), as bits: sort the
+#: degenerate path's rows into theta1 continua and bands; move continuum rows outside the limits
+#: into them; merge rows along bands of joint 1 beside a theta1 continuum.
+_DEGENERATE, _INSIDE, _BANDS = 1, 2, 4
+
+
+def _rewrites(h, within, T: np.ndarray, arm: Arm, within_only: bool) -> int:
+    """What :func:`_results` does to the rows of one pose (bits ``_DEGENERATE | _INSIDE |
+    _BANDS``; 0: they stand; always 0 for the NumPy methods): its header row h (a list), its rows'
+    within-limits flags (MAX_SOLUTIONS,), the pose T (4, 4). The one rule behind :func:`solve`'s
+    fast path, :func:`_results` and :func:`_changed` (:func:`solve_batch`)."""
+    if h[L.H_PATH] == L.PATH_DEGENERATE:  # (with no row too: its certificate is the slow path's)
+        return _DEGENERATE
+    k = int(h[L.H_COUNT])
+    steps = _INSIDE if within_only and h[L.H_FREE] and not within[:k].all() else 0
+    return steps | (_BANDS if _band_candidate(h, T, arm) else 0)
 
 
 #: Bands of joint 1 are looked for only with the wrist point within this fraction of the arm's
@@ -463,9 +485,9 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
                 rep.setflags(write=False)
                 rows.append(rep)
                 conts.append((dataclasses.replace(c, representative=rep),))
-    cert, approx = _certificate(h), False
+    cert, approx, total = _certificate(h), False, int(h[L.H_TOTAL])
     if all(o is None for o in owner):  # no theta1 continuum reaches the pose: the slow path
-        exact = _with_reference(T, rows, arm, opts, within_only)
+        exact, total = _with_reference(T, rows, arm, opts, within_only, total)
         approx = not exact and bool(h[L.H_APPROX])  # else the kernel's approximate rows, flagged
         rows = rows if approx else exact
         conts = [()] * len(rows)
@@ -480,7 +502,7 @@ def _degenerate_result(T, q, within, cont, h, arm: Arm, opts: IKOptions, method:
     pres, rres = pose_residuals(Q, np.broadcast_to(T, (len(Q), 4, 4)), arm) if len(Q) else (np.zeros(0),) * 2
     free = tuple(_FREE_JOINTS[L.FREE_Q1](arm.solver.reversed) if c else () for c in conts)  # (bands too)
     Q, inside = into_limits(Q, arm.q_min, arm.q_max, LIMIT_TOL)
-    reason = "" if len(Q) else _reason(0, int(h[L.H_TOTAL]), False, h[L.H_BEST_P], h[L.H_BEST_R], opts)
+    reason = "" if len(Q) else _reason(0, total, False, h[L.H_BEST_P], h[L.H_BEST_R], opts)
     reason = reason or cert.reason
     return IKResult.trusted(
         _ro(Q),
@@ -561,20 +583,23 @@ _APPROXIMATE = (
 )
 
 
-def _with_reference(T, rows, arm: Arm, opts: IKOptions, within_only: bool) -> list:
+def _with_reference(T, rows, arm: Arm, opts: IKOptions, within_only: bool, total: int) -> tuple[list, int]:
     """The rows (6,) [rad] and those of the NumPy reference for pose T, each only if it reaches
     the pose within the tolerances (the kernel's rows of a degenerate pose include its
-    approximate candidates) and is not already among them (1e-9 rad in every joint, wrapped)."""
+    approximate candidates) and is not already among them (1e-9 rad in every joint, wrapped);
+    and how many solutions exist, inside the limits or not (the larger of ``total``, the
+    kernel's count, and the reference's)."""
     from .compare import pose_residuals
 
     rq, _, _, rhdr = _numpy_method(T[None], arm, opts, within_only, "reference")
+    total = max(total, int(rhdr[0, L.H_TOTAL]))
     both = np.array(list(rows) + list(rq[0, : int(rhdr[0, L.H_COUNT])])).reshape(-1, 6)
     pres, rres = pose_residuals(both, np.broadcast_to(T, (len(both), 4, 4)), arm)
     out: list = []
     for x in both[(pres <= opts.position_tol) & (rres <= opts.rotation_tol)]:
         if not out or np.min(np.max(np.abs(wrap_angle(np.array(out) - x)), axis=1)) > 1e-9:
             out.append(x)
-    return out
+    return out, total
 
 
 # ----------------------------------------------------------------------------- public API
@@ -619,10 +644,9 @@ def solve(
     h = hdr[0].tolist()
     if h[L.H_STATUS] != _poses.OK:
         _raise_first_bad(hdr, "T", False, opts)
-    plain = h[L.H_PATH] == L.PATH_DOUBLE or (
-        h[L.H_PATH] != L.PATH_DEGENERATE and not _band_candidate(h, Tb[0], arm)
-    )
-    if method == "complete" and h[L.H_COUNT] and not (h[L.H_FREE] or h[L.H_APPROX]) and plain:
+    if method == "complete" and h[L.H_COUNT] and not (h[L.H_FREE] or h[L.H_APPROX]) and (
+        h[L.H_PATH] == L.PATH_DOUBLE or not _rewrites(h, flags[0, :, 0], Tb[0], arm, within_limits)
+    ):  # (the double path: never rewritten, the usual pose's shortcut)
         return _isolated_result(q, info, flags, h)
     return _results(Tb, q, info, flags, hdr, method, opts, arm, within_limits)[0]
 
@@ -723,19 +747,13 @@ def _settled(Tb, q, info, flags, hdr, arm: Arm, opts: IKOptions, within_only: bo
 
 
 def _changed(Tb, flags, hdr, arm: Arm, within_only: bool) -> list[int]:
-    """The poses whose kernel rows :func:`_results` changes: the degenerate path's (continua and
-    bands), those beside a theta1 continuum (:func:`_band_candidate`) and, ``within_only``, those
-    with a continuum row outside the limits (vectorised: the usual pose costs no Python)."""
-    path, k = hdr[:, L.H_PATH], hdr[:, L.H_COUNT]
-    if not ((path != L.PATH_DOUBLE).any() or hdr[:, L.H_FREE].any()):  # all on the double path, none free
+    """The poses whose kernel rows :func:`_results` changes (:func:`_rewrites`), asked only of
+    those off the double path or with a continuum row: the usual batch costs no Python."""
+    maybe = (hdr[:, L.H_PATH] != L.PATH_DOUBLE) | (hdr[:, L.H_FREE] > 0)
+    if not maybe.any():
         return []
-    out = (path == L.PATH_DEGENERATE) & (k > 0)
-    if within_only:
-        rows = np.arange(L.MAX_SOLUTIONS)[None, :] < k[:, None]
-        out |= (hdr[:, L.H_FREE] > 0) & np.any(rows & ~flags[:, :, 0], axis=1)
-    band = ((path == L.PATH_EXTENDED) | (path == L.PATH_MULTIPLE)) & (hdr[:, L.H_NEAR] > 0) & (k >= 2)
-    near = [i for i in np.flatnonzero(band & ~out).tolist() if _band_candidate(hdr[i].tolist(), Tb[i], arm)]
-    return sorted(np.flatnonzero(out).tolist() + near)
+    return [i for i in np.flatnonzero(maybe).tolist()
+            if _rewrites(hdr[i].tolist(), flags[i, :, 0], Tb[i], arm, within_only)]
 
 
 def _write_result(r: IKResult, q: np.ndarray, info: np.ndarray, flags: np.ndarray, h: np.ndarray) -> None:

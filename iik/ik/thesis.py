@@ -184,9 +184,10 @@ def thesis_candidates(T: np.ndarray, arm: Arm, *, n_grid: int = DEFAULT_GRID,
                             sigma=np.tile(s, 4))
 
 
-def solve_thesis_arrays(T: np.ndarray, arm: Arm, **kw):
+def solve_thesis_arrays(T: np.ndarray, arm: Arm, cut=None, **kw):
     """Sec 3.3 solutions in the padded-array format of :func:`iik.ik.reference.solve_arrays`:
-    ``(Q, V, F, P, R)``, distinct to 1e-5 rad (the thesis's bisection resolution), sorted."""
+    ``(Q, V, F, P, R)``, distinct to 1e-5 rad (the thesis's bisection resolution), sorted;
+    ``cut`` (n,) bool, if given, set where more than MAX_SOLUTIONS were distinct."""
     d = thesis_candidates(T, arm, **kw)
     n, M = T.shape[0], MAX_SOLUTIONS
     Q, V, F = np.full((n, M, 6), np.nan), np.zeros((n, M), bool), np.zeros((n, M), int)
@@ -197,6 +198,8 @@ def solve_thesis_arrays(T: np.ndarray, arm: Arm, **kw):
         for j in np.flatnonzero(d.ok & (d.owner == i)):
             if all(np.max(np.abs(_wrap(q[j] - q[k]))) > 1e-5 for k in kept):
                 kept.append(j)
+        if cut is not None:
+            cut[i] = len(kept) > M
         kept = sorted(kept, key=lambda j: tuple(np.round(q[j], 9)))[:M]
         m = len(kept)
         Q[i, :m], V[i, :m] = q[kept], True
