@@ -72,8 +72,10 @@ def canvas_rect(driver) -> tuple[float, float, float, float]:
     return tuple(r) if r else (0.0, 0.0, 0.0, 0.0)
 
 
-def wait_for_scene(driver, *, timeout: float = 120.0) -> np.ndarray:
-    """Wait until the canvas draws a scene that has stopped fading in; return a screenshot.
+def wait_for_scene(driver, *, timeout: float = 120.0, until=None) -> np.ndarray:
+    """Wait until the canvas draws a scene that has stopped fading in (and, with ``until``, whose
+    screenshot satisfies ``until(img)``: on a loaded machine the meshes can arrive after the
+    grid has settled); return a screenshot.
 
     The scene counts as drawn when the image is not uniform; it has settled when the
     spread of its pixel values changes by less than 10 % between two screenshots
@@ -85,11 +87,12 @@ def wait_for_scene(driver, *, timeout: float = 120.0) -> np.ndarray:
         w, h = canvas_rect(driver)[2:]
         img = screenshot(driver) if w > 100 and h > 100 else None
         spread = float(img.std()) if img is not None else 0.0
-        if spread > 0.02 and last is not None and abs(spread - last) < 0.1 * last:
+        settled = spread > 0.02 and last is not None and abs(spread - last) < 0.1 * last
+        if settled and (until is None or until(img)):
             return img
         last = spread if spread > 0.02 else None
         time.sleep(0.5)
-    raise AssertionError("the 3D scene did not appear")
+    raise AssertionError("the 3D scene did not appear" + ("" if until is None else " (or not as awaited)"))
 
 
 def hue_mask(img: np.ndarray, lo: float, hi: float, *, min_sat: float = 0.45,

@@ -60,11 +60,12 @@ def _arm_points(q: np.ndarray) -> np.ndarray:
     return iik.joint_frames(np.asarray(q).reshape(-1, 6), THESIS_ARM)[:, :, :3, 3].reshape(-1, 3)
 
 
-def _open_export(browser, view, folder: Path, shot: str) -> tuple[np.ndarray, tuple]:
-    """Export ``view`` into ``folder``, open it from disk, wait for the scene: (screenshot, canvas rect)."""
+def _open_export(browser, view, folder: Path, shot: str, until=None) -> tuple[np.ndarray, tuple]:
+    """Export ``view`` into ``folder``, open it from disk, wait for the scene (and ``until(img)``,
+    :func:`wait_for_scene`): (screenshot, canvas rect)."""
     res = export(view, folder)
     browser.get((res.path / "index.html").resolve().as_uri())
-    img = wait_for_scene(browser)
+    img = wait_for_scene(browser, until=until)
     _keep(img, shot)
     return img, canvas_rect(browser)
 
@@ -76,7 +77,11 @@ def plan_j():
 
 def test_exported_plan_opens_from_disk_and_draws_arm_and_obstacle(browser, plan_j, tmp_path):
     view = PlanScene(plan_j)
-    img, rect = _open_export(browser, view, tmp_path / "j", "exported_j_from_disk.png")
+    def drawn(img):  # the obstacle's and the arm's colours on screen (meshes arrive after the grid)
+        r = canvas_rect(browser)
+        return _in_canvas(hue_mask(img, *RED), r).sum() > 300 and _in_canvas(hue_mask(img, *BLUE), r).any()
+
+    img, rect = _open_export(browser, view, tmp_path / "j", "exported_j_from_disk.png", until=drawn)
     eye, target, fov = view.camera
 
     assert img.std() > 0.05, "blank page"
@@ -102,9 +107,12 @@ def test_exported_pose_shows_every_solution(browser, tmp_path):
     T = iik.pose_from_euler([0.4, 0.3, 0.2], np.pi, np.radians(120), 0.0)
     view = PoseView(T, arm=THESIS_ARM)
     assert view.result.count >= 2
-    img, rect = _open_export(browser, view, tmp_path / "pose", "pose_all_solutions.png")
-    blue = _in_canvas(hue_mask(img, *BLUE, min_sat=0.25), rect)
-    assert blue.sum() > 300
+    def blue(img):
+        return _in_canvas(hue_mask(img, *BLUE, min_sat=0.25), canvas_rect(browser))
+
+    img, rect = _open_export(browser, view, tmp_path / "pose", "pose_all_solutions.png",
+                             until=lambda img: blue(img).sum() > 300)  # (times out, failing, if never)
+    assert blue(img).sum() > 300
 
 
 def test_exported_failed_plan_shows_the_arm_and_its_attempt_log(browser, tmp_path):
