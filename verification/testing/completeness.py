@@ -8,9 +8,10 @@ A configuration q that reaches the pose counts as found by an :class:`~iik.IKRes
   within the tolerance form a thin valley; the pose does not tell its points apart); or
 * q lies on a continuum row: the member at q's value of the free joint is the same or
   connected (collinear continua: the exact member; the others: followed by continuation); or
-* a *bent path* within the tolerances leads from q to a point found so (:func:`_bent_path`):
-  where a continuum meets another singular set, or at a multiple root, the configurations within
-  the tolerance form a flat, curved blob whose far points no straight segment reaches.
+* a *bent path* within the tolerances leads from q to a point found so (:func:`_bent_path`; one
+  joint stepped, the others refit: each joint in turn, the one that differs most first): where a
+  continuum meets another singular set, or at a multiple root, the configurations within the
+  tolerance form a flat, curved blob whose far points no straight segment reaches.
 
 :func:`coverage` compares an answer with the oracle (:mod:`verification.oracles.multistart`):
 oracle solutions the answer does not contain (missed), and rows of the answer that do not reach
@@ -76,8 +77,10 @@ def contains(result, q, T, arm: Arm, tol=(1e-10, 1e-10), same: float = SAME) -> 
     near = np.vstack([np.asarray(result.q).reshape(-1, 6)] + [m[None] for m in members])
     dist = np.max(np.abs(_wrap(near - q)), axis=1)
     for i in np.argsort(dist)[:3]:
-        if dist[i] <= NEAR:
-            end = _bent_path(near[i], q, T, arm, tol)
+        if dist[i] > NEAR:
+            continue
+        for held in np.argsort(-np.abs(_wrap(near[i] - q))):  # the joint that differs most first
+            end = _bent_path(near[i], q, T, arm, tol, int(held))
             if end is not None and _directly(result, _members(result, end), end, T, arm, tol, same):
                 return True
     return False
@@ -98,20 +101,23 @@ def _directly(result, members, q, T, arm: Arm, tol, same) -> bool:
 _STEPS = np.linspace(0.0, 1.0, 17)[1:]
 
 
-def _bent_path(a, q, T, arm: Arm, tol):
-    """The end of a path from q toward a (6,): the joint that differs most stepped from q's
-    value to a's in 16 steps, the others refit at each step from the previous point
+def _bent_path(a, q, T, arm: Arm, tol, held: int):
+    """The end of a path from q toward a (6,): joint ``held`` stepped from q's value to a's in
+    16 steps, the others refit at each step from the previous point
     (:func:`~verification.oracles.multistart.refit`); None unless every point reaches the pose
     within the tolerances and no step moves any joint by more than a quarter of the distance
-    (the path is continuous, not a jump to another solution)."""
+    unless the two points are connected (:func:`_connected`: the refit slid along a tube within
+    the tolerance, it did not jump to another solution). Beside a near-continuum tube the joint
+    that differs most (joint 6, coupled to joint 3 along the tube) can fail where joint 1
+    succeeds: contains tries each."""
     d = _wrap(a - q)
-    size, held = float(np.max(np.abs(d))), int(np.argmax(np.abs(d)))
+    size = float(np.max(np.abs(d)))
     x, pts = np.asarray(q, float), []
     for s in _STEPS:
         y = x.copy()
         y[held] = q[held] + s * d[held]
         y = refit(arm, y, T, held)
-        if np.max(np.abs(_wrap(y - x))) > size / 4:
+        if np.max(np.abs(_wrap(y - x))) > size / 4 and not _connected(x, y, T, arm, tol):
             return None
         pts.append(y)
         x = y

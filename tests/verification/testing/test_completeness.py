@@ -57,3 +57,27 @@ def test_a_generic_solution_left_out_of_the_answer_is_missed():
         d = np.max(np.abs(wrap_angle(r.q - q)), axis=1)
         lacking = SimpleNamespace(q=r.q[d > 1e-7], continua=())
         assert not contains(lacking, q, T, arm, TOL)
+
+
+#: Thesis arm, family near-continuum-equal (default_rng(1), the 217th pose): q* is 4e-8 rad from
+#: the collinear continuum, the kernel's tube row is a numerical continuum of joint 3, and the
+#: oracle's point lies at joint 3 = 90 deg, 2.6e-4 rad off the tube's member there. Stepping the
+#: joint that differs most (joint 6) leaves the tolerance; stepping joint 1 the refit slides
+#: along the tube (steps larger than a quarter of the distance, each within the tolerance).
+TUBE_Q_STAR = [-1.0903859605951336, -1.9602397198866932, 2.4805366726910125, -4.3950562293041914e-08,
+               6.283185333426696, 2.3563604218200993]
+BESIDE_TUBE = [-1.090519134759254, -1.9602397304037216, 1.5707895899484718, 5.564149725443259e-05,
+               -5.089657648717816e-06, 1.4464901369245822]
+
+
+def test_an_oracle_point_beside_a_near_continuum_tube_is_contained_by_it():
+    arm = arms.get("thesis")
+    T = iik.fk(np.array(TUBE_Q_STAR), arm)
+    r = iik.solve(T, arm, within_limits=False)
+    q = np.array(BESIDE_TUBE)
+    pres, rres = pose_residuals_np(arm, q[None], T)
+    assert pres[0] <= TOL[0] and rres[0] <= TOL[1]
+    assert contains(r, q, T, arm, TOL)
+    keep = [i for i, row in enumerate(r.continua) if not row]  # negative control: without the tube
+    lacking = SimpleNamespace(q=r.q[keep], continua=tuple(r.continua[i] for i in keep))
+    assert not contains(lacking, q, T, arm, TOL)
