@@ -298,6 +298,23 @@ def test_the_reference_says_when_it_left_rows_out():
     assert len(coverage(k, oracle, T, arm, TOL).missed) == 0 < len(coverage(ref, oracle, T, arm, TOL).missed)
 
 
+def test_an_answer_with_bands_of_joint_1_is_not_certified():
+    """The 59043rd pose of near-wrist-on-axis1-theta4 in the 10^5-pose recovery run (seed
+    20120101; theta4 = -pi, the wrist point just off the joint-1 axis): the extended path's near
+    roots fall along bands of joint 1 and come back as two band rows, which do not contain q*
+    (the reference's rows and the oracle's do); the answer was certified. Bands are found by
+    restarts, not proven complete, as on the degenerate path: the certificate says so."""
+    arm = arms.get("thesis")
+    q = np.array([-1.9957743997539352, 2.40968760491771, -2.5876024105265767, -3.141592653589793,
+                  0.018838010138340522, -1.4147018580037187])
+    T = iik.fk(q, arm)
+    r = _solve(T, arm)
+    assert any(cs and cs[0].band for cs in r.continua), r.continua
+    assert not r.certificate.certified and "bands of joint 1" in r.certificate.reason, r.certificate
+    assert contains(_solve(T, arm, method="reference"), q, T, arm, TOL)
+    assert not iik.ik.solve_batch(T[None], arm, within_limits=False).certified[0]
+
+
 def test_a_degenerate_pose_with_no_row_inside_the_limits_takes_the_slow_path_too():
     """A near-wrist-on-axis1-theta4 pose (default_rng(11), the 60th) on the degenerate path whose
     two solutions (bands of joint 1) both have joint 2 outside Table I. With the limits off it
