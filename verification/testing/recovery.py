@@ -71,7 +71,8 @@ class RecoveryOptions:
 class RecoveryRow:
     """One family's line of the recovery table (see the module docstring).
 
-    ``examples`` holds up to three q* (lists) that were missed, for the report.
+    ``examples`` holds up to three silent losses (q* missed while the certificate held) as
+    (index of the pose in the family's sample, q* as a list), to replay them.
     """
 
     family: str
@@ -140,8 +141,8 @@ def recovery(fam: Family, arm: Arm, opts: RecoveryOptions = RecoveryOptions()) -
                  uncert=not cert, silent=cert and not st.found)
         kinds.update(st.kinds)
         c["continua"] += bool(st.kinds)
-        if not st.found and len(examples) < 3:
-            examples.append(q.tolist())
+        if cert and not st.found and len(examples) < 3:
+            examples.append((i, q.tolist()))
         if opts.oracle_every and i % opts.oracle_every == 0:
             o = multistart_ik(T, arm, OracleOptions(starts=opts.starts, seed=i))
             missed = len(coverage(r, o, T, arm, _TOL).missed)
@@ -163,6 +164,11 @@ def recovery_table(arm: Arm, opts: RecoveryOptions = RecoveryOptions(), families
         rows.append(recovery(fam, arm, opts))
         if out is not None:
             print_recovery([rows[-1]], out, header=len(rows) == 1)
+    if out is not None:
+        for r in rows:
+            for i, q in r.examples:
+                print(f"silent loss: {r.family}, pose {i} of the sample (seed {opts.seed}): q* = {q}",
+                      file=out)
     return rows
 
 

@@ -57,3 +57,6 @@ def test_oracle_solutions_missed_on_certified_poses_are_counted_apart(monkeypatc
     row = recovery(family("uniform"), ARM, opts)
     assert row.oracle_poses == 2 and row.missed_vs_oracle >= 1
     assert row.missed_vs_oracle_certified == (row.missed_vs_oracle if certified else 0)
+    # q* was dropped from some answer: a silent loss only where the certificate held, named to replay it
+    assert all(0 <= i < 2 and len(q) == 6 for i, q in row.examples)
+    assert (len(row.examples) == row.silent) and (row.silent > 0) == (certified and row.found < 2)
