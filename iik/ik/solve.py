@@ -744,7 +744,7 @@ def _settled(Tb, q, info, flags, hdr, arm: Arm, opts: IKOptions, within_only: bo
     """The padded outputs of poses Tb (n, 4, 4) made :func:`solve_many`'s answer, in place: the
     poses whose kernel rows :func:`_results` changes (:func:`_changed`) are solved into an
     :class:`IKResult` and written back (:func:`_write_result`). Returns the certified mask (n,)."""
-    certified = (hdr[:, L.H_CERT] == L.CERT_OK) & (hdr[:, L.H_PATH] != L.PATH_DEGENERATE)
+    certified = hdr[:, L.H_CERT] == L.CERT_OK  # (every degenerate pose is among those changed)
     idx = _changed(Tb, flags, hdr, arm, within_only)
     if not idx:
         return certified

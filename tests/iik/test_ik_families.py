@@ -108,7 +108,7 @@ def _code(row_continua) -> int:
     if not row_continua:
         return L.FREE_NONE
     c = row_continua[0]
-    return L.FREE_BAND if c.kind == "numerical" and c.coupled_joint is None else _CODES[c.kind]
+    return L.FREE_BAND if c.band else _CODES[c.kind]
 
 
 @pytest.mark.parametrize("within", [True, False], ids=["within", "all"])
