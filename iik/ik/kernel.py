@@ -1965,7 +1965,7 @@ def _nearest_closed_form(t1, t2, terms, P, v, Ru, T, ws, rows, prev, ptol, rtol)
 def closed_form_march(T, v, opt, q0, starts, joint1, joint2, buf, out_q, out_res) -> bool:
     """A theta1 or theta2 continuum followed by its exact closed forms: at each step i, solver
     joint 1 at ``joint1[i]`` [rad] (and solver joint 2 at ``joint2[i]`` where that is not NaN),
-    the closed-form configuration nearest the previous member taken (:func:`_nearest_closed_form`; no
+    the closed-form configuration nearest the previous member taken (:func:`_march_step`; no
     polish: the members are exact). The previous member of step i is ``q0[starts[i]]`` (q0
     (k, 6)) where ``starts[i] >= 0`` (a march begins there), else step i - 1's. Into out_q
     (n, 6) (user joints) and out_res (n, 2) [m, rad]; where there is no closed form, the previous
@@ -1981,18 +1981,56 @@ def closed_form_march(T, v, opt, q0, starts, joint1, joint2, buf, out_q, out_res
     for k in range(18):
         terms[k] = t[k]
     prev, rows = ws[_W_QB : _W_QB + 6], cand[: L.MAX_SOLUTIONS]
-    ptol, rtol = opt[L.OPT_POSITION_TOL], opt[L.OPT_ROTATION_TOL]
+    c1, c2 = _user_col(v, 0), _user_col(v, 1)
+    a0, b0 = 0.0, 0.0
     for i in range(joint1.shape[0]):
         if starts[i] >= 0:
             for k in range(6):
                 prev[k] = q0[starts[i], k]
-        t1, t2 = joint1[i] + v[L.A_SOLVER_DH + 4], joint2[i] + v[L.A_SOLVER_DH + 9]
-        b, out_res[i, 0], out_res[i, 1] = _nearest_closed_form(
-            t1, t2, terms, P, v, Ru, T, ws, rows, prev, ptol, rtol
+            a0 = joint1[i] - wrap(joint1[i] - prev[c1])  # (the values asked for may be unwrapped)
+            b0 = joint2[i] - wrap(joint2[i] - prev[c2])
+        out_res[i, 0], out_res[i, 1] = _march_step(
+            a0, b0, joint1[i], joint2[i], terms, P, v, Ru, T, ws, rows, prev, opt
         )
-        if b >= 0:
-            for k in range(6):
-                prev[k] = rows[b, k]
+        a0, b0 = joint1[i], joint2[i]
         for k in range(6):
             out_q[i, k] = prev[k]
     return True
+
+
+#: A march step whose nearest closed-form member moves a joint by more than this [rad] is
+#: halved: where the curve passes near a wrist singularity (theta5 ~ 1e-3 on a theta1
+#: continuum) joints 3 and 6 swing by ~pi within 0.02 rad of joint 1, and a whole step lands
+#: on the other branch of the pose (the wrong branch is ~2 rad away, the right one close).
+MARCH_JUMP = 0.25
+#: ... down to steps of this [rad] (where the branches do meet the swing is a jump).
+MARCH_MIN_STEP = 1e-9
+
+
+@_inner
+def _march_step(a0, b0, a1, b1, terms, P, v, Ru, T, ws, rows, prev, opt):
+    """One step of :func:`closed_form_march` from the free values (a0, b0) of the member prev
+    (6,) to (a1, b1) (b1 NaN: joint 2 by its closed forms): substeps halved while the nearest
+    member jumps by more than MARCH_JUMP; prev becomes the member at (a1, b1). Its residuals."""
+    o1, o2 = v[L.A_SOLVER_DH + 4], v[L.A_SOLVER_DH + 9]
+    da, db = a1 - a0, (0.0 if math.isnan(b1) else b1 - b0)
+    size = max(abs(da), abs(db))
+    least = 1.0 if size <= MARCH_MIN_STEP else MARCH_MIN_STEP / size
+    s, h = 0.0, 1.0
+    pres, rres = math.inf, math.inf
+    while True:
+        f = min(s + h, 1.0)
+        t2 = b1 + o2 if math.isnan(b1) else b0 + f * db + o2
+        b, pres, rres = _nearest_closed_form(
+            a0 + f * da + o1, t2, terms, P, v, Ru, T, ws, rows, prev,
+            opt[L.OPT_POSITION_TOL], opt[L.OPT_ROTATION_TOL],
+        )
+        if b >= 0 and f - s > least and _mod_distance(rows[b], prev) > MARCH_JUMP:
+            h = 0.5 * (f - s)
+            continue
+        if b >= 0:
+            for k in range(6):
+                prev[k] = rows[b, k]
+        if f >= 1.0:
+            return pres, rres
+        s, h = f, min(2.0 * h, 1.0 - f)

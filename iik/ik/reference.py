@@ -45,6 +45,8 @@ IMAG_TOL = 1e-3
 RESTART_H = L.RESTART_H
 #: ... from this many angles of joint 3.
 RESTARTS = 24
+#: Rows farther apart than this [rad] in some joint are never one solution (:func:`_connected`).
+CONNECT_NEAR = 1e-2
 _TWO_PI = 2.0 * np.pi
 _GRID = np.arange(12) * (_TWO_PI / 12)
 
@@ -465,23 +467,32 @@ def _restarts(qs, own, hval, near):
 
 
 def _connected(a, b, T, arm: Arm, tol_p, tol_r) -> bool:
-    """Rows a and b (within 1e-3 rad) in one connected piece of the set that reaches the pose within
-    the tolerance: 9 points of the segment between them do, or else 9 points of a bent path do (the
-    joint that moves most stepped along the segment, the others refit with it held). Near a
-    multiple root that set is a thin curved blob (residual ~ c d^2 along it, c ~ 1e-3): a straight
-    segment between two of its points leaves it, and the rows would count as several solutions."""
+    """Rows a and b (within CONNECT_NEAR rad) in one connected piece of the set that reaches the
+    pose within the tolerance: 9 points of the segment between them do, or else 9 points of a
+    bent path do (one joint stepped along the segment, the others refit with it held: each joint
+    that moves at least a quarter as much as the one that moves most, in turn, that one first;
+    no point moved farther than the rows are apart).
+    Near a multiple root that set is a thin curved blob (residual ~ c d^2 along it, c ~ 1e-3),
+    and beside the collinear continuum a tube whose points 1e-3 rad from it lie up to 7e-3 rad
+    apart: a straight segment between two of its points leaves it, and the rows would count as
+    several solutions (filling the 16 rows and pushing out isolated solutions)."""
     d = _wrap(b - a)
-    if np.max(np.abs(d)) > 1e-3:
+    size = float(np.max(np.abs(d)))
+    if size > CONNECT_NEAR:
         return False
     pts = a + np.linspace(0.1, 0.9, 9)[:, None] * d
     Tq, _ = _fk_jac(arm, pts)
     _, pr, rr = _errors(Tq, np.broadcast_to(T, (9, 4, 4)))
     if np.all(pr <= tol_p) and np.all(rr <= tol_r):
         return True
-    held = int(np.argmax(np.abs(d)))
-    cols = [k for k in range(6) if k != held]
-    _, pr, rr = _polish(arm, pts, np.broadcast_to(T, (9, 4, 4)), iters=12, cols=cols)
-    return bool(np.all(pr <= tol_p) and np.all(rr <= tol_r))
+    for held in np.argsort(-np.abs(d)):
+        if abs(d[held]) < 0.25 * size:  # (held where a and b agree, the points slide to either)
+            break
+        cols = [k for k in range(6) if k != held]
+        out, pr, rr = _polish(arm, pts, np.broadcast_to(T, (9, 4, 4)), iters=12, cols=cols)
+        if np.all(pr <= tol_p) and np.all(rr <= tol_r) and np.max(np.abs(_wrap(out - pts))) <= size:
+            return True
+    return False
 
 
 def _snap(arm: Arm, q, T, tol_p, tol_r):

@@ -26,9 +26,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..arm import Arm
+from . import layout as L
 from .angles import wrap_angle as _wrap
 from .compare import pose_residuals
-from .layout import MAX_SOLUTIONS
 from .thesis_eliminant import EliminantCoefficients, eliminant_coefficients
 
 __all__ = ["solve_thesis_arrays", "thesis_candidates", "ThesisCandidates", "eq11_error",
@@ -189,7 +189,7 @@ def solve_thesis_arrays(T: np.ndarray, arm: Arm, cut=None, **kw):
     ``(Q, V, F, P, R)``, distinct to 1e-5 rad (the thesis's bisection resolution), sorted;
     ``cut`` (n,) bool, if given, set where more than MAX_SOLUTIONS were distinct."""
     d = thesis_candidates(T, arm, **kw)
-    n, M = T.shape[0], MAX_SOLUTIONS
+    n, M = T.shape[0], L.MAX_SOLUTIONS
     Q, V, F = np.full((n, M, 6), np.nan), np.zeros((n, M), bool), np.zeros((n, M), int)
     P, R = np.full((n, M), np.nan), np.full((n, M), np.nan)
     q = _wrap(d.q)

@@ -34,7 +34,7 @@ import iik
 from iik import arms
 from iik.ik import layout as L
 from iik.ik.angles import angle_distance
-from iik.ik.members import RESOLUTION
+from iik.ik.members import RESOLUTION, follow
 from verification.oracles.multistart import OracleOptions, multistart_ik, pose_residuals_np
 from verification.testing.completeness import agreement, contains, coverage
 from verification.testing.families import FAMILIES, applicability, family_configurations
@@ -279,23 +279,38 @@ def test_a_degenerate_pose_without_a_theta1_continuum_takes_the_slow_path():
         assert np.all(pres <= TOL[0]) and np.all(rres <= TOL[1]), (pres, rres)
 
 
-def test_the_reference_says_when_it_left_rows_out():
+def test_the_reference_joins_the_points_of_a_tube_beside_the_collinear_continuum():
     """A thesis-arm pose of split-both (default_rng(235722)) 1e-3 rad from the collinear continuum
-    (theta4 ~ 1e-3, theta5 ~ pi): the reference's rows along the tube there are not joined within
-    the tolerance by its straight-segment test, fill its 16 rows, and the two isolated solutions
-    at theta1 = 2.46 (found by the oracle, and by the kernel, certified) were cut silently. Its
-    certificate now says rows were left out; every row it keeps is in the kernel's answer."""
+    (theta4 ~ 1e-3, theta5 ~ pi): the reference's rows along the tube there lie up to 7e-3 rad
+    apart. Its straight-segment test (to 1e-3 rad) did not join them: they filled its 16 rows and
+    the two isolated solutions at theta1 = 2.46 (found by the oracle, and by the kernel, certified)
+    were cut. Bent paths (each joint held in turn, to 1e-2 rad) join them: the two answers are
+    one set, which holds every oracle solution."""
     arm = arms.get("thesis")
     q = np.array([-0.6830519685746785, 1.9389377494343343, -1.5707963267948968, -0.0010571446595228906,
                   3.142289875470784, -0.7675823061163234])
     T = iik.fk(q, arm)
     k, ref = _solve(T, arm), _solve(T, arm, method="reference")
-    assert ref.count == L.MAX_SOLUTIONS and ref.certificate.reason == L.CERT_NAMES[L.CERT_ROWS_DROPPED]
-    assert k.certificate.certified and contains(k, q, T, arm, TOL)
-    a = agreement(k, ref, T, arm, TOL)
-    assert a.only_b == () and a.only_a, a  # the kernel holds the reference's rows and more
+    assert ref.count < L.MAX_SOLUTIONS and ref.certificate.reason == "", ref.certificate
+    assert k.certificate.certified and contains(k, q, T, arm, TOL) and contains(ref, q, T, arm, TOL)
+    assert agreement(k, ref, T, arm, TOL).same
     oracle = multistart_ik(T, arm, OracleOptions(starts=256))
-    assert len(coverage(k, oracle, T, arm, TOL).missed) == 0 < len(coverage(ref, oracle, T, arm, TOL).missed)
+    assert len(coverage(k, oracle, T, arm, TOL).missed) == 0 == len(coverage(ref, oracle, T, arm, TOL).missed)
+
+
+@pytest.mark.parametrize("method", ["reference", "thesis"])
+def test_a_numpy_method_says_when_it_left_rows_out(monkeypatch, method):
+    """With room for fewer rows than a pose has solutions (MAX_SOLUTIONS set to 2 for a generic
+    pose with 4), the NumPy methods keep 2 of their solutions and their certificate says rows
+    were left out; with room for all, it does not."""
+    arm = arms.get("thesis")
+    T = iik.fk(np.array([0.3, -0.7, 1.1, 0.4, 0.9, -0.5]), arm)
+    full = _solve(T, arm, method=method)
+    assert full.count > 2 and full.certificate.reason == ""
+    monkeypatch.setattr(L, "MAX_SOLUTIONS", 2)
+    r = _solve(T, arm, method=method)
+    assert r.count == 2 and r.certificate.reason == L.CERT_NAMES[L.CERT_ROWS_DROPPED], r.certificate
+    assert all(np.min(angle_distance(full.q, row), initial=np.inf) <= 1e-12 for row in r.q)
 
 
 def test_an_answer_with_bands_of_joint_1_is_not_certified():
@@ -434,3 +449,32 @@ def test_a_band_of_joint_1_on_the_extended_path_comes_back_as_one_flagged_row_pe
     oracle = multistart_ik(T, arm, OracleOptions(starts=256))
     assert len(oracle.q) >= 1
     assert len(coverage(r, oracle, T, arm, TOL).missed) == 0
+
+
+def test_a_theta1_continuum_is_followed_through_a_near_wrist_singularity():
+    """The 15072nd pose of wrist-on-axis1 in the 10^5-pose recovery run (seed 20120101; theta4 = 0,
+    q* inside Table I): its two theta1 continua (one per sign of theta5) pass within 5e-3 rad of
+    theta5 = 0 near theta1 = 0.08, where joints 3 and 6 swing by ~pi within 0.02 rad of joint 1. A
+    whole march step (0.05 rad) landed on the other branch there, so a member depended on where
+    the march began: with the limits on (representatives moved into Table I) both continua's
+    members at q*'s joint 1 were one configuration, and q* was lost from a certified answer. The
+    march halves its steps where a member jumps: each continuum stays on its branch (theta5 keeps
+    its sign, the two are pi apart), and its members are the same from either representative."""
+    arm = arms.get("thesis")
+    q = np.array([1.7588670851618784, -1.8104375170509364, -2.387011352223242, 2.6627679061888805e-17,
+                  0.3588719523073025, -2.987480354833726])
+    T = iik.fk(q, arm)
+    grid = np.linspace(-np.pi, np.pi, 145)
+    members = {}
+    for within in (True, False):
+        r = iik.solve(T, arm, within_limits=within)
+        assert r.certificate.certified and contains(r, q, T, arm, TOL), (within, r.certificate)
+        (a, ra), (b, rb) = (follow(cs[0], grid) for cs in r.continua)
+        assert np.all(ra <= TOL) and np.all(rb <= TOL)
+        assert len(set(np.sign(a[:, 4]))) == len(set(np.sign(b[:, 4]))) == 1
+        assert np.all(angle_distance(a, b) > 3.0)
+        members[within] = (a, b)
+    (a, b), (c, d) = members[True], members[False]
+    same = np.minimum(np.maximum(angle_distance(a, c), angle_distance(b, d)),
+                      np.maximum(angle_distance(a, d), angle_distance(b, c)))
+    assert np.all(same <= 1e-9)

@@ -9,9 +9,10 @@ A configuration q that reaches the pose counts as found by an :class:`~iik.IKRes
 * q lies on a continuum row: the member at q's value of the free joint is the same or
   connected (collinear continua: the exact member; the others: followed by continuation); or
 * a *bent path* within the tolerances leads from q to a point found so (:func:`_bent_path`; one
-  joint stepped, the others refit: each joint in turn, the one that differs most first): where a
-  continuum meets another singular set, or at a multiple root, the configurations within the
-  tolerance form a flat, curved blob whose far points no straight segment reaches.
+  joint stepped, the others refit: each joint in turn, the one that differs most first), from a
+  row within :data:`BLOB` rad of q: where a continuum meets another singular set, or at a
+  multiple root, the configurations within the tolerance form a flat, curved blob whose far
+  points no straight segment reaches.
 
 :func:`coverage` compares an answer with the oracle (:mod:`verification.oracles.multistart`):
 oracle solutions the answer does not contain (missed), and rows of the answer that do not reach
@@ -28,12 +29,16 @@ from iik.arm import Arm
 from iik.ik.angles import wrap_angle as _wrap
 from verification.oracles.multistart import OracleSolutions, pose_residuals_np, project, refit
 
-__all__ = ["SAME", "NEAR", "AGREE", "contains", "Coverage", "coverage", "Agreement", "agreement"]
+__all__ = ["SAME", "NEAR", "BLOB", "AGREE", "contains", "Coverage", "coverage", "Agreement", "agreement"]
 
 #: Rows within this of q [rad] are q.
 SAME = 1e-7
 #: Rows within this [rad] joined to q by a segment within the tolerance are q.
 NEAR = 1e-2
+#: Rows within this [rad] joined to q by a bent path within the tolerance are q: at a multiple
+#: root on the singular set the configurations within the tolerance form a blob that spans
+#: 0.027 rad of joint 3 (thesis arm, elbow-second: the eliminant has a triple root there).
+BLOB = 0.1
 #: Two IK answers agree when each row of one is within this of a row of the other [rad] (or
 #: connected to it, or on one of its continua): issue 17's "same solution sets within 1e-9".
 AGREE = 1e-9
@@ -77,7 +82,7 @@ def contains(result, q, T, arm: Arm, tol=(1e-10, 1e-10), same: float = SAME) -> 
     near = np.vstack([np.asarray(result.q).reshape(-1, 6)] + [m[None] for m in members])
     dist = np.max(np.abs(_wrap(near - q)), axis=1)
     for i in np.argsort(dist)[:3]:
-        if dist[i] > NEAR:
+        if dist[i] > BLOB:
             continue
         for held in np.argsort(-np.abs(_wrap(near[i] - q))):  # the joint that differs most first
             end = _bent_path(near[i], q, T, arm, tol, int(held))
@@ -104,12 +109,15 @@ _STEPS = np.linspace(0.0, 1.0, 17)[1:]
 def _bent_path(a, q, T, arm: Arm, tol, held: int):
     """The end of a path from q toward a (6,): joint ``held`` stepped from q's value to a's in
     16 steps, the others refit at each step from the previous point
-    (:func:`~verification.oracles.multistart.refit`); None unless every point reaches the pose
-    within the tolerances and no step moves any joint by more than a quarter of the distance
-    unless the two points are connected (:func:`_connected`: the refit slid along a tube within
-    the tolerance, it did not jump to another solution). Beside a near-continuum tube the joint
+    (:func:`~verification.oracles.multistart.refit`), up to its first jump (a step that moves
+    any joint by more than a quarter of the distance while the two points are not connected,
+    :func:`_connected`: the refit jumped to another solution; a step that slid along a tube
+    within the tolerance is connected); None unless the path has a step before any jump and every
+    point of it reaches the pose within the tolerances. Beside a near-continuum tube the joint
     that differs most (joint 6, coupled to joint 3 along the tube) can fail where joint 1
-    succeeds: contains tries each."""
+    succeeds: contains tries each. Where the tube's members pass a second singular set (joint 3
+    at +-90 degrees) the valley is a sheet, and the refit slides along the tube by more than
+    NEAR at the step after reaching it: the point before that jump is the path's end."""
     d = _wrap(a - q)
     size = float(np.max(np.abs(d)))
     x, pts = np.asarray(q, float), []
@@ -118,9 +126,11 @@ def _bent_path(a, q, T, arm: Arm, tol, held: int):
         y[held] = q[held] + s * d[held]
         y = refit(arm, y, T, held)
         if np.max(np.abs(_wrap(y - x))) > size / 4 and not _connected(x, y, T, arm, tol):
-            return None
+            break
         pts.append(y)
         x = y
+    if not pts:
+        return None
     pres, rres = pose_residuals_np(arm, np.array(pts), T)
     return x if np.all(pres <= tol[0]) and np.all(rres <= tol[1]) else None
 
