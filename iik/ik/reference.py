@@ -7,8 +7,9 @@ Eq 11, ``docs/IK_CLASS.md``) and nothing of how they are solved:
 * **theta1**: every root of the degree-8 polynomial, as the eigenvalues of its companion
   matrix (batched LAPACK), with a per-pose reference angle chosen so that no root is near
   t = infinity; roots with an imaginary part up to :data:`IMAG_TOL` are kept (a near-double
-  root loses its real pair to rounding), where the kernel isolates with certified signs and
-  re-expands clusters in double-double;
+  root loses its real pair to rounding); within a cluster of roots, F's sign changes on a grid
+  in extended precision (np.longdouble), bisected: where the kernel isolates with certified
+  signs and re-expands clusters in double-double;
 * **theta2**: every point of the unit circle on each of the two conditions (and Cramer's
   point), where the kernel takes Cramer's point unless the conditions are nearly parallel;
 * **the wrist**: generic frames of the solver chain written here in NumPy;
@@ -209,8 +210,9 @@ def _poly_t(x, thr):
 
 
 def _theta1(x):
-    """theta1 candidates (n, 15) of the solver chain [DH angle] (NaN where none): the 8 roots and
-    the means of close pairs (:func:`_pair_means`); and whether F vanishes on the whole circle."""
+    """theta1 candidates (n, 23) of the solver chain [DH angle] (NaN where none): the 8 roots, the
+    means of close pairs (:func:`_pair_means`) and the roots of each cluster found again in
+    extended precision (:func:`_cluster_roots`); and whether F vanishes on the whole circle."""
     n = len(x)
     Fg = np.abs(_F(x, np.broadcast_to(_GRID + np.pi, (n, 12))))
     scale = Fg.max(axis=1)
@@ -227,7 +229,7 @@ def _theta1(x):
         t = np.linalg.eigvals(comp)
         real = np.abs(t.imag) <= IMAG_TOL * (1.0 + np.abs(t))
         out[ok] = np.where(real, thr[ok, None] + 2.0 * np.arctan(t.real), np.nan)
-    return np.concatenate([out, _pair_means(out)], axis=1), flat
+    return np.concatenate([out, _pair_means(out), _cluster_roots(x, out)], axis=1), flat
 
 
 def _pair_means(th):
@@ -238,6 +240,48 @@ def _pair_means(th):
     with np.errstate(invalid="ignore"):
         close = np.abs(s[:, 1:] - s[:, :-1]) <= 1e-3
     return np.where(close, 0.5 * (s[:, 1:] + s[:, :-1]), np.nan)
+
+
+def _cluster_roots(x, th, width: int = 8, grid: int = 256):
+    """Roots of F in each cluster of eigenvalue roots th (n, 8) (neighbours closer than 1e-3
+    rad), by sign changes on ``grid`` angles over the cluster (half its spread, at least 1e-5
+    rad, beyond each end) and bisection, F evaluated in extended precision (np.longdouble from
+    the double coefficients x): up to ``width`` per pose, NaN elsewhere, (n, width). In a
+    cluster of nearly multiple roots the eigenvalues err by ~1e-4 and every candidate polishes
+    onto the same solution (CRX-10iA off-singular: three solutions whose joint 6 lie 1.4e-4 rad
+    apart; the reference found the middle one)."""
+    out = np.full((len(th), width), np.nan)
+    for i, row in enumerate(np.sort(th, axis=1)):
+        row = row[~np.isnan(row)]
+        found = []
+        for g in np.split(row, np.flatnonzero(np.diff(row) > 1e-3) + 1):
+            if len(g) > 1:
+                w = max(0.5 * (g[-1] - g[0]), 1e-5)
+                found += _sign_changes(x[i], np.linspace(g[0] - w, g[-1] + w, grid))
+        found = found[:width]
+        out[i, : len(found)] = found
+    return out
+
+
+def _F_long(x, th):
+    """F (Eq 11's eliminant) of one pose's coefficients x (6, 3) at angles th, in np.longdouble."""
+    xl, t = x.astype(np.longdouble), np.asarray(th, dtype=np.longdouble)
+    a, b, c, P, Q, R = (xl[k, 0] + xl[k, 1] * np.cos(t) + xl[k, 2] * np.sin(t) for k in range(6))
+    return (Q * a - R * c) ** 2 + (R * b - P * a) ** 2 - (P * c - Q * b) ** 2
+
+
+def _sign_changes(x, th, iters: int = 48) -> list:
+    """The roots of F between neighbouring angles of th where its sign changes, by bisection."""
+    f = _F_long(x, th)
+    idx = np.flatnonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)
+    lo, hi = th[idx].astype(np.longdouble), th[idx + 1].astype(np.longdouble)
+    flo = f[idx]
+    for _ in range(iters):
+        mid = 0.5 * (lo + hi)
+        fm = _F_long(x, mid)
+        left = np.sign(fm) == np.sign(flo)
+        lo, flo, hi = np.where(left, mid, lo), np.where(left, fm, flo), np.where(left, hi, mid)
+    return [float(v) for v in 0.5 * (lo + hi)]
 
 
 def _theta2(x, own, th1):
