@@ -5,7 +5,8 @@ Methods:
 * ``"complete"`` (default): the compiled kernel (:mod:`iik.ik.kernel`): every solution,
   real roots of the eliminant isolated so that none can be missed.
 * ``"reference"``: the same elimination vectorised in NumPy (:mod:`iik.ik.reference`),
-  kept as an independent reference; the two agree (tested on 10^5 poses).
+  kept as an independent reference; where the kernel certifies its answer the two return the
+  same set (tested on every adversarial family, tests/iik/test_ik_families.py).
 * ``"thesis"``: the Sec 3.3 IIK (theta1 grid + bisection, errata corrected,
   :mod:`iik.ik.thesis`), kept to reproduce and measure the thesis.
 

@@ -1,10 +1,12 @@
 """The completeness comparator (:mod:`verification.testing.completeness`): an oracle point in a
-flat valley of near-solutions beside a continuum is contained by the continuum (through a bent
-path), and a solution the answer lacks is still reported missing."""
+flat valley of near-solutions beside a continuum, on a sheet where a tube meets another singular
+set, or in a multiple root's blob farther than NEAR from its row, is contained by the answer
+(through a bent path), and a solution the answer lacks is still reported missing."""
 
 from types import SimpleNamespace
 
 import numpy as np
+import pytest
 
 import iik
 from iik import arms
@@ -64,70 +66,58 @@ def test_a_generic_solution_left_out_of_the_answer_is_missed():
 #: oracle's point lies at joint 3 = 90 deg, 2.6e-4 rad off the tube's member there. Stepping the
 #: joint that differs most (joint 6) leaves the tolerance; stepping joint 1 the refit slides
 #: along the tube (steps larger than a quarter of the distance, each within the tolerance).
-TUBE_Q_STAR = [-1.0903859605951336, -1.9602397198866932, 2.4805366726910125, -4.3950562293041914e-08,
-               6.283185333426696, 2.3563604218200993]
-BESIDE_TUBE = [-1.090519134759254, -1.9602397304037216, 1.5707895899484718, 5.564149725443259e-05,
-               -5.089657648717816e-06, 1.4464901369245822]
-
-
-def test_an_oracle_point_beside_a_near_continuum_tube_is_contained_by_it():
-    arm = arms.get("thesis")
-    T = iik.fk(np.array(TUBE_Q_STAR), arm)
-    r = iik.solve(T, arm, within_limits=False)
-    q = np.array(BESIDE_TUBE)
-    pres, rres = pose_residuals_np(arm, q[None], T)
-    assert pres[0] <= TOL[0] and rres[0] <= TOL[1]
-    assert contains(r, q, T, arm, TOL)
-    keep = [i for i, row in enumerate(r.continua) if not row]  # negative control: without the tube
-    lacking = SimpleNamespace(q=r.q[keep], continua=tuple(r.continua[i] for i in keep))
-    assert not contains(lacking, q, T, arm, TOL)
-
-
+TUBE = ([-1.0903859605951336, -1.9602397198866932, 2.4805366726910125, -4.3950562293041914e-08,
+         6.283185333426696, 2.3563604218200993],
+        [-1.090519134759254, -1.9602397304037216, 1.5707895899484718, 5.564149725443259e-05,
+         -5.089657648717816e-06, 1.4464901369245822])
 #: Thesis arm, near-continuum-equal pose 80800 of the 10^5 recovery run (seed 20120101): the
 #: oracle's point lies at joint 3 = -90 deg + 1e-5, 7.5e-5 rad off the tube (two small singular
 #: values there: 5e-6 and 2e-7, a sheet). Stepping joint 1 toward the tube, the refit reaches it
 #: and then slides along it by 1.1e-2 rad (more than NEAR) in one step: the path ends before.
-SHEET_Q_STAR = [-0.9259368357637954, -1.8609686071112546, -1.8022093327182838, 1.260571675299938e-08,
-                6.283185297231939, 0.1490562877807049]
-ON_SHEET = [-0.9260068733855551, -1.8609686060504673, -1.5707852833070783, -1.0018836874091203e-05,
-            -1.0017551613069706e-05, 0.3804132275211096]
-
-
-def test_an_oracle_point_on_the_sheet_where_a_tube_meets_joint_3_at_90_degrees_is_contained():
-    arm = arms.get("thesis")
-    T = iik.fk(np.array(SHEET_Q_STAR), arm)
-    r = iik.solve(T, arm, within_limits=False)
-    q = np.array(ON_SHEET)
-    pres, rres = pose_residuals_np(arm, q[None], T)
-    assert pres[0] <= TOL[0] and rres[0] <= TOL[1]
-    assert contains(r, q, T, arm, TOL)
-    keep = [i for i, row in enumerate(r.continua) if not row]  # negative control: without the tube
-    lacking = SimpleNamespace(q=r.q[keep], continua=tuple(r.continua[i] for i in keep))
-    assert not contains(lacking, q, T, arm, TOL)
-
-
+SHEET = ([-0.9259368357637954, -1.8609686071112546, -1.8022093327182838, 1.260571675299938e-08,
+          6.283185297231939, 0.1490562877807049],
+         [-0.9260068733855551, -1.8609686060504673, -1.5707852833070783, -1.0018836874091203e-05,
+          -1.0017551613069706e-05, 0.3804132275211096])
 #: Thesis arm, elbow-second (default_rng([3, 4]), the 10th pose): the eliminant has a triple root
 #: at theta1 = 0.31173 on the singular set, where the configurations within the tolerance form a
 #: blob spanning 0.027 rad of joint 3. The oracle's point lies 0.023 rad (more than NEAR) from the
 #: kernel's row of that blob; stepping joint 1 from it, the refit stays within 8e-11 of the pose
 #: all the way to the row.
-BLOB_Q_STAR = [0.3117029499205457, -1.823640812065575, -0.3291874097227363, 1.0635825615916398e-16,
-               0.0065952267447348945, -0.2834913609691041]
-IN_BLOB = [0.31104393883596293, -1.823667526409721, 2.835658345798096, 8.229294530664266e-05,
-           -0.006600656669285776, 2.8807168251580735]
+BLOB_POINT = ([0.3117029499205457, -1.823640812065575, -0.3291874097227363, 1.0635825615916398e-16,
+               0.0065952267447348945, -0.2834913609691041],
+              [0.31104393883596293, -1.823667526409721, 2.835658345798096, 8.229294530664266e-05,
+               -0.006600656669285776, 2.8807168251580735])
 
 
-def test_an_oracle_point_of_a_triple_root_blob_farther_than_near_is_contained_by_its_row():
+def _on_continuum(r, q):
+    return [bool(row) for row in r.continua]
+
+
+def _within_blob(r, q):
+    dist = np.max(np.abs(wrap_angle(r.q - q)), axis=1)
+    assert NEAR < dist.min() <= BLOB  # (the point is farther than NEAR from every row)
+    return list(dist <= BLOB)
+
+
+@pytest.mark.parametrize(
+    "case, rows",
+    [
+        pytest.param(TUBE, _on_continuum, id="beside-a-near-continuum-tube"),
+        pytest.param(SHEET, _on_continuum, id="on-the-sheet-where-a-tube-meets-joint-3-at-90-deg"),
+        pytest.param(BLOB_POINT, _within_blob, id="in-a-triple-root-blob-farther-than-NEAR"),
+    ],
+)
+def test_an_oracle_point_is_contained_by_its_rows_and_missed_without_them(case, rows):
+    """The thesis arm's oracle point reaches the pose, the kernel's answer contains it, and
+    without the rows that hold it (``rows``: the continuum rows, or the rows within BLOB) the
+    answer does not (negative control)."""
     arm = arms.get("thesis")
-    T = iik.fk(np.array(BLOB_Q_STAR), arm)
+    q_star, q = (np.array(x) for x in case)
+    T = iik.fk(q_star, arm)
     r = iik.solve(T, arm, within_limits=False)
-    q = np.array(IN_BLOB)
     pres, rres = pose_residuals_np(arm, q[None], T)
     assert pres[0] <= TOL[0] and rres[0] <= TOL[1]
-    dist = np.max(np.abs(wrap_angle(r.q - q)), axis=1)
-    assert NEAR < dist.min() <= BLOB
     assert contains(r, q, T, arm, TOL)
-    keep = dist > BLOB  # negative control: without the blob's row
-    continua = tuple(c for c, k in zip(r.continua, keep, strict=True) if k)
-    lacking = SimpleNamespace(q=r.q[keep], continua=continua)
+    keep = [i for i, holds in enumerate(rows(r, q)) if not holds]
+    lacking = SimpleNamespace(q=r.q[keep], continua=tuple(r.continua[i] for i in keep))
     assert not contains(lacking, q, T, arm, TOL)
