@@ -204,8 +204,13 @@ def _reaches(c, r) -> np.ndarray:
 
 def _good(c, q, r, prev) -> np.ndarray:
     """Are the members q (..., 6) with residuals r (..., 2) inside the limits, within the
-    tolerance and no more than _JUMP from the members ``prev`` before them?"""
-    return _inside(c.arm, q)[1] & _reaches(c, r) & (angle_distance(q, prev) <= _JUMP)
+    tolerance and (marched by refits) no more than _JUMP from the members ``prev`` before them?
+    A closed-form march halves its steps where a member jumps
+    (:func:`iik.ik.kernel.closed_form_march`): between its steps the curve itself swings (joints 3
+    and 6 by ~pi within 0.02 rad of joint 1 near a wrist singularity), and the feasible interval
+    of a thesis theta1 continuum ended there, 2.5 rad short of the limit."""
+    ok = _inside(c.arm, q)[1] & _reaches(c, r)
+    return ok if _marcher(c) is _march_closed else ok & (angle_distance(q, prev) <= _JUMP)
 
 
 def _edge(c, start: float, limit: float) -> float:

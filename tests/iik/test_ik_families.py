@@ -473,6 +473,26 @@ def test_a_theta1_continuum_is_followed_through_a_near_wrist_singularity():
     assert np.all(same <= 1e-9)
 
 
+def test_the_feasible_interval_of_a_theta1_continuum_runs_through_its_swing():
+    """The continuum through q* of the pose above, with the limits on: its feasible interval
+    contains q*'s joint 1, every member across it is inside Table I and reaches the pose, and it
+    ends at joint 1's limit or where a member leaves the limits. It used to end at theta1 = 0.063,
+    2.5 rad short, where the curve swings (a jump between march steps was taken for a lost curve)."""
+    arm = arms.get("thesis")
+    q = np.array([1.7588670851618784, -1.8104375170509364, -2.387011352223242, 2.6627679061888805e-17,
+                  0.3588719523073025, -2.987480354833726])
+    T = iik.fk(q, arm)
+    (c,) = [cs[0] for cs in iik.solve(T, arm).continua if angle_distance(cs[0].member(q[0]), q) <= 1e-9]
+    lo, hi = c.interval
+    assert lo <= q[0] <= hi
+    m, res = follow(c, np.linspace(lo, hi, 201))
+    assert np.all(res <= TOL) and all(arm.within_limits(x) for x in m)
+    for end, out in ((lo, -1e-4), (hi, 1e-4)):
+        if arm.q_min[0] + 1e-9 < end < arm.q_max[0] - 1e-9:
+            beyond = follow(c, [end + out])[0][0]
+            assert not arm.within_limits(beyond), (end, beyond)
+
+
 @pytest.mark.parametrize(
     "arm_name, q",
     [
