@@ -240,9 +240,10 @@ def along(c) -> tuple[np.ndarray, np.ndarray]:
     representative in both directions (steps of at most :data:`STEP` rad): the free-joint values
     (n,) [rad] in increasing order and the members (n, 6) [rad] that reach the pose within the
     tolerance. A member that misses it is left out and the march goes on (a numerical tube can
-    be thinner than the tolerance in places); a direction ends where the members jump (more than
-    0.5 rad from the last one kept: the curve is lost). The other joints' limits are not applied
-    (their windings are the caller's, :mod:`iik.ik.nearest`)."""
+    be thinner than the tolerance in places); a march by refits ends where the members jump (more
+    than 0.5 rad from the last one kept: the curve is lost; a closed-form march follows the curve
+    through its swings, :func:`_good`). The other joints' limits are not applied (their windings
+    are the caller's, :mod:`iik.ik.nearest`)."""
     j = c.free_joint - 1
     start = float(c.representative[j])
     march = _march_closed if c.kind == "theta1" else _march
@@ -253,7 +254,7 @@ def along(c) -> tuple[np.ndarray, np.ndarray]:
         path, q, r = _toward(c, limit, march)
         prev = members[0]
         for i, th in enumerate(path):
-            if float(angle_distance(q[i], prev)) > _JUMP:
+            if march is _march and float(angle_distance(q[i], prev)) > _JUMP:
                 break
             if _reaches(c, r[i]):
                 thetas.append(float(th))

@@ -30,7 +30,7 @@ import iik
 from iik import arms
 from iik.ik import layout as L
 from iik.ik.angles import angle_distance
-from iik.ik.members import RESOLUTION, follow
+from iik.ik.members import RESOLUTION, STEP, along, follow
 from verification.oracles.multistart import OracleOptions, multistart_ik, pose_residuals_np
 from verification.testing.completeness import agreement, contains, coverage
 from verification.testing.families import FAMILIES, applicability, family_configurations
@@ -477,7 +477,8 @@ def test_the_feasible_interval_of_a_theta1_continuum_runs_through_its_swing():
     """The continuum through q* of the pose above, with the limits on: its feasible interval
     contains q*'s joint 1, every member across it is inside Table I and reaches the pose, and it
     ends at joint 1's limit or where a member leaves the limits. It used to end at theta1 = 0.063,
-    2.5 rad short, where the curve swings (a jump between march steps was taken for a lost curve)."""
+    2.5 rad short, where the curve swings (a jump between march steps was taken for a lost curve),
+    and the members the selection samples (:func:`iik.ik.members.along`) stopped there too."""
     arm = arms.get("thesis")
     q = np.array([1.7588670851618784, -1.8104375170509364, -2.387011352223242, 2.6627679061888805e-17,
                   0.3588719523073025, -2.987480354833726])
@@ -491,6 +492,8 @@ def test_the_feasible_interval_of_a_theta1_continuum_runs_through_its_swing():
         if arm.q_min[0] + 1e-9 < end < arm.q_max[0] - 1e-9:
             beyond = follow(c, [end + out])[0][0]
             assert not arm.within_limits(beyond), (end, beyond)
+    th, _ = along(c)  # the members the selection samples run from limit to limit of joint 1 too
+    assert th[0] == arm.q_min[0] and th[-1] == arm.q_max[0] and np.max(np.diff(th)) <= STEP + 1e-12
 
 
 @pytest.mark.parametrize(
