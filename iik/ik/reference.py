@@ -264,10 +264,8 @@ def _cluster_roots(x, th, width: int = 8, grid: int = 256):
 
 
 def _F_long(x, th):
-    """F (Eq 11's eliminant) of one pose's coefficients x (6, 3) at angles th, in np.longdouble."""
-    xl, t = x.astype(np.longdouble), np.asarray(th, dtype=np.longdouble)
-    a, b, c, P, Q, R = (xl[k, 0] + xl[k, 1] * np.cos(t) + xl[k, 2] * np.sin(t) for k in range(6))
-    return (Q * a - R * c) ** 2 + (R * b - P * a) ** 2 - (P * c - Q * b) ** 2
+    """:func:`_F` of one pose's coefficients x (6, 3) at angles th (m,), in np.longdouble."""
+    return _F(x[None].astype(np.longdouble), np.asarray(th, dtype=np.longdouble)[None])[0]
 
 
 def _sign_changes(x, th, iters: int = 48) -> list:
