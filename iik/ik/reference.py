@@ -511,9 +511,8 @@ def _restarts(qs, own, hval, near):
 def _connected(a, b, T, arm: Arm, tol_p, tol_r) -> bool:
     """Rows a and b (within CONNECT_NEAR rad) in one connected piece of the set that reaches the
     pose within the tolerance: 9 points of the segment between them do, or else 9 points of a
-    bent path do (one joint stepped along the segment, the others refit with it held: each joint
-    that moves at least a quarter as much as the one that moves most, in turn, that one first;
-    no point moved farther than the rows are apart).
+    bent path do (the joint that moves most stepped along the segment, the others refit with it
+    held; no point moved farther than the rows are apart).
     Near a multiple root that set is a thin curved blob (residual ~ c d^2 along it, c ~ 1e-3),
     and beside the collinear continuum a tube whose points 1e-3 rad from it lie up to 7e-3 rad
     apart: a straight segment between two of its points leaves it, and the rows would count as
@@ -527,14 +526,10 @@ def _connected(a, b, T, arm: Arm, tol_p, tol_r) -> bool:
     _, pr, rr = _errors(Tq, np.broadcast_to(T, (9, 4, 4)))
     if np.all(pr <= tol_p) and np.all(rr <= tol_r):
         return True
-    for held in np.argsort(-np.abs(d)):
-        if abs(d[held]) < 0.25 * size:  # (held where a and b agree, the points slide to either)
-            break
-        cols = [k for k in range(6) if k != held]
-        out, pr, rr = _polish(arm, pts, np.broadcast_to(T, (9, 4, 4)), iters=12, cols=cols)
-        if np.all(pr <= tol_p) and np.all(rr <= tol_r) and np.max(np.abs(_wrap(out - pts))) <= size:
-            return True
-    return False
+    held = int(np.argmax(np.abs(d)))  # (held where a and b agree, the points would slide to either)
+    cols = [k for k in range(6) if k != held]
+    out, pr, rr = _polish(arm, pts, np.broadcast_to(T, (9, 4, 4)), iters=12, cols=cols)
+    return bool(np.all(pr <= tol_p) and np.all(rr <= tol_r) and np.max(np.abs(_wrap(out - pts))) <= size)
 
 
 def _snap(arm: Arm, q, T, tol_p, tol_r):
