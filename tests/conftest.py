@@ -99,12 +99,14 @@ class UdpBus:
         except (OSError, ImportError) as exc:
             return f"udp_multicast unavailable: {exc}"
 
-    def request_timeout(self, floor: float = 1.0, margin: float = 25.0, arm=None) -> str:
+    def request_timeout(self, floor: float = 5.0, margin: float = 25.0, arm=None) -> str:
         """A CAN request timeout [s] for ``iik run`` on this bus (as ``--timeout`` text), derived from a
         baseline measured now, under whatever load the machine has: ``margin`` times the slowest of
         ten round trips to the running ``sim-arm`` (GETPOS of every module), at least ``floor`` and at
         most the longest timeout accepted (:data:`hardware.bus.MAX_TIMEOUT`). ``arm``: the arm the
-        ``sim-arm`` serves (default the thesis arm's)."""
+        ``sim-arm`` serves (default the thesis arm's). (The load can rise after the baseline: with
+        six processes on two cores a reply once took more than the 1 s floor of then, and the run
+        stopped at its first request. The timeout only detects a hang here.)"""
         from hardware import PowerCubeArm
         from hardware.bus import MAX_TIMEOUT
         from iik import THESIS_ARM
