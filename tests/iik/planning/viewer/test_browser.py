@@ -186,9 +186,13 @@ def test_live_time_slider_moves_the_arm(browser, plan_j):
     try:
         assert live.url.startswith("http://127.0.0.1:")
         browser.get(live.url)
-        before = wait_for_scene(browser)
+        wait_for_scene(browser)
         rect = canvas_rect(browser)
         eye, target, fov = view.camera
+        region = _box(project(_arm_points(plan_j.q[[0, -1]]), eye, target, fov_deg=fov, rect=rect), 30)
+        x0, y0, x1, y1 = (int(max(v, 0)) for v in region)
+        # (on a loaded machine the arm's meshes can arrive after the grid has settled: wait for them)
+        before = wait_for_scene(browser, until=lambda img: hue_mask(img, *BLUE)[y0:y1, x0:x1].sum() > 100)
         slider = live.time_slider
         t_end = slider.max
 
@@ -197,8 +201,6 @@ def test_live_time_slider_moves_the_arm(browser, plan_j):
         thumb.send_keys(Keys.END)
         moved = wait_until(lambda: abs(slider.value - t_end) < 1e-9, 30.0, 0.1)
         assert moved, "the server never saw the slider move"
-        region = _box(project(_arm_points(plan_j.q[[0, -1]]), eye, target, fov_deg=fov, rect=rect), 30)
-        x0, y0, x1, y1 = (int(max(v, 0)) for v in region)
         blue0 = hue_mask(before, *BLUE)[y0:y1, x0:x1]  # not the panel's button
         c0 = np.argwhere(blue0).mean(axis=0)
         shot = [before]
