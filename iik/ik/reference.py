@@ -8,8 +8,9 @@ Eq 11, ``docs/IK_CLASS.md``) and nothing of how they are solved:
   matrix (batched LAPACK), with a per-pose reference angle chosen so that no root is near
   t = infinity; roots with an imaginary part up to :data:`IMAG_TOL` are kept (a near-double
   root loses its real pair to rounding); within a cluster of roots, F's sign changes on a grid
-  in extended precision (np.longdouble), bisected: where the kernel isolates with certified
-  signs and re-expands clusters in double-double;
+  in extended precision (np.longdouble), bisected, and the crossings of the two conditions'
+  curves (:mod:`iik.ik.crossings`, which give theta2 too): where the kernel isolates with
+  certified signs and re-expands clusters in double-double;
 * **theta2**: every point of the unit circle on each of the two conditions (and Cramer's
   point), where the kernel takes Cramer's point unless the conditions are nearly parallel;
 * **the wrist**: generic frames of the solver chain written here in NumPy;
@@ -31,6 +32,7 @@ from ..arm import Arm
 from ..dh import dh_chain
 from . import layout as L
 from .angles import wrap_angle as _wrap
+from .crossings import cluster_crossings
 from .elimination import pose_terms
 
 __all__ = ["solve_arrays", "IMAG_TOL", "POSITION_TOL", "ROTATION_TOL"]
@@ -251,16 +253,38 @@ def _cluster_roots(x, th, width: int = 8, grid: int = 256):
     onto the same solution (CRX-10iA off-singular: three solutions whose joint 6 lie 1.4e-4 rad
     apart; the reference found the middle one)."""
     out = np.full((len(th), width), np.nan)
+    found = [[] for _ in range(len(th))]
+    for i, lo, hi in _clusters(th):
+        w = max(0.5 * (hi - lo), 1e-5)
+        found[i] += _sign_changes(x[i], np.linspace(lo - w, hi + w, grid))
+    for i, f in enumerate(found):
+        out[i, : min(len(f), width)] = f[:width]
+    return out
+
+
+def _clusters(th):
+    """Each cluster (pose, lowest, highest root) of the eigenvalue roots th (n, m) [rad]: two or
+    more roots whose neighbours lie closer than 1e-3 rad."""
     for i, row in enumerate(np.sort(th, axis=1)):
         row = row[~np.isnan(row)]
-        found = []
         for g in np.split(row, np.flatnonzero(np.diff(row) > 1e-3) + 1):
             if len(g) > 1:
-                w = max(0.5 * (g[-1] - g[0]), 1e-5)
-                found += _sign_changes(x[i], np.linspace(g[0] - w, g[-1] + w, grid))
-        found = found[:width]
-        out[i, : len(found)] = found
-    return out
+                yield i, float(g[0]), float(g[-1])
+
+
+def _crossing_pairs(x, th):
+    """(owners, theta1, theta2) [DH angles] of every crossing of the conditions' curves inside
+    each cluster of the eigenvalue roots th (n, 8) (:func:`iik.ik.crossings.cluster_crossings`):
+    the solutions of a cluster whose theta1 lie too close for F's sign to separate them."""
+    own, t1, t2 = [], [], []
+    for i, lo, hi in _clusters(th):
+        a, b = cluster_crossings(x[i], lo, hi)
+        own += [i] * len(a)
+        t1.append(a)
+        t2.append(b)
+    if not own:
+        return np.empty(0, int), np.empty(0), np.empty(0)
+    return np.array(own), np.concatenate(t1), np.concatenate(t2)
 
 
 def _F_long(x, th):
@@ -329,6 +353,8 @@ def solve_arrays(
     t2 = _theta2(x, own, t1)
     o2, k2 = np.nonzero(~np.isnan(t2))
     own2, t1f, t2f = own[o2], t1[o2], t2[o2, k2]
+    cross = _crossing_pairs(x, th1[:, :8])
+    own2, t1f, t2f = (np.concatenate([u, v]) for u, v in zip((own2, t1f, t2f), cross, strict=True))
     t1f, t2f = _refine_pairs(x, own2, t1f, t2f)
     rows = arm.solver.rows
     own3 = np.repeat(own2, 2)

@@ -505,6 +505,9 @@ def test_the_feasible_interval_of_a_theta1_continuum_runs_through_its_swing():
         pytest.param("crx10ia", [3.6202928038922595, -2.2712799078594097, -1.5695946974153314,
                                  -3.274124122353042, 0.8496694631858704, 0.40495896950284166],
                      id="crx10ia-cluster"),
+        pytest.param("crx10ia", [0.4760137856182406, 0.8433177597867076, 4.712333172586383,
+                                 -0.24506781207461112, -0.7623049419992953, 1.9835036629825866],
+                     id="crx10ia-two-pairs"),
     ],
 )
 def test_the_reference_keeps_every_solution_of_a_cluster_of_roots(arm_name, q):
@@ -514,8 +517,12 @@ def test_the_reference_keeps_every_solution_of_a_cluster_of_roots(arm_name, q):
     apart), its points slid to either end, and the two were merged. CRX-10iA: three solutions
     whose joint 6 (solver joint 1) lie 1.4e-4 rad apart, on branches of joint 2 radians apart; the
     companion eigenvalues err by ~1e-4 there and every candidate polished onto the middle one,
-    until the cluster's roots were found again in extended precision. The reference now
-    returns the kernel's set."""
+    until the cluster's roots were found again in extended precision. CRX-10iA two pairs (the
+    thorough profile, fam.sample(arm, default_rng(3852), 1)): four solutions whose joint 6 lie
+    within 1.7e-5 rad, in two pairs 1e-7 apart; F keeps one sign on every grid over the cluster
+    (it is positive only between the two roots of a pair), and the reference returned 8 of the
+    kernel's 16 rows until it found the crossings of the two conditions' curves
+    (:mod:`iik.ik.crossings`). The reference now returns the kernel's set."""
     arm = arms.get(arm_name)
     T = iik.fk(np.array(q), arm)
     k, ref = _solve(T, arm), _solve(T, arm, method="reference")
