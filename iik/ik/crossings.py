@@ -90,37 +90,49 @@ def _bisect(x, lo, hi, s1, s2, iters: int = 60):
     return 0.5 * (lo + hi)
 
 
-def _brackets(x, t2, d):
-    """The theta2 intervals (lo (m,), hi (m,)) between neighbouring grid angles t2 over which
-    the gap d (sampled there) changes sign. (A fold is itself a grid angle, :func:`_folds`.)"""
+def _brackets(d):
+    """(pair, i) of each grid interval [t2[i], t2[i + 1]] over which the gap d (pairs of
+    branches, grid angles) changes sign. (A fold is itself a grid angle, :func:`_folds`.)"""
     with np.errstate(invalid="ignore"):  # (a gap near +-pi changes sign by wrapping)
         small = np.abs(d) <= 1.0
-        idx = np.flatnonzero(small[:-1] & small[1:] & (np.sign(d[:-1]) * np.sign(d[1:]) <= 0))
-    return t2[idx], t2[idx + 1]
+        change = small[:, :-1] & small[:, 1:] & (np.sign(d[:, :-1]) * np.sign(d[:, 1:]) <= 0)
+    return np.nonzero(change)
 
 
-def _dips(x, t2, d, s1, s2, iters: int = 60):
-    """Two crossings between grid angles cancel in the signs of d: at each local minimum of |d|
-    on the grid (its neighbours of its sign, |d| <= 0.1), the extremum of d between the
-    neighbours by golden sections. Returns the intervals (lo, hi) on each side of an extremum
-    of the other sign, and the extrema where d vanishes to 1e-13 (a tangency)."""
-    a, m, b = d[:-2], d[1:-1], d[2:]
+def _dips(d):
+    """(pair, i) of each grid angle where |d| has a local minimum (|d| <= 0.1, both neighbours
+    of its sign): two crossings between t2[i - 1] and t2[i + 1] would cancel in the signs of d
+    there."""
+    a, m, b = d[:, :-2], d[:, 1:-1], d[:, 2:]
     with np.errstate(invalid="ignore"):
         dip = (np.abs(m) <= np.abs(a)) & (np.abs(m) <= np.abs(b)) & (np.abs(m) <= 0.1)
         dip &= (np.sign(a) == np.sign(m)) & (np.sign(b) == np.sign(m))
-    i = np.flatnonzero(dip) + 1
-    sg, lo, hi = np.sign(d[i]), t2[i - 1], t2[i + 1]
+    pair, i = np.nonzero(dip)
+    return pair, i + 1
+
+
+def _extrema(x, lo, hi, s1, s2, sg, iters: int = 60):
+    """The extremum (a minimum of sg * gap of branches s1, s2) inside each [lo, hi], by golden
+    sections. Returns the intervals (lo, hi, s1, s2) on each side of an extremum of the other
+    sign (two crossings), and the extrema (theta2, s1) where the gap vanishes to 1e-13 (a
+    tangency)."""
+    a, b = lo, hi
     for _ in range(iters):
-        u, v = hi - 0.618 * (hi - lo), lo + 0.618 * (hi - lo)
+        u, v = b - 0.618 * (b - a), a + 0.618 * (b - a)
         first = sg * _gap(x, u, s1, s2) <= sg * _gap(x, v, s1, s2)
-        lo, hi = np.where(first, lo, u), np.where(first, v, hi)
-    ext = 0.5 * (lo + hi)
+        a, b = np.where(first, a, u), np.where(first, v, b)
+    ext = 0.5 * (a + b)
     de = _gap(x, ext, s1, s2)
     with np.errstate(invalid="ignore"):
         over = np.sign(de) == -sg
-        touch = ext[~over & (np.abs(de) <= 1e-13)]
-    e = ext[over]
-    return np.concatenate([t2[i - 1][over], e]), np.concatenate([e, t2[i + 1][over]]), touch
+        touch = ~over & (np.abs(de) <= 1e-13)
+    e, two = ext[over], lambda v: np.tile(v[over], 2)
+    sides = (np.concatenate([lo[over], e]), np.concatenate([e, hi[over]]), two(s1), two(s2))
+    return sides, (ext[touch], s1[touch])
+
+
+#: The four pairs of branches (G1's sign, G2's sign), as columns.
+_S1, _S2 = np.array([[1.0], [1.0], [-1.0], [-1.0]]), np.array([[1.0], [-1.0], [1.0], [-1.0]])
 
 
 def cluster_crossings(x, lo: float, hi: float, grid: int = CROSSING_GRID):
@@ -132,17 +144,16 @@ def cluster_crossings(x, lo: float, hi: float, grid: int = CROSSING_GRID):
     minimum of |gap| on the grid, can still be missed. The caller polishes and verifies each
     crossing."""
     t2 = np.sort(np.concatenate([np.linspace(-np.pi, np.pi, grid + 1), _folds(x, _G1), _folds(x, _G2)]))
-    out1, out2 = [np.empty(0)], [np.empty(0)]
-    for s1 in (1.0, -1.0):
-        b1 = _branch(x, _G1, t2, s1)
-        for s2 in (1.0, -1.0):
-            d = wrap_angle(b1 - _branch(x, _G2, t2, s2))
-            (lo2, hi2), (lo3, hi3, touch) = _brackets(x, t2, d), _dips(x, t2, d, s1, s2)
-            r2 = _bisect(x, np.concatenate([lo2, lo3]), np.concatenate([hi2, hi3]), s1, s2)
-            r2 = np.concatenate([r2, touch])
-            out1.append(wrap_angle(_branch(x, _G1, r2, s1)))
-            out2.append(r2)
-    t1, t2 = np.concatenate(out1), np.concatenate(out2)
     mid, reach = 0.5 * (lo + hi), 0.5 * (hi - lo) + CROSSING_REACH
-    inside = np.abs(wrap_angle(t1 - mid)) <= reach
-    return t1[inside], t2[inside]
+    d = wrap_angle(_branch(x, _G1, t2[None], _S1) - _branch(x, _G2, t2[None], _S2))  # (4, m)
+    p, i = _dips(d)
+    (lo2, hi2, u1, u2), (touch, t1s) = _extrema(
+        x, t2[i - 1], t2[i + 1], _S1[p, 0], _S2[p, 0], np.sign(d[p, i])
+    )
+    p, i = _brackets(d)
+    s1, s2 = np.concatenate([_S1[p, 0], u1]), np.concatenate([_S2[p, 0], u2])
+    r2 = _bisect(x, np.concatenate([t2[i], lo2]), np.concatenate([t2[i + 1], hi2]), s1, s2)
+    r2 = np.concatenate([r2, touch])
+    r1 = wrap_angle(_branch(x, _G1, r2, np.concatenate([s1, t1s])))
+    inside = np.abs(wrap_angle(r1 - mid)) <= reach
+    return r1[inside], r2[inside]
